@@ -1,0 +1,155 @@
+//! slideroute's build-time coefficient generator.
+//!
+//! [`generate`] expands the paper's law-of-sines relations (eqs. (2), (3), (8)–(14)) with our own
+//! exact polynomial engine ([`poly`], [`rational`]), removes sin h by isolating and squaring for
+//! the small-angle system (15), builds the exact (α, ψ) form, and emits Rust source for
+//! `include!` from slideroute's `coeffs` module. The derivation is written out for people in
+//! `derivations/` at the repository root; the tests there and here keep the two in step.
+
+pub mod emit;
+pub mod poly;
+pub mod rational;
+pub mod system;
+
+use poly::{Monomial, Poly, Sym};
+use proc_macro2::{Ident, Span, TokenStream};
+use quote::quote;
+
+fn ident(s: &str) -> Ident {
+    Ident::new(s, Span::call_site())
+}
+
+fn leak(s: String) -> Sym {
+    Box::leak(s.into_boxed_str())
+}
+
+fn param_access(s: Sym) -> TokenStream {
+    let i = ident(s);
+    quote!(p.#i)
+}
+
+/// The trig-basis exponents (sa, ca, sp, cp) of a monomial of the exact form.
+fn trig_exponents(m: &Monomial) -> [u32; 4] {
+    system::EXACT_UNKNOWNS.map(|s| m.degree_in(s))
+}
+
+/// The Rust source of the generated coefficient module, formatted.
+pub fn generate() -> String {
+    assert!(
+        system::exact_substitution_remainder().is_zero(),
+        "the exact (α, ψ) substitution does not satisfy eq. (2)"
+    );
+
+    // Inputs struct.
+    let fields = system::PARAMETERS.iter().map(|(s, doc)| {
+        let i = ident(s);
+        quote!(#[doc = #doc] pub #i: f64,)
+    });
+    let inputs = quote! {
+        /// Parameters of the generated coefficient functions (built by `CoeffInputs::new`).
+        #[derive(Clone, Copy, Debug, PartialEq)]
+        pub struct CoeffInputs { #(#fields)* }
+    };
+
+    // Small-angle system (15).
+    let f = system::small_angle();
+    let small_body = emit::body(&f, &param_access);
+    let mons = system::SMALL_ANGLE_MONOMIALS.map(|eq| {
+        let pairs = eq.map(|(i, j)| {
+            let (i, j) = (
+                proc_macro2::Literal::u32_unsuffixed(i),
+                proc_macro2::Literal::u32_unsuffixed(j),
+            );
+            quote!((#i, #j))
+        });
+        quote!([#(#pairs),*])
+    });
+    let small = quote! {
+        /// (α, β) exponents of the monomials multiplying f1–f6 in (15a) and f7–f12 in (15b).
+        pub const SMALL_ANGLE_MONOMIALS: [[(u32, u32); 6]; 2] = [#(#mons),*];
+        /// f1–f12 of system (15) (re-derived; see `derivations/03-small-angle.md`), in SI units.
+        #[allow(clippy::too_many_lines, clippy::neg_multiply)]
+        pub fn small_angle(p: &CoeffInputs) -> [f64; 12] { #small_body }
+    };
+
+    // Exact form, trig basis.
+    let collected = system::exact_collected();
+    let n13 = proc_macro2::Literal::usize_unsuffixed(collected[0].len());
+    let n14 = proc_macro2::Literal::usize_unsuffixed(collected[1].len());
+    let mut outs: Vec<Poly> = Vec::new();
+    let mut basis_tokens = Vec::new();
+    let mut name_tokens = Vec::new();
+    for eq in &collected {
+        let exps = eq.iter().map(|(m, _)| {
+            let e = trig_exponents(m).map(proc_macro2::Literal::u32_unsuffixed);
+            quote!([#(#e),*])
+        });
+        let names = eq.iter().map(|(m, _)| system::basis_name(m));
+        basis_tokens.push(quote!([#(#exps),*]));
+        name_tokens.push(quote!([#(#names),*]));
+        outs.extend(eq.iter().map(|(_, p)| p.clone()));
+    }
+    let exact_body = emit::body(&outs, &param_access);
+    let n_all = proc_macro2::Literal::usize_unsuffixed(collected[0].len() + collected[1].len());
+    let (b13, b14) = (&basis_tokens[0], &basis_tokens[1]);
+    let (nm13, nm14) = (&name_tokens[0], &name_tokens[1]);
+    let exact = quote! {
+        /// Number of trig-basis terms of exact (13) and (14).
+        pub const EXACT_TERMS: [usize; 2] = [#n13, #n14];
+        /// (sin α, cos α, sin ψ, cos ψ) exponents of each term of exact (13), then (14).
+        pub const EXACT_BASIS_13: [[u32; 4]; #n13] = #b13;
+        pub const EXACT_BASIS_14: [[u32; 4]; #n14] = #b14;
+        /// Readable names of the basis monomials (`one`, `sa`, `ca_sp`, …).
+        pub const EXACT_NAMES_13: [&str; #n13] = #nm13;
+        pub const EXACT_NAMES_14: [&str; #n14] = #nm14;
+        /// Coefficients of exact (13), then (14), in the trig basis above
+        /// (see `derivations/04-exact.md`).
+        #[allow(clippy::too_many_lines, clippy::neg_multiply)]
+        pub fn exact_trig(p: &CoeffInputs) -> [f64; #n_all] { #exact_body }
+    };
+
+    // Exact form, tangent half-angles: coefficients of ta^i tp^j, linear in the trig ones.
+    let mut half_outs: Vec<Poly> = Vec::new();
+    let mut offset = 0usize;
+    for eq in &collected {
+        let mut sym_poly = Poly::zero();
+        for (k, (m, _)) in eq.iter().enumerate() {
+            let g = leak(format!("g{}", offset + k));
+            sym_poly = sym_poly + Poly::var(g) * Poly::term(rational::Rational::ONE, m.clone());
+        }
+        offset += eq.len();
+        let h = system::half_angle(&sym_poly, "sa", "ca", "ta");
+        let h = system::half_angle(&h, "sp", "cp", "tp");
+        let c = h.collect(&["ta", "tp"]);
+        for i in 0..3u32 {
+            for j in 0..3u32 {
+                let m = Monomial::from_pairs(&[("ta", i), ("tp", j)]);
+                half_outs.push(c.get(&m).cloned().unwrap_or_default());
+            }
+        }
+    }
+    let half_body = emit::body(&half_outs, &|s: Sym| {
+        let k: usize = s[1..].parse().expect("g index");
+        let k = proc_macro2::Literal::usize_unsuffixed(k);
+        quote!(g[#k])
+    });
+    let half = quote! {
+        /// Exact (13), (14) in tangent half-angles ta = tan(α/2), tp = tan(ψ/2), multiplied by
+        /// (1 + ta²)(1 + tp²): entry `9·eq + 3·i + j` multiplies ta^i tp^j.
+        #[allow(clippy::too_many_lines, clippy::neg_multiply)]
+        pub fn exact_half_angle(g: &[f64; #n_all]) -> [f64; 18] { #half_body }
+    };
+
+    let file = quote! {
+        // @generated by slideroute-codegen from the paper's eqs. (2), (3), (8)–(14). Do not edit.
+        #inputs
+        #small
+        #exact
+        #half
+    };
+    let mut text = String::from(
+        "// @generated by slideroute-codegen (codegen/src/system.rs). Do not edit by hand.\n",
+    );
+    text.push_str(&emit::format(file));
+    text
+}

@@ -1,0 +1,198 @@
+//! Coefficients of the pose polynomials, generated at build time by `codegen/` from the paper's
+//! law-of-sines relations (eqs. (2), (3), (8)–(14)) and included from `OUT_DIR`.
+//!
+//! * [`SmallAngle`]: f1–f12 of system (15), re-derived (the paper's printed f1, f2, f7, f11 are
+//!   misprints; see `derivations/05-paper-differences.md`).
+//! * [`Exact`]: (13) and (14) without approximation, in the unknowns (sin α, cos α, sin ψ, cos ψ)
+//!   where ψ is the roll of the frame about side 01 (`derivations/04-exact.md`). Bilinear, so
+//!   no squaring is needed and no spurious roots arise; ψ and β are related by
+//!   √2 sin β = sin α − cos α sin ψ.
+//!
+//! Evaluating one mode never evaluates the other's coefficients.
+
+use crate::geometry::Displacement;
+use crate::scene::Scene;
+
+#[allow(clippy::all)]
+mod generated {
+    include!(concat!(env!("OUT_DIR"), "/coeffs.rs"));
+}
+
+pub use generated::CoeffInputs;
+pub use generated::{
+    EXACT_BASIS_13, EXACT_BASIS_14, EXACT_NAMES_13, EXACT_NAMES_14, EXACT_TERMS,
+    SMALL_ANGLE_MONOMIALS,
+};
+
+/// Number of trig-basis terms of exact (13) plus (14).
+pub const EXACT_LEN: usize = EXACT_TERMS[0] + EXACT_TERMS[1];
+
+impl CoeffInputs {
+    /// The generator's inputs for a scene at displacement `d`. Differences of cosines are
+    /// computed from products of sines, so small displacements lose no precision.
+    pub fn new(scene: &Scene, d: Displacement) -> Self {
+        let (f, g) = (&scene.frame, &scene.foundation);
+        let half = 0.5 * d.theta;
+        let s_half = half.sin();
+        let (sk, ck) = g.kappa.sin_cos();
+        let (s_hk, c_hk) = (half + g.kappa).sin_cos();
+        CoeffInputs {
+            x: d.x,
+            z: d.z,
+            l2x: f.l2x,
+            l1z: f.l1z,
+            l2z: f.l2z,
+            omc: 2.0 * s_half * s_half,
+            st: d.theta.sin(),
+            ck,
+            sk,
+            dck: 2.0 * s_half * s_hk,
+            dsk: 2.0 * s_half * c_hk,
+            cot_xi: 1.0 / g.xi.tan(),
+            cot_zeta: 1.0 / g.zeta.tan(),
+        }
+    }
+}
+
+/// Names of the small-angle coefficients, f1–f12.
+pub const SMALL_ANGLE_NAMES: [&str; 12] = [
+    "f1", "f2", "f3", "f4", "f5", "f6", "f7", "f8", "f9", "f10", "f11", "f12",
+];
+
+/// f1–f12 of system (15) at one displacement: (15a) is
+/// f1 + f2 α + f3 αβ + f4 α² + f5 α²β + f6 α²β² = 0 and (15b) is
+/// f7 + f8 β + f9 αβ + f10 β² + f11 αβ² + f12 α²β² = 0 (SI units, unscaled).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SmallAngle {
+    /// `f[0]` is f1, …, `f[11]` is f12.
+    pub f: [f64; 12],
+}
+
+impl SmallAngle {
+    pub fn new(inputs: &CoeffInputs) -> Self {
+        SmallAngle {
+            f: generated::small_angle(inputs),
+        }
+    }
+
+    /// Residuals of (15a), (15b) at (α, β) in radians (m²).
+    pub fn residual(&self, alpha: f64, beta: f64) -> [f64; 2] {
+        let mut r = [0.0; 2];
+        for (eq, mons) in SMALL_ANGLE_MONOMIALS.iter().enumerate() {
+            r[eq] = mons
+                .iter()
+                .zip(&self.f[6 * eq..6 * eq + 6])
+                .map(|(&(i, j), c)| c * alpha.powi(i as i32) * beta.powi(j as i32))
+                .sum();
+        }
+        r
+    }
+}
+
+/// The exact relations (13), (14) at one displacement, as coefficients of the trig basis
+/// monomials in [`EXACT_BASIS_13`] / [`EXACT_BASIS_14`] (exponents of sin α, cos α, sin ψ,
+/// cos ψ). Each equation reads LHS − RHS of the paper's (13) or (14), in metres.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Exact {
+    /// Coefficients of (13), then of (14).
+    pub g: [f64; EXACT_LEN],
+}
+
+impl Exact {
+    pub fn new(inputs: &CoeffInputs) -> Self {
+        Exact {
+            g: generated::exact_trig(inputs),
+        }
+    }
+
+    /// Coefficients of (13).
+    pub fn eq13(&self) -> &[f64] {
+        &self.g[..EXACT_TERMS[0]]
+    }
+
+    /// Coefficients of (14).
+    pub fn eq14(&self) -> &[f64] {
+        &self.g[EXACT_TERMS[0]..]
+    }
+
+    /// Residuals of (13), (14) (m) at tilt α and roll ψ given by their sines and cosines.
+    pub fn residual(&self, sa: f64, ca: f64, sp: f64, cp: f64) -> [f64; 2] {
+        let val = [sa, ca, sp, cp];
+        let term = |e: &[u32; 4]| -> f64 {
+            e.iter()
+                .zip(val)
+                .map(|(&k, v)| if k == 0 { 1.0 } else { v })
+                .product()
+        };
+        let r13 = EXACT_BASIS_13
+            .iter()
+            .zip(self.eq13())
+            .map(|(e, c)| c * term(e))
+            .sum();
+        let r14 = EXACT_BASIS_14
+            .iter()
+            .zip(self.eq14())
+            .map(|(e, c)| c * term(e))
+            .sum();
+        [r13, r14]
+    }
+
+    /// The same equations in tangent half-angles ta = tan(α/2), tp = tan(ψ/2), multiplied by
+    /// (1 + ta²)(1 + tp²): `h[eq][i][j]` multiplies ta^i tp^j. Bidegree (2, 2): at most 8 roots.
+    pub fn half_angle(&self) -> [[[f64; 3]; 3]; 2] {
+        let flat = generated::exact_half_angle(&self.g);
+        let mut h = [[[0.0; 3]; 3]; 2];
+        for (k, v) in flat.into_iter().enumerate() {
+            h[k / 9][(k / 3) % 3][k % 3] = v;
+        }
+        h
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn start_pose_is_a_root_of_both_systems() {
+        // At X = Z = θ = 0 the flat frame (α = β = ψ = 0) is in contact with all three planes.
+        let scene = Scene::default_scene();
+        let inputs = CoeffInputs::new(&scene, Displacement::default());
+        let small = SmallAngle::new(&inputs);
+        let r = small.residual(0.0, 0.0);
+        assert!(r[0].abs() < 1e-12 && r[1].abs() < 1e-12, "{r:?}");
+        let exact = Exact::new(&inputs);
+        let r = exact.residual(0.0, 1.0, 0.0, 1.0);
+        assert!(r[0].abs() < 1e-12 && r[1].abs() < 1e-12, "{r:?}");
+    }
+
+    #[test]
+    fn half_angle_form_equals_trig_form_times_weights() {
+        let scene = Scene::default_scene();
+        let d = Displacement {
+            x: 1.2,
+            z: -0.3,
+            theta: 0.07,
+        };
+        let exact = Exact::new(&CoeffInputs::new(&scene, d));
+        let h = exact.half_angle();
+        for &(alpha, psi) in &[(0.1, -0.2), (0.4, 0.3), (-0.7, 1.1)] {
+            let (ta, tp) = (f64::tan(alpha / 2.0), f64::tan(psi / 2.0));
+            let w = (1.0 + ta * ta) * (1.0 + tp * tp);
+            let trig = exact.residual(alpha.sin(), alpha.cos(), psi.sin(), psi.cos());
+            for eq in 0..2 {
+                let mut v = 0.0;
+                for (i, row) in h[eq].iter().enumerate() {
+                    for (j, c) in row.iter().enumerate() {
+                        v += c * ta.powi(i as i32) * tp.powi(j as i32);
+                    }
+                }
+                assert!(
+                    (v - w * trig[eq]).abs() < 1e-12 * 10.0,
+                    "{v} vs {}",
+                    w * trig[eq]
+                );
+            }
+        }
+    }
+}

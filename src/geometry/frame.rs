@@ -1,0 +1,41 @@
+//! The local coordinate system at the CM, built from the vertex positions.
+//!
+//! We deliberately differ from the paper's (16)–(18) and R, which are misprinted (k' as printed
+//! is not orthogonal to i'; R's first row has cos α sin α for cos α sin θ; R is not symmetric):
+//! i' = (P1 − P0)/L, k' = (P1 − P2)/L, j' = k' × i', and R has rows i', j', k' (R_ij = e'_i·e_j,
+//! eq. (19)), so v_local = R v_global and R⁻¹ = Rᵀ.
+
+use nalgebra::{Matrix3, Vector3};
+
+/// Orthonormal local axes (i', j', k') and R.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LocalFrame {
+    pub i: Vector3<f64>,
+    pub j: Vector3<f64>,
+    pub k: Vector3<f64>,
+}
+
+impl LocalFrame {
+    /// From the three vertex positions and the side length L.
+    pub fn from_vertices(p: &[Vector3<f64>; 3], l: f64) -> Self {
+        let i = (p[1] - p[0]) / l;
+        let k = (p[1] - p[2]) / l;
+        let j = k.cross(&i);
+        LocalFrame { i, j, k }
+    }
+
+    /// R with R_ij = e'_i · e_j: rows i', j', k' (eq. (19); v_local = R v_global).
+    pub fn r(&self) -> Matrix3<f64> {
+        Matrix3::from_rows(&[self.i.transpose(), self.j.transpose(), self.k.transpose()])
+    }
+
+    /// Global → local.
+    pub fn to_local(&self, v: &Vector3<f64>) -> Vector3<f64> {
+        self.r() * v
+    }
+
+    /// Local → global (Rᵀ).
+    pub fn to_global(&self, v: &Vector3<f64>) -> Vector3<f64> {
+        self.i * v.x + self.j * v.y + self.k * v.z
+    }
+}

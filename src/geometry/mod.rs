@@ -1,0 +1,63 @@
+//! Exact geometry of the sliding frame.
+//!
+//! * [`planes`]: the three foundation planes, their heights, normals and regions.
+//! * [`frame`]: the local frame (i', j', k') built from the actual vertex positions, and R.
+//! * [`pose`]: the pose from (X, Z, θ, α, β) through the paper's relations (1), (2), (21), and
+//!   from (X, Z, θ, α, ψ).
+//! * [`relations`]: the paper's law-of-sines relations (13), (14) as printed (with √2).
+//! * [`direct`]: the independent pose solver (Newton on the three contact constraints) — the
+//!   oracle every other stage is tested against.
+
+pub mod direct;
+pub mod frame;
+pub mod planes;
+pub mod pose;
+pub mod relations;
+
+pub use direct::DirectPose;
+pub use frame::LocalFrame;
+pub use pose::Pose;
+
+/// The horizontal displacement of the block: CM moved by (X, Z) (m), side 01 yawed by θ (rad,
+/// from +X towards +Z). The start of sliding is the default, (0, 0, 0).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Displacement {
+    pub x: f64,
+    pub z: f64,
+    pub theta: f64,
+}
+
+impl Displacement {
+    pub fn new(x: f64, z: f64, theta: f64) -> Self {
+        Displacement { x, z, theta }
+    }
+
+    /// The point a fraction `s` of the way along the straight segment from the start.
+    pub fn scaled(self, s: f64) -> Self {
+        Displacement::new(self.x * s, self.z * s, self.theta * s)
+    }
+
+    pub fn is_finite(&self) -> bool {
+        self.x.is_finite() && self.z.is_finite() && self.theta.is_finite()
+    }
+}
+
+/// Why a pose cannot be built or found.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum GeometryError {
+    /// The tilts give |cos h| > 1 or |sin γ| > 1: no real frame has them.
+    #[error("no real frame has these tilts: {0}")]
+    NoRealFrame(String),
+    /// The direct solver did not converge.
+    #[error(
+        "the direct pose solver did not converge at {at}: residual {residual:.3e} m after {iterations} iterations"
+    )]
+    NotConverged {
+        at: String,
+        residual: f64,
+        iterations: usize,
+    },
+    /// A non-finite input.
+    #[error("non-finite input: {0}")]
+    NonFinite(String),
+}

@@ -1,0 +1,100 @@
+//! The foundation (see `shared/conventions.md`, "The foundation"): the horizontal plane Y = 0
+//! carries vertex 0; plane 1, Y = (X − L2X) tan ξ for X ≥ L2X, carries vertex 1; plane 2,
+//! Y = (n·(X, Z) − R) tan ζ for n·(X, Z) ≥ R with n = (cos κ, −sin κ), carries vertex 2.
+//! Each contact is held on its own infinite plane; the regions say where the plane is real.
+
+use crate::scene::Scene;
+use nalgebra::Vector3;
+
+/// Which plane.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Plane {
+    Horizontal,
+    One,
+    Two,
+}
+
+impl Plane {
+    /// The plane carrying vertex `i`.
+    pub fn of_vertex(i: usize) -> Plane {
+        match i {
+            0 => Plane::Horizontal,
+            1 => Plane::One,
+            _ => Plane::Two,
+        }
+    }
+}
+
+/// R: the distance from the start CM to int. line 2/horiz (eq. 4).
+pub fn r(scene: &Scene) -> f64 {
+    let k = scene.foundation.kappa;
+    scene.frame.l2x * k.cos() + scene.frame.l2z * k.sin()
+}
+
+/// n·(X, Z) with n = (cos κ, −sin κ) (S of eq. 5 when applied to the CM).
+pub fn along_dip_2(scene: &Scene, x: f64, z: f64) -> f64 {
+    let k = scene.foundation.kappa;
+    x * k.cos() - z * k.sin()
+}
+
+/// The height of `plane` (extended without limit) above (X, Z).
+pub fn height(scene: &Scene, plane: Plane, x: f64, z: f64) -> f64 {
+    let g = &scene.foundation;
+    match plane {
+        Plane::Horizontal => 0.0,
+        Plane::One => (x - scene.frame.l2x) * g.xi.tan(),
+        Plane::Two => (along_dip_2(scene, x, z) - r(scene)) * g.zeta.tan(),
+    }
+}
+
+/// Whether (X, Z) lies over the real part of `plane`. The horizontal plane is real where
+/// neither inclined plane is.
+pub fn in_region(scene: &Scene, plane: Plane, x: f64, z: f64) -> bool {
+    let on1 = x >= scene.frame.l2x;
+    let on2 = along_dip_2(scene, x, z) >= r(scene);
+    match plane {
+        Plane::Horizontal => !on1 && !on2,
+        Plane::One => on1,
+        Plane::Two => on2,
+    }
+}
+
+/// The upward unit normal of `plane`.
+pub fn normal(scene: &Scene, plane: Plane) -> Vector3<f64> {
+    let g = &scene.foundation;
+    match plane {
+        Plane::Horizontal => Vector3::y(),
+        Plane::One => Vector3::new(-g.xi.sin(), g.xi.cos(), 0.0),
+        Plane::Two => {
+            let (s, c) = g.zeta.sin_cos();
+            Vector3::new(-s * g.kappa.cos(), c, s * g.kappa.sin())
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn start_vertices_lie_on_the_strike_lines() {
+        let scene = Scene::default_scene();
+        let v = scene.frame.vertices();
+        // Vertex 1 on int. line 1/horiz, vertex 2 on int. line 2/horiz: both heights zero.
+        assert!(height(&scene, Plane::One, v[1][0], v[1][1]).abs() < 1e-12);
+        assert!(height(&scene, Plane::Two, v[2][0], v[2][1]).abs() < 1e-12);
+    }
+
+    #[test]
+    fn normals_are_unit_and_orthogonal_to_the_planes() {
+        let scene = Scene::default_scene();
+        for plane in [Plane::Horizontal, Plane::One, Plane::Two] {
+            let n = normal(&scene, plane);
+            assert!((n.norm() - 1.0).abs() < 1e-15);
+            // Two points of the plane: the difference is orthogonal to n.
+            let p = |x: f64, z: f64| Vector3::new(x, height(&scene, plane, x, z), z);
+            let d1 = p(7.0, 1.0) - p(5.0, -2.0);
+            assert!(n.dot(&d1).abs() < 1e-12);
+        }
+    }
+}

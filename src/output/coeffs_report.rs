@@ -1,0 +1,89 @@
+//! The `coeffs` report: both coefficient sets at one displacement.
+
+use super::Ordered;
+use crate::coeffs::{
+    CoeffInputs, EXACT_NAMES_13, EXACT_NAMES_14, Exact, SMALL_ANGLE_NAMES, SmallAngle,
+};
+use crate::geometry::Displacement;
+use crate::scene::Scene;
+use serde::Serialize;
+use std::fmt;
+
+/// The exact form's coefficients, by basis monomial, plus its tangent half-angle matrices.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ExactReport {
+    /// The unknowns' names as used in the basis names: sa = sin α, ca = cos α, sp = sin ψ,
+    /// cp = cos ψ (ψ: roll about side 01).
+    pub unknowns: [&'static str; 4],
+    pub eq13: Ordered<f64>,
+    pub eq14: Ordered<f64>,
+    /// `half_angle_eq13[i][j]` multiplies tan(α/2)^i tan(ψ/2)^j (times (1+ta²)(1+tp²)).
+    pub half_angle_eq13: [[f64; 3]; 3],
+    pub half_angle_eq14: [[f64; 3]; 3],
+}
+
+/// Coefficients of the small-angle system (15) and of the exact form at one displacement.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CoeffReport {
+    pub scene: String,
+    pub x_m: f64,
+    pub z_m: f64,
+    pub theta_deg: f64,
+    pub small_angle: Ordered<f64>,
+    pub exact: ExactReport,
+}
+
+impl CoeffReport {
+    pub fn new(scene: &Scene, d: Displacement) -> Self {
+        let inputs = CoeffInputs::new(scene, d);
+        let small = SmallAngle::new(&inputs);
+        let exact = Exact::new(&inputs);
+        let half = exact.half_angle();
+        let named = |names: &[&str], vals: &[f64]| {
+            Ordered(
+                names
+                    .iter()
+                    .zip(vals)
+                    .map(|(n, v)| (n.to_string(), *v))
+                    .collect(),
+            )
+        };
+        CoeffReport {
+            scene: scene.name.clone(),
+            x_m: d.x,
+            z_m: d.z,
+            theta_deg: d.theta.to_degrees(),
+            small_angle: named(&SMALL_ANGLE_NAMES, &small.f),
+            exact: ExactReport {
+                unknowns: ["sa = sin α", "ca = cos α", "sp = sin ψ", "cp = cos ψ"],
+                eq13: named(&EXACT_NAMES_13, exact.eq13()),
+                eq14: named(&EXACT_NAMES_14, exact.eq14()),
+                half_angle_eq13: half[0],
+                half_angle_eq14: half[1],
+            },
+        }
+    }
+}
+
+impl fmt::Display for CoeffReport {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        writeln!(
+            f,
+            "scene {}: X = {} m, Z = {} m, θ = {}°",
+            self.scene, self.x_m, self.z_m, self.theta_deg
+        )?;
+        writeln!(f, "small-angle system (15):")?;
+        for (k, v) in &self.small_angle.0 {
+            writeln!(f, "  {k:>4} = {v:>+.12e}")?;
+        }
+        writeln!(
+            f,
+            "exact (13), (14) in sa = sin α, ca = cos α, sp = sin ψ, cp = cos ψ:"
+        )?;
+        for (name, eq) in [("(13)", &self.exact.eq13), ("(14)", &self.exact.eq14)] {
+            let terms: Vec<String> = eq.0.iter().map(|(k, v)| format!("{v:+.6e}·{k}")).collect();
+            writeln!(f, "  {name} {} = 0", terms.join(" "))?;
+        }
+        Ok(())
+    }
+}

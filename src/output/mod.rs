@@ -1,0 +1,21 @@
+//! What the library hands to people: typed reports that serialise to JSON and print as tables.
+
+pub mod coeffs_report;
+
+pub use coeffs_report::CoeffReport;
+
+use serde::ser::{Serialize, SerializeMap, Serializer};
+
+/// A map that keeps its insertion order when serialised (f1 … f12, not f1, f10, f11 …).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Ordered<V>(pub Vec<(String, V)>);
+
+impl<V: Serialize> Serialize for Ordered<V> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let mut m = s.serialize_map(Some(self.0.len()))?;
+        for (k, v) in &self.0 {
+            m.serialize_entry(k, v)?;
+        }
+        m.end()
+    }
+}

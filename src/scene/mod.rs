@@ -1,0 +1,382 @@
+//! Scene model: the frame (contact triangle), the foundation (three planes), and, for commands
+//! that simulate, the block, loads, friction and solver settings.
+//!
+//! A scene is read from TOML ([`Scene::from_toml`], [`Scene::from_file`]) and validated: every
+//! bad input is a [`SceneError`] naming the key and the reason. Angles are degrees in the file
+//! and radians in these types. Coordinates follow `shared/conventions.md` (README, "Coordinates").
+
+mod error;
+mod raw;
+
+pub use error::SceneError;
+
+use serde::Deserialize;
+use std::path::Path;
+
+/// The scene compiled into the binary: the paper-like scene of `scenes/paper-like.toml`.
+pub const DEFAULT_SCENE_TOML: &str = include_str!("../../scenes/paper-like.toml");
+/// The origin named in errors about the embedded default scene.
+pub const DEFAULT_ORIGIN: &str = "<embedded default scene>";
+
+/// The contact triangle in the monolith base, in its own plane (x', z'), CM at the origin:
+/// r0 = (−L1X, L1Z), r1 = (L2X, L1Z), r2 = (L2X, −L2Z) (paper eq. (20)); all lengths in m.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Frame {
+    pub l1x: f64,
+    pub l2x: f64,
+    pub l1z: f64,
+    pub l2z: f64,
+}
+
+impl Frame {
+    /// Side length L = L1X + L2X = L1Z + L2Z (sides 01 and 12; side 02 is √2·L).
+    pub fn l(&self) -> f64 {
+        self.l1x + self.l2x
+    }
+
+    /// In-plane coordinates (x', z') of vertices 0, 1, 2 relative to the CM (eq. (20)).
+    pub fn vertices(&self) -> [[f64; 2]; 3] {
+        [
+            [-self.l1x, self.l1z],
+            [self.l2x, self.l1z],
+            [self.l2x, -self.l2z],
+        ]
+    }
+}
+
+/// The three foundation planes: horizontal (vertex 0), plane 1 (vertex 1), plane 2 (vertex 2).
+/// Angles in radians.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Foundation {
+    /// ξ: true dip of plane 1, in (0, π/2).
+    pub xi: f64,
+    /// ζ: true dip of plane 2, in (0, π/2).
+    pub zeta: f64,
+    /// κ: azimuth of int. line 2/horiz, in (−π/2, π/2).
+    pub kappa: f64,
+}
+
+/// Mass properties of the monolith.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Block {
+    /// m (kg).
+    pub mass: f64,
+    /// I_m about the frame normal y' (kg·m²).
+    pub inertia: f64,
+}
+
+/// The driving loads.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Loads {
+    /// |F| (N), acting along x'.
+    pub hydraulic_force: f64,
+    /// c (m): F's line misses the CM by c; c > 0 turns the block so that θ grows.
+    pub eccentricity: f64,
+    /// g (m/s²).
+    pub gravity: f64,
+}
+
+/// Friction criterion at the contacts (paper eqs. (24b) and (43)).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Friction {
+    /// |S| = μ_k |N| (eq. 24b).
+    Coulomb { mu_k: f64 },
+    /// Barton–Choubey, normalised per contact (eq. 43): τ = σ tan(JRC log10(JCS/σ) + φ_r),
+    /// with σ = |N| / contact area. `phi_r` in radians.
+    BartonChoubey {
+        jrc: f64,
+        jcs_pa: f64,
+        phi_r: f64,
+        contact_area_m2: f64,
+    },
+}
+
+/// Which polynomial system gives the pose.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Mode {
+    /// The exact relations (13), (14) (see `derivations/04-exact.md`).
+    Exact,
+    /// The paper's small-angle system (15) (see `derivations/03-small-angle.md`).
+    SmallAngle,
+}
+
+impl Mode {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Mode::Exact => "exact",
+            Mode::SmallAngle => "small-angle",
+        }
+    }
+}
+
+/// Time stepping.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Solver {
+    pub mode: Mode,
+    /// Increment length (s).
+    pub dt: f64,
+    /// Time limit (s).
+    pub t_end: f64,
+}
+
+/// A validated scene. `frame` and `foundation` are always present; the other sections are
+/// needed only by commands that simulate ([`Scene::require_dynamics`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Scene {
+    pub name: String,
+    /// Where the scene came from (file path or [`DEFAULT_ORIGIN`]), used in error messages.
+    pub origin: String,
+    pub frame: Frame,
+    pub foundation: Foundation,
+    pub block: Option<Block>,
+    pub loads: Option<Loads>,
+    pub friction: Option<Friction>,
+    pub solver: Option<Solver>,
+}
+
+/// The sections a simulation needs, borrowed from a scene that has them all.
+#[derive(Debug, Clone, Copy)]
+pub struct Dynamics<'a> {
+    pub block: &'a Block,
+    pub loads: &'a Loads,
+    pub friction: &'a Friction,
+    pub solver: &'a Solver,
+}
+
+/// Relative tolerance on L1X + L2X = L1Z + L2Z.
+const FRAME_TOLERANCE: f64 = 1e-9;
+
+impl Scene {
+    /// The embedded default scene (paper-like).
+    pub fn default_scene() -> Scene {
+        Scene::from_toml(DEFAULT_SCENE_TOML, DEFAULT_ORIGIN)
+            .expect("the embedded default scene is valid (checked by a test)")
+    }
+
+    /// Reads and validates a scene file.
+    pub fn from_file(path: &Path) -> Result<Scene, SceneError> {
+        let origin = path.display().to_string();
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| SceneError::new(&origin, "", format!("cannot read the file: {e}")))?;
+        Scene::from_toml(&text, &origin)
+    }
+
+    /// Parses and validates scene text; `origin` names the source in errors.
+    pub fn from_toml(text: &str, origin: &str) -> Result<Scene, SceneError> {
+        let raw = parse(text, origin)?;
+        validate(raw, origin)
+    }
+
+    /// Side length L (m).
+    pub fn l(&self) -> f64 {
+        self.frame.l()
+    }
+
+    /// The block, loads, friction and solver sections, or an error naming the first missing one.
+    pub fn require_dynamics(&self) -> Result<Dynamics<'_>, SceneError> {
+        let missing = |section: &str| {
+            SceneError::new(
+                &self.origin,
+                section,
+                format!("missing section [{section}] (needed to simulate)"),
+            )
+        };
+        Ok(Dynamics {
+            block: self.block.as_ref().ok_or_else(|| missing("block"))?,
+            loads: self.loads.as_ref().ok_or_else(|| missing("loads"))?,
+            friction: self.friction.as_ref().ok_or_else(|| missing("friction"))?,
+            solver: self.solver.as_ref().ok_or_else(|| missing("solver"))?,
+        })
+    }
+}
+
+fn line_col(text: &str, offset: usize) -> (usize, usize) {
+    let before = &text[..offset.min(text.len())];
+    let line = before.matches('\n').count() + 1;
+    let col = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+    (line, col)
+}
+
+/// The first backquoted name in a serde message (`unknown field `foo`, …` → `foo`).
+fn quoted_name(msg: &str) -> Option<&str> {
+    let start = msg.find('`')? + 1;
+    let len = msg[start..].find('`')?;
+    Some(&msg[start..start + len])
+}
+
+fn parse(text: &str, origin: &str) -> Result<raw::RawScene, SceneError> {
+    let de = toml::Deserializer::parse(text).map_err(|e| {
+        let mut err = SceneError::new(origin, "", format!("not valid TOML: {}", e.message()));
+        err.position = e.span().map(|s| line_col(text, s.start));
+        err
+    })?;
+    serde_path_to_error::deserialize(de).map_err(|e| {
+        let path = e.path().to_string();
+        let inner = e.inner();
+        let msg = inner.message().to_string();
+        let parent = if path == "." { String::new() } else { path };
+        let join = |name: &str| {
+            if parent.is_empty() {
+                name.to_string()
+            } else {
+                format!("{parent}.{name}")
+            }
+        };
+        let (key, reason) = if msg.starts_with("unknown field") {
+            let name = quoted_name(&msg).unwrap_or("?");
+            (join(name), format!("unknown key; {msg}"))
+        } else if msg.starts_with("missing field") {
+            let name = quoted_name(&msg).unwrap_or("?");
+            if parent.is_empty() {
+                (name.to_string(), format!("missing section [{name}]"))
+            } else {
+                (join(name), format!("missing key `{name}`"))
+            }
+        } else if msg.starts_with("unknown variant") && parent.ends_with("friction") {
+            (join("model"), format!("unknown friction model; {msg}"))
+        } else if msg.starts_with("unknown variant") && parent.ends_with("mode") {
+            (parent.clone(), format!("unknown solver mode; {msg}"))
+        } else if msg.starts_with("missing field `model`") {
+            (join("model"), msg.clone())
+        } else {
+            (parent.clone(), msg.clone())
+        };
+        let mut err = SceneError::new(origin, key, reason);
+        err.position = inner.span().map(|s| line_col(text, s.start));
+        err
+    })
+}
+
+/// Checks one number: finite, and `ok(v)`; `what` says what was expected.
+fn check(origin: &str, key: &str, v: f64, ok: bool, what: &str) -> Result<f64, SceneError> {
+    if !v.is_finite() {
+        return Err(SceneError::new(
+            origin,
+            key,
+            format!("must be a finite number, got {v}"),
+        ));
+    }
+    if !ok {
+        return Err(SceneError::new(
+            origin,
+            key,
+            format!("must be {what}, got {v}"),
+        ));
+    }
+    Ok(v)
+}
+
+fn positive(origin: &str, key: &str, v: f64) -> Result<f64, SceneError> {
+    check(origin, key, v, v > 0.0, "positive")
+}
+
+fn non_negative(origin: &str, key: &str, v: f64) -> Result<f64, SceneError> {
+    check(origin, key, v, v >= 0.0, "zero or positive")
+}
+
+fn validate(raw: raw::RawScene, o: &str) -> Result<Scene, SceneError> {
+    let f = &raw.frame;
+    let frame = Frame {
+        l1x: positive(o, "frame.l1x", f.l1x)?,
+        l2x: positive(o, "frame.l2x", f.l2x)?,
+        l1z: positive(o, "frame.l1z", f.l1z)?,
+        l2z: positive(o, "frame.l2z", f.l2z)?,
+    };
+    let (lx, lz) = (frame.l1x + frame.l2x, frame.l1z + frame.l2z);
+    if (lx - lz).abs() > FRAME_TOLERANCE * lx.max(lz) {
+        return Err(SceneError::new(
+            o,
+            "frame",
+            format!(
+                "l1x + l2x = {lx} m but l1z + l2z = {lz} m; the frame is an isosceles right \
+                 triangle, so the two sums must be equal"
+            ),
+        ));
+    }
+
+    let d = &raw.foundation;
+    let dip = |key: &str, v: f64| {
+        check(
+            o,
+            key,
+            v,
+            v > 0.0 && v < 90.0,
+            "a dip strictly between 0° and 90°",
+        )
+        .map(f64::to_radians)
+    };
+    let foundation = Foundation {
+        xi: dip("foundation.xi_deg", d.xi_deg)?,
+        zeta: dip("foundation.zeta_deg", d.zeta_deg)?,
+        kappa: check(
+            o,
+            "foundation.kappa_deg",
+            d.kappa_deg,
+            d.kappa_deg > -90.0 && d.kappa_deg < 90.0,
+            "an azimuth strictly between -90° and 90°",
+        )?
+        .to_radians(),
+    };
+
+    let block = match &raw.block {
+        None => None,
+        Some(b) => Some(Block {
+            mass: positive(o, "block.mass_kg", b.mass_kg)?,
+            inertia: positive(o, "block.inertia_kg_m2", b.inertia_kg_m2)?,
+        }),
+    };
+    let loads = match &raw.loads {
+        None => None,
+        Some(l) => Some(Loads {
+            hydraulic_force: non_negative(o, "loads.hydraulic_force_n", l.hydraulic_force_n)?,
+            eccentricity: check(o, "loads.eccentricity_m", l.eccentricity_m, true, "finite")?,
+            gravity: positive(o, "loads.gravity_m_s2", l.gravity_m_s2)?,
+        }),
+    };
+    let friction = match &raw.friction {
+        None => None,
+        Some(raw::RawFriction::Coulomb { mu_k }) => Some(Friction::Coulomb {
+            mu_k: non_negative(o, "friction.mu_k", *mu_k)?,
+        }),
+        Some(raw::RawFriction::BartonChoubey {
+            jrc,
+            jcs_pa,
+            phi_r_deg,
+            contact_area_m2,
+        }) => Some(Friction::BartonChoubey {
+            jrc: non_negative(o, "friction.jrc", *jrc)?,
+            jcs_pa: positive(o, "friction.jcs_pa", *jcs_pa)?,
+            phi_r: check(
+                o,
+                "friction.phi_r_deg",
+                *phi_r_deg,
+                (0.0..90.0).contains(phi_r_deg),
+                "an angle from 0° up to (not including) 90°",
+            )?
+            .to_radians(),
+            contact_area_m2: positive(o, "friction.contact_area_m2", *contact_area_m2)?,
+        }),
+    };
+    let solver = match &raw.solver {
+        None => None,
+        Some(s) => Some(Solver {
+            mode: s.mode,
+            dt: positive(o, "solver.dt_s", s.dt_s)?,
+            t_end: positive(o, "solver.t_end_s", s.t_end_s)?,
+        }),
+    };
+    Ok(Scene {
+        name: raw.name.unwrap_or_else(|| "unnamed".to_string()),
+        origin: o.to_string(),
+        frame,
+        foundation,
+        block,
+        loads,
+        friction,
+        solver,
+    })
+}
+
+#[cfg(test)]
+mod tests;
