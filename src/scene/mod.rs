@@ -216,9 +216,13 @@ fn parse(text: &str, origin: &str) -> Result<raw::RawScene, SceneError> {
         let inner = e.inner();
         let msg = inner.message().to_string();
         let parent = if path == "." { String::new() } else { path };
+        // The path ends at the offending key for unknown fields and variants, and at the
+        // enclosing table for missing fields.
         let join = |name: &str| {
             if parent.is_empty() {
                 name.to_string()
+            } else if parent == name || parent.ends_with(&format!(".{name}")) {
+                parent.clone()
             } else {
                 format!("{parent}.{name}")
             }
@@ -233,12 +237,10 @@ fn parse(text: &str, origin: &str) -> Result<raw::RawScene, SceneError> {
             } else {
                 (join(name), format!("missing key `{name}`"))
             }
-        } else if msg.starts_with("unknown variant") && parent.ends_with("friction") {
+        } else if msg.starts_with("unknown variant") && parent.starts_with("friction") {
             (join("model"), format!("unknown friction model; {msg}"))
-        } else if msg.starts_with("unknown variant") && parent.ends_with("mode") {
-            (parent.clone(), format!("unknown solver mode; {msg}"))
-        } else if msg.starts_with("missing field `model`") {
-            (join("model"), msg.clone())
+        } else if msg.starts_with("unknown variant") && parent.starts_with("solver") {
+            (join("mode"), format!("unknown solver mode; {msg}"))
         } else {
             (parent.clone(), msg.clone())
         };

@@ -1,1 +1,301 @@
+//! Every bad input gets one error naming the key and the reason; good inputs load.
 
+use super::*;
+
+const GOOD: &str = r#"
+name = "t"
+[frame]
+l1x = 6.0
+l2x = 4.0
+l1z = 5.0
+l2z = 5.0
+[foundation]
+xi_deg = 20.0
+zeta_deg = 25.0
+kappa_deg = 30.0
+[block]
+mass_kg = 1.0e6
+inertia_kg_m2 = 1.1e7
+[loads]
+hydraulic_force_n = 8.0e6
+eccentricity_m = 1.0
+gravity_m_s2 = 9.81
+[friction]
+model = "coulomb"
+mu_k = 0.40
+[solver]
+mode = "exact"
+dt_s = 1.0e-3
+t_end_s = 20.0
+"#;
+
+/// GOOD with `key = old` replaced by `key = new` (the first occurrence).
+fn with(key_line: &str, replacement: &str) -> String {
+    assert!(GOOD.contains(key_line), "test bug: {key_line} not in GOOD");
+    GOOD.replacen(key_line, replacement, 1)
+}
+
+fn err(text: &str) -> SceneError {
+    Scene::from_toml(text, "dam.toml").expect_err("should be rejected")
+}
+
+/// The error names the file and `key`, and its reason contains `why`; one line.
+fn assert_names(text: &str, key: &str, why: &str) {
+    let e = err(text);
+    let msg = e.to_string();
+    assert_eq!(e.key, key, "{msg}");
+    assert!(msg.starts_with("dam.toml: "), "{msg}");
+    assert!(msg.contains(key), "{msg}");
+    assert!(msg.contains(why), "expected {why:?} in {msg:?}");
+    assert!(!msg.contains('\n'), "{msg:?}");
+}
+
+#[test]
+fn good_scene_loads_in_radians() {
+    let s = Scene::from_toml(GOOD, "dam.toml").unwrap();
+    assert_eq!(s.name, "t");
+    assert!((s.foundation.xi - 20f64.to_radians()).abs() < 1e-15);
+    assert_eq!(s.l(), 10.0);
+    assert!(s.require_dynamics().is_ok());
+    assert_eq!(s.solver.unwrap().mode, Mode::Exact);
+}
+
+#[test]
+fn embedded_and_example_scenes_are_valid() {
+    let s = Scene::default_scene();
+    assert_eq!(s.name, "paper-like");
+    for text in [
+        include_str!("../../scenes/paper-like.toml"),
+        include_str!("../../scenes/shallow.toml"),
+    ] {
+        Scene::from_toml(text, "example").unwrap();
+    }
+}
+
+#[test]
+fn integers_are_accepted_for_numbers() {
+    let s = Scene::from_toml(&with("l1x = 6.0", "l1x = 6"), "d").unwrap();
+    assert_eq!(s.frame.l1x, 6.0);
+}
+
+#[test]
+fn geometry_only_scene_loads_but_cannot_simulate() {
+    let text = GOOD.split("[block]").next().unwrap();
+    let s = Scene::from_toml(text, "geo.toml").unwrap();
+    let e = s.require_dynamics().unwrap_err();
+    assert_eq!(e.key, "block");
+    assert!(e.to_string().contains("missing section [block]"));
+}
+
+#[test]
+fn unknown_key_is_named() {
+    assert_names(
+        &with("l2z = 5.0", "l2z = 5.0\nl3z = 1.0"),
+        "frame.l3z",
+        "unknown key",
+    );
+    assert_names(
+        &format!("colour = \"red\"\n{GOOD}"),
+        "colour",
+        "unknown key",
+    );
+    assert_names(
+        &with("mu_k = 0.40", "mu_k = 0.4\nmu_s = 0.5"),
+        "friction.mu_s",
+        "unknown",
+    );
+}
+
+#[test]
+fn wrong_type_is_named() {
+    assert_names(
+        &with("l1x = 6.0", "l1x = \"six\""),
+        "frame.l1x",
+        "invalid type",
+    );
+    assert_names(
+        &with("dt_s = 1.0e-3", "dt_s = true"),
+        "solver.dt_s",
+        "invalid type",
+    );
+}
+
+#[test]
+fn missing_section_and_key_are_named() {
+    let no_foundation = GOOD.replace("[foundation]", "[nothing]");
+    let e = err(&no_foundation);
+    // Either the stray section or the missing one is reported, by name.
+    assert!(e.key == "nothing" || e.key == "foundation", "{e}");
+    let text = GOOD.replace(
+        "[foundation]\nxi_deg = 20.0\nzeta_deg = 25.0\nkappa_deg = 30.0\n",
+        "",
+    );
+    assert_names(&text, "foundation", "missing section [foundation]");
+    assert_names(&with("l2x = 4.0\n", ""), "frame.l2x", "missing key");
+}
+
+#[test]
+fn non_positive_lengths_are_named() {
+    assert_names(
+        &with("l1x = 6.0", "l1x = -6.0"),
+        "frame.l1x",
+        "must be positive",
+    );
+    assert_names(
+        &with("l2z = 5.0", "l2z = 0.0"),
+        "frame.l2z",
+        "must be positive",
+    );
+}
+
+#[test]
+fn non_finite_numbers_are_named() {
+    assert_names(&with("l1z = 5.0", "l1z = inf"), "frame.l1z", "finite");
+    assert_names(
+        &with("xi_deg = 20.0", "xi_deg = nan"),
+        "foundation.xi_deg",
+        "finite",
+    );
+    assert_names(
+        &with("eccentricity_m = 1.0", "eccentricity_m = -inf"),
+        "loads.eccentricity_m",
+        "finite",
+    );
+}
+
+#[test]
+fn dips_outside_open_quarter_turn_are_named() {
+    for bad in ["0.0", "90.0", "-5.0", "120.0"] {
+        assert_names(
+            &with("xi_deg = 20.0", &format!("xi_deg = {bad}")),
+            "foundation.xi_deg",
+            "between 0° and 90°",
+        );
+        assert_names(
+            &with("zeta_deg = 25.0", &format!("zeta_deg = {bad}")),
+            "foundation.zeta_deg",
+            "between 0° and 90°",
+        );
+    }
+}
+
+#[test]
+fn kappa_outside_open_half_turn_is_named() {
+    for bad in ["90.0", "-90.0", "135.0"] {
+        assert_names(
+            &with("kappa_deg = 30.0", &format!("kappa_deg = {bad}")),
+            "foundation.kappa_deg",
+            "between -90° and 90°",
+        );
+    }
+    Scene::from_toml(&with("kappa_deg = 30.0", "kappa_deg = -89.0"), "d").unwrap();
+}
+
+#[test]
+fn unequal_frame_sums_are_named() {
+    assert_names(&with("l1x = 6.0", "l1x = 7.0"), "frame", "must be equal");
+}
+
+#[test]
+fn non_positive_mass_inertia_and_times_are_named() {
+    assert_names(
+        &with("mass_kg = 1.0e6", "mass_kg = 0.0"),
+        "block.mass_kg",
+        "positive",
+    );
+    assert_names(
+        &with("inertia_kg_m2 = 1.1e7", "inertia_kg_m2 = -1.0"),
+        "block.inertia_kg_m2",
+        "positive",
+    );
+    assert_names(
+        &with("dt_s = 1.0e-3", "dt_s = 0.0"),
+        "solver.dt_s",
+        "positive",
+    );
+    assert_names(
+        &with("t_end_s = 20.0", "t_end_s = -1.0"),
+        "solver.t_end_s",
+        "positive",
+    );
+    assert_names(
+        &with("gravity_m_s2 = 9.81", "gravity_m_s2 = 0.0"),
+        "loads.gravity_m_s2",
+        "positive",
+    );
+    assert_names(
+        &with("hydraulic_force_n = 8.0e6", "hydraulic_force_n = -1.0"),
+        "loads.hydraulic_force_n",
+        "zero or positive",
+    );
+}
+
+#[test]
+fn negative_friction_parameters_are_named() {
+    assert_names(
+        &with("mu_k = 0.40", "mu_k = -0.1"),
+        "friction.mu_k",
+        "zero or positive",
+    );
+    let bc = with(
+        "model = \"coulomb\"\nmu_k = 0.40",
+        "model = \"barton-choubey\"\njrc = -2.0\njcs_pa = 5.0e7\nphi_r_deg = 30.0\ncontact_area_m2 = 1.0",
+    );
+    assert_names(&bc, "friction.jrc", "zero or positive");
+    let bc = bc
+        .replace("jrc = -2.0", "jrc = 8.0")
+        .replace("phi_r_deg = 30.0", "phi_r_deg = -3.0");
+    assert_names(&bc, "friction.phi_r_deg", "0°");
+    let ok = bc.replace("phi_r_deg = -3.0", "phi_r_deg = 30.0");
+    let s = Scene::from_toml(&ok, "d").unwrap();
+    assert!(matches!(s.friction, Some(Friction::BartonChoubey { .. })));
+}
+
+#[test]
+fn unknown_friction_model_and_solver_mode_are_named() {
+    assert_names(
+        &with("model = \"coulomb\"", "model = \"patton\""),
+        "friction.model",
+        "unknown friction model",
+    );
+    assert_names(
+        &with("mode = \"exact\"", "mode = \"approximate\""),
+        "solver.mode",
+        "unknown solver mode",
+    );
+    let s = Scene::from_toml(&with("mode = \"exact\"", "mode = \"small-angle\""), "d").unwrap();
+    assert_eq!(s.solver.unwrap().mode, Mode::SmallAngle);
+}
+
+#[test]
+fn broken_toml_reports_line_and_column() {
+    let e = err("[frame]\nl1x = = 6\n");
+    let msg = e.to_string();
+    assert!(msg.contains("not valid TOML"), "{msg}");
+    assert!(msg.contains("line 2"), "{msg}");
+    assert!(!msg.contains('\n'));
+}
+
+#[test]
+fn empty_and_binary_inputs_are_errors_not_panics() {
+    for text in [
+        "",
+        "\u{0}\u{1}\u{2}",
+        "[[frame]]",
+        "frame = 3",
+        "[frame]\nl1x = 1e400",
+    ] {
+        let _ = Scene::from_toml(text, "junk");
+    }
+    assert_names("", "frame", "missing section [frame]");
+}
+
+#[test]
+fn unreadable_file_is_named() {
+    let e = Scene::from_file(std::path::Path::new("/nonexistent/dam.toml")).unwrap_err();
+    assert!(
+        e.to_string()
+            .starts_with("/nonexistent/dam.toml: cannot read"),
+        "{e}"
+    );
+}

@@ -1,0 +1,128 @@
+//! Shared test helpers: scenes built from numbers, and the hand-derived formulas typed from
+//! `derivations/03-small-angle.md` and `derivations/04-exact.md`.
+#![allow(dead_code)]
+
+use slideroute::geometry::Displacement;
+use slideroute::scene::{Foundation, Frame, Scene};
+use std::f64::consts::SQRT_2;
+
+/// A geometry-only scene. `l2x_frac`, `l1z_frac` are fractions of L.
+pub fn scene(
+    l: f64,
+    l2x_frac: f64,
+    l1z_frac: f64,
+    xi_deg: f64,
+    zeta_deg: f64,
+    kappa_deg: f64,
+) -> Scene {
+    let l2x = l * l2x_frac;
+    let l1z = l * l1z_frac;
+    Scene {
+        name: "test".into(),
+        origin: "<test>".into(),
+        frame: Frame {
+            l1x: l - l2x,
+            l2x,
+            l1z,
+            l2z: l - l1z,
+        },
+        foundation: Foundation {
+            xi: xi_deg.to_radians(),
+            zeta: zeta_deg.to_radians(),
+            kappa: kappa_deg.to_radians(),
+        },
+        block: None,
+        loads: None,
+        friction: None,
+        solver: None,
+    }
+}
+
+/// The paper-like geometry (L = 10 m, ξ = 20°, ζ = 25°, κ = 30°) with other frame proportions.
+pub fn paper_like() -> Scene {
+    Scene::default_scene()
+}
+
+/// A hand formula's value and its natural magnitude (the size of its largest terms), so that
+/// comparisons of coefficients that pass through zero are judged against that magnitude.
+pub struct Hand {
+    pub value: f64,
+    pub scale: f64,
+}
+
+/// f1–f12 by hand (re-derived; `derivations/03-small-angle.md`, "Result").
+pub fn hand_small_angle(s: &Scene, d: Displacement) -> [Hand; 12] {
+    let f = &s.frame;
+    let g = &s.foundation;
+    let l = f.l1z + f.l2z;
+    let (st, ct) = d.theta.sin_cos();
+    let phi = d.theta + g.kappa;
+    let (sp, cp) = phi.sin_cos();
+    let (cx, cz) = (1.0 / g.xi.tan(), 1.0 / g.zeta.tan());
+    let b = d.x - f.l2x * (1.0 - ct);
+    let dd = g.kappa.cos() * (f.l2x - d.x) + g.kappa.sin() * (f.l2z + d.z);
+    let e = dd - f.l2x * cp;
+    let m = l + d.x.abs() + d.z.abs();
+    let h = |value: f64, scale: f64| Hand { value, scale };
+    [
+        h(b * b - f.l1z.powi(2) * st * st, m * m),
+        h(-2.0 * l * cx * b, l * cx * m),
+        h(2.0 * SQRT_2 * f.l1z * (b * ct - f.l1z * st * st), f.l1z * m),
+        h(l * l * cx * cx, l * l * cx * cx),
+        h(-2.0 * SQRT_2 * l * f.l1z * ct * cx, l * f.l1z * cx),
+        h(2.0 * f.l1z.powi(2), f.l1z.powi(2)),
+        h(e * e - f.l2z.powi(2) * sp * sp, m * m),
+        h(2.0 * SQRT_2 * l * cz * e, l * cz * m),
+        h(2.0 * SQRT_2 * f.l2z * (e * cp - f.l2z * sp * sp), f.l2z * m),
+        h(2.0 * l * l * cz * cz, l * l * cz * cz),
+        h(4.0 * l * f.l2z * cp * cz, l * f.l2z * cz),
+        h(2.0 * f.l2z.powi(2), f.l2z.powi(2)),
+    ]
+}
+
+/// The printed (misprinted) f1, f2, f7, f11 of the paper, as printed but with 1.41 → √2.
+pub fn printed_f1_f2_f7_f11(s: &Scene, d: Displacement) -> [f64; 4] {
+    let f = &s.frame;
+    let g = &s.foundation;
+    let l = f.l1z + f.l2z;
+    let (st, ct) = d.theta.sin_cos();
+    let phi = d.theta + g.kappa;
+    let (sp, cp) = phi.sin_cos();
+    let (cx, cz) = (1.0 / g.xi.tan(), 1.0 / g.zeta.tan());
+    let dd = g.kappa.cos() * (f.l2x - d.x) + g.kappa.sin() * (f.l2z + d.z);
+    [
+        d.x * d.x + 2.0 * f.l2x * (ct - 1.0) * d.x + (f.l2x.powi(2) - f.l1z.powi(2)) * st * st,
+        2.0 * l * cx * (f.l2x - d.x - ct * (f.l2x + f.l1z)),
+        dd * dd - 2.0 * f.l2x * cp * dd + cp * cp * (-f.l2x + 2.0 * f.l2z).powi(2)
+            - f.l2z.powi(2) * sp * sp,
+        4.0 * l * f.l1z * cp * cz,
+    ]
+}
+
+/// Exact (13), (14) coefficients by hand (`derivations/04-exact.md`, "Result"), by basis name.
+pub fn hand_exact(s: &Scene, d: Displacement) -> [Vec<(&'static str, f64)>; 2] {
+    let f = &s.frame;
+    let g = &s.foundation;
+    let l = f.l1z + f.l2z;
+    let (st, ct) = d.theta.sin_cos();
+    let (sp, cp) = (d.theta + g.kappa).sin_cos();
+    let (cx, cz) = (1.0 / g.xi.tan(), 1.0 / g.zeta.tan());
+    let dd = g.kappa.cos() * (f.l2x - d.x) + g.kappa.sin() * (f.l2z + d.z);
+    [
+        vec![
+            ("one", f.l2x - d.x),
+            ("ca", -f.l2x * ct),
+            ("cp", f.l1z * st),
+            ("sa", l * cx),
+            ("sa_sp", f.l1z * ct),
+        ],
+        vec![
+            ("one", -dd),
+            ("ca", f.l2x * cp),
+            ("ca_sp", l * cz),
+            ("cp", f.l2z * sp),
+            ("sa", -l * cz),
+            ("sa_sp", f.l2z * cp),
+        ],
+    ]
+}
