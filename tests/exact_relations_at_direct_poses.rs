@@ -105,6 +105,7 @@ fn small_angle_residual_falls_at_second_order_in_the_dips() {
         let size = r[0].abs().max(r[1].abs()) / (l * l);
         if let Some(q) = prev {
             let order = (q / size).log2();
+            eprintln!("observed order {order:.4} at ε = {eps}");
             assert!((1.8..2.2).contains(&order), "order {order} at ε = {eps}");
         }
         prev = Some(size);
