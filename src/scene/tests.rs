@@ -299,3 +299,42 @@ fn unreadable_file_is_named() {
         "{e}"
     );
 }
+
+mod never_panics {
+    use super::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(2000))]
+
+        #[test]
+        fn arbitrary_text_is_loaded_or_rejected_in_one_line(text in "\\PC{0,400}") {
+            if let Err(e) = Scene::from_toml(&text, "fuzz.toml") {
+                prop_assert!(!e.to_string().contains('\n'));
+            }
+        }
+
+        #[test]
+        fn good_scene_with_one_value_replaced_never_panics(
+            line in 0usize..30,
+            value in prop_oneof![
+                Just("-1.0".to_string()), Just("nan".to_string()), Just("\"x\"".to_string()),
+                Just("[1, 2]".to_string()), Just("{ a = 1 }".to_string()), Just("1e309".to_string()),
+                any::<f64>().prop_map(|v| format!("{v:?}")),
+            ],
+        ) {
+            let text: Vec<String> = GOOD
+                .lines()
+                .enumerate()
+                .map(|(i, l)| match l.split_once(" = ") {
+                    Some((k, _)) if i == line => format!("{k} = {value}"),
+                    _ => l.to_string(),
+                })
+                .collect();
+            if let Err(e) = Scene::from_toml(&text.join("\n"), "fuzz.toml") {
+                prop_assert!(e.to_string().starts_with("fuzz.toml: "));
+                prop_assert!(!e.to_string().contains('\n'));
+            }
+        }
+    }
+}
