@@ -20,4 +20,5 @@
 pub mod coeffs;
 pub mod geometry;
 pub mod output;
+pub mod roots;
 pub mod scene;

@@ -1,9 +1,10 @@
 //! The `slideroute` command line: parses, calls the library, prints.
 
-use clap::{Parser, Subcommand};
+use clap::{Args, Parser, Subcommand};
 use slideroute::geometry::Displacement;
-use slideroute::output::CoeffReport;
-use slideroute::scene::Scene;
+use slideroute::output::{CoeffReport, RootsReport, grid_csv};
+use slideroute::roots;
+use slideroute::scene::{Mode, Scene};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -17,28 +18,61 @@ struct Cli {
     command: Command,
 }
 
+#[derive(Args)]
+struct SceneArg {
+    /// Scene file (TOML). Without it, the embedded default (paper-like) scene.
+    #[arg(long, value_name = "FILE")]
+    scene: Option<PathBuf>,
+}
+
+#[derive(Args)]
+struct PoseArgs {
+    /// X: CM displacement along the global X axis (forward), in metres.
+    #[arg(long, value_name = "METRES", allow_negative_numbers = true)]
+    x: Option<f64>,
+    /// Z: CM displacement along the global Z axis (lateral), in metres.
+    #[arg(long, value_name = "METRES", allow_negative_numbers = true)]
+    z: Option<f64>,
+    /// θ: yaw of side 01 from +X towards +Z, in degrees.
+    #[arg(
+        long = "theta-deg",
+        value_name = "DEGREES",
+        allow_negative_numbers = true
+    )]
+    theta_deg: Option<f64>,
+}
+
 #[derive(Subcommand)]
 enum Command {
     /// Print the coefficients of the small-angle system (15) (f1–f12) and of the exact form
     /// at one displacement (X, Z, θ) of the centre of mass.
     Coeffs {
-        /// Scene file (TOML). Without it, the embedded default (paper-like) scene.
-        #[arg(long, value_name = "FILE")]
-        scene: Option<PathBuf>,
-        /// X: CM displacement along the global X axis (forward), in metres.
-        #[arg(long, value_name = "METRES", allow_negative_numbers = true)]
-        x: f64,
-        /// Z: CM displacement along the global Z axis (lateral), in metres.
-        #[arg(long, value_name = "METRES", allow_negative_numbers = true)]
-        z: f64,
-        /// θ: yaw of side 01 from +X towards +Z, in degrees.
-        #[arg(
-            long = "theta-deg",
-            value_name = "DEGREES",
-            allow_negative_numbers = true
-        )]
-        theta_deg: f64,
+        #[command(flatten)]
+        scene: SceneArg,
+        #[command(flatten)]
+        pose: PoseArgs,
         /// Print JSON instead of a table.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Find every root of the pose system at (X, Z, θ), classify them (real, spurious,
+    /// admissible) and select the physical pose by continuation from the start of sliding.
+    /// With --grid, do so for every pose of a CSV file and write one row per pose.
+    Roots {
+        #[command(flatten)]
+        scene: SceneArg,
+        #[command(flatten)]
+        pose: PoseArgs,
+        /// Which system: exact or small-angle. Default: the scene's [solver] mode, else exact.
+        #[arg(long, value_enum)]
+        mode: Option<Mode>,
+        /// CSV of poses with header `x_m,z_m,theta_deg` (m, m, degrees); needs --out.
+        #[arg(long, value_name = "POSES.csv", conflicts_with_all = ["x", "z", "theta_deg"], requires = "out")]
+        grid: Option<PathBuf>,
+        /// Where to write the batch results (CSV), with --grid.
+        #[arg(long, value_name = "OUT.csv", requires = "grid")]
+        out: Option<PathBuf>,
+        /// Print JSON instead of a table (single pose).
         #[arg(long)]
         json: bool,
     },
@@ -50,53 +84,102 @@ fn fail(msg: impl std::fmt::Display) -> ExitCode {
     ExitCode::from(2)
 }
 
-fn load(scene: Option<&PathBuf>) -> Result<Scene, slideroute::scene::SceneError> {
-    match scene {
-        Some(p) => Scene::from_file(p),
+fn load(arg: &SceneArg) -> Result<Scene, String> {
+    match &arg.scene {
+        Some(p) => Scene::from_file(p).map_err(|e| e.to_string()),
         None => Ok(Scene::default_scene()),
     }
 }
 
-fn finite_flag(name: &str, v: f64) -> Result<f64, String> {
-    if v.is_finite() {
-        Ok(v)
+fn displacement(p: &PoseArgs) -> Result<Displacement, String> {
+    let get = |name: &str, v: Option<f64>| match v {
+        None => Err(format!("--{name} is required")),
+        Some(v) if !v.is_finite() => Err(format!("--{name}: must be a finite number, got {v}")),
+        Some(v) => Ok(v),
+    };
+    Ok(Displacement::new(
+        get("x", p.x)?,
+        get("z", p.z)?,
+        get("theta-deg", p.theta_deg)?.to_radians(),
+    ))
+}
+
+fn print_json(value: &impl serde::Serialize) -> Result<(), String> {
+    let s = serde_json::to_string_pretty(value).map_err(|e| format!("cannot write JSON: {e}"))?;
+    println!("{s}");
+    Ok(())
+}
+
+fn coeffs(scene: &SceneArg, pose: &PoseArgs, json: bool) -> Result<(), String> {
+    let scene = load(scene)?;
+    let report = CoeffReport::new(&scene, displacement(pose)?);
+    if json {
+        print_json(&report)
     } else {
-        Err(format!("--{name}: must be a finite number, got {v}"))
+        print!("{report}");
+        Ok(())
+    }
+}
+
+fn roots_cmd(
+    scene: &SceneArg,
+    pose: &PoseArgs,
+    mode: Option<Mode>,
+    grid: Option<&PathBuf>,
+    out: Option<&PathBuf>,
+    json: bool,
+) -> Result<(), String> {
+    let scene = load(scene)?;
+    let mode = mode.or(scene.solver.map(|s| s.mode)).unwrap_or(Mode::Exact);
+    let report = |d: Displacement| {
+        roots::solve_all(&scene, d, mode)
+            .map(|all| RootsReport::new(&scene, &all))
+            .map_err(|e| e.to_string())
+    };
+    match (grid, out) {
+        (Some(grid), Some(out)) => {
+            let name = grid.display().to_string();
+            let file =
+                std::fs::File::open(grid).map_err(|e| format!("{name}: cannot read: {e}"))?;
+            let poses = grid_csv::read_poses(file, &name).map_err(|e| e.to_string())?;
+            let reports = poses
+                .iter()
+                .map(|p| report(p.displacement()))
+                .collect::<Result<Vec<_>, _>>()?;
+            let out_name = out.display().to_string();
+            let file =
+                std::fs::File::create(out).map_err(|e| format!("{out_name}: cannot write: {e}"))?;
+            grid_csv::write_rows(file, &poses, &reports).map_err(|e| format!("{out_name}: {e}"))?;
+            eprintln!("slideroute: {} poses written to {out_name}", reports.len());
+            Ok(())
+        }
+        _ => {
+            let r = report(displacement(pose)?)?;
+            if json {
+                print_json(&r)
+            } else {
+                print!("{r}");
+                Ok(())
+            }
+        }
     }
 }
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
-    match cli.command {
-        Command::Coeffs {
+    let result = match &cli.command {
+        Command::Coeffs { scene, pose, json } => coeffs(scene, pose, *json),
+        Command::Roots {
             scene,
-            x,
-            z,
-            theta_deg,
+            pose,
+            mode,
+            grid,
+            out,
             json,
-        } => {
-            let scene = match load(scene.as_ref()) {
-                Ok(s) => s,
-                Err(e) => return fail(e),
-            };
-            let d = match (
-                finite_flag("x", x),
-                finite_flag("z", z),
-                finite_flag("theta-deg", theta_deg),
-            ) {
-                (Ok(x), Ok(z), Ok(t)) => Displacement::new(x, z, t.to_radians()),
-                (Err(e), _, _) | (_, Err(e), _) | (_, _, Err(e)) => return fail(e),
-            };
-            let report = CoeffReport::new(&scene, d);
-            if json {
-                match serde_json::to_string_pretty(&report) {
-                    Ok(s) => println!("{s}"),
-                    Err(e) => return fail(format!("cannot write JSON: {e}")),
-                }
-            } else {
-                print!("{report}");
-            }
-        }
+        } => roots_cmd(scene, pose, *mode, grid.as_ref(), out.as_ref(), *json),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => fail(e),
     }
-    ExitCode::SUCCESS
 }

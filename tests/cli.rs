@@ -166,3 +166,141 @@ fn non_finite_and_malformed_flags_are_rejected() {
     );
     assert_bad_input(&run(&["no-such-command"]), &["no-such-command"]);
 }
+
+#[test]
+fn roots_json_has_selected_pose_roots_and_counts() {
+    let o = run(&[
+        "roots",
+        "--x",
+        "0.5",
+        "--z",
+        "0.1",
+        "--theta-deg",
+        "2",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("JSON");
+    for k in ["alpha_deg", "beta_deg", "gamma_deg", "cm_y_m"] {
+        assert!(v["selected"][k].is_f64(), "selected.{k}");
+    }
+    assert_eq!(v["mode"], "exact");
+    assert_eq!(
+        v["finite_roots"].as_u64().unwrap() + v["roots_at_infinity"].as_u64().unwrap(),
+        8
+    );
+    let roots = v["roots"].as_array().unwrap();
+    assert!(!roots.is_empty());
+    for r in roots {
+        assert_eq!(r["alpha_deg"].as_array().unwrap().len(), 2);
+        assert_eq!(r["beta_deg"].as_array().unwrap().len(), 2);
+        assert!(r["admissible"].is_boolean() && r["spurious"].is_boolean());
+    }
+    // Agrees with the independent direct pose solver.
+    let scene = slideroute::scene::Scene::default_scene();
+    let d = slideroute::geometry::Displacement::new(0.5, 0.1, 2f64.to_radians());
+    let p = slideroute::geometry::direct::solve(&scene, d).unwrap();
+    let a = v["selected"]["alpha_deg"].as_f64().unwrap();
+    assert!((a - p.alpha(scene.l()).to_degrees()).abs() < 1e-8);
+
+    let o = run(&[
+        "roots",
+        "--x",
+        "0.5",
+        "--z",
+        "0.1",
+        "--theta-deg",
+        "2",
+        "--mode",
+        "small-angle",
+        "--json",
+    ]);
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("JSON");
+    assert_eq!(
+        v["finite_roots"].as_u64().unwrap() + v["roots_at_infinity"].as_u64().unwrap(),
+        16
+    );
+}
+
+#[test]
+fn roots_table_names_the_selected_pose() {
+    let o = run(&[
+        "roots",
+        "--x",
+        "1",
+        "--z",
+        "0",
+        "--theta-deg",
+        "0",
+        "--mode",
+        "small-angle",
+    ]);
+    assert!(o.status.success());
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(out.contains("selected: α ="), "{out}");
+    assert!(out.contains("spurious"), "{out}");
+}
+
+#[test]
+fn roots_grid_writes_one_row_per_pose_in_order() {
+    let grid = temp_file(
+        "poses.csv",
+        "x_m,z_m,theta_deg\n0.5,0.1,2\n1.0,0,0\n1.0,0,-30\n2.0,0.3,-3\n",
+    );
+    let out = grid.with_file_name("out.csv");
+    let o = run(&[
+        "roots",
+        "--grid",
+        grid.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = std::fs::read_to_string(&out).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines.len(), 5, "{text}");
+    assert!(lines[0].starts_with("x_m,z_m,theta_deg,status,alpha_deg,beta_deg"));
+    assert!(lines[1].starts_with("0.5,0.1,2,selected,"));
+    assert!(lines[3].contains("no admissible root"), "{}", lines[3]);
+    assert!(lines[4].starts_with("2,0.3,-3,selected,"));
+}
+
+#[test]
+fn bad_grid_files_name_the_line_and_column() {
+    let grid = temp_file("bad.csv", "x_m,z_m,theta_deg\n0.5,0.1,2\n1.0,abc,0\n");
+    let out = grid.with_file_name("o.csv");
+    let o = run(&[
+        "roots",
+        "--grid",
+        grid.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_bad_input(&o, &["bad.csv", "line 3", "z_m", "abc"]);
+    let grid = temp_file("hdr.csv", "x,z,theta\n0.5,0.1,2\n");
+    let o = run(&[
+        "roots",
+        "--grid",
+        grid.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_bad_input(&o, &["hdr.csv", "line 1", "x_m,z_m,theta_deg"]);
+    let o = run(&["roots", "--grid", grid.to_str().unwrap()]);
+    assert_bad_input(&o, &["--out"]);
+    assert_bad_input(
+        &run(&[
+            "roots",
+            "--x",
+            "1",
+            "--z",
+            "0",
+            "--theta-deg",
+            "0",
+            "--mode",
+            "huge",
+        ]),
+        &["huge"],
+    );
+    assert_bad_input(&run(&["roots", "--x", "1", "--z", "0"]), &["--theta-deg"]);
+}

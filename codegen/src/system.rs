@@ -190,6 +190,31 @@ pub fn small_angle() -> [Poly; 12] {
     out.try_into().expect("twelve coefficients")
 }
 
+/// The unsquared small-angle relations: (13)·cos α and (14)·cos α under the small-angle
+/// substitutions, written E = A + B·Q with Q = cos α cos β sin h ≈ √(1 − (1/√2 − αβ)²) ≥ 0.
+/// Returns, per equation, A collected in (α, β) and B (free of α, β). A root of (15) is spurious
+/// when it satisfies A − B·Q = 0 instead of A + B·Q = 0 (the other sign of sin h).
+pub fn small_angle_unsquared() -> [(Vec<(Monomial, Poly)>, Poly); 2] {
+    let pp = pp_of_sa_sb();
+    law_of_sines_times_cos_alpha().map(|e| {
+        let e = e
+            .subs("pp", &pp)
+            .subs("sa", &v("alpha"))
+            .subs("sb", &v("beta"))
+            .subs("ca", &n(1))
+            .subs("cb", &n(1));
+        let (a, b) = e.isolate("qq").expect("linear in sin h");
+        assert!(
+            b.degree_in("alpha") == 0 && b.degree_in("beta") == 0,
+            "B of the small-angle relations must be free of α, β"
+        );
+        (
+            norm(&a).collect(&SMALL_UNKNOWNS).into_iter().collect(),
+            norm(&b),
+        )
+    })
+}
+
 /// The unknowns of the exact form: sin/cos of α (tilt of side 01) and of ψ (roll about side 01).
 pub const EXACT_UNKNOWNS: [Sym; 4] = ["sa", "ca", "sp", "cp"];
 
@@ -313,6 +338,25 @@ mod tests {
         let f = small_angle();
         let l = v("l1z") + v("l2z");
         assert_eq!(f[3], (l * v("cot_xi")).square());
+    }
+
+    #[test]
+    fn squaring_the_unsquared_pieces_gives_system_15() {
+        // (A + BQ)(A − BQ) = A² − B²Q² with Q² = 1 − P²: the small-angle (15) again.
+        let f = small_angle();
+        let q2 = n(1) - (v(R2) * half() - v("alpha") * v("beta")).square();
+        for (eq, (a, b)) in small_angle_unsquared().iter().enumerate() {
+            let a: Poly = a.iter().fold(Poly::zero(), |acc, (m, c)| {
+                acc + c * &Poly::term(Rational::ONE, m.clone())
+            });
+            let sq = norm(&(a.square() - b.square() * &q2));
+            let coll = sq.collect(&SMALL_UNKNOWNS);
+            for (k, &(i, j)) in SMALL_ANGLE_MONOMIALS[eq].iter().enumerate() {
+                let m = Monomial::from_pairs(&[("alpha", i), ("beta", j)]);
+                assert_eq!(coll[&m], f[6 * eq + k], "f{}", 6 * eq + k + 1);
+            }
+            assert_eq!(coll.len(), 6);
+        }
     }
 
     #[test]

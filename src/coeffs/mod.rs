@@ -21,7 +21,8 @@ mod generated {
 pub use generated::CoeffInputs;
 pub use generated::{
     EXACT_BASIS_13, EXACT_BASIS_14, EXACT_NAMES_13, EXACT_NAMES_14, EXACT_TERMS,
-    SMALL_ANGLE_MONOMIALS,
+    SMALL_ANGLE_MONOMIALS, SMALL_ANGLE_UNSQUARED_A13, SMALL_ANGLE_UNSQUARED_A14,
+    SMALL_ANGLE_UNSQUARED_SPLIT,
 };
 
 /// Number of trig-basis terms of exact (13) plus (14).
@@ -89,6 +90,83 @@ impl SmallAngle {
     }
 }
 
+/// The small-angle relations before squaring: (13)·cos α and (14)·cos α under the small-angle
+/// substitutions, E = A(α, β) + B·Q with Q = √(1 − (1/√2 − αβ)²) ≥ 0 (0 ≤ h ≤ 180°). Their
+/// roots are the non-spurious roots of (15); the tracker follows these, not (15).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SmallAngleUnsquared {
+    /// A13 terms ([`SMALL_ANGLE_UNSQUARED_A13`]), B13, A14 terms, B14.
+    pub c: [f64; SMALL_ANGLE_UNSQUARED_A13.len() + SMALL_ANGLE_UNSQUARED_A14.len() + 2],
+}
+
+/// Value, gradient and the sum of term magnitudes of A(α, β) = Σ c_k α^i β^j.
+fn poly_ab(c: &[f64], exps: &[(u32, u32)], a: f64, b: f64) -> (f64, [f64; 2], f64) {
+    let (mut v, mut da, mut db, mut mag) = (0.0, 0.0, 0.0, 0.0);
+    for (&(i, j), &k) in exps.iter().zip(c) {
+        let t = k * a.powi(i as i32) * b.powi(j as i32);
+        v += t;
+        mag += t.abs();
+        if i > 0 {
+            da += k * i as f64 * a.powi(i as i32 - 1) * b.powi(j as i32);
+        }
+        if j > 0 {
+            db += k * j as f64 * a.powi(i as i32) * b.powi(j as i32 - 1);
+        }
+    }
+    (v, [da, db], mag)
+}
+
+/// One unsquared small-angle equation evaluated at (α, β).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct UnsquaredValue {
+    /// A + B·Q (the physical sign, sin h ≥ 0).
+    pub value: f64,
+    /// A − B·Q (the other sign; zero at a spurious root of (15)).
+    pub mirror: f64,
+    /// ∂(A + BQ)/∂(α, β).
+    pub grad: [f64; 2],
+    /// Σ|terms|: the size against which round-off is judged.
+    pub scale: f64,
+}
+
+impl SmallAngleUnsquared {
+    pub fn new(inputs: &CoeffInputs) -> Self {
+        SmallAngleUnsquared {
+            c: generated::small_angle_unsquared(inputs),
+        }
+    }
+
+    /// Both equations at (α, β); `None` where Q is not real (|1/√2 − αβ| > 1).
+    pub fn eval(&self, alpha: f64, beta: f64) -> Option<[UnsquaredValue; 2]> {
+        let p = std::f64::consts::FRAC_1_SQRT_2 - alpha * beta;
+        let q2 = 1.0 - p * p;
+        if q2.is_nan() || q2 <= 0.0 {
+            return None;
+        }
+        let q = q2.sqrt();
+        // dQ/dα = Pβ/Q, dQ/dβ = Pα/Q.
+        let dq = [p * beta / q, p * alpha / q];
+        let n13 = SMALL_ANGLE_UNSQUARED_SPLIT;
+        let parts = [
+            (&self.c[..n13], SMALL_ANGLE_UNSQUARED_A13, self.c[n13]),
+            (
+                &self.c[n13 + 1..self.c.len() - 1],
+                SMALL_ANGLE_UNSQUARED_A14,
+                self.c[self.c.len() - 1],
+            ),
+        ];
+        Some(parts.map(|(c, exps, b)| {
+            let (a, ga, mag) = poly_ab(c, exps, alpha, beta);
+            UnsquaredValue {
+                value: a + b * q,
+                mirror: a - b * q,
+                grad: [ga[0] + b * dq[0], ga[1] + b * dq[1]],
+                scale: mag + (b * q).abs(),
+            }
+        }))
+    }
+}
+
 /// The exact relations (13), (14) at one displacement, as coefficients of the trig basis
 /// monomials in [`EXACT_BASIS_13`] / [`EXACT_BASIS_14`] (exponents of sin α, cos α, sin ψ,
 /// cos ψ). Each equation reads LHS − RHS of the paper's (13) or (14), in metres.
@@ -135,6 +213,37 @@ impl Exact {
             .map(|(e, c)| c * term(e))
             .sum();
         [r13, r14]
+    }
+
+    /// Residuals of (13), (14) (m) at (α, ψ) and their Jacobian ∂(r13, r14)/∂(α, ψ).
+    pub fn residual_jacobian(&self, alpha: f64, psi: f64) -> ([f64; 2], [[f64; 2]; 2]) {
+        let (sa, ca) = alpha.sin_cos();
+        let (sp, cp) = psi.sin_cos();
+        let mut r = [0.0; 2];
+        let mut j = [[0.0; 2]; 2];
+        let parts: [(&[[u32; 4]], &[f64]); 2] = [
+            (&EXACT_BASIS_13, self.eq13()),
+            (&EXACT_BASIS_14, self.eq14()),
+        ];
+        for (eq, (basis, coef)) in parts.into_iter().enumerate() {
+            for (e, &c) in basis.iter().zip(coef) {
+                // Each monomial is fa(α)·fp(ψ) with fa ∈ {1, sin α, cos α}, fp ∈ {1, sin ψ, cos ψ}.
+                let (fa, dfa) = match (e[0], e[1]) {
+                    (1, _) => (sa, ca),
+                    (_, 1) => (ca, -sa),
+                    _ => (1.0, 0.0),
+                };
+                let (fp, dfp) = match (e[2], e[3]) {
+                    (1, _) => (sp, cp),
+                    (_, 1) => (cp, -sp),
+                    _ => (1.0, 0.0),
+                };
+                r[eq] += c * fa * fp;
+                j[eq][0] += c * dfa * fp;
+                j[eq][1] += c * fa * dfp;
+            }
+        }
+        (r, j)
     }
 
     /// The same equations in tangent half-angles ta = tan(α/2), tp = tan(ψ/2), multiplied by

@@ -1,8 +1,12 @@
 //! What the library hands to people: typed reports that serialise to JSON and print as tables.
 
 pub mod coeffs_report;
+#[cfg(feature = "cli")]
+pub mod grid_csv;
+pub mod roots_report;
 
 pub use coeffs_report::CoeffReport;
+pub use roots_report::RootsReport;
 
 use serde::ser::{Serialize, SerializeMap, Serializer};
 

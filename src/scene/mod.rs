@@ -93,6 +93,7 @@ pub enum Friction {
 
 /// Which polynomial system gives the pose.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, serde::Serialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "kebab-case")]
 pub enum Mode {
     /// The exact relations (13), (14) (see `derivations/04-exact.md`).

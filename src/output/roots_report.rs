@@ -1,0 +1,159 @@
+//! The `roots` report: every root at one displacement, and the selected one.
+
+use crate::geometry::{Displacement, pose::cm_height};
+use crate::roots::{AllRoots, Inadmissible, Root};
+use crate::scene::{Mode, Scene};
+use serde::Serialize;
+use std::f64::consts::SQRT_2;
+use std::fmt;
+
+/// The physical pose chosen by continuation.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct SelectedPose {
+    pub alpha_deg: f64,
+    pub beta_deg: f64,
+    pub gamma_deg: f64,
+    /// Roll about side 01 (exact mode only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub psi_deg: Option<f64>,
+    /// CM height (eq. 21), m.
+    pub cm_y_m: f64,
+}
+
+/// One root, angles in degrees as [re, im].
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RootRow {
+    pub alpha_deg: [f64; 2],
+    pub beta_deg: [f64; 2],
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub psi_deg: Option<[f64; 2]>,
+    pub multiplicity: usize,
+    pub residual: f64,
+    pub real: bool,
+    pub spurious: bool,
+    pub admissible: bool,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub why_not: Option<Inadmissible>,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RootsReport {
+    pub scene: String,
+    pub mode: Mode,
+    pub x_m: f64,
+    pub z_m: f64,
+    pub theta_deg: f64,
+    pub selected: Option<SelectedPose>,
+    /// Why nothing is selected (the tracker's diagnosis), if so.
+    pub selection_error: Option<String>,
+    pub finite_roots: usize,
+    pub roots_at_infinity: usize,
+    pub roots: Vec<RootRow>,
+}
+
+fn deg(c: num_complex::Complex64) -> [f64; 2] {
+    [c.re.to_degrees(), c.im.to_degrees()]
+}
+
+fn selected_pose(scene: &Scene, mode: Mode, r: &Root) -> SelectedPose {
+    let (a, b) = (r.alpha.re, r.beta.re);
+    SelectedPose {
+        alpha_deg: a.to_degrees(),
+        beta_deg: b.to_degrees(),
+        gamma_deg: (SQRT_2 * b.sin() - a.sin()).asin().to_degrees(),
+        psi_deg: match mode {
+            Mode::Exact => r.psi.map(|p| p.re.to_degrees()),
+            Mode::SmallAngle => None,
+        },
+        cm_y_m: cm_height(scene, a, b),
+    }
+}
+
+impl RootsReport {
+    pub fn new(scene: &Scene, all: &AllRoots) -> Self {
+        let d: Displacement = all.displacement;
+        RootsReport {
+            scene: scene.name.clone(),
+            mode: all.mode,
+            x_m: d.x,
+            z_m: d.z,
+            theta_deg: d.theta.to_degrees(),
+            selected: all
+                .selected
+                .map(|k| selected_pose(scene, all.mode, &all.roots[k])),
+            selection_error: all.selection_error.as_ref().map(|e| e.to_string()),
+            finite_roots: all.finite_roots,
+            roots_at_infinity: all.roots_at_infinity,
+            roots: all
+                .roots
+                .iter()
+                .map(|r| RootRow {
+                    alpha_deg: deg(r.alpha),
+                    beta_deg: deg(r.beta),
+                    psi_deg: r.psi.map(deg),
+                    multiplicity: r.multiplicity,
+                    residual: r.residual,
+                    real: r.real,
+                    spurious: r.spurious,
+                    admissible: r.admissible,
+                    why_not: r.why_not,
+                })
+                .collect(),
+        }
+    }
+}
+
+fn cplx(v: [f64; 2]) -> String {
+    if v[1] == 0.0 {
+        format!("{:>12.6}", v[0])
+    } else {
+        format!("{:>12.6}{:+.3}i", v[0], v[1])
+    }
+}
+
+impl fmt::Display for RootsReport {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        writeln!(
+            f,
+            "scene {} ({} mode): X = {} m, Z = {} m, θ = {}°",
+            self.scene,
+            self.mode.as_str(),
+            self.x_m,
+            self.z_m,
+            self.theta_deg
+        )?;
+        match (&self.selected, &self.selection_error) {
+            (Some(s), _) => writeln!(
+                f,
+                "selected: α = {:.6}°, β = {:.6}°, γ = {:.6}°, CM height {:.6} m",
+                s.alpha_deg, s.beta_deg, s.gamma_deg, s.cm_y_m
+            )?,
+            (None, Some(e)) => writeln!(f, "no pose selected: {e}")?,
+            (None, None) => writeln!(f, "no pose selected")?,
+        }
+        writeln!(
+            f,
+            "{} finite roots (with multiplicity), {} at infinity:",
+            self.finite_roots, self.roots_at_infinity
+        )?;
+        writeln!(f, "  {:>24}  {:>24}  mult  status", "α (°)", "β (°)")?;
+        for r in &self.roots {
+            let status = if r.admissible {
+                "admissible".to_string()
+            } else if !r.real {
+                "complex".to_string()
+            } else {
+                r.why_not.map_or("real".to_string(), |w| w.to_string())
+            };
+            writeln!(
+                f,
+                "  {:>24}  {:>24}  {:>4}  {}",
+                cplx(r.alpha_deg),
+                cplx(r.beta_deg),
+                r.multiplicity,
+                status
+            )?;
+        }
+        Ok(())
+    }
+}

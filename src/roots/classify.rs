@@ -1,0 +1,99 @@
+//! Which roots are physical.
+//!
+//! * **spurious**: small-angle — introduced by squaring away sin h: the root satisfies
+//!   A − B·Q = 0 rather than the unsquared A + B·Q = 0 with 0 ≤ h ≤ 180°. Exact — the mirrored
+//!   frame, cos ψ < 0 (sin h < 0), which likewise fails (13), (14) with 0 ≤ h ≤ 180°.
+//! * **admissible**: real, not spurious, 0 ≤ α < ξ, 0 ≤ β < ζ, and each contact over its own
+//!   plane (vertex 0 over the horizontal part, vertex 1 over plane 1, vertex 2 over plane 2).
+
+use crate::coeffs::SmallAngleUnsquared;
+use crate::geometry::planes::{along_dip_2, r};
+use crate::geometry::{Displacement, Pose};
+use crate::scene::{Mode, Scene};
+use std::fmt;
+
+/// Why a real pose is not admissible.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Inadmissible {
+    /// Squaring artefact (small-angle) or mirrored frame (exact).
+    Spurious,
+    /// The tilts give no real frame.
+    NoRealFrame,
+    /// α < 0 or α ≥ ξ.
+    AlphaOutOfRange,
+    /// β < 0 or β ≥ ζ.
+    BetaOutOfRange,
+    /// Vertex 0 is over an inclined plane.
+    Contact0ReachedInclinedPlane,
+    /// Vertex 1 is off plane 1 (X1 < L2X).
+    Contact1LeftPlane1,
+    /// Vertex 2 is off plane 2 (n·P2 < R).
+    Contact2LeftPlane2,
+}
+
+impl fmt::Display for Inadmissible {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Inadmissible::Spurious => "spurious root (wrong sign of sin h)",
+            Inadmissible::NoRealFrame => "no real frame has these tilts",
+            Inadmissible::AlphaOutOfRange => "tilt α outside [0, ξ)",
+            Inadmissible::BetaOutOfRange => "tilt β outside [0, ζ)",
+            Inadmissible::Contact0ReachedInclinedPlane => "contact 0 reached an inclined plane",
+            Inadmissible::Contact1LeftPlane1 => "contact 1 left plane 1",
+            Inadmissible::Contact2LeftPlane2 => "contact 2 left plane 2",
+        })
+    }
+}
+
+/// Tolerances: angles (rad) and lengths relative to L, so that the start pose itself
+/// (α = β = 0, contacts on the strike lines) is admissible.
+const ANGLE_TOL: f64 = 1e-12;
+const LENGTH_TOL: f64 = 1e-9;
+
+/// The placed frame for a point of the chosen mode: u = (α, β) or (α, ψ).
+pub fn pose(scene: &Scene, d: Displacement, mode: Mode, u: [f64; 2]) -> Option<Pose> {
+    match mode {
+        Mode::SmallAngle => Pose::from_tilts(scene, d, u[0], u[1]).ok(),
+        Mode::Exact => Pose::from_tilt_roll(scene, d, u[0], u[1]).ok(),
+    }
+}
+
+/// Checks tilt ranges and contact regions of a real, non-spurious pose.
+pub fn check_pose(scene: &Scene, p: &Pose) -> Result<(), Inadmissible> {
+    let g = &scene.foundation;
+    if !(p.alpha >= -ANGLE_TOL && p.alpha < g.xi) {
+        return Err(Inadmissible::AlphaOutOfRange);
+    }
+    if !(p.beta >= -ANGLE_TOL && p.beta < g.zeta) {
+        return Err(Inadmissible::BetaOutOfRange);
+    }
+    let tol = LENGTH_TOL * scene.l();
+    let (l2x, r2) = (scene.frame.l2x, r(scene));
+    let [p0, p1, p2] = p.vertices;
+    if p0.x > l2x + tol || along_dip_2(scene, p0.x, p0.z) > r2 + tol {
+        return Err(Inadmissible::Contact0ReachedInclinedPlane);
+    }
+    if p1.x < l2x - tol {
+        return Err(Inadmissible::Contact1LeftPlane1);
+    }
+    if along_dip_2(scene, p2.x, p2.z) < r2 - tol {
+        return Err(Inadmissible::Contact2LeftPlane2);
+    }
+    Ok(())
+}
+
+/// Whether a real root of (15) is spurious: it solves A − BQ = 0 but not A + BQ = 0.
+pub fn small_angle_spurious(u: &SmallAngleUnsquared, alpha: f64, beta: f64) -> bool {
+    match u.eval(alpha, beta) {
+        None => true,
+        Some(eqs) => eqs
+            .iter()
+            .any(|e| e.value.abs() > e.mirror.abs() && e.value.abs() > 1e-8 * e.scale),
+    }
+}
+
+/// Whether an exact-mode root is the mirrored frame (cos ψ < 0).
+pub fn exact_mirrored(psi: f64) -> bool {
+    psi.cos() < 0.0
+}

@@ -1,0 +1,281 @@
+//! All roots of two polynomials of bidegree (2, 2) by eigenvalues.
+//!
+//! Hidden variable x: as quadratics in y, p = P0(x) + P1(x) y + P2(x) y² and likewise q. They
+//! share a root y exactly when the 4×4 Sylvester matrix S(x) = S0 + x S1 + x² S2 is singular
+//! (S(x)·[y³, y², y, 1]ᵀ = 0). The quadratic matrix polynomial is linearised by the companion
+//! pencil A − x B, A = [[0, I], [−S0, −S1]], B = [[I, 0], [0, S2]] (8×8). S2 may be singular
+//! (roots at infinity), so instead of inverting B we shift and invert: the eigenvalues μ of
+//! (A − σB)⁻¹B give x = σ + 1/μ, and μ ≈ 0 is a root at x = ∞.
+//!
+//! y is recovered for each x as the common root of the two quadratics p(x, ·), q(x, ·) — the
+//! candidate with the smallest relative residual, never by dividing by a quantity that can
+//! vanish — and each (x, y) is refined by Newton's method on the pair (p, q) itself.
+
+use nalgebra::{SMatrix, SVector};
+use num_complex::Complex64 as C;
+
+/// `p[i][j]` multiplies x^i y^j.
+pub type Coeffs = [[f64; 3]; 3];
+
+/// A finite root (x, y), after refinement, with its relative residual.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RawRoot {
+    pub x: C,
+    pub y: C,
+    /// max(|p|/Σ|p terms|, |q|/Σ|q terms|) at the root.
+    pub residual: f64,
+}
+
+/// All finite roots (up to 8) and the number of eigenvalues at infinity.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RawRoots {
+    pub roots: Vec<RawRoot>,
+    /// Eigenvalues of the pencil at x = ∞, plus finite x whose y is at infinity.
+    pub at_infinity: usize,
+}
+
+fn eval(c: &Coeffs, x: C, y: C) -> (C, f64) {
+    let mut v = C::new(0.0, 0.0);
+    let mut mag = 0.0;
+    let mut xi = C::new(1.0, 0.0);
+    for row in c {
+        let mut yj = C::new(1.0, 0.0);
+        for &k in row {
+            let t = xi * yj * k;
+            v += t;
+            mag += t.norm();
+            yj *= y;
+        }
+        xi *= x;
+    }
+    (v, mag)
+}
+
+/// Value and partial derivatives (∂/∂x, ∂/∂y).
+fn eval_grad(c: &Coeffs, x: C, y: C) -> (C, C, C) {
+    let xs = [C::new(1.0, 0.0), x, x * x];
+    let ys = [C::new(1.0, 0.0), y, y * y];
+    let mut v = C::new(0.0, 0.0);
+    let mut dx = C::new(0.0, 0.0);
+    let mut dy = C::new(0.0, 0.0);
+    for i in 0..3 {
+        for j in 0..3 {
+            let k = c[i][j];
+            v += xs[i] * ys[j] * k;
+            if i > 0 {
+                dx += xs[i - 1] * ys[j] * (k * i as f64);
+            }
+            if j > 0 {
+                dy += xs[i] * ys[j - 1] * (k * j as f64);
+            }
+        }
+    }
+    (v, dx, dy)
+}
+
+fn rel_residual(p: &Coeffs, q: &Coeffs, x: C, y: C) -> f64 {
+    let (vp, mp) = eval(p, x, y);
+    let (vq, mq) = eval(q, x, y);
+    let r = |v: C, m: f64| if m > 0.0 { v.norm() / m } else { v.norm() };
+    r(vp, mp).max(r(vq, mq))
+}
+
+/// Roots of a + b y + c y² (complex coefficients), stably; a root at infinity is omitted.
+fn quadratic_roots(a: C, b: C, c: C) -> Vec<C> {
+    let scale = a.norm().max(b.norm()).max(c.norm());
+    if scale == 0.0 {
+        return Vec::new();
+    }
+    let tiny = 1e-14 * scale;
+    if c.norm() <= tiny {
+        return if b.norm() > tiny {
+            vec![-a / b]
+        } else {
+            Vec::new()
+        };
+    }
+    let disc = (b * b - c * a * 4.0).sqrt();
+    // q = −(b + s√disc)/2 with the sign that avoids cancellation.
+    let qq = if (b.conj() * disc).re >= 0.0 {
+        -(b + disc) * 0.5
+    } else {
+        -(b - disc) * 0.5
+    };
+    let mut out = vec![qq / c];
+    if qq.norm() > tiny {
+        out.push(a / qq);
+    }
+    out
+}
+
+/// Newton on (p, q) from (x, y); keeps the best point seen.
+fn polish(p: &Coeffs, q: &Coeffs, mut x: C, mut y: C) -> RawRoot {
+    let mut best = rel_residual(p, q, x, y);
+    let (mut bx, mut by) = (x, y);
+    for _ in 0..6 {
+        if best < 1e-16 {
+            break;
+        }
+        let (vp, px, py) = eval_grad(p, x, y);
+        let (vq, qx, qy) = eval_grad(q, x, y);
+        let det = px * qy - py * qx;
+        if det.norm() == 0.0 || !det.is_finite() {
+            break;
+        }
+        let dx = (vp * qy - vq * py) / det;
+        let dy = (px * vq - qx * vp) / det;
+        x -= dx;
+        y -= dy;
+        let r = rel_residual(p, q, x, y);
+        if !(r.is_finite()) {
+            break;
+        }
+        if r < best {
+            best = r;
+            bx = x;
+            by = y;
+        }
+    }
+    RawRoot {
+        x: bx,
+        y: by,
+        residual: best,
+    }
+}
+
+type M4 = SMatrix<f64, 4, 4>;
+type M8 = SMatrix<f64, 8, 8>;
+
+/// Sylvester blocks S0, S1, S2 of p, q as quadratics in y with coefficients quadratic in x.
+fn sylvester(p: &Coeffs, q: &Coeffs) -> [M4; 3] {
+    let mut s = [M4::zeros(); 3];
+    for (k, sk) in s.iter_mut().enumerate() {
+        // Row layout against [y³, y², y, 1]: (P2, P1, P0, 0), (0, P2, P1, P0), same for Q.
+        for (r, c, shift) in [(p, 0usize, 0usize), (p, 1, 1), (q, 2, 0), (q, 3, 1)] {
+            for j in 0..3 {
+                sk[(c, shift + (2 - j))] = r[k][j];
+            }
+        }
+    }
+    s
+}
+
+/// All finite roots of p = q = 0 (each of bidegree ≤ (2, 2)), refined, and the count at ∞.
+pub fn solve(p: &Coeffs, q: &Coeffs) -> RawRoots {
+    let [s0, s1, s2] = sylvester(p, q);
+    let mut a = M8::zeros();
+    let mut b = M8::zeros();
+    for i in 0..4 {
+        a[(i, i + 4)] = 1.0;
+        b[(i, i)] = 1.0;
+        for j in 0..4 {
+            a[(i + 4, j)] = -s0[(i, j)];
+            a[(i + 4, j + 4)] = -s1[(i, j)];
+            b[(i + 4, j + 4)] = s2[(i, j)];
+        }
+    }
+    // Shifts away from the physical roots (which lie near 0 … 1 in the scaled unknowns).
+    let mut mus = None;
+    for sigma in [-0.618_033_988_749_895, 1.324_717_957_244_746, -2.5] {
+        let lu = (a - b * sigma).lu();
+        if let Some(m) = lu.solve(&b) {
+            if m.iter().all(|v| v.is_finite()) {
+                mus = Some((sigma, m.complex_eigenvalues()));
+                break;
+            }
+        }
+    }
+    let Some((sigma, mus)) = mus else {
+        return RawRoots {
+            roots: Vec::new(),
+            at_infinity: 8,
+        };
+    };
+    let mus: SVector<C, 8> = mus;
+    let mu_max = mus.iter().map(|m| m.norm()).fold(0.0, f64::max);
+    let mut roots = Vec::with_capacity(8);
+    let mut at_infinity = 0;
+    for mu in mus.iter() {
+        if mu.norm() <= 1e-10 * mu_max {
+            at_infinity += 1;
+            continue;
+        }
+        let x = C::new(sigma, 0.0) + mu.inv();
+        // Candidate y from both quadratics at this x; keep the best common root.
+        let coef = |c: &Coeffs, j: usize| C::new(c[0][j], 0.0) + x * c[1][j] + x * x * c[2][j];
+        let mut cands = quadratic_roots(coef(p, 0), coef(p, 1), coef(p, 2));
+        cands.extend(quadratic_roots(coef(q, 0), coef(q, 1), coef(q, 2)));
+        let best = cands
+            .into_iter()
+            .filter(|y| y.is_finite())
+            .map(|y| (rel_residual(p, q, x, y), y))
+            .min_by(|u, v| u.0.total_cmp(&v.0));
+        match best {
+            Some((_, y)) => roots.push(polish(p, q, x, y)),
+            None => at_infinity += 1,
+        }
+    }
+    RawRoots { roots, at_infinity }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// (x − a)(y − b)-type systems with known roots.
+    fn product(xr: [f64; 2], yr: [f64; 2]) -> Coeffs {
+        // (x − x0)(x − x1)·1 + 0·y … as a bidegree (2,0) polynomial.
+        let mut c = [[0.0; 3]; 3];
+        c[0][0] = xr[0] * xr[1];
+        c[1][0] = -(xr[0] + xr[1]);
+        c[2][0] = 1.0;
+        let _ = yr;
+        c
+    }
+
+    #[test]
+    fn four_real_roots_of_a_decoupled_system() {
+        // p = (x − 1)(x − 2), q = (y + 1)(y − 3): roots {1, 2} × {−1, 3}.
+        let p = product([1.0, 2.0], [0.0, 0.0]);
+        let mut q = [[0.0; 3]; 3];
+        q[0][0] = -3.0;
+        q[0][1] = -2.0;
+        q[0][2] = 1.0;
+        let r = solve(&p, &q);
+        assert_eq!(r.roots.len(), 4);
+        for (xs, ys) in [(1.0, -1.0), (1.0, 3.0), (2.0, -1.0), (2.0, 3.0)] {
+            assert!(
+                r.roots
+                    .iter()
+                    .any(|t| (t.x - C::new(xs, 0.0)).norm() < 1e-12
+                        && (t.y - C::new(ys, 0.0)).norm() < 1e-12),
+                "missing ({xs}, {ys}) in {:?}",
+                r.roots
+            );
+        }
+        assert_eq!(r.at_infinity, 4);
+    }
+
+    #[test]
+    fn full_bidegree_system_has_eight_roots_with_small_residuals() {
+        let p = [[1.0, -2.0, 0.5], [0.3, 1.1, -0.7], [-1.2, 0.4, 0.9]];
+        let q = [[-0.5, 0.8, 1.3], [1.7, -0.2, 0.6], [0.1, -1.4, 0.35]];
+        let r = solve(&p, &q);
+        assert_eq!(r.roots.len() + r.at_infinity, 8);
+        assert_eq!(r.roots.len(), 8);
+        for t in &r.roots {
+            assert!(t.residual < 1e-13, "{t:?}");
+        }
+    }
+
+    #[test]
+    fn stable_quadratic_handles_vanishing_leading_coefficient() {
+        let r = quadratic_roots(C::new(2.0, 0.0), C::new(-1.0, 0.0), C::new(0.0, 0.0));
+        assert_eq!(r.len(), 1);
+        assert!((r[0] - C::new(2.0, 0.0)).norm() < 1e-15);
+        // y² − 1e8 y + 1: roots 1e8 and 1e-8, both to full relative precision.
+        let r = quadratic_roots(C::new(1.0, 0.0), C::new(-1e8, 0.0), C::new(1.0, 0.0));
+        let small = r.iter().map(|v| v.norm()).fold(f64::INFINITY, f64::min);
+        assert!((small - 1e-8).abs() < 1e-22);
+    }
+}

@@ -1,0 +1,211 @@
+//! All roots of the pose system, which of them is physical, and how to follow it.
+//!
+//! * [`solve_all`]: every root of the chosen mode's polynomial system by eigenvalues
+//!   ([`eigen`]): small-angle (15) has bidegree (2, 2) in (α, β), so at most 8 finite roots of
+//!   the 16 that Bézout counts in the projective plane (the rest lie at infinity); the exact form
+//!   has bidegree (2, 2) in (tan α/2, tan ψ/2), at most 8 in P¹ × P¹. Each root is classified
+//!   ([`classify`]): real or complex, spurious, admissible.
+//! * [`select`]: the physical pose — the root reached by continuation from the start of sliding
+//!   along the straight segment to (X, Z, θ) ([`Tracker`]).
+//!
+//! ```
+//! use slideroute::{geometry::Displacement, roots, scene::{Mode, Scene}};
+//! let scene = Scene::default_scene();
+//! let d = Displacement::new(0.5, 0.1, 2f64.to_radians());
+//! let all = roots::solve_all(&scene, d, Mode::Exact).unwrap();
+//! let chosen = all.selected.map(|k| &all.roots[k]).unwrap();
+//! assert!(chosen.admissible && chosen.alpha.im.abs() < 1e-12);
+//!
+//! // Following the branch over increments:
+//! let mut tracker = roots::Tracker::new(&scene, Mode::Exact);
+//! for k in 1..=10 {
+//!     tracker.advance(d.scaled(k as f64 / 10.0)).unwrap();
+//! }
+//! assert!((tracker.point().u[0] - chosen.alpha.re).abs() < 1e-12);
+//! ```
+
+pub mod classify;
+pub mod eigen;
+pub mod system;
+pub mod tracker;
+
+pub use classify::Inadmissible;
+pub use tracker::{BranchPoint, TrackError, TrackStats, Tracker};
+
+use crate::coeffs::{CoeffInputs, SmallAngleUnsquared};
+use crate::geometry::Displacement;
+use crate::scene::{Mode, Scene};
+use num_complex::Complex64;
+use std::f64::consts::SQRT_2;
+
+/// One root, in the physical unknowns.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Root {
+    pub alpha: Complex64,
+    pub beta: Complex64,
+    /// Roll about side 01 (exact mode only).
+    pub psi: Option<Complex64>,
+    /// How many eigenvalues coincide here (2 at the double roots of (15) at θ = 0).
+    pub multiplicity: usize,
+    /// Relative residual of the polynomial system after refinement.
+    pub residual: f64,
+    pub real: bool,
+    pub spurious: bool,
+    pub admissible: bool,
+    /// For a real root that is not admissible: why.
+    pub why_not: Option<Inadmissible>,
+}
+
+/// Every root of one mode's system at one displacement.
+#[derive(Debug, Clone, PartialEq)]
+pub struct AllRoots {
+    pub mode: Mode,
+    pub displacement: Displacement,
+    /// Finite roots; coinciding ones merged (see [`Root::multiplicity`]).
+    pub roots: Vec<Root>,
+    /// Number of finite roots counted with multiplicity.
+    pub finite_roots: usize,
+    /// The rest of the Bézout count: 16 for small-angle (total degree 4 × 4, the paper's count),
+    /// 8 for exact (bidegree (2, 2) in P¹ × P¹).
+    pub roots_at_infinity: usize,
+    /// Index into `roots` of the physical pose (by continuation), if the branch reaches here.
+    pub selected: Option<usize>,
+    /// Why no root is selected, if none is.
+    pub selection_error: Option<TrackError>,
+}
+
+/// The Bézout count each mode reports against.
+pub fn bezout_count(mode: Mode) -> usize {
+    match mode {
+        Mode::SmallAngle => 16,
+        Mode::Exact => 8,
+    }
+}
+
+/// Roots closer than this (in the solver's scaled unknowns) are one root of higher multiplicity.
+const MERGE: f64 = 1e-6;
+
+/// Every root of the chosen mode's system at `d`, classified, with the physical one selected.
+pub fn solve_all(scene: &Scene, d: Displacement, mode: Mode) -> Result<AllRoots, TrackError> {
+    if !d.is_finite() {
+        return Err(TrackError::NonFinite(d));
+    }
+    let (p, q) = system::biquadratic(scene, d, mode);
+    let raw = eigen::solve(&p, &q);
+
+    // Merge coinciding roots.
+    let mut merged: Vec<(eigen::RawRoot, usize)> = Vec::new();
+    for r in raw.roots {
+        match merged
+            .iter_mut()
+            .find(|(m, _)| (m.x - r.x).norm().max((m.y - r.y).norm()) < MERGE)
+        {
+            Some((m, k)) => {
+                let w = *k as f64;
+                m.x = (m.x * w + r.x) / (w + 1.0);
+                m.y = (m.y * w + r.y) / (w + 1.0);
+                m.residual = m.residual.max(r.residual);
+                *k += 1;
+            }
+            None => merged.push((r, 1)),
+        }
+    }
+    let finite: usize = merged.iter().map(|(_, k)| k).sum();
+    let (sx, sy) = system::unknown_scales(scene, mode);
+    let unsquared = match mode {
+        Mode::SmallAngle => Some(SmallAngleUnsquared::new(&CoeffInputs::new(scene, d))),
+        Mode::Exact => None,
+    };
+    let mut roots: Vec<Root> = merged
+        .into_iter()
+        .map(|(r, multiplicity)| {
+            let (alpha, beta, psi) = match mode {
+                Mode::SmallAngle => (r.x * sx, r.y * sy, None),
+                Mode::Exact => {
+                    let alpha = (r.x * sx).atan() * 2.0;
+                    let psi = (r.y * sy).atan() * 2.0;
+                    let beta = ((alpha.sin() - alpha.cos() * psi.sin()) / SQRT_2).asin();
+                    (alpha, beta, Some(psi))
+                }
+            };
+            let second = psi.unwrap_or(beta);
+            let real = alpha.im.abs() <= 1e-9 && second.im.abs() <= 1e-9;
+            let spurious = real
+                && match (mode, &unsquared) {
+                    (Mode::SmallAngle, Some(u)) => {
+                        classify::small_angle_spurious(u, alpha.re, beta.re)
+                    }
+                    _ => classify::exact_mirrored(second.re),
+                };
+            let why_not = if !real {
+                None
+            } else if spurious {
+                Some(Inadmissible::Spurious)
+            } else {
+                match classify::pose(scene, d, mode, [alpha.re, second.re]) {
+                    None => Some(Inadmissible::NoRealFrame),
+                    Some(p) => classify::check_pose(scene, &p).err(),
+                }
+            };
+            Root {
+                alpha,
+                beta,
+                psi,
+                multiplicity,
+                residual: r.residual,
+                real,
+                spurious,
+                admissible: real && why_not.is_none(),
+                why_not,
+            }
+        })
+        .collect();
+    roots.sort_by(|a, b| {
+        (!a.admissible, !a.real, a.alpha.re, a.beta.re)
+            .partial_cmp(&(!b.admissible, !b.real, b.alpha.re, b.beta.re))
+            .unwrap_or(std::cmp::Ordering::Equal)
+    });
+
+    let (selected, selection_error) = match select(scene, d, mode) {
+        Ok(p) => {
+            let k = roots
+                .iter()
+                .enumerate()
+                .filter(|(_, r)| r.real)
+                .map(|(k, r)| {
+                    let s = r.psi.unwrap_or(r.beta).re;
+                    (k, (r.alpha.re - p.u[0]).abs().max((s - p.u[1]).abs()))
+                })
+                .min_by(|a, b| a.1.total_cmp(&b.1));
+            match k {
+                Some((k, dist)) if dist < 1e-6 => (Some(k), None),
+                _ => (
+                    None,
+                    Some(TrackError::BranchEnded {
+                        x: d.x,
+                        z: d.z,
+                        theta_deg: d.theta.to_degrees(),
+                        diagnosis: "the tracked pose matches none of the roots".into(),
+                    }),
+                ),
+            }
+        }
+        Err(e) => (None, Some(e)),
+    };
+    Ok(AllRoots {
+        mode,
+        displacement: d,
+        roots,
+        finite_roots: finite,
+        roots_at_infinity: bezout_count(mode).saturating_sub(finite),
+        selected,
+        selection_error,
+    })
+}
+
+/// The physical pose at `d`: the branch followed from the start of sliding along the straight
+/// segment to `d`. u = (α, β) in small-angle mode, (α, ψ) in exact mode.
+pub fn select(scene: &Scene, d: Displacement, mode: Mode) -> Result<BranchPoint, TrackError> {
+    let mut t = Tracker::new(scene, mode);
+    t.advance(d)
+}

@@ -1,0 +1,109 @@
+//! The pose equations of each mode in the form the solvers need.
+//!
+//! * [`Equations`]: the *unsquared* equations of the chosen mode and their Jacobian, for the
+//!   tracker. Small-angle: E = A + B·Q (sin h ≥ 0) in u = (α, β). Exact: (13), (14) in
+//!   u = (α, ψ). Building one evaluates only that mode's coefficients.
+//! * [`biquadratic`]: the polynomial system of bidegree (2, 2) for the all-roots solver, in
+//!   scaled unknowns x, y (small-angle: α = tan ξ·x, β = tan ζ·y; exact: tan(α/2) = tan(ξ/2)·x,
+//!   tan(ψ/2) = tan(max(ξ, ζ)/2)·y), each equation divided by its largest coefficient.
+
+use super::eigen::Coeffs;
+use crate::coeffs::{CoeffInputs, Exact, SMALL_ANGLE_MONOMIALS, SmallAngle, SmallAngleUnsquared};
+use crate::geometry::Displacement;
+use crate::scene::{Mode, Scene};
+
+/// The unsquared equations of one mode at one displacement.
+#[derive(Debug, Clone, Copy)]
+pub enum Equations {
+    SmallAngle(SmallAngleUnsquared),
+    Exact(Exact),
+}
+
+/// Residual, Jacobian and the size of each equation's terms (for round-off judgements).
+pub struct Evaluated {
+    pub r: [f64; 2],
+    pub j: [[f64; 2]; 2],
+    pub scale: [f64; 2],
+}
+
+impl Equations {
+    pub fn new(scene: &Scene, d: Displacement, mode: Mode) -> Self {
+        let inputs = CoeffInputs::new(scene, d);
+        match mode {
+            Mode::SmallAngle => Equations::SmallAngle(SmallAngleUnsquared::new(&inputs)),
+            Mode::Exact => Equations::Exact(Exact::new(&inputs)),
+        }
+    }
+
+    /// At u = (α, β) (small-angle) or (α, ψ) (exact); `None` where the small-angle Q is not real.
+    #[inline]
+    pub fn eval(&self, u: [f64; 2]) -> Option<Evaluated> {
+        match self {
+            Equations::SmallAngle(s) => {
+                let [e13, e14] = s.eval(u[0], u[1])?;
+                Some(Evaluated {
+                    r: [e13.value, e14.value],
+                    j: [e13.grad, e14.grad],
+                    scale: [e13.scale, e14.scale],
+                })
+            }
+            Equations::Exact(e) => {
+                let (r, j) = e.residual_jacobian(u[0], u[1]);
+                let s: f64 = e.g.iter().map(|c| c.abs()).sum();
+                Some(Evaluated {
+                    r,
+                    j,
+                    scale: [s, s],
+                })
+            }
+        }
+    }
+}
+
+/// Scales of the unknowns for the all-roots solver (see the module docs).
+pub fn unknown_scales(scene: &Scene, mode: Mode) -> (f64, f64) {
+    let g = &scene.foundation;
+    match mode {
+        Mode::SmallAngle => (g.xi.tan(), g.zeta.tan()),
+        Mode::Exact => ((g.xi / 2.0).tan(), (g.xi.max(g.zeta) / 2.0).tan()),
+    }
+}
+
+fn scaled(c: &Coeffs, sx: f64, sy: f64) -> Coeffs {
+    let mut out = [[0.0; 3]; 3];
+    let mut big = 0.0f64;
+    for i in 0..3 {
+        for j in 0..3 {
+            out[i][j] = c[i][j] * sx.powi(i as i32) * sy.powi(j as i32);
+            big = big.max(out[i][j].abs());
+        }
+    }
+    if big > 0.0 {
+        for row in &mut out {
+            for v in row {
+                *v /= big;
+            }
+        }
+    }
+    out
+}
+
+/// The mode's polynomial system as two scaled (2, 2) coefficient arrays.
+pub fn biquadratic(scene: &Scene, d: Displacement, mode: Mode) -> (Coeffs, Coeffs) {
+    let inputs = CoeffInputs::new(scene, d);
+    let (sx, sy) = unknown_scales(scene, mode);
+    let raw: [Coeffs; 2] = match mode {
+        Mode::SmallAngle => {
+            let f = SmallAngle::new(&inputs).f;
+            let mut c = [[[0.0; 3]; 3]; 2];
+            for (eq, mons) in SMALL_ANGLE_MONOMIALS.iter().enumerate() {
+                for (k, &(i, j)) in mons.iter().enumerate() {
+                    c[eq][i as usize][j as usize] = f[6 * eq + k];
+                }
+            }
+            c
+        }
+        Mode::Exact => Exact::new(&inputs).half_angle(),
+    };
+    (scaled(&raw[0], sx, sy), scaled(&raw[1], sx, sy))
+}

@@ -1,0 +1,265 @@
+//! Branch continuation: follow the physical pose from increment to increment.
+//!
+//! The tracker works on the *unsquared* equations of the chosen mode (small-angle: A + B·Q with
+//! sin h ≥ 0 in (α, β); exact: (13), (14) in (α, ψ)). On these the start of sliding is a
+//! regular point, shown by analysis in `derivations/06-roots-and-tracking.md`: at X = Z = θ = 0
+//! the Jacobian of the exact system at α = ψ = 0 is [[L cot ξ, 0], [−L cot ζ, L cot ζ]], which is
+//! invertible, and the small-angle one is [[L cot ξ, 0], [0, −√2 L cot ζ]]. The double roots of
+//! the *squared* system (15) at θ = 0, where the spurious branch meets the physical one, are not
+//! roots of multiplicity two here, so Newton's method starts there without help.
+//!
+//! Each step: a secant predictor (after the first step), a Newton corrector with Deuflhard's
+//! contraction test (each correction must shrink by a factor ≤ 1/2, the second by ≤ 1/4 of the
+//! first), and a jump guard (the correction must be small against the step). A step that fails
+//! is halved; a branch that cannot be followed below a minimal step ends with a diagnosis.
+
+use super::classify::{Inadmissible, check_pose, exact_mirrored, pose};
+use super::system::Equations;
+use crate::geometry::{Displacement, Pose};
+use crate::scene::{Mode, Scene};
+
+/// A point on the followed branch: displacement and u = (α, β) (small-angle) or (α, ψ) (exact).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BranchPoint {
+    pub d: Displacement,
+    pub u: [f64; 2],
+}
+
+/// Why the branch cannot be followed further.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum TrackError {
+    #[error("non-finite displacement {0:?}")]
+    NonFinite(Displacement),
+    /// The corrector failed at every step size down to the minimum: a turning point, roots
+    /// merging, or the equations losing a real solution.
+    #[error("the branch ends near X = {x:.6} m, Z = {z:.6} m, θ = {theta_deg:.6}°: {diagnosis}")]
+    BranchEnded {
+        x: f64,
+        z: f64,
+        theta_deg: f64,
+        diagnosis: String,
+    },
+    /// The branch continues but the pose is no longer admissible.
+    #[error("at X = {x:.6} m, Z = {z:.6} m, θ = {theta_deg:.6}°: {reason}")]
+    Inadmissible {
+        x: f64,
+        z: f64,
+        theta_deg: f64,
+        reason: Inadmissible,
+    },
+}
+
+/// Counters for reports and benchmarks.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct TrackStats {
+    pub steps: usize,
+    pub rejected: usize,
+    pub newton_iterations: usize,
+}
+
+/// Follows the physical branch of the chosen mode.
+#[derive(Debug, Clone)]
+pub struct Tracker<'s> {
+    scene: &'s Scene,
+    mode: Mode,
+    current: BranchPoint,
+    previous: Option<BranchPoint>,
+    /// Fraction of the next segment to try first (grows after successes).
+    h: f64,
+    pub stats: TrackStats,
+}
+
+const MAX_ITERATIONS: usize = 8;
+const MIN_FRACTION: f64 = 1e-10;
+
+/// Why a corrector attempt was refused.
+#[derive(Debug, Clone, Copy)]
+enum Refusal {
+    NoRealQ,
+    Singular,
+    NotContracting,
+    NoConvergence,
+    Jump,
+}
+
+impl Refusal {
+    fn diagnosis(self) -> &'static str {
+        match self {
+            Refusal::NoRealQ => "the small-angle relations have no real sin h here",
+            Refusal::Singular => "the Jacobian is singular (turning point or merging roots)",
+            Refusal::NotContracting => "Newton's method does not contract (roots close together)",
+            Refusal::NoConvergence => "Newton's method does not converge",
+            Refusal::Jump => "the corrector would jump to another branch",
+        }
+    }
+}
+
+fn norm(v: [f64; 2]) -> f64 {
+    v[0].abs().max(v[1].abs())
+}
+
+/// Newton on the unsquared equations from `u0`, with the contraction test.
+#[inline]
+fn correct(eqs: &Equations, u0: [f64; 2], iterations: &mut usize) -> Result<[f64; 2], Refusal> {
+    let mut u = u0;
+    let mut last = f64::INFINITY;
+    for k in 0..MAX_ITERATIONS {
+        let e = eqs.eval(u).ok_or(Refusal::NoRealQ)?;
+        *iterations += 1;
+        let [[a, b], [c, d]] = e.j;
+        let det = a * d - b * c;
+        let jmax = a.abs().max(b.abs()).max(c.abs()).max(d.abs());
+        if det.is_nan() || det.abs() <= 1e-13 * jmax * jmax {
+            return Err(Refusal::Singular);
+        }
+        let du = [
+            -(d * e.r[0] - b * e.r[1]) / det,
+            -(a * e.r[1] - c * e.r[0]) / det,
+        ];
+        let n = norm(du);
+        if !n.is_finite() {
+            return Err(Refusal::NoConvergence);
+        }
+        let limit = if k == 1 { 0.25 } else { 0.5 };
+        if k >= 1 && n > limit * last && n > 1e-13 {
+            return Err(Refusal::NotContracting);
+        }
+        u = [u[0] + du[0], u[1] + du[1]];
+        if n <= 1e-13 {
+            return Ok(u);
+        }
+        last = n;
+    }
+    Err(Refusal::NoConvergence)
+}
+
+fn distance(scene: &Scene, a: Displacement, b: Displacement) -> f64 {
+    let l = scene.l();
+    (a.x - b.x)
+        .abs()
+        .max((a.z - b.z).abs())
+        .max(l * (a.theta - b.theta).abs())
+}
+
+fn lerp(a: Displacement, b: Displacement, s: f64) -> Displacement {
+    Displacement::new(
+        a.x + s * (b.x - a.x),
+        a.z + s * (b.z - a.z),
+        a.theta + s * (b.theta - a.theta),
+    )
+}
+
+impl<'s> Tracker<'s> {
+    /// At the start of sliding: X = Z = θ = 0, the flat frame (α = β = ψ = 0).
+    pub fn new(scene: &'s Scene, mode: Mode) -> Self {
+        Tracker {
+            scene,
+            mode,
+            current: BranchPoint {
+                d: Displacement::default(),
+                u: [0.0, 0.0],
+            },
+            previous: None,
+            h: 1.0,
+            stats: TrackStats::default(),
+        }
+    }
+
+    pub fn mode(&self) -> Mode {
+        self.mode
+    }
+
+    /// The current point of the branch.
+    pub fn point(&self) -> BranchPoint {
+        self.current
+    }
+
+    /// The placed frame at the current point.
+    pub fn pose(&self) -> Option<Pose> {
+        pose(self.scene, self.current.d, self.mode, self.current.u)
+    }
+
+    /// Follows the branch along the straight segment from the current displacement to
+    /// `target`, in as many substeps as needed, and checks the pose there is admissible.
+    pub fn advance(&mut self, target: Displacement) -> Result<BranchPoint, TrackError> {
+        if !target.is_finite() {
+            return Err(TrackError::NonFinite(target));
+        }
+        let from = self.current.d;
+        let mut s = 0.0;
+        let mut h = self.h;
+        while s < 1.0 {
+            let s_try = (s + h).min(1.0);
+            let d = lerp(from, target, s_try);
+            let u_pred = self.predict(d);
+            let eqs = Equations::new(self.scene, d, self.mode);
+            let result = correct(&eqs, u_pred, &mut self.stats.newton_iterations).and_then(|u| {
+                // Jump guard: with a secant predictor the correction is second order in the step.
+                let step = norm([u[0] - self.current.u[0], u[1] - self.current.u[1]]);
+                let corr = norm([u[0] - u_pred[0], u[1] - u_pred[1]]);
+                if self.previous.is_some() && corr > 0.5 * step + 1e-12 {
+                    Err(Refusal::Jump)
+                } else {
+                    Ok(u)
+                }
+            });
+            match result {
+                Ok(u) => {
+                    self.previous = Some(self.current);
+                    self.current = BranchPoint { d, u };
+                    self.stats.steps += 1;
+                    s = s_try;
+                    h = (2.0 * h).min(1.0);
+                }
+                Err(why) => {
+                    self.stats.rejected += 1;
+                    h *= 0.5;
+                    if h < MIN_FRACTION {
+                        return Err(TrackError::BranchEnded {
+                            x: d.x,
+                            z: d.z,
+                            theta_deg: d.theta.to_degrees(),
+                            diagnosis: why.diagnosis().to_string(),
+                        });
+                    }
+                }
+            }
+        }
+        self.h = h;
+        self.check()?;
+        Ok(self.current)
+    }
+
+    fn predict(&self, d: Displacement) -> [f64; 2] {
+        let cur = self.current;
+        match self.previous {
+            Some(prev) => {
+                let last = distance(self.scene, cur.d, prev.d);
+                if last <= 0.0 {
+                    return cur.u;
+                }
+                let f = (distance(self.scene, d, cur.d) / last).min(4.0);
+                [
+                    cur.u[0] + f * (cur.u[0] - prev.u[0]),
+                    cur.u[1] + f * (cur.u[1] - prev.u[1]),
+                ]
+            }
+            None => cur.u,
+        }
+    }
+
+    fn check(&self) -> Result<(), TrackError> {
+        let d = self.current.d;
+        let fail = |reason| TrackError::Inadmissible {
+            x: d.x,
+            z: d.z,
+            theta_deg: d.theta.to_degrees(),
+            reason,
+        };
+        if self.mode == Mode::Exact && exact_mirrored(self.current.u[1]) {
+            return Err(fail(Inadmissible::Spurious));
+        }
+        let p = self.pose().ok_or_else(|| fail(Inadmissible::NoRealFrame))?;
+        check_pose(self.scene, &p).map_err(fail)
+    }
+}
