@@ -217,3 +217,21 @@ fn tracking_in_small_and_large_steps_matches_solving_from_scratch() {
         }
     }
 }
+
+#[test]
+fn theta_zero_with_kappa_zero_gives_fourfold_roots() {
+    // Both (15a) and (15b) are perfect squares: every root is fourfold.
+    let s = scene(10.0, 0.4, 0.5, 20.0, 25.0, 0.0);
+    let d = Displacement::new(0.8, 0.0, 0.0);
+    let all = roots::solve_all(&s, d, Mode::SmallAngle).unwrap();
+    assert!(
+        all.roots.iter().all(|r| r.multiplicity == 4),
+        "{:?}",
+        all.roots
+    );
+    assert_eq!(all.finite_roots + all.roots_at_infinity, 16);
+    let (a, b) = selected_ab(&all);
+    let (ea, eb) = oracle_ab(&s, d);
+    let tilt = ea.abs().max(eb.abs());
+    assert!((a - ea).abs() < 0.02 * tilt && (b - eb).abs() < 0.02 * tilt);
+}

@@ -193,26 +193,59 @@ pub fn solve(p: &Coeffs, q: &Coeffs) -> RawRoots {
     };
     let mus: SVector<C, 8> = mus;
     let mu_max = mus.iter().map(|m| m.norm()).fold(0.0, f64::max);
-    let mut roots = Vec::with_capacity(8);
     let mut at_infinity = 0;
+    let mut xs: Vec<C> = Vec::with_capacity(8);
     for mu in mus.iter() {
         if mu.norm() <= 1e-10 * mu_max {
             at_infinity += 1;
+        } else {
+            xs.push(C::new(sigma, 0.0) + mu.inv());
+        }
+    }
+    // Eigenvalues that coincide may belong to distinct roots sharing one x (then each takes a
+    // different y) or to one multiple root (then they share y).
+    let mut roots = Vec::with_capacity(8);
+    let mut used = vec![false; xs.len()];
+    for i in 0..xs.len() {
+        if used[i] {
             continue;
         }
-        let x = C::new(sigma, 0.0) + mu.inv();
-        // Candidate y from both quadratics at this x; keep the best common root.
+        let cluster: Vec<usize> = (i..xs.len())
+            .filter(|&k| !used[k] && (xs[k] - xs[i]).norm() <= 1e-6 * (1.0 + xs[i].norm()))
+            .collect();
+        let x = cluster.iter().map(|&k| xs[k]).sum::<C>() / cluster.len() as f64;
+        // Candidate y from both quadratics at this x, best first, distinct ones only.
         let coef = |c: &Coeffs, j: usize| C::new(c[0][j], 0.0) + x * c[1][j] + x * x * c[2][j];
-        let mut cands = quadratic_roots(coef(p, 0), coef(p, 1), coef(p, 2));
-        cands.extend(quadratic_roots(coef(q, 0), coef(q, 1), coef(q, 2)));
-        let best = cands
+        let mut cands: Vec<(f64, C)> = quadratic_roots(coef(p, 0), coef(p, 1), coef(p, 2))
             .into_iter()
+            .chain(quadratic_roots(coef(q, 0), coef(q, 1), coef(q, 2)))
             .filter(|y| y.is_finite())
             .map(|y| (rel_residual(p, q, x, y), y))
-            .min_by(|u, v| u.0.total_cmp(&v.0));
-        match best {
-            Some((_, y)) => roots.push(polish(p, q, x, y)),
-            None => at_infinity += 1,
+            .collect();
+        cands.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let mut distinct: Vec<(f64, C)> = Vec::new();
+        for c in cands {
+            if !distinct
+                .iter()
+                .any(|d| (d.1 - c.1).norm() <= 1e-6 * (1.0 + c.1.norm()))
+            {
+                distinct.push(c);
+            }
+        }
+        for (m, &k) in cluster.iter().enumerate() {
+            used[k] = true;
+            // The m-th distinct candidate if it is itself nearly a root, else the best one.
+            let pick = match distinct.get(m) {
+                Some(&(r, y)) if m > 0 && r < 1e-6 => Some(y),
+                _ => distinct.first().map(|d| d.1),
+            };
+            let xk = if cluster.len() > 1 { x } else { xs[k] };
+            match pick.map(|y| polish(p, q, xk, y)) {
+                // A root that does not polish is an eigenvalue of the pencil at infinity that
+                // rounding moved to a large finite value (or y at infinity).
+                Some(r) if r.residual < 1e-8 => roots.push(r),
+                _ => at_infinity += 1,
+            }
         }
     }
     RawRoots { roots, at_infinity }

@@ -82,8 +82,54 @@ pub fn bezout_count(mode: Mode) -> usize {
     }
 }
 
-/// Roots closer than this (in the solver's scaled unknowns) are one root of higher multiplicity.
+/// Roots closer than this (relative, in the solver's scaled unknowns) are one root.
 const MERGE: f64 = 1e-6;
+
+/// How many eigenvalues make up each root, known by analysis: in small-angle mode (15a) is a
+/// perfect square when sin θ = 0 and (15b) when sin(θ + κ) = 0 (B = 0 in A ± B·Q), so every
+/// root is double — or fourfold when both hold. Under rounding the copies of an ill-conditioned
+/// multiple root can split far more than [`MERGE`], so they are grouped by this count.
+fn structural_multiplicity(scene: &Scene, d: Displacement, mode: Mode) -> usize {
+    if mode != Mode::SmallAngle {
+        return 1;
+    }
+    let square = |angle: f64| usize::from(angle.sin().abs() < 1e-12);
+    1 << (square(d.theta) + square(d.theta + scene.foundation.kappa))
+}
+
+/// Groups roots: each with its `g − 1` nearest ungrouped neighbours, or, for g = 1, with any
+/// root closer than [`MERGE`]. Returns (representative, multiplicity).
+fn group(raw: Vec<eigen::RawRoot>, g: usize) -> Vec<(eigen::RawRoot, usize)> {
+    let dist = |a: &eigen::RawRoot, b: &eigen::RawRoot| (a.x - b.x).norm().max((a.y - b.y).norm());
+    let mut left = raw;
+    let mut out = Vec::new();
+    while let Some(first) = left.pop() {
+        let mut members = vec![first];
+        if g > 1 {
+            left.sort_by(|a, b| dist(b, &first).total_cmp(&dist(a, &first)));
+            for _ in 1..g {
+                if let Some(m) = left.pop() {
+                    members.push(m);
+                }
+            }
+        } else {
+            let size = 1.0 + first.x.norm().max(first.y.norm());
+            let (near, far): (Vec<_>, Vec<_>) = left
+                .into_iter()
+                .partition(|r| dist(r, &first) < MERGE * size);
+            members.extend(near);
+            left = far;
+        }
+        let k = members.len();
+        let mean = eigen::RawRoot {
+            x: members.iter().map(|m| m.x).sum::<num_complex::Complex64>() / k as f64,
+            y: members.iter().map(|m| m.y).sum::<num_complex::Complex64>() / k as f64,
+            residual: members.iter().map(|m| m.residual).fold(0.0, f64::max),
+        };
+        out.push((mean, k));
+    }
+    out
+}
 
 /// Every root of the chosen mode's system at `d`, classified, with the physical one selected.
 pub fn solve_all(scene: &Scene, d: Displacement, mode: Mode) -> Result<AllRoots, TrackError> {
@@ -93,23 +139,7 @@ pub fn solve_all(scene: &Scene, d: Displacement, mode: Mode) -> Result<AllRoots,
     let (p, q) = system::biquadratic(scene, d, mode);
     let raw = eigen::solve(&p, &q);
 
-    // Merge coinciding roots.
-    let mut merged: Vec<(eigen::RawRoot, usize)> = Vec::new();
-    for r in raw.roots {
-        match merged
-            .iter_mut()
-            .find(|(m, _)| (m.x - r.x).norm().max((m.y - r.y).norm()) < MERGE)
-        {
-            Some((m, k)) => {
-                let w = *k as f64;
-                m.x = (m.x * w + r.x) / (w + 1.0);
-                m.y = (m.y * w + r.y) / (w + 1.0);
-                m.residual = m.residual.max(r.residual);
-                *k += 1;
-            }
-            None => merged.push((r, 1)),
-        }
-    }
+    let merged = group(raw.roots, structural_multiplicity(scene, d, mode));
     let finite: usize = merged.iter().map(|(_, k)| k).sum();
     let (sx, sy) = system::unknown_scales(scene, mode);
     let unsquared = match mode {
