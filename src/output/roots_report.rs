@@ -104,7 +104,7 @@ impl RootsReport {
 }
 
 fn cplx(v: [f64; 2]) -> String {
-    if v[1] == 0.0 {
+    if v[1].abs() < 1e-9 {
         format!("{:>12.6}", v[0])
     } else {
         format!("{:>12.6}{:+.3}i", v[0], v[1])

@@ -97,6 +97,90 @@ fn structural_multiplicity(scene: &Scene, d: Displacement, mode: Mode) -> usize 
     1 << (square(d.theta) + square(d.theta + scene.foundation.kappa))
 }
 
+/// A sparse polynomial in (α, β): (coefficient, (i, j)) for α^i β^j.
+type Sparse = Vec<(f64, (u32, u32))>;
+
+fn sparse_eval(f: &Sparse, a: Complex64, b: Complex64) -> (Complex64, Complex64, Complex64) {
+    let zero = Complex64::new(0.0, 0.0);
+    let (mut v, mut da, mut db) = (zero, zero, zero);
+    for &(c, (i, j)) in f {
+        v += a.powu(i) * b.powu(j) * c;
+        if i > 0 {
+            da += a.powu(i - 1) * b.powu(j) * (c * i as f64);
+        }
+        if j > 0 {
+            db += a.powu(i) * b.powu(j - 1) * (c * j as f64);
+        }
+    }
+    (v, da, db)
+}
+
+/// Refines a multiple root of (15) where one or both equations are perfect squares: there the
+/// root is a *simple* root of the system with each square replaced by its root A (B = 0, so
+/// A ± B·Q = A), and Newton's method converges quadratically again.
+fn refine_multiple(
+    scene: &Scene,
+    d: Displacement,
+    a: Complex64,
+    b: Complex64,
+) -> (Complex64, Complex64) {
+    use crate::coeffs::{
+        SMALL_ANGLE_MONOMIALS, SMALL_ANGLE_UNSQUARED_A13, SMALL_ANGLE_UNSQUARED_A14,
+        SMALL_ANGLE_UNSQUARED_SPLIT, SmallAngle,
+    };
+    let inputs = CoeffInputs::new(scene, d);
+    let u = SmallAngleUnsquared::new(&inputs).c;
+    let f = SmallAngle::new(&inputs).f;
+    let n13 = SMALL_ANGLE_UNSQUARED_SPLIT;
+    let squared = |eq: usize| -> Sparse {
+        SMALL_ANGLE_MONOMIALS[eq]
+            .iter()
+            .enumerate()
+            .map(|(k, &m)| (f[6 * eq + k], m))
+            .collect()
+    };
+    let square13 = d.theta.sin().abs() < 1e-12;
+    let square14 = (d.theta + scene.foundation.kappa).sin().abs() < 1e-12;
+    let f13: Sparse = if square13 {
+        SMALL_ANGLE_UNSQUARED_A13
+            .iter()
+            .zip(&u[..n13])
+            .map(|(&m, &c)| (c, m))
+            .collect()
+    } else {
+        squared(0)
+    };
+    let f14: Sparse = if square14 {
+        SMALL_ANGLE_UNSQUARED_A14
+            .iter()
+            .zip(&u[n13 + 1..u.len() - 1])
+            .map(|(&m, &c)| (c, m))
+            .collect()
+    } else {
+        squared(1)
+    };
+    let (mut a, mut b) = (a, b);
+    for _ in 0..8 {
+        let (v1, a1, b1) = sparse_eval(&f13, a, b);
+        let (v2, a2, b2) = sparse_eval(&f14, a, b);
+        let det = a1 * b2 - b1 * a2;
+        if det.norm() == 0.0 || !det.is_finite() {
+            break;
+        }
+        let da = (v1 * b2 - v2 * b1) / det;
+        let db = (a1 * v2 - a2 * v1) / det;
+        if !(da.is_finite() && db.is_finite()) {
+            break;
+        }
+        a -= da;
+        b -= db;
+        if da.norm().max(db.norm()) <= 1e-15 * (1.0 + a.norm().max(b.norm())) {
+            break;
+        }
+    }
+    (a, b)
+}
+
 /// Groups roots: each with its `g − 1` nearest ungrouped neighbours, or, for g = 1, with any
 /// root closer than [`MERGE`]. Returns (representative, multiplicity).
 fn group(raw: Vec<eigen::RawRoot>, g: usize) -> Vec<(eigen::RawRoot, usize)> {
@@ -150,6 +234,10 @@ pub fn solve_all(scene: &Scene, d: Displacement, mode: Mode) -> Result<AllRoots,
         .into_iter()
         .map(|(r, multiplicity)| {
             let (alpha, beta, psi) = match mode {
+                Mode::SmallAngle if multiplicity > 1 => {
+                    let (a, b) = refine_multiple(scene, d, r.x * sx, r.y * sy);
+                    (a, b, None)
+                }
                 Mode::SmallAngle => (r.x * sx, r.y * sy, None),
                 Mode::Exact => {
                     let alpha = (r.x * sx).atan() * 2.0;
