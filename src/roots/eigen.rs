@@ -34,19 +34,23 @@ pub struct RawRoots {
     pub at_infinity: usize,
 }
 
+/// |re| + |im|: a norm within √2 of the modulus, without a square root.
+#[inline]
+fn l1(z: C) -> f64 {
+    z.re.abs() + z.im.abs()
+}
+
 fn eval(c: &Coeffs, x: C, y: C) -> (C, f64) {
+    let xs = [C::new(1.0, 0.0), x, x * x];
+    let ys = [C::new(1.0, 0.0), y, y * y];
     let mut v = C::new(0.0, 0.0);
     let mut mag = 0.0;
-    let mut xi = C::new(1.0, 0.0);
-    for row in c {
-        let mut yj = C::new(1.0, 0.0);
-        for &k in row {
+    for (xi, row) in xs.iter().zip(c) {
+        for (yj, &k) in ys.iter().zip(row) {
             let t = xi * yj * k;
             v += t;
-            mag += t.norm();
-            yj *= y;
+            mag += l1(t);
         }
-        xi *= x;
     }
     (v, mag)
 }
@@ -76,7 +80,7 @@ fn eval_grad(c: &Coeffs, x: C, y: C) -> (C, C, C) {
 fn rel_residual(p: &Coeffs, q: &Coeffs, x: C, y: C) -> f64 {
     let (vp, mp) = eval(p, x, y);
     let (vq, mq) = eval(q, x, y);
-    let r = |v: C, m: f64| if m > 0.0 { v.norm() / m } else { v.norm() };
+    let r = |v: C, m: f64| if m > 0.0 { l1(v) / m } else { l1(v) };
     r(vp, mp).max(r(vq, mq))
 }
 
@@ -108,38 +112,34 @@ fn quadratic_roots(a: C, b: C, c: C) -> Vec<C> {
     out
 }
 
-/// Newton on (p, q) from (x, y); keeps the best point seen.
+/// Newton on (p, q) from (x, y), until the step is at round-off (the eigenvalues are already
+/// accurate, so this takes one or two steps at a simple root); stops rather than wander if a
+/// step is large. The relative residual is evaluated once, at the end.
 fn polish(p: &Coeffs, q: &Coeffs, mut x: C, mut y: C) -> RawRoot {
-    let mut best = rel_residual(p, q, x, y);
-    let (mut bx, mut by) = (x, y);
-    for _ in 0..6 {
-        if best < 1e-16 {
-            break;
-        }
+    for _ in 0..5 {
         let (vp, px, py) = eval_grad(p, x, y);
         let (vq, qx, qy) = eval_grad(q, x, y);
         let det = px * qy - py * qx;
-        if det.norm() == 0.0 || !det.is_finite() {
+        if det == C::new(0.0, 0.0) || !det.is_finite() {
             break;
         }
         let dx = (vp * qy - vq * py) / det;
         let dy = (px * vq - qx * vp) / det;
-        x -= dx;
-        y -= dy;
-        let r = rel_residual(p, q, x, y);
-        if !(r.is_finite()) {
+        let size = 1.0 + l1(x).max(l1(y));
+        let step = l1(dx).max(l1(dy));
+        if !step.is_finite() || step > 0.1 * size {
             break;
         }
-        if r < best {
-            best = r;
-            bx = x;
-            by = y;
+        x -= dx;
+        y -= dy;
+        if step <= 1e-15 * size {
+            break;
         }
     }
     RawRoot {
-        x: bx,
-        y: by,
-        residual: best,
+        x,
+        y,
+        residual: rel_residual(p, q, x, y),
     }
 }
 
@@ -160,8 +160,9 @@ fn sylvester(p: &Coeffs, q: &Coeffs) -> [M4; 3] {
     s
 }
 
-/// All finite roots of p = q = 0 (each of bidegree ≤ (2, 2)), refined, and the count at ∞.
-pub fn solve(p: &Coeffs, q: &Coeffs) -> RawRoots {
+/// x-values of the roots from the companion pencil of the Sylvester matrix (8×8, shift and
+/// invert), and the number of eigenvalues at x = ∞. The reference method.
+fn x_roots_pencil(p: &Coeffs, q: &Coeffs) -> (Vec<C>, usize) {
     let [s0, s1, s2] = sylvester(p, q);
     let mut a = M8::zeros();
     let mut b = M8::zeros();
@@ -175,33 +176,149 @@ pub fn solve(p: &Coeffs, q: &Coeffs) -> RawRoots {
         }
     }
     // Shifts away from the physical roots (which lie near 0 … 1 in the scaled unknowns).
-    let mut mus = None;
     for sigma in [-0.618_033_988_749_895, 1.324_717_957_244_746, -2.5] {
         let lu = (a - b * sigma).lu();
-        if let Some(m) = lu.solve(&b) {
-            if m.iter().all(|v| v.is_finite()) {
-                mus = Some((sigma, m.complex_eigenvalues()));
-                break;
+        let Some(m) = lu.solve(&b) else { continue };
+        if !m.iter().all(|v| v.is_finite()) {
+            continue;
+        }
+        let mus: SVector<C, 8> = m.complex_eigenvalues();
+        let mu_max = mus.iter().map(|m| m.norm()).fold(0.0, f64::max);
+        let mut xs = Vec::with_capacity(8);
+        let mut at_infinity = 0;
+        for mu in mus.iter() {
+            if mu.norm() <= 1e-10 * mu_max {
+                at_infinity += 1;
+            } else {
+                xs.push(C::new(sigma, 0.0) + mu.inv());
             }
         }
+        return (xs, at_infinity);
     }
-    let Some((sigma, mus)) = mus else {
-        return RawRoots {
-            roots: Vec::new(),
-            at_infinity: 8,
-        };
-    };
-    let mus: SVector<C, 8> = mus;
-    let mu_max = mus.iter().map(|m| m.norm()).fold(0.0, f64::max);
-    let mut at_infinity = 0;
-    let mut xs: Vec<C> = Vec::with_capacity(8);
-    for mu in mus.iter() {
-        if mu.norm() <= 1e-10 * mu_max {
-            at_infinity += 1;
-        } else {
-            xs.push(C::new(sigma, 0.0) + mu.inv());
+    (Vec::new(), 8)
+}
+
+fn poly_mul(a: &[f64], b: &[f64], out: &mut [f64]) {
+    out.iter_mut().for_each(|v| *v = 0.0);
+    for (i, x) in a.iter().enumerate() {
+        for (j, y) in b.iter().enumerate() {
+            out[i + j] += x * y;
         }
     }
+}
+
+/// x-values of the roots as eigenvalues of the companion matrix of the resultant
+/// R(x) = det S(x) = (a2 b0 − a0 b2)² − (a2 b1 − a1 b2)(a1 b0 − a0 b1), where p = Σ a_j(x) y^j
+/// and q = Σ b_j(x) y^j. The companion matrix is already upper Hessenberg, so balancing and the
+/// Francis QR iteration apply directly: no LU, no Hessenberg reduction, no allocation.
+pub fn x_roots_resultant(p: &Coeffs, q: &Coeffs) -> Option<(Vec<C>, usize)> {
+    let col = |c: &Coeffs, j: usize| [c[0][j], c[1][j], c[2][j]];
+    let (a0, a1, a2) = (col(p, 0), col(p, 1), col(p, 2));
+    let (b0, b1, b2) = (col(q, 0), col(q, 1), col(q, 2));
+    // Each coefficient with a bound on its rounding error, carried through the products as
+    // the same products of absolute values. When p or q is structurally linear in y (a
+    // perfect square replaced by its root), the resultant of the true degrees is used: the
+    // formal (2, 2) one would carry the extraneous factor b2(x) or a2(x).
+    let linear = |c: &[f64; 3]| c.iter().all(|&v| v == 0.0);
+    let (pl, ql) = (linear(&a2), linear(&b2));
+    let prod = |u: &[f64; 3], v: &[f64; 3], w: &[f64; 3]| {
+        let (mut uv, mut uvw) = ([0.0; 5], [0.0; 9]);
+        poly_mul(u, v, &mut uv);
+        poly_mul(&uv[..], w, &mut uvw[..7]);
+        let (mut ua, mut uva) = ([0.0; 5], [0.0; 9]);
+        poly_mul(&u.map(f64::abs), &v.map(f64::abs), &mut ua);
+        poly_mul(&ua[..], &w.map(f64::abs), &mut uva[..7]);
+        (uvw, uva)
+    };
+    let mut res = [0.0; 9];
+    let mut bound = [0.0; 9];
+    let mut accumulate = |sign: f64, (v, m): ([f64; 9], [f64; 9])| {
+        for k in 0..9 {
+            res[k] += sign * v[k];
+            bound[k] += 32.0 * f64::EPSILON * m[k];
+        }
+    };
+    match (pl, ql) {
+        (true, true) => {
+            // Res(a0 + a1 y, b0 + b1 y) = a0 b1 − a1 b0.
+            let one = [1.0, 0.0, 0.0];
+            accumulate(1.0, prod(&a0, &b1, &one));
+            accumulate(-1.0, prod(&a1, &b0, &one));
+        }
+        (true, false) | (false, true) => {
+            // Res(a0 + a1 y, b0 + b1 y + b2 y²) = b0 a1² − b1 a0 a1 + b2 a0².
+            let ((l0, l1), (q0, q1, q2)) = if pl {
+                ((a0, a1), (b0, b1, b2))
+            } else {
+                ((b0, b1), (a0, a1, a2))
+            };
+            accumulate(1.0, prod(&q0, &l1, &l1));
+            accumulate(-1.0, prod(&q1, &l0, &l1));
+            accumulate(1.0, prod(&q2, &l0, &l0));
+        }
+        (false, false) => {
+            let cross = |u: &[f64; 3], v: &[f64; 3], w: &[f64; 3], z: &[f64; 3]| {
+                // u·v − w·z, each a product of quadratics (degree 4), and |u|·|v| + |w|·|z|.
+                let (mut l, mut r, mut la, mut ra) = ([0.0; 5], [0.0; 5], [0.0; 5], [0.0; 5]);
+                poly_mul(u, v, &mut l);
+                poly_mul(w, z, &mut r);
+                poly_mul(&u.map(f64::abs), &v.map(f64::abs), &mut la);
+                poly_mul(&w.map(f64::abs), &z.map(f64::abs), &mut ra);
+                let mut val = [0.0; 5];
+                let mut mag = [0.0; 5];
+                for k in 0..5 {
+                    val[k] = l[k] - r[k];
+                    mag[k] = la[k] + ra[k];
+                }
+                (val, mag)
+            };
+            // (a2 b0 − a0 b2)² − (a2 b1 − a1 b2)(a1 b0 − a0 b1)
+            let (c20, m20) = cross(&a2, &b0, &a0, &b2);
+            let (c21, m21) = cross(&a2, &b1, &a1, &b2);
+            let (c10, m10) = cross(&a1, &b0, &a0, &b1);
+            let (mut sq, mut pr, mut msq, mut mpr) = ([0.0; 9], [0.0; 9], [0.0; 9], [0.0; 9]);
+            poly_mul(&c20, &c20, &mut sq);
+            poly_mul(&c21, &c10, &mut pr);
+            poly_mul(&m20, &m20, &mut msq);
+            poly_mul(&m21, &m10, &mut mpr);
+            accumulate(1.0, (sq, msq));
+            accumulate(-1.0, (pr, mpr));
+        }
+    }
+    // Degree: a leading coefficient within its own rounding error is zero (a root at infinity).
+    let mut deg = 8;
+    while deg > 0 && res[deg].abs() <= bound[deg] {
+        deg -= 1;
+    }
+    let at_infinity = 8 - deg;
+    if deg == 0 {
+        return Some((Vec::new(), at_infinity));
+    }
+    let monic: Vec<f64> = res[..deg].iter().map(|c| c / res[deg]).collect();
+    let mut h = super::hessenberg::Hessenberg::companion(&monic);
+    h.balance();
+    let (mut wr, mut wi) = ([0.0; 8], [0.0; 8]);
+    let n = h.eigenvalues(&mut wr, &mut wi)?;
+    Some(((0..n).map(|k| C::new(wr[k], wi[k])).collect(), at_infinity))
+}
+
+/// All finite roots of p = q = 0 (each of bidegree ≤ (2, 2)), refined, and the count at ∞:
+/// x from the eigenvalues of the resultant's companion matrix (falling back to the 8×8 pencil
+/// if the QR iteration fails), then y and refinement as described in the module docs.
+pub fn solve(p: &Coeffs, q: &Coeffs) -> RawRoots {
+    let (xs, at_infinity) = x_roots_resultant(p, q).unwrap_or_else(|| x_roots_pencil(p, q));
+    assign_y(p, q, xs, at_infinity)
+}
+
+/// The same by the 8×8 companion pencil of the Sylvester matrix (slower; better conditioned
+/// for clustered roots). Kept as the reference the fast path is tested against.
+pub fn solve_pencil(p: &Coeffs, q: &Coeffs) -> RawRoots {
+    let (xs, at_infinity) = x_roots_pencil(p, q);
+    assign_y(p, q, xs, at_infinity)
+}
+
+/// For each x, the y that makes it a common root, then Newton refinement of (x, y).
+fn assign_y(p: &Coeffs, q: &Coeffs, xs: Vec<C>, mut at_infinity: usize) -> RawRoots {
     // Eigenvalues that coincide may belong to distinct roots sharing one x (then each takes a
     // different y) or to one multiple root (then they share y).
     let mut roots = Vec::with_capacity(8);
@@ -232,6 +349,7 @@ pub fn solve(p: &Coeffs, q: &Coeffs) -> RawRoots {
                 distinct.push(c);
             }
         }
+        let first_of_cluster = roots.len();
         for (m, &k) in cluster.iter().enumerate() {
             used[k] = true;
             // The m-th distinct candidate if it is itself nearly a root, else the best one.
@@ -241,9 +359,19 @@ pub fn solve(p: &Coeffs, q: &Coeffs) -> RawRoots {
             };
             let xk = if cluster.len() > 1 { x } else { xs[k] };
             match pick.map(|y| polish(p, q, xk, y)) {
-                // A root that does not polish is an eigenvalue of the pencil at infinity that
-                // rounding moved to a large finite value (or y at infinity).
-                Some(r) if r.residual < 1e-8 => roots.push(r),
+                // A root that does not polish is an eigenvalue at infinity that rounding moved
+                // to a large finite value (or y at infinity); one that polishes onto a root
+                // already found from another x is extraneous too.
+                // (A multiple root polishes only to about the square root of round-off.)
+                Some(r)
+                    if r.residual < 1e-6
+                        && !roots[..first_of_cluster].iter().any(|o: &RawRoot| {
+                            (o.x - r.x).norm().max((o.y - r.y).norm())
+                                < 1e-6 * (1.0 + r.x.norm().max(r.y.norm()))
+                        }) =>
+                {
+                    roots.push(r)
+                }
                 _ => at_infinity += 1,
             }
         }
@@ -310,5 +438,36 @@ mod tests {
         let r = quadratic_roots(C::new(1.0, 0.0), C::new(-1e8, 0.0), C::new(1.0, 0.0));
         let small = r.iter().map(|v| v.norm()).fold(f64::INFINITY, f64::min);
         assert!((small - 1e-8).abs() < 1e-22);
+    }
+}
+
+#[cfg(test)]
+mod agreement {
+    use super::*;
+    use proptest::prelude::*;
+
+    fn coeffs() -> impl Strategy<Value = Coeffs> {
+        proptest::array::uniform3(proptest::array::uniform3(-2.0..2.0f64))
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(500))]
+
+        /// The fast path (resultant companion + Hessenberg QR) and the reference (8×8 pencil)
+        /// find the same roots.
+        #[test]
+        fn resultant_and_pencil_find_the_same_roots(p in coeffs(), q in coeffs()) {
+            let fast = solve(&p, &q);
+            let reference = solve_pencil(&p, &q);
+            prop_assert_eq!(fast.roots.len() + fast.at_infinity, 8);
+            let good = |r: &RawRoot| r.residual < 1e-12 && r.x.norm() < 1e4 && r.y.norm() < 1e4;
+            for r in reference.roots.iter().filter(|r| good(r)) {
+                prop_assert!(
+                    fast.roots.iter().any(|f| (f.x - r.x).norm().max((f.y - r.y).norm())
+                        < 1e-6 * (1.0 + r.x.norm().max(r.y.norm()))),
+                    "reference root {:?} missing from {:?}", r, fast.roots
+                );
+            }
+        }
     }
 }

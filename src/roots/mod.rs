@@ -26,6 +26,7 @@
 
 pub mod classify;
 pub mod eigen;
+pub mod hessenberg;
 pub mod system;
 pub mod tracker;
 
@@ -85,132 +86,25 @@ pub fn bezout_count(mode: Mode) -> usize {
 /// Roots closer than this (relative, in the solver's scaled unknowns) are one root.
 const MERGE: f64 = 1e-6;
 
-/// How many eigenvalues make up each root, known by analysis: in small-angle mode (15a) is a
-/// perfect square when sin θ = 0 and (15b) when sin(θ + κ) = 0 (B = 0 in A ± B·Q), so every
-/// root is double — or fourfold when both hold. Under rounding the copies of an ill-conditioned
-/// multiple root can split far more than [`MERGE`], so they are grouped by this count.
+/// How many roots of (15) each root of the solved system stands for: 2 for each equation that
+/// is a perfect square at `d` (solved as its root A instead, see [`system::perfect_squares`]).
 fn structural_multiplicity(scene: &Scene, d: Displacement, mode: Mode) -> usize {
-    if mode != Mode::SmallAngle {
-        return 1;
-    }
-    let square = |angle: f64| usize::from(angle.sin().abs() < 1e-12);
-    1 << (square(d.theta) + square(d.theta + scene.foundation.kappa))
+    let [a, b] = system::perfect_squares(scene, d, mode);
+    1 << (usize::from(a) + usize::from(b))
 }
 
-/// A sparse polynomial in (α, β): (coefficient, (i, j)) for α^i β^j.
-type Sparse = Vec<(f64, (u32, u32))>;
-
-fn sparse_eval(f: &Sparse, a: Complex64, b: Complex64) -> (Complex64, Complex64, Complex64) {
-    let zero = Complex64::new(0.0, 0.0);
-    let (mut v, mut da, mut db) = (zero, zero, zero);
-    for &(c, (i, j)) in f {
-        v += a.powu(i) * b.powu(j) * c;
-        if i > 0 {
-            da += a.powu(i - 1) * b.powu(j) * (c * i as f64);
+/// Merges roots closer than [`MERGE`]: returns (representative, count).
+fn merge(raw: Vec<eigen::RawRoot>) -> Vec<(eigen::RawRoot, usize)> {
+    let mut out: Vec<(eigen::RawRoot, usize)> = Vec::new();
+    for r in raw {
+        let size = 1.0 + r.x.norm().max(r.y.norm());
+        match out
+            .iter_mut()
+            .find(|(m, _)| (m.x - r.x).norm().max((m.y - r.y).norm()) < MERGE * size)
+        {
+            Some((_, k)) => *k += 1,
+            None => out.push((r, 1)),
         }
-        if j > 0 {
-            db += a.powu(i) * b.powu(j - 1) * (c * j as f64);
-        }
-    }
-    (v, da, db)
-}
-
-/// Refines a multiple root of (15) where one or both equations are perfect squares: there the
-/// root is a *simple* root of the system with each square replaced by its root A (B = 0, so
-/// A ± B·Q = A), and Newton's method converges quadratically again.
-fn refine_multiple(
-    scene: &Scene,
-    d: Displacement,
-    a: Complex64,
-    b: Complex64,
-) -> (Complex64, Complex64) {
-    use crate::coeffs::{
-        SMALL_ANGLE_MONOMIALS, SMALL_ANGLE_UNSQUARED_A13, SMALL_ANGLE_UNSQUARED_A14,
-        SMALL_ANGLE_UNSQUARED_SPLIT, SmallAngle,
-    };
-    let inputs = CoeffInputs::new(scene, d);
-    let u = SmallAngleUnsquared::new(&inputs).c;
-    let f = SmallAngle::new(&inputs).f;
-    let n13 = SMALL_ANGLE_UNSQUARED_SPLIT;
-    let squared = |eq: usize| -> Sparse {
-        SMALL_ANGLE_MONOMIALS[eq]
-            .iter()
-            .enumerate()
-            .map(|(k, &m)| (f[6 * eq + k], m))
-            .collect()
-    };
-    let square13 = d.theta.sin().abs() < 1e-12;
-    let square14 = (d.theta + scene.foundation.kappa).sin().abs() < 1e-12;
-    let f13: Sparse = if square13 {
-        SMALL_ANGLE_UNSQUARED_A13
-            .iter()
-            .zip(&u[..n13])
-            .map(|(&m, &c)| (c, m))
-            .collect()
-    } else {
-        squared(0)
-    };
-    let f14: Sparse = if square14 {
-        SMALL_ANGLE_UNSQUARED_A14
-            .iter()
-            .zip(&u[n13 + 1..u.len() - 1])
-            .map(|(&m, &c)| (c, m))
-            .collect()
-    } else {
-        squared(1)
-    };
-    let (mut a, mut b) = (a, b);
-    for _ in 0..8 {
-        let (v1, a1, b1) = sparse_eval(&f13, a, b);
-        let (v2, a2, b2) = sparse_eval(&f14, a, b);
-        let det = a1 * b2 - b1 * a2;
-        if det.norm() == 0.0 || !det.is_finite() {
-            break;
-        }
-        let da = (v1 * b2 - v2 * b1) / det;
-        let db = (a1 * v2 - a2 * v1) / det;
-        if !(da.is_finite() && db.is_finite()) {
-            break;
-        }
-        a -= da;
-        b -= db;
-        if da.norm().max(db.norm()) <= 1e-15 * (1.0 + a.norm().max(b.norm())) {
-            break;
-        }
-    }
-    (a, b)
-}
-
-/// Groups roots: each with its `g − 1` nearest ungrouped neighbours, or, for g = 1, with any
-/// root closer than [`MERGE`]. Returns (representative, multiplicity).
-fn group(raw: Vec<eigen::RawRoot>, g: usize) -> Vec<(eigen::RawRoot, usize)> {
-    let dist = |a: &eigen::RawRoot, b: &eigen::RawRoot| (a.x - b.x).norm().max((a.y - b.y).norm());
-    let mut left = raw;
-    let mut out = Vec::new();
-    while let Some(first) = left.pop() {
-        let mut members = vec![first];
-        if g > 1 {
-            left.sort_by(|a, b| dist(b, &first).total_cmp(&dist(a, &first)));
-            for _ in 1..g {
-                if let Some(m) = left.pop() {
-                    members.push(m);
-                }
-            }
-        } else {
-            let size = 1.0 + first.x.norm().max(first.y.norm());
-            let (near, far): (Vec<_>, Vec<_>) = left
-                .into_iter()
-                .partition(|r| dist(r, &first) < MERGE * size);
-            members.extend(near);
-            left = far;
-        }
-        let k = members.len();
-        let mean = eigen::RawRoot {
-            x: members.iter().map(|m| m.x).sum::<num_complex::Complex64>() / k as f64,
-            y: members.iter().map(|m| m.y).sum::<num_complex::Complex64>() / k as f64,
-            residual: members.iter().map(|m| m.residual).fold(0.0, f64::max),
-        };
-        out.push((mean, k));
     }
     out
 }
@@ -221,9 +115,12 @@ pub fn solve_all(scene: &Scene, d: Displacement, mode: Mode) -> Result<AllRoots,
         return Err(TrackError::NonFinite(d));
     }
     let (p, q) = system::biquadratic(scene, d, mode);
+    let g = structural_multiplicity(scene, d, mode);
     let raw = eigen::solve(&p, &q);
-
-    let merged = group(raw.roots, structural_multiplicity(scene, d, mode));
+    let merged: Vec<(eigen::RawRoot, usize)> = merge(raw.roots)
+        .into_iter()
+        .map(|(r, k)| (r, k * g))
+        .collect();
     let finite: usize = merged.iter().map(|(_, k)| k).sum();
     let (sx, sy) = system::unknown_scales(scene, mode);
     let unsquared = match mode {
@@ -234,10 +131,6 @@ pub fn solve_all(scene: &Scene, d: Displacement, mode: Mode) -> Result<AllRoots,
         .into_iter()
         .map(|(r, multiplicity)| {
             let (alpha, beta, psi) = match mode {
-                Mode::SmallAngle if multiplicity > 1 => {
-                    let (a, b) = refine_multiple(scene, d, r.x * sx, r.y * sy);
-                    (a, b, None)
-                }
                 Mode::SmallAngle => (r.x * sx, r.y * sy, None),
                 Mode::Exact => {
                     let alpha = (r.x * sx).atan() * 2.0;

@@ -8,7 +8,10 @@
 //!   tan(ψ/2) = tan(max(ξ, ζ)/2)·y), each equation divided by its largest coefficient.
 
 use super::eigen::Coeffs;
-use crate::coeffs::{CoeffInputs, Exact, SMALL_ANGLE_MONOMIALS, SmallAngle, SmallAngleUnsquared};
+use crate::coeffs::{
+    CoeffInputs, Exact, SMALL_ANGLE_MONOMIALS, SMALL_ANGLE_UNSQUARED_A13,
+    SMALL_ANGLE_UNSQUARED_A14, SMALL_ANGLE_UNSQUARED_SPLIT, SmallAngle, SmallAngleUnsquared,
+};
 use crate::geometry::Displacement;
 use crate::scene::{Mode, Scene};
 
@@ -88,17 +91,52 @@ fn scaled(c: &Coeffs, sx: f64, sy: f64) -> Coeffs {
     out
 }
 
-/// The mode's polynomial system as two scaled (2, 2) coefficient arrays.
+/// Which small-angle equations are perfect squares at `d`: (15a) when sin θ = 0, (15b) when
+/// sin(θ + κ) = 0 (there B = 0 in A ± B·Q, so the squared equation is A²).
+pub fn perfect_squares(scene: &Scene, d: Displacement, mode: Mode) -> [bool; 2] {
+    match mode {
+        Mode::SmallAngle => [
+            d.theta.sin().abs() < 1e-12,
+            (d.theta + scene.foundation.kappa).sin().abs() < 1e-12,
+        ],
+        Mode::Exact => [false, false],
+    }
+}
+
+/// The mode's polynomial system as two scaled (2, 2) coefficient arrays. A small-angle equation
+/// that is a perfect square A² is replaced by A: its roots are the same, each of them simple
+/// instead of double (see [`perfect_squares`]).
 pub fn biquadratic(scene: &Scene, d: Displacement, mode: Mode) -> (Coeffs, Coeffs) {
     let inputs = CoeffInputs::new(scene, d);
     let (sx, sy) = unknown_scales(scene, mode);
     let raw: [Coeffs; 2] = match mode {
         Mode::SmallAngle => {
+            let square = perfect_squares(scene, d, mode);
             let f = SmallAngle::new(&inputs).f;
+            let u = if square[0] || square[1] {
+                Some(SmallAngleUnsquared::new(&inputs).c)
+            } else {
+                None
+            };
+            let n13 = SMALL_ANGLE_UNSQUARED_SPLIT;
             let mut c = [[[0.0; 3]; 3]; 2];
             for (eq, mons) in SMALL_ANGLE_MONOMIALS.iter().enumerate() {
-                for (k, &(i, j)) in mons.iter().enumerate() {
-                    c[eq][i as usize][j as usize] = f[6 * eq + k];
+                match (square[eq], &u) {
+                    (true, Some(u)) => {
+                        let (exps, coef) = if eq == 0 {
+                            (SMALL_ANGLE_UNSQUARED_A13, &u[..n13])
+                        } else {
+                            (SMALL_ANGLE_UNSQUARED_A14, &u[n13 + 1..u.len() - 1])
+                        };
+                        for (&(i, j), &k) in exps.iter().zip(coef) {
+                            c[eq][i as usize][j as usize] = k;
+                        }
+                    }
+                    _ => {
+                        for (k, &(i, j)) in mons.iter().enumerate() {
+                            c[eq][i as usize][j as usize] = f[6 * eq + k];
+                        }
+                    }
                 }
             }
             c
