@@ -40,19 +40,33 @@ fn l1(z: C) -> f64 {
     z.re.abs() + z.im.abs()
 }
 
+/// The modulus without `hypot`'s overflow guard (these values are far from overflow), which
+/// is several times faster.
+#[inline]
+fn modulus(z: C) -> f64 {
+    (z.re * z.re + z.im * z.im).sqrt()
+}
+
+/// Value (Horner) and Σ|terms| (in real arithmetic from |x|, |y|).
+#[inline]
 fn eval(c: &Coeffs, x: C, y: C) -> (C, f64) {
-    let xs = [C::new(1.0, 0.0), x, x * x];
-    let ys = [C::new(1.0, 0.0), y, y * y];
+    let (ax, ay) = (modulus(x), modulus(y));
     let mut v = C::new(0.0, 0.0);
     let mut mag = 0.0;
-    for (xi, row) in xs.iter().zip(c) {
-        for (yj, &k) in ys.iter().zip(row) {
-            let t = xi * yj * k;
-            v += t;
-            mag += l1(t);
-        }
+    for row in c.iter().rev() {
+        let r = (C::new(row[2], 0.0) * y + row[1]) * y + row[0];
+        let m = (row[2].abs() * ay + row[1].abs()) * ay + row[0].abs();
+        v = v * x + r;
+        mag = mag * ax + m;
     }
     (v, mag)
+}
+
+/// |value| / Σ|terms| of one polynomial.
+#[inline]
+fn rel(c: &Coeffs, x: C, y: C) -> f64 {
+    let (v, m) = eval(c, x, y);
+    if m > 0.0 { modulus(v) / m } else { modulus(v) }
 }
 
 /// Value and partial derivatives (∂/∂x, ∂/∂y).
@@ -78,38 +92,46 @@ fn eval_grad(c: &Coeffs, x: C, y: C) -> (C, C, C) {
 }
 
 fn rel_residual(p: &Coeffs, q: &Coeffs, x: C, y: C) -> f64 {
-    let (vp, mp) = eval(p, x, y);
-    let (vq, mq) = eval(q, x, y);
-    let r = |v: C, m: f64| if m > 0.0 { l1(v) / m } else { l1(v) };
-    r(vp, mp).max(r(vq, mq))
+    rel(p, x, y).max(rel(q, x, y))
+}
+
+/// Principal square root by the algebraic formula (no `atan2`, no `hypot`).
+#[inline]
+fn csqrt(z: C) -> C {
+    let m = modulus(z);
+    let re = (0.5 * (m + z.re)).max(0.0).sqrt();
+    let im = (0.5 * (m - z.re)).max(0.0).sqrt();
+    C::new(re, if z.im < 0.0 { -im } else { im })
 }
 
 /// Roots of a + b y + c y² (complex coefficients), stably; a root at infinity is omitted.
-fn quadratic_roots(a: C, b: C, c: C) -> Vec<C> {
-    let scale = a.norm().max(b.norm()).max(c.norm());
+/// Returns the roots and how many there are.
+fn quadratic_roots(a: C, b: C, c: C) -> ([C; 2], usize) {
+    let zero = C::new(0.0, 0.0);
+    let scale = l1(a).max(l1(b)).max(l1(c));
     if scale == 0.0 {
-        return Vec::new();
+        return ([zero; 2], 0);
     }
     let tiny = 1e-14 * scale;
-    if c.norm() <= tiny {
-        return if b.norm() > tiny {
-            vec![-a / b]
+    if l1(c) <= tiny {
+        return if l1(b) > tiny {
+            ([-a / b, zero], 1)
         } else {
-            Vec::new()
+            ([zero; 2], 0)
         };
     }
-    let disc = (b * b - c * a * 4.0).sqrt();
+    let disc = csqrt(b * b - c * a * 4.0);
     // q = −(b + s√disc)/2 with the sign that avoids cancellation.
     let qq = if (b.conj() * disc).re >= 0.0 {
         -(b + disc) * 0.5
     } else {
         -(b - disc) * 0.5
     };
-    let mut out = vec![qq / c];
-    if qq.norm() > tiny {
-        out.push(a / qq);
+    if l1(qq) > tiny {
+        ([qq / c, a / qq], 2)
+    } else {
+        ([qq / c, zero], 1)
     }
-    out
 }
 
 /// Newton on (p, q) from (x, y), until the step is at round-off (the eigenvalues are already
@@ -211,7 +233,7 @@ fn poly_mul(a: &[f64], b: &[f64], out: &mut [f64]) {
 /// R(x) = det S(x) = (a2 b0 − a0 b2)² − (a2 b1 − a1 b2)(a1 b0 − a0 b1), where p = Σ a_j(x) y^j
 /// and q = Σ b_j(x) y^j. The companion matrix is already upper Hessenberg, so balancing and the
 /// Francis QR iteration apply directly: no LU, no Hessenberg reduction, no allocation.
-pub fn x_roots_resultant(p: &Coeffs, q: &Coeffs) -> Option<(Vec<C>, usize)> {
+pub fn x_roots_resultant(p: &Coeffs, q: &Coeffs) -> Option<([C; 8], usize, usize)> {
     let col = |c: &Coeffs, j: usize| [c[0][j], c[1][j], c[2][j]];
     let (a0, a1, a2) = (col(p, 0), col(p, 1), col(p, 2));
     let (b0, b1, b2) = (col(q, 0), col(q, 1), col(q, 2));
@@ -291,74 +313,118 @@ pub fn x_roots_resultant(p: &Coeffs, q: &Coeffs) -> Option<(Vec<C>, usize)> {
         deg -= 1;
     }
     let at_infinity = 8 - deg;
+    let mut xs = [C::new(0.0, 0.0); 8];
     if deg == 0 {
-        return Some((Vec::new(), at_infinity));
+        return Some((xs, 0, at_infinity));
     }
-    let monic: Vec<f64> = res[..deg].iter().map(|c| c / res[deg]).collect();
-    let mut h = super::hessenberg::Hessenberg::companion(&monic);
+    let mut monic = [0.0; 8];
+    for k in 0..deg {
+        monic[k] = res[k] / res[deg];
+    }
+    let mut h = super::hessenberg::Hessenberg::companion(&monic[..deg]);
     h.balance();
     let (mut wr, mut wi) = ([0.0; 8], [0.0; 8]);
     let n = h.eigenvalues(&mut wr, &mut wi)?;
-    Some(((0..n).map(|k| C::new(wr[k], wi[k])).collect(), at_infinity))
+    for k in 0..n {
+        xs[k] = C::new(wr[k], wi[k]);
+    }
+    Some((xs, n, at_infinity))
 }
 
 /// All finite roots of p = q = 0 (each of bidegree ≤ (2, 2)), refined, and the count at ∞:
 /// x from the eigenvalues of the resultant's companion matrix (falling back to the 8×8 pencil
 /// if the QR iteration fails), then y and refinement as described in the module docs.
 pub fn solve(p: &Coeffs, q: &Coeffs) -> RawRoots {
-    let (xs, at_infinity) = x_roots_resultant(p, q).unwrap_or_else(|| x_roots_pencil(p, q));
-    assign_y(p, q, xs, at_infinity)
+    match x_roots_resultant(p, q) {
+        Some((xs, n, at_infinity)) => assign_y(p, q, &xs[..n], at_infinity),
+        None => solve_pencil(p, q),
+    }
 }
 
 /// The same by the 8×8 companion pencil of the Sylvester matrix (slower; better conditioned
 /// for clustered roots). Kept as the reference the fast path is tested against.
 pub fn solve_pencil(p: &Coeffs, q: &Coeffs) -> RawRoots {
     let (xs, at_infinity) = x_roots_pencil(p, q);
-    assign_y(p, q, xs, at_infinity)
+    assign_y(p, q, &xs, at_infinity)
 }
 
 /// For each x, the y that makes it a common root, then Newton refinement of (x, y).
-fn assign_y(p: &Coeffs, q: &Coeffs, xs: Vec<C>, mut at_infinity: usize) -> RawRoots {
+fn assign_y(p: &Coeffs, q: &Coeffs, xs: &[C], mut at_infinity: usize) -> RawRoots {
     // Eigenvalues that coincide may belong to distinct roots sharing one x (then each takes a
     // different y) or to one multiple root (then they share y).
     let mut roots = Vec::with_capacity(8);
-    let mut used = vec![false; xs.len()];
+    let mut used = [false; 8];
     for i in 0..xs.len() {
         if used[i] {
             continue;
         }
-        let cluster: Vec<usize> = (i..xs.len())
-            .filter(|&k| !used[k] && (xs[k] - xs[i]).norm() <= 1e-6 * (1.0 + xs[i].norm()))
-            .collect();
+        let mut members = [0usize; 8];
+        let mut nm = 0;
+        for k in i..xs.len() {
+            if !used[k] && l1(xs[k] - xs[i]) <= 1e-6 * (1.0 + l1(xs[i])) {
+                members[nm] = k;
+                nm += 1;
+            }
+        }
+        let cluster = &members[..nm];
         let x = cluster.iter().map(|&k| xs[k]).sum::<C>() / cluster.len() as f64;
         // Candidate y from both quadratics at this x, best first, distinct ones only.
         let coef = |c: &Coeffs, j: usize| C::new(c[0][j], 0.0) + x * c[1][j] + x * x * c[2][j];
-        let mut cands: Vec<(f64, C)> = quadratic_roots(coef(p, 0), coef(p, 1), coef(p, 2))
-            .into_iter()
-            .chain(quadratic_roots(coef(q, 0), coef(q, 1), coef(q, 2)))
-            .filter(|y| y.is_finite())
-            .map(|y| (rel_residual(p, q, x, y), y))
-            .collect();
-        cands.sort_by(|a, b| a.0.total_cmp(&b.0));
-        let mut distinct: Vec<(f64, C)> = Vec::new();
-        for c in cands {
-            if !distinct
-                .iter()
-                .any(|d| (d.1 - c.1).norm() <= 1e-6 * (1.0 + c.1.norm()))
-            {
-                distinct.push(c);
+        // A root of p(x, ·) is judged by q, a root of q(x, ·) by p (its own equation holds by
+        // construction). Fixed-size storage: no allocation per root.
+        let mut cands = [(f64::INFINITY, C::new(0.0, 0.0)); 4];
+        let mut nc = 0;
+        for (own, other) in [(p, q), (q, p)] {
+            let (ys, n) = quadratic_roots(coef(own, 0), coef(own, 1), coef(own, 2));
+            for &y in &ys[..n] {
+                if y.is_finite() {
+                    cands[nc] = (rel(other, x, y), y);
+                    nc += 1;
+                }
             }
         }
+        let cands = &mut cands[..nc];
+        cands.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
+        let mut distinct = [(f64::INFINITY, C::new(0.0, 0.0)); 4];
+        let mut nd = 0;
+        for &c in cands.iter() {
+            if !distinct[..nd]
+                .iter()
+                .any(|d| l1(d.1 - c.1) <= 1e-6 * (1.0 + l1(c.1)))
+            {
+                distinct[nd] = c;
+                nd += 1;
+            }
+        }
+        let distinct = &distinct[..nd];
         let first_of_cluster = roots.len();
         for (m, &k) in cluster.iter().enumerate() {
             used[k] = true;
             // The m-th distinct candidate if it is itself nearly a root, else the best one.
             let pick = match distinct.get(m) {
-                Some(&(r, y)) if m > 0 && r < 1e-6 => Some(y),
-                _ => distinct.first().map(|d| d.1),
+                Some(&(r, y)) if m > 0 && r < 1e-6 => Some((r, y)),
+                _ => distinct.first().copied(),
             };
             let xk = if cluster.len() > 1 { x } else { xs[k] };
-            match pick.map(|y| polish(p, q, xk, y)) {
+            // Already near round-off (the usual case for a simple root): no Newton step needed.
+            let refined = pick.map(|(r, y)| {
+                // 1e-12: the tracker, not this report, gives the selected pose its last digits.
+                let r = if r <= 1e-12 {
+                    rel_residual(p, q, xk, y)
+                } else {
+                    r
+                };
+                if r <= 1e-12 && cluster.len() == 1 {
+                    RawRoot {
+                        x: xk,
+                        y,
+                        residual: r,
+                    }
+                } else {
+                    polish(p, q, xk, y)
+                }
+            });
+            match refined {
                 // A root that does not polish is an eigenvalue at infinity that rounding moved
                 // to a large finite value (or y at infinity); one that polishes onto a root
                 // already found from another x is extraneous too.
@@ -431,11 +497,12 @@ mod tests {
 
     #[test]
     fn stable_quadratic_handles_vanishing_leading_coefficient() {
-        let r = quadratic_roots(C::new(2.0, 0.0), C::new(-1.0, 0.0), C::new(0.0, 0.0));
-        assert_eq!(r.len(), 1);
+        let (r, n) = quadratic_roots(C::new(2.0, 0.0), C::new(-1.0, 0.0), C::new(0.0, 0.0));
+        assert_eq!(n, 1);
         assert!((r[0] - C::new(2.0, 0.0)).norm() < 1e-15);
         // y² − 1e8 y + 1: roots 1e8 and 1e-8, both to full relative precision.
-        let r = quadratic_roots(C::new(1.0, 0.0), C::new(-1e8, 0.0), C::new(1.0, 0.0));
+        let (r, n) = quadratic_roots(C::new(1.0, 0.0), C::new(-1e8, 0.0), C::new(1.0, 0.0));
+        assert_eq!(n, 2);
         let small = r.iter().map(|v| v.norm()).fold(f64::INFINITY, f64::min);
         assert!((small - 1e-8).abs() < 1e-22);
     }
