@@ -22,6 +22,10 @@ fn all_roots(c: &mut Criterion) {
                 eigen::solve(&p, &q)
             })
         });
+        c.bench_function(&format!("all roots {name}: reference 8x8 pencil"), |b| {
+            let (p, q) = system::biquadratic(&scene, d, mode);
+            b.iter(|| eigen::solve_pencil(black_box(&p), black_box(&q)))
+        });
         c.bench_function(
             &format!("all roots {name}: solve_all (classify + select)"),
             |b| b.iter(|| roots::solve_all(black_box(&scene), black_box(d), mode)),
