@@ -12,6 +12,16 @@ fn oracle_ab(s: &Scene, d: Displacement) -> (f64, f64) {
     (p.alpha(s.l()), p.beta(s.l()))
 }
 
+/// The small-angle pose is within `rel` of the true one, judged against the size of the tilts.
+fn assert_near_true_pose(s: &Scene, d: Displacement, (a, b): (f64, f64), rel: f64) {
+    let (ea, eb) = oracle_ab(s, d);
+    let tilt = ea.abs().max(eb.abs());
+    assert!(
+        (a - ea).abs() < rel * tilt && (b - eb).abs() < rel * tilt,
+        "({a}, {b}) vs ({ea}, {eb})"
+    );
+}
+
 fn selected_ab(all: &roots::AllRoots) -> (f64, f64) {
     let r = &all.roots[all.selected.expect("a selected root")];
     (r.alpha.re, r.beta.re)
@@ -51,14 +61,8 @@ fn theta_plus_kappa_zero_double_root_is_tracked() {
         "{:?}",
         all.roots
     );
-    let (a, b) = selected_ab(&all);
-    let (ea, eb) = oracle_ab(&s, d);
     // Small-angle error, judged against the size of the tilts (β is only 0.56° here).
-    let tilt = ea.abs().max(eb.abs());
-    assert!(
-        (a - ea).abs() < 0.02 * tilt && (b - eb).abs() < 0.02 * tilt,
-        "({a}, {b}) vs ({ea}, {eb})"
-    );
+    assert_near_true_pose(&s, d, selected_ab(&all), 0.02);
 }
 
 #[test]
@@ -230,8 +234,5 @@ fn theta_zero_with_kappa_zero_gives_fourfold_roots() {
         all.roots
     );
     assert_eq!(all.finite_roots + all.roots_at_infinity, 16);
-    let (a, b) = selected_ab(&all);
-    let (ea, eb) = oracle_ab(&s, d);
-    let tilt = ea.abs().max(eb.abs());
-    assert!((a - ea).abs() < 0.02 * tilt && (b - eb).abs() < 0.02 * tilt);
+    assert_near_true_pose(&s, d, selected_ab(&all), 0.02);
 }

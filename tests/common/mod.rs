@@ -43,6 +43,40 @@ pub fn paper_like() -> Scene {
     Scene::default_scene()
 }
 
+/// The trigonometric quantities every hand formula uses.
+pub struct Trig {
+    pub l: f64,
+    pub st: f64,
+    pub ct: f64,
+    /// sin, cos of φ = θ + κ.
+    pub sp: f64,
+    pub cp: f64,
+    /// cot ξ, cot ζ.
+    pub cx: f64,
+    pub cz: f64,
+    /// D = R − S = cos κ (L2X − X) + sin κ (L2Z + Z).
+    pub dd: f64,
+}
+
+impl Trig {
+    pub fn new(s: &Scene, d: Displacement) -> Self {
+        let f = &s.frame;
+        let g = &s.foundation;
+        let (st, ct) = d.theta.sin_cos();
+        let (sp, cp) = (d.theta + g.kappa).sin_cos();
+        Trig {
+            l: f.l1z + f.l2z,
+            st,
+            ct,
+            sp,
+            cp,
+            cx: 1.0 / g.xi.tan(),
+            cz: 1.0 / g.zeta.tan(),
+            dd: g.kappa.cos() * (f.l2x - d.x) + g.kappa.sin() * (f.l2z + d.z),
+        }
+    }
+}
+
 /// A hand formula's value and its natural magnitude (the size of its largest terms), so that
 /// comparisons of coefficients that pass through zero are judged against that magnitude.
 pub struct Hand {
@@ -53,14 +87,17 @@ pub struct Hand {
 /// f1–f12 by hand (re-derived; `derivations/03-small-angle.md`, "Result").
 pub fn hand_small_angle(s: &Scene, d: Displacement) -> [Hand; 12] {
     let f = &s.frame;
-    let g = &s.foundation;
-    let l = f.l1z + f.l2z;
-    let (st, ct) = d.theta.sin_cos();
-    let phi = d.theta + g.kappa;
-    let (sp, cp) = phi.sin_cos();
-    let (cx, cz) = (1.0 / g.xi.tan(), 1.0 / g.zeta.tan());
+    let Trig {
+        l,
+        st,
+        ct,
+        sp,
+        cp,
+        cx,
+        cz,
+        dd,
+    } = Trig::new(s, d);
     let b = d.x - f.l2x * (1.0 - ct);
-    let dd = g.kappa.cos() * (f.l2x - d.x) + g.kappa.sin() * (f.l2z + d.z);
     let e = dd - f.l2x * cp;
     let m = l + d.x.abs() + d.z.abs();
     let h = |value: f64, scale: f64| Hand { value, scale };
@@ -83,13 +120,16 @@ pub fn hand_small_angle(s: &Scene, d: Displacement) -> [Hand; 12] {
 /// The printed (misprinted) f1, f2, f7, f11 of the paper, as printed but with 1.41 → √2.
 pub fn printed_f1_f2_f7_f11(s: &Scene, d: Displacement) -> [f64; 4] {
     let f = &s.frame;
-    let g = &s.foundation;
-    let l = f.l1z + f.l2z;
-    let (st, ct) = d.theta.sin_cos();
-    let phi = d.theta + g.kappa;
-    let (sp, cp) = phi.sin_cos();
-    let (cx, cz) = (1.0 / g.xi.tan(), 1.0 / g.zeta.tan());
-    let dd = g.kappa.cos() * (f.l2x - d.x) + g.kappa.sin() * (f.l2z + d.z);
+    let Trig {
+        l,
+        st,
+        ct,
+        sp,
+        cp,
+        cx,
+        cz,
+        dd,
+    } = Trig::new(s, d);
     [
         d.x * d.x + 2.0 * f.l2x * (ct - 1.0) * d.x + (f.l2x.powi(2) - f.l1z.powi(2)) * st * st,
         2.0 * l * cx * (f.l2x - d.x - ct * (f.l2x + f.l1z)),
@@ -102,12 +142,16 @@ pub fn printed_f1_f2_f7_f11(s: &Scene, d: Displacement) -> [f64; 4] {
 /// Exact (13), (14) coefficients by hand (`derivations/04-exact.md`, "Result"), by basis name.
 pub fn hand_exact(s: &Scene, d: Displacement) -> [Vec<(&'static str, f64)>; 2] {
     let f = &s.frame;
-    let g = &s.foundation;
-    let l = f.l1z + f.l2z;
-    let (st, ct) = d.theta.sin_cos();
-    let (sp, cp) = (d.theta + g.kappa).sin_cos();
-    let (cx, cz) = (1.0 / g.xi.tan(), 1.0 / g.zeta.tan());
-    let dd = g.kappa.cos() * (f.l2x - d.x) + g.kappa.sin() * (f.l2z + d.z);
+    let Trig {
+        l,
+        st,
+        ct,
+        sp,
+        cp,
+        cx,
+        cz,
+        dd,
+    } = Trig::new(s, d);
     [
         vec![
             ("one", f.l2x - d.x),
