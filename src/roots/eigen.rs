@@ -11,6 +11,7 @@
 //! candidate with the smallest relative residual, never by dividing by a quantity that can
 //! vanish — and each (x, y) is refined by Newton's method on the pair (p, q) itself.
 
+use crate::numeric::poly_mul;
 use nalgebra::{SMatrix, SVector};
 use num_complex::Complex64 as C;
 
@@ -220,15 +221,6 @@ fn x_roots_pencil(p: &Coeffs, q: &Coeffs) -> (Vec<C>, usize) {
     (Vec::new(), 8)
 }
 
-fn poly_mul(a: &[f64], b: &[f64], out: &mut [f64]) {
-    out.iter_mut().for_each(|v| *v = 0.0);
-    for (i, x) in a.iter().enumerate() {
-        for (j, y) in b.iter().enumerate() {
-            out[i + j] += x * y;
-        }
-    }
-}
-
 /// x-values of the roots as eigenvalues of the companion matrix of the resultant
 /// R(x) = det S(x) = (a2 b0 − a0 b2)² − (a2 b1 − a1 b2)(a1 b0 − a0 b1), where p = Σ a_j(x) y^j
 /// and q = Σ b_j(x) y^j. The companion matrix is already upper Hessenberg, so balancing and the
@@ -321,7 +313,7 @@ pub fn x_roots_resultant(p: &Coeffs, q: &Coeffs) -> Option<([C; 8], usize, usize
     for k in 0..deg {
         monic[k] = res[k] / res[deg];
     }
-    let mut h = super::hessenberg::Hessenberg::companion(&monic[..deg]);
+    let mut h = crate::numeric::hessenberg::Hessenberg::companion(&monic[..deg]);
     h.balance();
     let (mut wr, mut wi) = ([0.0; 8], [0.0; 8]);
     let n = h.eigenvalues(&mut wr, &mut wi)?;

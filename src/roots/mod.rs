@@ -26,7 +26,6 @@
 
 pub mod classify;
 pub mod eigen;
-pub mod hessenberg;
 pub mod system;
 pub mod tracker;
 
