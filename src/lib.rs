@@ -19,6 +19,7 @@
 
 pub mod coeffs;
 pub mod geometry;
+pub mod mechanics;
 pub mod numeric;
 pub mod output;
 pub mod roots;

@@ -111,6 +111,27 @@ impl Mode {
     }
 }
 
+/// How the state is advanced over one increment.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Integrator {
+    /// The paper's update (30)–(41): accelerations at the start of the increment, then
+    /// v += a·dt and x += v·dt + a·dt²/2. First order.
+    #[default]
+    Paper,
+    /// Classic fourth-order Runge–Kutta on the same right-hand side.
+    Rk4,
+}
+
+impl Integrator {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Integrator::Paper => "paper",
+            Integrator::Rk4 => "rk4",
+        }
+    }
+}
+
 /// Time stepping.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Solver {
@@ -119,6 +140,9 @@ pub struct Solver {
     pub dt: f64,
     /// Time limit (s).
     pub t_end: f64,
+    pub integrator: Integrator,
+    /// Record every `stride`-th increment (≥ 1).
+    pub stride: usize,
 }
 
 /// A validated scene. `frame` and `foundation` are always present; the other sections are
@@ -244,6 +268,8 @@ fn parse(text: &str, origin: &str) -> Result<raw::RawScene, SceneError> {
             }
         } else if msg.starts_with("unknown variant") && parent.starts_with("friction") {
             (join("model"), format!("unknown friction model; {msg}"))
+        } else if msg.starts_with("unknown variant") && parent.ends_with("integrator") {
+            (parent.clone(), format!("unknown integrator; {msg}"))
         } else if msg.starts_with("unknown variant") && parent.starts_with("solver") {
             (join("mode"), format!("unknown solver mode; {msg}"))
         } else {
@@ -371,6 +397,18 @@ fn validate(raw: raw::RawScene, o: &str) -> Result<Scene, SceneError> {
             mode: s.mode,
             dt: positive(o, "solver.dt_s", s.dt_s)?,
             t_end: positive(o, "solver.t_end_s", s.t_end_s)?,
+            integrator: s.integrator,
+            stride: match s.stride {
+                None => 1,
+                Some(k) if k >= 1 => k as usize,
+                Some(k) => {
+                    return Err(SceneError::new(
+                        o,
+                        "solver.stride",
+                        format!("must be a whole number of increments, 1 or more, got {k}"),
+                    ));
+                }
+            },
         }),
     };
     Ok(Scene {

@@ -67,4 +67,8 @@ pub struct RawSolver {
     pub mode: super::Mode,
     pub dt_s: f64,
     pub t_end_s: f64,
+    #[serde(default)]
+    pub integrator: super::Integrator,
+    /// Record every `stride`-th increment (default 1: every one).
+    pub stride: Option<i64>,
 }

@@ -268,6 +268,30 @@ fn unknown_friction_model_and_solver_mode_are_named() {
 }
 
 #[test]
+fn integrator_and_stride_are_optional_and_checked() {
+    let s = Scene::from_toml(GOOD, "d").unwrap();
+    assert_eq!(s.solver.unwrap().integrator, Integrator::Paper);
+    assert_eq!(s.solver.unwrap().stride, 1);
+    let t = with(
+        "t_end_s = 20.0",
+        "t_end_s = 20.0\nintegrator = \"rk4\"\nstride = 10",
+    );
+    let s = Scene::from_toml(&t, "d").unwrap();
+    assert_eq!(s.solver.unwrap().integrator, Integrator::Rk4);
+    assert_eq!(s.solver.unwrap().stride, 10);
+    assert_names(
+        &with("t_end_s = 20.0", "t_end_s = 20.0\nintegrator = \"euler\""),
+        "solver.integrator",
+        "unknown integrator",
+    );
+    assert_names(
+        &with("t_end_s = 20.0", "t_end_s = 20.0\nstride = 0"),
+        "solver.stride",
+        "1 or more",
+    );
+}
+
+#[test]
 fn broken_toml_reports_line_and_column() {
     let e = err("[frame]\nl1x = = 6\n");
     let msg = e.to_string();

@@ -1,0 +1,45 @@
+//! Forces on the block at one pose: loads, friction criteria, the frictionless normal
+//! reactions (paper eqs. 25–27) and the paper's frictional reactions (eqs. 22–24, 28).
+//!
+//! Conventions (`shared/conventions.md`): F acts along i'; the hydraulic couple is −c·F about
+//! j' (c > 0 turns the block so that θ grows); weight −m g along Y; each normal reaction lies
+//! along the upward unit normal of its contact's plane and each shear reaction in that plane.
+
+pub mod friction;
+pub mod loads;
+pub mod reactions_paper;
+pub mod statics;
+
+use crate::geometry::planes::{Plane, normal};
+use crate::geometry::{LocalFrame, Pose};
+use crate::scene::Scene;
+use nalgebra::Vector3;
+
+/// What the mechanics needs to know about a placed frame.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactGeometry {
+    /// Local axes i', j', k' built from the vertices.
+    pub frame: LocalFrame,
+    /// From the CM to vertex i (global).
+    pub r: [Vector3<f64>; 3],
+    /// Upward unit normal of the plane carrying vertex i.
+    pub n: [Vector3<f64>; 3],
+}
+
+impl ContactGeometry {
+    pub fn new(scene: &Scene, pose: &Pose) -> Self {
+        ContactGeometry {
+            frame: pose.frame,
+            r: pose.vertices.map(|v| v - pose.cm),
+            n: [0, 1, 2].map(|i| normal(scene, Plane::of_vertex(i))),
+        }
+    }
+
+    /// A unit tangent of contact i along the projection of i' on its plane, and the second
+    /// tangent n × t1; angle 0 of a shear force points along +i'.
+    pub fn tangents(&self, i: usize) -> (Vector3<f64>, Vector3<f64>) {
+        let n = self.n[i];
+        let t1 = (self.frame.i - n * self.frame.i.dot(&n)).normalize();
+        (t1, n.cross(&t1))
+    }
+}
