@@ -2,6 +2,9 @@
 //! (`shared/conventions.md`, "The paper's dynamics, measured") and against the equations
 //! themselves, evaluated independently of the solver.
 
+// The three contacts are indexed in parallel arrays (normals, arms, forces).
+#![allow(clippy::needless_range_loop)]
+
 mod common;
 
 use slideroute::geometry::Displacement;
