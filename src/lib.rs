@@ -23,4 +23,5 @@ pub mod mechanics;
 pub mod numeric;
 pub mod output;
 pub mod roots;
+pub mod route;
 pub mod scene;

@@ -44,6 +44,16 @@ struct PoseArgs {
 
 #[derive(Subcommand)]
 enum Command {
+    /// Compute the failure route: from the start of sliding, increment by increment, until it
+    /// ends for a stated reason. Writes DIR/route.csv (one row per recorded increment) and
+    /// DIR/summary.json, and prints a short summary.
+    Run {
+        #[command(flatten)]
+        scene: SceneArg,
+        /// Output folder (created if needed).
+        #[arg(long, value_name = "DIR", default_value = "out")]
+        out: PathBuf,
+    },
     /// Print the coefficients of the small-angle system (15) (f1–f12) and of the exact form
     /// at one displacement (X, Z, θ) of the centre of mass.
     Coeffs {
@@ -165,9 +175,39 @@ fn roots_cmd(
     }
 }
 
+fn run_cmd(scene: &SceneArg, out: &std::path::Path) -> Result<(), String> {
+    let scene = load(scene)?;
+    let route = slideroute::route::run(&scene).map_err(|e| e.to_string())?;
+    let files = slideroute::output::route_files::write(out, &route)?;
+    let t = &route.termination;
+    println!("scene {}: {} at t = {} s", route.scene, t.reason, t.t_s);
+    println!("  {}", t.detail);
+    if let Some(last) = route.rows.last() {
+        println!(
+            "  travel {:.3} m; final yaw θ = {:.3}°, tilts α = {:.3}°, β = {:.3}°, γ = {:.3}°",
+            route.travel_m, last.theta_deg, last.alpha_deg, last.beta_deg, last.gamma_deg
+        );
+    }
+    match route.factor_of_safety_onset {
+        Some(fs) => println!("  factor of safety at onset {fs:.4}"),
+        None => println!("  factor of safety at onset: infinite (nothing drives the block)"),
+    }
+    println!(
+        "  {} increments ({} mode, {} integrator) in {:.3} s; wrote {} and {}",
+        route.increments,
+        route.mode.as_str(),
+        route.integrator.as_str(),
+        route.wall_s,
+        files[0].display(),
+        files[1].display()
+    );
+    Ok(())
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match &cli.command {
+        Command::Run { scene, out } => run_cmd(scene, out),
         Command::Coeffs { scene, pose, json } => coeffs(scene, pose, *json),
         Command::Roots {
             scene,

@@ -7,6 +7,7 @@
 
 pub mod friction;
 pub mod loads;
+pub mod onset;
 pub mod reactions_paper;
 pub mod statics;
 

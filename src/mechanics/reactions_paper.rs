@@ -362,6 +362,75 @@ pub fn all_solutions(
         .collect())
 }
 
+/// The solution continuing `previous` at this pose: Newton on the four equations from the
+/// previous increment's N0 and shear directions (continuation, cheap), or `None` if it does not
+/// converge to a solution with N0 > 0 — then call [`all_solutions`] and [`select`].
+pub fn follow(
+    geom: &ContactGeometry,
+    applied: &Applied,
+    block: &Block,
+    c: &[f64; 3],
+    friction: &Friction,
+    previous: &Reaction,
+) -> Result<Option<Reaction>, ReactionsError> {
+    if let Some(k) = (0..3).find(|&k| c[k] <= 0.0) {
+        return Err(ReactionsError::LiftOff(k));
+    }
+    let m = ratios(c);
+    if friction.is_frictionless() {
+        return Ok(Some(reaction(
+            geom, applied, block, &m, &[0.0; 3], c[0], [0.0; 3],
+        )));
+    }
+    let j0 = previous.normal[0].norm();
+    let mu = [0, 1, 2].map(|i| friction.coefficient(j0 * m[i]));
+    let sys = System::new(geom, applied, &m, &mu);
+    let (j, phi, res) = sys.polish(j0, previous.angles);
+    let wrap = |a: f64| a.sin().atan2(a.cos());
+    let moved = (0..3)
+        .map(|i| wrap(phi[i] - previous.angles[i]).abs())
+        .fold(0.0, f64::max);
+    if !(res < 1e-9 && j > 0.0 && moved < 0.3) {
+        return Ok(None);
+    }
+    if !matches!(friction, Friction::Coulomb { .. }) {
+        // Stress-dependent friction: settle μ(j) by a few fixed-point rounds.
+        let (mut j, mut phi) = (j, phi);
+        for _ in 0..60 {
+            let mu = [0, 1, 2].map(|i| friction.coefficient(j * m[i]));
+            let (jn, pn, res) = System::new(geom, applied, &m, &mu).polish(j, phi);
+            if !(res < 1e-9 && jn > 0.0) {
+                return Ok(None);
+            }
+            let done = (jn - j).abs() <= 1e-12 * j;
+            j = jn;
+            phi = pn;
+            if done {
+                break;
+            }
+        }
+        let mu = [0, 1, 2].map(|i| friction.coefficient(j * m[i]));
+        return Ok(Some(reaction(
+            geom,
+            applied,
+            block,
+            &m,
+            &mu,
+            j,
+            phi.map(wrap),
+        )));
+    }
+    Ok(Some(reaction(
+        geom,
+        applied,
+        block,
+        &m,
+        &mu,
+        j,
+        phi.map(wrap),
+    )))
+}
+
 /// Friction power Σ S_i·v_i for a rigid motion with CM velocity `v` and angular velocity `omega`.
 pub fn friction_power(
     geom: &ContactGeometry,

@@ -4,6 +4,8 @@ pub mod coeffs_report;
 #[cfg(feature = "cli")]
 pub mod grid_csv;
 pub mod roots_report;
+#[cfg(feature = "cli")]
+pub mod route_files;
 
 pub use coeffs_report::CoeffReport;
 pub use roots_report::RootsReport;

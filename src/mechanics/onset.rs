@@ -1,0 +1,35 @@
+//! Whether the block slides at all: the factor of safety at onset.
+//!
+//! Driving force D = (F + W + Σ N_i^S)·i': the hydraulic force and the components along the
+//! sliding direction x' of the weight and of the frictionless normal reactions (25)–(27) — at
+//! the start these include the resistance of the inclined planes 1 and 2, whose normals lean
+//! against +X. Resisting capacity R = Σ |S_i|max, the largest shear each contact can carry at
+//! its normal force by the scene's criterion. FS = R / D; FS ≥ 1 means friction can hold the
+//! block (it does not slide); with D ≤ 0 nothing drives it and FS is infinite.
+
+use super::ContactGeometry;
+use super::friction::FrictionCriterion;
+use super::loads::Applied;
+use crate::scene::Friction;
+
+/// (FS, D, R); FS is `f64::INFINITY` when D ≤ 0.
+pub fn factor_of_safety(
+    geom: &ContactGeometry,
+    applied: &Applied,
+    c: &[f64; 3],
+    friction: &Friction,
+) -> (f64, f64, f64) {
+    let i = &geom.frame.i;
+    let mut driving = (applied.force + applied.weight).dot(i);
+    let mut resisting = 0.0;
+    for k in 0..3 {
+        driving += geom.n[k].dot(i) * c[k];
+        resisting += friction.shear(c[k].max(0.0));
+    }
+    let fs = if driving > 0.0 {
+        resisting / driving
+    } else {
+        f64::INFINITY
+    };
+    (fs, driving, resisting)
+}

@@ -1,0 +1,43 @@
+//! The failure route: state, right-hand side, integrators, termination, and the run loop
+//! (paper §7).
+//!
+//! ```no_run
+//! let scene = slideroute::scene::Scene::default_scene();
+//! let route = slideroute::route::run(&scene).unwrap();
+//! println!("{} after {} s, {:.2} m", route.termination.reason, route.termination.t_s, route.travel_m);
+//! ```
+
+pub mod integrator;
+pub mod rhs;
+mod run;
+pub mod state;
+pub mod termination;
+
+pub use run::run;
+pub use state::{ROUTE_HEADER, Row, State};
+pub use termination::{Reason, Termination};
+
+use crate::scene::{Integrator, Mode};
+use serde::Serialize;
+
+/// A computed route: the recorded rows and how it ended.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Route {
+    pub scene: String,
+    pub mode: Mode,
+    pub integrator: Integrator,
+    #[serde(skip)]
+    pub rows: Vec<Row>,
+    pub termination: Termination,
+    /// Resisting capacity over driving force at the start (`mechanics::onset`); `None` when
+    /// nothing drives the block (infinite).
+    pub factor_of_safety_onset: Option<f64>,
+    /// Length of the CM path (m).
+    pub travel_m: f64,
+    /// Increments taken.
+    pub increments: usize,
+    /// How often the followed friction solution was lost and chosen afresh by the rule.
+    pub friction_switches: usize,
+    /// Wall-clock time of the computation (s).
+    pub wall_s: f64,
+}

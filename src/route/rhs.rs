@@ -1,0 +1,132 @@
+//! The right-hand side of the motion: at a state, the pose (from the tracker), the reactions
+//! (the paper's, followed from increment to increment) and the accelerations of (X, Z, θ).
+//!
+//! The paper's kinematics (eqs. 23, 30–35): the CM accelerates along i' by a = ΣF·i'/m, whose
+//! horizontal components give Ẍ, Z̈ (eqs. 30, 31, 33, 34); the block turns about j' by
+//! A = ΣM·j'/I (eqs. 32, 35, with A_Y for the misprinted A_X). θ is measured from +X towards +Z,
+//! the opposite sense of a rotation about +Y, so θ̈ = −A·(j'·Y).
+
+use super::state::State;
+use super::termination::{Reason, from_track_error};
+use crate::geometry::{Displacement, Pose};
+use crate::mechanics::loads::Applied;
+use crate::mechanics::reactions_paper::{self, Reaction, ReactionsError};
+use crate::mechanics::{ContactGeometry, statics};
+use crate::roots::Tracker;
+use crate::scene::{Dynamics, Scene};
+use nalgebra::Vector3;
+
+/// Everything known at one state.
+#[derive(Debug, Clone, Copy)]
+pub struct Evaluation {
+    pub pose: Pose,
+    pub geom: ContactGeometry,
+    pub reaction: Reaction,
+    /// (Ẍ, Z̈, θ̈) in m/s², m/s², rad/s².
+    pub acc: [f64; 3],
+    /// Frictionless normal reactions (25)–(27) at this pose (N).
+    pub statics: [f64; 3],
+    /// True when the reaction came from a fresh all-solutions solve (not continuation).
+    pub fresh: bool,
+}
+
+/// A reason to stop, with the detail.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Stop {
+    pub reason: Reason,
+    pub detail: String,
+}
+
+/// Evaluates the right-hand side at displacement `d`, moving `tracker` there. `previous` is
+/// the reaction chosen at the last state (continuity); `velocity` the current CM velocity and
+/// angular velocity (None at rest).
+pub fn evaluate(
+    scene: &Scene,
+    dynamics: &Dynamics<'_>,
+    tracker: &mut Tracker<'_>,
+    d: Displacement,
+    previous: Option<&Reaction>,
+    velocity: Option<(Vector3<f64>, Vector3<f64>)>,
+) -> Result<Evaluation, Stop> {
+    tracker.advance(d).map_err(|e| {
+        let at_dip = tracker
+            .pose()
+            .is_some_and(|p| p.alpha >= scene.foundation.xi || p.beta >= scene.foundation.zeta);
+        Stop {
+            reason: from_track_error(&e, at_dip),
+            detail: e.to_string(),
+        }
+    })?;
+    let pose = tracker.pose().ok_or_else(|| Stop {
+        reason: Reason::NoAdmissibleRoot,
+        detail: "the tracked point has no real frame".into(),
+    })?;
+    let geom = ContactGeometry::new(scene, &pose);
+    let applied = Applied::new(dynamics.loads, dynamics.block, &geom.frame);
+    let c = statics::frictionless_normals(&geom, &applied).ok_or_else(|| Stop {
+        reason: Reason::NoAdmissibleRoot,
+        detail: "the frictionless statics are singular".into(),
+    })?;
+    let lift = |e: ReactionsError| Stop {
+        reason: Reason::ContactLiftedOff,
+        detail: e.to_string(),
+    };
+    let followed = match previous {
+        Some(p) => {
+            reactions_paper::follow(&geom, &applied, dynamics.block, &c, dynamics.friction, p)
+                .map_err(lift)?
+        }
+        None => None,
+    };
+    let (reaction, fresh) = match followed {
+        Some(r) => (r, false),
+        None => {
+            let all = reactions_paper::all_solutions(
+                &geom,
+                &applied,
+                dynamics.block,
+                &c,
+                dynamics.friction,
+            )
+            .map_err(lift)?;
+            let k = reactions_paper::select(&geom, &all, previous.map(|p| &p.angles), velocity)
+                .ok_or_else(|| Stop {
+                    reason: Reason::NoFrictionSolution,
+                    detail: format!(
+                        "no solution with N0 > 0 at X = {:.6} m, Z = {:.6} m, θ = {:.6}°",
+                        d.x,
+                        d.z,
+                        d.theta.to_degrees()
+                    ),
+                })?;
+            (all[k], true)
+        }
+    };
+    let i = geom.frame.i;
+    let acc = [
+        reaction.accel * i.x,
+        reaction.accel * i.z,
+        -reaction.ang_accel * geom.frame.j.y,
+    ];
+    Ok(Evaluation {
+        pose,
+        geom,
+        reaction,
+        acc,
+        statics: c,
+        fresh,
+    })
+}
+
+/// CM velocity and angular velocity vectors of a state (the angular velocity about −Y, the
+/// sense in which θ grows).
+pub fn velocity(s: &State) -> Option<(Vector3<f64>, Vector3<f64>)> {
+    if s.speed() == 0.0 && s.omega == 0.0 {
+        None
+    } else {
+        Some((
+            Vector3::new(s.vx, 0.0, s.vz),
+            Vector3::new(0.0, -s.omega, 0.0),
+        ))
+    }
+}

@@ -1,0 +1,217 @@
+//! The incremental failure route (paper §7): from the start of sliding, increment by
+//! increment, until the route ends for a stated reason.
+
+use super::Route;
+use super::integrator::{paper_step, rk4_step};
+use super::rhs::{Evaluation, Stop, evaluate, velocity};
+use super::state::{Row, State};
+use super::termination::{Reason, Termination};
+use crate::mechanics::loads::Applied;
+use crate::mechanics::onset::factor_of_safety;
+use crate::roots::Tracker;
+use crate::scene::{Integrator, Scene, SceneError};
+use std::time::Instant;
+
+fn row(s: &State, ev: Option<&Evaluation>, pose: &crate::geometry::Pose) -> Row {
+    Row {
+        t_s: s.t,
+        x_m: s.x,
+        y_m: pose.cm.y,
+        z_m: s.z,
+        theta_deg: s.theta.to_degrees(),
+        alpha_deg: pose.alpha.to_degrees(),
+        beta_deg: pose.beta.to_degrees(),
+        gamma_deg: pose.gamma.to_degrees(),
+        vx_m_s: s.vx,
+        vz_m_s: s.vz,
+        omega_deg_s: s.omega.to_degrees(),
+        n_n: ev.map(|e| e.reaction.normal.map(|v| v.norm())),
+        s_n: ev.map(|e| e.reaction.shear.map(|v| v.norm())),
+    }
+}
+
+/// Runs the route of a scene (which needs its `[block]`, `[loads]`, `[friction]` and
+/// `[solver]` sections).
+pub fn run(scene: &Scene) -> Result<Route, SceneError> {
+    let started = Instant::now();
+    let dynamics = scene.require_dynamics()?;
+    let solver = *dynamics.solver;
+    let mode = solver.mode;
+    let dt = solver.dt;
+    let mut tracker = Tracker::new(scene, mode);
+    let mut state = State::default();
+    let mut rows: Vec<Row> = Vec::new();
+    let mut travel = 0.0;
+    let mut increments = 0usize;
+    let mut switches = 0usize;
+
+    let finish = |rows: Vec<Row>,
+                  reason: Reason,
+                  t: f64,
+                  detail: String,
+                  fs: Option<f64>,
+                  travel: f64,
+                  increments: usize,
+                  switches: usize| Route {
+        scene: scene.name.clone(),
+        mode,
+        integrator: solver.integrator,
+        rows,
+        termination: Termination {
+            reason,
+            t_s: t,
+            detail,
+        },
+        factor_of_safety_onset: fs,
+        travel_m: travel,
+        increments,
+        friction_switches: switches,
+        wall_s: started.elapsed().as_secs_f64(),
+    };
+
+    // The start: pose, statics and whether the block slides at all.
+    let start_pose = tracker.pose().expect("the flat start pose exists");
+    let mut ev = match evaluate(
+        scene,
+        &dynamics,
+        &mut tracker,
+        state.displacement(),
+        None,
+        None,
+    ) {
+        Ok(ev) => ev,
+        Err(Stop { reason, detail }) => {
+            rows.push(row(&state, None, &start_pose));
+            return Ok(finish(rows, reason, 0.0, detail, None, 0.0, 0, 0));
+        }
+    };
+    let applied = Applied::new(dynamics.loads, dynamics.block, &ev.geom.frame);
+    let (fs, driving, resisting) =
+        factor_of_safety(&ev.geom, &applied, &ev.statics, dynamics.friction);
+    let fs_out = fs.is_finite().then_some(fs);
+    rows.push(row(&state, Some(&ev), &ev.pose));
+    if fs >= 1.0 || ev.reaction.accel <= 0.0 {
+        let detail = if driving <= 0.0 {
+            format!("nothing drives the block: net driving force along x' is {driving:.6e} N")
+        } else if fs >= 1.0 {
+            format!(
+                "factor of safety {fs:.4} ≥ 1: resisting capacity {resisting:.6e} N against driving {driving:.6e} N"
+            )
+        } else {
+            format!(
+                "the paper's reactions give no forward acceleration ({:.6e} m/s²)",
+                ev.reaction.accel
+            )
+        };
+        return Ok(finish(
+            rows,
+            Reason::DoesNotSlide,
+            0.0,
+            detail,
+            fs_out,
+            0.0,
+            0,
+            0,
+        ));
+    }
+
+    let stride = solver.stride.max(1);
+    let n_steps = (solver.t_end / dt).round().max(1.0) as usize;
+    for k in 1..=n_steps {
+        // Advance one increment.
+        let next = match solver.integrator {
+            Integrator::Paper => Ok(paper_step(&state, &ev.acc, dt)),
+            Integrator::Rk4 => {
+                let base = tracker.clone();
+                let prev = ev.reaction;
+                rk4_step(&state, &ev.acc, dt, |s: &State| {
+                    let mut t = base.clone();
+                    evaluate(
+                        scene,
+                        &dynamics,
+                        &mut t,
+                        s.displacement(),
+                        Some(&prev),
+                        velocity(s),
+                    )
+                    .map(|e| e.acc)
+                })
+            }
+        };
+        let mut next = match next {
+            // Time as k·dt, not a running sum.
+            Ok(n) => State {
+                t: k as f64 * dt,
+                ..n
+            },
+            Err(Stop { reason, detail }) => {
+                return Ok(finish(
+                    rows, reason, state.t, detail, fs_out, travel, increments, switches,
+                ));
+            }
+        };
+        let new_ev = match evaluate(
+            scene,
+            &dynamics,
+            &mut tracker,
+            next.displacement(),
+            Some(&ev.reaction),
+            velocity(&next),
+        ) {
+            Ok(e) => e,
+            Err(Stop { reason, detail }) => {
+                return Ok(finish(
+                    rows, reason, state.t, detail, fs_out, travel, increments, switches,
+                ));
+            }
+        };
+        if new_ev.fresh {
+            switches += 1;
+        }
+        travel += (new_ev.pose.cm - ev.pose.cm).norm();
+        increments = k;
+        // Stopped: the velocity reverses (speed passes through zero) and friction holds.
+        let reversed = next.vx * state.vx + next.vz * state.vz <= 0.0 && state.speed() > 0.0;
+        if reversed {
+            let applied = Applied::new(dynamics.loads, dynamics.block, &new_ev.geom.frame);
+            let (fs_here, _, _) =
+                factor_of_safety(&new_ev.geom, &applied, &new_ev.statics, dynamics.friction);
+            if fs_here >= 1.0 {
+                next.vx = 0.0;
+                next.vz = 0.0;
+                next.omega = 0.0;
+                rows.push(row(&next, Some(&new_ev), &new_ev.pose));
+                let detail = format!(
+                    "speed reached zero at t = {:.6} s; factor of safety there {fs_here:.4}",
+                    next.t
+                );
+                return Ok(finish(
+                    rows,
+                    Reason::Stopped,
+                    next.t,
+                    detail,
+                    fs_out,
+                    travel,
+                    increments,
+                    switches,
+                ));
+            }
+        }
+        state = next;
+        ev = new_ev;
+        if k % stride == 0 || k == n_steps {
+            rows.push(row(&state, Some(&ev), &ev.pose));
+        }
+    }
+    let detail = format!("t reached t_end = {} s", solver.t_end);
+    Ok(finish(
+        rows,
+        Reason::TimeLimit,
+        state.t,
+        detail,
+        fs_out,
+        travel,
+        increments,
+        switches,
+    ))
+}

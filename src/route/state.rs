@@ -1,0 +1,69 @@
+//! The state of the slide and one recorded row.
+
+use serde::Serialize;
+
+/// Position and velocity of the block: CM displacement (X, Z) (m), yaw θ (rad) and their
+/// rates (m/s, rad/s), at time t (s).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct State {
+    pub t: f64,
+    pub x: f64,
+    pub z: f64,
+    pub theta: f64,
+    pub vx: f64,
+    pub vz: f64,
+    /// dθ/dt (rad/s).
+    pub omega: f64,
+}
+
+impl State {
+    pub fn displacement(&self) -> crate::geometry::Displacement {
+        crate::geometry::Displacement::new(self.x, self.z, self.theta)
+    }
+
+    /// Horizontal speed of the CM (m/s).
+    pub fn speed(&self) -> f64 {
+        self.vx.hypot(self.vz)
+    }
+}
+
+/// One recorded increment, in the units of `route.csv` (degrees, m, s, N).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Row {
+    pub t_s: f64,
+    pub x_m: f64,
+    pub y_m: f64,
+    pub z_m: f64,
+    pub theta_deg: f64,
+    pub alpha_deg: f64,
+    pub beta_deg: f64,
+    pub gamma_deg: f64,
+    pub vx_m_s: f64,
+    pub vz_m_s: f64,
+    pub omega_deg_s: f64,
+    /// Normal and shear reaction magnitudes at contacts 0, 1, 2 (N); `None` where the
+    /// reactions could not be had (the last row of a route that ended for that reason).
+    pub n_n: Option<[f64; 3]>,
+    pub s_n: Option<[f64; 3]>,
+}
+
+/// The header of `route.csv`.
+pub const ROUTE_HEADER: [&str; 17] = [
+    "t_s",
+    "x_m",
+    "y_m",
+    "z_m",
+    "theta_deg",
+    "alpha_deg",
+    "beta_deg",
+    "gamma_deg",
+    "vx_m_s",
+    "vz_m_s",
+    "omega_deg_s",
+    "n0_n",
+    "n1_n",
+    "n2_n",
+    "s0_n",
+    "s1_n",
+    "s2_n",
+];

@@ -1,0 +1,81 @@
+//! Why a route ends: one typed reason each.
+
+use crate::roots::{Inadmissible, TrackError};
+use serde::Serialize;
+use std::fmt;
+
+/// The reason a route ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Reason {
+    /// The driving force does not exceed the resistance at the start (factor of safety ≥ 1).
+    DoesNotSlide,
+    /// The paper's frictional system (23), (24), (28) has no solution with N0 > 0.
+    NoFrictionSolution,
+    /// The speed reached zero and friction holds the block.
+    Stopped,
+    /// A frictionless normal reaction (25)–(27) became non-positive.
+    ContactLiftedOff,
+    /// Contact 0 reached an inclined plane.
+    Contact0ReachedInclinedPlane,
+    /// Contact 1 or 2 left its plane.
+    ContactLeftPlane,
+    /// A tilt reached its dip (α → ξ or β → ζ).
+    TiltReachedDip,
+    /// The pose equations have no admissible root to follow (the tracker's diagnosis).
+    NoAdmissibleRoot,
+    /// t reached t_end.
+    TimeLimit,
+}
+
+impl Reason {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Reason::DoesNotSlide => "does not slide",
+            Reason::NoFrictionSolution => "the paper's frictional system has no solution",
+            Reason::Stopped => "stopped",
+            Reason::ContactLiftedOff => "contact lifted off",
+            Reason::Contact0ReachedInclinedPlane => "contact 0 reached an inclined plane",
+            Reason::ContactLeftPlane => "a contact left its plane",
+            Reason::TiltReachedDip => "a tilt reached its dip",
+            Reason::NoAdmissibleRoot => "no admissible root",
+            Reason::TimeLimit => "time limit",
+        }
+    }
+}
+
+impl fmt::Display for Reason {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+/// How and when a route ended.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Termination {
+    pub reason: Reason,
+    /// Time of the last state of the route (s).
+    pub t_s: f64,
+    /// What exactly happened, for people.
+    pub detail: String,
+}
+
+/// The reason for a failure of the tracker at the next increment.
+pub fn from_track_error(e: &TrackError, alpha_at_dip: bool) -> Reason {
+    match e {
+        TrackError::Inadmissible { reason, .. } => match reason {
+            Inadmissible::Contact0ReachedInclinedPlane => Reason::Contact0ReachedInclinedPlane,
+            Inadmissible::Contact1LeftPlane1 | Inadmissible::Contact2LeftPlane2 => {
+                Reason::ContactLeftPlane
+            }
+            Inadmissible::AlphaOutOfRange | Inadmissible::BetaOutOfRange if alpha_at_dip => {
+                Reason::TiltReachedDip
+            }
+            Inadmissible::AlphaOutOfRange | Inadmissible::BetaOutOfRange => {
+                Reason::ContactLeftPlane
+            }
+            Inadmissible::Spurious | Inadmissible::NoRealFrame => Reason::NoAdmissibleRoot,
+        },
+        TrackError::BranchEnded { .. } | TrackError::NonFinite(_) => Reason::NoAdmissibleRoot,
+    }
+}
