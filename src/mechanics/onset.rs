@@ -22,9 +22,9 @@ pub fn factor_of_safety(
     let i = &geom.frame.i;
     let mut driving = (applied.force + applied.weight).dot(i);
     let mut resisting = 0.0;
-    for k in 0..3 {
-        driving += geom.n[k].dot(i) * c[k];
-        resisting += friction.shear(c[k].max(0.0));
+    for (n, &ck) in geom.n.iter().zip(c) {
+        driving += n.dot(i) * ck;
+        resisting += friction.shear(ck.max(0.0));
     }
     let fs = if driving > 0.0 {
         resisting / driving
