@@ -304,3 +304,50 @@ fn bad_grid_files_name_the_line_and_column() {
     );
     assert_bad_input(&run(&["roots", "--x", "1", "--z", "0"]), &["--theta-deg"]);
 }
+
+#[test]
+fn run_writes_route_csv_and_summary_json() {
+    let dir = std::env::temp_dir().join(format!("slideroute-run-{}", std::process::id()));
+    let o = run(&["run", "--out", dir.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(out.contains("factor of safety at onset"), "{out}");
+    let csv = std::fs::read_to_string(dir.join("route.csv")).unwrap();
+    let header = csv.lines().next().unwrap();
+    assert_eq!(
+        header,
+        "t_s,x_m,y_m,z_m,theta_deg,alpha_deg,beta_deg,gamma_deg,vx_m_s,vz_m_s,omega_deg_s,n0_n,n1_n,n2_n,s0_n,s1_n,s2_n"
+    );
+    assert!(csv.lines().count() > 1000);
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
+    for k in [
+        "scene",
+        "mode",
+        "integrator",
+        "termination",
+        "factor_of_safety_onset",
+        "travel_m",
+        "increments",
+        "wall_s",
+    ] {
+        assert!(!v[k].is_null(), "summary.{k}");
+    }
+    for k in ["reason", "t_s", "detail"] {
+        assert!(!v["termination"][k].is_null(), "termination.{k}");
+    }
+    assert_eq!(v["mode"], "exact");
+    assert_eq!(v["integrator"], "paper");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn run_on_a_geometry_only_scene_names_the_missing_section() {
+    let text = include_str!("../scenes/paper-like.toml");
+    let geo = text.split("[block]").next().unwrap();
+    let p = temp_file("geo.toml", geo);
+    assert_bad_input(
+        &run(&["run", "--scene", p.to_str().unwrap(), "--out", "/tmp/never"]),
+        &["geo.toml", "block", "missing section"],
+    );
+}
