@@ -236,3 +236,79 @@ fn stride_records_every_kth_increment_and_the_last() {
     assert_eq!(times.len(), 1 + 10 + 1);
     assert!((times[1] - 0.1).abs() < 1e-12 && (times[11] - 1.05).abs() < 1e-12);
 }
+
+/// A paper-like scene with the given frame, foundation, friction and loads; dt = 2 ms.
+#[allow(clippy::too_many_arguments)]
+fn scene_with(
+    l2x: f64,
+    l1z: f64,
+    xi: f64,
+    zeta: f64,
+    kappa: f64,
+    mu: f64,
+    f: f64,
+    c: f64,
+) -> Scene {
+    with(|s| {
+        s.frame.l2x = l2x;
+        s.frame.l1x = 10.0 - l2x;
+        s.frame.l1z = l1z;
+        s.frame.l2z = 10.0 - l1z;
+        s.foundation.xi = xi.to_radians();
+        s.foundation.zeta = zeta.to_radians();
+        s.foundation.kappa = kappa.to_radians();
+        s.friction = Some(Friction::Coulomb { mu_k: mu });
+        s.loads.as_mut().unwrap().hydraulic_force = f;
+        s.loads.as_mut().unwrap().eccentricity = c;
+        s.solver.as_mut().unwrap().dt = 2e-3;
+    })
+}
+
+#[test]
+fn each_termination_reason_is_reached_with_its_typed_reason() {
+    // Scenes found by a random search over frames, dips, κ, μ, F and c (derivations/07). The
+    // paper's dynamics never decelerate a sliding block to rest, so "stopped" has no scene.
+    let cases = [
+        (
+            scene_with(1.27, 5.50, 17.2, 28.2, 32.5, 0.0, 1.031e7, 0.35),
+            Reason::TiltReachedDip,
+        ),
+        (
+            scene_with(6.54, 2.28, 23.5, 45.1, -34.6, 0.55, 1.801e7, 2.44),
+            Reason::Contact0ReachedInclinedPlane,
+        ),
+        (
+            scene_with(6.07, 3.93, 18.7, 25.6, 2.2, 0.242, 1.658e7, 0.72),
+            Reason::ContactLiftedOff,
+        ),
+        (
+            scene_with(7.09, 1.36, 76.3, 29.6, -1.5, 0.387, 1.679e7, 0.41),
+            Reason::NoAdmissibleRoot,
+        ),
+        (
+            scene_with(6.29, 1.03, 17.7, 23.2, 22.8, 0.543, 6.797e6, -2.03),
+            Reason::ContactLeftPlane,
+        ),
+        (
+            scene_with(2.62, 4.45, 49.6, 37.5, 55.4, 0.186, 2.014e7, -0.18),
+            Reason::NoFrictionSolution,
+        ),
+        (
+            scene_with(1.93, 3.58, 66.4, 54.9, 44.3, 0.587, 1.867e7, -0.76),
+            Reason::DoesNotSlide,
+        ),
+    ];
+    for (s, want) in cases {
+        let r = run(&s);
+        assert_eq!(r.termination.reason, want, "{}", r.termination.detail);
+        assert!(!r.termination.detail.is_empty());
+        assert!(
+            r.rows
+                .iter()
+                .all(|w| w.x_m.is_finite() && w.theta_deg.is_finite())
+        );
+    }
+    let short = run(&with(|s| s.solver.as_mut().unwrap().t_end = 0.3));
+    assert_eq!(short.termination.reason, Reason::TimeLimit);
+    assert!((short.termination.t_s - 0.3).abs() < 1e-12);
+}
