@@ -25,3 +25,5 @@ pub mod output;
 pub mod roots;
 pub mod route;
 pub mod scene;
+#[cfg(feature = "cli")]
+pub mod sweep;

@@ -12,7 +12,7 @@ use std::process::ExitCode;
 ///
 /// Units: metres, newtons, seconds; angles in degrees on the command line and in every file.
 #[derive(Parser)]
-#[command(name = "slideroute", version, about, long_about = None)]
+#[command(name = "slideroute", version, about)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -50,9 +50,42 @@ enum Command {
     Run {
         #[command(flatten)]
         scene: SceneArg,
+        /// Output folder (created if needed): route.csv, summary.json and the pictures
+        /// plan.svg, profile.svg, angles.svg, reactions.svg.
+        #[arg(long, value_name = "DIR", default_value = "out")]
+        out: PathBuf,
+        /// No progress bar and no summary (errors are still reported).
+        #[arg(long)]
+        quiet: bool,
+    },
+    /// Run the route for every combination of scene values, in parallel, and write
+    /// DIR/sweep.csv (one row per combination: the varied values, how the route ended, travel,
+    /// final yaw, largest tilts, factor of safety at onset) and DIR/sweep.svg (travel against
+    /// the first varied key). A combination that fails is a row with its reason.
+    Sweep {
+        #[command(flatten)]
+        scene: SceneArg,
+        /// A scene key to vary, `section.key=START:STOP:COUNT` (COUNT evenly spaced values,
+        /// in the key's own units: e.g. `friction.mu_k=0.2:0.6:5`, `foundation.xi_deg=10:30:5`,
+        /// `loads.hydraulic_force_n=6e6:1e7:9`). Repeat for more keys; every combination is run.
+        #[arg(long, value_name = "KEY=START:STOP:COUNT", required = true)]
+        vary: Vec<String>,
         /// Output folder (created if needed).
         #[arg(long, value_name = "DIR", default_value = "out")]
         out: PathBuf,
+        /// No progress bar and no summary.
+        #[arg(long)]
+        quiet: bool,
+    },
+    /// Scene files: print the embedded default scene as a commented TOML file to start from,
+    /// or check a scene file and report the first problem.
+    Scene {
+        /// Print the embedded default (paper-like) scene.
+        #[arg(long, conflicts_with = "check")]
+        print_default: bool,
+        /// Check this scene file: prints `ok` or one line naming the key and the reason.
+        #[arg(long, value_name = "FILE")]
+        check: Option<PathBuf>,
     },
     /// Print the coefficients of the small-angle system (15) (f1–f12) and of the exact form
     /// at one displacement (X, Z, θ) of the centre of mass.
@@ -175,10 +208,34 @@ fn roots_cmd(
     }
 }
 
-fn run_cmd(scene: &SceneArg, out: &std::path::Path) -> Result<(), String> {
+fn progress_bar(quiet: bool, len: u64, what: &str) -> indicatif::ProgressBar {
+    if quiet {
+        return indicatif::ProgressBar::hidden();
+    }
+    // Drawn on standard error only when it is a terminal.
+    let bar = indicatif::ProgressBar::new(len);
+    let style = indicatif::ProgressStyle::with_template(&format!(
+        "{what} [{{bar:40}}] {{pos}}/{{len}} {{elapsed_precise}}"
+    ))
+    .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar());
+    bar.set_style(style.progress_chars("=> "));
+    bar
+}
+
+fn run_cmd(scene: &SceneArg, out: &std::path::Path, quiet: bool) -> Result<(), String> {
     let scene = load(scene)?;
-    let route = slideroute::route::run(&scene).map_err(|e| e.to_string())?;
-    let files = slideroute::output::route_files::write(out, &route)?;
+    let bar = progress_bar(quiet, 1000, "route");
+    let route = slideroute::route::run_observed(&scene, |f| bar.set_position((f * 1000.0) as u64))
+        .map_err(|e| e.to_string())?;
+    bar.finish_and_clear();
+    let mut files: Vec<PathBuf> = slideroute::output::route_files::write(out, &route)?.to_vec();
+    #[cfg(feature = "plots")]
+    files.extend(slideroute::output::plots::write_route_plots(
+        out, &scene, &route,
+    )?);
+    if quiet {
+        return Ok(());
+    }
     let t = &route.termination;
     println!("scene {}: {} at t = {} s", route.scene, t.reason, t.t_s);
     println!("  {}", t.detail);
@@ -193,21 +250,105 @@ fn run_cmd(scene: &SceneArg, out: &std::path::Path) -> Result<(), String> {
         None => println!("  factor of safety at onset: infinite (nothing drives the block)"),
     }
     println!(
-        "  {} increments ({} mode, {} integrator) in {:.3} s; wrote {} and {}",
+        "  {} increments ({} mode, {} integrator) in {:.3} s",
         route.increments,
         route.mode.as_str(),
         route.integrator.as_str(),
         route.wall_s,
-        files[0].display(),
-        files[1].display()
     );
+    let names: Vec<String> = files.iter().map(|f| f.display().to_string()).collect();
+    println!("  wrote {}", names.join(", "));
     Ok(())
+}
+
+fn sweep_cmd(
+    scene: &SceneArg,
+    vary: &[String],
+    out: &std::path::Path,
+    quiet: bool,
+) -> Result<(), String> {
+    let (text, origin) = match &scene.scene {
+        Some(p) => (
+            std::fs::read_to_string(p)
+                .map_err(|e| format!("{}: cannot read the file: {e}", p.display()))?,
+            p.display().to_string(),
+        ),
+        None => (
+            slideroute::scene::DEFAULT_SCENE_TOML.to_string(),
+            slideroute::scene::DEFAULT_ORIGIN.to_string(),
+        ),
+    };
+    // The base scene must itself be valid.
+    Scene::from_toml(&text, &origin).map_err(|e| e.to_string())?;
+    let varies = vary
+        .iter()
+        .map(|v| slideroute::sweep::parse_vary(v))
+        .collect::<Result<Vec<_>, _>>()?;
+    slideroute::sweep::check_keys(&text, &varies)?;
+    let n = slideroute::sweep::count(&varies);
+    let bar = progress_bar(quiet, n as u64, "sweep");
+    let rows = slideroute::sweep::run(&text, &origin, &varies, || bar.inc(1))?;
+    bar.finish_and_clear();
+    std::fs::create_dir_all(out).map_err(|e| format!("{}: cannot create: {e}", out.display()))?;
+    let csv_path = out.join("sweep.csv");
+    let file = std::fs::File::create(&csv_path)
+        .map_err(|e| format!("{}: cannot write: {e}", csv_path.display()))?;
+    slideroute::output::sweep_files::write_csv(file, &varies, &rows)
+        .map_err(|e| format!("{}: {e}", csv_path.display()))?;
+    #[allow(unused_mut)]
+    let mut written = vec![csv_path.display().to_string()];
+    #[cfg(feature = "plots")]
+    {
+        let svg = out.join("sweep.svg");
+        slideroute::output::plots::sweep(&svg, &varies, &rows)?;
+        written.push(svg.display().to_string());
+    }
+    if !quiet {
+        let mut counts: std::collections::BTreeMap<&str, usize> = std::collections::BTreeMap::new();
+        for r in &rows {
+            *counts.entry(r.reason.as_str()).or_default() += 1;
+        }
+        let summary: Vec<String> = counts.iter().map(|(k, v)| format!("{v} × {k}")).collect();
+        println!("{n} combinations: {}", summary.join(", "));
+        println!("wrote {}", written.join(", "));
+    }
+    Ok(())
+}
+
+fn scene_cmd(print_default: bool, check: Option<&PathBuf>) -> Result<(), String> {
+    match (print_default, check) {
+        (true, _) => {
+            print!("{}", slideroute::scene::DEFAULT_SCENE_TOML);
+            Ok(())
+        }
+        (false, Some(p)) => {
+            let s = Scene::from_file(p).map_err(|e| e.to_string())?;
+            let sections = if s.require_dynamics().is_ok() {
+                "all sections"
+            } else {
+                "geometry only (frame, foundation)"
+            };
+            println!("{}: ok ({sections})", p.display());
+            Ok(())
+        }
+        (false, None) => Err("scene: say --print-default or --check FILE".to_string()),
+    }
 }
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match &cli.command {
-        Command::Run { scene, out } => run_cmd(scene, out),
+        Command::Run { scene, out, quiet } => run_cmd(scene, out, *quiet),
+        Command::Sweep {
+            scene,
+            vary,
+            out,
+            quiet,
+        } => sweep_cmd(scene, vary, out, *quiet),
+        Command::Scene {
+            print_default,
+            check,
+        } => scene_cmd(*print_default, check.as_ref()),
         Command::Coeffs { scene, pose, json } => coeffs(scene, pose, *json),
         Command::Roots {
             scene,

@@ -351,3 +351,154 @@ fn run_on_a_geometry_only_scene_names_the_missing_section() {
         &["geo.toml", "block", "missing section"],
     );
 }
+
+fn temp_dir(name: &str) -> std::path::PathBuf {
+    let d = std::env::temp_dir().join(format!("slideroute-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    d
+}
+
+#[test]
+fn run_without_arguments_draws_the_four_pictures() {
+    let dir = temp_dir("pictures");
+    let o = run(&["run", "--out", dir.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    for name in ["plan.svg", "profile.svg", "angles.svg", "reactions.svg"] {
+        let text =
+            std::fs::read_to_string(dir.join(name)).unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert!(text.starts_with("<svg"), "{name}");
+        assert!(
+            text.contains("(m)") || text.contains("(°)") || text.contains("(MN)"),
+            "{name} has units"
+        );
+    }
+    let plan = std::fs::read_to_string(dir.join("plan.svg")).unwrap();
+    assert!(plan.contains("strike of plane 1") && plan.contains("path of the centre of mass"));
+    let out = String::from_utf8_lossy(&o.stdout);
+    for part in [
+        "travel",
+        "final yaw",
+        "factor of safety at onset",
+        "increments",
+    ] {
+        assert!(out.contains(part), "summary lacks {part}: {out}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn quiet_run_prints_nothing_and_still_writes() {
+    let dir = temp_dir("quiet");
+    let o = run(&["run", "--quiet", "--out", dir.to_str().unwrap()]);
+    assert!(o.status.success());
+    assert!(o.stdout.is_empty() && o.stderr.is_empty(), "{}", stderr(&o));
+    assert!(dir.join("route.csv").exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn print_default_is_the_embedded_scene_and_loads() {
+    let o = run(&["scene", "--print-default"]);
+    assert!(o.status.success());
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(text.contains("# ") && text.contains("hydraulic_force_n"));
+    let s = slideroute::scene::Scene::from_toml(&text, "printed").unwrap();
+    assert_eq!(s.name, "paper-like");
+    let p = temp_file("printed.toml", &text);
+    let o = run(&["scene", "--check", p.to_str().unwrap()]);
+    assert!(o.status.success() && String::from_utf8_lossy(&o.stdout).contains("ok"));
+    let bad = temp_file("bad.toml", &text.replace("mu_k = 0.40", "mu_k = -0.40"));
+    assert_bad_input(
+        &run(&["scene", "--check", bad.to_str().unwrap()]),
+        &["bad.toml", "friction.mu_k"],
+    );
+    assert_bad_input(&run(&["scene"]), &["--print-default"]);
+}
+
+#[test]
+fn sweep_of_200_combinations_has_a_row_for_each() {
+    let dir = temp_dir("sweep");
+    let o = run(&[
+        "sweep",
+        "--vary",
+        "friction.mu_k=0.2:0.7:20",
+        "--vary",
+        "loads.eccentricity_m=-1:1:10",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let csv = std::fs::read_to_string(dir.join("sweep.csv")).unwrap();
+    let mut lines = csv.lines();
+    assert!(
+        lines
+            .next()
+            .unwrap()
+            .starts_with("friction.mu_k,loads.eccentricity_m,reason,")
+    );
+    let rows: Vec<&str> = lines.collect();
+    assert_eq!(rows.len(), 200);
+    assert!(
+        rows.iter()
+            .all(|r| !r.split(',').nth(2).unwrap_or("").is_empty())
+    );
+    assert!(
+        std::fs::read_to_string(dir.join("sweep.svg"))
+            .unwrap()
+            .starts_with("<svg")
+    );
+    assert!(String::from_utf8_lossy(&o.stdout).contains("200 combinations"));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn sweep_rows_for_invalid_combinations_say_why() {
+    let dir = temp_dir("sweep-invalid");
+    let o = run(&[
+        "sweep",
+        "--vary",
+        "foundation.xi_deg=60:120:3",
+        "--out",
+        dir.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let csv = std::fs::read_to_string(dir.join("sweep.csv")).unwrap();
+    let last = csv.lines().last().unwrap();
+    assert!(
+        last.starts_with("120,invalid scene,") && last.contains("foundation.xi_deg"),
+        "{last}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn sweep_flags_are_checked() {
+    assert_bad_input(
+        &run(&["sweep", "--vary", "friction.mu=0:1:3"]),
+        &["--vary friction.mu", "mu_k"],
+    );
+    assert_bad_input(
+        &run(&["sweep", "--vary", "friction.mu_k=0:1"]),
+        &["--vary friction.mu_k=0:1", "START:STOP:COUNT"],
+    );
+    assert_bad_input(
+        &run(&["sweep", "--vary", "friction.mu_k=0:1:0"]),
+        &["COUNT"],
+    );
+    assert_bad_input(&run(&["sweep"]), &["--vary"]);
+}
+
+#[test]
+fn every_command_explains_its_flags() {
+    for cmd in ["run", "sweep", "scene", "roots", "coeffs"] {
+        let o = run(&[cmd, "--help"]);
+        assert!(o.status.success(), "{cmd}");
+        let text = String::from_utf8_lossy(&o.stdout);
+        assert!(text.contains("Usage:"), "{cmd}");
+    }
+    let roots = String::from_utf8_lossy(&run(&["roots", "--help"]).stdout).to_string();
+    assert!(roots.contains("metres") && roots.contains("degrees"));
+    let top = String::from_utf8_lossy(&run(&["--help"]).stdout).to_string();
+    assert!(top.contains("degrees") && top.contains("metres"));
+}

@@ -3,9 +3,13 @@
 pub mod coeffs_report;
 #[cfg(feature = "cli")]
 pub mod grid_csv;
+#[cfg(feature = "plots")]
+pub mod plots;
 pub mod roots_report;
 #[cfg(feature = "cli")]
 pub mod route_files;
+#[cfg(feature = "cli")]
+pub mod sweep_files;
 
 pub use coeffs_report::CoeffReport;
 pub use roots_report::RootsReport;

@@ -13,7 +13,7 @@ mod run;
 pub mod state;
 pub mod termination;
 
-pub use run::run;
+pub use run::{run, run_observed};
 pub use state::{ROUTE_HEADER, Row, State};
 pub use termination::{Reason, Termination};
 

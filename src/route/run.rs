@@ -33,6 +33,11 @@ fn row(s: &State, ev: Option<&Evaluation>, pose: &crate::geometry::Pose) -> Row 
 /// Runs the route of a scene (which needs its `[block]`, `[loads]`, `[friction]` and
 /// `[solver]` sections).
 pub fn run(scene: &Scene) -> Result<Route, SceneError> {
+    run_observed(scene, |_| ())
+}
+
+/// [`run`], calling `progress(t / t_end)` after every increment (for progress bars).
+pub fn run_observed(scene: &Scene, mut progress: impl FnMut(f64)) -> Result<Route, SceneError> {
     let started = Instant::now();
     let dynamics = scene.require_dynamics()?;
     let solver = *dynamics.solver;
@@ -199,6 +204,7 @@ pub fn run(scene: &Scene) -> Result<Route, SceneError> {
         }
         state = next;
         ev = new_ev;
+        progress(k as f64 / n_steps as f64);
         if k % stride == 0 || k == n_steps {
             rows.push(row(&state, Some(&ev), &ev.pose));
         }

@@ -169,6 +169,9 @@ pub struct Dynamics<'a> {
     pub solver: &'a Solver,
 }
 
+/// The most increments one run may take (t_end / dt).
+pub const MAX_INCREMENTS: f64 = 1e8;
+
 /// Relative tolerance on L1X + L2X = L1Z + L2Z.
 const FRAME_TOLERANCE: f64 = 1e-9;
 
@@ -391,6 +394,18 @@ fn validate(raw: raw::RawScene, o: &str) -> Result<Scene, SceneError> {
             contact_area_m2: positive(o, "friction.contact_area_m2", *contact_area_m2)?,
         }),
     };
+    if let Some(s) = &raw.solver {
+        let n = s.t_end_s / s.dt_s;
+        if s.dt_s > 0.0 && s.t_end_s > 0.0 && n > MAX_INCREMENTS {
+            return Err(SceneError::new(
+                o,
+                "solver.dt_s",
+                format!(
+                    "t_end_s / dt_s = {n:.3e} increments, more than the {MAX_INCREMENTS:e} one run may take"
+                ),
+            ));
+        }
+    }
     let solver = match &raw.solver {
         None => None,
         Some(s) => Some(Solver {

@@ -292,6 +292,15 @@ fn integrator_and_stride_are_optional_and_checked() {
 }
 
 #[test]
+fn runs_longer_than_the_increment_limit_are_refused() {
+    assert_names(
+        &with("dt_s = 1.0e-3", "dt_s = 1.0e-12"),
+        "solver.dt_s",
+        "increments",
+    );
+}
+
+#[test]
 fn broken_toml_reports_line_and_column() {
     let e = err("[frame]\nl1x = = 6\n");
     let msg = e.to_string();

@@ -1,0 +1,46 @@
+//! `sweep.csv`: one row per combination.
+
+use crate::sweep::{SweepRow, Vary};
+use std::io::Write;
+
+/// Columns after the varied keys.
+pub const SWEEP_COLUMNS: [&str; 8] = [
+    "reason",
+    "t_end_s",
+    "travel_m",
+    "final_theta_deg",
+    "max_alpha_deg",
+    "max_beta_deg",
+    "factor_of_safety_onset",
+    "detail",
+];
+
+pub fn write_csv(out: impl Write, varies: &[Vary], rows: &[SweepRow]) -> Result<(), csv::Error> {
+    let mut w = csv::Writer::from_writer(out);
+    let header: Vec<&str> = varies
+        .iter()
+        .map(|v| v.key.as_str())
+        .chain(SWEEP_COLUMNS)
+        .collect();
+    w.write_record(&header)?;
+    let opt = |v: Option<f64>| v.map_or(String::new(), |x| x.to_string());
+    for r in rows {
+        let mut rec: Vec<String> = r.values.iter().map(|v| v.to_string()).collect();
+        rec.push(r.reason.clone());
+        rec.extend(
+            [
+                r.t_end_s,
+                r.travel_m,
+                r.final_theta_deg,
+                r.max_alpha_deg,
+                r.max_beta_deg,
+                r.factor_of_safety_onset,
+            ]
+            .map(opt),
+        );
+        rec.push(r.detail.clone());
+        w.write_record(&rec)?;
+    }
+    w.flush()?;
+    Ok(())
+}

@@ -1,0 +1,248 @@
+//! Parameter sweeps: every combination of the varied scene keys, run in parallel.
+//!
+//! A key is named as in the scene file, `section.key` (e.g. `friction.mu_k`,
+//! `foundation.xi_deg`). The base scene is edited as TOML and validated again for every
+//! combination, so every key of the schema can be varied and every value is checked exactly as
+//! in a scene file; a combination that is invalid or whose route fails becomes a row with its
+//! reason, never an abort.
+
+use crate::route::{self, Route};
+use crate::scene::Scene;
+use rayon::prelude::*;
+use serde::Serialize;
+
+/// One varied key and its values.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Vary {
+    /// `section.key`.
+    pub key: String,
+    pub values: Vec<f64>,
+}
+
+/// Parses `KEY=START:STOP:COUNT` (COUNT ≥ 1 evenly spaced values, START and STOP included).
+pub fn parse_vary(s: &str) -> Result<Vary, String> {
+    let bad = |why: &str| {
+        format!("--vary {s}: {why} (expected KEY=START:STOP:COUNT, e.g. friction.mu_k=0.2:0.6:5)")
+    };
+    let (key, range) = s.split_once('=').ok_or_else(|| bad("no `=`"))?;
+    let key = key.trim();
+    if key.split('.').count() != 2 || key.split('.').any(str::is_empty) {
+        return Err(bad("KEY must be `section.key`"));
+    }
+    let parts: Vec<&str> = range.split(':').collect();
+    if parts.len() != 3 {
+        return Err(bad("the range needs three parts"));
+    }
+    let num = |t: &str, what: &str| -> Result<f64, String> {
+        let v: f64 = t
+            .trim()
+            .parse()
+            .map_err(|_| bad(&format!("{what} `{t}` is not a number")))?;
+        if v.is_finite() {
+            Ok(v)
+        } else {
+            Err(bad(&format!("{what} must be finite")))
+        }
+    };
+    let (a, b) = (num(parts[0], "START")?, num(parts[1], "STOP")?);
+    let n: usize = parts[2]
+        .trim()
+        .parse()
+        .map_err(|_| bad(&format!("COUNT `{}` is not a whole number", parts[2])))?;
+    if n == 0 || n > 100_000 {
+        return Err(bad("COUNT must be from 1 to 100000"));
+    }
+    let values = if n == 1 {
+        vec![a]
+    } else {
+        (0..n)
+            .map(|k| a + (b - a) * k as f64 / (n - 1) as f64)
+            .collect()
+    };
+    Ok(Vary {
+        key: key.to_string(),
+        values,
+    })
+}
+
+/// The outcome of one combination.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SweepRow {
+    /// The varied values, in the order of the `--vary` flags.
+    pub values: Vec<f64>,
+    /// The termination reason, or "invalid scene".
+    pub reason: String,
+    pub t_end_s: Option<f64>,
+    pub travel_m: Option<f64>,
+    pub final_theta_deg: Option<f64>,
+    pub max_alpha_deg: Option<f64>,
+    pub max_beta_deg: Option<f64>,
+    pub factor_of_safety_onset: Option<f64>,
+    pub detail: String,
+}
+
+fn row_of(values: Vec<f64>, route: &Route) -> SweepRow {
+    let max =
+        |f: fn(&route::Row) -> f64| route.rows.iter().map(f).fold(f64::NEG_INFINITY, f64::max);
+    SweepRow {
+        values,
+        reason: route.termination.reason.as_str().to_string(),
+        t_end_s: Some(route.termination.t_s),
+        travel_m: Some(route.travel_m),
+        final_theta_deg: route.rows.last().map(|r| r.theta_deg),
+        max_alpha_deg: Some(max(|r| r.alpha_deg)),
+        max_beta_deg: Some(max(|r| r.beta_deg)),
+        factor_of_safety_onset: route.factor_of_safety_onset,
+        detail: route.termination.detail.clone(),
+    }
+}
+
+/// The number of combinations.
+pub fn count(varies: &[Vary]) -> usize {
+    varies.iter().map(|v| v.values.len()).product()
+}
+
+/// Checks that every varied key exists in the base scene text; the error names the key.
+pub fn check_keys(base_text: &str, varies: &[Vary]) -> Result<toml::Table, String> {
+    let table: toml::Table = base_text
+        .parse()
+        .map_err(|e: toml::de::Error| e.message().to_string())?;
+    for v in varies {
+        let (section, key) = v.key.split_once('.').unwrap_or(("", ""));
+        let sec = table
+            .get(section)
+            .and_then(|t| t.as_table())
+            .ok_or_else(|| {
+                let names: Vec<&String> = table
+                    .iter()
+                    .filter(|(_, v)| v.is_table())
+                    .map(|(k, _)| k)
+                    .collect();
+                format!(
+                    "--vary {}: the scene has no section [{section}] (sections: {})",
+                    v.key,
+                    names
+                        .iter()
+                        .map(|s| s.as_str())
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                )
+            })?;
+        if !sec.contains_key(key) {
+            let names: Vec<&str> = sec.keys().map(String::as_str).collect();
+            return Err(format!(
+                "--vary {}: no key `{key}` in [{section}] (keys: {})",
+                v.key,
+                names.join(", ")
+            ));
+        }
+    }
+    Ok(table)
+}
+
+/// Runs every combination in parallel; rows in the order of the combinations (the last
+/// `--vary` varying fastest). `progress()` is called once per finished combination.
+pub fn run(
+    base_text: &str,
+    origin: &str,
+    varies: &[Vary],
+    progress: impl Fn() + Sync,
+) -> Result<Vec<SweepRow>, String> {
+    let table = check_keys(base_text, varies)?;
+    let n = count(varies);
+    Ok((0..n)
+        .into_par_iter()
+        .map(|index| {
+            // Mixed-radix digits of the index, last key fastest.
+            let mut rest = index;
+            let mut values = vec![0.0; varies.len()];
+            for (k, v) in varies.iter().enumerate().rev() {
+                values[k] = v.values[rest % v.values.len()];
+                rest /= v.values.len();
+            }
+            let mut t = table.clone();
+            for (v, &x) in varies.iter().zip(&values) {
+                let (section, key) = v.key.split_once('.').unwrap_or(("", ""));
+                if let Some(sec) = t.get_mut(section).and_then(|s| s.as_table_mut()) {
+                    sec.insert(key.to_string(), toml::Value::Float(x));
+                }
+            }
+            let row = match toml::to_string(&t)
+                .map_err(|e| e.to_string())
+                .and_then(|text| Scene::from_toml(&text, origin).map_err(|e| e.to_string()))
+                .and_then(|scene| route::run(&scene).map_err(|e| e.to_string()))
+            {
+                Ok(r) => row_of(values, &r),
+                Err(e) => SweepRow {
+                    values,
+                    reason: "invalid scene".into(),
+                    t_end_s: None,
+                    travel_m: None,
+                    final_theta_deg: None,
+                    max_alpha_deg: None,
+                    max_beta_deg: None,
+                    factor_of_safety_onset: None,
+                    detail: e,
+                },
+            };
+            progress();
+            row
+        })
+        .collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn vary_parses_ranges_and_rejects_bad_ones() {
+        let v = parse_vary("friction.mu_k=0.2:0.6:5").unwrap();
+        assert_eq!(v.key, "friction.mu_k");
+        assert_eq!(v.values.len(), 5);
+        assert!((v.values[4] - 0.6).abs() < 1e-15 && (v.values[2] - 0.4).abs() < 1e-15);
+        assert_eq!(
+            parse_vary("loads.eccentricity_m=1:1:1").unwrap().values,
+            vec![1.0]
+        );
+        for bad in [
+            "mu=1:2:3",
+            "friction.mu_k",
+            "friction.mu_k=1:2",
+            "friction.mu_k=a:2:3",
+            "friction.mu_k=1:2:0",
+            "friction.mu_k=1:inf:2",
+        ] {
+            let e = parse_vary(bad).unwrap_err();
+            assert!(e.starts_with(&format!("--vary {bad}")), "{e}");
+        }
+    }
+
+    #[test]
+    fn unknown_keys_are_named() {
+        let base = crate::scene::DEFAULT_SCENE_TOML;
+        let e = check_keys(base, &[parse_vary("friction.mu=0:1:2").unwrap()]).unwrap_err();
+        assert!(e.contains("friction.mu") && e.contains("mu_k"), "{e}");
+        let e = check_keys(base, &[parse_vary("water.level=0:1:2").unwrap()]).unwrap_err();
+        assert!(e.contains("no section [water]"), "{e}");
+    }
+
+    #[test]
+    fn combinations_are_ordered_with_the_last_key_fastest_and_invalid_ones_are_rows() {
+        let base = crate::scene::DEFAULT_SCENE_TOML;
+        let varies = [
+            parse_vary("foundation.xi_deg=20:95:2").unwrap(),
+            parse_vary("loads.hydraulic_force_n=0:8e6:2").unwrap(),
+        ];
+        let rows = run(base, "base", &varies, || ()).unwrap();
+        assert_eq!(rows.len(), 4);
+        assert_eq!(rows[1].values, vec![20.0, 8e6]);
+        assert_eq!(rows[0].reason, "does not slide");
+        assert_eq!(rows[2].reason, "invalid scene");
+        assert!(
+            rows[2].detail.contains("foundation.xi_deg"),
+            "{}",
+            rows[2].detail
+        );
+    }
+}
