@@ -312,3 +312,24 @@ fn each_termination_reason_is_reached_with_its_typed_reason() {
     assert_eq!(short.termination.reason, Reason::TimeLimit);
     assert!((short.termination.t_s - 0.3).abs() < 1e-12);
 }
+
+#[test]
+fn every_example_scene_runs_to_a_stated_end() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
+    let mut n = 0;
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "toml") {
+            let s = Scene::from_file(&path).unwrap();
+            let r = run(&s);
+            assert!(!r.rows.is_empty(), "{}", path.display());
+            assert!(
+                r.rows
+                    .iter()
+                    .all(|w| w.x_m.is_finite() && w.y_m.is_finite())
+            );
+            n += 1;
+        }
+    }
+    assert!(n >= 3);
+}
