@@ -333,3 +333,33 @@ fn every_example_scene_runs_to_a_stated_end() {
     }
     assert!(n >= 3);
 }
+
+#[test]
+fn all_roots_method_gives_the_same_route_as_continuation() {
+    use slideroute::route::PoseMethod;
+    for mode in [
+        slideroute::scene::Mode::Exact,
+        slideroute::scene::Mode::SmallAngle,
+    ] {
+        let s = with(|s| {
+            let sv = s.solver.as_mut().unwrap();
+            sv.t_end = 1.0;
+            sv.mode = mode;
+        });
+        let a = route::run_with(&s, PoseMethod::Continuation, |_| ()).unwrap();
+        let b = route::run_with(&s, PoseMethod::AllRoots, |_| ()).unwrap();
+        assert_eq!(a.rows.len(), b.rows.len());
+        let worst = a
+            .rows
+            .iter()
+            .zip(&b.rows)
+            .map(|(p, q)| {
+                (p.x_m - q.x_m)
+                    .abs()
+                    .max((p.z_m - q.z_m).abs())
+                    .max((p.alpha_deg - q.alpha_deg).abs())
+            })
+            .fold(0.0, f64::max);
+        assert!(worst < 1e-9, "{mode:?}: {worst}");
+    }
+}

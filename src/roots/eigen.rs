@@ -328,8 +328,22 @@ pub fn x_roots_resultant(p: &Coeffs, q: &Coeffs) -> Option<([C; 8], usize, usize
 /// if the QR iteration fails), then y and refinement as described in the module docs.
 pub fn solve(p: &Coeffs, q: &Coeffs) -> RawRoots {
     match x_roots_resultant(p, q) {
-        Some((xs, n, at_infinity)) => assign_y(p, q, &xs[..n], at_infinity),
+        Some((xs, n, at_infinity)) => assign_y(p, q, &xs[..n], at_infinity, false),
         None => solve_pencil(p, q),
+    }
+}
+
+/// Every finite eigenvalue with its best y, *without* the residual test that [`solve`] uses to
+/// tell roots from misplaced eigenvalues at infinity: starting points for a caller that refines
+/// them on other (e.g. unsquared) equations and judges them there. Near the start of sliding
+/// the roots are nearly double and their coefficients tiny, so that test is not meaningful.
+pub fn candidates(p: &Coeffs, q: &Coeffs) -> Vec<RawRoot> {
+    match x_roots_resultant(p, q) {
+        Some((xs, n, at_infinity)) => assign_y(p, q, &xs[..n], at_infinity, true).roots,
+        None => {
+            let (xs, at_infinity) = x_roots_pencil(p, q);
+            assign_y(p, q, &xs, at_infinity, true).roots
+        }
     }
 }
 
@@ -337,11 +351,11 @@ pub fn solve(p: &Coeffs, q: &Coeffs) -> RawRoots {
 /// for clustered roots). Kept as the reference the fast path is tested against.
 pub fn solve_pencil(p: &Coeffs, q: &Coeffs) -> RawRoots {
     let (xs, at_infinity) = x_roots_pencil(p, q);
-    assign_y(p, q, &xs, at_infinity)
+    assign_y(p, q, &xs, at_infinity, false)
 }
 
 /// For each x, the y that makes it a common root, then Newton refinement of (x, y).
-fn assign_y(p: &Coeffs, q: &Coeffs, xs: &[C], mut at_infinity: usize) -> RawRoots {
+fn assign_y(p: &Coeffs, q: &Coeffs, xs: &[C], mut at_infinity: usize, keep_all: bool) -> RawRoots {
     // Eigenvalues that coincide may belong to distinct roots sharing one x (then each takes a
     // different y) or to one multiple root (then they share y).
     let mut roots = Vec::with_capacity(8);
@@ -421,6 +435,7 @@ fn assign_y(p: &Coeffs, q: &Coeffs, xs: &[C], mut at_infinity: usize) -> RawRoot
                 // to a large finite value (or y at infinity); one that polishes onto a root
                 // already found from another x is extraneous too.
                 // (A multiple root polishes only to about the square root of round-off.)
+                Some(r) if keep_all => roots.push(r),
                 Some(r)
                     if r.residual < 1e-6
                         && !roots[..first_of_cluster].iter().any(|o: &RawRoot| {

@@ -26,10 +26,12 @@
 
 pub mod classify;
 pub mod eigen;
+pub mod follower;
 pub mod system;
 pub mod tracker;
 
 pub use classify::Inadmissible;
+pub use follower::EigenFollower;
 pub use tracker::{BranchPoint, TrackError, TrackStats, Tracker};
 
 use crate::coeffs::{CoeffInputs, SmallAngleUnsquared};

@@ -74,7 +74,7 @@ const MIN_FRACTION: f64 = 1e-10;
 
 /// Why a corrector attempt was refused.
 #[derive(Debug, Clone, Copy)]
-enum Refusal {
+pub(crate) enum Refusal {
     NoRealQ,
     Singular,
     NotContracting,
@@ -100,7 +100,11 @@ fn norm(v: [f64; 2]) -> f64 {
 
 /// Newton on the unsquared equations from `u0`, with the contraction test.
 #[inline]
-fn correct(eqs: &Equations, u0: [f64; 2], iterations: &mut usize) -> Result<[f64; 2], Refusal> {
+pub(crate) fn correct(
+    eqs: &Equations,
+    u0: [f64; 2],
+    iterations: &mut usize,
+) -> Result<[f64; 2], Refusal> {
     let mut u = u0;
     let mut last = f64::INFINITY;
     for k in 0..MAX_ITERATIONS {

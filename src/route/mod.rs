@@ -8,12 +8,14 @@
 //! ```
 
 pub mod integrator;
+pub mod pose_finder;
 pub mod rhs;
 mod run;
 pub mod state;
 pub mod termination;
 
-pub use run::{run, run_observed};
+pub use pose_finder::PoseMethod;
+pub use run::{run, run_observed, run_with};
 pub use state::{ROUTE_HEADER, Row, State};
 pub use termination::{Reason, Termination};
 
@@ -26,6 +28,8 @@ pub struct Route {
     pub scene: String,
     pub mode: Mode,
     pub integrator: Integrator,
+    /// How the pose was found at each increment.
+    pub pose_method: PoseMethod,
     #[serde(skip)]
     pub rows: Vec<Row>,
     pub termination: Termination,

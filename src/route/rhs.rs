@@ -6,13 +6,13 @@
 //! A = ΣM·j'/I (eqs. 32, 35, with A_Y for the misprinted A_X). θ is measured from +X towards +Z,
 //! the opposite sense of a rotation about +Y, so θ̈ = −A·(j'·Y).
 
+use super::pose_finder::PoseFinder;
 use super::state::State;
 use super::termination::{Reason, from_track_error};
 use crate::geometry::{Displacement, Pose};
 use crate::mechanics::loads::Applied;
 use crate::mechanics::reactions_paper::{self, Reaction, ReactionsError};
 use crate::mechanics::{ContactGeometry, statics};
-use crate::roots::Tracker;
 use crate::scene::{Dynamics, Scene};
 use nalgebra::Vector3;
 
@@ -43,7 +43,7 @@ pub struct Stop {
 pub fn evaluate(
     scene: &Scene,
     dynamics: &Dynamics<'_>,
-    tracker: &mut Tracker<'_>,
+    tracker: &mut PoseFinder<'_>,
     d: Displacement,
     previous: Option<&Reaction>,
     velocity: Option<(Vector3<f64>, Vector3<f64>)>,

@@ -3,12 +3,12 @@
 
 use super::Route;
 use super::integrator::{paper_step, rk4_step};
+use super::pose_finder::{PoseFinder, PoseMethod};
 use super::rhs::{Evaluation, Stop, evaluate, velocity};
 use super::state::{Row, State};
 use super::termination::{Reason, Termination};
 use crate::mechanics::loads::Applied;
 use crate::mechanics::onset::factor_of_safety;
-use crate::roots::Tracker;
 use crate::scene::{Integrator, Scene, SceneError};
 use std::time::Instant;
 
@@ -37,13 +37,22 @@ pub fn run(scene: &Scene) -> Result<Route, SceneError> {
 }
 
 /// [`run`], calling `progress(t / t_end)` after every increment (for progress bars).
-pub fn run_observed(scene: &Scene, mut progress: impl FnMut(f64)) -> Result<Route, SceneError> {
+pub fn run_observed(scene: &Scene, progress: impl FnMut(f64)) -> Result<Route, SceneError> {
+    run_with(scene, PoseMethod::Continuation, progress)
+}
+
+/// [`run_observed`] with a chosen method for the pose at each increment.
+pub fn run_with(
+    scene: &Scene,
+    method: PoseMethod,
+    mut progress: impl FnMut(f64),
+) -> Result<Route, SceneError> {
     let started = Instant::now();
     let dynamics = scene.require_dynamics()?;
     let solver = *dynamics.solver;
     let mode = solver.mode;
     let dt = solver.dt;
-    let mut tracker = Tracker::new(scene, mode);
+    let mut tracker = PoseFinder::new(scene, mode, method);
     let mut state = State::default();
     let mut rows: Vec<Row> = Vec::new();
     let mut travel = 0.0;
@@ -61,6 +70,7 @@ pub fn run_observed(scene: &Scene, mut progress: impl FnMut(f64)) -> Result<Rout
         scene: scene.name.clone(),
         mode,
         integrator: solver.integrator,
+        pose_method: method,
         rows,
         termination: Termination {
             reason,

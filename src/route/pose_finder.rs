@@ -1,0 +1,65 @@
+//! How the route finds the pose at each increment: continuation (the default) or all roots by
+//! eigenvalues with the nearest admissible one chosen (for comparison in the report).
+
+use crate::geometry::{Displacement, Pose};
+use crate::roots::{BranchPoint, EigenFollower, TrackError, Tracker};
+use crate::scene::{Mode, Scene};
+use serde::Serialize;
+
+/// The method that gives the pose at each increment.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum PoseMethod {
+    /// Predictor–corrector continuation of the physical branch (`roots::Tracker`).
+    #[default]
+    Continuation,
+    /// All roots by eigenvalues at every increment, the admissible one nearest the previous
+    /// pose chosen (`roots::EigenFollower`).
+    AllRoots,
+}
+
+impl PoseMethod {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            PoseMethod::Continuation => "continuation",
+            PoseMethod::AllRoots => "all-roots",
+        }
+    }
+}
+
+#[derive(Debug, Clone)]
+pub enum PoseFinder<'s> {
+    Continuation(Tracker<'s>),
+    AllRoots(EigenFollower<'s>),
+}
+
+impl<'s> PoseFinder<'s> {
+    pub fn new(scene: &'s Scene, mode: Mode, method: PoseMethod) -> Self {
+        match method {
+            PoseMethod::Continuation => PoseFinder::Continuation(Tracker::new(scene, mode)),
+            PoseMethod::AllRoots => PoseFinder::AllRoots(EigenFollower::new(scene, mode)),
+        }
+    }
+
+    pub fn advance(&mut self, d: Displacement) -> Result<BranchPoint, TrackError> {
+        match self {
+            PoseFinder::Continuation(t) => t.advance(d),
+            PoseFinder::AllRoots(f) => f.advance(d),
+        }
+    }
+
+    pub fn pose(&self) -> Option<Pose> {
+        match self {
+            PoseFinder::Continuation(t) => t.pose(),
+            PoseFinder::AllRoots(f) => f.pose(),
+        }
+    }
+
+    /// Tracker statistics (continuation only).
+    pub fn stats(&self) -> Option<crate::roots::TrackStats> {
+        match self {
+            PoseFinder::Continuation(t) => Some(t.stats),
+            PoseFinder::AllRoots(_) => None,
+        }
+    }
+}
