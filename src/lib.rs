@@ -22,6 +22,8 @@ pub mod geometry;
 pub mod mechanics;
 pub mod numeric;
 pub mod output;
+#[cfg(feature = "cli")]
+pub mod report;
 pub mod roots;
 pub mod route;
 pub mod scene;

@@ -57,6 +57,9 @@ enum Command {
         /// No progress bar and no summary (errors are still reported).
         #[arg(long)]
         quiet: bool,
+        /// Write only route.csv and summary.json, no pictures.
+        #[arg(long)]
+        no_plots: bool,
     },
     /// Run the route for every combination of scene values, in parallel, and write
     /// DIR/sweep.csv (one row per combination: the varied values, how the route ended, travel,
@@ -72,6 +75,21 @@ enum Command {
         vary: Vec<String>,
         /// Output folder (created if needed).
         #[arg(long, value_name = "DIR", default_value = "out")]
+        out: PathBuf,
+        /// No progress bar and no summary.
+        #[arg(long)]
+        quiet: bool,
+    },
+    /// Measure error against run time: the paper-like and shallow scenes with each pose method
+    /// (continuation, all roots at every increment), mode and integrator over a ladder of dt,
+    /// against a fine reference; plus the stiff and extreme cases. Writes
+    /// DIR/work-precision.csv, DIR/work-precision.svg and DIR/work-precision.md.
+    Report {
+        /// Fewer steps of dt and repeats (under a minute).
+        #[arg(long)]
+        quick: bool,
+        /// Output folder (created if needed).
+        #[arg(long, value_name = "DIR", default_value = "report")]
         out: PathBuf,
         /// No progress bar and no summary.
         #[arg(long)]
@@ -222,17 +240,27 @@ fn progress_bar(quiet: bool, len: u64, what: &str) -> indicatif::ProgressBar {
     bar
 }
 
-fn run_cmd(scene: &SceneArg, out: &std::path::Path, quiet: bool) -> Result<(), String> {
+fn run_cmd(
+    scene: &SceneArg,
+    out: &std::path::Path,
+    quiet: bool,
+    no_plots: bool,
+) -> Result<(), String> {
     let scene = load(scene)?;
     let bar = progress_bar(quiet, 1000, "route");
     let route = slideroute::route::run_observed(&scene, |f| bar.set_position((f * 1000.0) as u64))
         .map_err(|e| e.to_string())?;
     bar.finish_and_clear();
+    #[allow(unused_mut)]
     let mut files: Vec<PathBuf> = slideroute::output::route_files::write(out, &route)?.to_vec();
     #[cfg(feature = "plots")]
-    files.extend(slideroute::output::plots::write_route_plots(
-        out, &scene, &route,
-    )?);
+    if !no_plots {
+        files.extend(slideroute::output::plots::write_route_plots(
+            out, &scene, &route,
+        )?);
+    }
+    #[cfg(not(feature = "plots"))]
+    let _ = no_plots;
     if quiet {
         return Ok(());
     }
@@ -315,6 +343,53 @@ fn sweep_cmd(
     Ok(())
 }
 
+fn report_cmd(quick: bool, out: &std::path::Path, quiet: bool) -> Result<(), String> {
+    let bar = progress_bar(
+        quiet,
+        slideroute::report::point_count(quick) as u64,
+        "report",
+    );
+    let (points, references) = slideroute::report::work_precision(quick, || bar.inc(1))?;
+    bar.finish_and_clear();
+    let extreme = slideroute::report::extreme(if quick { 20 } else { 200 });
+    std::fs::create_dir_all(out).map_err(|e| format!("{}: cannot create: {e}", out.display()))?;
+    let csv_path = out.join("work-precision.csv");
+    let file = std::fs::File::create(&csv_path)
+        .map_err(|e| format!("{}: cannot write: {e}", csv_path.display()))?;
+    slideroute::output::report_files::write_csv(file, &points)
+        .map_err(|e| format!("{}: {e}", csv_path.display()))?;
+    let md = slideroute::output::report_files::markdown(&points, &references, &extreme, quick);
+    let md_path = out.join("work-precision.md");
+    std::fs::write(&md_path, &md)
+        .map_err(|e| format!("{}: cannot write: {e}", md_path.display()))?;
+    #[allow(unused_mut)]
+    let mut written = vec![
+        csv_path.display().to_string(),
+        md_path.display().to_string(),
+    ];
+    #[cfg(feature = "plots")]
+    {
+        let svg = out.join("work-precision.svg");
+        slideroute::output::plots::work_precision(&svg, &points)?;
+        written.push(svg.display().to_string());
+    }
+    if !quiet {
+        for r in &references {
+            println!(
+                "reference {}: dt {:.4e} s, change at dt/2 {:.1e} m (bound {:.0e} m)",
+                r.scene, r.dt_s, r.change_m, r.bound_m
+            );
+        }
+        println!(
+            "{} points, {} extreme cases; wrote {}",
+            points.len(),
+            extreme.len(),
+            written.join(", ")
+        );
+    }
+    Ok(())
+}
+
 fn scene_cmd(print_default: bool, check: Option<&PathBuf>) -> Result<(), String> {
     match (print_default, check) {
         (true, _) => {
@@ -338,13 +413,19 @@ fn scene_cmd(print_default: bool, check: Option<&PathBuf>) -> Result<(), String>
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match &cli.command {
-        Command::Run { scene, out, quiet } => run_cmd(scene, out, *quiet),
+        Command::Run {
+            scene,
+            out,
+            quiet,
+            no_plots,
+        } => run_cmd(scene, out, *quiet, *no_plots),
         Command::Sweep {
             scene,
             vary,
             out,
             quiet,
         } => sweep_cmd(scene, vary, out, *quiet),
+        Command::Report { quick, out, quiet } => report_cmd(*quick, out, *quiet),
         Command::Scene {
             print_default,
             check,

@@ -502,3 +502,42 @@ fn every_command_explains_its_flags() {
     let top = String::from_utf8_lossy(&run(&["--help"]).stdout).to_string();
     assert!(top.contains("degrees") && top.contains("metres"));
 }
+
+#[test]
+fn report_quick_writes_csv_markdown_and_picture() {
+    let dir = temp_dir("report");
+    let o = run(&["report", "--quick", "--out", dir.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let csv = std::fs::read_to_string(dir.join("work-precision.csv")).unwrap();
+    assert_eq!(
+        csv.lines().next().unwrap(),
+        "scene,method,mode,integrator,dt_s,increments,wall_s,error_m"
+    );
+    assert_eq!(
+        csv.lines().count(),
+        1 + slideroute::report::point_count(true)
+    );
+    let md = std::fs::read_to_string(dir.join("work-precision.md")).unwrap();
+    assert!(md.contains("## Stiff and extreme cases") && md.contains("## References"));
+    assert!(
+        std::fs::read_to_string(dir.join("work-precision.svg"))
+            .unwrap()
+            .starts_with("<svg")
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn run_no_plots_writes_only_the_data() {
+    let dir = temp_dir("noplots");
+    let o = run(&[
+        "run",
+        "--no-plots",
+        "--quiet",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(o.status.success());
+    assert!(dir.join("route.csv").exists() && !dir.join("plan.svg").exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}

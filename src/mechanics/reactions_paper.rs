@@ -93,23 +93,30 @@ impl System {
 
     /// h(φ) = G0 + Σ (cos φ_i A_i + sin φ_i B_i); the equations read j·h(φ) = w.
     fn h(&self, phi: &[f64; 3]) -> Vector4<f64> {
+        self.h_sc(&phi.map(f64::sin_cos))
+    }
+
+    /// h from precomputed (sin φ_i, cos φ_i).
+    fn h_sc(&self, sc: &[(f64, f64); 3]) -> Vector4<f64> {
         let mut h = self.g0;
         for i in 0..3 {
-            h += self.a[i] * phi[i].cos() + self.b[i] * phi[i].sin();
+            h += self.a[i] * sc[i].1 + self.b[i] * sc[i].0;
         }
         h
     }
 
-    /// Newton on the four equations j·h(φ) − w = 0 in (j, φ0, φ1, φ2).
+    /// Newton on the four equations j·h(φ) − w = 0 in (j, φ0, φ1, φ2); stops when the updates
+    /// are at round-off (relative in j, absolute in the angles). Returns (j, φ, relative residual).
     fn polish(&self, mut j: f64, mut phi: [f64; 3]) -> (f64, [f64; 3], f64) {
         let scale = self.w.amax().max(1e-300);
-        for _ in 0..6 {
-            let h = self.h(&phi);
+        let mut sc = phi.map(f64::sin_cos);
+        for _ in 0..8 {
+            let h = self.h_sc(&sc);
             let r = h * j - self.w;
             let mut jac = Matrix4::zeros();
             jac.set_column(0, &h);
             for i in 0..3 {
-                let d = (self.b[i] * phi[i].cos() - self.a[i] * phi[i].sin()) * j;
+                let d = (self.b[i] * sc[i].1 - self.a[i] * sc[i].0) * j;
                 jac.set_column(i + 1, &d);
             }
             let Some(dx) = jac.lu().solve(&(-r)) else {
@@ -119,11 +126,17 @@ impl System {
             for i in 0..3 {
                 phi[i] += dx[i + 1];
             }
-            if dx.amax() < 1e-15 * (1.0 + j.abs()) {
+            sc = phi.map(f64::sin_cos);
+            let step = (dx[0] / j)
+                .abs()
+                .max(dx[1].abs())
+                .max(dx[2].abs())
+                .max(dx[3].abs());
+            if step.is_nan() || step < 1e-13 {
                 break;
             }
         }
-        let res = (self.h(&phi) * j - self.w).amax() / scale;
+        let res = (self.h_sc(&sc) * j - self.w).amax() / scale;
         (j, phi, res)
     }
 

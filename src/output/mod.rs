@@ -5,6 +5,8 @@ pub mod coeffs_report;
 pub mod grid_csv;
 #[cfg(feature = "plots")]
 pub mod plots;
+#[cfg(feature = "cli")]
+pub mod report_files;
 pub mod roots_report;
 #[cfg(feature = "cli")]
 pub mod route_files;

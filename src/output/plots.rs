@@ -440,3 +440,94 @@ pub fn sweep(
     }
     root.present().map_err(|e| err(path)(e.to_string()))
 }
+
+/// Log–log error against wall time, one line per series (scene, method, mode, integrator).
+#[cfg(feature = "cli")]
+pub fn work_precision(path: &Path, points: &[crate::report::Point]) -> Res<()> {
+    use std::collections::BTreeMap;
+    let mut series: BTreeMap<String, Vec<(f64, f64)>> = BTreeMap::new();
+    for p in points.iter().filter(|p| p.error_m > 0.0 && p.wall_s > 0.0) {
+        let key = format!(
+            "{} {} {} {}",
+            p.scene,
+            p.method.as_str(),
+            p.mode.as_str(),
+            p.integrator.as_str()
+        );
+        series.entry(key).or_default().push((p.wall_s, p.error_m));
+    }
+    let all: Vec<(f64, f64)> = series.values().flatten().copied().collect();
+    let (t0, t1) = all
+        .iter()
+        .fold((f64::INFINITY, 0.0f64), |a, p| (a.0.min(p.0), a.1.max(p.0)));
+    let (e0, e1) = all
+        .iter()
+        .fold((f64::INFINITY, 0.0f64), |a, p| (a.0.min(p.1), a.1.max(p.1)));
+    if all.is_empty() {
+        return Ok(());
+    }
+    let root = SVGBackend::new(path, (1000, 700)).into_drawing_area();
+    root.fill(&WHITE).map_err(|e| err(path)(e.to_string()))?;
+    let mut chart = ChartBuilder::on(&root)
+        .caption(
+            "work–precision: error of the route against run time",
+            ("sans-serif", 18),
+        )
+        .margin(10)
+        .x_label_area_size(40)
+        .y_label_area_size(70)
+        .build_cartesian_2d(
+            (t0 / 1.5..t1 * 1.5).log_scale(),
+            (e0 / 3.0..e1 * 3.0).log_scale(),
+        )
+        .map_err(|e| err(path)(e.to_string()))?;
+    chart
+        .configure_mesh()
+        .max_light_lines(1)
+        .x_desc("wall time of the route (s)")
+        .y_desc("largest CM error against the reference (m)")
+        .y_label_formatter(&|v| format!("{v:.0e}"))
+        .x_label_formatter(&|v| format!("{v:.0e}"))
+        .draw()
+        .map_err(|e| err(path)(e.to_string()))?;
+    let palette = [
+        RGBColor(200, 30, 30),
+        RGBColor(30, 90, 200),
+        RGBColor(30, 150, 60),
+        RGBColor(230, 140, 0),
+        RGBColor(140, 40, 170),
+        RGBColor(0, 150, 160),
+        RGBColor(120, 80, 40),
+        RGBColor(90, 90, 90),
+    ];
+    for (k, (name, mut pts)) in series.into_iter().enumerate() {
+        pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let color = palette[k % palette.len()];
+        let dashed = k >= palette.len();
+        let style = if dashed {
+            color.stroke_width(1)
+        } else {
+            color.stroke_width(2)
+        };
+        chart
+            .draw_series(LineSeries::new(pts.clone(), style))
+            .map_err(|e| err(path)(e.to_string()))?
+            .label(name)
+            .legend(move |(a, b)| PathElement::new(vec![(a, b), (a + 20, b)], style));
+        chart
+            .draw_series(
+                pts.into_iter()
+                    .map(|p| Circle::new(p, if dashed { 2 } else { 3 }, color.filled())),
+            )
+            .map_err(|e| err(path)(e.to_string()))?;
+    }
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.92))
+        .border_style(BLACK)
+        .label_font(("sans-serif", 11))
+        .position(SeriesLabelPosition::LowerLeft)
+        .draw()
+        .map_err(|e| err(path)(e.to_string()))?;
+    root.present().map_err(|e| err(path)(e.to_string()))
+}

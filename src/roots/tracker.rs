@@ -50,7 +50,7 @@ pub enum TrackError {
 }
 
 /// Counters for reports and benchmarks.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize)]
 pub struct TrackStats {
     pub steps: usize,
     pub rejected: usize,
@@ -63,6 +63,8 @@ pub struct Tracker<'s> {
     scene: &'s Scene,
     mode: Mode,
     current: BranchPoint,
+    /// The placed frame at `current`, built by the admissibility check.
+    current_pose: Option<Pose>,
     previous: Option<BranchPoint>,
     /// Fraction of the next segment to try first (grows after successes).
     h: f64,
@@ -163,6 +165,7 @@ impl<'s> Tracker<'s> {
                 d: Displacement::default(),
                 u: [0.0, 0.0],
             },
+            current_pose: pose(scene, Displacement::default(), mode, [0.0, 0.0]),
             previous: None,
             h: 1.0,
             stats: TrackStats::default(),
@@ -180,7 +183,7 @@ impl<'s> Tracker<'s> {
 
     /// The placed frame at the current point.
     pub fn pose(&self) -> Option<Pose> {
-        pose(self.scene, self.current.d, self.mode, self.current.u)
+        self.current_pose
     }
 
     /// Follows the branch along the straight segment from the current displacement to
@@ -230,6 +233,7 @@ impl<'s> Tracker<'s> {
             }
         }
         self.h = h;
+        self.current_pose = pose(self.scene, self.current.d, self.mode, self.current.u);
         self.check()?;
         Ok(self.current)
     }
@@ -252,6 +256,26 @@ impl<'s> Tracker<'s> {
         }
     }
 
+    /// Condition number (2-norm) of the Jacobian of the tracked equations at the current point:
+    /// large near a turning point or where roots merge.
+    pub fn jacobian_condition(&self) -> Option<f64> {
+        let e = Equations::new(self.scene, self.current.d, self.mode).eval(self.current.u)?;
+        let [[a, b], [c, d]] = e.j;
+        // Singular values of a 2×2 matrix.
+        let s = a * a + b * b + c * c + d * d;
+        let det = (a * d - b * c).abs();
+        let disc = (s * s - 4.0 * det * det).max(0.0).sqrt();
+        let (smax, smin) = (
+            ((s + disc) / 2.0).sqrt(),
+            ((s - disc) / 2.0).max(0.0).sqrt(),
+        );
+        Some(if smin > 0.0 {
+            smax / smin
+        } else {
+            f64::INFINITY
+        })
+    }
+
     fn check(&self) -> Result<(), TrackError> {
         let d = self.current.d;
         let fail = |reason| TrackError::Inadmissible {
@@ -263,7 +287,9 @@ impl<'s> Tracker<'s> {
         if self.mode == Mode::Exact && exact_mirrored(self.current.u[1]) {
             return Err(fail(Inadmissible::Spurious));
         }
-        let p = self.pose().ok_or_else(|| fail(Inadmissible::NoRealFrame))?;
+        let p = self
+            .current_pose
+            .ok_or_else(|| fail(Inadmissible::NoRealFrame))?;
         check_pose(self.scene, &p).map_err(fail)
     }
 }

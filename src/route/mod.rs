@@ -42,6 +42,12 @@ pub struct Route {
     pub increments: usize,
     /// How often the followed friction solution was lost and chosen afresh by the rule.
     pub friction_switches: usize,
+    /// Continuation statistics: accepted and rejected steps, Newton iterations (continuation
+    /// method only).
+    pub tracker: Option<crate::roots::TrackStats>,
+    /// Condition number of the tracked equations' Jacobian at the last pose (continuation only):
+    /// large near a turning point or where roots merge.
+    pub end_jacobian_condition: Option<f64>,
     /// Wall-clock time of the computation (s).
     pub wall_s: f64,
 }

@@ -27,6 +27,9 @@ impl PoseMethod {
     }
 }
 
+/// Continuation is the common case and the larger variant; boxing it would cost an allocation
+/// for every RK4 stage (the finder is cloned per stage), so the size difference is accepted.
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug, Clone)]
 pub enum PoseFinder<'s> {
     Continuation(Tracker<'s>),
@@ -52,6 +55,14 @@ impl<'s> PoseFinder<'s> {
         match self {
             PoseFinder::Continuation(t) => t.pose(),
             PoseFinder::AllRoots(f) => f.pose(),
+        }
+    }
+
+    /// Jacobian condition number at the current point (continuation only).
+    pub fn jacobian_condition(&self) -> Option<f64> {
+        match self {
+            PoseFinder::Continuation(t) => t.jacobian_condition(),
+            PoseFinder::AllRoots(_) => None,
         }
     }
 

@@ -30,6 +30,18 @@ fn row(s: &State, ev: Option<&Evaluation>, pose: &crate::geometry::Pose) -> Row 
     }
 }
 
+/// What the loop produced, before the diagnostics are added.
+struct Outcome {
+    rows: Vec<Row>,
+    reason: Reason,
+    t: f64,
+    detail: String,
+    fs: Option<f64>,
+    travel: f64,
+    increments: usize,
+    switches: usize,
+}
+
 /// Runs the route of a scene (which needs its `[block]`, `[loads]`, `[friction]` and
 /// `[solver]` sections).
 pub fn run(scene: &Scene) -> Result<Route, SceneError> {
@@ -45,66 +57,74 @@ pub fn run_observed(scene: &Scene, progress: impl FnMut(f64)) -> Result<Route, S
 pub fn run_with(
     scene: &Scene,
     method: PoseMethod,
-    mut progress: impl FnMut(f64),
+    progress: impl FnMut(f64),
 ) -> Result<Route, SceneError> {
     let started = Instant::now();
     let dynamics = scene.require_dynamics()?;
     let solver = *dynamics.solver;
-    let mode = solver.mode;
-    let dt = solver.dt;
-    let mut tracker = PoseFinder::new(scene, mode, method);
-    let mut state = State::default();
-    let mut rows: Vec<Row> = Vec::new();
-    let mut travel = 0.0;
-    let mut increments = 0usize;
-    let mut switches = 0usize;
-
-    let finish = |rows: Vec<Row>,
-                  reason: Reason,
-                  t: f64,
-                  detail: String,
-                  fs: Option<f64>,
-                  travel: f64,
-                  increments: usize,
-                  switches: usize| Route {
+    let mut finder = PoseFinder::new(scene, solver.mode, method);
+    let o = slide(scene, &dynamics, &mut finder, progress);
+    Ok(Route {
         scene: scene.name.clone(),
-        mode,
+        mode: solver.mode,
         integrator: solver.integrator,
         pose_method: method,
-        rows,
+        rows: o.rows,
         termination: Termination {
-            reason,
-            t_s: t,
-            detail,
+            reason: o.reason,
+            t_s: o.t,
+            detail: o.detail,
         },
-        factor_of_safety_onset: fs,
-        travel_m: travel,
-        increments,
-        friction_switches: switches,
+        factor_of_safety_onset: o.fs,
+        travel_m: o.travel,
+        increments: o.increments,
+        friction_switches: o.switches,
+        tracker: finder.stats(),
+        end_jacobian_condition: finder.jacobian_condition(),
         wall_s: started.elapsed().as_secs_f64(),
+    })
+}
+
+fn slide(
+    scene: &Scene,
+    dynamics: &crate::scene::Dynamics<'_>,
+    finder: &mut PoseFinder<'_>,
+    mut progress: impl FnMut(f64),
+) -> Outcome {
+    let solver = *dynamics.solver;
+    let dt = solver.dt;
+    let mut state = State::default();
+    let mut o = Outcome {
+        rows: Vec::new(),
+        reason: Reason::TimeLimit,
+        t: 0.0,
+        detail: String::new(),
+        fs: None,
+        travel: 0.0,
+        increments: 0,
+        switches: 0,
+    };
+    let end = |mut o: Outcome, reason: Reason, t: f64, detail: String| {
+        o.reason = reason;
+        o.t = t;
+        o.detail = detail;
+        o
     };
 
     // The start: pose, statics and whether the block slides at all.
-    let start_pose = tracker.pose().expect("the flat start pose exists");
-    let mut ev = match evaluate(
-        scene,
-        &dynamics,
-        &mut tracker,
-        state.displacement(),
-        None,
-        None,
-    ) {
+    let start_pose = finder.pose().expect("the flat start pose exists");
+    let mut ev = match evaluate(scene, dynamics, finder, state.displacement(), None, None) {
         Ok(ev) => ev,
         Err(Stop { reason, detail }) => {
-            rows.push(row(&state, None, &start_pose));
-            return Ok(finish(rows, reason, 0.0, detail, None, 0.0, 0, 0));
+            o.rows.push(row(&state, None, &start_pose));
+            return end(o, reason, 0.0, detail);
         }
     };
     let applied = Applied::new(dynamics.loads, dynamics.block, &ev.geom.frame);
     let (fs, driving, resisting) =
         factor_of_safety(&ev.geom, &applied, &ev.statics, dynamics.friction);
-    let fs_out = fs.is_finite().then_some(fs);
-    rows.push(row(&state, Some(&ev), &ev.pose));
+    o.fs = fs.is_finite().then_some(fs);
+    o.rows.push(row(&state, Some(&ev), &ev.pose));
     if fs >= 1.0 || ev.reaction.accel <= 0.0 {
         let detail = if driving <= 0.0 {
             format!("nothing drives the block: net driving force along x' is {driving:.6e} N")
@@ -118,16 +138,7 @@ pub fn run_with(
                 ev.reaction.accel
             )
         };
-        return Ok(finish(
-            rows,
-            Reason::DoesNotSlide,
-            0.0,
-            detail,
-            fs_out,
-            0.0,
-            0,
-            0,
-        ));
+        return end(o, Reason::DoesNotSlide, 0.0, detail);
     }
 
     let stride = solver.stride.max(1);
@@ -137,14 +148,14 @@ pub fn run_with(
         let next = match solver.integrator {
             Integrator::Paper => Ok(paper_step(&state, &ev.acc, dt)),
             Integrator::Rk4 => {
-                let base = tracker.clone();
+                let base = finder.clone();
                 let prev = ev.reaction;
                 rk4_step(&state, &ev.acc, dt, |s: &State| {
-                    let mut t = base.clone();
+                    let mut f = base.clone();
                     evaluate(
                         scene,
-                        &dynamics,
-                        &mut t,
+                        dynamics,
+                        &mut f,
                         s.displacement(),
                         Some(&prev),
                         velocity(s),
@@ -159,32 +170,24 @@ pub fn run_with(
                 t: k as f64 * dt,
                 ..n
             },
-            Err(Stop { reason, detail }) => {
-                return Ok(finish(
-                    rows, reason, state.t, detail, fs_out, travel, increments, switches,
-                ));
-            }
+            Err(Stop { reason, detail }) => return end(o, reason, state.t, detail),
         };
         let new_ev = match evaluate(
             scene,
-            &dynamics,
-            &mut tracker,
+            dynamics,
+            finder,
             next.displacement(),
             Some(&ev.reaction),
             velocity(&next),
         ) {
             Ok(e) => e,
-            Err(Stop { reason, detail }) => {
-                return Ok(finish(
-                    rows, reason, state.t, detail, fs_out, travel, increments, switches,
-                ));
-            }
+            Err(Stop { reason, detail }) => return end(o, reason, state.t, detail),
         };
         if new_ev.fresh {
-            switches += 1;
+            o.switches += 1;
         }
-        travel += (new_ev.pose.cm - ev.pose.cm).norm();
-        increments = k;
+        o.travel += (new_ev.pose.cm - ev.pose.cm).norm();
+        o.increments = k;
         // Stopped: the velocity reverses (speed passes through zero) and friction holds.
         let reversed = next.vx * state.vx + next.vz * state.vz <= 0.0 && state.speed() > 0.0;
         if reversed {
@@ -195,39 +198,22 @@ pub fn run_with(
                 next.vx = 0.0;
                 next.vz = 0.0;
                 next.omega = 0.0;
-                rows.push(row(&next, Some(&new_ev), &new_ev.pose));
+                o.rows.push(row(&next, Some(&new_ev), &new_ev.pose));
                 let detail = format!(
                     "speed reached zero at t = {:.6} s; factor of safety there {fs_here:.4}",
                     next.t
                 );
-                return Ok(finish(
-                    rows,
-                    Reason::Stopped,
-                    next.t,
-                    detail,
-                    fs_out,
-                    travel,
-                    increments,
-                    switches,
-                ));
+                return end(o, Reason::Stopped, next.t, detail);
             }
         }
         state = next;
         ev = new_ev;
         progress(k as f64 / n_steps as f64);
         if k % stride == 0 || k == n_steps {
-            rows.push(row(&state, Some(&ev), &ev.pose));
+            o.rows.push(row(&state, Some(&ev), &ev.pose));
         }
     }
     let detail = format!("t reached t_end = {} s", solver.t_end);
-    Ok(finish(
-        rows,
-        Reason::TimeLimit,
-        state.t,
-        detail,
-        fs_out,
-        travel,
-        increments,
-        switches,
-    ))
+    let t = state.t;
+    end(o, Reason::TimeLimit, t, detail)
 }

@@ -1,0 +1,106 @@
+//! `work-precision.csv`, `work-precision.md` for the report.
+
+use crate::report::{ExtremeRow, Point, Reference};
+use std::fmt::Write as _;
+use std::io::Write;
+
+pub const HEADER: [&str; 8] = [
+    "scene",
+    "method",
+    "mode",
+    "integrator",
+    "dt_s",
+    "increments",
+    "wall_s",
+    "error_m",
+];
+
+pub fn write_csv(out: impl Write, points: &[Point]) -> Result<(), csv::Error> {
+    let mut w = csv::Writer::from_writer(out);
+    w.write_record(HEADER)?;
+    for p in points {
+        w.write_record([
+            p.scene.clone(),
+            p.method.as_str().to_string(),
+            p.mode.as_str().to_string(),
+            p.integrator.as_str().to_string(),
+            p.dt_s.to_string(),
+            p.increments.to_string(),
+            p.wall_s.to_string(),
+            p.error_m.to_string(),
+        ])?;
+    }
+    w.flush()?;
+    Ok(())
+}
+
+/// The report as markdown: references, the work–precision table, the extreme cases.
+pub fn markdown(
+    points: &[Point],
+    references: &[Reference],
+    extreme: &[ExtremeRow],
+    quick: bool,
+) -> String {
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "# Work–precision report{}\n",
+        if quick { " (quick)" } else { "" }
+    );
+    let _ = writeln!(
+        s,
+        "Error: largest distance of the CM from the reference at matching times. Time: median wall time of the whole route (repeats).\n"
+    );
+    let _ = writeln!(
+        s,
+        "## References\n\n| scene | horizon (s) | dt (s) | change at dt/2 (m) | bound 1e-9·L (m) |\n| --- | --- | --- | --- | --- |"
+    );
+    for r in references {
+        let _ = writeln!(
+            s,
+            "| {} | {} | {:.4e} | {:.2e} | {:.0e} |",
+            r.scene, r.horizon_s, r.dt_s, r.change_m, r.bound_m
+        );
+    }
+    let _ = writeln!(
+        s,
+        "\n## Error and time\n\n| scene | method | mode | integrator | dt (s) | increments | time (ms) | error (m) | µs / increment |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- |"
+    );
+    for p in points {
+        let _ = writeln!(
+            s,
+            "| {} | {} | {} | {} | {} | {} | {:.3} | {:.2e} | {:.2} |",
+            p.scene,
+            p.method.as_str(),
+            p.mode.as_str(),
+            p.integrator.as_str(),
+            p.dt_s,
+            p.increments,
+            p.wall_s * 1e3,
+            p.error_m,
+            p.wall_s * 1e6 / p.increments.max(1) as f64
+        );
+    }
+    let _ = writeln!(
+        s,
+        "\n## Stiff and extreme cases\n\n| case | end | t (s) | travel (m) | increments | rejected steps | Newton / step | cond(J) at end | max tilt error vs direct (rad) |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- |"
+    );
+    for e in extreme {
+        let _ = writeln!(
+            s,
+            "| {} | {} | {:.3} | {:.3} | {} | {} | {:.2} | {} | {} |",
+            e.case,
+            e.reason,
+            e.t_s,
+            e.travel_m,
+            e.increments,
+            e.rejected_steps,
+            e.newton_per_step,
+            e.end_jacobian_condition
+                .map_or("—".into(), |c| format!("{c:.2e}")),
+            e.max_tilt_error_rad
+                .map_or("—".into(), |c| format!("{c:.1e}"))
+        );
+    }
+    s
+}

@@ -1,0 +1,317 @@
+//! The work–precision report: error of the route against run time for each method, mode and
+//! integrator over a ladder of increments, and the stiff and extreme cases.
+//!
+//! Reference: exact mode, RK4, continuation, dt_ref = 0.02 s / 512, over a horizon that ends
+//! before the route does (paper-like 1 s, shallow 0.5 s). Every dt of the ladder (0.02 s / 2^k)
+//! is an exact binary multiple of dt_ref, so rows match in time exactly. The reference is
+//! established by running it again at dt_ref / 2: the largest CM distance between the two must
+//! be below 1e-9·L (reported as `reference_change_m`).
+
+use crate::route::{self, PoseMethod, Route};
+use crate::scene::{Integrator, Mode, Scene};
+use serde::Serialize;
+use std::time::Instant;
+
+/// The shallow example scene, compiled in for the report.
+pub const SHALLOW_SCENE_TOML: &str = include_str!("../scenes/shallow.toml");
+
+/// One measured point of one series.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Point {
+    pub scene: String,
+    pub method: PoseMethod,
+    pub mode: Mode,
+    pub integrator: Integrator,
+    pub dt_s: f64,
+    pub increments: usize,
+    /// Median wall time of the repeats (s).
+    pub wall_s: f64,
+    /// Largest CM distance from the reference at matching times (m).
+    pub error_m: f64,
+}
+
+/// How each scene's reference was established.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Reference {
+    pub scene: String,
+    pub horizon_s: f64,
+    pub dt_s: f64,
+    /// Largest CM distance between the reference and the same run at dt_ref / 2 (m).
+    pub change_m: f64,
+    /// 1e-9·L.
+    pub bound_m: f64,
+}
+
+const DT0: f64 = 0.02;
+
+fn with_solver(scene: &Scene, mode: Mode, integrator: Integrator, dt: f64, t_end: f64) -> Scene {
+    let mut s = scene.clone();
+    if let Some(sv) = s.solver.as_mut() {
+        sv.mode = mode;
+        sv.integrator = integrator;
+        sv.dt = dt;
+        sv.t_end = t_end;
+        sv.stride = 1;
+    }
+    s
+}
+
+fn run(scene: &Scene, method: PoseMethod) -> Result<Route, String> {
+    route::run_with(scene, method, |_| ()).map_err(|e| e.to_string())
+}
+
+/// Largest CM distance between `coarse` and `fine` at the coarse times (fine dt divides coarse).
+fn max_distance(coarse: &Route, fine: &Route, ratio: usize) -> f64 {
+    coarse
+        .rows
+        .iter()
+        .enumerate()
+        .filter_map(|(k, r)| fine.rows.get(k * ratio).map(|q| (r, q)))
+        .map(|(r, q)| {
+            ((r.x_m - q.x_m).powi(2) + (r.y_m - q.y_m).powi(2) + (r.z_m - q.z_m).powi(2)).sqrt()
+        })
+        .fold(0.0, f64::max)
+}
+
+/// The scenes of the report with their horizons.
+pub fn scenes() -> Vec<(Scene, f64)> {
+    vec![
+        (Scene::default_scene(), 1.0),
+        (
+            Scene::from_toml(SHALLOW_SCENE_TOML, "shallow")
+                .expect("embedded shallow scene is valid"),
+            0.5,
+        ),
+    ]
+}
+
+/// Runs the ladder. `quick`: three steps of dt and three repeats (under a minute here);
+/// otherwise six and seven. `progress()` is called after each point.
+pub fn work_precision(
+    quick: bool,
+    progress: impl Fn(),
+) -> Result<(Vec<Point>, Vec<Reference>), String> {
+    let (levels, repeats) = if quick { (3, 3) } else { (6, 7) };
+    let ref_dt = DT0 / 512.0;
+    let mut points = Vec::new();
+    let mut references = Vec::new();
+    for (scene, horizon) in scenes() {
+        let reference = run(
+            &with_solver(&scene, Mode::Exact, Integrator::Rk4, ref_dt, horizon),
+            PoseMethod::Continuation,
+        )?;
+        let check = run(
+            &with_solver(&scene, Mode::Exact, Integrator::Rk4, ref_dt / 2.0, horizon),
+            PoseMethod::Continuation,
+        )?;
+        references.push(Reference {
+            scene: scene.name.clone(),
+            horizon_s: horizon,
+            dt_s: ref_dt,
+            change_m: max_distance(&reference, &check, 2),
+            bound_m: 1e-9 * scene.l(),
+        });
+        for method in [PoseMethod::Continuation, PoseMethod::AllRoots] {
+            for mode in [Mode::Exact, Mode::SmallAngle] {
+                for integrator in [Integrator::Paper, Integrator::Rk4] {
+                    for k in 0..levels {
+                        let dt = DT0 / f64::from(1u32 << k);
+                        let s = with_solver(&scene, mode, integrator, dt, horizon);
+                        let mut times = Vec::with_capacity(repeats);
+                        let mut last = None;
+                        for _ in 0..repeats {
+                            let t0 = Instant::now();
+                            let r = run(&s, method)?;
+                            times.push(t0.elapsed().as_secs_f64());
+                            last = Some(r);
+                        }
+                        times.sort_by(f64::total_cmp);
+                        let r = last.ok_or("no run")?;
+                        points.push(Point {
+                            scene: scene.name.clone(),
+                            method,
+                            mode,
+                            integrator,
+                            dt_s: dt,
+                            increments: r.increments,
+                            wall_s: times[times.len() / 2],
+                            error_m: max_distance(&r, &reference, (dt / ref_dt).round() as usize),
+                        });
+                        progress();
+                    }
+                }
+            }
+        }
+    }
+    Ok((points, references))
+}
+
+/// Number of points [`work_precision`] measures.
+pub fn point_count(quick: bool) -> usize {
+    let levels = if quick { 3 } else { 6 };
+    2 * 2 * 2 * 2 * levels
+}
+
+/// A named case of the stiff and extreme suite.
+#[derive(Debug, Clone)]
+pub struct Case {
+    pub name: &'static str,
+    pub scene: Scene,
+}
+
+fn set_force(s: &mut Scene, f: f64) {
+    if let Some(l) = s.loads.as_mut() {
+        l.hydraulic_force = f;
+    }
+}
+
+fn set_dips(s: &mut Scene, xi_deg: f64, zeta_deg: f64) {
+    s.foundation.xi = xi_deg.to_radians();
+    s.foundation.zeta = zeta_deg.to_radians();
+}
+
+fn set_l1z_over_l2z(s: &mut Scene, ratio: f64) {
+    let l = s.frame.l();
+    s.frame.l1z = l * ratio / (1.0 + ratio);
+    s.frame.l2z = l - s.frame.l1z;
+}
+
+/// Scenes chosen to break naive code (see `docs/performance.md`, "Stiff and extreme cases").
+pub fn extreme_cases() -> Vec<Case> {
+    let base = Scene::default_scene();
+    let case = |name: &'static str, f: &dyn Fn(&mut Scene)| {
+        let mut s = base.clone();
+        f(&mut s);
+        s.name = name.to_string();
+        Case { name, scene: s }
+    };
+    // Paper-like: driving (F − 2.338 MN) against a capacity of 4.152 MN at μ = 0.4; FS = R / D.
+    let force_for_fs = |fs: f64| 4.152_011e6 / fs + 2.337_862e6;
+    vec![
+        case("dips 0.5°", &|s| set_dips(s, 0.5, 0.5)),
+        case("dips 1°/2°", &|s| set_dips(s, 1.0, 2.0)),
+        case("dips 60°/65°", &|s| {
+            set_dips(s, 60.0, 65.0);
+            set_force(s, 3.0e7);
+        }),
+        case("dips 75°/80°", &|s| {
+            set_dips(s, 75.0, 80.0);
+            set_force(s, 8.0e7);
+        }),
+        case("κ = 0", &|s| s.foundation.kappa = 0.0),
+        case("κ = 85°", &|s| s.foundation.kappa = 85f64.to_radians()),
+        case("κ = −85°", &|s| {
+            s.foundation.kappa = (-85f64).to_radians()
+        }),
+        case("lopsided l1z/l2z = 0.05", &|s| set_l1z_over_l2z(s, 0.05)),
+        case("lopsided l1z/l2z = 20", &|s| set_l1z_over_l2z(s, 20.0)),
+        case("tiny inertia I = 1e-5 m L²", &|s| {
+            if let Some(b) = s.block.as_mut() {
+                b.inertia = 1e3;
+            }
+        }),
+        case("friction just below onset (FS 0.999)", &|s| {
+            set_force(s, force_for_fs(0.999))
+        }),
+        case("friction just above onset (FS 1.001)", &|s| {
+            set_force(s, force_for_fs(1.001))
+        }),
+        case("huge dt 0.25 s", &|s| {
+            if let Some(v) = s.solver.as_mut() {
+                v.dt = 0.25;
+            }
+        }),
+        case("tiny dt 1 µs", &|s| {
+            if let Some(v) = s.solver.as_mut() {
+                v.dt = 1e-6;
+                v.t_end = 0.05;
+            }
+        }),
+        case("small-angle mode", &|s| {
+            if let Some(v) = s.solver.as_mut() {
+                v.mode = Mode::SmallAngle;
+            }
+        }),
+        case("frictionless", &|s| {
+            s.friction = Some(crate::scene::Friction::Coulomb { mu_k: 0.0 })
+        }),
+    ]
+}
+
+/// The outcome of one stiff or extreme case.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct ExtremeRow {
+    pub case: String,
+    pub reason: String,
+    pub t_s: f64,
+    pub travel_m: f64,
+    pub increments: usize,
+    pub rejected_steps: usize,
+    pub newton_per_step: f64,
+    pub end_jacobian_condition: Option<f64>,
+    /// Largest |α − α_direct|, |β − β_direct| over a sample of rows (rad; exact mode only).
+    pub max_tilt_error_rad: Option<f64>,
+    pub detail: String,
+}
+
+/// Runs the stiff and extreme cases, checking up to `sample` rows of each against the direct
+/// pose solver (exact mode).
+pub fn extreme(sample: usize) -> Vec<ExtremeRow> {
+    extreme_cases()
+        .into_iter()
+        .map(|c| {
+            let r = match route::run(&c.scene) {
+                Ok(r) => r,
+                Err(e) => {
+                    return ExtremeRow {
+                        case: c.name.into(),
+                        reason: "invalid scene".into(),
+                        t_s: 0.0,
+                        travel_m: 0.0,
+                        increments: 0,
+                        rejected_steps: 0,
+                        newton_per_step: 0.0,
+                        end_jacobian_condition: None,
+                        max_tilt_error_rad: None,
+                        detail: e.to_string(),
+                    };
+                }
+            };
+            let exact = c.scene.solver.is_some_and(|s| s.mode == Mode::Exact);
+            let tilt_error = exact.then(|| {
+                let l = c.scene.l();
+                let every = (r.rows.len() / sample.max(1)).max(1);
+                r.rows
+                    .iter()
+                    .step_by(every)
+                    .filter_map(|row| {
+                        let d = crate::geometry::Displacement::new(
+                            row.x_m,
+                            row.z_m,
+                            row.theta_deg.to_radians(),
+                        );
+                        let p = crate::geometry::direct::solve(&c.scene, d).ok()?;
+                        Some(
+                            (p.alpha(l) - row.alpha_deg.to_radians())
+                                .abs()
+                                .max((p.beta(l) - row.beta_deg.to_radians()).abs()),
+                        )
+                    })
+                    .fold(0.0, f64::max)
+            });
+            let stats = r.tracker.unwrap_or_default();
+            ExtremeRow {
+                case: c.name.into(),
+                reason: r.termination.reason.as_str().into(),
+                t_s: r.termination.t_s,
+                travel_m: r.travel_m,
+                increments: r.increments,
+                rejected_steps: stats.rejected,
+                newton_per_step: stats.newton_iterations as f64 / stats.steps.max(1) as f64,
+                end_jacobian_condition: r.end_jacobian_condition,
+                max_tilt_error_rad: tilt_error,
+                detail: r.termination.detail.clone(),
+            }
+        })
+        .collect()
+}

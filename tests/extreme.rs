@@ -1,0 +1,101 @@
+//! Stiff and extreme cases (`report::extreme_cases`): each agrees with the direct pose solver
+//! and converges, or ends with its typed reason — never NaN, a panic, a hang or a branch jump.
+//! And the work–precision report's own claims.
+#![cfg(feature = "cli")]
+
+use slideroute::report;
+use slideroute::route::{self, PoseMethod, Reason};
+use slideroute::scene::{Integrator, Mode};
+
+#[test]
+fn every_extreme_case_agrees_with_the_direct_solver_or_ends_with_its_reason() {
+    for row in report::extreme(50) {
+        assert_ne!(row.reason, "invalid scene", "{}: {}", row.case, row.detail);
+        assert!(
+            row.t_s.is_finite() && row.travel_m.is_finite(),
+            "{}",
+            row.case
+        );
+        assert!(!row.detail.is_empty(), "{}", row.case);
+        if let Some(e) = row.max_tilt_error_rad {
+            assert!(
+                e <= 1e-9,
+                "{}: tilts off the direct solver by {e} rad",
+                row.case
+            );
+        }
+        if let Some(c) = row.end_jacobian_condition {
+            assert!(c.is_finite(), "{}", row.case);
+        }
+    }
+}
+
+#[test]
+fn extreme_cases_that_slide_converge_as_dt_halves() {
+    for case in report::extreme_cases() {
+        let run = |dt: f64| {
+            let mut s = case.scene.clone();
+            let sv = s.solver.as_mut().unwrap();
+            sv.dt = dt;
+            sv.t_end = 0.4;
+            sv.integrator = Integrator::Rk4;
+            route::run(&s).unwrap()
+        };
+        let (a, b) = (run(2e-3), run(1e-3));
+        if a.termination.reason != Reason::TimeLimit || b.termination.reason != Reason::TimeLimit {
+            continue;
+        }
+        let (p, q) = (a.rows.last().unwrap(), b.rows.last().unwrap());
+        let d = (p.x_m - q.x_m).hypot(p.z_m - q.z_m);
+        assert!(d < 1e-8, "{}: end points differ by {d} m", case.name);
+    }
+}
+
+#[test]
+fn quick_report_establishes_its_references_and_shows_the_orders() {
+    let (points, references) = report::work_precision(true, || ()).unwrap();
+    assert_eq!(points.len(), report::point_count(true));
+    for r in &references {
+        assert!(
+            r.change_m < r.bound_m,
+            "{}: reference moves by {} m at dt/2",
+            r.scene,
+            r.change_m
+        );
+    }
+    let series =
+        |scene: &str, method: PoseMethod, mode: Mode, integrator: Integrator| -> Vec<f64> {
+            points
+                .iter()
+                .filter(|p| {
+                    p.scene == scene
+                        && p.method == method
+                        && p.mode == mode
+                        && p.integrator == integrator
+                })
+                .map(|p| p.error_m)
+                .collect()
+        };
+    for scene in ["paper-like", "shallow"] {
+        for (integrator, order) in [(Integrator::Paper, 1.0), (Integrator::Rk4, 4.0)] {
+            let e = series(scene, PoseMethod::Continuation, Mode::Exact, integrator);
+            for w in e.windows(2) {
+                let o = (w[0] / w[1]).log2();
+                assert!((o - order).abs() < 0.3, "{scene} {integrator:?}: order {o}");
+            }
+            // Both pose methods give the same route, so the same errors.
+            let a = series(scene, PoseMethod::AllRoots, Mode::Exact, integrator);
+            for (x, y) in e.iter().zip(&a) {
+                assert!((x - y).abs() <= 1e-9 + 1e-6 * x, "{scene}: {x} vs {y}");
+            }
+        }
+        // Small-angle against the exact reference: the model error remains as dt falls.
+        let s = series(
+            scene,
+            PoseMethod::Continuation,
+            Mode::SmallAngle,
+            Integrator::Rk4,
+        );
+        assert!(s.iter().all(|&e| e > 1e-8), "{scene}: {s:?}");
+    }
+}
