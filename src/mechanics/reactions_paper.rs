@@ -22,9 +22,9 @@ use super::ContactGeometry;
 use super::friction::FrictionCriterion;
 use super::loads::Applied;
 use super::statics::ratios;
-use crate::numeric::{poly_mul, poly_roots};
+use crate::numeric::{poly_mul, poly_roots, solve4, wrap_angle as wrap};
 use crate::scene::{Block, Friction};
-use nalgebra::{Matrix3, Matrix3x4, Matrix4, SMatrix, Vector3, Vector4};
+use nalgebra::{Matrix3, Matrix3x4, SMatrix, Vector3, Vector4};
 
 /// One solution of the frictional system, with the accelerations it implies.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -113,13 +113,17 @@ impl System {
         for _ in 0..8 {
             let h = self.h_sc(&sc);
             let r = h * j - self.w;
-            let mut jac = Matrix4::zeros();
-            jac.set_column(0, &h);
+            let mut jac = [[0.0; 4]; 4];
+            for e in 0..4 {
+                jac[e][0] = h[e];
+            }
             for i in 0..3 {
                 let d = (self.b[i] * sc[i].1 - self.a[i] * sc[i].0) * j;
-                jac.set_column(i + 1, &d);
+                for e in 0..4 {
+                    jac[e][i + 1] = d[e];
+                }
             }
-            let Some(dx) = jac.lu().solve(&(-r)) else {
+            let Some(dx) = solve4(jac, [-r[0], -r[1], -r[2], -r[3]]) else {
                 break;
             };
             j += dx[0];
@@ -275,7 +279,6 @@ impl System {
             if !(residual < 1e-9 && j > 0.0) {
                 continue;
             }
-            let wrap = |a: f64| a.sin().atan2(a.cos());
             let phi = phi.map(wrap);
             if !out
                 .iter()
@@ -399,7 +402,6 @@ pub fn follow(
     let mu = [0, 1, 2].map(|i| friction.coefficient(j0 * m[i]));
     let sys = System::new(geom, applied, &m, &mu);
     let (j, phi, res) = sys.polish(j0, previous.angles);
-    let wrap = |a: f64| a.sin().atan2(a.cos());
     let moved = (0..3)
         .map(|i| wrap(phi[i] - previous.angles[i]).abs())
         .fold(0.0, f64::max);
@@ -466,7 +468,7 @@ pub fn select(
     previous: Option<&[f64; 3]>,
     velocity: Option<(Vector3<f64>, Vector3<f64>)>,
 ) -> Option<usize> {
-    let wrap = |a: f64| a.sin().atan2(a.cos()).abs();
+    let dist = |a: f64| wrap(a).abs();
     if let Some(prev) = previous {
         let near = solutions
             .iter()
@@ -475,7 +477,7 @@ pub fn select(
                 (
                     k,
                     (0..3)
-                        .map(|i| wrap(s.angles[i] - prev[i]))
+                        .map(|i| dist(s.angles[i] - prev[i]))
                         .fold(0.0, f64::max),
                 )
             })
