@@ -12,8 +12,10 @@ pub fn wrap_angle(a: f64) -> f64 {
 }
 
 /// Solves the 4×4 system a·x = b by Gaussian elimination with partial pivoting; `None` if a
-/// pivot vanishes. (Several times cheaper than a general LU at this size.)
+/// pivot vanishes. (Several times cheaper than a general LU at this size.) Written with indices,
+/// as elimination is usually read.
 #[inline]
+#[allow(clippy::needless_range_loop)]
 pub fn solve4(mut a: [[f64; 4]; 4], mut b: [f64; 4]) -> Option<[f64; 4]> {
     for col in 0..4 {
         let mut piv = col;
