@@ -320,6 +320,59 @@ fn reaction(
     }
 }
 
+/// The shared start of [`all_solutions`] and [`follow`]: lift-off from the frictionless
+/// normals, the ratios (27), and — for a frictionless scene — the one reaction, with no friction
+/// solve at all.
+fn prologue(
+    geom: &ContactGeometry,
+    applied: &Applied,
+    block: &Block,
+    c: &[f64; 3],
+    friction: &Friction,
+) -> Result<([f64; 3], Option<Reaction>), ReactionsError> {
+    if let Some(k) = (0..3).find(|&k| c[k] <= 0.0) {
+        return Err(ReactionsError::LiftOff(k));
+    }
+    let m = ratios(c);
+    let frictionless = friction
+        .is_frictionless()
+        .then(|| reaction(geom, applied, block, &m, &[0.0; 3], c[0], [0.0; 3]));
+    Ok((m, frictionless))
+}
+
+/// Per-contact friction coefficients at N0 = j.
+fn mu_at(friction: &Friction, m: &[f64; 3], j: f64) -> [f64; 3] {
+    [0, 1, 2].map(|i| friction.coefficient(j * m[i]))
+}
+
+/// For a stress-dependent criterion (Barton–Choubey) μ_i depends on j: iterate j to a fixed
+/// point from (j, φ), following the solution. `None` if it is lost on the way.
+fn settle(
+    geom: &ContactGeometry,
+    applied: &Applied,
+    m: &[f64; 3],
+    friction: &Friction,
+    (mut j, mut phi): (f64, [f64; 3]),
+) -> Option<(f64, [f64; 3])> {
+    if matches!(friction, Friction::Coulomb { .. }) {
+        return Some((j, phi));
+    }
+    for _ in 0..60 {
+        let sys = System::new(geom, applied, m, &mu_at(friction, m, j));
+        let (jn, pn, res) = sys.polish(j, phi);
+        if !(res < 1e-9 && jn > 0.0) {
+            return None;
+        }
+        let done = (jn - j).abs() <= 1e-12 * j;
+        j = jn;
+        phi = pn;
+        if done {
+            break;
+        }
+    }
+    Some((j, phi))
+}
+
 /// Every solution of the paper's frictional system at this pose. With a frictionless scene
 /// there is exactly one (the statics, no shear) and no friction solve is done.
 /// `c` are the frictionless normal magnitudes (25)–(27) at this pose.
@@ -330,50 +383,26 @@ pub fn all_solutions(
     c: &[f64; 3],
     friction: &Friction,
 ) -> Result<Vec<Reaction>, ReactionsError> {
-    if let Some(k) = (0..3).find(|&k| c[k] <= 0.0) {
-        return Err(ReactionsError::LiftOff(k));
+    let (m, frictionless) = prologue(geom, applied, block, c, friction)?;
+    if let Some(r) = frictionless {
+        return Ok(vec![r]);
     }
-    let m = ratios(c);
-    if friction.is_frictionless() {
-        return Ok(vec![reaction(
-            geom, applied, block, &m, &[0.0; 3], c[0], [0.0; 3],
-        )]);
-    }
-    // Per-contact coefficients at the current normal forces; for stress-dependent criteria
-    // (Barton–Choubey) iterate j to a fixed point, following each solution.
-    let mu_at = |j: f64| [0, 1, 2].map(|i| friction.coefficient(j * m[i]));
-    let mut mu = mu_at(c[0]);
-    let mut sols = System::new(geom, applied, &m, &mu).solve();
-    if !matches!(friction, Friction::Coulomb { .. }) {
-        let mut fixed = Vec::with_capacity(sols.len());
-        for (j0, phi0) in sols {
-            let (mut j, mut phi) = (j0, phi0);
-            for _ in 0..60 {
-                mu = mu_at(j);
-                let sys = System::new(geom, applied, &m, &mu);
-                let (jn, pn, res) = sys.polish(j, phi);
-                let done = (jn - j).abs() <= 1e-12 * j;
-                if !(res < 1e-9 && jn > 0.0) {
-                    j = f64::NAN;
-                    break;
-                }
-                j = jn;
-                phi = pn;
-                if done {
-                    break;
-                }
-            }
-            if j.is_finite() {
-                fixed.push((j, phi));
-            }
-        }
-        sols = fixed;
-    }
+    // Coefficients at the frictionless normal forces, then (stress-dependent criteria) each
+    // solution settled to its own fixed point.
+    let sols = System::new(geom, applied, &m, &mu_at(friction, &m, c[0])).solve();
     Ok(sols
         .into_iter()
+        .filter_map(|s| settle(geom, applied, &m, friction, s))
         .map(|(j, phi)| {
-            let mu = mu_at(j);
-            reaction(geom, applied, block, &m, &mu, j, phi)
+            reaction(
+                geom,
+                applied,
+                block,
+                &m,
+                &mu_at(friction, &m, j),
+                j,
+                phi.map(wrap),
+            )
         })
         .collect())
 }
@@ -389,18 +418,12 @@ pub fn follow(
     friction: &Friction,
     previous: &Reaction,
 ) -> Result<Option<Reaction>, ReactionsError> {
-    if let Some(k) = (0..3).find(|&k| c[k] <= 0.0) {
-        return Err(ReactionsError::LiftOff(k));
-    }
-    let m = ratios(c);
-    if friction.is_frictionless() {
-        return Ok(Some(reaction(
-            geom, applied, block, &m, &[0.0; 3], c[0], [0.0; 3],
-        )));
+    let (m, frictionless) = prologue(geom, applied, block, c, friction)?;
+    if let Some(r) = frictionless {
+        return Ok(Some(r));
     }
     let j0 = previous.normal[0].norm();
-    let mu = [0, 1, 2].map(|i| friction.coefficient(j0 * m[i]));
-    let sys = System::new(geom, applied, &m, &mu);
+    let sys = System::new(geom, applied, &m, &mu_at(friction, &m, j0));
     let (j, phi, res) = sys.polish(j0, previous.angles);
     let moved = (0..3)
         .map(|i| wrap(phi[i] - previous.angles[i]).abs())
@@ -408,42 +431,19 @@ pub fn follow(
     if !(res < 1e-9 && j > 0.0 && moved < 0.3) {
         return Ok(None);
     }
-    if !matches!(friction, Friction::Coulomb { .. }) {
-        // Stress-dependent friction: settle μ(j) by a few fixed-point rounds.
-        let (mut j, mut phi) = (j, phi);
-        for _ in 0..60 {
-            let mu = [0, 1, 2].map(|i| friction.coefficient(j * m[i]));
-            let (jn, pn, res) = System::new(geom, applied, &m, &mu).polish(j, phi);
-            if !(res < 1e-9 && jn > 0.0) {
-                return Ok(None);
-            }
-            let done = (jn - j).abs() <= 1e-12 * j;
-            j = jn;
-            phi = pn;
-            if done {
-                break;
-            }
-        }
-        let mu = [0, 1, 2].map(|i| friction.coefficient(j * m[i]));
-        return Ok(Some(reaction(
-            geom,
-            applied,
-            block,
-            &m,
-            &mu,
-            j,
-            phi.map(wrap),
-        )));
-    }
-    Ok(Some(reaction(
-        geom,
-        applied,
-        block,
-        &m,
-        &mu,
-        j,
-        phi.map(wrap),
-    )))
+    Ok(
+        settle(geom, applied, &m, friction, (j, phi)).map(|(j, phi)| {
+            reaction(
+                geom,
+                applied,
+                block,
+                &m,
+                &mu_at(friction, &m, j),
+                j,
+                phi.map(wrap),
+            )
+        }),
+    )
 }
 
 /// Friction power Σ S_i·v_i for a rigid motion with CM velocity `v` and angular velocity `omega`.

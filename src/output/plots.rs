@@ -203,20 +203,24 @@ pub fn plan(path: &Path, scene: &Scene, route: &Route) -> Res<()> {
     root.present().map_err(|e| err(path)(e.to_string()))
 }
 
-/// Several series against one x quantity.
-fn lines(
+type LinearChart<'a, 'b> = ChartContext<
+    'a,
+    SVGBackend<'b>,
+    Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+>;
+
+/// A white 900×500 chart with linear axes, a caption and axis descriptions.
+fn linear_chart<'a, 'b: 'a>(
+    root: &'a DrawingArea<SVGBackend<'b>, plotters::coord::Shift>,
     path: &Path,
     title: &str,
     x_desc: &str,
     y_desc: &str,
-    x: &[f64],
-    series: &[(&str, Vec<f64>, RGBColor)],
-) -> Res<()> {
-    let (x0, x1) = ranges(x.iter().copied());
-    let (y0, y1) = ranges(series.iter().flat_map(|s| s.1.iter().copied()));
-    let root = SVGBackend::new(path, (900, 500)).into_drawing_area();
+    (x0, x1): (f64, f64),
+    (y0, y1): (f64, f64),
+) -> Res<LinearChart<'a, 'b>> {
     root.fill(&WHITE).map_err(|e| err(path)(e.to_string()))?;
-    let mut chart = ChartBuilder::on(&root)
+    let mut chart = ChartBuilder::on(root)
         .caption(title, ("sans-serif", 18))
         .margin(10)
         .x_label_area_size(40)
@@ -230,6 +234,28 @@ fn lines(
         .y_desc(y_desc)
         .draw()
         .map_err(|e| err(path)(e.to_string()))?;
+    Ok(chart)
+}
+
+/// Several series against one x quantity.
+fn lines(
+    path: &Path,
+    title: &str,
+    x_desc: &str,
+    y_desc: &str,
+    x: &[f64],
+    series: &[(&str, Vec<f64>, RGBColor)],
+) -> Res<()> {
+    let root = SVGBackend::new(path, (900, 500)).into_drawing_area();
+    let mut chart = linear_chart(
+        &root,
+        path,
+        title,
+        x_desc,
+        y_desc,
+        ranges(x.iter().copied()),
+        ranges(series.iter().flat_map(|s| s.1.iter().copied())),
+    )?;
     for (name, ys, color) in series {
         let color = *color;
         chart
@@ -378,34 +404,24 @@ pub fn sweep(
             groups.entry(label).or_default().push((r.values[0], t));
         }
     }
-    let (x0, x1) = ranges(rows.iter().map(|r| r.values[0]));
-    let (y0, y1) = ranges(rows.iter().filter_map(|r| r.travel_m).chain([0.0]));
-    let root = SVGBackend::new(path, (900, 500)).into_drawing_area();
-    root.fill(&WHITE).map_err(|e| err(path)(e.to_string()))?;
-    let mut chart = ChartBuilder::on(&root)
-        .caption(
-            if varies.len() > 1 && rows.len() > COLORS.len() * first.values.len() {
-                format!(
-                    "travel of the centre of mass against {} (all combinations of the other keys)",
-                    first.key
-                )
-            } else {
-                format!("travel of the centre of mass against {}", first.key)
-            },
-            ("sans-serif", 18),
+    let title = if varies.len() > 1 && rows.len() > COLORS.len() * first.values.len() {
+        format!(
+            "travel of the centre of mass against {} (all combinations of the other keys)",
+            first.key
         )
-        .margin(10)
-        .x_label_area_size(40)
-        .y_label_area_size(60)
-        .build_cartesian_2d(x0..x1, y0..y1)
-        .map_err(|e| err(path)(e.to_string()))?;
-    chart
-        .configure_mesh()
-        .max_light_lines(1)
-        .x_desc(first.key.as_str())
-        .y_desc("travel (m)")
-        .draw()
-        .map_err(|e| err(path)(e.to_string()))?;
+    } else {
+        format!("travel of the centre of mass against {}", first.key)
+    };
+    let root = SVGBackend::new(path, (900, 500)).into_drawing_area();
+    let mut chart = linear_chart(
+        &root,
+        path,
+        &title,
+        first.key.as_str(),
+        "travel (m)",
+        ranges(rows.iter().map(|r| r.values[0])),
+        ranges(rows.iter().filter_map(|r| r.travel_m).chain([0.0])),
+    )?;
     let few = groups.len() <= COLORS.len();
     for (k, (label, mut pts)) in groups.into_iter().enumerate() {
         pts.sort_by(|a, b| a.0.total_cmp(&b.0));
