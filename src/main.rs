@@ -314,6 +314,12 @@ fn sweep_cmd(
         .collect::<Result<Vec<_>, _>>()?;
     slideroute::sweep::check_keys(&text, &varies)?;
     let n = slideroute::sweep::count(&varies);
+    if n > slideroute::sweep::MAX_COMBINATIONS {
+        return Err(format!(
+            "--vary: {n} combinations, more than the {} one sweep may run",
+            slideroute::sweep::MAX_COMBINATIONS
+        ));
+    }
     let bar = progress_bar(quiet, n as u64, "sweep");
     let rows = slideroute::sweep::run(&text, &origin, &varies, || bar.inc(1))?;
     bar.finish_and_clear();

@@ -97,10 +97,15 @@ fn row_of(values: Vec<f64>, route: &Route) -> SweepRow {
     }
 }
 
-/// The number of combinations.
+/// The number of combinations (saturating).
 pub fn count(varies: &[Vary]) -> usize {
-    varies.iter().map(|v| v.values.len()).product()
+    varies
+        .iter()
+        .fold(1usize, |n, v| n.saturating_mul(v.values.len()))
 }
+
+/// The most combinations one sweep may run.
+pub const MAX_COMBINATIONS: usize = 1_000_000;
 
 /// Checks that every varied key exists in the base scene text; the error names the key.
 pub fn check_keys(base_text: &str, varies: &[Vary]) -> Result<toml::Table, String> {
@@ -150,6 +155,11 @@ pub fn run(
 ) -> Result<Vec<SweepRow>, String> {
     let table = check_keys(base_text, varies)?;
     let n = count(varies);
+    if n > MAX_COMBINATIONS {
+        return Err(format!(
+            "--vary: {n} combinations, more than the {MAX_COMBINATIONS} one sweep may run"
+        ));
+    }
     Ok((0..n)
         .into_par_iter()
         .map(|index| {

@@ -487,6 +487,16 @@ fn sweep_flags_are_checked() {
         &["COUNT"],
     );
     assert_bad_input(&run(&["sweep"]), &["--vary"]);
+    assert_bad_input(
+        &run(&[
+            "sweep",
+            "--vary",
+            "friction.mu_k=0:1:100000",
+            "--vary",
+            "loads.eccentricity_m=0:1:100000",
+        ]),
+        &["combinations"],
+    );
 }
 
 #[test]
