@@ -373,6 +373,26 @@ fn settle(
     Some((j, phi))
 }
 
+/// The reaction of a settled solution (j, φ), with the friction coefficients at its N0.
+fn reaction_at(
+    geom: &ContactGeometry,
+    applied: &Applied,
+    block: &Block,
+    m: &[f64; 3],
+    friction: &Friction,
+    (j, phi): (f64, [f64; 3]),
+) -> Reaction {
+    reaction(
+        geom,
+        applied,
+        block,
+        m,
+        &mu_at(friction, m, j),
+        j,
+        phi.map(wrap),
+    )
+}
+
 /// Every solution of the paper's frictional system at this pose. With a frictionless scene
 /// there is exactly one (the statics, no shear) and no friction solve is done.
 /// `c` are the frictionless normal magnitudes (25)–(27) at this pose.
@@ -393,17 +413,7 @@ pub fn all_solutions(
     Ok(sols
         .into_iter()
         .filter_map(|s| settle(geom, applied, &m, friction, s))
-        .map(|(j, phi)| {
-            reaction(
-                geom,
-                applied,
-                block,
-                &m,
-                &mu_at(friction, &m, j),
-                j,
-                phi.map(wrap),
-            )
-        })
+        .map(|s| reaction_at(geom, applied, block, &m, friction, s))
         .collect())
 }
 
@@ -431,19 +441,8 @@ pub fn follow(
     if !(res < 1e-9 && j > 0.0 && moved < 0.3) {
         return Ok(None);
     }
-    Ok(
-        settle(geom, applied, &m, friction, (j, phi)).map(|(j, phi)| {
-            reaction(
-                geom,
-                applied,
-                block,
-                &m,
-                &mu_at(friction, &m, j),
-                j,
-                phi.map(wrap),
-            )
-        }),
-    )
+    Ok(settle(geom, applied, &m, friction, (j, phi))
+        .map(|s| reaction_at(geom, applied, block, &m, friction, s)))
 }
 
 /// Friction power Σ S_i·v_i for a rigid motion with CM velocity `v` and angular velocity `omega`.

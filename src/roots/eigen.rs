@@ -225,7 +225,7 @@ fn x_roots_pencil(p: &Coeffs, q: &Coeffs) -> (Vec<C>, usize) {
 /// R(x) = det S(x) = (a2 b0 − a0 b2)² − (a2 b1 − a1 b2)(a1 b0 − a0 b1), where p = Σ a_j(x) y^j
 /// and q = Σ b_j(x) y^j. The companion matrix is already upper Hessenberg, so balancing and the
 /// Francis QR iteration apply directly: no LU, no Hessenberg reduction, no allocation.
-pub fn x_roots_resultant(p: &Coeffs, q: &Coeffs) -> Option<([C; 8], usize, usize)> {
+fn x_roots_resultant(p: &Coeffs, q: &Coeffs) -> Option<([C; 8], usize, usize)> {
     let col = |c: &Coeffs, j: usize| [c[0][j], c[1][j], c[2][j]];
     let (a0, a1, a2) = (col(p, 0), col(p, 1), col(p, 2));
     let (b0, b1, b2) = (col(q, 0), col(q, 1), col(q, 2));

@@ -293,3 +293,23 @@ impl<'s> Tracker<'s> {
         check_pose(self.scene, &p).map_err(fail)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn jacobian_condition_is_the_ratio_of_singular_values() {
+        let scene = Scene::default_scene();
+        let mut t = Tracker::new(&scene, Mode::Exact);
+        t.advance(Displacement::new(0.8, 0.1, 0.03)).unwrap();
+        let e = Equations::new(&scene, t.point().d, Mode::Exact)
+            .eval(t.point().u)
+            .unwrap();
+        let j = nalgebra::Matrix2::new(e.j[0][0], e.j[0][1], e.j[1][0], e.j[1][1]);
+        let sv = j.singular_values();
+        let want = sv.max() / sv.min();
+        let got = t.jacobian_condition().unwrap();
+        assert!((got - want).abs() < 1e-10 * want, "{got} vs {want}");
+    }
+}
