@@ -6,8 +6,10 @@
 //! Route of a Sliding Block". Equation numbers in the docs are the paper's.
 //!
 //! Data flows one way, one module per stage:
-//! [`scene`] → [`coeffs`] (generated at build time by `codegen/`) → [`geometry`] (exact pose,
-//! and the independent direct pose solver that every test measures against) → [`output`].
+//! [`scene`] → [`coeffs`] (generated at build time by `codegen/`) → [`roots`] → [`geometry`]
+//! (exact pose, and the independent direct pose solver that every test measures against) →
+//! [`mechanics`] (loads, friction, the paper's reactions or the rigid body's) → [`route`] →
+//! [`output`]. [`compare`] puts the paper's route beside the rigid body's.
 //!
 //! ```
 //! use slideroute::{coeffs, geometry::Displacement, scene::Scene};
@@ -18,6 +20,7 @@
 //! ```
 
 pub mod coeffs;
+pub mod compare;
 pub mod geometry;
 pub mod mechanics;
 pub mod numeric;

@@ -4,7 +4,7 @@ use clap::{Args, Parser, Subcommand};
 use slideroute::geometry::Displacement;
 use slideroute::output::{CoeffReport, RootsReport, grid_csv};
 use slideroute::roots;
-use slideroute::scene::{Mode, Scene};
+use slideroute::scene::{DynamicsModel, Mode, Scene};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -60,6 +60,15 @@ enum Command {
         /// Write only route.csv and summary.json, no pictures.
         #[arg(long)]
         no_plots: bool,
+        /// Dynamics model, overriding the scene's `[solver] dynamics`: `paper` (the paper's
+        /// §5–7) or `rigid-body` (Newton–Euler with friction opposing each contact's slip).
+        #[arg(long, value_enum, value_name = "MODEL")]
+        dynamics: Option<DynamicsModel>,
+        /// Run both dynamics models: DIR/paper/ and DIR/rigid-body/ (route.csv, summary.json),
+        /// DIR/comparison.json (both summaries and where the routes part) and
+        /// DIR/compare-plan.svg (both paths on one plan view).
+        #[arg(long, conflicts_with = "dynamics")]
+        compare_dynamics: bool,
     },
     /// Run the route for every combination of scene values, in parallel, and write
     /// DIR/sweep.csv (one row per combination: the varied values, how the route ended, travel,
@@ -245,8 +254,12 @@ fn run_cmd(
     out: &std::path::Path,
     quiet: bool,
     no_plots: bool,
+    dynamics: Option<DynamicsModel>,
 ) -> Result<(), String> {
-    let scene = load(scene)?;
+    let mut scene = load(scene)?;
+    if let Some(model) = dynamics {
+        scene = scene.with_dynamics(model);
+    }
     let bar = progress_bar(quiet, 1000, "route");
     let route = slideroute::route::run_observed(&scene, |f| bar.set_position((f * 1000.0) as u64))
         .map_err(|e| e.to_string())?;
@@ -278,11 +291,103 @@ fn run_cmd(
         None => println!("  factor of safety at onset: infinite (nothing drives the block)"),
     }
     println!(
-        "  {} increments ({} mode, {} integrator) in {:.3} s",
+        "  {} increments ({} dynamics, {} mode, {} integrator) in {:.3} s",
         route.increments,
+        route.dynamics.as_str(),
         route.mode.as_str(),
         route.integrator.as_str(),
         route.wall_s,
+    );
+    if let Some(e) = &route.energy {
+        println!(
+            "  energy: hydraulic work {:.6e} J, friction work {:.6e} J, kinetic {:.6e} J, \
+             potential change {:.6e} J, balance residual {:.3e} J",
+            e.work_hydraulic_j, e.work_friction_j, e.kinetic_j, e.potential_change_j, e.residual_j
+        );
+    }
+    let names: Vec<String> = files.iter().map(|f| f.display().to_string()).collect();
+    println!("  wrote {}", names.join(", "));
+    Ok(())
+}
+
+fn compare_cmd(
+    scene: &SceneArg,
+    out: &std::path::Path,
+    quiet: bool,
+    no_plots: bool,
+) -> Result<(), String> {
+    let scene = load(scene)?;
+    let c = slideroute::compare::compare_dynamics(&scene).map_err(|e| e.to_string())?;
+    #[allow(unused_mut)]
+    let mut files = slideroute::output::compare_files::write(out, &c)?;
+    #[cfg(feature = "plots")]
+    if !no_plots {
+        use plotters::style::RGBColor;
+        let path = out.join("compare-plan.svg");
+        let title = format!("{}: plan view of both dynamics", scene.name);
+        let label = |what: &str, r: &slideroute::route::Route| {
+            format!(
+                "{what}: CM path ({} at {:.2} s)",
+                r.termination.reason, r.termination.t_s
+            )
+        };
+        slideroute::output::plots::plan_routes(
+            &path,
+            &scene,
+            &title,
+            &[
+                (
+                    &label("rigid body", &c.rigid_body),
+                    &c.rigid_body.rows,
+                    RGBColor(200, 30, 30),
+                ),
+                (
+                    &label("paper's dynamics", &c.paper),
+                    &c.paper.rows,
+                    RGBColor(230, 140, 0),
+                ),
+            ],
+        )?;
+        files.push(path);
+    }
+    #[cfg(not(feature = "plots"))]
+    let _ = no_plots;
+    if quiet {
+        return Ok(());
+    }
+    for (name, r) in [
+        ("paper's dynamics", &c.paper),
+        ("rigid body", &c.rigid_body),
+    ] {
+        let last = r.rows.last();
+        println!(
+            "{name}: {} at t = {} s; travel {:.3} m, final yaw θ = {:.3}°",
+            r.termination.reason,
+            r.termination.t_s,
+            r.travel_m,
+            last.map_or(0.0, |l| l.theta_deg)
+        );
+    }
+    let p = &c.parting;
+    match p.parted_at_s {
+        Some(t) => println!(
+            "  the routes part (CM {:.3} m apart, 1% of L) at t = {t:.3} s, near X = {:.3} m, Z = {:.3} m",
+            p.threshold_m,
+            p.parted_at_x_m.unwrap_or(f64::NAN),
+            p.parted_at_z_m.unwrap_or(f64::NAN)
+        ),
+        None => println!(
+            "  the routes stay within {:.3} m (1% of L) while both run",
+            p.threshold_m
+        ),
+    }
+    println!(
+        "  until t = {:.3} s: largest separation {:.3} m (at {:.3} s); at the end {:.3} m apart, yaw rigid − paper {:+.3}°",
+        p.common_until_s,
+        p.max_separation_m,
+        p.max_separation_at_s,
+        p.separation_at_end_m,
+        p.yaw_difference_at_end_deg
     );
     let names: Vec<String> = files.iter().map(|f| f.display().to_string()).collect();
     println!("  wrote {}", names.join(", "));
@@ -424,7 +529,15 @@ fn main() -> ExitCode {
             out,
             quiet,
             no_plots,
-        } => run_cmd(scene, out, *quiet, *no_plots),
+            dynamics,
+            compare_dynamics,
+        } => {
+            if *compare_dynamics {
+                compare_cmd(scene, out, *quiet, *no_plots)
+            } else {
+                run_cmd(scene, out, *quiet, *no_plots, *dynamics)
+            }
+        }
         Command::Sweep {
             scene,
             vary,

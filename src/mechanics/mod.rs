@@ -9,6 +9,8 @@ pub mod friction;
 pub mod loads;
 pub mod onset;
 pub mod reactions_paper;
+pub mod rigid_body;
+pub mod static_friction;
 pub mod statics;
 
 use crate::geometry::planes::{Plane, normal};

@@ -73,22 +73,47 @@ fn vertices(scene: &Scene, row: &Row) -> Option<[(f64, f64); 3]> {
 /// Y towards the viewer). CM path, the contact frame at intervals, the strike lines of planes
 /// 1 and 2, and the contact points at the start (circles) and end (crosses).
 pub fn plan(path: &Path, scene: &Scene, route: &Route) -> Res<()> {
-    let rows = &route.rows;
+    let title = format!(
+        "{}: plan view from above — {} after {:.2} s",
+        route.scene, route.termination.reason, route.termination.t_s
+    );
+    plan_routes(
+        path,
+        scene,
+        &title,
+        &[("path of the centre of mass", &route.rows, RED)],
+    )
+}
+
+/// Frame outlines every 1/8 of a route's rows (and at its end).
+fn outlines_of(scene: &Scene, rows: &[Row]) -> Vec<[(f64, f64); 3]> {
     let every = (rows.len() / 8).max(1);
-    let outlines: Vec<[(f64, f64); 3]> = rows
-        .iter()
+    rows.iter()
         .enumerate()
         .filter(|(k, _)| k % every == 0 || *k + 1 == rows.len())
         .filter_map(|(_, r)| vertices(scene, r))
-        .collect();
-    let xs = rows
+        .collect()
+}
+
+/// The plan view of one or more routes of the same scene, each CM path and its frame outlines
+/// in its own colour (the first route's start and end contacts marked).
+pub fn plan_routes(
+    path: &Path,
+    scene: &Scene,
+    title: &str,
+    routes: &[(&str, &[Row], RGBColor)],
+) -> Res<()> {
+    let all_outlines: Vec<Vec<[(f64, f64); 3]>> =
+        routes.iter().map(|r| outlines_of(scene, r.1)).collect();
+    let outlines: &[[(f64, f64); 3]] = all_outlines.first().map_or(&[], |o| o.as_slice());
+    let xs = routes
         .iter()
-        .map(|r| r.x_m)
-        .chain(outlines.iter().flat_map(|o| o.map(|p| p.0)));
-    let zs = rows
+        .flat_map(|r| r.1.iter().map(|r| r.x_m))
+        .chain(all_outlines.iter().flatten().flat_map(|o| o.map(|p| p.0)));
+    let zs = routes
         .iter()
-        .map(|r| r.z_m)
-        .chain(outlines.iter().flat_map(|o| o.map(|p| p.1)));
+        .flat_map(|r| r.1.iter().map(|r| r.z_m))
+        .chain(all_outlines.iter().flatten().flat_map(|o| o.map(|p| p.1)));
     let (mut x0, mut x1) = ranges(xs);
     let (mut z0, mut z1) = ranges(zs);
     // Equal scales on both axes.
@@ -104,13 +129,7 @@ pub fn plan(path: &Path, scene: &Scene, route: &Route) -> Res<()> {
     let root = SVGBackend::new(path, (w, h)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| err(path)(e.to_string()))?;
     let mut chart = ChartBuilder::on(&root)
-        .caption(
-            format!(
-                "{}: plan view from above — {} after {:.2} s",
-                route.scene, route.termination.reason, route.termination.t_s
-            ),
-            ("sans-serif", 18),
-        )
+        .caption(title, ("sans-serif", 18))
         .margin(10)
         .x_label_area_size(40)
         .y_label_area_size(50)
@@ -149,26 +168,31 @@ pub fn plan(path: &Path, scene: &Scene, route: &Route) -> Res<()> {
         .legend(move |(x, y)| {
             PathElement::new(vec![(x, y), (x + 20, y)], dark_green.stroke_width(2))
         });
-    for (k, o) in outlines.iter().enumerate() {
-        let mut pts = o.to_vec();
-        pts.push(o[0]);
-        let style = if k == 0 || k + 1 == outlines.len() {
-            BLACK.stroke_width(2)
-        } else {
-            BLACK.mix(0.35).stroke_width(1)
-        };
+    for (r, (outlines, &(name, rows, color))) in all_outlines.iter().zip(routes).enumerate() {
+        let ink = if r == 0 { BLACK } else { color };
+        for (k, o) in outlines.iter().enumerate() {
+            let mut pts = o.to_vec();
+            pts.push(o[0]);
+            let style = if k == 0 || k + 1 == outlines.len() {
+                ink.stroke_width(2)
+            } else {
+                ink.mix(0.35).stroke_width(1)
+            };
+            chart
+                .draw_series(std::iter::once(PathElement::new(pts, style)))
+                .map_err(|e| err(path)(e.to_string()))?;
+        }
         chart
-            .draw_series(std::iter::once(PathElement::new(pts, style)))
-            .map_err(|e| err(path)(e.to_string()))?;
+            .draw_series(LineSeries::new(
+                rows.iter().map(|r| (r.x_m, r.z_m)),
+                color.stroke_width(2),
+            ))
+            .map_err(|e| err(path)(e.to_string()))?
+            .label(name)
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
+            });
     }
-    chart
-        .draw_series(LineSeries::new(
-            rows.iter().map(|r| (r.x_m, r.z_m)),
-            RED.stroke_width(2),
-        ))
-        .map_err(|e| err(path)(e.to_string()))?
-        .label("path of the centre of mass")
-        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], RED.stroke_width(2)));
     if let (Some(first), Some(last)) = (outlines.first(), outlines.last()) {
         chart
             .draw_series(first.iter().map(|&p| Circle::new(p, 5, BLACK.filled())))

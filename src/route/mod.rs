@@ -10,16 +10,18 @@
 pub mod integrator;
 pub mod pose_finder;
 pub mod rhs;
+mod rigid;
 mod run;
 pub mod state;
 pub mod termination;
 
 pub use pose_finder::PoseMethod;
+pub use rigid::EnergyBalance;
 pub use run::{run, run_observed, run_with};
 pub use state::{ROUTE_HEADER, Row, State};
 pub use termination::{Reason, Termination};
 
-use crate::scene::{Integrator, Mode};
+use crate::scene::{DynamicsModel, Integrator, Mode};
 use serde::Serialize;
 
 /// A computed route: the recorded rows and how it ended.
@@ -28,6 +30,8 @@ pub struct Route {
     pub scene: String,
     pub mode: Mode,
     pub integrator: Integrator,
+    /// The paper's dynamics or the rigid body's.
+    pub dynamics: DynamicsModel,
     /// How the pose was found at each increment.
     pub pose_method: PoseMethod,
     #[serde(skip)]
@@ -48,6 +52,9 @@ pub struct Route {
     /// Condition number of the tracked equations' Jacobian at the last pose (continuation only):
     /// large near a turning point or where roots merge.
     pub end_jacobian_condition: Option<f64>,
+    /// Energy balance (rigid-body dynamics only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub energy: Option<EnergyBalance>,
     /// Wall-clock time of the computation (s).
     pub wall_s: f64,
 }

@@ -37,6 +37,24 @@ pub struct Stop {
     pub detail: String,
 }
 
+/// Moves `tracker` to displacement `d` and returns the pose there, or the reason the route
+/// ends (the tracker's diagnosis as a termination reason).
+pub fn pose_at(scene: &Scene, tracker: &mut PoseFinder<'_>, d: Displacement) -> Result<Pose, Stop> {
+    tracker.advance(d).map_err(|e| {
+        let at_dip = tracker
+            .pose()
+            .is_some_and(|p| p.alpha >= scene.foundation.xi || p.beta >= scene.foundation.zeta);
+        Stop {
+            reason: from_track_error(&e, at_dip),
+            detail: e.to_string(),
+        }
+    })?;
+    tracker.pose().ok_or_else(|| Stop {
+        reason: Reason::NoAdmissibleRoot,
+        detail: "the tracked point has no real frame".into(),
+    })
+}
+
 /// Evaluates the right-hand side at displacement `d`, moving `tracker` there. `previous` is
 /// the reaction chosen at the last state (continuity); `velocity` the current CM velocity and
 /// angular velocity (None at rest).
@@ -48,19 +66,7 @@ pub fn evaluate(
     previous: Option<&Reaction>,
     velocity: Option<(Vector3<f64>, Vector3<f64>)>,
 ) -> Result<Evaluation, Stop> {
-    tracker.advance(d).map_err(|e| {
-        let at_dip = tracker
-            .pose()
-            .is_some_and(|p| p.alpha >= scene.foundation.xi || p.beta >= scene.foundation.zeta);
-        Stop {
-            reason: from_track_error(&e, at_dip),
-            detail: e.to_string(),
-        }
-    })?;
-    let pose = tracker.pose().ok_or_else(|| Stop {
-        reason: Reason::NoAdmissibleRoot,
-        detail: "the tracked point has no real frame".into(),
-    })?;
+    let pose = pose_at(scene, tracker, d)?;
     let geom = ContactGeometry::new(scene, &pose);
     let applied = Applied::new(dynamics.loads, dynamics.block, &geom.frame);
     let c = statics::frictionless_normals(&geom, &applied).ok_or_else(|| Stop {

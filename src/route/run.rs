@@ -9,7 +9,7 @@ use super::state::{Row, State};
 use super::termination::{Reason, Termination};
 use crate::mechanics::loads::Applied;
 use crate::mechanics::onset::factor_of_safety;
-use crate::scene::{Integrator, Scene, SceneError};
+use crate::scene::{DynamicsModel, Integrator, Scene, SceneError};
 use std::time::Instant;
 
 fn row(s: &State, ev: Option<&Evaluation>, pose: &crate::geometry::Pose) -> Row {
@@ -62,12 +62,16 @@ pub fn run_with(
     let started = Instant::now();
     let dynamics = scene.require_dynamics()?;
     let solver = *dynamics.solver;
+    if solver.dynamics == DynamicsModel::RigidBody {
+        return Ok(super::rigid::run(scene, &dynamics, method, progress));
+    }
     let mut finder = PoseFinder::new(scene, solver.mode, method);
     let o = slide(scene, &dynamics, &mut finder, progress);
     Ok(Route {
         scene: scene.name.clone(),
         mode: solver.mode,
         integrator: solver.integrator,
+        dynamics: solver.dynamics,
         pose_method: method,
         rows: o.rows,
         termination: Termination {
@@ -81,6 +85,7 @@ pub fn run_with(
         friction_switches: o.switches,
         tracker: finder.stats(),
         end_jacobian_condition: finder.jacobian_condition(),
+        energy: None,
         wall_s: started.elapsed().as_secs_f64(),
     })
 }

@@ -26,6 +26,9 @@ pub enum Reason {
     NoAdmissibleRoot,
     /// t reached t_end.
     TimeLimit,
+    /// Rigid-body mode: the contact forces are not determined by the state (a singular
+    /// contact system, Painlevé's paradox, or slip from rest with no consistent direction).
+    ContactForcesUndetermined,
 }
 
 impl Reason {
@@ -40,6 +43,7 @@ impl Reason {
             Reason::TiltReachedDip => "a tilt reached its dip",
             Reason::NoAdmissibleRoot => "no admissible root",
             Reason::TimeLimit => "time limit",
+            Reason::ContactForcesUndetermined => "the contact forces are not determined",
         }
     }
 }

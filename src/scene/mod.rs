@@ -61,8 +61,55 @@ pub struct Foundation {
 pub struct Block {
     /// m (kg).
     pub mass: f64,
-    /// I_m about the frame normal y' (kg·m²).
+    /// I_m about the frame normal y' (kg·m²): the paper's only moment of inertia.
     pub inertia: f64,
+    /// Moment about x' (kg·m²; rigid-body mode). Default: `inertia / 2` (thin plate).
+    pub inertia_x: f64,
+    /// Moment about z' (kg·m²; rigid-body mode). Default: `inertia / 2` (thin plate).
+    pub inertia_z: f64,
+    /// Product of inertia ∫ x' z' dm (kg·m²; rigid-body mode), entering the tensor as −I_xz.
+    /// Default 0.
+    pub inertia_xz: f64,
+}
+
+impl Block {
+    /// The inertia tensor about the CM in the block's axes (x', y', z') (kg·m²).
+    pub fn tensor(&self) -> nalgebra::Matrix3<f64> {
+        nalgebra::Matrix3::new(
+            self.inertia_x,
+            0.0,
+            -self.inertia_xz,
+            0.0,
+            self.inertia,
+            0.0,
+            -self.inertia_xz,
+            0.0,
+            self.inertia_z,
+        )
+    }
+}
+
+/// Which dynamics moves the block.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, serde::Serialize)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
+#[serde(rename_all = "kebab-case")]
+pub enum DynamicsModel {
+    /// The paper's (§5–7): translation along x' and rotation about y', shear directions
+    /// chosen so that this holds (`mechanics::reactions_paper`).
+    #[default]
+    Paper,
+    /// A rigid body with the three contacts held on their planes and Coulomb-type friction
+    /// opposing each contact's slip (`mechanics::rigid_body`, `derivations/08-rigid-body.md`).
+    RigidBody,
+}
+
+impl DynamicsModel {
+    pub fn as_str(self) -> &'static str {
+        match self {
+            DynamicsModel::Paper => "paper",
+            DynamicsModel::RigidBody => "rigid-body",
+        }
+    }
 }
 
 /// The driving loads.
@@ -143,6 +190,7 @@ pub struct Solver {
     pub integrator: Integrator,
     /// Record every `stride`-th increment (≥ 1).
     pub stride: usize,
+    pub dynamics: DynamicsModel,
 }
 
 /// A validated scene. `frame` and `foundation` are always present; the other sections are
@@ -194,6 +242,23 @@ impl Scene {
     pub fn from_toml(text: &str, origin: &str) -> Result<Scene, SceneError> {
         let raw = parse(text, origin)?;
         validate(raw, origin)
+    }
+
+    /// The same scene with the other dynamics model (when it has a `[solver]`): the rigid body
+    /// integrates with RK4; the paper's dynamics keeps the scene's integrator, or takes its own
+    /// default ("paper") when the scene was written for the rigid body.
+    pub fn with_dynamics(&self, model: DynamicsModel) -> Scene {
+        let mut s = self.clone();
+        if let Some(solver) = &mut s.solver {
+            if solver.dynamics != model {
+                solver.integrator = match model {
+                    DynamicsModel::RigidBody => Integrator::Rk4,
+                    DynamicsModel::Paper => Integrator::Paper,
+                };
+            }
+            solver.dynamics = model;
+        }
+        s
     }
 
     /// Side length L (m).
@@ -273,6 +338,8 @@ fn parse(text: &str, origin: &str) -> Result<raw::RawScene, SceneError> {
             (join("model"), format!("unknown friction model; {msg}"))
         } else if msg.starts_with("unknown variant") && parent.ends_with("integrator") {
             (parent.clone(), format!("unknown integrator; {msg}"))
+        } else if msg.starts_with("unknown variant") && parent.ends_with("dynamics") {
+            (parent.clone(), format!("unknown dynamics; {msg}"))
         } else if msg.starts_with("unknown variant") && parent.starts_with("solver") {
             (join("mode"), format!("unknown solver mode; {msg}"))
         } else {
@@ -309,6 +376,61 @@ fn positive(origin: &str, key: &str, v: f64) -> Result<f64, SceneError> {
 
 fn non_negative(origin: &str, key: &str, v: f64) -> Result<f64, SceneError> {
     check(origin, key, v, v >= 0.0, "zero or positive")
+}
+
+/// The block, with the rigid-body inertia defaults (a thin plate in the x'z' plane) and the
+/// checks a rigid body's inertia must pass (positive definite, triangle inequalities).
+fn block(o: &str, b: &raw::RawBlock) -> Result<Block, SceneError> {
+    let inertia = positive(o, "block.inertia_kg_m2", b.inertia_kg_m2)?;
+    let inertia_x = match b.inertia_x_kg_m2 {
+        Some(v) => positive(o, "block.inertia_x_kg_m2", v)?,
+        None => inertia / 2.0,
+    };
+    let inertia_z = match b.inertia_z_kg_m2 {
+        Some(v) => positive(o, "block.inertia_z_kg_m2", v)?,
+        None => inertia / 2.0,
+    };
+    let inertia_xz = match b.inertia_xz_kg_m2 {
+        Some(v) => check(o, "block.inertia_xz_kg_m2", v, true, "finite")?,
+        None => 0.0,
+    };
+    let block = Block {
+        mass: positive(o, "block.mass_kg", b.mass_kg)?,
+        inertia,
+        inertia_x,
+        inertia_z,
+        inertia_xz,
+    };
+    let key = if b.inertia_xz_kg_m2.is_some() {
+        "block.inertia_xz_kg_m2"
+    } else {
+        "block"
+    };
+    let p = block.tensor().symmetric_eigenvalues();
+    let (lo, hi, sum) = (p.min(), p.max(), p.sum());
+    if lo <= 0.0 {
+        return Err(SceneError::new(
+            o,
+            key,
+            format!(
+                "the inertia tensor is not positive definite (principal moments {:.6e}, {:.6e}, \
+                 {:.6e} kg·m²): |inertia_xz| must be below √(inertia_x · inertia_z)",
+                p[0], p[1], p[2]
+            ),
+        ));
+    }
+    if hi > (sum - hi) * (1.0 + 1e-9) {
+        return Err(SceneError::new(
+            o,
+            key,
+            format!(
+                "no rigid body has these moments of inertia: the largest principal moment \
+                 {hi:.6e} kg·m² exceeds the sum of the other two, {:.6e} kg·m²",
+                sum - hi
+            ),
+        ));
+    }
+    Ok(block)
 }
 
 fn validate(raw: raw::RawScene, o: &str) -> Result<Scene, SceneError> {
@@ -357,10 +479,7 @@ fn validate(raw: raw::RawScene, o: &str) -> Result<Scene, SceneError> {
 
     let block = match &raw.block {
         None => None,
-        Some(b) => Some(Block {
-            mass: positive(o, "block.mass_kg", b.mass_kg)?,
-            inertia: positive(o, "block.inertia_kg_m2", b.inertia_kg_m2)?,
-        }),
+        Some(b) => Some(block(o, b)?),
     };
     let loads = match &raw.loads {
         None => None,
@@ -412,7 +531,20 @@ fn validate(raw: raw::RawScene, o: &str) -> Result<Scene, SceneError> {
             mode: s.mode,
             dt: positive(o, "solver.dt_s", s.dt_s)?,
             t_end: positive(o, "solver.t_end_s", s.t_end_s)?,
-            integrator: s.integrator,
+            integrator: match (s.dynamics, s.integrator) {
+                (DynamicsModel::Paper, Some(i)) => i,
+                (DynamicsModel::Paper, None) => Integrator::Paper,
+                (DynamicsModel::RigidBody, Some(Integrator::Rk4) | None) => Integrator::Rk4,
+                (DynamicsModel::RigidBody, Some(Integrator::Paper)) => {
+                    return Err(SceneError::new(
+                        o,
+                        "solver.integrator",
+                        "the rigid-body dynamics integrates with \"rk4\" only (the paper's \
+                         update belongs to the paper's dynamics)",
+                    ));
+                }
+            },
+            dynamics: s.dynamics,
             stride: match s.stride {
                 None => 1,
                 Some(k) if k >= 1 => k as usize,

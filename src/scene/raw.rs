@@ -37,6 +37,11 @@ pub struct RawFoundation {
 pub struct RawBlock {
     pub mass_kg: f64,
     pub inertia_kg_m2: f64,
+    /// Rigid-body mode: moments about x' and z' and the product ∫x'z' dm (default: a thin
+    /// plate, half of `inertia_kg_m2` each, product 0).
+    pub inertia_x_kg_m2: Option<f64>,
+    pub inertia_z_kg_m2: Option<f64>,
+    pub inertia_xz_kg_m2: Option<f64>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -67,8 +72,10 @@ pub struct RawSolver {
     pub mode: super::Mode,
     pub dt_s: f64,
     pub t_end_s: f64,
+    /// Default: "paper" for the paper's dynamics, "rk4" for the rigid body.
+    pub integrator: Option<super::Integrator>,
     #[serde(default)]
-    pub integrator: super::Integrator,
+    pub dynamics: super::DynamicsModel,
     /// Record every `stride`-th increment (default 1: every one).
     pub stride: Option<i64>,
 }

@@ -1,0 +1,164 @@
+#!/usr/bin/env python3
+"""The path of a slideroute scene's block in Drake (pydrake), for the cross-check of the
+rigid-body mode (issue #7). Independent of slideroute's code: it reads only the scene file.
+
+Model: one free rigid body (mass, full inertia tensor about the CM in the block axes x', y', z')
+with three small spheres welded at the contact points; each sphere collides only with its own
+half-space (contact 0 with the horizontal plane, 1 with plane 1, 2 with plane 2; "from the
+perspective of contact 2, plane 1 does not exist"). Point contact with a stiff penalty
+(1e11 N/m combined), Coulomb friction mu_k, the TAMSI solver, time step dt. Each step the
+hydraulic force F is re-applied along the current x' and its couple -c F along the current y'
+(c > 0 turns the block so that theta grows). Coordinates are slideroute's: X forward, Y up,
+Z lateral, gravity -g Y; the block starts flat with its CM at the origin.
+
+Writes CSV: t_s,x_m,y_m,z_m,theta_deg (theta: yaw of x' from +X towards +Z).
+"""
+import argparse
+import csv
+import math
+import sys
+import tomllib
+
+import numpy as np
+from pydrake.geometry import (
+    AddContactMaterial,
+    CollisionFilterDeclaration,
+    GeometrySet,
+    HalfSpace,
+    ProximityProperties,
+    SceneGraph,
+    Sphere,
+)
+from pydrake.math import RigidTransform
+from pydrake.multibody.math import SpatialForce
+from pydrake.multibody.plant import (
+    AddMultibodyPlant,
+    CoulombFriction,
+    DiscreteContactApproximation,
+    ExternallyAppliedSpatialForce,
+    MultibodyPlantConfig,
+)
+from pydrake.multibody.tree import RotationalInertia, SpatialInertia
+from pydrake.systems.analysis import Simulator
+from pydrake.systems.framework import DiagramBuilder
+
+SPHERE_RADIUS = 1e-3  # m: small against L, large against the penetration (~1e-4 m)
+STIFFNESS = 2e11  # N/m per geometry: 1e11 N/m combined in series
+DISSIPATION = 1.0  # s/m, Hunt-Crossley
+
+
+def load(path):
+    with open(path, "rb") as f:
+        s = tomllib.load(f)
+    fr, fo, bl, lo, fi = s["frame"], s["foundation"], s["block"], s["loads"], s["friction"]
+    if fi.get("model") != "coulomb":
+        sys.exit(f"{path}: friction.model: the Drake cross-check supports coulomb only")
+    iy = bl["inertia_kg_m2"]
+    return dict(
+        l1x=fr["l1x"], l2x=fr["l2x"], l1z=fr["l1z"], l2z=fr["l2z"],
+        xi=math.radians(fo["xi_deg"]), zeta=math.radians(fo["zeta_deg"]),
+        kappa=math.radians(fo["kappa_deg"]),
+        mass=bl["mass_kg"], iy=iy,
+        ix=bl.get("inertia_x_kg_m2", iy / 2), iz=bl.get("inertia_z_kg_m2", iy / 2),
+        ixz=bl.get("inertia_xz_kg_m2", 0.0),
+        force=lo["hydraulic_force_n"], c=lo["eccentricity_m"], g=lo["gravity_m_s2"],
+        mu=fi["mu_k"],
+    )
+
+
+def planes(p):
+    """Upward unit normal and a point of each foundation plane (conventions.md)."""
+    xi, zeta, kappa = p["xi"], p["zeta"], p["kappa"]
+    r = p["l2x"] * math.cos(kappa) + p["l2z"] * math.sin(kappa)  # eq. (4)
+    return [
+        (np.array([0.0, 1.0, 0.0]), np.zeros(3)),
+        (np.array([-math.sin(xi), math.cos(xi), 0.0]), np.array([p["l2x"], 0.0, 0.0])),
+        (
+            np.array([-math.sin(zeta) * math.cos(kappa), math.cos(zeta),
+                      math.sin(zeta) * math.sin(kappa)]),
+            np.array([r * math.cos(kappa), 0.0, -r * math.sin(kappa)]),
+        ),
+    ]
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--scene", required=True)
+    ap.add_argument("--t-end", type=float, default=3.0)
+    ap.add_argument("--dt", type=float, default=1e-3)
+    ap.add_argument("--out", required=True)
+    a = ap.parse_args()
+    p = load(a.scene)
+
+    builder = DiagramBuilder()
+    plant, scene_graph = AddMultibodyPlant(
+        MultibodyPlantConfig(time_step=a.dt, contact_model="point",
+                             discrete_contact_approximation="tamsi"),
+        builder,
+    )
+    # Product of inertia I_xz = ∫x'z' dm enters the tensor as -I_xz.
+    inertia = RotationalInertia(p["ix"], p["iy"], p["iz"], 0.0, -p["ixz"], 0.0)
+    block = plant.AddRigidBody(
+        "block", SpatialInertia.MakeFromCentralInertia(p["mass"], np.zeros(3), inertia)
+    )
+    plant.mutable_gravity_field().set_gravity_vector([0.0, -p["g"], 0.0])
+
+    def props():
+        pp = ProximityProperties()
+        AddContactMaterial(DISSIPATION, STIFFNESS, CoulombFriction(p["mu"], p["mu"]), pp)
+        return pp
+
+    corners = [
+        np.array([-p["l1x"], 0.0, p["l1z"]]),
+        np.array([p["l2x"], 0.0, p["l1z"]]),
+        np.array([p["l2x"], 0.0, -p["l2z"]]),
+    ]
+    spheres, halves = [], []
+    for i, ((n, point), corner) in enumerate(zip(planes(p), corners)):
+        # The sphere's centre is the contact point; its plane is lowered by the radius.
+        spheres.append(plant.RegisterCollisionGeometry(
+            block, RigidTransform(corner), Sphere(SPHERE_RADIUS), f"contact{i}", props()))
+        halves.append(plant.RegisterCollisionGeometry(
+            plant.world_body(), RigidTransform(HalfSpace.MakePose(n, point - SPHERE_RADIUS * n)),
+            HalfSpace(), f"plane{i}", props()))
+    plant.Finalize()
+    decl = CollisionFilterDeclaration()
+    for i, s in enumerate(spheres):
+        for j, h in enumerate(halves):
+            if i != j:
+                decl.ExcludeBetween(GeometrySet(s), GeometrySet(h))
+    scene_graph.collision_filter_manager().Apply(decl)
+
+    diagram = builder.Build()
+    simulator = Simulator(diagram)
+    context = simulator.get_mutable_context()
+    plant_context = plant.GetMyMutableContextFromRoot(context)
+    plant.SetFreeBodyPose(plant_context, block, RigidTransform(np.zeros(3)))
+    port = plant.get_applied_spatial_force_input_port()
+
+    rows = []
+    steps = int(round(a.t_end / a.dt))
+    for k in range(steps + 1):
+        pose = plant.EvalBodyPoseInWorld(plant_context, block)
+        rot = pose.rotation().matrix()
+        i_axis, j_axis = rot[:, 0], rot[:, 1]
+        cm = pose.translation()
+        t = k * a.dt
+        rows.append((t, cm[0], cm[1], cm[2], math.degrees(math.atan2(i_axis[2], i_axis[0]))))
+        if k == steps:
+            break
+        f = ExternallyAppliedSpatialForce()
+        f.body_index = block.index()
+        f.p_BoBq_B = np.zeros(3)
+        f.F_Bq_W = SpatialForce(-p["c"] * p["force"] * j_axis, p["force"] * i_axis)
+        port.FixValue(plant_context, [f])
+        simulator.AdvanceTo((k + 1) * a.dt)
+
+    with open(a.out, "w", newline="") as out:
+        w = csv.writer(out)
+        w.writerow(["t_s", "x_m", "y_m", "z_m", "theta_deg"])
+        w.writerows(rows)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,466 @@
+//! Rigid-body dynamics of the block (issue #7; `derivations/08-rigid-body.md`).
+//!
+//! We deliberately differ from the paper's §5–7 here: instead of holding the block to
+//! translation along x' and rotation about y' and letting the shear directions float, the block
+//! is a rigid body with six degrees of freedom whose three contact points stay on their planes
+//! (three holonomic constraints, so three degrees of freedom remain: X, Z, θ). The normal
+//! reactions are the constraint forces; each shear force is the friction criterion's capacity at
+//! its normal force, opposing the slip velocity of its own contact point.
+//!
+//! At one state the unknowns are the CM acceleration a, the angular acceleration ω̇ and the three
+//! normal magnitudes λ. Newton–Euler (with the gyroscopic term ω × Iω) gives a and ω̇ affinely
+//! in λ; the three constraint accelerations n_i·(a + ω̇ × r_i + ω × (ω × r_i)) = 0 then leave a
+//! 3×3 linear system K λ = b (the Delassus matrix with friction, non-symmetric).
+//!
+//! A contact with no slip velocity (the start, a restart after a stop) has no direction from its
+//! velocity; there the shear opposes the contact's tangential *acceleration* (the Coulomb limit,
+//! not a regularising velocity), found by a fixed point.
+
+use super::ContactGeometry;
+use super::friction::FrictionCriterion;
+use super::loads::Applied;
+use crate::scene::{Block, Friction};
+use nalgebra::{Matrix3, Matrix6, Vector3, Vector6};
+
+/// Why the rigid-body accelerations cannot be had at a state.
+#[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
+pub enum RigidError {
+    /// A normal reaction is not positive: the contact lifts off its plane.
+    #[error("contact {contact} lifts off (normal reaction {normal_n:.6e} N)")]
+    LiftOff { contact: usize, normal_n: f64 },
+    /// The contact equations are singular: the velocities are not determined by (Ẋ, Ż, θ̇), or
+    /// friction makes the normal forces indeterminate (Painlevé's paradox).
+    #[error("the contact equations are singular ({0})")]
+    Singular(&'static str),
+    /// The start-of-slip directions (shear against tangential acceleration) do not settle.
+    #[error("the directions of slip from rest do not settle (a contact sticks while others slip)")]
+    SlipFromRest,
+}
+
+/// The inertia tensor in global axes and its inverse, at one pose.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Inertia {
+    pub world: Matrix3<f64>,
+    pub inverse: Matrix3<f64>,
+}
+
+impl Inertia {
+    /// I_W = R I_B Rᵀ with R = [i' j' k'] (columns).
+    pub fn new(block: &Block, geom: &ContactGeometry) -> Result<Self, RigidError> {
+        let f = &geom.frame;
+        let r = Matrix3::from_columns(&[f.i, f.j, f.k]);
+        let body = block.tensor();
+        let inv_body = body
+            .try_inverse()
+            .ok_or(RigidError::Singular("inertia tensor"))?;
+        Ok(Inertia {
+            world: r * body * r.transpose(),
+            inverse: r * inv_body * r.transpose(),
+        })
+    }
+}
+
+/// CM velocity v and angular velocity ω (global, rad/s about the global axes).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Twist {
+    pub v: Vector3<f64>,
+    pub w: Vector3<f64>,
+}
+
+impl Twist {
+    pub fn is_zero(&self) -> bool {
+        self.v == Vector3::zeros() && self.w == Vector3::zeros()
+    }
+
+    /// Velocity of the body point at arm r from the CM.
+    pub fn at(&self, r: &Vector3<f64>) -> Vector3<f64> {
+        self.v + self.w.cross(r)
+    }
+
+    /// Kinetic energy ½ m v² + ½ ωᵀ I ω (J).
+    pub fn kinetic_energy(&self, mass: f64, inertia: &Inertia) -> f64 {
+        0.5 * mass * self.v.norm_squared() + 0.5 * self.w.dot(&(inertia.world * self.w))
+    }
+
+    /// The kinetic-energy inner product of two twists (sign tells whether motion reversed).
+    pub fn energy_dot(&self, other: &Twist, mass: f64, inertia: &Inertia) -> f64 {
+        mass * self.v.dot(&other.v) + self.w.dot(&(inertia.world * other.w))
+    }
+}
+
+/// Unit vector u = i' and θ̇'s linear form in ω: θ = atan2(u_z, u_x), u̇ = ω × u, so
+/// θ̇ = (u_x u_y ω_x − ρ² ω_y + u_z u_y ω_z)/ρ² with ρ² = u_x² + u_z².
+fn theta_rate_row(u: &Vector3<f64>) -> Vector3<f64> {
+    let rho2 = u.x * u.x + u.z * u.z;
+    Vector3::new(u.x * u.y / rho2, -1.0, u.z * u.y / rho2)
+}
+
+/// The twist of the constrained block with rates (Ẋ, Ż, θ̇): six linear equations — v_X = Ẋ,
+/// v_Z = Ż, the three contact velocities along their normals vanish, and θ̇ from ω. This is the
+/// velocity projection: the twist always satisfies the constraints to round-off.
+pub fn twist(geom: &ContactGeometry, rates: [f64; 3]) -> Result<Twist, RigidError> {
+    let mut a = Matrix6::zeros();
+    let mut b = Vector6::zeros();
+    a[(0, 0)] = 1.0;
+    b[0] = rates[0];
+    a[(1, 2)] = 1.0;
+    b[1] = rates[1];
+    for i in 0..3 {
+        let n = geom.n[i];
+        let m = geom.r[i].cross(&n);
+        for c in 0..3 {
+            a[(2 + i, c)] = n[c];
+            a[(2 + i, 3 + c)] = m[c];
+        }
+    }
+    let row = theta_rate_row(&geom.frame.i);
+    for c in 0..3 {
+        a[(5, 3 + c)] = row[c];
+    }
+    b[5] = rates[2];
+    let x = a
+        .lu()
+        .solve(&b)
+        .filter(|x| x.iter().all(|v| v.is_finite()))
+        .ok_or(RigidError::Singular("velocity projection"))?;
+    Ok(Twist {
+        v: Vector3::new(x[0], x[1], x[2]),
+        w: Vector3::new(x[3], x[4], x[5]),
+    })
+}
+
+/// Everything the rigid-body dynamics gives at one state.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Motion {
+    pub twist: Twist,
+    /// CM acceleration and angular acceleration (global).
+    pub accel: Vector3<f64>,
+    pub ang_accel: Vector3<f64>,
+    /// Normal reaction magnitudes (N) and shear force vectors (N).
+    pub normal: [f64; 3],
+    pub shear: [Vector3<f64>; 3],
+    /// Slip velocity of each contact (m/s).
+    pub slip: [Vector3<f64>; 3],
+    /// (Ẍ, Z̈, θ̈).
+    pub acc: [f64; 3],
+    /// Power of the hydraulic force and couple, and of friction (W; friction's is ≤ 0).
+    pub power_hydraulic: f64,
+    pub power_friction: f64,
+    pub inertia: Inertia,
+}
+
+/// A slip speed below this fraction of the block's speed scale counts as zero slip.
+const ZERO_SLIP: f64 = 1e-12;
+/// Iterations of the fixed points (slip directions from rest, stress-dependent criteria).
+const MAX_FIXED_POINT: usize = 200;
+
+/// Solves ŝ(ŷ) = ŷ on the unit sphere by Newton's method (finite-difference Jacobian, halving
+/// steps while |ŝ − ŷ| does not fall), from `y`.
+fn settle_direction(
+    mut y: Vector3<f64>,
+    s: impl Fn(&Vector3<f64>) -> Result<Vector3<f64>, RigidError>,
+) -> Result<Vector3<f64>, RigidError> {
+    let residual = |y: &Vector3<f64>| s(y).map(|v| v - y);
+    let mut f = residual(&y)?;
+    for _ in 0..MAX_FIXED_POINT {
+        if f.norm() < 1e-14 {
+            return Ok(y);
+        }
+        let h = 1e-7;
+        let mut j = Matrix3::zeros();
+        for c in 0..3 {
+            let mut yc = y;
+            yc[c] += h;
+            j.set_column(c, &((residual(&yc)? - f) / h));
+        }
+        // ŝ does not depend on |ŷ|, so J = Dŝ − I has −1 along ŷ: it is regular there.
+        let step = j.lu().solve(&(-f)).ok_or(RigidError::SlipFromRest)?;
+        let mut t = 1.0;
+        loop {
+            let cand = (y + step * t).normalize();
+            let fc = residual(&cand)?;
+            if fc.norm() < f.norm() || t < 1e-6 {
+                y = cand;
+                f = fc;
+                break;
+            }
+            t *= 0.5;
+        }
+    }
+    if f.norm() < 1e-10 {
+        Ok(y)
+    } else {
+        Err(RigidError::SlipFromRest)
+    }
+}
+
+/// The accelerations at a pose with rates (Ẋ, Ż, θ̇).
+pub fn accelerations(
+    geom: &ContactGeometry,
+    applied: &Applied,
+    block: &Block,
+    friction: &Friction,
+    rates: [f64; 3],
+) -> Result<Motion, RigidError> {
+    let inertia = Inertia::new(block, geom)?;
+    let tw = twist(geom, rates)?;
+    let m = block.mass;
+    let force = applied.force + applied.weight;
+    let torque = applied.moment - tw.w.cross(&(inertia.world * tw.w));
+    let frictionless = friction.is_frictionless();
+
+    let centripetal = geom.r.map(|r| tw.w.cross(&tw.w.cross(&r)));
+    let slip_of = |t: &Twist| -> [Vector3<f64>; 3] {
+        [0, 1, 2].map(|i| {
+            let c = t.at(&geom.r[i]);
+            c - geom.n[i] * c.dot(&geom.n[i])
+        })
+    };
+    let unit = |v: Vector3<f64>| {
+        let n = v.norm();
+        if n > 0.0 { v / n } else { Vector3::zeros() }
+    };
+
+    // Solve K λ = b for given shear directions and coefficients: (λ, a, ω̇).
+    let solve = |dir: &[Vector3<f64>; 3], mu: &[f64; 3]| {
+        let g: [Vector3<f64>; 3] = [0, 1, 2].map(|j| geom.n[j] - dir[j] * mu[j]);
+        let arm_n: [Vector3<f64>; 3] = [0, 1, 2].map(|i| geom.r[i].cross(&geom.n[i]));
+        let arm_g: [Vector3<f64>; 3] = [0, 1, 2].map(|j| inertia.inverse * geom.r[j].cross(&g[j]));
+        let mut k = Matrix3::zeros();
+        let mut b = Vector3::zeros();
+        let free_ang = inertia.inverse * torque;
+        for i in 0..3 {
+            for j in 0..3 {
+                k[(i, j)] = geom.n[i].dot(&g[j]) / m + arm_n[i].dot(&arm_g[j]);
+            }
+            b[i] = -geom.n[i].dot(&centripetal[i])
+                - geom.n[i].dot(&force) / m
+                - arm_n[i].dot(&free_ang);
+        }
+        let lambda = k
+            .lu()
+            .solve(&b)
+            .filter(|x| x.iter().all(|v| v.is_finite()))
+            .ok_or(RigidError::Singular("normal reactions"))?;
+        let mut f = force;
+        let mut t = torque;
+        for j in 0..3 {
+            f += g[j] * lambda[j];
+            t += geom.r[j].cross(&g[j]) * lambda[j];
+        }
+        Ok((
+            [lambda[0], lambda[1], lambda[2]],
+            f / m,
+            inertia.inverse * t,
+        ))
+    };
+    let coefficients = |lambda: &[f64; 3]| -> [f64; 3] {
+        if frictionless {
+            [0.0; 3]
+        } else {
+            lambda.map(|l| friction.coefficient(l.max(0.0)))
+        }
+    };
+    let stress_dependent = matches!(friction, Friction::BartonChoubey { .. });
+
+    let slip = slip_of(&tw);
+    let mut dir = [Vector3::zeros(); 3];
+    let mut mu = [0.0; 3];
+    let mut result = solve(&dir, &mu)?;
+    if frictionless {
+        // Nothing more to do: no friction solve at all.
+    } else if tw.is_zero() {
+        // From rest: the direction ŷ of the rates (Ẋ, Ż, L θ̇) whose slip directions give
+        // accelerations along ŷ itself. Found by relaxing ŷ ← unit(ŷ + ŝ(ŷ)) from the
+        // frictionless direction (a discrete form of how the direction of motion settles
+        // just after the start).
+        let l = geom.r.iter().map(|r| r.norm()).fold(0.0, f64::max);
+        let theta_row = theta_rate_row(&geom.frame.i);
+        let generalized =
+            |a: &Vector3<f64>, e: &Vector3<f64>| unit(Vector3::new(a.x, a.z, l * theta_row.dot(e)));
+        let y0 = generalized(&result.1, &result.2);
+        // The acceleration direction ŝ(ŷ) for rates along ŷ, with coefficients μ.
+        let direction = |y: &Vector3<f64>, mu: &[f64; 3]| {
+            let t = twist(geom, [y.x, y.y, y.z / l])?;
+            let dir = slip_of(&t).map(unit);
+            let r = solve(&dir, mu)?;
+            Ok::<_, RigidError>((generalized(&r.1, &r.2), dir, r))
+        };
+        let mut y = y0;
+        let mut settled = false;
+        for _ in 0..MAX_FIXED_POINT / 10 {
+            mu = coefficients(&result.0);
+            y = settle_direction(y, |y| direction(y, &mu).map(|d| d.0))?;
+            let (_, d, r) = direction(&y, &mu)?;
+            dir = d;
+            result = r;
+            let new_mu = coefficients(&result.0);
+            if (0..3).all(|i| (new_mu[i] - mu[i]).abs() < 1e-13) {
+                settled = true;
+                break;
+            }
+        }
+        if !settled {
+            return Err(RigidError::SlipFromRest);
+        }
+    } else {
+        // Moving: each shear opposes its contact's slip velocity. A contact whose slip
+        // vanishes while the block moves (a pivot) takes the direction of its tangential
+        // acceleration.
+        let scale = tw.v.norm() + tw.w.norm() * geom.r.iter().map(|r| r.norm()).fold(0.0, f64::max);
+        let pivot: [bool; 3] = slip.map(|s| s.norm() <= ZERO_SLIP * scale);
+        dir = slip.map(unit);
+        let iterate = stress_dependent || pivot.iter().any(|&p| p);
+        mu = coefficients(&result.0);
+        result = solve(&dir, &mu)?;
+        let mut settled = !iterate;
+        for _ in 0..MAX_FIXED_POINT {
+            if settled {
+                break;
+            }
+            let (lambda, a, e) = result;
+            let new_mu = coefficients(&lambda);
+            let mut change: f64 = 0.0;
+            for i in 0..3 {
+                change = change.max((new_mu[i] - mu[i]).abs());
+                if pivot[i] {
+                    let ac = a + e.cross(&geom.r[i]) + centripetal[i];
+                    let d = unit(ac - geom.n[i] * ac.dot(&geom.n[i]));
+                    change = change.max((d - dir[i]).norm());
+                    dir[i] = d;
+                }
+            }
+            mu = new_mu;
+            result = solve(&dir, &mu)?;
+            settled = change < 1e-13;
+        }
+        if !settled {
+            return Err(RigidError::SlipFromRest);
+        }
+    }
+    let (lambda, accel, ang_accel) = result;
+    for (i, &l) in lambda.iter().enumerate() {
+        if l <= 0.0 {
+            return Err(RigidError::LiftOff {
+                contact: i,
+                normal_n: l,
+            });
+        }
+    }
+    let shear: [Vector3<f64>; 3] = [0, 1, 2].map(|i| -dir[i] * (mu[i] * lambda[i]));
+
+    // θ̈ from u = i': θ = atan2(u_z, u_x).
+    let u = geom.frame.i;
+    let du = tw.w.cross(&u);
+    let ddu = ang_accel.cross(&u) + tw.w.cross(&du);
+    let rho2 = u.x * u.x + u.z * u.z;
+    let theta_dot = (u.x * du.z - u.z * du.x) / rho2;
+    let theta_ddot =
+        (u.x * ddu.z - u.z * ddu.x) / rho2 - 2.0 * theta_dot * (u.x * du.x + u.z * du.z) / rho2;
+
+    let power_friction = (0..3).map(|i| shear[i].dot(&slip[i])).sum();
+    Ok(Motion {
+        twist: tw,
+        accel,
+        ang_accel,
+        normal: lambda,
+        shear,
+        slip,
+        acc: [accel.x, accel.z, theta_ddot],
+        power_hydraulic: applied.force.dot(&tw.v) + applied.moment.dot(&tw.w),
+        power_friction,
+        inertia,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::{Displacement, Pose, direct};
+    use crate::scene::Scene;
+
+    fn at(scene: &Scene, d: Displacement) -> ContactGeometry {
+        let p = direct::solve(scene, d).unwrap();
+        let l = scene.l();
+        let pose = Pose::from_tilts(scene, d, p.alpha(l), p.beta(l)).unwrap();
+        ContactGeometry::new(scene, &pose)
+    }
+
+    #[test]
+    fn the_projected_twist_keeps_contacts_on_their_planes_and_gives_the_rates() {
+        let scene = Scene::default_scene();
+        let geom = at(&scene, Displacement::new(0.7, 0.2, 0.1));
+        let tw = twist(&geom, [1.5, -0.4, 0.3]).unwrap();
+        for i in 0..3 {
+            assert!(geom.n[i].dot(&tw.at(&geom.r[i])).abs() < 1e-14);
+        }
+        assert_eq!((tw.v.x, tw.v.z), (1.5, -0.4));
+        // θ̇ by finite differences of the yaw of i' rotated by ω dt.
+        let u = geom.frame.i;
+        let h = 1e-7;
+        let u2 = u + tw.w.cross(&u) * h;
+        let dtheta = (u2.z.atan2(u2.x) - u.z.atan2(u.x)) / h;
+        assert!((dtheta - 0.3).abs() < 1e-6, "{dtheta}");
+    }
+
+    #[test]
+    fn frictionless_accelerations_keep_contact_accelerations_on_the_planes() {
+        let scene = Scene::from_toml(
+            &crate::scene::DEFAULT_SCENE_TOML.replace("mu_k = 0.40", "mu_k = 0.0"),
+            "t",
+        )
+        .unwrap();
+        let d = scene.require_dynamics().unwrap();
+        let geom = at(&scene, Displacement::new(0.7, 0.2, 0.1));
+        let applied = Applied::new(d.loads, d.block, &geom.frame);
+        let m = accelerations(&geom, &applied, d.block, d.friction, [1.0, 0.1, 0.2]).unwrap();
+        for i in 0..3 {
+            let r = geom.r[i];
+            let acc = m.accel + m.ang_accel.cross(&r) + m.twist.w.cross(&m.twist.w.cross(&r));
+            assert!(geom.n[i].dot(&acc).abs() < 1e-12, "{i}");
+            assert_eq!(m.shear[i], Vector3::zeros());
+        }
+        // Newton: m a = F + W + Σ N.
+        let total = applied.force
+            + applied.weight
+            + (0..3)
+                .map(|i| geom.n[i] * m.normal[i])
+                .sum::<Vector3<f64>>();
+        assert!((total / d.block.mass - m.accel).norm() < 1e-12);
+    }
+
+    #[test]
+    fn shear_opposes_slip_with_the_criterion_magnitude() {
+        let scene = Scene::default_scene();
+        let d = scene.require_dynamics().unwrap();
+        let geom = at(&scene, Displacement::new(0.5, 0.0, -0.05));
+        let applied = Applied::new(d.loads, d.block, &geom.frame);
+        let m = accelerations(&geom, &applied, d.block, d.friction, [1.0, 0.1, 0.2]).unwrap();
+        for i in 0..3 {
+            let s = m.slip[i];
+            assert!((m.shear[i].norm() - 0.4 * m.normal[i]).abs() < 1e-6);
+            assert!((m.shear[i].normalize() + s.normalize()).norm() < 1e-12);
+        }
+        assert!(m.power_friction < 0.0);
+    }
+
+    #[test]
+    fn from_rest_each_shear_opposes_its_contacts_tangential_acceleration() {
+        let scene = Scene::default_scene();
+        let d = scene.require_dynamics().unwrap();
+        let geom = at(&scene, Displacement::new(0.0, 0.0, 0.0));
+        let applied = Applied::new(d.loads, d.block, &geom.frame);
+        let m = accelerations(&geom, &applied, d.block, d.friction, [0.0; 3]).unwrap();
+        for i in 0..3 {
+            let r = geom.r[i];
+            let acc = m.accel + m.ang_accel.cross(&r);
+            let t = acc - geom.n[i] * acc.dot(&geom.n[i]);
+            assert!(
+                (m.shear[i].normalize() + t.normalize()).norm() < 1e-10,
+                "{i}"
+            );
+        }
+        // About 1 m/s² forward at the start (issue #7's prototype).
+        assert!((0.8..1.3).contains(&m.accel.x), "{}", m.accel.x);
+    }
+}

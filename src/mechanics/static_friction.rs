@@ -1,0 +1,216 @@
+//! Static friction at rest in the rigid-body mode: does a state of contact forces exist that
+//! holds the block, with each contact force inside its friction cone? And the factor of safety
+//! at onset (issue #7, `derivations/08-rigid-body.md` §5).
+//!
+//! With the block at rest the six equilibrium equations (force and moment) are linear in the
+//! nine unknowns λ_i (normal) and the two in-plane components of each shear f_i; the friction
+//! cones |f_i| ≤ μ_i λ_i are second-order cones. Scaling the driving loads (the hydraulic force
+//! F and its couple −cF j') by t, the set of t for which such a state exists is an interval
+//! [t_lo, t_hi] (a convex set: the projection of a convex cone program). We compute both ends
+//! with the conic interior-point solver Clarabel:
+//!
+//! * the factor of safety at onset is FS = t_hi, the largest multiple of the driving loads that
+//!   static friction can hold (FS ≥ 1 where the loads as given are held; ∞ if any multiple is);
+//! * the block is held at the loads as given when t_lo ≤ 1 ≤ t_hi (t_lo > 1 would mean that the
+//!   weight alone pushes it back down the planes, and less than F would be needed to hold it).
+//!
+//! For stress-dependent criteria (Barton–Choubey) the cone of each contact uses the secant
+//! coefficient μ_i = S(λ_i)/λ_i at its own normal force, iterated to a fixed point.
+
+use super::ContactGeometry;
+use super::friction::FrictionCriterion;
+use super::loads::Applied;
+use crate::scene::Friction;
+use clarabel::algebra::CscMatrix;
+use clarabel::solver::{
+    DefaultSettings, DefaultSolver, IPSolver, SolverStatus, SupportedConeT::SecondOrderConeT,
+    SupportedConeT::ZeroConeT,
+};
+
+/// Why the static check has no answer.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum StaticError {
+    #[error("the cone program could not be solved: {0}")]
+    Solver(String),
+}
+
+/// The interval of load multiples that static friction can hold at one pose.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StaticCheck {
+    /// t_hi: the factor of safety (∞ when every multiple is held; −∞ when none is).
+    pub factor_of_safety: f64,
+    /// t_lo (−∞ when unbounded below; +∞ when no multiple is held).
+    pub lowest: f64,
+    /// Normal reactions of a holding state at t = min(1, t_hi) (N), for reports.
+    pub normal: [f64; 3],
+}
+
+impl StaticCheck {
+    /// True when the loads as given are held: t_lo ≤ 1 ≤ t_hi.
+    pub fn holds(&self) -> bool {
+        self.lowest <= 1.0 && 1.0 <= self.factor_of_safety
+    }
+}
+
+const N_VAR: usize = 10;
+const N_ROW: usize = 15;
+
+/// One cone program: optimise `sense`·t (sense = −1: maximise). Returns t (±∞ when
+/// unbounded, NaN when infeasible) and the normal forces (in units of the weight).
+fn extreme_t(
+    geom: &ContactGeometry,
+    applied: &Applied,
+    mu: &[f64; 3],
+    sense: f64,
+) -> Result<(f64, [f64; 3]), StaticError> {
+    let w = applied.weight.norm();
+    let l = geom.r.iter().map(|r| r.norm()).fold(0.0, f64::max);
+    let mut a = [[0.0; N_VAR]; N_ROW];
+    let mut b = [0.0; N_ROW];
+    // Columns: λ0, λ1, λ2, f0a, f0b, f1a, f1b, f2a, f2b, t.
+    for i in 0..3 {
+        let (t1, t2) = geom.tangents(i);
+        let r = geom.r[i] / l;
+        let cols = [(i, geom.n[i]), (3 + 2 * i, t1), (4 + 2 * i, t2)];
+        for (c, v) in cols {
+            let m = r.cross(&v);
+            for k in 0..3 {
+                a[k][c] = v[k];
+                a[3 + k][c] = m[k];
+            }
+        }
+        // Cone i: (μ λ_i, f_ia, f_ib) with s = b − A x.
+        a[6 + 3 * i][i] = -mu[i];
+        a[7 + 3 * i][3 + 2 * i] = -1.0;
+        a[8 + 3 * i][4 + 2 * i] = -1.0;
+    }
+    let force = applied.force / w;
+    let moment = applied.moment / (w * l);
+    for k in 0..3 {
+        a[k][9] = force[k];
+        a[3 + k][9] = moment[k];
+        b[k] = -applied.weight[k] / w;
+    }
+    let p = CscMatrix::<f64>::zeros((N_VAR, N_VAR));
+    let mut q = vec![0.0; N_VAR];
+    q[9] = sense;
+    let a = CscMatrix::from(&a);
+    let cones = [
+        ZeroConeT(6),
+        SecondOrderConeT(3),
+        SecondOrderConeT(3),
+        SecondOrderConeT(3),
+    ];
+    let settings = DefaultSettings {
+        verbose: false,
+        ..DefaultSettings::default()
+    };
+    let mut solver = DefaultSolver::new(&p, &q, &a, &b, &cones, settings)
+        .map_err(|e| StaticError::Solver(e.to_string()))?;
+    solver.solve();
+    let x = &solver.solution.x;
+    match solver.solution.status {
+        SolverStatus::Solved | SolverStatus::AlmostSolved => Ok((x[9], [x[0], x[1], x[2]])),
+        SolverStatus::DualInfeasible | SolverStatus::AlmostDualInfeasible => {
+            Ok((-sense * f64::INFINITY, [f64::NAN; 3]))
+        }
+        SolverStatus::PrimalInfeasible | SolverStatus::AlmostPrimalInfeasible => {
+            Ok((f64::NAN, [f64::NAN; 3]))
+        }
+        other => Err(StaticError::Solver(format!("{other:?}"))),
+    }
+}
+
+/// The static check at a pose (block at rest).
+pub fn check(
+    geom: &ContactGeometry,
+    applied: &Applied,
+    friction: &Friction,
+    statics: &[f64; 3],
+) -> Result<StaticCheck, StaticError> {
+    let w = applied.weight.norm();
+    let mut mu = statics.map(|c| friction.coefficient(c.max(0.0)));
+    let stress_dependent = matches!(friction, Friction::BartonChoubey { .. });
+    let mut hi = extreme_t(geom, applied, &mu, -1.0)?;
+    if stress_dependent {
+        for _ in 0..50 {
+            if !hi.1[0].is_finite() {
+                break;
+            }
+            let new_mu = hi.1.map(|l| friction.coefficient((l * w).max(0.0)));
+            let change = (0..3)
+                .map(|i| (new_mu[i] - mu[i]).abs())
+                .fold(0.0, f64::max);
+            mu = new_mu;
+            hi = extreme_t(geom, applied, &mu, -1.0)?;
+            if change < 1e-10 {
+                break;
+            }
+        }
+    }
+    let lo = extreme_t(geom, applied, &mu, 1.0)?;
+    if hi.0.is_nan() {
+        // No multiple of the loads is held.
+        return Ok(StaticCheck {
+            factor_of_safety: f64::NEG_INFINITY,
+            lowest: f64::INFINITY,
+            normal: [f64::NAN; 3],
+        });
+    }
+    Ok(StaticCheck {
+        factor_of_safety: hi.0,
+        lowest: lo.0,
+        normal: hi.1.map(|l| l * w),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::Pose;
+    use crate::mechanics::statics::frictionless_normals;
+    use crate::scene::Scene;
+
+    fn start(toml: &str) -> (Scene, ContactGeometry) {
+        let s = Scene::from_toml(toml, "t").unwrap();
+        let pose = Pose::from_tilts(&s, Default::default(), 0.0, 0.0).unwrap();
+        let g = ContactGeometry::new(&s, &pose);
+        (s, g)
+    }
+
+    #[test]
+    fn a_flat_block_without_couple_is_held_up_to_mu_times_weight() {
+        // Nearly flat planes, no eccentricity: the held force is μ W (the planes' normals lean
+        // by 0.01°, which changes it by O(1e-4)).
+        let toml = crate::scene::DEFAULT_SCENE_TOML
+            .replace("xi_deg = 20.0", "xi_deg = 0.01")
+            .replace("zeta_deg = 25.0", "zeta_deg = 0.01")
+            .replace("eccentricity_m = 1.0", "eccentricity_m = 0.0");
+        let (s, g) = start(&toml);
+        let d = s.require_dynamics().unwrap();
+        let applied = Applied::new(d.loads, d.block, &g.frame);
+        let c = frictionless_normals(&g, &applied).unwrap();
+        let st = check(&g, &applied, d.friction, &c).unwrap();
+        let want = 0.4 * 9.81e6 / 8e6;
+        assert!(
+            (st.factor_of_safety - want).abs() < 1e-3 * want,
+            "{}",
+            st.factor_of_safety
+        );
+        assert!(!st.holds());
+    }
+
+    #[test]
+    fn high_friction_holds_and_zero_friction_does_not() {
+        let hold = crate::scene::DEFAULT_SCENE_TOML.replace("mu_k = 0.40", "mu_k = 2.0");
+        let slip = crate::scene::DEFAULT_SCENE_TOML.replace("mu_k = 0.40", "mu_k = 0.0");
+        for (toml, holds) in [(hold, true), (slip, false)] {
+            let (s, g) = start(&toml);
+            let d = s.require_dynamics().unwrap();
+            let applied = Applied::new(d.loads, d.block, &g.frame);
+            let c = frictionless_normals(&g, &applied).unwrap();
+            let st = check(&g, &applied, d.friction, &c).unwrap();
+            assert_eq!(st.holds(), holds, "{st:?}");
+        }
+    }
+}
