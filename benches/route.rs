@@ -1,7 +1,7 @@
 //! Whole routes and single increments: `cargo bench --bench route`.
 //!
 //! * the paper-like route (20 s at dt = 1 ms; it ends at 2.024 s), exact and small-angle,
-//!   frictional and frictionless (what a scene pays for);
+//!   frictional and frictionless (what a scene pays for); the rigid-body route over 3 s;
 //! * one increment: pose by continuation, frictionless statics, the followed frictional
 //!   reactions, accelerations — and the same with the pose by all roots.
 
@@ -9,7 +9,7 @@ use criterion::{Criterion, criterion_group, criterion_main};
 use slideroute::geometry::Displacement;
 use slideroute::route::pose_finder::PoseFinder;
 use slideroute::route::{self, PoseMethod, rhs};
-use slideroute::scene::{Friction, Mode, Scene};
+use slideroute::scene::{DynamicsModel, Friction, Mode, Scene};
 use std::hint::black_box;
 
 fn whole_routes(c: &mut Criterion) {
@@ -19,10 +19,20 @@ fn whole_routes(c: &mut Criterion) {
     let mut frictionless = base.clone();
     frictionless.friction = Some(Friction::Coulomb { mu_k: 0.0 });
     frictionless.loads.as_mut().unwrap().hydraulic_force = 4.0e6;
+    // Rigid-body dynamics, 3 s at 1 ms (RK4: four evaluations per increment).
+    let mut rigid = base.with_dynamics(DynamicsModel::RigidBody);
+    rigid.solver.as_mut().unwrap().t_end = 3.0;
+    let mut rigid_frictionless = frictionless.with_dynamics(DynamicsModel::RigidBody);
+    rigid_frictionless.solver.as_mut().unwrap().t_end = 3.0;
     for (name, s) in [
         ("paper-like route, exact, friction", &base),
         ("paper-like route, small-angle, friction", &small),
         ("paper-like route, exact, frictionless", &frictionless),
+        ("rigid-body route 3 s, exact, friction", &rigid),
+        (
+            "rigid-body route 3 s, exact, frictionless",
+            &rigid_frictionless,
+        ),
     ] {
         c.bench_function(name, |b| b.iter(|| route::run(black_box(s)).unwrap()));
     }

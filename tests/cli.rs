@@ -551,3 +551,51 @@ fn run_no_plots_writes_only_the_data() {
     assert!(dir.join("route.csv").exists() && !dir.join("plan.svg").exists());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn run_with_rigid_body_dynamics_reports_it_and_its_energy() {
+    let dir = temp_dir("rigid");
+    let o = run(&[
+        "run",
+        "--dynamics",
+        "rigid-body",
+        "--no-plots",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(out.contains("rigid-body dynamics"), "{out}");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap())
+            .unwrap();
+    assert_eq!(summary["dynamics"], "rigid-body");
+    assert_eq!(summary["integrator"], "rk4");
+    assert!(summary["energy"]["residual_j"].as_f64().unwrap().abs() < 1e-3);
+}
+
+#[test]
+fn compare_dynamics_writes_both_routes_and_where_they_part() {
+    let dir = temp_dir("compare");
+    let o = run(&["run", "--compare-dynamics", "--out", dir.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(out.contains("the routes part"), "{out}");
+    for f in [
+        "paper/route.csv",
+        "rigid-body/route.csv",
+        "comparison.json",
+        "compare-plan.svg",
+    ] {
+        assert!(dir.join(f).exists(), "{f}");
+    }
+    let c: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("comparison.json")).unwrap())
+            .unwrap();
+    assert_eq!(c["paper"]["dynamics"], "paper");
+    assert_eq!(c["rigid_body"]["dynamics"], "rigid-body");
+    assert!(c["parting"]["parted_at_s"].as_f64().unwrap() > 0.0);
+    // The two flags exclude each other.
+    let both = run(&["run", "--compare-dynamics", "--dynamics", "paper"]);
+    assert_eq!(both.status.code(), Some(2));
+}

@@ -20,7 +20,7 @@ use super::ContactGeometry;
 use super::friction::FrictionCriterion;
 use super::loads::Applied;
 use crate::scene::{Block, Friction};
-use nalgebra::{Matrix3, Matrix6, Vector3, Vector6};
+use nalgebra::{Matrix3, Matrix6, SMatrix, SVector, Vector3, Vector6};
 
 /// Why the rigid-body accelerations cannot be had at a state.
 #[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
@@ -32,8 +32,10 @@ pub enum RigidError {
     /// friction makes the normal forces indeterminate (Painlevé's paradox).
     #[error("the contact equations are singular ({0})")]
     Singular(&'static str),
-    /// The start-of-slip directions (shear against tangential acceleration) do not settle.
-    #[error("the directions of slip from rest do not settle (a contact sticks while others slip)")]
+    /// No consistent way to start slipping was found (all contacts slipping, or one sticking).
+    #[error(
+        "no consistent start of slip: neither all three contacts slipping nor one sticking fits"
+    )]
     SlipFromRest,
 }
 
@@ -150,7 +152,7 @@ pub struct Motion {
 }
 
 /// A slip speed below this fraction of the block's speed scale counts as zero slip.
-const ZERO_SLIP: f64 = 1e-12;
+const ZERO_SLIP: f64 = 1e-9;
 /// Iterations of the fixed points (slip directions from rest, stress-dependent criteria).
 const MAX_FIXED_POINT: usize = 200;
 
@@ -194,6 +196,188 @@ fn settle_direction(
     }
 }
 
+/// What is fixed at one state while the contact forces are sought.
+struct Ctx<'a> {
+    geom: &'a ContactGeometry,
+    inertia: Inertia,
+    mass: f64,
+    /// Applied force (F + W) and torque (couple − ω × Iω).
+    force: Vector3<f64>,
+    torque: Vector3<f64>,
+    /// ω × (ω × r_i).
+    centripetal: [Vector3<f64>; 3],
+    /// Longest arm (m): scales θ̇ against Ẋ, Ż.
+    arm: f64,
+}
+
+/// One solution of the contact problem: normals, CM and angular acceleration, shear vectors.
+#[derive(Clone, Copy)]
+struct Solved {
+    lambda: [f64; 3],
+    a: Vector3<f64>,
+    e: Vector3<f64>,
+    shear: [Vector3<f64>; 3],
+}
+
+fn unit(v: Vector3<f64>) -> Vector3<f64> {
+    let n = v.norm();
+    if n > 0.0 { v / n } else { Vector3::zeros() }
+}
+
+impl Ctx<'_> {
+    fn tangential(&self, i: usize, v: Vector3<f64>) -> Vector3<f64> {
+        v - self.geom.n[i] * v.dot(&self.geom.n[i])
+    }
+
+    fn slip_of(&self, t: &Twist) -> [Vector3<f64>; 3] {
+        [0, 1, 2].map(|i| self.tangential(i, t.at(&self.geom.r[i])))
+    }
+
+    /// Unit direction of the rates (Ẋ, Ż, L θ̇) of an acceleration (a, ω̇).
+    fn generalized(&self, s: &Solved) -> Vector3<f64> {
+        let row = theta_rate_row(&self.geom.frame.i);
+        unit(Vector3::new(s.a.x, s.a.z, self.arm * row.dot(&s.e)))
+    }
+
+    fn tangential_accel(&self, i: usize, s: &Solved) -> Vector3<f64> {
+        self.tangential(i, s.a + s.e.cross(&self.geom.r[i]) + self.centripetal[i])
+    }
+
+    /// All contacts slip: shear −μ_j λ_j dir_j. K λ = b (3×3), then a and ω̇.
+    fn solve(&self, dir: &[Vector3<f64>; 3], mu: &[f64; 3]) -> Result<Solved, RigidError> {
+        let geom = self.geom;
+        let g: [Vector3<f64>; 3] = [0, 1, 2].map(|j| geom.n[j] - dir[j] * mu[j]);
+        let arm_n: [Vector3<f64>; 3] = [0, 1, 2].map(|i| geom.r[i].cross(&geom.n[i]));
+        let arm_g: [Vector3<f64>; 3] =
+            [0, 1, 2].map(|j| self.inertia.inverse * geom.r[j].cross(&g[j]));
+        let mut k = Matrix3::zeros();
+        let mut b = Vector3::zeros();
+        let free_ang = self.inertia.inverse * self.torque;
+        for i in 0..3 {
+            for j in 0..3 {
+                k[(i, j)] = geom.n[i].dot(&g[j]) / self.mass + arm_n[i].dot(&arm_g[j]);
+            }
+            b[i] = -geom.n[i].dot(&self.centripetal[i])
+                - geom.n[i].dot(&self.force) / self.mass
+                - arm_n[i].dot(&free_ang);
+        }
+        let lambda = k
+            .lu()
+            .solve(&b)
+            .filter(|x| x.iter().all(|v| v.is_finite()))
+            .ok_or(RigidError::Singular("normal reactions"))?;
+        let mut f = self.force;
+        let mut t = self.torque;
+        for j in 0..3 {
+            f += g[j] * lambda[j];
+            t += geom.r[j].cross(&g[j]) * lambda[j];
+        }
+        let lambda = [lambda[0], lambda[1], lambda[2]];
+        Ok(Solved {
+            lambda,
+            a: f / self.mass,
+            e: self.inertia.inverse * t,
+            shear: [0, 1, 2].map(|j| -dir[j] * (mu[j] * lambda[j])),
+        })
+    }
+
+    /// Contact `i` sticks (its tangential acceleration vanishes, its shear is unknown), the
+    /// others slip along `dir`: Newton–Euler, three normal and two tangential constraint
+    /// accelerations, eleven linear equations in (a, ω̇, λ, f_i).
+    fn solve_stick(
+        &self,
+        dir: &[Vector3<f64>; 3],
+        mu: &[f64; 3],
+        i: usize,
+    ) -> Result<Solved, RigidError> {
+        let geom = self.geom;
+        let (t1, t2) = geom.tangents(i);
+        let mut a = SMatrix::<f64, 11, 11>::zeros();
+        let mut b = SVector::<f64, 11>::zeros();
+        let iw = self.inertia.world;
+        for k in 0..3 {
+            a[(k, k)] = self.mass;
+            b[k] = self.force[k];
+            b[3 + k] = self.torque[k];
+            for c in 0..3 {
+                a[(3 + k, 3 + c)] = iw[(k, c)];
+            }
+        }
+        for j in 0..3 {
+            let g = if j == i {
+                geom.n[j]
+            } else {
+                geom.n[j] - dir[j] * mu[j]
+            };
+            let m = geom.r[j].cross(&g);
+            for k in 0..3 {
+                a[(k, 6 + j)] = -g[k];
+                a[(3 + k, 6 + j)] = -m[k];
+            }
+            // n_j·a + (r_j × n_j)·ω̇ = −n_j·centripetal_j
+            let arm = geom.r[j].cross(&geom.n[j]);
+            for c in 0..3 {
+                a[(6 + j, c)] = geom.n[j][c];
+                a[(6 + j, 3 + c)] = arm[c];
+            }
+            b[6 + j] = -geom.n[j].dot(&self.centripetal[j]);
+        }
+        for (q, t) in [t1, t2].iter().enumerate() {
+            let m = geom.r[i].cross(t);
+            for k in 0..3 {
+                a[(k, 9 + q)] = -t[k];
+                a[(3 + k, 9 + q)] = -m[k];
+            }
+            let arm = geom.r[i].cross(t);
+            for c in 0..3 {
+                a[(9 + q, c)] = t[c];
+                a[(9 + q, 3 + c)] = arm[c];
+            }
+            b[9 + q] = -t.dot(&self.centripetal[i]);
+        }
+        let x = a
+            .lu()
+            .solve(&b)
+            .filter(|x| x.iter().all(|v| v.is_finite()))
+            .ok_or(RigidError::Singular("stick at one contact"))?;
+        let lambda = [x[6], x[7], x[8]];
+        let shear = [0, 1, 2].map(|j| {
+            if j == i {
+                t1 * x[9] + t2 * x[10]
+            } else {
+                -dir[j] * (mu[j] * lambda[j])
+            }
+        });
+        Ok(Solved {
+            lambda,
+            a: Vector3::new(x[0], x[1], x[2]),
+            e: Vector3::new(x[3], x[4], x[5]),
+            shear,
+        })
+    }
+
+    /// Rates (Ẋ, Ż, L θ̇) along which contact `i` does not slip: the null vector of its 2×3
+    /// tangential velocity map.
+    fn pivot_direction(&self, i: usize) -> Result<Vector3<f64>, RigidError> {
+        let (t1, t2) = self.geom.tangents(i);
+        let mut rows = [Vector3::zeros(); 2];
+        for c in 0..3 {
+            let mut y = [0.0; 3];
+            y[c] = if c == 2 { 1.0 / self.arm } else { 1.0 };
+            let tw = twist(self.geom, y)?;
+            let v = tw.at(&self.geom.r[i]);
+            rows[0][c] = v.dot(&t1);
+            rows[1][c] = v.dot(&t2);
+        }
+        Ok(unit(rows[0].cross(&rows[1])))
+    }
+}
+
+/// Coulomb's cone with a little room for round-off.
+fn in_cone(shear: &Vector3<f64>, mu: f64, lambda: f64) -> bool {
+    shear.norm() <= mu * lambda * (1.0 + 1e-9)
+}
+
 /// The accelerations at a pose with rates (Ẋ, Ż, θ̇).
 pub fn accelerations(
     geom: &ContactGeometry,
@@ -204,56 +388,16 @@ pub fn accelerations(
 ) -> Result<Motion, RigidError> {
     let inertia = Inertia::new(block, geom)?;
     let tw = twist(geom, rates)?;
-    let m = block.mass;
-    let force = applied.force + applied.weight;
-    let torque = applied.moment - tw.w.cross(&(inertia.world * tw.w));
+    let ctx = Ctx {
+        geom,
+        inertia,
+        mass: block.mass,
+        force: applied.force + applied.weight,
+        torque: applied.moment - tw.w.cross(&(inertia.world * tw.w)),
+        centripetal: geom.r.map(|r| tw.w.cross(&tw.w.cross(&r))),
+        arm: geom.r.iter().map(|r| r.norm()).fold(0.0, f64::max),
+    };
     let frictionless = friction.is_frictionless();
-
-    let centripetal = geom.r.map(|r| tw.w.cross(&tw.w.cross(&r)));
-    let slip_of = |t: &Twist| -> [Vector3<f64>; 3] {
-        [0, 1, 2].map(|i| {
-            let c = t.at(&geom.r[i]);
-            c - geom.n[i] * c.dot(&geom.n[i])
-        })
-    };
-    let unit = |v: Vector3<f64>| {
-        let n = v.norm();
-        if n > 0.0 { v / n } else { Vector3::zeros() }
-    };
-
-    // Solve K λ = b for given shear directions and coefficients: (λ, a, ω̇).
-    let solve = |dir: &[Vector3<f64>; 3], mu: &[f64; 3]| {
-        let g: [Vector3<f64>; 3] = [0, 1, 2].map(|j| geom.n[j] - dir[j] * mu[j]);
-        let arm_n: [Vector3<f64>; 3] = [0, 1, 2].map(|i| geom.r[i].cross(&geom.n[i]));
-        let arm_g: [Vector3<f64>; 3] = [0, 1, 2].map(|j| inertia.inverse * geom.r[j].cross(&g[j]));
-        let mut k = Matrix3::zeros();
-        let mut b = Vector3::zeros();
-        let free_ang = inertia.inverse * torque;
-        for i in 0..3 {
-            for j in 0..3 {
-                k[(i, j)] = geom.n[i].dot(&g[j]) / m + arm_n[i].dot(&arm_g[j]);
-            }
-            b[i] = -geom.n[i].dot(&centripetal[i])
-                - geom.n[i].dot(&force) / m
-                - arm_n[i].dot(&free_ang);
-        }
-        let lambda = k
-            .lu()
-            .solve(&b)
-            .filter(|x| x.iter().all(|v| v.is_finite()))
-            .ok_or(RigidError::Singular("normal reactions"))?;
-        let mut f = force;
-        let mut t = torque;
-        for j in 0..3 {
-            f += g[j] * lambda[j];
-            t += geom.r[j].cross(&g[j]) * lambda[j];
-        }
-        Ok((
-            [lambda[0], lambda[1], lambda[2]],
-            f / m,
-            inertia.inverse * t,
-        ))
-    };
     let coefficients = |lambda: &[f64; 3]| -> [f64; 3] {
         if frictionless {
             [0.0; 3]
@@ -263,83 +407,68 @@ pub fn accelerations(
     };
     let stress_dependent = matches!(friction, Friction::BartonChoubey { .. });
 
-    let slip = slip_of(&tw);
-    let mut dir = [Vector3::zeros(); 3];
-    let mut mu = [0.0; 3];
-    let mut result = solve(&dir, &mu)?;
+    let slip = ctx.slip_of(&tw);
+    let zero = [Vector3::zeros(); 3];
+    let mut sol = ctx.solve(&zero, &[0.0; 3])?;
     if frictionless {
         // Nothing more to do: no friction solve at all.
     } else if tw.is_zero() {
-        // From rest: the direction ŷ of the rates (Ẋ, Ż, L θ̇) whose slip directions give
-        // accelerations along ŷ itself. Found by relaxing ŷ ← unit(ŷ + ŝ(ŷ)) from the
-        // frictionless direction (a discrete form of how the direction of motion settles
-        // just after the start).
-        let l = geom.r.iter().map(|r| r.norm()).fold(0.0, f64::max);
-        let theta_row = theta_rate_row(&geom.frame.i);
-        let generalized =
-            |a: &Vector3<f64>, e: &Vector3<f64>| unit(Vector3::new(a.x, a.z, l * theta_row.dot(e)));
-        let y0 = generalized(&result.1, &result.2);
-        // The acceleration direction ŝ(ŷ) for rates along ŷ, with coefficients μ.
-        let direction = |y: &Vector3<f64>, mu: &[f64; 3]| {
-            let t = twist(geom, [y.x, y.y, y.z / l])?;
-            let dir = slip_of(&t).map(unit);
-            let r = solve(&dir, mu)?;
-            Ok::<_, RigidError>((generalized(&r.1, &r.2), dir, r))
-        };
-        let mut y = y0;
-        let mut settled = false;
-        for _ in 0..MAX_FIXED_POINT / 10 {
-            mu = coefficients(&result.0);
-            y = settle_direction(y, |y| direction(y, &mu).map(|d| d.0))?;
-            let (_, d, r) = direction(&y, &mu)?;
-            dir = d;
-            result = r;
-            let new_mu = coefficients(&result.0);
-            if (0..3).all(|i| (new_mu[i] - mu[i]).abs() < 1e-13) {
-                settled = true;
-                break;
-            }
-        }
-        if !settled {
-            return Err(RigidError::SlipFromRest);
-        }
+        sol = from_rest(&ctx, &sol, &coefficients)?;
     } else {
         // Moving: each shear opposes its contact's slip velocity. A contact whose slip
-        // vanishes while the block moves (a pivot) takes the direction of its tangential
-        // acceleration.
-        let scale = tw.v.norm() + tw.w.norm() * geom.r.iter().map(|r| r.norm()).fold(0.0, f64::max);
-        let pivot: [bool; 3] = slip.map(|s| s.norm() <= ZERO_SLIP * scale);
-        dir = slip.map(unit);
-        let iterate = stress_dependent || pivot.iter().any(|&p| p);
-        mu = coefficients(&result.0);
-        result = solve(&dir, &mu)?;
-        let mut settled = !iterate;
-        for _ in 0..MAX_FIXED_POINT {
-            if settled {
-                break;
-            }
-            let (lambda, a, e) = result;
-            let new_mu = coefficients(&lambda);
-            let mut change: f64 = 0.0;
-            for i in 0..3 {
-                change = change.max((new_mu[i] - mu[i]).abs());
-                if pivot[i] {
-                    let ac = a + e.cross(&geom.r[i]) + centripetal[i];
-                    let d = unit(ac - geom.n[i] * ac.dot(&geom.n[i]));
-                    change = change.max((d - dir[i]).norm());
-                    dir[i] = d;
+        // vanishes while the block moves (a pivot) sticks if its cone allows, or else slips
+        // along its tangential acceleration.
+        let scale = tw.v.norm() + tw.w.norm() * ctx.arm;
+        let pivot = (0..3).find(|&i| slip[i].norm() <= ZERO_SLIP * scale);
+        let mut dir = slip.map(unit);
+        let mut mu = coefficients(&sol.lambda);
+        let mut stuck = None;
+        if let Some(i) = pivot {
+            for _ in 0..MAX_FIXED_POINT {
+                let s = ctx.solve_stick(&dir, &mu, i)?;
+                let new_mu = coefficients(&s.lambda);
+                let change = (0..3)
+                    .map(|j| (new_mu[j] - mu[j]).abs())
+                    .fold(0.0, f64::max);
+                mu = new_mu;
+                if change < 1e-13 {
+                    if in_cone(&s.shear[i], mu[i], s.lambda[i]) {
+                        stuck = Some(s);
+                    }
+                    break;
                 }
             }
-            mu = new_mu;
-            result = solve(&dir, &mu)?;
-            settled = change < 1e-13;
         }
-        if !settled {
-            return Err(RigidError::SlipFromRest);
-        }
+        sol = match stuck {
+            Some(s) => s,
+            None => {
+                sol = ctx.solve(&dir, &mu)?;
+                let mut settled = !(stress_dependent || pivot.is_some());
+                for _ in 0..MAX_FIXED_POINT {
+                    if settled {
+                        break;
+                    }
+                    let new_mu = coefficients(&sol.lambda);
+                    let mut change: f64 = (0..3)
+                        .map(|j| (new_mu[j] - mu[j]).abs())
+                        .fold(0.0, f64::max);
+                    if let Some(i) = pivot {
+                        let d = unit(ctx.tangential_accel(i, &sol));
+                        change = change.max((d - dir[i]).norm());
+                        dir[i] = d;
+                    }
+                    mu = new_mu;
+                    sol = ctx.solve(&dir, &mu)?;
+                    settled = change < 1e-13;
+                }
+                if !settled {
+                    return Err(RigidError::SlipFromRest);
+                }
+                sol
+            }
+        };
     }
-    let (lambda, accel, ang_accel) = result;
-    for (i, &l) in lambda.iter().enumerate() {
+    for (i, &l) in sol.lambda.iter().enumerate() {
         if l <= 0.0 {
             return Err(RigidError::LiftOff {
                 contact: i,
@@ -347,30 +476,117 @@ pub fn accelerations(
             });
         }
     }
-    let shear: [Vector3<f64>; 3] = [0, 1, 2].map(|i| -dir[i] * (mu[i] * lambda[i]));
 
     // θ̈ from u = i': θ = atan2(u_z, u_x).
     let u = geom.frame.i;
     let du = tw.w.cross(&u);
-    let ddu = ang_accel.cross(&u) + tw.w.cross(&du);
+    let ddu = sol.e.cross(&u) + tw.w.cross(&du);
     let rho2 = u.x * u.x + u.z * u.z;
     let theta_dot = (u.x * du.z - u.z * du.x) / rho2;
     let theta_ddot =
         (u.x * ddu.z - u.z * ddu.x) / rho2 - 2.0 * theta_dot * (u.x * du.x + u.z * du.z) / rho2;
 
-    let power_friction = (0..3).map(|i| shear[i].dot(&slip[i])).sum();
+    let power_friction = (0..3).map(|i| sol.shear[i].dot(&slip[i])).sum();
     Ok(Motion {
         twist: tw,
-        accel,
-        ang_accel,
-        normal: lambda,
-        shear,
+        accel: sol.a,
+        ang_accel: sol.e,
+        normal: sol.lambda,
+        shear: sol.shear,
         slip,
-        acc: [accel.x, accel.z, theta_ddot],
+        acc: [sol.a.x, sol.a.z, theta_ddot],
         power_hydraulic: applied.force.dot(&tw.v) + applied.moment.dot(&tw.w),
         power_friction,
         inertia,
     })
+}
+
+/// Slip from rest (the block is not held; `mechanics::static_friction` decided that). The
+/// modes, tried in order, the first consistent one taken:
+///
+/// 1. all three contacts slip: the direction ŷ of the rates (Ẋ, Ż, L θ̇) whose slip directions
+///    give accelerations along ŷ itself (Newton on the sphere from the frictionless direction,
+///    then from the best of a spread of starting directions);
+/// 2. one contact i sticks and the block turns about it: rates ±ŷ_i along which contact i does
+///    not slip, consistent when the acceleration points along them, all normals are positive
+///    and contact i's shear lies inside its cone.
+fn from_rest(
+    ctx: &Ctx<'_>,
+    frictionless: &Solved,
+    coefficients: &dyn Fn(&[f64; 3]) -> [f64; 3],
+) -> Result<Solved, RigidError> {
+    let direction = |y: &Vector3<f64>, mu: &[f64; 3]| {
+        let t = twist(ctx.geom, [y.x, y.y, y.z / ctx.arm])?;
+        let dir = ctx.slip_of(&t).map(unit);
+        let s = ctx.solve(&dir, mu)?;
+        Ok::<_, RigidError>((ctx.generalized(&s), s))
+    };
+    let all_slip = |y0: Vector3<f64>| -> Result<Solved, RigidError> {
+        let mut mu = coefficients(&frictionless.lambda);
+        let mut y = y0;
+        for _ in 0..MAX_FIXED_POINT / 10 {
+            y = settle_direction(y, |y| direction(y, &mu).map(|d| d.0))?;
+            let (_, s) = direction(&y, &mu)?;
+            let new_mu = coefficients(&s.lambda);
+            if (0..3).all(|i| (new_mu[i] - mu[i]).abs() < 1e-13) {
+                return Ok(s);
+            }
+            mu = new_mu;
+        }
+        Err(RigidError::SlipFromRest)
+    };
+    let positive = |s: &Solved| s.lambda.iter().all(|&l| l > 0.0);
+    if let Some(s) = all_slip(ctx.generalized(frictionless))
+        .ok()
+        .filter(positive)
+    {
+        return Ok(s);
+    }
+    // A spread of starting directions (Fibonacci sphere), best residual first.
+    let mu0 = coefficients(&frictionless.lambda);
+    let mut seeds: Vec<(f64, Vector3<f64>)> = (0..200)
+        .filter_map(|k| {
+            let z = 1.0 - (2.0 * k as f64 + 1.0) / 200.0;
+            let phi = k as f64 * std::f64::consts::PI * (3.0 - 5f64.sqrt());
+            let rxy = (1.0 - z * z).sqrt();
+            let y = Vector3::new(rxy * phi.cos(), rxy * phi.sin(), z);
+            let (s, _) = direction(&y, &mu0).ok()?;
+            Some(((s - y).norm(), y))
+        })
+        .collect();
+    seeds.sort_by(|a, b| a.0.total_cmp(&b.0));
+    for (_, y) in seeds.iter().take(6) {
+        if let Some(s) = all_slip(*y).ok().filter(positive) {
+            return Ok(s);
+        }
+    }
+    // One contact sticks.
+    for i in 0..3 {
+        let yi = ctx.pivot_direction(i)?;
+        for sign in [1.0, -1.0] {
+            let y = yi * sign;
+            let t = twist(ctx.geom, [y.x, y.y, y.z / ctx.arm])?;
+            let dir = ctx.slip_of(&t).map(unit);
+            let mut mu = coefficients(&frictionless.lambda);
+            let mut s = ctx.solve_stick(&dir, &mu, i)?;
+            for _ in 0..MAX_FIXED_POINT {
+                let new_mu = coefficients(&s.lambda);
+                let change = (0..3)
+                    .map(|j| (new_mu[j] - mu[j]).abs())
+                    .fold(0.0, f64::max);
+                mu = new_mu;
+                s = ctx.solve_stick(&dir, &mu, i)?;
+                if change < 1e-13 {
+                    break;
+                }
+            }
+            let along = ctx.generalized(&s).dot(&y) > 0.0;
+            if along && positive(&s) && in_cone(&s.shear[i], mu[i], s.lambda[i]) {
+                return Ok(s);
+            }
+        }
+    }
+    Err(RigidError::SlipFromRest)
 }
 
 #[cfg(test)]

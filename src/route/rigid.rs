@@ -29,7 +29,7 @@ use crate::scene::{Dynamics, Scene};
 use serde::Serialize;
 
 /// Energy bookkeeping of a rigid-body route (J), from the start to its last state.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
 pub struct EnergyBalance {
     /// Work of the hydraulic force and its couple.
     pub work_hydraulic_j: f64,
@@ -49,7 +49,6 @@ type Y = [f64; 8];
 #[derive(Debug, Clone, Copy)]
 struct Eval {
     pose: Pose,
-    geom: ContactGeometry,
     motion: Motion,
 }
 
@@ -85,7 +84,7 @@ fn evaluate(
         [y[3], y[4], y[5]],
     )
     .map_err(stop_of)?;
-    Ok(Eval { pose, geom, motion })
+    Ok(Eval { pose, motion })
 }
 
 fn derivative(y: &Y, m: &Motion) -> Y {
@@ -145,11 +144,30 @@ fn row(t: f64, y: &Y, e: &Eval) -> Row {
     }
 }
 
-/// The static check at an evaluated pose.
-fn static_check(dynamics: &Dynamics<'_>, e: &Eval) -> Result<StaticCheck, Stop> {
-    let applied = Applied::new(dynamics.loads, dynamics.block, &e.geom.frame);
-    let c = statics::frictionless_normals(&e.geom, &applied).unwrap_or([1.0; 3]);
-    static_friction::check(&e.geom, &applied, dynamics.friction, &c).map_err(|err| Stop {
+/// A row at rest (velocities zero; reactions not computed: static friction is indeterminate).
+fn rest_row(t: f64, y: &Y, pose: &Pose) -> Row {
+    Row {
+        t_s: t,
+        x_m: y[0],
+        y_m: pose.cm.y,
+        z_m: y[1],
+        theta_deg: y[2].to_degrees(),
+        alpha_deg: pose.alpha.to_degrees(),
+        beta_deg: pose.beta.to_degrees(),
+        gamma_deg: pose.gamma.to_degrees(),
+        vx_m_s: 0.0,
+        vz_m_s: 0.0,
+        omega_deg_s: 0.0,
+        n_n: None,
+        s_n: None,
+    }
+}
+
+/// The static check at a pose.
+fn static_check(dynamics: &Dynamics<'_>, geom: &ContactGeometry) -> Result<StaticCheck, Stop> {
+    let applied = Applied::new(dynamics.loads, dynamics.block, &geom.frame);
+    let c = statics::frictionless_normals(geom, &applied).unwrap_or([1.0; 3]);
+    static_friction::check(geom, &applied, dynamics.friction, &c).map_err(|err| Stop {
         reason: Reason::ContactForcesUndetermined,
         detail: err.to_string(),
     })
@@ -240,38 +258,20 @@ fn slide(
         }
     };
 
-    // The start: at rest, held or not by static friction.
+    // The start: at rest, held or not by static friction (decided before any acceleration is
+    // sought: a held block has no consistent way to slip).
     let start_pose = finder.pose().expect("the flat start pose exists");
     let y0 = start_pose.cm.y;
-    let mut ev = match evaluate(scene, dynamics, finder, &y) {
-        Ok(e) => e,
+    let check = match static_check(dynamics, &ContactGeometry::new(scene, &start_pose)) {
+        Ok(c) => c,
         Err(Stop { reason, detail }) => {
-            // Report the static check if the pose exists, then end.
-            o.rows.push(Row {
-                t_s: 0.0,
-                x_m: 0.0,
-                y_m: start_pose.cm.y,
-                z_m: 0.0,
-                theta_deg: 0.0,
-                alpha_deg: start_pose.alpha.to_degrees(),
-                beta_deg: start_pose.beta.to_degrees(),
-                gamma_deg: start_pose.gamma.to_degrees(),
-                vx_m_s: 0.0,
-                vz_m_s: 0.0,
-                omega_deg_s: 0.0,
-                n_n: None,
-                s_n: None,
-            });
+            o.rows.push(rest_row(0.0, &y, &start_pose));
             return end(o, reason, 0.0, detail);
         }
     };
-    let check = match static_check(dynamics, &ev) {
-        Ok(c) => c,
-        Err(Stop { reason, detail }) => return end(o, reason, 0.0, detail),
-    };
     o.fs = Some(check.factor_of_safety);
-    o.rows.push(row(0.0, &y, &ev));
     if check.holds() {
+        o.rows.push(rest_row(0.0, &y, &start_pose));
         let mut done = end(
             o,
             Reason::DoesNotSlide,
@@ -282,9 +282,17 @@ fn slide(
                 check.factor_of_safety
             ),
         );
-        done.energy = Some(balance(&y, &ev, y0));
+        done.energy = Some(EnergyBalance::default());
         return done;
     }
+    let mut ev = match evaluate(scene, dynamics, finder, &y) {
+        Ok(e) => e,
+        Err(Stop { reason, detail }) => {
+            o.rows.push(rest_row(0.0, &y, &start_pose));
+            return end(o, reason, 0.0, detail);
+        }
+    };
+    o.rows.push(row(0.0, &y, &ev));
 
     let mut k = 0usize;
     let mut t_base = 0.0;
@@ -347,22 +355,28 @@ fn slide(
             stopped[4] = 0.0;
             stopped[5] = 0.0;
             let t_stop = t + hi;
-            let stop_ev = match evaluate(scene, dynamics, finder, &stopped) {
-                Ok(e) => e,
+            let stop_pose = match pose_at(scene, finder, displacement(&stopped)) {
+                Ok(p) => p,
                 Err(Stop { reason, detail }) => {
                     o.energy = Some(balance(&y, &ev, y0));
                     return end(o, reason, t, detail);
                 }
             };
-            o.travel += (stop_ev.pose.cm - ev.pose.cm).norm();
+            o.travel += (stop_pose.cm - ev.pose.cm).norm();
             o.increments = k + 1;
-            let check = match static_check(dynamics, &stop_ev) {
+            let check = match static_check(dynamics, &ContactGeometry::new(scene, &stop_pose)) {
                 Ok(c) => c,
                 Err(Stop { reason, detail }) => return end(o, reason, t, detail),
             };
             if check.holds() {
-                o.rows.push(row(t_stop, &stopped, &stop_ev));
-                o.energy = Some(balance(&stopped, &stop_ev, y0));
+                o.rows.push(rest_row(t_stop, &stopped, &stop_pose));
+                o.energy = Some(EnergyBalance {
+                    kinetic_j: 0.0,
+                    potential_change_j: mass * g * (stop_pose.cm.y - y0),
+                    residual_j: stopped[6] + stopped[7] - mass * g * (stop_pose.cm.y - y0),
+                    work_hydraulic_j: stopped[6],
+                    work_friction_j: stopped[7],
+                });
                 return end(
                     o,
                     Reason::Stopped,
@@ -374,6 +388,13 @@ fn slide(
                     ),
                 );
             }
+            let stop_ev = match evaluate(scene, dynamics, finder, &stopped) {
+                Ok(e) => e,
+                Err(Stop { reason, detail }) => {
+                    o.energy = Some(balance(&y, &ev, y0));
+                    return end(o, reason, t_stop, detail);
+                }
+            };
             // Not held: it slips again from rest.
             next = stopped;
             next_ev = stop_ev;

@@ -371,3 +371,60 @@ mod never_panics {
         }
     }
 }
+
+#[test]
+fn rigid_body_keys_default_to_a_thin_plate_and_are_checked() {
+    let s = Scene::default_scene();
+    let b = s.block.unwrap();
+    assert_eq!(
+        (b.inertia_x, b.inertia_z, b.inertia_xz),
+        (5.5e6, 5.5e6, 0.0)
+    );
+    assert_eq!(s.solver.unwrap().dynamics, DynamicsModel::Paper);
+    let rb = with(
+        "t_end_s = 20.0",
+        "t_end_s = 20.0\ndynamics = \"rigid-body\"",
+    );
+    let s = Scene::from_toml(&rb, "s.toml").unwrap();
+    let solver = s.solver.unwrap();
+    assert_eq!(solver.dynamics, DynamicsModel::RigidBody);
+    assert_eq!(solver.integrator, Integrator::Rk4);
+    let bad = [
+        (
+            with(
+                "t_end_s = 20.0",
+                "t_end_s = 20.0\ndynamics = \"rigid-body\"\nintegrator = \"paper\"",
+            ),
+            "solver.integrator",
+        ),
+        (
+            with("t_end_s = 20.0", "t_end_s = 20.0\ndynamics = \"newtonian\""),
+            "solver.dynamics",
+        ),
+        (
+            with(
+                "inertia_kg_m2 = 1.1e7",
+                "inertia_kg_m2 = 1.1e7\ninertia_xz_kg_m2 = 6.0e6",
+            ),
+            "block.inertia_xz_kg_m2",
+        ),
+        (
+            with(
+                "inertia_kg_m2 = 1.1e7",
+                "inertia_kg_m2 = 1.1e7\ninertia_x_kg_m2 = 3.0e7",
+            ),
+            "block",
+        ),
+        (
+            with(
+                "inertia_kg_m2 = 1.1e7",
+                "inertia_kg_m2 = 1.1e7\ninertia_z_kg_m2 = -1.0",
+            ),
+            "block.inertia_z_kg_m2",
+        ),
+    ];
+    for (text, key) in bad {
+        let e = Scene::from_toml(&text, "s.toml").unwrap_err();
+        assert_eq!(e.key, key, "{e}");
+    }
+}
