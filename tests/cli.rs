@@ -567,8 +567,7 @@ fn run_with_rigid_body_dynamics_reports_it_and_its_energy() {
     let out = String::from_utf8_lossy(&o.stdout);
     assert!(out.contains("rigid-body dynamics"), "{out}");
     let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap())
-            .unwrap();
+        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
     assert_eq!(summary["dynamics"], "rigid-body");
     assert_eq!(summary["integrator"], "rk4");
     assert!(summary["energy"]["residual_j"].as_f64().unwrap().abs() < 1e-3);
