@@ -1,7 +1,8 @@
 //! The rigid-body dynamics mode (issue #7): energy, the direct pose solver, the scenes where
 //! the paper's dynamics has no solution, the flat limit with friction, and the start.
 
-use slideroute::geometry::{Displacement, direct};
+mod common;
+
 use slideroute::route::{self, Reason, Route};
 use slideroute::scene::{DynamicsModel, Friction, Scene};
 
@@ -65,19 +66,7 @@ fn every_rigid_body_row_agrees_with_the_direct_pose_solver() {
     let s = rigid(|s| set_time(s, 1e-3, 4.0));
     let r = run(&s);
     assert!(r.rows.len() > 3000);
-    let l = s.l();
-    let mut near = None;
-    for row in &r.rows {
-        let d = Displacement::new(row.x_m, row.z_m, row.theta_deg.to_radians());
-        let p = match near {
-            Some(ref q) => direct::solve_from(&s, d, q).unwrap(),
-            None => direct::solve(&s, d).unwrap(),
-        };
-        assert!((p.alpha(l).to_degrees() - row.alpha_deg).abs() < 1e-10f64.to_degrees());
-        assert!((p.beta(l).to_degrees() - row.beta_deg).abs() < 1e-10f64.to_degrees());
-        assert!((p.cm_y - row.y_m).abs() < 1e-9 * l, "t = {}", row.t_s);
-        near = Some(p);
-    }
+    common::assert_rows_match_direct(&s, &r.rows);
 }
 
 #[test]

@@ -3,7 +3,6 @@
 
 mod common;
 
-use slideroute::geometry::{Displacement, direct};
 use slideroute::route::{self, Reason, Route};
 use slideroute::scene::{Friction, Integrator, Scene};
 
@@ -22,31 +21,7 @@ fn every_row_agrees_with_the_direct_pose_solver() {
     let s = Scene::default_scene();
     let r = run(&s);
     assert!(r.rows.len() > 1000);
-    let l = s.l();
-    let mut near = None;
-    for row in &r.rows {
-        let d = Displacement::new(row.x_m, row.z_m, row.theta_deg.to_radians());
-        let p = match near {
-            Some(ref q) => direct::solve_from(&s, d, q).unwrap(),
-            None => direct::solve(&s, d).unwrap(),
-        };
-        assert!(
-            (p.alpha(l).to_degrees() - row.alpha_deg).abs() < 1e-10f64.to_degrees(),
-            "α at t = {}",
-            row.t_s
-        );
-        assert!(
-            (p.beta(l).to_degrees() - row.beta_deg).abs() < 1e-10f64.to_degrees(),
-            "β at t = {}",
-            row.t_s
-        );
-        assert!(
-            (p.cm_y - row.y_m).abs() < 1e-9 * l,
-            "CM height at t = {}",
-            row.t_s
-        );
-        near = Some(p);
-    }
+    common::assert_rows_match_direct(&s, &r.rows);
 }
 
 #[test]

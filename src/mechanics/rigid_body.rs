@@ -409,9 +409,17 @@ pub fn accelerations(
 
     let slip = ctx.slip_of(&tw);
     let zero = [Vector3::zeros(); 3];
-    let mut sol = ctx.solve(&zero, &[0.0; 3])?;
+    // The frictionless solution: the answer of a frictionless scene (no friction solve at
+    // all), the starting direction from rest, and the first normals of a stress-dependent
+    // criterion. A sliding block under Coulomb friction does not need it (μ is constant).
+    let needs_frictionless = frictionless || tw.is_zero() || stress_dependent;
+    let mut sol = if needs_frictionless {
+        ctx.solve(&zero, &[0.0; 3])?
+    } else {
+        ctx.solve(&slip.map(unit), &coefficients(&[1.0; 3]))?
+    };
     if frictionless {
-        // Nothing more to do: no friction solve at all.
+        // Done.
     } else if tw.is_zero() {
         sol = from_rest(&ctx, &sol, &coefficients)?;
     } else {
@@ -441,9 +449,11 @@ pub fn accelerations(
         }
         sol = match stuck {
             Some(s) => s,
+            // Coulomb without a pivot: the solve above is the answer.
+            None if !(stress_dependent || pivot.is_some()) => sol,
             None => {
                 sol = ctx.solve(&dir, &mu)?;
-                let mut settled = !(stress_dependent || pivot.is_some());
+                let mut settled = false;
                 for _ in 0..MAX_FIXED_POINT {
                     if settled {
                         break;
@@ -678,5 +688,45 @@ mod tests {
         }
         // About 1 m/s² forward at the start (issue #7's prototype).
         assert!((0.8..1.3).contains(&m.accel.x), "{}", m.accel.x);
+    }
+
+    #[test]
+    fn one_contact_stick_satisfies_newton_euler_and_its_constraints() {
+        // The 11-equation stick mode, checked by recomputing the forces it returns.
+        let scene = Scene::default_scene();
+        let d = scene.require_dynamics().unwrap();
+        let geom = at(&scene, Displacement::new(0.5, 0.1, 0.05));
+        let applied = Applied::new(d.loads, d.block, &geom.frame);
+        let inertia = Inertia::new(d.block, &geom).unwrap();
+        let ctx = Ctx {
+            geom: &geom,
+            inertia,
+            mass: d.block.mass,
+            force: applied.force + applied.weight,
+            torque: applied.moment,
+            centripetal: [Vector3::zeros(); 3],
+            arm: 10.0,
+        };
+        let rates = ctx.pivot_direction(1).unwrap();
+        let t = twist(&geom, [rates.x, rates.y, rates.z / ctx.arm]).unwrap();
+        let dir = ctx.slip_of(&t).map(unit);
+        assert!(ctx.slip_of(&t)[1].norm() < 1e-12, "contact 1 does not slip");
+        let s = ctx.solve_stick(&dir, &[0.4; 3], 1).unwrap();
+        let mut f = ctx.force;
+        let mut m = ctx.torque;
+        for j in 0..3 {
+            let c = geom.n[j] * s.lambda[j] + s.shear[j];
+            f += c;
+            m += geom.r[j].cross(&c);
+            let acc = s.a + s.e.cross(&geom.r[j]);
+            assert!(geom.n[j].dot(&acc).abs() < 1e-10, "normal {j}");
+            if j == 1 {
+                assert!(ctx.tangential(1, acc).norm() < 1e-10, "contact 1 sticks");
+            } else {
+                assert!((s.shear[j].norm() - 0.4 * s.lambda[j]).abs() < 1e-6 * s.lambda[j]);
+            }
+        }
+        assert!((f - s.a * d.block.mass).norm() < 1e-6 * f.norm().max(1.0));
+        assert!((m - inertia.world * s.e).norm() < 1e-6 * m.norm().max(1.0));
     }
 }

@@ -246,9 +246,9 @@ fn slide(
         };
         o
     };
-    let balance = |y: &Y, e: &Eval, y0: f64| {
-        let kinetic = e.motion.twist.kinetic_energy(mass, &e.motion.inertia);
-        let potential = mass * g * (e.pose.cm.y - y0);
+    // The energy balance at a state with kinetic energy `kinetic` and CM height `cm_y`.
+    let energy = |y: &Y, kinetic: f64, cm_y: f64, y0: f64| {
+        let potential = mass * g * (cm_y - y0);
         EnergyBalance {
             work_hydraulic_j: y[6],
             work_friction_j: y[7],
@@ -256,6 +256,14 @@ fn slide(
             potential_change_j: potential,
             residual_j: y[6] + y[7] - kinetic - potential,
         }
+    };
+    let balance = |y: &Y, e: &Eval, y0: f64| {
+        energy(
+            y,
+            e.motion.twist.kinetic_energy(mass, &e.motion.inertia),
+            e.pose.cm.y,
+            y0,
+        )
     };
 
     // The start: at rest, held or not by static friction (decided before any acceleration is
@@ -370,13 +378,7 @@ fn slide(
             };
             if check.holds() {
                 o.rows.push(rest_row(t_stop, &stopped, &stop_pose));
-                o.energy = Some(EnergyBalance {
-                    kinetic_j: 0.0,
-                    potential_change_j: mass * g * (stop_pose.cm.y - y0),
-                    residual_j: stopped[6] + stopped[7] - mass * g * (stop_pose.cm.y - y0),
-                    work_hydraulic_j: stopped[6],
-                    work_friction_j: stopped[7],
-                });
+                o.energy = Some(energy(&stopped, 0.0, stop_pose.cm.y, y0));
                 return end(
                     o,
                     Reason::Stopped,

@@ -170,3 +170,34 @@ pub fn hand_exact(s: &Scene, d: Displacement) -> [Vec<(&'static str, f64)>; 2] {
         ],
     ]
 }
+
+/// Every route row agrees with the direct pose solver at its (X, Z, θ): α, β to 1e-10 rad and
+/// the CM height to 1e-9·L (each solve starts from the previous row's pose).
+pub fn assert_rows_match_direct(s: &Scene, rows: &[slideroute::route::Row]) {
+    use slideroute::geometry::direct;
+    let l = s.l();
+    let mut near = None;
+    for row in rows {
+        let d = Displacement::new(row.x_m, row.z_m, row.theta_deg.to_radians());
+        let p = match near {
+            Some(ref q) => direct::solve_from(s, d, q).unwrap(),
+            None => direct::solve(s, d).unwrap(),
+        };
+        assert!(
+            (p.alpha(l).to_degrees() - row.alpha_deg).abs() < 1e-10f64.to_degrees(),
+            "α at t = {}",
+            row.t_s
+        );
+        assert!(
+            (p.beta(l).to_degrees() - row.beta_deg).abs() < 1e-10f64.to_degrees(),
+            "β at t = {}",
+            row.t_s
+        );
+        assert!(
+            (p.cm_y - row.y_m).abs() < 1e-9 * l,
+            "CM height at t = {}",
+            row.t_s
+        );
+        near = Some(p);
+    }
+}
