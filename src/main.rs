@@ -299,10 +299,18 @@ fn run_cmd(
         route.wall_s,
     );
     if let Some(e) = &route.energy {
+        let kinetic = if e.kinetic_initial_j != 0.0 {
+            format!(
+                "kinetic {:.6e} J (from {:.6e} J)",
+                e.kinetic_j, e.kinetic_initial_j
+            )
+        } else {
+            format!("kinetic {:.6e} J", e.kinetic_j)
+        };
         println!(
-            "  energy: hydraulic work {:.6e} J, friction work {:.6e} J, kinetic {:.6e} J, \
+            "  energy: hydraulic work {:.6e} J, friction work {:.6e} J, {kinetic}, \
              potential change {:.6e} J, balance residual {:.3e} J",
-            e.work_hydraulic_j, e.work_friction_j, e.kinetic_j, e.potential_change_j, e.residual_j
+            e.work_hydraulic_j, e.work_friction_j, e.potential_change_j, e.residual_j
         );
     }
     let names: Vec<String> = files.iter().map(|f| f.display().to_string()).collect();

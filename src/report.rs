@@ -146,6 +146,52 @@ pub fn work_precision(
     Ok((points, references))
 }
 
+/// Continuation against all roots at one (scene, mode, integrator, dt): the cost of an
+/// increment by each, and how far apart their errors are (equal error: the same route).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Speedup {
+    pub scene: String,
+    pub mode: Mode,
+    pub integrator: Integrator,
+    pub dt_s: f64,
+    /// Median wall time per increment (µs).
+    pub continuation_us: f64,
+    pub all_roots_us: f64,
+    /// all_roots_us / continuation_us.
+    pub ratio: f64,
+    /// |error(all roots) − error(continuation)| (m).
+    pub error_gap_m: f64,
+}
+
+/// Pairs each continuation point with the all-roots point of the same series and dt.
+pub fn speedups(points: &[Point]) -> Vec<Speedup> {
+    let per_increment = |p: &Point| p.wall_s * 1e6 / p.increments.max(1) as f64;
+    points
+        .iter()
+        .filter(|c| c.method == PoseMethod::Continuation)
+        .filter_map(|c| {
+            let a = points.iter().find(|a| {
+                a.method == PoseMethod::AllRoots
+                    && a.scene == c.scene
+                    && a.mode == c.mode
+                    && a.integrator == c.integrator
+                    && a.dt_s == c.dt_s
+            })?;
+            let (cu, au) = (per_increment(c), per_increment(a));
+            Some(Speedup {
+                scene: c.scene.clone(),
+                mode: c.mode,
+                integrator: c.integrator,
+                dt_s: c.dt_s,
+                continuation_us: cu,
+                all_roots_us: au,
+                ratio: au / cu,
+                error_gap_m: (a.error_m - c.error_m).abs(),
+            })
+        })
+        .collect()
+}
+
 /// Number of points [`work_precision`] measures.
 pub fn point_count(quick: bool) -> usize {
     let levels = if quick { 3 } else { 6 };
@@ -235,6 +281,15 @@ pub fn extreme_cases() -> Vec<Case> {
         case("frictionless", &|s| {
             s.friction = Some(crate::scene::Friction::Coulomb { mu_k: 0.0 })
         }),
+        case("kicked: 0.3 m/s under 3 MN (FS 6.3)", &|s| {
+            set_force(s, 3.0e6);
+            s.initial.vx = 0.3;
+        }),
+        case("kicked, rigid body: 1 m/s, μ = 0.6", &|s| {
+            *s = s.with_dynamics(crate::scene::DynamicsModel::RigidBody);
+            s.friction = Some(crate::scene::Friction::Coulomb { mu_k: 0.6 });
+            s.initial.vx = 1.0;
+        }),
     ]
 }
 
@@ -314,4 +369,41 @@ pub fn extreme(sample: usize) -> Vec<ExtremeRow> {
             }
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn point(method: PoseMethod, dt_s: f64, wall_s: f64, error_m: f64) -> Point {
+        Point {
+            scene: "s".into(),
+            method,
+            mode: Mode::Exact,
+            integrator: Integrator::Paper,
+            dt_s,
+            increments: 100,
+            wall_s,
+            error_m,
+        }
+    }
+
+    #[test]
+    fn speedups_pair_each_continuation_point_with_its_all_roots_twin() {
+        let points = [
+            point(PoseMethod::Continuation, 0.02, 1e-4, 1e-3),
+            point(PoseMethod::Continuation, 0.01, 5e-5, 5e-4),
+            point(PoseMethod::AllRoots, 0.01, 6e-4, 5e-4 + 1e-17),
+            point(PoseMethod::AllRoots, 0.02, 3e-4, 1e-3),
+        ];
+        let s = speedups(&points);
+        assert_eq!(s.len(), 2);
+        assert_eq!(s[0].dt_s, 0.02);
+        assert!((s[0].continuation_us - 1.0).abs() < 1e-12);
+        assert!((s[0].ratio - 3.0).abs() < 1e-12);
+        assert!((s[1].ratio - 12.0).abs() < 1e-12);
+        assert!((s[1].error_gap_m - 1e-17).abs() < 1e-18);
+        // A continuation point without its twin is left out.
+        assert_eq!(speedups(&points[..2]).len(), 0);
+    }
 }

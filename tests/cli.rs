@@ -598,3 +598,29 @@ fn compare_dynamics_writes_both_routes_and_where_they_part() {
     let both = run(&["run", "--compare-dynamics", "--dynamics", "paper"]);
     assert_eq!(both.status.code(), Some(2));
 }
+
+#[test]
+fn a_kicked_scene_ends_stopped_with_its_last_row_at_rest() {
+    let dir = temp_dir("kicked");
+    let scene = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/kicked.toml");
+    let o = run(&[
+        "run",
+        "--scene",
+        scene.to_str().unwrap(),
+        "--no-plots",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(out.contains("stopped at t = "), "{out}");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["termination"]["reason"], "stopped");
+    assert!(summary["energy"]["kinetic_initial_j"].as_f64().unwrap() > 4e5);
+    assert_eq!(summary["energy"]["kinetic_j"].as_f64().unwrap(), 0.0);
+    let csv = std::fs::read_to_string(dir.join("route.csv")).unwrap();
+    let last: Vec<&str> = csv.lines().last().unwrap().split(',').collect();
+    // vx_m_s, vz_m_s, omega_deg_s are columns 9–11.
+    assert_eq!(&last[8..11], &["0", "0", "0"], "{last:?}");
+}

@@ -174,3 +174,71 @@ fn factor_of_safety_onset_separates_sliding_from_holding() {
     assert_eq!(scaled(fs * 0.99).termination.reason, Reason::DoesNotSlide);
     assert_ne!(scaled(fs * 1.05).termination.reason, Reason::DoesNotSlide);
 }
+
+/// The speeds of a route's last row are exactly zero.
+fn ends_at_rest(r: &Route) -> bool {
+    let last = r.rows.last().unwrap();
+    last.vx_m_s == 0.0 && last.vz_m_s == 0.0 && last.omega_deg_s == 0.0
+}
+
+#[test]
+fn a_kicked_block_stops_where_the_sliding_block_closed_form_says() {
+    // Flat limit (c = 0, dips → 0), μ g > F/m: a block set moving at v0 along X decelerates at
+    // d = μ g − F/m and stops at t* = v0/d after x* = v0²/(2d); static friction then holds it.
+    let (v0, mu) = (2.0, 1.0);
+    let d = mu * 9.81 - 8.0;
+    let err = |dip_deg: f64| {
+        let s = rigid(|s| {
+            s.foundation.xi = dip_deg.to_radians();
+            s.foundation.zeta = dip_deg.to_radians();
+            s.loads.as_mut().unwrap().eccentricity = 0.0;
+            s.friction = Some(Friction::Coulomb { mu_k: mu });
+            s.initial.vx = v0;
+            set_time(s, 1e-3, 3.0);
+        });
+        let r = run(&s);
+        assert_eq!(r.termination.reason, Reason::Stopped, "{:?}", r.termination);
+        assert!(ends_at_rest(&r));
+        let e = r.energy.unwrap();
+        assert_eq!(e.kinetic_j, 0.0);
+        // ½ m v0², plus the small tilting the planes' dips bring into the twist.
+        let k0 = 0.5 * 1e6 * v0 * v0;
+        assert!((e.kinetic_initial_j - k0).abs() < 1e-3 * k0, "{e:?}");
+        assert!(e.residual_j.abs() < 1e-8 * e.work_friction_j.abs(), "{e:?}");
+        let last = r.rows.last().unwrap();
+        (
+            (r.termination.t_s - v0 / d).abs() / (v0 / d),
+            (last.x_m - v0 * v0 / (2.0 * d)).abs() / (v0 * v0 / (2.0 * d)),
+        )
+    };
+    let (t1, x1) = err(0.04);
+    let (t3, x3) = err(0.01);
+    println!("stop time errors {t1:.3e} {t3:.3e}; distance errors {x1:.3e} {x3:.3e}");
+    assert!(t3 < 1e-3 && x3 < 1e-3, "{t3} {x3}");
+    for (a, b) in [(t1, t3), (x1, x3)] {
+        let order = (a / b).log2() / 2.0;
+        assert!((0.8..1.2).contains(&order), "order {order}");
+    }
+}
+
+#[test]
+fn a_kicked_block_on_the_paper_like_foundation_stops_and_is_held() {
+    // μ = 0.6 (FS 1.23 at onset) and 1 m/s along X: the block turns, its contacts' slips pass
+    // through zero one after another, and it comes to rest where static friction holds it.
+    let s = Scene::from_file(
+        &std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/kicked.toml"),
+    )
+    .unwrap();
+    let r = run(&s);
+    assert_eq!(r.termination.reason, Reason::Stopped, "{:?}", r.termination);
+    assert!(ends_at_rest(&r));
+    assert!(r.termination.detail.contains("static friction holds"));
+    assert!(
+        (0.5..1.0).contains(&r.termination.t_s),
+        "{}",
+        r.termination.t_s
+    );
+    let e = r.energy.unwrap();
+    assert!(e.residual_j.abs() < 1e-6 * e.work_friction_j.abs(), "{e:?}");
+    common::assert_rows_match_direct(&s, &r.rows);
+}

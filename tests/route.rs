@@ -242,7 +242,8 @@ fn scene_with(
 #[test]
 fn each_termination_reason_is_reached_with_its_typed_reason() {
     // Scenes found by a random search over frames, dips, κ, μ, F and c (derivations/07). The
-    // paper's dynamics never decelerate a sliding block to rest, so "stopped" has no scene.
+    // paper's dynamics never decelerate a block that slid from rest, so "stopped" needs a
+    // block set moving under a load it can hold (`a_kicked_block_stops_exactly_at_rest`).
     let cases = [
         (
             scene_with(1.27, 5.50, 17.2, 28.2, 32.5, 0.0, 1.031e7, 0.35),
@@ -337,4 +338,37 @@ fn all_roots_method_gives_the_same_route_as_continuation() {
             .fold(0.0, f64::max);
         assert!(worst < 1e-9, "{mode:?}: {worst}");
     }
+}
+
+#[test]
+fn a_kicked_block_stops_exactly_at_rest() {
+    // The paper-like block at 0.3 m/s under 3 MN (FS 6.3 at onset): the paper's dynamics
+    // decelerate it; the increment in which the speed passes through zero is cut where the
+    // paper's update reaches zero speed, and friction holds the block there.
+    let stop = |dt: f64| {
+        let s = with(|s| {
+            s.loads.as_mut().unwrap().hydraulic_force = 3.0e6;
+            s.initial.vx = 0.3;
+            s.solver.as_mut().unwrap().dt = dt;
+        });
+        let r = run(&s);
+        assert_eq!(r.termination.reason, Reason::Stopped, "{:?}", r.termination);
+        assert!(r.factor_of_safety_onset.unwrap() > 1.0);
+        let [.., before, last] = &r.rows[..] else {
+            panic!("too few rows")
+        };
+        assert_eq!(
+            (last.vx_m_s, last.vz_m_s, last.omega_deg_s),
+            (0.0, 0.0, 0.0)
+        );
+        assert!(last.t_s > before.t_s && last.t_s <= before.t_s + dt);
+        assert_eq!(last.t_s, r.termination.t_s);
+        common::assert_rows_match_direct(&s, &r.rows);
+        r.termination.t_s
+    };
+    let (t1, t2, t4) = (stop(1e-3), stop(5e-4), stop(2.5e-4));
+    // The paper's update is first order: the stop time converges with the gaps halving.
+    let ratio = (t1 - t2) / (t2 - t4);
+    println!("stop at {t1:.6} {t2:.6} {t4:.6} s; gap ratio {ratio:.2}");
+    assert!((1.5..2.5).contains(&ratio), "{ratio}");
 }

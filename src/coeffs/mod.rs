@@ -28,15 +28,52 @@ pub use generated::{
 /// Number of trig-basis terms of exact (13) plus (14).
 pub const EXACT_LEN: usize = EXACT_TERMS[0] + EXACT_TERMS[1];
 
+/// The trigonometric functions of the foundation that [`CoeffInputs`] needs (sin κ, cos κ,
+/// cot ξ, cot ζ): fixed by the scene, so a solver that evaluates the coefficients at many
+/// displacements computes them once.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FoundationTrig {
+    sk: f64,
+    ck: f64,
+    cot_xi: f64,
+    cot_zeta: f64,
+}
+
+impl FoundationTrig {
+    pub fn new(scene: &Scene) -> Self {
+        let g = &scene.foundation;
+        let (sk, ck) = g.kappa.sin_cos();
+        FoundationTrig {
+            sk,
+            ck,
+            cot_xi: 1.0 / g.xi.tan(),
+            cot_zeta: 1.0 / g.zeta.tan(),
+        }
+    }
+}
+
 impl CoeffInputs {
     /// The generator's inputs for a scene at displacement `d`. Differences of cosines are
     /// computed from products of sines, so small displacements lose no precision.
     pub fn new(scene: &Scene, d: Displacement) -> Self {
-        let (f, g) = (&scene.frame, &scene.foundation);
-        let half = 0.5 * d.theta;
-        let s_half = half.sin();
-        let (sk, ck) = g.kappa.sin_cos();
-        let (s_hk, c_hk) = (half + g.kappa).sin_cos();
+        Self::with_trig(scene, &FoundationTrig::new(scene), d)
+    }
+
+    /// As [`CoeffInputs::new`], with the foundation's trigonometric functions computed before
+    /// (`trig` must come from the same scene). One `sin_cos` per call: with s = sin(θ/2),
+    /// c = cos(θ/2): sin θ = 2sc, 1 − cos θ = 2s², cos κ − cos(θ + κ) = 2s·sin(θ/2 + κ) and
+    /// sin(θ + κ) − sin κ = 2s·cos(θ/2 + κ), the half-angle sums expanded by κ's sine and cosine.
+    pub fn with_trig(scene: &Scene, trig: &FoundationTrig, d: Displacement) -> Self {
+        let f = &scene.frame;
+        let (s_half, c_half) = (0.5 * d.theta).sin_cos();
+        let FoundationTrig {
+            sk,
+            ck,
+            cot_xi,
+            cot_zeta,
+        } = *trig;
+        let s_hk = s_half * ck + c_half * sk;
+        let c_hk = c_half * ck - s_half * sk;
         CoeffInputs {
             x: d.x,
             z: d.z,
@@ -44,13 +81,13 @@ impl CoeffInputs {
             l1z: f.l1z,
             l2z: f.l2z,
             omc: 2.0 * s_half * s_half,
-            st: d.theta.sin(),
+            st: 2.0 * s_half * c_half,
             ck,
             sk,
             dck: 2.0 * s_half * s_hk,
             dsk: 2.0 * s_half * c_hk,
-            cot_xi: 1.0 / g.xi.tan(),
-            cot_zeta: 1.0 / g.zeta.tan(),
+            cot_xi,
+            cot_zeta,
         }
     }
 }

@@ -31,10 +31,21 @@ pub struct ContactGeometry {
 
 impl ContactGeometry {
     pub fn new(scene: &Scene, pose: &Pose) -> Self {
+        Self::with_normals(&Self::plane_normals(scene), pose)
+    }
+
+    /// The upward unit normals of the planes carrying vertices 0, 1, 2.
+    pub fn plane_normals(scene: &Scene) -> [Vector3<f64>; 3] {
+        [0, 1, 2].map(|i| normal(scene, Plane::of_vertex(i)))
+    }
+
+    /// With the [`ContactGeometry::plane_normals`] computed before (as
+    /// [`crate::scene::Dynamics::normals`]).
+    pub fn with_normals(normals: &[Vector3<f64>; 3], pose: &Pose) -> Self {
         ContactGeometry {
             frame: pose.frame,
             r: pose.vertices.map(|v| v - pose.cm),
-            n: [0, 1, 2].map(|i| normal(scene, Plane::of_vertex(i))),
+            n: *normals,
         }
     }
 

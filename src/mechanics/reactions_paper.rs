@@ -22,7 +22,7 @@ use super::ContactGeometry;
 use super::friction::FrictionCriterion;
 use super::loads::Applied;
 use super::statics::ratios;
-use crate::numeric::{poly_mul, poly_roots, solve4, wrap_angle as wrap};
+use crate::numeric::{poly_mul, poly_roots, wrap_angle as wrap};
 use crate::scene::{Block, Friction};
 use nalgebra::{Matrix3, Matrix3x4, SMatrix, Vector3, Vector4};
 
@@ -34,6 +34,9 @@ pub struct Reaction {
     /// Direction of each shear force in its plane (rad): 0 along the projection of +i', π
     /// against it.
     pub angles: [f64; 3],
+    /// (sin, cos) of each of `angles` (kept, so that following the solution at the next
+    /// increment starts without recomputing them).
+    pub angles_sin_cos: [(f64, f64); 3],
     /// CM acceleration along i' (m/s²) and angular acceleration about j' (rad/s²), eq. (23).
     pub accel: f64,
     pub ang_accel: f64,
@@ -60,6 +63,38 @@ fn g(geom: &ContactGeometry, r: &Vector3<f64>, v: &Vector3<f64>) -> Vector4<f64>
     Vector4::new(v.dot(&f.j), v.dot(&f.k), m.dot(&f.i), m.dot(&f.k))
 }
 
+/// (sin x, cos x). For |x| ≤ 0.02 — the corrections of Newton's method once it is close —
+/// by the Taylor series to x⁹ (truncation below 1e-20, i.e. exact in f64) instead of a libm call.
+fn sin_cos_step(x: f64) -> (f64, f64) {
+    if x.abs() <= 0.02 {
+        let x2 = x * x;
+        let s = x * (1.0 - x2 / 6.0 * (1.0 - x2 / 20.0 * (1.0 - x2 / 42.0 * (1.0 - x2 / 72.0))));
+        let c = 1.0 - x2 / 2.0 * (1.0 - x2 / 12.0 * (1.0 - x2 / 30.0 * (1.0 - x2 / 56.0)));
+        (s, c)
+    } else {
+        x.sin_cos()
+    }
+}
+
+/// A point of the frictional system: N0 = j and the shear directions φ with their (sin, cos)
+/// (kept alongside, so that no increment recomputes them more than once).
+#[derive(Debug, Clone, Copy)]
+struct Point {
+    j: f64,
+    phi: [f64; 3],
+    sc: [(f64, f64); 3],
+}
+
+impl Point {
+    fn new(j: f64, phi: [f64; 3]) -> Self {
+        Point {
+            j,
+            phi,
+            sc: phi.map(f64::sin_cos),
+        }
+    }
+}
+
 /// The frictional system at one pose, with per-contact friction coefficients μ_i.
 struct System {
     g0: Vector4<f64>,
@@ -67,6 +102,68 @@ struct System {
     b: [Vector4<f64>; 3],
     /// Right-hand side of j·(G0 + Σ …) = w.
     w: Vector4<f64>,
+    /// The tangents (t1, t2) of each contact ([`ContactGeometry::tangents`]).
+    tangents: [(Vector3<f64>, Vector3<f64>); 3],
+    /// The reduced system in φ alone (see [`Reduced`]).
+    reduced: Reduced,
+}
+
+/// j·h(φ) = w says h(φ) ∥ w: with P (3×4) an orthonormal basis of w⊥ (rows 2–4 of the
+/// Householder reflection that maps w onto the first axis), three equations P·h(φ) = 0 in the
+/// three angles alone, and then j = |w| / (ŵ·h). Newton on these needs a 3×3 solve per
+/// iteration instead of a 4×4 one.
+#[derive(Debug, Clone, Copy)]
+struct Reduced {
+    g0: Vector3<f64>,
+    a: [Vector3<f64>; 3],
+    b: [Vector3<f64>; 3],
+    /// ŵ·G0, ŵ·A_i, ŵ·B_i and |w|.
+    wg0: f64,
+    wa: [f64; 3],
+    wb: [f64; 3],
+    w_norm: f64,
+}
+
+impl Reduced {
+    fn new(
+        g0: &Vector4<f64>,
+        a: &[Vector4<f64>; 3],
+        b: &[Vector4<f64>; 3],
+        w: &Vector4<f64>,
+    ) -> Self {
+        let w_norm = w.norm();
+        let w_hat = if w_norm > 0.0 {
+            w / w_norm
+        } else {
+            Vector4::x()
+        };
+        // Householder v = ŵ + sign(ŵ0) e0: H = I − 2vvᵀ/vᵀv maps ŵ to ∓e0; rows 1–3 of H span w⊥.
+        let mut v = w_hat;
+        v[0] += 1f64.copysign(w_hat[0]);
+        let vv = v.norm_squared();
+        let project = |x: &Vector4<f64>| {
+            let f = 2.0 * v.dot(x) / vv;
+            Vector3::new(x[1] - f * v[1], x[2] - f * v[2], x[3] - f * v[3])
+        };
+        Reduced {
+            g0: project(g0),
+            a: a.each_ref().map(project),
+            b: b.each_ref().map(project),
+            wg0: w_hat.dot(g0),
+            wa: a.each_ref().map(|x| w_hat.dot(x)),
+            wb: b.each_ref().map(|x| w_hat.dot(x)),
+            w_norm,
+        }
+    }
+
+    /// N0 = |w| / (ŵ·h(φ)) at the angles of `sc`.
+    fn j(&self, sc: &[(f64, f64); 3]) -> f64 {
+        let mut d = self.wg0;
+        for i in 0..3 {
+            d += self.wa[i] * sc[i].1 + self.wb[i] * sc[i].0;
+        }
+        self.w_norm / d
+    }
 }
 
 impl System {
@@ -74,8 +171,9 @@ impl System {
         let mut g0 = Vector4::zeros();
         let mut a = [Vector4::zeros(); 3];
         let mut b = [Vector4::zeros(); 3];
+        let tangents = [0, 1, 2].map(|i| geom.tangents(i));
         for i in 0..3 {
-            let (t1, t2) = geom.tangents(i);
+            let (t1, t2) = tangents[i];
             g0 += g(geom, &geom.r[i], &geom.n[i]) * m[i];
             a[i] = g(geom, &geom.r[i], &t1) * (mu[i] * m[i]);
             b[i] = g(geom, &geom.r[i], &t2) * (mu[i] * m[i]);
@@ -88,15 +186,18 @@ impl System {
             -applied.moment.dot(&f.i),
             -applied.moment.dot(&f.k),
         );
-        System { g0, a, b, w }
+        System {
+            reduced: Reduced::new(&g0, &a, &b, &w),
+            g0,
+            a,
+            b,
+            w,
+            tangents,
+        }
     }
 
-    /// h(φ) = G0 + Σ (cos φ_i A_i + sin φ_i B_i); the equations read j·h(φ) = w.
-    fn h(&self, phi: &[f64; 3]) -> Vector4<f64> {
-        self.h_sc(&phi.map(f64::sin_cos))
-    }
-
-    /// h from precomputed (sin φ_i, cos φ_i).
+    /// h(φ) = G0 + Σ (cos φ_i A_i + sin φ_i B_i) from (sin φ_i, cos φ_i); the equations read
+    /// j·h(φ) = w.
     fn h_sc(&self, sc: &[(f64, f64); 3]) -> Vector4<f64> {
         let mut h = self.g0;
         for i in 0..3 {
@@ -105,47 +206,53 @@ impl System {
         h
     }
 
-    /// Newton on the four equations j·h(φ) − w = 0 in (j, φ0, φ1, φ2); stops when the updates
-    /// are at round-off (relative in j, absolute in the angles). Returns (j, φ, relative residual).
-    fn polish(&self, mut j: f64, mut phi: [f64; 3]) -> (f64, [f64; 3], f64) {
-        let scale = self.w.amax().max(1e-300);
-        let mut sc = phi.map(f64::sin_cos);
+    /// Newton on the reduced equations P·h(φ) = 0 in (φ0, φ1, φ2) ([`Reduced`]), from the
+    /// angles of `p` (its j is not used); then j = |w| / (ŵ·h). Stops when an update is at
+    /// round-off, or below 1e-9 and ten times smaller than the one before (converging
+    /// quadratically, so the error left is of order its square, 1e-18). Returns the point and
+    /// the relative residual of the four equations j·h(φ) = w.
+    fn polish(&self, mut p: Point) -> (Point, f64) {
+        let r = &self.reduced;
+        let mut last = f64::INFINITY;
         for _ in 0..8 {
-            let h = self.h_sc(&sc);
-            let r = h * j - self.w;
-            let mut jac = [[0.0; 4]; 4];
-            for e in 0..4 {
-                jac[e][0] = h[e];
-            }
+            let mut f = r.g0;
+            let mut cols = [Vector3::zeros(); 3];
             for i in 0..3 {
-                let d = (self.b[i] * sc[i].1 - self.a[i] * sc[i].0) * j;
-                for e in 0..4 {
-                    jac[e][i + 1] = d[e];
-                }
+                let (s, c) = p.sc[i];
+                f += r.a[i] * c + r.b[i] * s;
+                cols[i] = r.b[i] * c - r.a[i] * s;
             }
-            let Some(dx) = solve4(jac, [-r[0], -r[1], -r[2], -r[3]]) else {
-                break;
-            };
-            j += dx[0];
-            for i in 0..3 {
-                phi[i] += dx[i + 1];
-            }
-            sc = phi.map(f64::sin_cos);
-            let step = (dx[0] / j)
-                .abs()
-                .max(dx[1].abs())
-                .max(dx[2].abs())
-                .max(dx[3].abs());
-            if step.is_nan() || step < 1e-13 {
+            // Cramer's rule: dx = −J⁻¹ f.
+            let det = cols[0].dot(&cols[1].cross(&cols[2]));
+            if det == 0.0 || !det.is_finite() {
                 break;
             }
+            let dx = [
+                -f.dot(&cols[1].cross(&cols[2])) / det,
+                -cols[0].dot(&f.cross(&cols[2])) / det,
+                -cols[0].dot(&cols[1].cross(&f)) / det,
+            ];
+            for i in 0..3 {
+                p.phi[i] += dx[i];
+                // Rotate (sin, cos) by the update rather than recompute them.
+                let (s, c) = sin_cos_step(dx[i]);
+                let (s0, c0) = p.sc[i];
+                p.sc[i] = (s0 * c + c0 * s, c0 * c - s0 * s);
+            }
+            let step = dx[0].abs().max(dx[1].abs()).max(dx[2].abs());
+            if step.is_nan() || step < 1e-13 || (step < 1e-9 && step < 0.1 * last) {
+                break;
+            }
+            last = step;
         }
-        let res = (self.h_sc(&sc) * j - self.w).amax() / scale;
-        (j, phi, res)
+        p.j = r.j(&p.sc);
+        let scale = self.w.amax().max(1e-300);
+        let res = (self.h_sc(&p.sc) * p.j - self.w).amax() / scale;
+        (p, res)
     }
 
     /// All solutions (j, φ) with j > 0.
-    fn solve(&self) -> Vec<(f64, [f64; 3])> {
+    fn solve(&self) -> Vec<Point> {
         let (w0, w1) = (self.w[0], self.w[1]);
         // Three affine equations in u = (c0, s0, c1, s1, c2, s2): rows of M u = rhs.
         let mut m = SMatrix::<f64, 3, 6>::zeros();
@@ -235,7 +342,7 @@ impl System {
             return Vec::new();
         };
 
-        let mut out: Vec<(f64, [f64; 3])> = Vec::new();
+        let mut out: Vec<Point> = Vec::new();
         for (t, im) in ts {
             if im.abs() > 1e-6 * (1.0 + t.abs()) {
                 continue;
@@ -268,53 +375,50 @@ impl System {
             let u: [f64; 4] = [0, 1, 2, 3].map(|k| (upt[k] + tau * v[k]) / w2);
             let phi0 = DELTA + 2.0 * t.atan();
             let phi = [phi0, u[1].atan2(u[0]), u[3].atan2(u[2])];
-            // j from the two force equations (least squares), then Newton on all four.
-            let h = self.h(&phi);
-            let hh = h[0] * h[0] + h[1] * h[1];
-            if hh == 0.0 {
+            // Newton on the reduced equations, then j (N0) from the direction of w.
+            let (mut p, residual) = self.polish(Point::new(0.0, phi));
+            if !(residual < 1e-9 && p.j > 0.0) {
                 continue;
             }
-            let j = (h[0] * w0 + h[1] * w1) / hh;
-            let (j, phi, residual) = self.polish(j, phi);
-            if !(residual < 1e-9 && j > 0.0) {
-                continue;
-            }
-            let phi = phi.map(wrap);
+            p.phi = p.phi.map(wrap);
             if !out
                 .iter()
-                .any(|(_, p)| (0..3).all(|i| wrap(p[i] - phi[i]).abs() < 1e-7))
+                .any(|q| (0..3).all(|i| wrap(q.phi[i] - p.phi[i]).abs() < 1e-7))
             {
-                out.push((j, phi));
+                out.push(p);
             }
         }
         out
     }
 }
 
+/// The reaction at the point `p` (N0 = j, shear directions φ), with the tangents of `sys`.
 fn reaction(
     geom: &ContactGeometry,
     applied: &Applied,
     block: &Block,
     m: &[f64; 3],
     mu: &[f64; 3],
-    j: f64,
-    phi: [f64; 3],
+    tangents: &[(Vector3<f64>, Vector3<f64>); 3],
+    p: &Point,
 ) -> Reaction {
     let mut normal = [Vector3::zeros(); 3];
     let mut shear = [Vector3::zeros(); 3];
     let mut force = applied.force + applied.weight;
     let mut moment = applied.moment;
     for i in 0..3 {
-        let (t1, t2) = geom.tangents(i);
-        normal[i] = geom.n[i] * (j * m[i]);
-        shear[i] = (t1 * phi[i].cos() + t2 * phi[i].sin()) * (mu[i] * j * m[i]);
-        force += normal[i] + shear[i];
-        moment += geom.r[i].cross(&(normal[i] + shear[i]));
+        let (t1, t2) = tangents[i];
+        normal[i] = geom.n[i] * (p.j * m[i]);
+        shear[i] = (t1 * p.sc[i].1 + t2 * p.sc[i].0) * (mu[i] * p.j * m[i]);
+        let total = normal[i] + shear[i];
+        force += total;
+        moment += geom.r[i].cross(&total);
     }
     Reaction {
         normal,
         shear,
-        angles: phi,
+        angles: p.phi.map(wrap),
+        angles_sin_cos: p.sc,
         accel: force.dot(&geom.frame.i) / block.mass,
         ang_accel: moment.dot(&geom.frame.j) / block.inertia,
     }
@@ -334,9 +438,18 @@ fn prologue(
         return Err(ReactionsError::LiftOff(k));
     }
     let m = ratios(c);
-    let frictionless = friction
-        .is_frictionless()
-        .then(|| reaction(geom, applied, block, &m, &[0.0; 3], c[0], [0.0; 3]));
+    let frictionless = friction.is_frictionless().then(|| {
+        let none = [(Vector3::zeros(), Vector3::zeros()); 3];
+        reaction(
+            geom,
+            applied,
+            block,
+            &m,
+            &[0.0; 3],
+            &none,
+            &Point::new(c[0], [0.0; 3]),
+        )
+    });
     Ok((m, frictionless))
 }
 
@@ -346,51 +459,44 @@ fn mu_at(friction: &Friction, m: &[f64; 3], j: f64) -> [f64; 3] {
 }
 
 /// For a stress-dependent criterion (Barton–Choubey) μ_i depends on j: iterate j to a fixed
-/// point from (j, φ), following the solution. `None` if it is lost on the way.
+/// point from `p`, following the solution. `None` if it is lost on the way.
 fn settle(
     geom: &ContactGeometry,
     applied: &Applied,
     m: &[f64; 3],
     friction: &Friction,
-    (mut j, mut phi): (f64, [f64; 3]),
-) -> Option<(f64, [f64; 3])> {
+    mut p: Point,
+) -> Option<Point> {
     if matches!(friction, Friction::Coulomb { .. }) {
-        return Some((j, phi));
+        return Some(p);
     }
     for _ in 0..60 {
-        let sys = System::new(geom, applied, m, &mu_at(friction, m, j));
-        let (jn, pn, res) = sys.polish(j, phi);
-        if !(res < 1e-9 && jn > 0.0) {
+        let sys = System::new(geom, applied, m, &mu_at(friction, m, p.j));
+        let (q, res) = sys.polish(p);
+        if !(res < 1e-9 && q.j > 0.0) {
             return None;
         }
-        let done = (jn - j).abs() <= 1e-12 * j;
-        j = jn;
-        phi = pn;
+        let done = (q.j - p.j).abs() <= 1e-12 * p.j;
+        p = q;
         if done {
             break;
         }
     }
-    Some((j, phi))
+    Some(p)
 }
 
-/// The reaction of a settled solution (j, φ), with the friction coefficients at its N0.
+/// The reaction of a settled solution, with the friction coefficients at its N0.
 fn reaction_at(
     geom: &ContactGeometry,
     applied: &Applied,
     block: &Block,
     m: &[f64; 3],
     friction: &Friction,
-    (j, phi): (f64, [f64; 3]),
+    sys: &System,
+    p: Point,
 ) -> Reaction {
-    reaction(
-        geom,
-        applied,
-        block,
-        m,
-        &mu_at(friction, m, j),
-        j,
-        phi.map(wrap),
-    )
+    let mu = mu_at(friction, m, p.j);
+    reaction(geom, applied, block, m, &mu, &sys.tangents, &p)
 }
 
 /// Every solution of the paper's frictional system at this pose. With a frictionless scene
@@ -409,11 +515,12 @@ pub fn all_solutions(
     }
     // Coefficients at the frictionless normal forces, then (stress-dependent criteria) each
     // solution settled to its own fixed point.
-    let sols = System::new(geom, applied, &m, &mu_at(friction, &m, c[0])).solve();
-    Ok(sols
+    let sys = System::new(geom, applied, &m, &mu_at(friction, &m, c[0]));
+    Ok(sys
+        .solve()
         .into_iter()
         .filter_map(|s| settle(geom, applied, &m, friction, s))
-        .map(|s| reaction_at(geom, applied, block, &m, friction, s))
+        .map(|s| reaction_at(geom, applied, block, &m, friction, &sys, s))
         .collect())
 }
 
@@ -434,15 +541,34 @@ pub fn follow(
     }
     let j0 = previous.normal[0].norm();
     let sys = System::new(geom, applied, &m, &mu_at(friction, &m, j0));
-    let (j, phi, res) = sys.polish(j0, previous.angles);
-    let moved = (0..3)
-        .map(|i| wrap(phi[i] - previous.angles[i]).abs())
-        .fold(0.0, f64::max);
-    if !(res < 1e-9 && j > 0.0 && moved < 0.3) {
+    let start = Point {
+        j: j0,
+        phi: previous.angles,
+        sc: previous.angles_sin_cos,
+    };
+    let (p, res) = sys.polish(start);
+    if !(res < 1e-9 && p.j > 0.0 && continues(&previous.angles, &p.phi)) {
         return Ok(None);
     }
-    Ok(settle(geom, applied, &m, friction, (j, phi))
-        .map(|s| reaction_at(geom, applied, block, &m, friction, s)))
+    Ok(settle(geom, applied, &m, friction, p)
+        .map(|s| reaction_at(geom, applied, block, &m, friction, &sys, s)))
+}
+
+/// How far (rad) the shear direction of any contact may move from one increment to the next
+/// for a solution to count as the same one continued.
+pub const CONTINUATION_RADIUS: f64 = 0.3;
+
+/// The largest change of a shear direction between `previous` and `angles` (rad, wrapped).
+fn largest_turn(previous: &[f64; 3], angles: &[f64; 3]) -> f64 {
+    (0..3)
+        .map(|i| wrap(angles[i] - previous[i]).abs())
+        .fold(0.0, f64::max)
+}
+
+/// Whether a solution with shear directions `angles` continues one with `previous`: no
+/// direction moved by [`CONTINUATION_RADIUS`] or more.
+pub fn continues(previous: &[f64; 3], angles: &[f64; 3]) -> bool {
+    largest_turn(previous, angles) < CONTINUATION_RADIUS
 }
 
 /// Friction power Σ S_i·v_i for a rigid motion with CM velocity `v` and angular velocity `omega`.
@@ -467,22 +593,14 @@ pub fn select(
     previous: Option<&[f64; 3]>,
     velocity: Option<(Vector3<f64>, Vector3<f64>)>,
 ) -> Option<usize> {
-    let dist = |a: f64| wrap(a).abs();
     if let Some(prev) = previous {
         let near = solutions
             .iter()
             .enumerate()
-            .map(|(k, s)| {
-                (
-                    k,
-                    (0..3)
-                        .map(|i| dist(s.angles[i] - prev[i]))
-                        .fold(0.0, f64::max),
-                )
-            })
+            .map(|(k, s)| (k, largest_turn(prev, &s.angles)))
             .min_by(|a, b| a.1.total_cmp(&b.1));
         if let Some((k, d)) = near {
-            if d < 0.3 {
+            if d < CONTINUATION_RADIUS {
                 return Some(k);
             }
         }
@@ -496,4 +614,21 @@ pub fn select(
         })
         .min_by(|a, b| a.1.total_cmp(&b.1))
         .map(|(k, _)| k)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::sin_cos_step;
+
+    #[test]
+    fn small_step_sin_cos_agrees_with_libm_to_round_off() {
+        for k in -200..=200 {
+            let x = 1e-4 * k as f64; // up to ±0.02, the series' range
+            let (s, c) = sin_cos_step(x);
+            assert!((s - x.sin()).abs() <= 2e-17 * (1.0 + x.abs() * 1e3), "{x}");
+            assert!((c - x.cos()).abs() <= 2.3e-16, "{x}");
+        }
+        // Outside the range it is libm's.
+        assert_eq!(sin_cos_step(0.5), 0.5f64.sin_cos());
+    }
 }

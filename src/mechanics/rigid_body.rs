@@ -149,6 +149,9 @@ pub struct Motion {
     pub power_hydraulic: f64,
     pub power_friction: f64,
     pub inertia: Inertia,
+    /// The contact that sticks while the block turns about it (its slip vanished and its shear
+    /// lies inside its cone), if any.
+    pub stuck: Option<usize>,
 }
 
 /// A slip speed below this fraction of the block's speed scale counts as zero slip.
@@ -356,21 +359,46 @@ impl Ctx<'_> {
         })
     }
 
-    /// Rates (Ẋ, Ż, L θ̇) along which contact `i` does not slip: the null vector of its 2×3
-    /// tangential velocity map.
+    /// Rates (Ẋ, Ż, L θ̇) along which contact `i` does not slip.
     fn pivot_direction(&self, i: usize) -> Result<Vector3<f64>, RigidError> {
-        let (t1, t2) = self.geom.tangents(i);
-        let mut rows = [Vector3::zeros(); 2];
-        for c in 0..3 {
-            let mut y = [0.0; 3];
-            y[c] = if c == 2 { 1.0 / self.arm } else { 1.0 };
-            let tw = twist(self.geom, y)?;
-            let v = tw.at(&self.geom.r[i]);
-            rows[0][c] = v.dot(&t1);
-            rows[1][c] = v.dot(&t2);
-        }
-        Ok(unit(rows[0].cross(&rows[1])))
+        pivot_direction(self.geom, self.arm, i)
     }
+}
+
+/// The longest arm from the CM to a contact (m): the length that puts θ̇ among the velocities.
+fn longest_arm(geom: &ContactGeometry) -> f64 {
+    geom.r.iter().map(|r| r.norm()).fold(0.0, f64::max)
+}
+
+/// Rates (Ẋ, Ż, L θ̇), L = `arm`, along which contact `i` does not slip: the null vector of its
+/// 2×3 tangential velocity map (unit).
+fn pivot_direction(geom: &ContactGeometry, arm: f64, i: usize) -> Result<Vector3<f64>, RigidError> {
+    let (t1, t2) = geom.tangents(i);
+    let mut rows = [Vector3::zeros(); 2];
+    for c in 0..3 {
+        let mut y = [0.0; 3];
+        y[c] = if c == 2 { 1.0 / arm } else { 1.0 };
+        let tw = twist(geom, y)?;
+        let v = tw.at(&geom.r[i]);
+        rows[0][c] = v.dot(&t1);
+        rows[1][c] = v.dot(&t2);
+    }
+    Ok(unit(rows[0].cross(&rows[1])))
+}
+
+/// The rates (Ẋ, Ż, θ̇) with the slip of contact `i` removed: the projection onto the rates
+/// that turn the block about it (orthogonal in (Ẋ, Ż, L θ̇)). Keeps a sticking contact stuck
+/// against the drift of the integrator.
+pub fn pivot_rates(
+    geom: &ContactGeometry,
+    rates: [f64; 3],
+    i: usize,
+) -> Result<[f64; 3], RigidError> {
+    let arm = longest_arm(geom);
+    let p = pivot_direction(geom, arm, i)?;
+    let y = Vector3::new(rates[0], rates[1], arm * rates[2]);
+    let q = p * p.dot(&y);
+    Ok([q.x, q.y, q.z / arm])
 }
 
 /// Coulomb's cone with a little room for round-off.
@@ -395,7 +423,7 @@ pub fn accelerations(
         force: applied.force + applied.weight,
         torque: applied.moment - tw.w.cross(&(inertia.world * tw.w)),
         centripetal: geom.r.map(|r| tw.w.cross(&tw.w.cross(&r))),
-        arm: geom.r.iter().map(|r| r.norm()).fold(0.0, f64::max),
+        arm: longest_arm(geom),
     };
     let frictionless = friction.is_frictionless();
     let coefficients = |lambda: &[f64; 3]| -> [f64; 3] {
@@ -413,6 +441,7 @@ pub fn accelerations(
     // all), the starting direction from rest, and the first normals of a stress-dependent
     // criterion. A sliding block under Coulomb friction does not need it (μ is constant).
     let needs_frictionless = frictionless || tw.is_zero() || stress_dependent;
+    let mut stuck_contact = None;
     let mut sol = if needs_frictionless {
         ctx.solve(&zero, &[0.0; 3])?
     } else {
@@ -448,7 +477,10 @@ pub fn accelerations(
             }
         }
         sol = match stuck {
-            Some(s) => s,
+            Some(s) => {
+                stuck_contact = pivot;
+                s
+            }
             // Coulomb without a pivot: the solve above is the answer.
             None if !(stress_dependent || pivot.is_some()) => sol,
             None => {
@@ -508,6 +540,7 @@ pub fn accelerations(
         power_hydraulic: applied.force.dot(&tw.v) + applied.moment.dot(&tw.w),
         power_friction,
         inertia,
+        stuck: stuck_contact,
     })
 }
 

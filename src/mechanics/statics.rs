@@ -26,8 +26,19 @@ pub fn frictionless_normals(geom: &ContactGeometry, applied: &Applied) -> Option
         -applied.moment.dot(&f.i),
         -applied.moment.dot(&f.k),
     );
-    let c = a.lu().solve(&b)?;
-    c.iter().all(|v| v.is_finite()).then(|| [c[0], c[1], c[2]])
+    // Cramer's rule on the 3×3 (the columns' cross products): a fraction of an LU's cost, and
+    // as accurate at this size for the well-conditioned frames where the route runs.
+    let (c0, c1, c2) = (a.column(0), a.column(1), a.column(2));
+    let det = c0.dot(&c1.cross(&c2));
+    if det == 0.0 || !det.is_finite() {
+        return None;
+    }
+    let c = [
+        b.dot(&c1.cross(&c2)) / det,
+        c0.dot(&b.cross(&c2)) / det,
+        c0.dot(&c1.cross(&b)) / det,
+    ];
+    c.iter().all(|v| v.is_finite()).then_some(c)
 }
 
 /// The paper's ratios (27): m1 = |N1^S|/|N0^S|, m2 = |N2^S|/|N0^S|.

@@ -11,40 +11,6 @@ pub fn wrap_angle(a: f64) -> f64 {
     if w <= -PI { w + TAU } else { w }
 }
 
-/// Solves the 4×4 system a·x = b by Gaussian elimination with partial pivoting; `None` if a
-/// pivot vanishes. (Several times cheaper than a general LU at this size.) Written with indices,
-/// as elimination is usually read.
-#[inline]
-#[allow(clippy::needless_range_loop)]
-pub fn solve4(mut a: [[f64; 4]; 4], mut b: [f64; 4]) -> Option<[f64; 4]> {
-    for col in 0..4 {
-        let mut piv = col;
-        for r in col + 1..4 {
-            if a[r][col].abs() > a[piv][col].abs() {
-                piv = r;
-            }
-        }
-        if a[piv][col] == 0.0 || !a[piv][col].is_finite() {
-            return None;
-        }
-        a.swap(col, piv);
-        b.swap(col, piv);
-        for r in col + 1..4 {
-            let f = a[r][col] / a[col][col];
-            for c in col..4 {
-                a[r][c] -= f * a[col][c];
-            }
-            b[r] -= f * b[col];
-        }
-    }
-    let mut x = [0.0; 4];
-    for r in (0..4).rev() {
-        let s: f64 = (r + 1..4).map(|c| a[r][c] * x[c]).sum();
-        x[r] = (b[r] - s) / a[r][r];
-    }
-    Some(x)
-}
-
 /// Coefficients of the product of two polynomials (lowest degree first) into `out`, which must
 /// have room for `a.len() + b.len() − 1` coefficients.
 pub fn poly_mul(a: &[f64], b: &[f64], out: &mut [f64]) {
@@ -91,35 +57,6 @@ mod tests {
         ] {
             assert!((wrap_angle(a) - w).abs() < 1e-12, "{a}: {}", wrap_angle(a));
         }
-    }
-
-    #[test]
-    fn solve4_matches_nalgebra_and_pivots() {
-        let a = [
-            [0.0, 2.0, 1.0, 3.0],
-            [1.0, 1.0, 0.0, 0.0],
-            [4.0, 0.0, 2.0, 1.0],
-            [1.0, 5.0, 1.0, 2.0],
-        ];
-        let b = [1.0, 2.0, 3.0, 4.0];
-        let x = solve4(a, b).unwrap();
-        let m = nalgebra::Matrix4::from_fn(|r, c| a[r][c]);
-        let y = m.lu().solve(&nalgebra::Vector4::from(b)).unwrap();
-        for k in 0..4 {
-            assert!((x[k] - y[k]).abs() < 1e-12);
-        }
-        assert!(
-            solve4(
-                [
-                    [1.0, 2.0, 0.0, 0.0],
-                    [2.0, 4.0, 0.0, 0.0],
-                    [0.0, 0.0, 1.0, 0.0],
-                    [0.0, 0.0, 0.0, 1.0]
-                ],
-                b
-            )
-            .is_none()
-        );
     }
 
     #[test]

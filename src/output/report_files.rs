@@ -83,6 +83,24 @@ pub fn markdown(
     }
     let _ = writeln!(
         s,
+        "\n## Continuation against all roots\n\nPer increment, at equal error (the same dt gives the same route by both: the error gap is round-off). All roots: the eigenvalue solve for the pose and all solutions of the frictional reactions at every increment; continuation: the tracker and Newton from the previous increment's reactions.\n\n| scene | mode | integrator | dt (s) | continuation (µs) | all roots (µs) | all roots / continuation | error gap (m) |\n| --- | --- | --- | --- | --- | --- | --- | --- |"
+    );
+    for r in crate::report::speedups(points) {
+        let _ = writeln!(
+            s,
+            "| {} | {} | {} | {} | {:.2} | {:.2} | {:.1}× | {:.1e} |",
+            r.scene,
+            r.mode.as_str(),
+            r.integrator.as_str(),
+            r.dt_s,
+            r.continuation_us,
+            r.all_roots_us,
+            r.ratio,
+            r.error_gap_m
+        );
+    }
+    let _ = writeln!(
+        s,
         "\n## Stiff and extreme cases\n\n| case | end | t (s) | travel (m) | increments | rejected steps | Newton / step | cond(J) at end | max tilt error vs direct (rad) |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- |"
     );
     for e in extreme {

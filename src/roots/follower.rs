@@ -6,6 +6,7 @@ use super::classify::{self, Inadmissible};
 use super::system::Equations;
 use super::tracker::{BranchPoint, TrackError, correct};
 use super::{eigen, system};
+use crate::coeffs::{CoeffInputs, FoundationTrig};
 use crate::geometry::{Displacement, Pose};
 use crate::scene::{Mode, Scene};
 
@@ -13,6 +14,9 @@ use crate::scene::{Mode, Scene};
 #[derive(Debug, Clone)]
 pub struct EigenFollower<'s> {
     scene: &'s Scene,
+    /// The foundation's trigonometric functions and the unknowns' scales, computed once.
+    trig: FoundationTrig,
+    scales: (f64, f64),
     mode: Mode,
     current: BranchPoint,
 }
@@ -22,6 +26,8 @@ impl<'s> EigenFollower<'s> {
     pub fn new(scene: &'s Scene, mode: Mode) -> Self {
         EigenFollower {
             scene,
+            trig: FoundationTrig::new(scene),
+            scales: system::unknown_scales(scene, mode),
             mode,
             current: BranchPoint {
                 d: Displacement::default(),
@@ -53,12 +59,13 @@ impl<'s> EigenFollower<'s> {
             theta_deg: target.theta.to_degrees(),
             reason,
         };
-        let (p, q) = system::biquadratic(self.scene, target, self.mode);
-        let (sx, sy) = system::unknown_scales(self.scene, self.mode);
+        let inputs = CoeffInputs::with_trig(self.scene, &self.trig, target);
+        let (sx, sy) = self.scales;
+        let (p, q) = system::biquadratic_from(self.scene, &inputs, self.scales, target, self.mode);
         let raw = eigen::candidates(&p, &q);
         let mut best: Option<([f64; 2], f64)> = None;
         let mut nearest_reason = None;
-        let eqs = Equations::new(self.scene, target, self.mode);
+        let eqs = Equations::from_inputs(&inputs, self.mode);
         for r in &raw {
             let u = match self.mode {
                 Mode::SmallAngle => [r.x * sx, r.y * sy],

@@ -31,10 +31,14 @@ pub struct Evaluated {
 
 impl Equations {
     pub fn new(scene: &Scene, d: Displacement, mode: Mode) -> Self {
-        let inputs = CoeffInputs::new(scene, d);
+        Self::from_inputs(&CoeffInputs::new(scene, d), mode)
+    }
+
+    /// From the generator's inputs at one displacement.
+    pub fn from_inputs(inputs: &CoeffInputs, mode: Mode) -> Self {
         match mode {
-            Mode::SmallAngle => Equations::SmallAngle(SmallAngleUnsquared::new(&inputs)),
-            Mode::Exact => Equations::Exact(Exact::new(&inputs)),
+            Mode::SmallAngle => Equations::SmallAngle(SmallAngleUnsquared::new(inputs)),
+            Mode::Exact => Equations::Exact(Exact::new(inputs)),
         }
     }
 
@@ -107,14 +111,24 @@ pub fn perfect_squares(scene: &Scene, d: Displacement, mode: Mode) -> [bool; 2] 
 /// that is a perfect square A² is replaced by A: its roots are the same, each of them simple
 /// instead of double (see [`perfect_squares`]).
 pub fn biquadratic(scene: &Scene, d: Displacement, mode: Mode) -> (Coeffs, Coeffs) {
-    let inputs = CoeffInputs::new(scene, d);
-    let (sx, sy) = unknown_scales(scene, mode);
+    let scales = unknown_scales(scene, mode);
+    biquadratic_from(scene, &CoeffInputs::new(scene, d), scales, d, mode)
+}
+
+/// As [`biquadratic`], from the generator's inputs at `d` and the [`unknown_scales`].
+pub fn biquadratic_from(
+    scene: &Scene,
+    inputs: &CoeffInputs,
+    (sx, sy): (f64, f64),
+    d: Displacement,
+    mode: Mode,
+) -> (Coeffs, Coeffs) {
     let raw: [Coeffs; 2] = match mode {
         Mode::SmallAngle => {
             let square = perfect_squares(scene, d, mode);
-            let f = SmallAngle::new(&inputs).f;
+            let f = SmallAngle::new(inputs).f;
             let u = if square[0] || square[1] {
-                Some(SmallAngleUnsquared::new(&inputs).c)
+                Some(SmallAngleUnsquared::new(inputs).c)
             } else {
                 None
             };
@@ -141,7 +155,7 @@ pub fn biquadratic(scene: &Scene, d: Displacement, mode: Mode) -> (Coeffs, Coeff
             }
             c
         }
-        Mode::Exact => Exact::new(&inputs).half_angle(),
+        Mode::Exact => Exact::new(inputs).half_angle(),
     };
     (scaled(&raw[0], sx, sy), scaled(&raw[1], sx, sy))
 }

@@ -15,6 +15,7 @@
 
 use super::classify::{Inadmissible, check_pose, exact_mirrored, pose};
 use super::system::Equations;
+use crate::coeffs::{CoeffInputs, FoundationTrig};
 use crate::geometry::{Displacement, Pose};
 use crate::scene::{Mode, Scene};
 
@@ -61,6 +62,8 @@ pub struct TrackStats {
 #[derive(Debug, Clone)]
 pub struct Tracker<'s> {
     scene: &'s Scene,
+    /// The foundation's trigonometric functions, computed once.
+    trig: FoundationTrig,
     mode: Mode,
     current: BranchPoint,
     /// The placed frame at `current`, built by the admissibility check.
@@ -131,7 +134,10 @@ pub(crate) fn correct(
             return Err(Refusal::NotContracting);
         }
         u = [u[0] + du[0], u[1] + du[1]];
-        if n <= 1e-13 {
+        // Converged: the update is at round-off, or below 1e-9 rad — Newton's error after it is
+        // of order its square (the Jacobian is checked well away from singular above), so a
+        // further iteration would only confirm it.
+        if n <= 1e-9 {
             return Ok(u);
         }
         last = n;
@@ -160,6 +166,7 @@ impl<'s> Tracker<'s> {
     pub fn new(scene: &'s Scene, mode: Mode) -> Self {
         Tracker {
             scene,
+            trig: FoundationTrig::new(scene),
             mode,
             current: BranchPoint {
                 d: Displacement::default(),
@@ -199,7 +206,10 @@ impl<'s> Tracker<'s> {
             let s_try = (s + h).min(1.0);
             let d = lerp(from, target, s_try);
             let u_pred = self.predict(d);
-            let eqs = Equations::new(self.scene, d, self.mode);
+            let eqs = Equations::from_inputs(
+                &CoeffInputs::with_trig(self.scene, &self.trig, d),
+                self.mode,
+            );
             let result = correct(&eqs, u_pred, &mut self.stats.newton_iterations).and_then(|u| {
                 // Jump guard: with a secant predictor the correction is second order in the step.
                 let step = norm([u[0] - self.current.u[0], u[1] - self.current.u[1]]);

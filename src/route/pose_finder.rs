@@ -1,5 +1,7 @@
-//! How the route finds the pose at each increment: continuation (the default) or all roots by
-//! eigenvalues with the nearest admissible one chosen (for comparison in the report).
+//! How the route solves an increment's polynomial systems: continuation (the default) or all
+//! roots by eigenvalues with the one continuing the previous chosen (for comparison in the
+//! report). The method covers both systems: the pose here, and the frictional reactions in
+//! [`super::rhs::evaluate`].
 
 use crate::geometry::{Displacement, Pose};
 use crate::roots::{BranchPoint, EigenFollower, TrackError, Tracker};
@@ -10,11 +12,13 @@ use serde::Serialize;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum PoseMethod {
-    /// Predictor–corrector continuation of the physical branch (`roots::Tracker`).
+    /// Predictor–corrector continuation of the physical branch (`roots::Tracker`); the
+    /// reactions by Newton from the previous increment's solution.
     #[default]
     Continuation,
     /// All roots by eigenvalues at every increment, the admissible one nearest the previous
-    /// pose chosen (`roots::EigenFollower`).
+    /// pose chosen (`roots::EigenFollower`); likewise all solutions of the reactions, the one
+    /// continuing the previous chosen by the stated rule.
     AllRoots,
 }
 
@@ -41,6 +45,14 @@ impl<'s> PoseFinder<'s> {
         match method {
             PoseMethod::Continuation => PoseFinder::Continuation(Tracker::new(scene, mode)),
             PoseMethod::AllRoots => PoseFinder::AllRoots(EigenFollower::new(scene, mode)),
+        }
+    }
+
+    /// Which method this finder is.
+    pub fn method(&self) -> PoseMethod {
+        match self {
+            PoseFinder::Continuation(_) => PoseMethod::Continuation,
+            PoseFinder::AllRoots(_) => PoseMethod::AllRoots,
         }
     }
 

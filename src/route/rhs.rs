@@ -1,12 +1,19 @@
-//! The right-hand side of the motion: at a state, the pose (from the tracker), the reactions
-//! (the paper's, followed from increment to increment) and the accelerations of (X, Z, θ).
+//! The right-hand side of the motion: at a state, the pose (from the pose finder), the reactions
+//! (the paper's) and the accelerations of (X, Z, θ).
+//!
+//! Both polynomial systems of an increment are solved by the finder's method: with
+//! continuation, the pose by the tracker and the frictional reactions by Newton from the
+//! previous increment's solution ([`reactions_paper::follow`]); with all roots, the pose by the
+//! eigenvalue solve and the reactions by all solutions of their degree-8 resultant
+//! ([`reactions_paper::all_solutions`]), the one continuing the previous chosen by the stated
+//! rule ([`reactions_paper::select`]). Both give the same route (`tests/route.rs`).
 //!
 //! The paper's kinematics (eqs. 23, 30–35): the CM accelerates along i' by a = ΣF·i'/m, whose
 //! horizontal components give Ẍ, Z̈ (eqs. 30, 31, 33, 34); the block turns about j' by
 //! A = ΣM·j'/I (eqs. 32, 35, with A_Y for the misprinted A_X). θ is measured from +X towards +Z,
 //! the opposite sense of a rotation about +Y, so θ̈ = −A·(j'·Y).
 
-use super::pose_finder::PoseFinder;
+use super::pose_finder::{PoseFinder, PoseMethod};
 use super::state::State;
 use super::termination::{Reason, from_track_error};
 use crate::geometry::{Displacement, Pose};
@@ -26,7 +33,8 @@ pub struct Evaluation {
     pub acc: [f64; 3],
     /// Frictionless normal reactions (25)–(27) at this pose (N).
     pub statics: [f64; 3],
-    /// True when the reaction came from a fresh all-solutions solve (not continuation).
+    /// True when the reaction was chosen afresh by the rule — at the start, or when the
+    /// solution followed so far was lost — rather than continuing the previous one.
     pub fresh: bool,
 }
 
@@ -67,7 +75,7 @@ pub fn evaluate(
     velocity: Option<(Vector3<f64>, Vector3<f64>)>,
 ) -> Result<Evaluation, Stop> {
     let pose = pose_at(scene, tracker, d)?;
-    let geom = ContactGeometry::new(scene, &pose);
+    let geom = ContactGeometry::with_normals(&dynamics.normals, &pose);
     let applied = Applied::new(dynamics.loads, dynamics.block, &geom.frame);
     let c = statics::frictionless_normals(&geom, &applied).ok_or_else(|| Stop {
         reason: Reason::NoAdmissibleRoot,
@@ -78,11 +86,11 @@ pub fn evaluate(
         detail: e.to_string(),
     };
     let followed = match previous {
-        Some(p) => {
+        Some(p) if tracker.method() == PoseMethod::Continuation => {
             reactions_paper::follow(&geom, &applied, dynamics.block, &c, dynamics.friction, p)
                 .map_err(lift)?
         }
-        None => None,
+        _ => None,
     };
     let (reaction, fresh) = match followed {
         Some(r) => (r, false),
@@ -105,7 +113,9 @@ pub fn evaluate(
                         d.theta.to_degrees()
                     ),
                 })?;
-            (all[k], true)
+            let continued =
+                previous.is_some_and(|p| reactions_paper::continues(&p.angles, &all[k].angles));
+            (all[k], !continued)
         }
     };
     let i = geom.frame.i;

@@ -37,9 +37,12 @@ pub struct EnergyBalance {
     pub work_friction_j: f64,
     /// Kinetic energy at the end.
     pub kinetic_j: f64,
+    /// Kinetic energy at the start (0 unless the scene's `[initial]` sets the block moving).
+    pub kinetic_initial_j: f64,
     /// Change of potential energy m g ΔY_cm.
     pub potential_change_j: f64,
-    /// W_h + W_f − (kinetic + potential change): zero up to the integrator's error.
+    /// W_h + W_f − (kinetic − initial kinetic + potential change): zero up to the integrator's
+    /// error.
     pub residual_j: f64,
 }
 
@@ -50,6 +53,9 @@ type Y = [f64; 8];
 struct Eval {
     pose: Pose,
     motion: Motion,
+    /// The rates the motion was evaluated with (those of the state, with a sticking contact's
+    /// slip projected out).
+    rates: [f64; 3],
 }
 
 fn displacement(y: &Y) -> Displacement {
@@ -67,25 +73,58 @@ fn stop_of(e: RigidError) -> Stop {
     }
 }
 
+/// The right-hand side at state `y`. `stuck`: the contact that stuck at the start of the step;
+/// the integrator's drift of its slip (at most [`DRIFT`] of the speed) is projected out so that
+/// it stays stuck while its cone allows.
 fn evaluate(
     scene: &Scene,
     dynamics: &Dynamics<'_>,
     finder: &mut PoseFinder<'_>,
     y: &Y,
+    stuck: Option<usize>,
 ) -> Result<Eval, Stop> {
     let pose = pose_at(scene, finder, displacement(y))?;
-    let geom = ContactGeometry::new(scene, &pose);
+    let geom = ContactGeometry::with_normals(&dynamics.normals, &pose);
     let applied = Applied::new(dynamics.loads, dynamics.block, &geom.frame);
-    let motion = rigid_body::accelerations(
-        &geom,
-        &applied,
-        dynamics.block,
-        dynamics.friction,
-        [y[3], y[4], y[5]],
-    )
-    .map_err(stop_of)?;
-    Ok(Eval { pose, motion })
+    let mut rates = [y[3], y[4], y[5]];
+    if let Some(i) = stuck {
+        let p = rigid_body::pivot_rates(&geom, rates, i).map_err(stop_of)?;
+        let size = |r: &[f64; 3]| (r[0] * r[0] + r[1] * r[1] + (r[2] * scene.l()).powi(2)).sqrt();
+        let gap = [rates[0] - p[0], rates[1] - p[1], rates[2] - p[2]];
+        if size(&gap) <= DRIFT * size(&rates) {
+            rates = p;
+        }
+    }
+    let motion =
+        rigid_body::accelerations(&geom, &applied, dynamics.block, dynamics.friction, rates)
+            .map_err(stop_of)?;
+    Ok(Eval {
+        pose,
+        motion,
+        rates,
+    })
 }
+
+/// The fraction of the largest kinetic energy of the route below which the block counts as at
+/// rest when a contact's slip passes through zero (see the event handling in `slide`).
+const REST: f64 = 1e-9;
+
+/// A substep is halved when the energy balance W_h + W_f − ΔK − ΔU moves over it by more than
+/// this fraction of the route's energy scale (the largest of its kinetic energy and of the
+/// works so far), prorated to the substep. Where the motion is resolved RK4 moves it by about
+/// 1e-18 a step; it is exceeded where friction makes the motion stiff — near a stop the friction
+/// moments damp the rotation at a rate ∝ μ N r² / (I |v|) — or a slip swings round near zero.
+const ENERGY_TOLERANCE: f64 = 1e-9;
+
+/// The most events (stops that restart, pivots) resolved within one increment.
+const MAX_EVENTS: usize = 16;
+
+/// The shortest substep, as a fraction of dt (then the step is taken as it is).
+const MIN_SUBSTEP: f64 = 1e-3;
+
+/// The largest slip of a sticking contact, relative to the block's speed, taken for the
+/// integrator's drift (and projected out) rather than for slip.
+const DRIFT: f64 = 1e-6;
 
 fn derivative(y: &Y, m: &Motion) -> Y {
     [
@@ -100,12 +139,61 @@ fn derivative(y: &Y, m: &Motion) -> Y {
     ]
 }
 
+/// `y` with its rates replaced.
+fn with_rates(y: &Y, rates: [f64; 3]) -> Y {
+    let mut z = *y;
+    z[3..6].copy_from_slice(&rates);
+    z
+}
+
 fn axpy(y: &Y, h: f64, k: &Y) -> Y {
     std::array::from_fn(|i| y[i] + h * k[i])
 }
 
+/// The motion at the start of a step, against which the events of the step are recognised:
+/// a stop — a later twist t has reversed, ⟨t, before⟩ ≤ 0 in the kinetic-energy inner
+/// product — or a pivot — the slip velocity of a slipping contact has reversed, i.e. passed
+/// through zero.
+#[derive(Clone, Copy)]
+struct Heading<'a> {
+    before: &'a Motion,
+    mass: f64,
+    /// The side length L, which puts angular speeds among the speeds.
+    length: f64,
+}
+
+/// What happened within a step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Event {
+    /// The whole motion reversed: the block stopped.
+    Stop,
+    /// The slip of this contact passed through zero while the block moved on.
+    Pivot(usize),
+}
+
+impl Heading<'_> {
+    fn event(&self, m: &Motion) -> Option<Event> {
+        let b = self.before;
+        if b.twist.is_zero() {
+            return None;
+        }
+        if m.twist.energy_dot(&b.twist, self.mass, &b.inertia) <= 0.0 {
+            return Some(Event::Stop);
+        }
+        // A contact that starts the step with a slip of the drift's size (just released from
+        // sticking) has no direction to reverse yet.
+        let scale = b.twist.v.norm() + b.twist.w.norm() * self.length;
+        (0..3)
+            .filter(|&i| b.stuck != Some(i) && b.slip[i].norm() > DRIFT * scale)
+            .find(|&i| m.slip[i].dot(&b.slip[i]) <= 0.0)
+            .map(Event::Pivot)
+    }
+}
+
 /// One classic RK4 step of length h from y, whose derivative k1 is known; stages evaluated on
-/// clones of `finder`.
+/// clones of `finder`. Also says whether a stage met an event of `heading`: then the step
+/// passed through a stop or a pivot, where Coulomb friction jumps and the step's result means
+/// nothing (its later stages push on with friction turned round).
 fn rk4(
     scene: &Scene,
     dynamics: &Dynamics<'_>,
@@ -113,17 +201,23 @@ fn rk4(
     y: &Y,
     k1: &Y,
     h: f64,
-) -> Result<Y, Stop> {
-    let stage = |y: &Y| {
+    heading: &Heading<'_>,
+) -> Result<(Y, Option<Event>), Stop> {
+    let mut crossed = None;
+    let stuck = heading.before.stuck;
+    let mut stage = |y: &Y| {
         let mut f = finder.clone();
-        evaluate(scene, dynamics, &mut f, y).map(|e| derivative(y, &e.motion))
+        evaluate(scene, dynamics, &mut f, y, stuck).map(|e| {
+            crossed = crossed.or(heading.event(&e.motion));
+            derivative(&with_rates(y, e.rates), &e.motion)
+        })
     };
     let k2 = stage(&axpy(y, 0.5 * h, k1))?;
     let k3 = stage(&axpy(y, 0.5 * h, &k2))?;
     let k4 = stage(&axpy(y, h, &k3))?;
-    Ok(std::array::from_fn(|i| {
-        y[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
-    }))
+    let next =
+        std::array::from_fn(|i| y[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]));
+    Ok((next, crossed))
 }
 
 fn row(t: f64, y: &Y, e: &Eval) -> Row {
@@ -236,7 +330,8 @@ fn slide(
         increments: 0,
         energy: None,
     };
-    let mut y: Y = [0.0; 8];
+    let init = scene.initial;
+    let mut y: Y = [0.0, 0.0, 0.0, init.vx, init.vz, init.omega, 0.0, 0.0];
     let mut t = 0.0;
     let end = |mut o: Outcome, reason: Reason, t: f64, detail: String| {
         o.termination = Termination {
@@ -246,30 +341,32 @@ fn slide(
         };
         o
     };
-    // The energy balance at a state with kinetic energy `kinetic` and CM height `cm_y`.
-    let energy = |y: &Y, kinetic: f64, cm_y: f64, y0: f64| {
+    // The energy balance at a state with kinetic energy `kinetic` and CM height `cm_y`, from
+    // the start's kinetic energy `k0` and CM height `y0`.
+    let energy = |y: &Y, kinetic: f64, cm_y: f64, (k0, y0): (f64, f64)| {
         let potential = mass * g * (cm_y - y0);
         EnergyBalance {
             work_hydraulic_j: y[6],
             work_friction_j: y[7],
             kinetic_j: kinetic,
+            kinetic_initial_j: k0,
             potential_change_j: potential,
-            residual_j: y[6] + y[7] - kinetic - potential,
+            residual_j: y[6] + y[7] - (kinetic - k0) - potential,
         }
     };
-    let balance = |y: &Y, e: &Eval, y0: f64| {
+    let balance = |y: &Y, e: &Eval, start: (f64, f64)| {
         energy(
             y,
             e.motion.twist.kinetic_energy(mass, &e.motion.inertia),
             e.pose.cm.y,
-            y0,
+            start,
         )
     };
 
     // The start: at rest, held or not by static friction (decided before any acceleration is
-    // sought: a held block has no consistent way to slip).
+    // sought: a held block has no consistent way to slip); or moving as `[initial]` says, when
+    // it goes on until it stops (the factor of safety is reported all the same).
     let start_pose = finder.pose().expect("the flat start pose exists");
-    let y0 = start_pose.cm.y;
     let check = match static_check(dynamics, &ContactGeometry::new(scene, &start_pose)) {
         Ok(c) => c,
         Err(Stop { reason, detail }) => {
@@ -278,7 +375,7 @@ fn slide(
         }
     };
     o.fs = Some(check.factor_of_safety);
-    if check.holds() {
+    if init.at_rest() && check.holds() {
         o.rows.push(rest_row(0.0, &y, &start_pose));
         let mut done = end(
             o,
@@ -293,7 +390,7 @@ fn slide(
         done.energy = Some(EnergyBalance::default());
         return done;
     }
-    let mut ev = match evaluate(scene, dynamics, finder, &y) {
+    let mut ev = match evaluate(scene, dynamics, finder, &y, None) {
         Ok(e) => e,
         Err(Stop { reason, detail }) => {
             o.rows.push(rest_row(0.0, &y, &start_pose));
@@ -301,126 +398,191 @@ fn slide(
         }
     };
     o.rows.push(row(0.0, &y, &ev));
+    // The reference of the energy balance: the start's kinetic energy and CM height.
+    let start = (
+        ev.motion.twist.kinetic_energy(mass, &ev.motion.inertia),
+        start_pose.cm.y,
+    );
 
-    let mut k = 0usize;
-    let mut t_base = 0.0;
-    let mut k_base = 0usize;
-    // Restarts after a stop shift the time grid, so the loop ends on time (with a cap).
-    while k < 2 * n_steps {
-        let k1 = derivative(&y, &ev.motion);
-        let mut next = match rk4(scene, dynamics, finder, &y, &k1, dt) {
-            Ok(n) => n,
-            Err(Stop { reason, detail }) => {
-                o.energy = Some(balance(&y, &ev, y0));
-                return end(o, reason, t, detail);
-            }
-        };
-        let mut t_next = t_base + (k + 1 - k_base) as f64 * dt;
-        let mut next_ev = match evaluate(scene, dynamics, finder, &next) {
-            Ok(e) => e,
-            Err(Stop { reason, detail }) => {
-                o.energy = Some(balance(&y, &ev, y0));
-                return end(o, reason, t, detail);
-            }
-        };
-        // A stop inside the step: the twist reversed.
-        let before = ev.motion.twist;
-        let reversed = !before.is_zero()
-            && next_ev
-                .motion
-                .twist
-                .energy_dot(&before, mass, &ev.motion.inertia)
-                <= 0.0;
-        if reversed {
-            let dot = |h: f64| -> Result<(f64, Y), Stop> {
-                let yh = rk4(scene, dynamics, finder, &y, &k1, h)?;
-                let geom_twist = {
-                    let mut f = finder.clone();
-                    let pose = pose_at(scene, &mut f, displacement(&yh))?;
-                    let geom = ContactGeometry::new(scene, &pose);
-                    rigid_body::twist(&geom, [yh[3], yh[4], yh[5]]).map_err(stop_of)?
-                };
-                Ok((geom_twist.energy_dot(&before, mass, &ev.motion.inertia), yh))
+    let mut ke_max = 0.0f64;
+    // The substep: the increment dt, halved where the energy balance says RK4 does not resolve
+    // the motion (see `MIN_SUBSTEP`), and grown back by doubling.
+    let mut h = dt;
+    for k in 1..=n_steps {
+        let t_target = k as f64 * dt;
+        // Substeps until the increment's end; events (a stop, a pivot) cut them.
+        let mut events = 0usize;
+        while t < t_target * (1.0 - 1e-15) {
+            // Past MAX_EVENTS in one increment (a contact's slip chattering about zero), the
+            // rest of the increment is taken in plain substeps: its error shows in the energy
+            // balance.
+            let resolve = events < MAX_EVENTS;
+            let h_try = h.min(t_target - t);
+            let k1 = derivative(&y, &ev.motion);
+            ke_max = ke_max.max(ev.motion.twist.kinetic_energy(mass, &ev.motion.inertia));
+            let heading = Heading {
+                before: &ev.motion,
+                mass,
+                length: scene.l(),
             };
-            let (mut lo, mut hi) = (0.0, dt);
-            let mut y_hi = next;
+            let stuck = ev.motion.stuck;
+            let fail = |o: Outcome, y: &Y, ev: &Eval, s: Stop| {
+                let mut o = o;
+                o.energy = Some(balance(y, ev, start));
+                end(o, s.reason, t, s.detail)
+            };
+            let (next, crossed) = match rk4(scene, dynamics, finder, &y, &k1, h_try, &heading) {
+                Ok((n, c)) => (n, c.filter(|_| resolve)),
+                Err(e) => return fail(o, &y, &ev, e),
+            };
+            let mut at_next = finder.clone();
+            let next_ev = match evaluate(scene, dynamics, &mut at_next, &next, stuck) {
+                Ok(e) => e,
+                Err(e) => return fail(o, &y, &ev, e),
+            };
+            let next = with_rates(&next, next_ev.rates);
+            // Whether a substep of length `len` from y to (y2, e2) moved the energy balance by
+            // more than the tolerance (and may still be halved).
+            let unresolved = |len: f64, y2: &Y, e2: &Eval| {
+                let drift = balance(y2, e2, start).residual_j - balance(&y, &ev, start).residual_j;
+                let scale = ke_max.max(y[6].abs()).max(y[7].abs()).max(y2[6].abs());
+                resolve
+                    && drift.abs() > ENERGY_TOLERANCE * scale * (len / dt)
+                    && len > MIN_SUBSTEP * dt
+            };
+            if crossed.is_none() && (!resolve || heading.event(&next_ev.motion).is_none()) {
+                // No event: accept unless the energy balance moved by more than the tolerance
+                // (then halve the substep and try again).
+                if unresolved(h_try, &next, &next_ev) {
+                    h = 0.5 * h_try;
+                    continue;
+                }
+                *finder = at_next;
+                o.travel += (next_ev.pose.cm - ev.pose.cm).norm();
+                y = next;
+                ev = next_ev;
+                t += h_try;
+                if h_try >= h {
+                    h = (2.0 * h).min(dt);
+                }
+                continue;
+            }
+            // An event inside the substep (at its end or at one of its stages): bisection on
+            // the step length for the longest step that does not reach it, then the event's
+            // own handling.
+            let reaches = |len: f64| -> Result<(Option<Event>, Y), Stop> {
+                let (yh, crossed) = rk4(scene, dynamics, finder, &y, &k1, len, &heading)?;
+                let mut f = finder.clone();
+                let e = evaluate(scene, dynamics, &mut f, &yh, stuck)?;
+                Ok((heading.event(&e.motion).or(crossed), yh))
+            };
+            let (mut lo, mut hi) = (0.0, h_try);
+            let mut y_lo = y;
+            let mut found = None;
             for _ in 0..60 {
                 if hi - lo <= 1e-12 * dt {
                     break;
                 }
                 let mid = 0.5 * (lo + hi);
-                match dot(mid) {
-                    Ok((d, _)) if d > 0.0 => lo = mid,
-                    Ok((_, ym)) => {
+                match reaches(mid) {
+                    Ok((None, ym)) => {
+                        lo = mid;
+                        y_lo = ym;
+                    }
+                    Ok((event, _)) => {
                         hi = mid;
-                        y_hi = ym;
+                        found = event;
                     }
                     Err(_) => hi = mid,
                 }
             }
-            let mut stopped = y_hi;
+            // Which event: what the shortest step that reaches it shows. A pivot with the
+            // kinetic energy at REST of the largest it had is the stop itself: as a block comes
+            // to rest its contacts' slips pass through zero one after another ever faster (the
+            // Zeno behaviour of Coulomb friction), and the travel left is of order REST of the
+            // stopping distance.
+            // The substep up to the event must itself be resolved: else approach it in shorter
+            // substeps.
+            if lo > 0.0 {
+                let mut f = finder.clone();
+                match evaluate(scene, dynamics, &mut f, &y_lo, stuck) {
+                    Ok(e) if unresolved(lo, &with_rates(&y_lo, e.rates), &e) => {
+                        h = 0.5 * lo;
+                        continue;
+                    }
+                    Ok(_) => {}
+                    Err(e) => return fail(o, &y, &ev, e),
+                }
+            }
+            let ke = ev.motion.twist.kinetic_energy(mass, &ev.motion.inertia);
+            let event = match found.or(crossed).unwrap_or(Event::Stop) {
+                Event::Pivot(_) if ke <= REST * ke_max => Event::Stop,
+                e => e,
+            };
+            let t_event = t + hi;
+            events += 1;
+            if let Event::Pivot(i) = event {
+                // The slip of contact i vanished: turn about it, stuck while its cone allows
+                // (the rates' remaining slip of i, of the bisection's size, projected out).
+                let pivot_ev = match evaluate(scene, dynamics, finder, &y_lo, Some(i)) {
+                    Ok(e) => e,
+                    Err(e) => return fail(o, &y, &ev, e),
+                };
+                o.travel += (pivot_ev.pose.cm - ev.pose.cm).norm();
+                y = with_rates(&y_lo, pivot_ev.rates);
+                ev = pivot_ev;
+                t = t_event;
+                continue;
+            }
+            // The state just before the stop, at rest.
+            let mut stopped = y_lo;
             stopped[3] = 0.0;
             stopped[4] = 0.0;
             stopped[5] = 0.0;
-            let t_stop = t + hi;
             let stop_pose = match pose_at(scene, finder, displacement(&stopped)) {
                 Ok(p) => p,
-                Err(Stop { reason, detail }) => {
-                    o.energy = Some(balance(&y, &ev, y0));
-                    return end(o, reason, t, detail);
-                }
+                Err(e) => return fail(o, &y, &ev, e),
             };
             o.travel += (stop_pose.cm - ev.pose.cm).norm();
-            o.increments = k + 1;
-            let check = match static_check(dynamics, &ContactGeometry::new(scene, &stop_pose)) {
+            o.increments = k;
+            let geom = ContactGeometry::with_normals(&dynamics.normals, &stop_pose);
+            let check = match static_check(dynamics, &geom) {
                 Ok(c) => c,
                 Err(Stop { reason, detail }) => return end(o, reason, t, detail),
             };
             if check.holds() {
-                o.rows.push(rest_row(t_stop, &stopped, &stop_pose));
-                o.energy = Some(energy(&stopped, 0.0, stop_pose.cm.y, y0));
+                o.rows.push(rest_row(t_event, &stopped, &stop_pose));
+                o.energy = Some(energy(&stopped, 0.0, stop_pose.cm.y, start));
                 return end(
                     o,
                     Reason::Stopped,
-                    t_stop,
+                    t_event,
                     format!(
-                        "the motion stopped at t = {t_stop:.6} s and static friction holds the \
-                         block there (factor of safety {:.4})",
+                        "the motion stopped at t = {t_event:.6} s and static friction holds \
+                         the block there (factor of safety {:.4})",
                         check.factor_of_safety
                     ),
                 );
             }
-            let stop_ev = match evaluate(scene, dynamics, finder, &stopped) {
+            // Not held: it slips again from rest.
+            ev = match evaluate(scene, dynamics, finder, &stopped, None) {
                 Ok(e) => e,
                 Err(Stop { reason, detail }) => {
-                    o.energy = Some(balance(&y, &ev, y0));
-                    return end(o, reason, t_stop, detail);
+                    o.energy = Some(energy(&stopped, 0.0, stop_pose.cm.y, start));
+                    return end(o, reason, t_event, detail);
                 }
             };
-            // Not held: it slips again from rest.
-            next = stopped;
-            next_ev = stop_ev;
-            t_next = t_stop;
-            t_base = t_stop;
-            k_base = k + 1;
-        } else {
-            o.travel += (next_ev.pose.cm - ev.pose.cm).norm();
+            y = stopped;
+            t = t_event;
         }
-        k += 1;
+        t = t_target;
         o.increments = k;
-        y = next;
-        ev = next_ev;
-        t = t_next;
         progress((t / solver.t_end).min(1.0));
-        let last = t >= solver.t_end * (1.0 - 1e-12);
-        if k % stride == 0 || last {
+        if k % stride == 0 || k == n_steps {
             o.rows.push(row(t, &y, &ev));
         }
-        if last {
-            break;
-        }
     }
-    o.energy = Some(balance(&y, &ev, y0));
+    o.energy = Some(balance(&y, &ev, start));
     end(
         o,
         Reason::TimeLimit,

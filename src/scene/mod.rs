@@ -179,6 +179,23 @@ impl Integrator {
     }
 }
 
+/// The motion at t = 0: the CM velocity (Ẋ, Ż) and the yaw rate θ̇ (rad/s). Default: at rest.
+/// A block set moving — by a transient such as an earthquake pulse, as in Newmark's sliding
+/// block — under loads that static friction can hold decelerates and stops.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Initial {
+    pub vx: f64,
+    pub vz: f64,
+    pub omega: f64,
+}
+
+impl Initial {
+    /// Whether the block starts at rest.
+    pub fn at_rest(&self) -> bool {
+        self.vx == 0.0 && self.vz == 0.0 && self.omega == 0.0
+    }
+}
+
 /// Time stepping.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Solver {
@@ -206,6 +223,8 @@ pub struct Scene {
     pub loads: Option<Loads>,
     pub friction: Option<Friction>,
     pub solver: Option<Solver>,
+    /// `[initial]`: the motion at t = 0 (absent: at rest).
+    pub initial: Initial,
 }
 
 /// The sections a simulation needs, borrowed from a scene that has them all.
@@ -215,6 +234,9 @@ pub struct Dynamics<'a> {
     pub loads: &'a Loads,
     pub friction: &'a Friction,
     pub solver: &'a Solver,
+    /// The upward unit normals of the planes under vertices 0, 1, 2 (horizontal, plane 1,
+    /// plane 2), computed once from the borrowed scene's foundation.
+    pub normals: [nalgebra::Vector3<f64>; 3],
 }
 
 /// The most increments one run may take (t_end / dt).
@@ -280,6 +302,7 @@ impl Scene {
             loads: self.loads.as_ref().ok_or_else(|| missing("loads"))?,
             friction: self.friction.as_ref().ok_or_else(|| missing("friction"))?,
             solver: self.solver.as_ref().ok_or_else(|| missing("solver"))?,
+            normals: crate::mechanics::ContactGeometry::plane_normals(self),
         })
     }
 }
@@ -558,6 +581,18 @@ fn validate(raw: raw::RawScene, o: &str) -> Result<Scene, SceneError> {
             },
         }),
     };
+    let initial = match &raw.initial {
+        None => Initial::default(),
+        Some(i) => {
+            let finite =
+                |key: &str, v: Option<f64>| check(o, key, v.unwrap_or(0.0), true, "finite");
+            Initial {
+                vx: finite("initial.vx_m_s", i.vx_m_s)?,
+                vz: finite("initial.vz_m_s", i.vz_m_s)?,
+                omega: finite("initial.omega_deg_s", i.omega_deg_s)?.to_radians(),
+            }
+        }
+    };
     Ok(Scene {
         name: raw.name.unwrap_or_else(|| "unnamed".to_string()),
         origin: o.to_string(),
@@ -567,6 +602,7 @@ fn validate(raw: raw::RawScene, o: &str) -> Result<Scene, SceneError> {
         loads,
         friction,
         solver,
+        initial,
     })
 }
 

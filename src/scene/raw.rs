@@ -13,6 +13,16 @@ pub struct RawScene {
     pub loads: Option<RawLoads>,
     pub friction: Option<RawFriction>,
     pub solver: Option<RawSolver>,
+    pub initial: Option<RawInitial>,
+}
+
+/// The motion at t = 0 (default: at rest).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawInitial {
+    pub vx_m_s: Option<f64>,
+    pub vz_m_s: Option<f64>,
+    pub omega_deg_s: Option<f64>,
 }
 
 #[derive(Debug, Deserialize)]

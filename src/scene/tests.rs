@@ -428,3 +428,25 @@ fn rigid_body_keys_default_to_a_thin_plate_and_are_checked() {
         assert_eq!(e.key, key, "{e}");
     }
 }
+
+#[test]
+fn initial_motion_defaults_to_rest_and_is_read_in_degrees_and_checked() {
+    let s = Scene::from_toml(GOOD, "dam.toml").unwrap();
+    assert!(s.initial.at_rest());
+    let moving = format!("{GOOD}[initial]\nvx_m_s = 0.5\nomega_deg_s = 90\n");
+    let s = Scene::from_toml(&moving, "dam.toml").unwrap();
+    assert_eq!(s.initial.vx, 0.5);
+    assert_eq!(s.initial.vz, 0.0);
+    assert!((s.initial.omega - std::f64::consts::FRAC_PI_2).abs() < 1e-15);
+    assert!(!s.initial.at_rest());
+    assert_names(
+        &format!("{GOOD}[initial]\nvz_m_s = inf\n"),
+        "initial.vz_m_s",
+        "finite",
+    );
+    assert_names(
+        &format!("{GOOD}[initial]\nspeed_m_s = 1.0\n"),
+        "initial.speed_m_s",
+        "unknown key",
+    );
+}

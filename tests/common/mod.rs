@@ -35,6 +35,7 @@ pub fn scene(
         loads: None,
         friction: None,
         solver: None,
+        initial: Default::default(),
     }
 }
 
