@@ -200,6 +200,13 @@ impl<'s> Tracker<'s> {
             return Err(TrackError::NonFinite(target));
         }
         let from = self.current.d;
+        if target == from {
+            // Already there: no step (a zero-length one would spoil the secant predictor of
+            // the next: every step after it was refused as a jump and halved some twenty
+            // times), but the admissibility check all the same (the start may be inadmissible).
+            self.check()?;
+            return Ok(self.current);
+        }
         let mut s = 0.0;
         let mut h = self.h;
         while s < 1.0 {
@@ -307,6 +314,24 @@ impl<'s> Tracker<'s> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn advancing_to_where_it_is_keeps_the_predictor_and_takes_no_step() {
+        // A route evaluates its start, where the tracker already is; that must not leave a
+        // zero-length secant behind, after which every step was refused as a jump and halved
+        // about twenty times.
+        let scene = Scene::default_scene();
+        let mut t = Tracker::new(&scene, Mode::Exact);
+        t.advance(Displacement::default()).unwrap();
+        assert_eq!(t.stats.steps, 0);
+        for k in 1..=20 {
+            let f = k as f64;
+            t.advance(Displacement::new(0.02 * f, 0.001 * f, -0.002 * f))
+                .unwrap();
+        }
+        assert_eq!(t.stats.rejected, 0, "{:?}", t.stats);
+        assert_eq!(t.stats.steps, 20, "{:?}", t.stats);
+    }
 
     #[test]
     fn jacobian_condition_is_the_ratio_of_singular_values() {
