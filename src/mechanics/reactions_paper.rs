@@ -34,9 +34,6 @@ pub struct Reaction {
     /// Direction of each shear force in its plane (rad): 0 along the projection of +i', π
     /// against it.
     pub angles: [f64; 3],
-    /// (sin, cos) of each of `angles` (kept, so that following the solution at the next
-    /// increment starts without recomputing them).
-    pub angles_sin_cos: [(f64, f64); 3],
     /// CM acceleration along i' (m/s²) and angular acceleration about j' (rad/s²), eq. (23).
     pub accel: f64,
     pub ang_accel: f64,
@@ -77,7 +74,7 @@ fn sin_cos_step(x: f64) -> (f64, f64) {
 }
 
 /// A point of the frictional system: N0 = j and the shear directions φ with their (sin, cos)
-/// (kept alongside, so that no increment recomputes them more than once).
+/// (kept alongside: Newton rotates them by its updates instead of recomputing them).
 #[derive(Debug, Clone, Copy)]
 struct Point {
     j: f64,
@@ -418,7 +415,6 @@ fn reaction(
         normal,
         shear,
         angles: p.phi.map(wrap),
-        angles_sin_cos: p.sc,
         accel: force.dot(&geom.frame.i) / block.mass,
         ang_accel: moment.dot(&geom.frame.j) / block.inertia,
     }
@@ -447,7 +443,11 @@ fn prologue(
             &m,
             &[0.0; 3],
             &none,
-            &Point::new(c[0], [0.0; 3]),
+            &Point {
+                j: c[0],
+                phi: [0.0; 3],
+                sc: [(0.0, 1.0); 3],
+            },
         )
     });
     Ok((m, frictionless))
@@ -541,12 +541,7 @@ pub fn follow(
     }
     let j0 = previous.normal[0].norm();
     let sys = System::new(geom, applied, &m, &mu_at(friction, &m, j0));
-    let start = Point {
-        j: j0,
-        phi: previous.angles,
-        sc: previous.angles_sin_cos,
-    };
-    let (p, res) = sys.polish(start);
+    let (p, res) = sys.polish(Point::new(j0, previous.angles));
     if !(res < 1e-9 && p.j > 0.0 && continues(&previous.angles, &p.phi)) {
         return Ok(None);
     }

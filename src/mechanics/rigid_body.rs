@@ -646,6 +646,24 @@ mod tests {
     }
 
     #[test]
+    fn pivot_rates_leave_the_contact_at_rest_and_project() {
+        // At a pose from the direct solver: the rates with contact i's slip removed move it
+        // neither along its plane nor off it, and removing it again changes nothing.
+        let scene = Scene::default_scene();
+        let geom = at(&scene, Displacement::new(0.7, 0.2, 0.1));
+        let rates = [1.5, -0.4, 0.3];
+        for i in 0..3 {
+            let p = pivot_rates(&geom, rates, i).unwrap();
+            let v = twist(&geom, p).unwrap().at(&geom.r[i]);
+            assert!(v.norm() < 1e-14 * 1.5, "contact {i}: {v:?}");
+            let q = pivot_rates(&geom, p, i).unwrap();
+            for k in 0..3 {
+                assert!((q[k] - p[k]).abs() < 1e-14, "{q:?} {p:?}");
+            }
+        }
+    }
+
+    #[test]
     fn the_projected_twist_keeps_contacts_on_their_planes_and_gives_the_rates() {
         let scene = Scene::default_scene();
         let geom = at(&scene, Displacement::new(0.7, 0.2, 0.1));

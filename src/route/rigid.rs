@@ -11,15 +11,16 @@
 //! Stick and slip at the block level: at rest (the start, or when the motion stops), the block
 //! stays put when static friction within the three cones can hold it
 //! (`mechanics::static_friction`); otherwise it slips from rest in the direction that
-//! reproduces itself. While sliding, a step over which the twist reverses (its kinetic-energy
-//! inner product with the twist at the step's start turns non-positive) contains a stop; the
-//! stop time is found by bisection on the step length and the velocity set to exactly zero.
+//! reproduces itself. While sliding, each step is checked for events — a stop (the twist
+//! reverses) or a pivot (a contact's slip reverses) — found by bisection on the step length, and
+//! taken in shorter substeps where the energy balance says RK4 does not resolve the motion
+//! (`derivations/08-rigid-body.md` §3). At a stop the velocity is set to exactly zero.
 
-use super::Route;
-use super::pose_finder::{PoseFinder, PoseMethod};
+use super::pose_finder::PoseFinder;
 use super::rhs::{Stop, pose_at};
+use super::run::Outcome;
 use super::state::Row;
-use super::termination::{Reason, Termination};
+use super::termination::Reason;
 use crate::geometry::{Displacement, Pose};
 use crate::mechanics::loads::Applied;
 use crate::mechanics::rigid_body::{self, Motion, RigidError};
@@ -267,46 +268,8 @@ fn static_check(dynamics: &Dynamics<'_>, geom: &ContactGeometry) -> Result<Stati
     })
 }
 
-struct Outcome {
-    rows: Vec<Row>,
-    termination: Termination,
-    fs: Option<f64>,
-    travel: f64,
-    increments: usize,
-    energy: Option<EnergyBalance>,
-}
-
-/// Runs the rigid-body route of a scene whose dynamics sections are present.
-pub(super) fn run(
-    scene: &Scene,
-    dynamics: &Dynamics<'_>,
-    method: PoseMethod,
-    progress: impl FnMut(f64),
-) -> Route {
-    let started = std::time::Instant::now();
-    let solver = *dynamics.solver;
-    let mut finder = PoseFinder::new(scene, solver.mode, method);
-    let o = slide(scene, dynamics, &mut finder, progress);
-    Route {
-        scene: scene.name.clone(),
-        mode: solver.mode,
-        integrator: solver.integrator,
-        dynamics: solver.dynamics,
-        pose_method: method,
-        rows: o.rows,
-        termination: o.termination,
-        factor_of_safety_onset: o.fs,
-        travel_m: o.travel,
-        increments: o.increments,
-        friction_switches: 0,
-        tracker: finder.stats(),
-        end_jacobian_condition: finder.jacobian_condition(),
-        energy: o.energy,
-        wall_s: started.elapsed().as_secs_f64(),
-    }
-}
-
-fn slide(
+/// The rigid body's route loop (`super::run::run_with` adds the diagnostics).
+pub(super) fn slide(
     scene: &Scene,
     dynamics: &Dynamics<'_>,
     finder: &mut PoseFinder<'_>,
@@ -318,29 +281,10 @@ fn slide(
     let n_steps = (solver.t_end / dt).round().max(1.0) as usize;
     let mass = dynamics.block.mass;
     let g = dynamics.loads.gravity;
-    let mut o = Outcome {
-        rows: Vec::new(),
-        termination: Termination {
-            reason: Reason::TimeLimit,
-            t_s: 0.0,
-            detail: String::new(),
-        },
-        fs: None,
-        travel: 0.0,
-        increments: 0,
-        energy: None,
-    };
+    let mut o = Outcome::new();
     let init = scene.initial;
     let mut y: Y = [0.0, 0.0, 0.0, init.vx, init.vz, init.omega, 0.0, 0.0];
     let mut t = 0.0;
-    let end = |mut o: Outcome, reason: Reason, t: f64, detail: String| {
-        o.termination = Termination {
-            reason,
-            t_s: t,
-            detail,
-        };
-        o
-    };
     // The energy balance at a state with kinetic energy `kinetic` and CM height `cm_y`, from
     // the start's kinetic energy `k0` and CM height `y0`.
     let energy = |y: &Y, kinetic: f64, cm_y: f64, (k0, y0): (f64, f64)| {
@@ -371,14 +315,13 @@ fn slide(
         Ok(c) => c,
         Err(Stop { reason, detail }) => {
             o.rows.push(rest_row(0.0, &y, &start_pose));
-            return end(o, reason, 0.0, detail);
+            return o.end(reason, 0.0, detail);
         }
     };
     o.fs = Some(check.factor_of_safety);
     if init.at_rest() && check.holds() {
         o.rows.push(rest_row(0.0, &y, &start_pose));
-        let mut done = end(
-            o,
+        let mut done = o.end(
             Reason::DoesNotSlide,
             0.0,
             format!(
@@ -394,7 +337,7 @@ fn slide(
         Ok(e) => e,
         Err(Stop { reason, detail }) => {
             o.rows.push(rest_row(0.0, &y, &start_pose));
-            return end(o, reason, 0.0, detail);
+            return o.end(reason, 0.0, detail);
         }
     };
     o.rows.push(row(0.0, &y, &ev));
@@ -429,7 +372,7 @@ fn slide(
             let fail = |o: Outcome, y: &Y, ev: &Eval, s: Stop| {
                 let mut o = o;
                 o.energy = Some(balance(y, ev, start));
-                end(o, s.reason, t, s.detail)
+                o.end(s.reason, t, s.detail)
             };
             let (next, crossed) = match rk4(scene, dynamics, finder, &y, &k1, h_try, &heading) {
                 Ok((n, c)) => (n, c.filter(|_| resolve)),
@@ -443,14 +386,16 @@ fn slide(
             let next = with_rates(&next, next_ev.rates);
             // Whether a substep of length `len` from y to (y2, e2) moved the energy balance by
             // more than the tolerance (and may still be halved).
+            let residual = balance(&y, &ev, start).residual_j;
             let unresolved = |len: f64, y2: &Y, e2: &Eval| {
-                let drift = balance(y2, e2, start).residual_j - balance(&y, &ev, start).residual_j;
+                let drift = balance(y2, e2, start).residual_j - residual;
                 let scale = ke_max.max(y[6].abs()).max(y[7].abs()).max(y2[6].abs());
                 resolve
                     && drift.abs() > ENERGY_TOLERANCE * scale * (len / dt)
                     && len > MIN_SUBSTEP * dt
             };
-            if crossed.is_none() && (!resolve || heading.event(&next_ev.motion).is_none()) {
+            let at_end = heading.event(&next_ev.motion).filter(|_| resolve);
+            if crossed.is_none() && at_end.is_none() {
                 // No event: accept unless the energy balance moved by more than the tolerance
                 // (then halve the substep and try again).
                 if unresolved(h_try, &next, &next_ev) {
@@ -496,11 +441,6 @@ fn slide(
                     Err(_) => hi = mid,
                 }
             }
-            // Which event: what the shortest step that reaches it shows. A pivot with the
-            // kinetic energy at REST of the largest it had is the stop itself: as a block comes
-            // to rest its contacts' slips pass through zero one after another ever faster (the
-            // Zeno behaviour of Coulomb friction), and the travel left is of order REST of the
-            // stopping distance.
             // The substep up to the event must itself be resolved: else approach it in shorter
             // substeps.
             if lo > 0.0 {
@@ -514,8 +454,13 @@ fn slide(
                     Err(e) => return fail(o, &y, &ev, e),
                 }
             }
+            // Which event: what the shortest step that reaches it shows. A pivot with the
+            // kinetic energy at REST of the largest it had is the stop itself: as a block comes
+            // to rest its contacts' slips pass through zero one after another ever faster (the
+            // Zeno behaviour of Coulomb friction), and the travel left is of order REST of the
+            // stopping distance.
             let ke = ev.motion.twist.kinetic_energy(mass, &ev.motion.inertia);
-            let event = match found.or(crossed).unwrap_or(Event::Stop) {
+            let event = match found.or(at_end).or(crossed).unwrap_or(Event::Stop) {
                 Event::Pivot(_) if ke <= REST * ke_max => Event::Stop,
                 e => e,
             };
@@ -531,7 +476,7 @@ fn slide(
                 o.travel += (pivot_ev.pose.cm - ev.pose.cm).norm();
                 y = with_rates(&y_lo, pivot_ev.rates);
                 ev = pivot_ev;
-                t = t_event;
+                t += lo;
                 continue;
             }
             // The state just before the stop, at rest.
@@ -548,13 +493,12 @@ fn slide(
             let geom = ContactGeometry::with_normals(&dynamics.normals, &stop_pose);
             let check = match static_check(dynamics, &geom) {
                 Ok(c) => c,
-                Err(Stop { reason, detail }) => return end(o, reason, t, detail),
+                Err(Stop { reason, detail }) => return o.end(reason, t, detail),
             };
             if check.holds() {
                 o.rows.push(rest_row(t_event, &stopped, &stop_pose));
                 o.energy = Some(energy(&stopped, 0.0, stop_pose.cm.y, start));
-                return end(
-                    o,
+                return o.end(
                     Reason::Stopped,
                     t_event,
                     format!(
@@ -569,7 +513,7 @@ fn slide(
                 Ok(e) => e,
                 Err(Stop { reason, detail }) => {
                     o.energy = Some(energy(&stopped, 0.0, stop_pose.cm.y, start));
-                    return end(o, reason, t_event, detail);
+                    return o.end(reason, t_event, detail);
                 }
             };
             y = stopped;
@@ -583,8 +527,7 @@ fn slide(
         }
     }
     o.energy = Some(balance(&y, &ev, start));
-    end(
-        o,
+    o.end(
         Reason::TimeLimit,
         t,
         format!("t reached t_end = {} s", solver.t_end),

@@ -30,16 +30,46 @@ fn row(s: &State, ev: Option<&Evaluation>, pose: &crate::geometry::Pose) -> Row 
     }
 }
 
-/// What the loop produced, before the diagnostics are added.
-struct Outcome {
-    rows: Vec<Row>,
-    reason: Reason,
-    t: f64,
-    detail: String,
-    fs: Option<f64>,
-    travel: f64,
-    increments: usize,
-    switches: usize,
+/// What a route's loop produced (either dynamics), before the diagnostics are added.
+pub(super) struct Outcome {
+    pub rows: Vec<Row>,
+    pub termination: Termination,
+    pub fs: Option<f64>,
+    pub travel: f64,
+    pub increments: usize,
+    /// How often the paper's frictional solution was chosen afresh (paper's dynamics).
+    pub switches: usize,
+    /// The energy balance (rigid-body dynamics).
+    pub energy: Option<super::rigid::EnergyBalance>,
+}
+
+impl Outcome {
+    /// Nothing yet: ends at the time limit unless told otherwise.
+    pub fn new() -> Self {
+        Outcome {
+            rows: Vec::new(),
+            termination: Termination {
+                reason: Reason::TimeLimit,
+                t_s: 0.0,
+                detail: String::new(),
+            },
+            fs: None,
+            travel: 0.0,
+            increments: 0,
+            switches: 0,
+            energy: None,
+        }
+    }
+
+    /// The route ends for `reason` at `t`.
+    pub fn end(mut self, reason: Reason, t: f64, detail: String) -> Self {
+        self.termination = Termination {
+            reason,
+            t_s: t,
+            detail,
+        };
+        self
+    }
 }
 
 /// Runs the route of a scene (which needs its `[block]`, `[loads]`, `[friction]` and
@@ -62,11 +92,11 @@ pub fn run_with(
     let started = Instant::now();
     let dynamics = scene.require_dynamics()?;
     let solver = *dynamics.solver;
-    if solver.dynamics == DynamicsModel::RigidBody {
-        return Ok(super::rigid::run(scene, &dynamics, method, progress));
-    }
     let mut finder = PoseFinder::new(scene, solver.mode, method);
-    let o = slide(scene, &dynamics, &mut finder, progress);
+    let o = match solver.dynamics {
+        DynamicsModel::Paper => slide(scene, &dynamics, &mut finder, progress),
+        DynamicsModel::RigidBody => super::rigid::slide(scene, &dynamics, &mut finder, progress),
+    };
     Ok(Route {
         scene: scene.name.clone(),
         mode: solver.mode,
@@ -74,18 +104,14 @@ pub fn run_with(
         dynamics: solver.dynamics,
         pose_method: method,
         rows: o.rows,
-        termination: Termination {
-            reason: o.reason,
-            t_s: o.t,
-            detail: o.detail,
-        },
+        termination: o.termination,
         factor_of_safety_onset: o.fs,
         travel_m: o.travel,
         increments: o.increments,
         friction_switches: o.switches,
         tracker: finder.stats(),
         end_jacobian_condition: finder.jacobian_condition(),
-        energy: None,
+        energy: o.energy,
         wall_s: started.elapsed().as_secs_f64(),
     })
 }
@@ -105,22 +131,7 @@ fn slide(
         omega: scene.initial.omega,
         ..State::default()
     };
-    let mut o = Outcome {
-        rows: Vec::new(),
-        reason: Reason::TimeLimit,
-        t: 0.0,
-        detail: String::new(),
-        fs: None,
-        travel: 0.0,
-        increments: 0,
-        switches: 0,
-    };
-    let end = |mut o: Outcome, reason: Reason, t: f64, detail: String| {
-        o.reason = reason;
-        o.t = t;
-        o.detail = detail;
-        o
-    };
+    let mut o = Outcome::new();
 
     // The start: pose, statics and whether the block slides at all (a block that starts
     // moving goes on until it stops, whatever the factor of safety).
@@ -136,7 +147,7 @@ fn slide(
         Ok(ev) => ev,
         Err(Stop { reason, detail }) => {
             o.rows.push(row(&state, None, &start_pose));
-            return end(o, reason, 0.0, detail);
+            return o.end(reason, 0.0, detail);
         }
     };
     let applied = Applied::new(dynamics.loads, dynamics.block, &ev.geom.frame);
@@ -157,7 +168,7 @@ fn slide(
                 ev.reaction.accel
             )
         };
-        return end(o, Reason::DoesNotSlide, 0.0, detail);
+        return o.end(Reason::DoesNotSlide, 0.0, detail);
     }
 
     let stride = solver.stride.max(1);
@@ -189,7 +200,7 @@ fn slide(
                 t: k as f64 * dt,
                 ..n
             },
-            Err(Stop { reason, detail }) => return end(o, reason, state.t, detail),
+            Err(Stop { reason, detail }) => return o.end(reason, state.t, detail),
         };
         let new_ev = match evaluate(
             scene,
@@ -200,12 +211,11 @@ fn slide(
             velocity(&next),
         ) {
             Ok(e) => e,
-            Err(Stop { reason, detail }) => return end(o, reason, state.t, detail),
+            Err(Stop { reason, detail }) => return o.end(reason, state.t, detail),
         };
         if new_ev.fresh {
             o.switches += 1;
         }
-        o.travel += (new_ev.pose.cm - ev.pose.cm).norm();
         o.increments = k;
         // Stopped: the CM velocity along the acceleration — along i', the direction the paper's
         // dynamics drive (eqs. 30–35) — passes through zero in the increment, and friction
@@ -216,7 +226,7 @@ fn slide(
         let along = |w: [f64; 2]| w[0] * a[0] + w[1] * a[1];
         if along(v) < 0.0 && along([next.vx, next.vz]) >= 0.0 {
             // Where the paper's update (accelerations frozen over the increment) brings it to
-            // zero: (v + a τ)·a = 0.
+            // zero: (v + a τ)·a = 0 (with RK4, to first order in τ).
             let tau = (-along(v) / along(a)).clamp(0.0, dt);
             let mut stop = paper_step(&state, &ev.acc, tau);
             stop.vx = 0.0;
@@ -232,22 +242,22 @@ fn slide(
                 None,
             ) {
                 Ok(e) => e,
-                Err(Stop { reason, detail }) => return end(o, reason, state.t, detail),
+                Err(Stop { reason, detail }) => return o.end(reason, state.t, detail),
             };
             let applied = Applied::new(dynamics.loads, dynamics.block, &stop_ev.geom.frame);
             let (fs_here, _, _) =
                 factor_of_safety(&stop_ev.geom, &applied, &stop_ev.statics, dynamics.friction);
             if fs_here >= 1.0 {
-                o.travel +=
-                    (stop_ev.pose.cm - ev.pose.cm).norm() - (new_ev.pose.cm - ev.pose.cm).norm();
+                o.travel += (stop_ev.pose.cm - ev.pose.cm).norm();
                 o.rows.push(row(&stop, Some(&stop_ev), &stop_ev.pose));
                 let detail = format!(
                     "speed reached zero at t = {:.6} s; factor of safety there {fs_here:.4}",
                     stop.t
                 );
-                return end(o, Reason::Stopped, stop.t, detail);
+                return o.end(Reason::Stopped, stop.t, detail);
             }
         }
+        o.travel += (new_ev.pose.cm - ev.pose.cm).norm();
         state = next;
         ev = new_ev;
         progress(k as f64 / n_steps as f64);
@@ -257,5 +267,5 @@ fn slide(
     }
     let detail = format!("t reached t_end = {} s", solver.t_end);
     let t = state.t;
-    end(o, Reason::TimeLimit, t, detail)
+    o.end(Reason::TimeLimit, t, detail)
 }
