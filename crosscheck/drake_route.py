@@ -11,7 +11,13 @@ hydraulic force F is re-applied along the current x' and its couple -c F along t
 (c > 0 turns the block so that theta grows). Coordinates are slideroute's: X forward, Y up,
 Z lateral, gravity -g Y; the block starts flat with its CM at the origin.
 
-Writes CSV: t_s,x_m,y_m,z_m,theta_deg (theta: yaw of x' from +X towards +Z).
+The scene's [initial] section (vx_m_s, vz_m_s, omega_deg_s; default at rest) gives the motion
+at t = 0: the block's twist is those rates made consistent with the three contacts staying on
+their planes (the CM's vertical velocity and the roll and pitch rates solved from the three
+normal-velocity constraints, as slideroute's velocity projection does).
+
+Writes CSV: t_s,x_m,y_m,z_m,theta_deg,p0x_m,...,p2z_m (theta: yaw of x' from +X towards +Z; pK:
+contact K's position, so that a reader sees where each contact is, e.g. past a strike line).
 """
 import argparse
 import csv
@@ -30,7 +36,7 @@ from pydrake.geometry import (
     Sphere,
 )
 from pydrake.math import RigidTransform
-from pydrake.multibody.math import SpatialForce
+from pydrake.multibody.math import SpatialForce, SpatialVelocity
 from pydrake.multibody.plant import (
     AddMultibodyPlant,
     CoulombFriction,
@@ -63,6 +69,7 @@ def load(path):
         ixz=bl.get("inertia_xz_kg_m2", 0.0),
         force=lo["hydraulic_force_n"], c=lo["eccentricity_m"], g=lo["gravity_m_s2"],
         mu=fi["mu_k"],
+        init=s.get("initial", {}),
     )
 
 
@@ -79,6 +86,23 @@ def planes(p):
             np.array([r * math.cos(kappa), 0.0, -r * math.sin(kappa)]),
         ),
     ]
+
+
+def initial_twist(p, corners, normals):
+    """(v, w) at the flat start: v_X, v_Z and the yaw rate from [initial]; v_Y, w_X, w_Z such
+    that every contact's velocity along its plane's normal vanishes. At θ = 0 the yaw rate is
+    -w_Y (theta grows from +X towards +Z)."""
+    init = p["init"]
+    vx, vz = init.get("vx_m_s", 0.0), init.get("vz_m_s", 0.0)
+    wy = -math.radians(init.get("omega_deg_s", 0.0))
+    # n·(v + w × r) = 0 with unknowns (v_Y, w_X, w_Z): w × r = (wY rz - wZ ry, wZ rx - wX rz, wX ry - wY rx)
+    a, b = np.zeros((3, 3)), np.zeros(3)
+    for k, (n, r) in enumerate(zip(normals, corners)):
+        # coefficients of v_Y, w_X, w_Z
+        a[k] = [n[1], -n[1] * r[2] + n[2] * r[1], -n[0] * r[1] + n[1] * r[0]]
+        b[k] = -(n[0] * (vx + wy * r[2]) + n[2] * (vz - wy * r[0]))
+    vy, wx, wz = np.linalg.solve(a, b)
+    return np.array([vx, vy, vz]), np.array([wx, wy, wz])
 
 
 def main():
@@ -134,6 +158,8 @@ def main():
     context = simulator.get_mutable_context()
     plant_context = plant.GetMyMutableContextFromRoot(context)
     plant.SetFreeBodyPose(plant_context, block, RigidTransform(np.zeros(3)))
+    v0, w0 = initial_twist(p, corners, [n for n, _ in planes(p)])
+    plant.SetFreeBodySpatialVelocity(plant_context, block, SpatialVelocity(w0, v0))
     port = plant.get_applied_spatial_force_input_port()
 
     rows = []
@@ -144,7 +170,9 @@ def main():
         i_axis, j_axis = rot[:, 0], rot[:, 1]
         cm = pose.translation()
         t = k * a.dt
-        rows.append((t, cm[0], cm[1], cm[2], math.degrees(math.atan2(i_axis[2], i_axis[0]))))
+        contacts = [pose.multiply(c) for c in corners]
+        rows.append((t, cm[0], cm[1], cm[2], math.degrees(math.atan2(i_axis[2], i_axis[0])),
+                     *[x for c in contacts for x in c]))
         if k == steps:
             break
         f = ExternallyAppliedSpatialForce()
@@ -156,7 +184,8 @@ def main():
 
     with open(a.out, "w", newline="") as out:
         w = csv.writer(out)
-        w.writerow(["t_s", "x_m", "y_m", "z_m", "theta_deg"])
+        w.writerow(["t_s", "x_m", "y_m", "z_m", "theta_deg"]
+                   + [f"p{k}{a}_m" for k in range(3) for a in "xyz"])
         w.writerows(rows)
 
 

@@ -286,9 +286,11 @@ fn run_cmd(
             route.travel_m, last.theta_deg, last.alpha_deg, last.beta_deg, last.gamma_deg
         );
     }
-    match route.factor_of_safety_onset {
-        Some(fs) => println!("  factor of safety at onset {fs:.4}"),
-        None => println!("  factor of safety at onset: infinite (nothing drives the block)"),
+    if let Some(fs) = route.factor_of_safety {
+        println!("  factor of safety {fs} (friction cones at the start)");
+    }
+    if let Some(ratio) = route.paper_ratio {
+        println!("  the paper's resisting/driving ratio along x' at the start {ratio:.4}");
     }
     println!(
         "  {} increments ({} dynamics, {} mode, {} integrator) in {:.3} s",

@@ -47,6 +47,8 @@ const DT0: f64 = 0.02;
 fn with_solver(scene: &Scene, mode: Mode, integrator: Integrator, dt: f64, t_end: f64) -> Scene {
     let mut s = scene.clone();
     if let Some(sv) = s.solver.as_mut() {
+        // The ladder compares the paper's dynamics' integrators and modes.
+        sv.dynamics = crate::scene::DynamicsModel::Paper;
         sv.mode = mode;
         sv.integrator = integrator;
         sv.dt = dt;
@@ -224,7 +226,8 @@ fn set_l1z_over_l2z(s: &mut Scene, ratio: f64) {
 
 /// Scenes chosen to break naive code (see `docs/performance.md`, "Stiff and extreme cases").
 pub fn extreme_cases() -> Vec<Case> {
-    let base = Scene::default_scene();
+    // The stiff and extreme cases are the paper's dynamics' unless a case says otherwise.
+    let base = Scene::default_scene().with_dynamics(crate::scene::DynamicsModel::Paper);
     let case = |name: &'static str, f: &dyn Fn(&mut Scene)| {
         let mut s = base.clone();
         f(&mut s);

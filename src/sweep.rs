@@ -77,7 +77,8 @@ pub struct SweepRow {
     pub final_theta_deg: Option<f64>,
     pub max_alpha_deg: Option<f64>,
     pub max_beta_deg: Option<f64>,
-    pub factor_of_safety_onset: Option<f64>,
+    /// The factor of safety at the start (friction cones), whatever the dynamics.
+    pub factor_of_safety: Option<crate::mechanics::static_friction::FactorOfSafety>,
     pub detail: String,
 }
 
@@ -92,7 +93,7 @@ fn row_of(values: Vec<f64>, route: &Route) -> SweepRow {
         final_theta_deg: route.rows.last().map(|r| r.theta_deg),
         max_alpha_deg: Some(max(|r| r.alpha_deg)),
         max_beta_deg: Some(max(|r| r.beta_deg)),
-        factor_of_safety_onset: route.factor_of_safety_onset,
+        factor_of_safety: route.factor_of_safety,
         detail: route.termination.detail.clone(),
     }
 }
@@ -191,7 +192,7 @@ pub fn run(
                     final_theta_deg: None,
                     max_alpha_deg: None,
                     max_beta_deg: None,
-                    factor_of_safety_onset: None,
+                    factor_of_safety: None,
                     detail: e,
                 },
             };

@@ -311,7 +311,7 @@ fn run_writes_route_csv_and_summary_json() {
     let o = run(&["run", "--out", dir.to_str().unwrap()]);
     assert!(o.status.success(), "{}", stderr(&o));
     let out = String::from_utf8_lossy(&o.stdout);
-    assert!(out.contains("factor of safety at onset"), "{out}");
+    assert!(out.contains("factor of safety 0.8"), "{out}");
     let csv = std::fs::read_to_string(dir.join("route.csv")).unwrap();
     let header = csv.lines().next().unwrap();
     assert_eq!(
@@ -326,7 +326,7 @@ fn run_writes_route_csv_and_summary_json() {
         "mode",
         "integrator",
         "termination",
-        "factor_of_safety_onset",
+        "factor_of_safety",
         "travel_m",
         "increments",
         "wall_s",
@@ -337,7 +337,17 @@ fn run_writes_route_csv_and_summary_json() {
         assert!(!v["termination"][k].is_null(), "termination.{k}");
     }
     assert_eq!(v["mode"], "exact");
-    assert_eq!(v["integrator"], "paper");
+    // The default dynamics is the rigid body's (issue #12), integrated with RK4.
+    assert_eq!(v["dynamics"], "rigid-body");
+    assert_eq!(v["integrator"], "rk4");
+    // One factor of safety, the friction cones', as a typed value: never null or infinite.
+    assert_eq!(v["factor_of_safety"]["kind"], "finite");
+    let fs = v["factor_of_safety"]["value"].as_f64().unwrap();
+    assert!((0.8..0.9).contains(&fs), "{fs}");
+    assert!(
+        v["paper_ratio"].is_null(),
+        "the paper's ratio is the paper's dynamics' only"
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -375,12 +385,7 @@ fn run_without_arguments_draws_the_four_pictures() {
     let plan = std::fs::read_to_string(dir.join("plan.svg")).unwrap();
     assert!(plan.contains("strike of plane 1") && plan.contains("path of the centre of mass"));
     let out = String::from_utf8_lossy(&o.stdout);
-    for part in [
-        "travel",
-        "final yaw",
-        "factor of safety at onset",
-        "increments",
-    ] {
+    for part in ["travel", "final yaw", "factor of safety", "increments"] {
         assert!(out.contains(part), "summary lacks {part}: {out}");
     }
     let _ = std::fs::remove_dir_all(&dir);

@@ -4,6 +4,10 @@
 //! `crosscheck/.venv`; or set `SLIDEROUTE_DRAKE_PYTHON` to a Python that has it). `.ci/run`
 //! sets it up and runs these with `cargo test --release --test drake_crosscheck -- --ignored`.
 //! Without the environment the tests fail with that instruction (they never pass silently).
+//!
+//! Each scene is compared until our route ends; where it ends before the horizon, Drake's path
+//! must show the same end (a stop, or contact 0 crossing onto plane 1 — Drake's contacts each see
+//! only their own infinite plane, so its route goes on where ours ends).
 
 use slideroute::route::{self, Reason, Row};
 use slideroute::scene::{DynamicsModel, Scene};
@@ -23,8 +27,9 @@ fn python() -> PathBuf {
     }
 }
 
-/// Drake's (t, X, Y, Z, θ°) for a scene file over the horizon.
-fn drake_path(scene: &Path) -> Vec<[f64; 5]> {
+/// Drake's rows for a scene file over the horizon: t, X, Y, Z, θ° and the three contacts'
+/// positions (X, Y, Z each).
+fn drake_path(scene: &Path) -> Vec<Vec<f64>> {
     let py = python();
     assert!(
         py.exists(),
@@ -53,20 +58,17 @@ fn drake_path(scene: &Path) -> Vec<[f64; 5]> {
     let text = std::fs::read_to_string(&out).unwrap();
     text.lines()
         .skip(1)
-        .map(|l| {
-            let v: Vec<f64> = l.split(',').map(|x| x.parse().unwrap()).collect();
-            [v[0], v[1], v[2], v[3], v[4]]
-        })
+        .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
         .collect()
 }
 
-fn ours(scene_file: &Path) -> (Vec<Row>, Reason) {
+fn ours(scene_file: &Path) -> (Vec<Row>, Reason, f64) {
     let mut scene = Scene::from_file(scene_file)
         .unwrap()
         .with_dynamics(DynamicsModel::RigidBody);
     scene.solver.as_mut().unwrap().t_end = HORIZON_S;
     let r = route::run(&scene).unwrap();
-    (r.rows, r.termination.reason)
+    (r.rows, r.termination.reason, r.termination.t_s)
 }
 
 fn travel(points: impl Iterator<Item = [f64; 3]>) -> f64 {
@@ -81,24 +83,48 @@ fn travel(points: impl Iterator<Item = [f64; 3]>) -> f64 {
     sum
 }
 
+/// How our route must end, and what Drake's path must show there.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum End {
+    /// Runs the whole horizon.
+    Horizon,
+    /// Stops and is held: Drake's block moves by less than 0.5 % of the travel afterwards.
+    Stopped,
+    /// Contact 0 reaches plane 1 (crosses X = L2X): Drake's contact 0 crosses it within 10 ms.
+    Contact0ReachesPlane1 { l2x: f64 },
+}
+
 /// Travel within 0.5 %, CM positions within 0.5 % of travel and yaw within 0.2° at every
-/// common time over 3 s.
-fn agrees_with_drake(name: &str) {
+/// millisecond until our route ends (at `end`, which Drake's path must show too).
+fn agrees_with_drake(name: &str, end: End) {
     let file = root().join("scenes").join(format!("{name}.toml"));
     let drake = drake_path(&file);
-    let (rows, reason) = ours(&file);
-    assert_eq!(reason, Reason::TimeLimit, "{name}: must run the whole 3 s");
-    assert_eq!(
-        rows.len(),
-        drake.len(),
-        "{name}: one row per millisecond in both"
-    );
-    let t_ours = travel(rows.iter().map(|r| [r.x_m, r.y_m, r.z_m]));
-    let t_drake = travel(drake.iter().map(|d| [d[1], d[2], d[3]]));
+    let (rows, reason, t_end) = ours(&file);
+    let expected = match end {
+        End::Horizon => Reason::TimeLimit,
+        End::Stopped => Reason::Stopped,
+        End::Contact0ReachesPlane1 { .. } => Reason::Contact0ReachedInclinedPlane,
+    };
+    assert_eq!(reason, expected, "{name}: ends at {t_end} s");
+    // Rows on the millisecond grid (the last row of a route that ends between increments is
+    // at its end's own time), paired with Drake's.
+    let pairs: Vec<(&Row, &Vec<f64>)> = rows
+        .iter()
+        .filter_map(|r| {
+            let k = (r.t_s * 1000.0).round();
+            ((r.t_s * 1000.0 - k).abs() < 1e-6)
+                .then(|| drake.get(k as usize))
+                .flatten()
+                .map(|d| (r, d))
+        })
+        .collect();
+    assert!(pairs.len() > 100, "{name}: {} common rows", pairs.len());
+    let t_ours = travel(pairs.iter().map(|(r, _)| [r.x_m, r.y_m, r.z_m]));
+    let t_drake = travel(pairs.iter().map(|(_, d)| [d[1], d[2], d[3]]));
     let travel_err = (t_ours - t_drake).abs() / t_drake;
     let mut pos_err: f64 = 0.0;
     let mut yaw_err: f64 = 0.0;
-    for (r, d) in rows.iter().zip(&drake) {
+    for (r, d) in &pairs {
         assert!((r.t_s - d[0]).abs() < 1e-9);
         let e = ((r.x_m - d[1]).powi(2) + (r.y_m - d[2]).powi(2) + (r.z_m - d[3]).powi(2)).sqrt();
         pos_err = pos_err.max(e);
@@ -106,8 +132,9 @@ fn agrees_with_drake(name: &str) {
     }
     let last = rows.last().unwrap();
     println!(
-        "{name}: travel {t_ours:.4} m (Drake {t_drake:.4} m, {:.3} %), largest CM gap {pos_err:.4} m \
-         ({:.3} % of travel), largest yaw gap {yaw_err:.4}°; θ(3 s) = {:.3}°",
+        "{name}: ends {reason} at {t_end:.4} s; travel {t_ours:.4} m (Drake {t_drake:.4} m, {:.3} %), \
+         largest CM gap {pos_err:.4} m ({:.3} % of travel), largest yaw gap {yaw_err:.4}°; \
+         θ(end) = {:.3}°",
         100.0 * travel_err,
         100.0 * pos_err / t_drake,
         last.theta_deg
@@ -122,22 +149,69 @@ fn agrees_with_drake(name: &str) {
         "{name}: CM differs by {pos_err} m"
     );
     assert!(yaw_err < 0.2, "{name}: yaw differs by {yaw_err}°");
+    match end {
+        End::Horizon => {}
+        End::Stopped => {
+            let after = drake.iter().filter(|d| d[0] >= t_end);
+            let moved = travel(after.map(|d| [d[1], d[2], d[3]]));
+            println!("{name}: Drake's block moves {moved:.5} m after our stop");
+            assert!(
+                moved < 0.005 * t_drake,
+                "{name}: Drake moves {moved} m after the stop"
+            );
+        }
+        End::Contact0ReachesPlane1 { l2x } => {
+            let crossing = drake
+                .iter()
+                .find(|d| d[5] > l2x)
+                .map(|d| d[0])
+                .expect("Drake's contact 0 reaches plane 1");
+            println!("{name}: Drake's contact 0 crosses plane 1's strike at {crossing:.3} s");
+            assert!(
+                (crossing - t_end).abs() < 0.01,
+                "{name}: Drake's contact 0 crosses at {crossing} s, ours ends at {t_end} s"
+            );
+        }
+    }
 }
 
 #[test]
 #[ignore = "needs pydrake (crosscheck/setup.sh); run by .ci/run"]
 fn rigid_body_paper_like_agrees_with_drake() {
-    agrees_with_drake("paper-like");
+    agrees_with_drake("paper-like", End::Horizon);
 }
 
 #[test]
 #[ignore = "needs pydrake (crosscheck/setup.sh); run by .ci/run"]
 fn rigid_body_shallow_agrees_with_drake() {
-    agrees_with_drake("shallow");
+    agrees_with_drake("shallow", End::Horizon);
 }
 
 #[test]
 #[ignore = "needs pydrake (crosscheck/setup.sh); run by .ci/run"]
 fn rigid_body_strong_turning_agrees_with_drake() {
-    agrees_with_drake("strong-turning");
+    agrees_with_drake("strong-turning", End::Horizon);
+}
+
+#[test]
+#[ignore = "needs pydrake (crosscheck/setup.sh); run by .ci/run"]
+fn rigid_body_kicked_stops_where_drake_stops() {
+    // Drake is given the same starting twist ([initial] projected on the contacts' planes).
+    agrees_with_drake("kicked", End::Stopped);
+}
+
+#[test]
+#[ignore = "needs pydrake (crosscheck/setup.sh); run by .ci/run"]
+fn rigid_body_sticking_pivot_on_a_strike_line_keeps_the_route_going_as_in_drake() {
+    // Issue #12's first scene: contact 2 sticks on plane 2's strike line until contact 0
+    // reaches plane 1 at 1.96 s (it ended after 0.018 s before, at a time set by dt).
+    agrees_with_drake("pivot-held", End::Contact0ReachesPlane1 { l2x: 4.0 });
+}
+
+#[test]
+#[ignore = "needs pydrake (crosscheck/setup.sh); run by .ci/run"]
+fn rigid_body_pivot_reaching_its_cone_starts_to_slip_as_in_drake() {
+    // Issue #12's second scene: the stuck contact reaches its cone's edge at 1.482 s and slips
+    // (it ended "the contact forces are not determined" there before).
+    agrees_with_drake("pivot-released", End::Contact0ReachesPlane1 { l2x: 4.0 });
 }

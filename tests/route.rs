@@ -3,11 +3,18 @@
 
 mod common;
 
+use slideroute::mechanics::static_friction::FactorOfSafety;
 use slideroute::route::{self, Reason, Route};
-use slideroute::scene::{Friction, Integrator, Scene};
+use slideroute::scene::{DynamicsModel, Friction, Integrator, Scene};
+
+/// The embedded scene under the paper's dynamics (this file's subject; the default is the
+/// rigid body's).
+fn paper_scene() -> Scene {
+    Scene::default_scene().with_dynamics(DynamicsModel::Paper)
+}
 
 fn with(f: impl FnOnce(&mut Scene)) -> Scene {
-    let mut s = Scene::default_scene();
+    let mut s = paper_scene();
     f(&mut s);
     s
 }
@@ -18,7 +25,7 @@ fn run(s: &Scene) -> Route {
 
 #[test]
 fn every_row_agrees_with_the_direct_pose_solver() {
-    let s = Scene::default_scene();
+    let s = paper_scene();
     let r = run(&s);
     assert!(r.rows.len() > 1000);
     common::assert_rows_match_direct(&s, &r.rows);
@@ -28,7 +35,10 @@ fn every_row_agrees_with_the_direct_pose_solver() {
 fn zero_force_does_not_slide() {
     let r = run(&with(|s| s.loads.as_mut().unwrap().hydraulic_force = 0.0));
     assert_eq!(r.termination.reason, Reason::DoesNotSlide);
-    assert_eq!(r.factor_of_safety_onset, None);
+    // Nothing drives the block: the paper's ratio has no value, and the factor of safety (the
+    // friction cones') says in words that no multiple of the load starts it.
+    assert_eq!(r.paper_ratio, None);
+    assert_eq!(r.factor_of_safety, Some(FactorOfSafety::Unbounded));
     assert_eq!(r.increments, 0);
 }
 
@@ -37,16 +47,16 @@ fn force_below_the_onset_threshold_does_not_slide_and_above_it_slides() {
     // Paper-like: driving (F − 2.338 MN) against capacity 4.152 MN; the threshold is 6.490 MN.
     let below = run(&with(|s| s.loads.as_mut().unwrap().hydraulic_force = 6.4e6));
     assert_eq!(below.termination.reason, Reason::DoesNotSlide);
-    assert!(below.factor_of_safety_onset.unwrap() > 1.0);
+    assert!(below.paper_ratio.unwrap() > 1.0);
     let above = run(&with(|s| s.loads.as_mut().unwrap().hydraulic_force = 6.6e6));
     assert_ne!(above.termination.reason, Reason::DoesNotSlide);
-    assert!(above.factor_of_safety_onset.unwrap() < 1.0);
+    assert!(above.paper_ratio.unwrap() < 1.0);
     assert!(above.travel_m > 0.1);
 }
 
 #[test]
 fn paper_like_scene_runs_to_a_stated_end() {
-    let r = run(&Scene::default_scene());
+    let r = run(&paper_scene());
     assert_eq!(
         r.termination.reason,
         Reason::NoFrictionSolution,
@@ -90,7 +100,7 @@ fn observed_orders(s: &Scene, integrator: Integrator, t_end: f64) -> Vec<f64> {
 #[test]
 fn paper_integrator_converges_at_first_order() {
     let shallow = Scene::from_toml(include_str!("../scenes/shallow.toml"), "shallow").unwrap();
-    for (s, t_end) in [(Scene::default_scene(), 1.0), (shallow, 0.5)] {
+    for (s, t_end) in [(paper_scene(), 1.0), (shallow, 0.5)] {
         for o in observed_orders(&s, Integrator::Paper, t_end) {
             assert!((0.9..1.1).contains(&o), "{}: order {o}", s.name);
         }
@@ -100,7 +110,7 @@ fn paper_integrator_converges_at_first_order() {
 #[test]
 fn rk4_converges_at_fourth_order() {
     let shallow = Scene::from_toml(include_str!("../scenes/shallow.toml"), "shallow").unwrap();
-    for (s, t_end) in [(Scene::default_scene(), 1.0), (shallow, 0.5)] {
+    for (s, t_end) in [(paper_scene(), 1.0), (shallow, 0.5)] {
         for o in observed_orders(&s, Integrator::Rk4, t_end) {
             assert!((3.7..4.3).contains(&o), "{}: order {o}", s.name);
         }
@@ -353,7 +363,7 @@ fn a_kicked_block_stops_exactly_at_rest() {
         });
         let r = run(&s);
         assert_eq!(r.termination.reason, Reason::Stopped, "{:?}", r.termination);
-        assert!(r.factor_of_safety_onset.unwrap() > 1.0);
+        assert!(r.paper_ratio.unwrap() > 1.0);
         let [.., before, last] = &r.rows[..] else {
             panic!("too few rows")
         };

@@ -37,6 +37,20 @@ pub enum RigidError {
         "no consistent start of slip: neither all three contacts slipping nor one sticking fits"
     )]
     SlipFromRest,
+    /// A contact whose slip vanished while the block moves can be held by no force inside its
+    /// friction cone, and no direction of slip is consistent with its own friction (the
+    /// tangential acceleration never points along the slip it would start).
+    #[error(
+        "contact {contact}: its friction cone cannot hold it, and no slip direction is consistent \
+         with its friction (the contact problem has no solution there)"
+    )]
+    SlipStart { contact: usize },
+    /// The equations of one contact sticking while the others slip are singular.
+    #[error(
+        "contact {contact}: the equations of it sticking while the others slip are singular \
+         (its tangential constraints depend on the normal ones at this pose)"
+    )]
+    StickSingular { contact: usize },
 }
 
 /// The inertia tensor in global axes and its inverse, at one pose.
@@ -342,7 +356,7 @@ impl Ctx<'_> {
             .lu()
             .solve(&b)
             .filter(|x| x.iter().all(|v| v.is_finite()))
-            .ok_or(RigidError::Singular("stick at one contact"))?;
+            .ok_or(RigidError::StickSingular { contact: i })?;
         let lambda = [x[6], x[7], x[8]];
         let shear = [0, 1, 2].map(|j| {
             if j == i {
@@ -386,19 +400,34 @@ fn pivot_direction(geom: &ContactGeometry, arm: f64, i: usize) -> Result<Vector3
     Ok(unit(rows[0].cross(&rows[1])))
 }
 
-/// The rates (Ẋ, Ż, θ̇) with the slip of contact `i` removed: the projection onto the rates
-/// that turn the block about it (orthogonal in (Ẋ, Ż, L θ̇)). Keeps a sticking contact stuck
-/// against the drift of the integrator.
+/// The rates (Ẋ, Ż, θ̇) with the slip of contact `i` removed, and the kinetic energy this
+/// takes away (J, ≤ 0). Keeps a sticking contact stuck against the drift of the integrator.
+///
+/// The projection is the one an impulse at contact i makes: the nearest rates that turn the
+/// block about the contact in the kinetic-energy metric, v' = p ⟨p, v⟩_M / ⟨p, p⟩_M with p the
+/// pivot direction and ⟨a, b⟩_M = m v_a·v_b + ω_a·I ω_b. It removes kinetic energy only to
+/// second order in the slip it removes (½ |Δv|²_M), where a projection in any other metric
+/// changes it to first order — at 1e-6 of the speed on a block of 27 MJ, tens of joules
+/// (issue #12) — and the route books what it removes as friction work.
 pub fn pivot_rates(
     geom: &ContactGeometry,
+    block: &Block,
     rates: [f64; 3],
     i: usize,
-) -> Result<[f64; 3], RigidError> {
+) -> Result<([f64; 3], f64), RigidError> {
     let arm = longest_arm(geom);
     let p = pivot_direction(geom, arm, i)?;
-    let y = Vector3::new(rates[0], rates[1], arm * rates[2]);
-    let q = p * p.dot(&y);
-    Ok([q.x, q.y, q.z / arm])
+    let p = [p.x, p.y, p.z / arm];
+    let inertia = Inertia::new(block, geom)?;
+    let (tp, tv) = (twist(geom, p)?, twist(geom, rates)?);
+    let c = tp.energy_dot(&tv, block.mass, &inertia) / tp.energy_dot(&tp, block.mass, &inertia);
+    if !c.is_finite() {
+        return Err(RigidError::Singular("pivot projection"));
+    }
+    let projected = p.map(|x| c * x);
+    let removed = 0.5 * c * c * tp.energy_dot(&tp, block.mass, &inertia)
+        - tv.kinetic_energy(block.mass, &inertia);
+    Ok((projected, removed.min(0.0)))
 }
 
 /// Coulomb's cone with a little room for round-off.
@@ -450,7 +479,7 @@ pub fn accelerations(
     if frictionless {
         // Done.
     } else if tw.is_zero() {
-        sol = from_rest(&ctx, &sol, &coefficients)?;
+        (sol, stuck_contact) = from_rest(&ctx, &sol, &coefficients)?;
     } else {
         // Moving: each shear opposes its contact's slip velocity. A contact whose slip
         // vanishes while the block moves (a pivot) sticks if its cone allows, or else slips
@@ -476,14 +505,17 @@ pub fn accelerations(
                 }
             }
         }
-        sol = match stuck {
-            Some(s) => {
+        sol = match (stuck, pivot) {
+            (Some(s), _) => {
                 stuck_contact = pivot;
                 s
             }
+            // The pivot's cone cannot hold it: it starts to slip, in the direction that
+            // reproduces itself (as from rest, for the one contact).
+            (None, Some(i)) => slip_start(&ctx, &mut dir, &mut mu, i, &coefficients)?,
             // Coulomb without a pivot: the solve above is the answer.
-            None if !(stress_dependent || pivot.is_some()) => sol,
-            None => {
+            (None, None) if !stress_dependent => sol,
+            (None, None) => {
                 sol = ctx.solve(&dir, &mu)?;
                 let mut settled = false;
                 for _ in 0..MAX_FIXED_POINT {
@@ -491,14 +523,9 @@ pub fn accelerations(
                         break;
                     }
                     let new_mu = coefficients(&sol.lambda);
-                    let mut change: f64 = (0..3)
+                    let change: f64 = (0..3)
                         .map(|j| (new_mu[j] - mu[j]).abs())
                         .fold(0.0, f64::max);
-                    if let Some(i) = pivot {
-                        let d = unit(ctx.tangential_accel(i, &sol));
-                        change = change.max((d - dir[i]).norm());
-                        dir[i] = d;
-                    }
                     mu = new_mu;
                     sol = ctx.solve(&dir, &mu)?;
                     settled = change < 1e-13;
@@ -544,6 +571,96 @@ pub fn accelerations(
     })
 }
 
+/// Directions sampled round contact `i`'s tangent plane when its slip starts while the block
+/// moves (each a 3×3 solve); sign changes between them are refined by bisection.
+const SLIP_START_SAMPLES: usize = 72;
+
+/// A pivot whose cone cannot hold it starts to slip while the block moves (issue #12): the
+/// direction d of its slip is the one whose friction −μλ d makes its tangential acceleration
+/// point along d itself (the slip then grows from zero along d: the consistent slip-start
+/// problem, as from rest, for one contact). d is sought on the unit circle of the contact's
+/// tangent plane: the tangential acceleration a_t(d) must be parallel to d, (d × a_t)·n = 0,
+/// and not against it, a_t·d ≥ 0. Of several such directions the one nearest to the opposite of
+/// the shear that would hold the contact is taken: where the stick force reaches the cone's
+/// edge, that is the direction in which the contact gives way, so the forces are continuous.
+/// The other contacts keep their slip directions `dir`; a stress-dependent criterion's
+/// coefficients `mu` are settled by a fixed point around the search.
+fn slip_start(
+    ctx: &Ctx<'_>,
+    dir: &mut [Vector3<f64>; 3],
+    mu: &mut [f64; 3],
+    i: usize,
+    coefficients: &dyn Fn(&[f64; 3]) -> [f64; 3],
+) -> Result<Solved, RigidError> {
+    let n = ctx.geom.n[i];
+    let (t1, t2) = ctx.geom.tangents(i);
+    let along = |phi: f64| t1 * phi.cos() + t2 * phi.sin();
+    let no_direction = RigidError::SlipStart { contact: i };
+    for _ in 0..MAX_FIXED_POINT {
+        // The shear that would hold contact i: the direction it gives way in is its opposite.
+        let hold = ctx.solve_stick(dir, mu, i)?.shear[i];
+        let give = if hold.norm() > 0.0 {
+            -hold / hold.norm()
+        } else {
+            t1
+        };
+        let eval = |phi: f64| -> Result<(f64, f64, Solved), RigidError> {
+            let d = along(phi);
+            let mut dd = *dir;
+            dd[i] = d;
+            let s = ctx.solve(&dd, mu)?;
+            let a = ctx.tangential_accel(i, &s);
+            Ok((n.dot(&d.cross(&a)), d.dot(&a), s))
+        };
+        let step = 2.0 * std::f64::consts::PI / SLIP_START_SAMPLES as f64;
+        let mut best: Option<(f64, f64, Solved)> = None;
+        let mut prev = eval(0.0)?;
+        for k in 1..=SLIP_START_SAMPLES {
+            let phi = k as f64 * step;
+            let cur = eval(phi)?;
+            if prev.0 == 0.0 || prev.0.signum() != cur.0.signum() {
+                // Bisection on the sign of (d × a_t)·n.
+                let (mut lo, mut hi, mut g_lo) = (phi - step, phi, prev.0);
+                for _ in 0..60 {
+                    let mid = 0.5 * (lo + hi);
+                    let g = eval(mid)?.0;
+                    if g == 0.0 {
+                        (lo, hi) = (mid, mid);
+                        break;
+                    }
+                    if g.signum() == g_lo.signum() {
+                        (lo, g_lo) = (mid, g);
+                    } else {
+                        hi = mid;
+                    }
+                }
+                let phi_r = 0.5 * (lo + hi);
+                let (_, h, s) = eval(phi_r)?;
+                let positive = s.lambda.iter().all(|&l| l > 0.0);
+                let scale = ctx.tangential_accel(i, &s).norm();
+                if h >= -1e-9 * scale.max(f64::MIN_POSITIVE) && positive {
+                    let closeness = along(phi_r).dot(&give);
+                    if best.as_ref().is_none_or(|b| closeness > b.1) {
+                        best = Some((phi_r, closeness, s));
+                    }
+                }
+            }
+            prev = cur;
+        }
+        let (phi, _, s) = best.ok_or(no_direction)?;
+        dir[i] = along(phi);
+        let new_mu = coefficients(&s.lambda);
+        let change = (0..3)
+            .map(|j| (new_mu[j] - mu[j]).abs())
+            .fold(0.0, f64::max);
+        if change < 1e-13 {
+            return Ok(s);
+        }
+        *mu = new_mu;
+    }
+    Err(no_direction)
+}
+
 /// Slip from rest (the block is not held; `mechanics::static_friction` decided that). The
 /// modes, tried in order, the first consistent one taken:
 ///
@@ -557,7 +674,7 @@ fn from_rest(
     ctx: &Ctx<'_>,
     frictionless: &Solved,
     coefficients: &dyn Fn(&[f64; 3]) -> [f64; 3],
-) -> Result<Solved, RigidError> {
+) -> Result<(Solved, Option<usize>), RigidError> {
     let direction = |y: &Vector3<f64>, mu: &[f64; 3]| {
         let t = twist(ctx.geom, [y.x, y.y, y.z / ctx.arm])?;
         let dir = ctx.slip_of(&t).map(unit);
@@ -583,7 +700,7 @@ fn from_rest(
         .ok()
         .filter(positive)
     {
-        return Ok(s);
+        return Ok((s, None));
     }
     // A spread of starting directions (Fibonacci sphere), best residual first.
     let mu0 = coefficients(&frictionless.lambda);
@@ -600,7 +717,7 @@ fn from_rest(
     seeds.sort_by(|a, b| a.0.total_cmp(&b.0));
     for (_, y) in seeds.iter().take(6) {
         if let Some(s) = all_slip(*y).ok().filter(positive) {
-            return Ok(s);
+            return Ok((s, None));
         }
     }
     // One contact sticks.
@@ -625,7 +742,7 @@ fn from_rest(
             }
             let along = ctx.generalized(&s).dot(&y) > 0.0;
             if along && positive(&s) && in_cone(&s.shear[i], mu[i], s.lambda[i]) {
-                return Ok(s);
+                return Ok((s, Some(i)));
             }
         }
     }
@@ -651,15 +768,30 @@ mod tests {
         // neither along its plane nor off it, and removing it again changes nothing.
         let scene = Scene::default_scene();
         let geom = at(&scene, Displacement::new(0.7, 0.2, 0.1));
+        let block = scene.block.as_ref().unwrap();
+        let inertia = Inertia::new(block, &geom).unwrap();
         let rates = [1.5, -0.4, 0.3];
         for i in 0..3 {
-            let p = pivot_rates(&geom, rates, i).unwrap();
+            let (p, removed) = pivot_rates(&geom, block, rates, i).unwrap();
             let v = twist(&geom, p).unwrap().at(&geom.r[i]);
             assert!(v.norm() < 1e-14 * 1.5, "contact {i}: {v:?}");
-            let q = pivot_rates(&geom, p, i).unwrap();
+            let (q, again) = pivot_rates(&geom, block, p, i).unwrap();
             for k in 0..3 {
                 assert!((q[k] - p[k]).abs() < 1e-14, "{q:?} {p:?}");
             }
+            // The energy it removes is the kinetic energy of the removed motion (an impulse's
+            // loss): ½|v − v'|²_M, Pythagoras in the kinetic-energy metric.
+            let k = |r: [f64; 3]| {
+                twist(&geom, r)
+                    .unwrap()
+                    .kinetic_energy(block.mass, &inertia)
+            };
+            let gap = k([rates[0] - p[0], rates[1] - p[1], rates[2] - p[2]]);
+            assert!(
+                removed < 0.0 && (removed + gap).abs() < 1e-9 * k(rates),
+                "{removed} {gap}"
+            );
+            assert!(again.abs() < 1e-9 * k(rates), "{again}");
         }
     }
 

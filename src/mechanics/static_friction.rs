@@ -45,7 +45,84 @@ pub struct StaticCheck {
     pub normal: [f64; 3],
 }
 
+/// The factor of safety of a block at rest (issue #12): one definition, whatever the dynamics
+/// that move it afterwards. It is t_hi, the largest multiple of the driving loads (the hydraulic
+/// force and its couple) at which static friction within the three cones can still hold the
+/// block — equivalently, the loads divided by 1/t_hi are the most it can take. Below 1 the
+/// loads as given start it. Two cases have no number, and say so in words rather than with an
+/// infinity:
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+#[serde(tag = "kind", rename_all = "kebab-case")]
+pub enum FactorOfSafety {
+    /// t_hi, finite.
+    Finite { value: f64 },
+    /// Every multiple of the driving loads is held: no scaling of them starts the block (they
+    /// do not push it along any way it could slide).
+    Unbounded,
+    /// No multiple of the driving loads, not even none, is held: the weight alone makes the
+    /// block slide on its planes (friction too low for the dips).
+    NotHoldable,
+}
+
+impl FactorOfSafety {
+    /// From t_hi as the cone programs give it (±∞, or NaN when infeasible).
+    pub fn from_multiple(t_hi: f64) -> Self {
+        if t_hi.is_finite() {
+            FactorOfSafety::Finite { value: t_hi }
+        } else if t_hi == f64::INFINITY {
+            FactorOfSafety::Unbounded
+        } else {
+            FactorOfSafety::NotHoldable
+        }
+    }
+
+    /// The number, where there is one.
+    pub fn value(&self) -> Option<f64> {
+        match self {
+            FactorOfSafety::Finite { value } => Some(*value),
+            _ => None,
+        }
+    }
+
+    /// Whether the loads as given leave the block held (as far as t_hi says).
+    pub fn at_least_one(&self) -> bool {
+        match self {
+            FactorOfSafety::Finite { value } => *value >= 1.0,
+            FactorOfSafety::Unbounded => true,
+            FactorOfSafety::NotHoldable => false,
+        }
+    }
+
+    /// One word or number for a table cell: the value, `unbounded` or `not-holdable`.
+    pub fn cell(&self) -> String {
+        match self {
+            FactorOfSafety::Finite { value } => format!("{value}"),
+            FactorOfSafety::Unbounded => "unbounded".into(),
+            FactorOfSafety::NotHoldable => "not-holdable".into(),
+        }
+    }
+}
+
+impl std::fmt::Display for FactorOfSafety {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            FactorOfSafety::Finite { value } => write!(f, "{value:.4}"),
+            FactorOfSafety::Unbounded => {
+                f.write_str("unbounded (no multiple of the water load starts the block)")
+            }
+            FactorOfSafety::NotHoldable => f.write_str(
+                "none (the weight alone makes the block slide, whatever the water load)",
+            ),
+        }
+    }
+}
+
 impl StaticCheck {
+    /// The factor of safety this check gives.
+    pub fn factor_of_safety(&self) -> FactorOfSafety {
+        FactorOfSafety::from_multiple(self.factor_of_safety)
+    }
+
     /// True when the loads as given are held: t_lo ≤ 1 ≤ t_hi.
     pub fn holds(&self) -> bool {
         self.lowest <= 1.0 && 1.0 <= self.factor_of_safety
@@ -122,6 +199,17 @@ fn extreme_t(
 }
 
 /// The static check at a pose (block at rest).
+/// [`check`] with the frictionless normal reactions at the pose as the first normals of a
+/// stress-dependent criterion (the block at rest, as at the start of a route).
+pub fn at_rest(
+    geom: &ContactGeometry,
+    applied: &Applied,
+    friction: &Friction,
+) -> Result<StaticCheck, StaticError> {
+    let c = super::statics::frictionless_normals(geom, applied).unwrap_or([1.0; 3]);
+    check(geom, applied, friction, &c)
+}
+
 pub fn check(
     geom: &ContactGeometry,
     applied: &Applied,

@@ -11,7 +11,7 @@ pub const SWEEP_COLUMNS: [&str; 8] = [
     "final_theta_deg",
     "max_alpha_deg",
     "max_beta_deg",
-    "factor_of_safety_onset",
+    "factor_of_safety",
     "detail",
 ];
 
@@ -34,10 +34,11 @@ pub fn write_csv(out: impl Write, varies: &[Vary], rows: &[SweepRow]) -> Result<
                 r.final_theta_deg,
                 r.max_alpha_deg,
                 r.max_beta_deg,
-                r.factor_of_safety_onset,
             ]
             .map(opt),
         );
+        // A number, or `unbounded` / `not-holdable` (never an empty cell or an infinity).
+        rec.push(r.factor_of_safety.map_or(String::new(), |f| f.cell()));
         rec.push(r.detail.clone());
         w.write_record(&rec)?;
     }

@@ -46,10 +46,22 @@ impl fmt::Display for Inadmissible {
     }
 }
 
-/// Tolerances: angles (rad) and lengths relative to L, so that the start pose itself
-/// (α = β = 0, contacts on the strike lines) is admissible.
-const ANGLE_TOL: f64 = 1e-12;
-const LENGTH_TOL: f64 = 1e-9;
+/// The one tolerance of the admissibility tests: how far (m, as a fraction of L) a contact may
+/// stand beyond its plane's region — past plane 1's strike, short of plane 2's, over an inclined
+/// plane for contact 0 — before the pose counts as off it.
+///
+/// Why this size: a contact that sticks on a strike line (where contacts 1 and 2 start) or rides
+/// along one sits on the region's edge, and round-off, the tracker's Newton tolerance (updates
+/// below 1e-9 rad, whose error is far smaller except at the double roots of (15) at θ = 0, where
+/// convergence is linear) and the integrator put it a hair to either side. 1e-8·L (0.1 µm on a
+/// 10 m frame) is well above all of these and far below anything surveyed on a foundation.
+///
+/// The lower tilt bounds are the same test in another form: with contact 0 on the horizontal
+/// plane, sin α = (X1 − L2X)·tan ξ / L and sin β = (n·P2 − R)·tan ζ / (√2 L) (`derivations/01-geometry.md`),
+/// so α < 0 exactly when contact 1 is short of plane 1's strike and β < 0 exactly when contact 2
+/// is short of plane 2's. They take the tolerance through those relations (and a factor of two,
+/// so that the region test, which names the contact, decides).
+pub const REGION_TOL: f64 = 1e-8;
 
 /// The placed frame for a point of the chosen mode: u = (α, β) or (α, ψ).
 pub fn pose(scene: &Scene, d: Displacement, mode: Mode, u: [f64; 2]) -> Option<Pose> {
@@ -59,16 +71,23 @@ pub fn pose(scene: &Scene, d: Displacement, mode: Mode, u: [f64; 2]) -> Option<P
     }
 }
 
-/// Checks tilt ranges and contact regions of a real, non-spurious pose.
+/// Checks tilt ranges and contact regions of a real, non-spurious pose, with [`REGION_TOL`].
 pub fn check_pose(scene: &Scene, p: &Pose) -> Result<(), Inadmissible> {
+    check_pose_within(scene, p, REGION_TOL)
+}
+
+/// [`check_pose`] with the regions' tolerance `region_tol` (a fraction of L; infinite: the
+/// regions are not checked, only the tilts' upper bounds, as for the intermediate stages of an
+/// integrator, which are no states of the route: each contact's equations hold on its whole
+/// plane, and only the states the route accepts must lie in the regions).
+pub fn check_pose_within(scene: &Scene, p: &Pose, region_tol: f64) -> Result<(), Inadmissible> {
     let g = &scene.foundation;
-    if !(p.alpha >= -ANGLE_TOL && p.alpha < g.xi) {
-        return Err(Inadmissible::AlphaOutOfRange);
-    }
-    if !(p.beta >= -ANGLE_TOL && p.beta < g.zeta) {
-        return Err(Inadmissible::BetaOutOfRange);
-    }
-    let tol = LENGTH_TOL * scene.l();
+    let l = scene.l();
+    let tol = region_tol * l;
+    let alpha_min = -(2.0 * tol * g.xi.tan() / l).min(1.0).asin();
+    let beta_min = -(2.0 * tol * g.zeta.tan() / (std::f64::consts::SQRT_2 * l))
+        .min(1.0)
+        .asin();
     let (l2x, r2) = (scene.frame.l2x, r(scene));
     let [p0, p1, p2] = p.vertices;
     if p0.x > l2x + tol || along_dip_2(scene, p0.x, p0.z) > r2 + tol {
@@ -79,6 +98,12 @@ pub fn check_pose(scene: &Scene, p: &Pose) -> Result<(), Inadmissible> {
     }
     if along_dip_2(scene, p2.x, p2.z) < r2 - tol {
         return Err(Inadmissible::Contact2LeftPlane2);
+    }
+    if !(p.alpha >= alpha_min && p.alpha < g.xi) {
+        return Err(Inadmissible::AlphaOutOfRange);
+    }
+    if !(p.beta >= beta_min && p.beta < g.zeta) {
+        return Err(Inadmissible::BetaOutOfRange);
     }
     Ok(())
 }

@@ -19,6 +19,8 @@ pub struct EigenFollower<'s> {
     scales: (f64, f64),
     mode: Mode,
     current: BranchPoint,
+    /// The regions' tolerance of the admissibility check (see [`classify::check_pose_within`]).
+    region_tol: f64,
 }
 
 impl<'s> EigenFollower<'s> {
@@ -33,6 +35,16 @@ impl<'s> EigenFollower<'s> {
                 d: Displacement::default(),
                 u: [0.0, 0.0],
             },
+            region_tol: classify::REGION_TOL,
+        }
+    }
+
+    /// A copy that does not check the contacts' regions (only the tilts' upper bounds), for the
+    /// intermediate stages of an integrator.
+    pub fn without_regions(&self) -> Self {
+        EigenFollower {
+            region_tol: f64::INFINITY,
+            ..self.clone()
         }
     }
 
@@ -91,7 +103,9 @@ impl<'s> EigenFollower<'s> {
             } else {
                 classify::pose(self.scene, target, self.mode, u)
                     .ok_or(Inadmissible::NoRealFrame)
-                    .and_then(|pose| classify::check_pose(self.scene, &pose))
+                    .and_then(|pose| {
+                        classify::check_pose_within(self.scene, &pose, self.region_tol)
+                    })
             };
             match verdict {
                 Ok(()) if best.is_none_or(|b| dist < b.1) => best = Some((u, dist)),

@@ -189,8 +189,43 @@ pub fn solve_all(scene: &Scene, d: Displacement, mode: Mode) -> Result<AllRoots,
                     (k, (r.alpha.re - p.u[0]).abs().max((s - p.u[1]).abs()))
                 })
                 .min_by(|a, b| a.1.total_cmp(&b.1));
+            // The rest pose (X = Z = θ = 0, both inclined contacts on their strikes) is a
+            // root where the eigenvalue solve of the resultant loses it (the system degenerates
+            // there; issue #12): the tracked pose, when it satisfies the unsquared equations to
+            // round-off, is then the selected root itself.
+            let tracked = || {
+                let e = system::Equations::new(scene, d, mode).eval(p.u)?;
+                let rel = (0..2)
+                    .map(|i| e.r[i].abs() / e.scale[i].max(f64::MIN_POSITIVE))
+                    .fold(0.0, f64::max);
+                (rel < 1e-10).then_some(rel)
+            };
             match k {
                 Some((k, dist)) if dist < 1e-6 => (Some(k), None),
+                _ if tracked().is_some() => {
+                    let psi = (mode == Mode::Exact).then(|| Complex64::new(p.u[1], 0.0));
+                    let beta = match mode {
+                        Mode::SmallAngle => p.u[1],
+                        Mode::Exact => {
+                            ((p.u[0].sin() - p.u[0].cos() * p.u[1].sin()) / SQRT_2).asin()
+                        }
+                    };
+                    roots.insert(
+                        0,
+                        Root {
+                            alpha: Complex64::new(p.u[0], 0.0),
+                            beta: Complex64::new(beta, 0.0),
+                            psi,
+                            multiplicity: 1,
+                            residual: tracked().unwrap_or(0.0),
+                            real: true,
+                            spurious: false,
+                            admissible: true,
+                            why_not: None,
+                        },
+                    );
+                    (Some(0), None)
+                }
                 _ => (
                     None,
                     Some(TrackError::BranchEnded {

@@ -13,7 +13,7 @@
 //! first), and a jump guard (the correction must be small against the step). A step that fails
 //! is halved; a branch that cannot be followed below a minimal step ends with a diagnosis.
 
-use super::classify::{Inadmissible, check_pose, exact_mirrored, pose};
+use super::classify::{Inadmissible, REGION_TOL, check_pose_within, exact_mirrored, pose};
 use super::system::Equations;
 use crate::coeffs::{CoeffInputs, FoundationTrig};
 use crate::geometry::{Displacement, Pose};
@@ -71,6 +71,9 @@ pub struct Tracker<'s> {
     previous: Option<BranchPoint>,
     /// Fraction of the next segment to try first (grows after successes).
     h: f64,
+    /// The regions' tolerance of the admissibility check (a fraction of L; see
+    /// [`super::classify::check_pose_within`]).
+    region_tol: f64,
     pub stats: TrackStats,
 }
 
@@ -175,12 +178,22 @@ impl<'s> Tracker<'s> {
             current_pose: pose(scene, Displacement::default(), mode, [0.0, 0.0]),
             previous: None,
             h: 1.0,
+            region_tol: REGION_TOL,
             stats: TrackStats::default(),
         }
     }
 
     pub fn mode(&self) -> Mode {
         self.mode
+    }
+
+    /// A copy that does not check the contacts' regions (only the tilts' upper bounds), for the
+    /// intermediate stages of an integrator.
+    pub fn without_regions(&self) -> Self {
+        Tracker {
+            region_tol: f64::INFINITY,
+            ..self.clone()
+        }
     }
 
     /// The current point of the branch.
@@ -307,7 +320,7 @@ impl<'s> Tracker<'s> {
         let p = self
             .current_pose
             .ok_or_else(|| fail(Inadmissible::NoRealFrame))?;
-        check_pose(self.scene, &p).map_err(fail)
+        check_pose_within(self.scene, &p, self.region_tol).map_err(fail)
     }
 }
 

@@ -37,9 +37,15 @@ pub struct Route {
     #[serde(skip)]
     pub rows: Vec<Row>,
     pub termination: Termination,
-    /// Resisting capacity over driving force at the start (`mechanics::onset`); `None` when
-    /// nothing drives the block (infinite).
-    pub factor_of_safety_onset: Option<f64>,
+    /// The factor of safety at the start, whatever the dynamics: the largest multiple of the
+    /// driving loads static friction within the three cones can hold
+    /// (`mechanics::static_friction::FactorOfSafety`); absent only if its cone program failed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub factor_of_safety: Option<crate::mechanics::static_friction::FactorOfSafety>,
+    /// The paper's dynamics only: its resisting capacity over driving force along x' at the start
+    /// (`mechanics::onset`), a different quantity (absent where nothing drives the block along x').
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub paper_ratio: Option<f64>,
     /// Length of the CM path (m).
     pub travel_m: f64,
     /// Increments taken.

@@ -48,6 +48,15 @@ impl<'s> PoseFinder<'s> {
         }
     }
 
+    /// A copy for the intermediate stages of an integrator, which are no states of the route:
+    /// it does not check the contacts' regions (`roots::classify::check_pose_within`).
+    pub fn for_stages(&self) -> Self {
+        match self {
+            PoseFinder::Continuation(t) => PoseFinder::Continuation(t.without_regions()),
+            PoseFinder::AllRoots(f) => PoseFinder::AllRoots(f.without_regions()),
+        }
+    }
+
     /// Which method this finder is.
     pub fn method(&self) -> PoseMethod {
         match self {

@@ -22,11 +22,12 @@ use super::run::Outcome;
 use super::state::Row;
 use super::termination::Reason;
 use crate::geometry::{Displacement, Pose};
+use crate::mechanics::ContactGeometry;
 use crate::mechanics::loads::Applied;
 use crate::mechanics::rigid_body::{self, Motion, RigidError};
 use crate::mechanics::static_friction::{self, StaticCheck};
-use crate::mechanics::{ContactGeometry, statics};
 use crate::scene::{Dynamics, Scene};
+use nalgebra::Vector3;
 use serde::Serialize;
 
 /// Energy bookkeeping of a rigid-body route (J), from the start to its last state.
@@ -57,6 +58,17 @@ struct Eval {
     /// The rates the motion was evaluated with (those of the state, with a sticking contact's
     /// slip projected out).
     rates: [f64; 3],
+    /// The kinetic energy that projection removed (J, ≤ 0): friction work, booked when the
+    /// state is taken (`accept`).
+    removed: f64,
+}
+
+/// The state `y` as the route takes it at evaluation `e`: its rates those the motion was
+/// evaluated with, and the kinetic energy their projection removed booked as friction work.
+fn accept(y: &Y, e: &Eval) -> Y {
+    let mut z = with_rates(y, e.rates);
+    z[7] += e.removed;
+    z
 }
 
 fn displacement(y: &Y) -> Displacement {
@@ -66,7 +78,10 @@ fn displacement(y: &Y) -> Displacement {
 fn stop_of(e: RigidError) -> Stop {
     let reason = match e {
         RigidError::LiftOff { .. } => Reason::ContactLiftedOff,
-        RigidError::Singular(_) | RigidError::SlipFromRest => Reason::ContactForcesUndetermined,
+        RigidError::Singular(_)
+        | RigidError::SlipFromRest
+        | RigidError::SlipStart { .. }
+        | RigidError::StickSingular { .. } => Reason::ContactForcesUndetermined,
     };
     Stop {
         reason,
@@ -88,12 +103,15 @@ fn evaluate(
     let geom = ContactGeometry::with_normals(&dynamics.normals, &pose);
     let applied = Applied::new(dynamics.loads, dynamics.block, &geom.frame);
     let mut rates = [y[3], y[4], y[5]];
+    let mut removed = 0.0;
     if let Some(i) = stuck {
-        let p = rigid_body::pivot_rates(&geom, rates, i).map_err(stop_of)?;
+        let (p, loss) =
+            rigid_body::pivot_rates(&geom, dynamics.block, rates, i).map_err(stop_of)?;
         let size = |r: &[f64; 3]| (r[0] * r[0] + r[1] * r[1] + (r[2] * scene.l()).powi(2)).sqrt();
         let gap = [rates[0] - p[0], rates[1] - p[1], rates[2] - p[2]];
         if size(&gap) <= DRIFT * size(&rates) {
             rates = p;
+            removed = loss;
         }
     }
     let motion =
@@ -103,7 +121,58 @@ fn evaluate(
         pose,
         motion,
         rates,
+        removed,
     })
+}
+
+/// Puts the sticking contact `i` back on the point `at` where it stuck (issue #12). The
+/// integrator keeps its velocity at zero only to its order, so without this its position
+/// creeps by a little every step and a contact that sticks on a strike line (where contacts 1
+/// and 2 start) drifts off its plane's region after a time that depends on dt. The correction
+/// is the least change of (X, Z, L θ) that returns the contact's horizontal position to `at`
+/// (Gauss–Newton with the contact's velocity map as the Jacobian; the contact stays on its
+/// plane through the pose), a move of the size of the integrator's error.
+fn hold(
+    scene: &Scene,
+    dynamics: &Dynamics<'_>,
+    finder: &mut PoseFinder<'_>,
+    y: &Y,
+    ev: Eval,
+    i: usize,
+    at: Vector3<f64>,
+) -> Result<(Y, Eval), Stop> {
+    let l = scene.l();
+    let (mut y, mut ev) = (*y, ev);
+    for _ in 0..4 {
+        let p = ev.pose.vertices[i];
+        let r = [at.x - p.x, at.z - p.z];
+        if r[0].hypot(r[1]) <= 1e-14 * l || ev.motion.stuck != Some(i) {
+            break;
+        }
+        let geom = ContactGeometry::with_normals(&dynamics.normals, &ev.pose);
+        let mut j = [[0.0; 3]; 2];
+        for c in 0..3 {
+            let mut e = [0.0; 3];
+            e[c] = if c == 2 { 1.0 / l } else { 1.0 };
+            let v = rigid_body::twist(&geom, e).map_err(stop_of)?.at(&geom.r[i]);
+            j[0][c] = v.x;
+            j[1][c] = v.z;
+        }
+        let dot = |a: &[f64; 3], b: &[f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+        let (a, b, d) = (dot(&j[0], &j[0]), dot(&j[0], &j[1]), dot(&j[1], &j[1]));
+        let det = a * d - b * b;
+        if det.abs() <= 1e-12 * a.max(d).powi(2) || !det.is_finite() {
+            break;
+        }
+        let m = [(d * r[0] - b * r[1]) / det, (a * r[1] - b * r[0]) / det];
+        let delta: [f64; 3] = std::array::from_fn(|c| j[0][c] * m[0] + j[1][c] * m[1]);
+        y[0] += delta[0];
+        y[1] += delta[1];
+        y[2] += delta[2] / l;
+        ev = evaluate(scene, dynamics, finder, &y, Some(i))?;
+        y = accept(&y, &ev);
+    }
+    Ok((y, ev))
 }
 
 /// The fraction of the largest kinetic energy of the route below which the block counts as at
@@ -170,6 +239,9 @@ enum Event {
     Stop,
     /// The slip of this contact passed through zero while the block moved on.
     Pivot(usize),
+    /// The contact that stuck at the start of the step can no longer be held by its friction
+    /// cone: it starts to slip.
+    Release(usize),
 }
 
 impl Heading<'_> {
@@ -180,6 +252,9 @@ impl Heading<'_> {
         }
         if m.twist.energy_dot(&b.twist, self.mass, &b.inertia) <= 0.0 {
             return Some(Event::Stop);
+        }
+        if let Some(i) = b.stuck.filter(|&i| m.stuck != Some(i)) {
+            return Some(Event::Release(i));
         }
         // A contact that starts the step with a slip of the drift's size (just released from
         // sticking) has no direction to reverse yet.
@@ -207,7 +282,7 @@ fn rk4(
     let mut crossed = None;
     let stuck = heading.before.stuck;
     let mut stage = |y: &Y| {
-        let mut f = finder.clone();
+        let mut f = finder.for_stages();
         evaluate(scene, dynamics, &mut f, y, stuck).map(|e| {
             crossed = crossed.or(heading.event(&e.motion));
             derivative(&with_rates(y, e.rates), &e.motion)
@@ -261,8 +336,7 @@ fn rest_row(t: f64, y: &Y, pose: &Pose) -> Row {
 /// The static check at a pose.
 fn static_check(dynamics: &Dynamics<'_>, geom: &ContactGeometry) -> Result<StaticCheck, Stop> {
     let applied = Applied::new(dynamics.loads, dynamics.block, &geom.frame);
-    let c = statics::frictionless_normals(geom, &applied).unwrap_or([1.0; 3]);
-    static_friction::check(geom, &applied, dynamics.friction, &c).map_err(|err| Stop {
+    static_friction::at_rest(geom, &applied, dynamics.friction).map_err(|err| Stop {
         reason: Reason::ContactForcesUndetermined,
         detail: err.to_string(),
     })
@@ -318,16 +392,16 @@ pub(super) fn slide(
             return o.end(reason, 0.0, detail);
         }
     };
-    o.fs = Some(check.factor_of_safety);
+    o.fs = Some(check.factor_of_safety());
     if init.at_rest() && check.holds() {
         o.rows.push(rest_row(0.0, &y, &start_pose));
         let mut done = o.end(
             Reason::DoesNotSlide,
             0.0,
             format!(
-                "static friction within the three cones holds the block: factor of safety {:.4} \
+                "static friction within the three cones holds the block: factor of safety {} \
                  (the largest multiple of the hydraulic loads it can hold)",
-                check.factor_of_safety
+                check.factor_of_safety()
             ),
         );
         done.energy = Some(EnergyBalance::default());
@@ -347,6 +421,14 @@ pub(super) fn slide(
         start_pose.cm.y,
     );
 
+    // The sticking contact and the point where it stuck (see `hold`).
+    let mut anchor: Option<(usize, Vector3<f64>)> = None;
+    let anchor_of = |ev: &Eval, anchor: Option<(usize, Vector3<f64>)>| match ev.motion.stuck {
+        Some(i) if anchor.is_some_and(|a| a.0 == i) => anchor,
+        Some(i) => Some((i, ev.pose.vertices[i])),
+        None => None,
+    };
+    anchor = anchor_of(&ev, anchor);
     let mut ke_max = 0.0f64;
     // The substep: the increment dt, halved where the energy balance says RK4 does not resolve
     // the motion (see `MIN_SUBSTEP`), and grown back by doubling.
@@ -374,16 +456,20 @@ pub(super) fn slide(
                 o.energy = Some(balance(y, ev, start));
                 o.end(s.reason, t, s.detail)
             };
-            let (next, crossed) = match rk4(scene, dynamics, finder, &y, &k1, h_try, &heading) {
-                Ok((n, c)) => (n, c.filter(|_| resolve)),
-                Err(e) => return fail(o, &y, &ev, e),
-            };
+            // The step, and the state at its end. Where either fails (a stage or the end
+            // state off the model: a contact lifting off, leaving its plane's region, …) the
+            // failure is located like an event, by bisection, so that an event before it (a
+            // pivot that would keep the contact on its plane) is handled first and a route that
+            // ends does so at the moment it must, not at the next increment's end.
             let mut at_next = finder.clone();
-            let next_ev = match evaluate(scene, dynamics, &mut at_next, &next, stuck) {
-                Ok(e) => e,
-                Err(e) => return fail(o, &y, &ev, e),
+            let step = rk4(scene, dynamics, finder, &y, &k1, h_try, &heading).and_then(|(n, c)| {
+                let e = evaluate(scene, dynamics, &mut at_next, &n, stuck)?;
+                Ok((n, c.filter(|_| resolve), e))
+            });
+            let (next, crossed, next_ev, failed) = match step {
+                Ok((n, c, e)) => (accept(&n, &e), c, e, None),
+                Err(stop) => (y, None, ev, Some(stop)),
             };
-            let next = with_rates(&next, next_ev.rates);
             // Whether a substep of length `len` from y to (y2, e2) moved the energy balance by
             // more than the tolerance (and may still be halved).
             let residual = balance(&y, &ev, start).residual_j;
@@ -394,8 +480,18 @@ pub(super) fn slide(
                     && drift.abs() > ENERGY_TOLERANCE * scale * (len / dt)
                     && len > MIN_SUBSTEP * dt
             };
-            let at_end = heading.event(&next_ev.motion).filter(|_| resolve);
-            if crossed.is_none() && at_end.is_none() {
+            // A failure over a long substep may be the integrator's (a slip too young to be
+            // watched for reversal, turned round within the step): retry in shorter substeps
+            // down to the shortest, and only there locate it.
+            if failed.is_some() && h_try > 2.0 * MIN_SUBSTEP * dt {
+                h = 0.5 * h_try;
+                continue;
+            }
+            let at_end = match failed {
+                None => heading.event(&next_ev.motion).filter(|_| resolve),
+                Some(_) => None,
+            };
+            if crossed.is_none() && at_end.is_none() && failed.is_none() {
                 // No event: accept unless the energy balance moved by more than the tolerance
                 // (then halve the substep and try again).
                 if unresolved(h_try, &next, &next_ev) {
@@ -403,9 +499,19 @@ pub(super) fn slide(
                     continue;
                 }
                 *finder = at_next;
+                let (next, next_ev) = match anchor {
+                    Some((i, at)) if next_ev.motion.stuck == Some(i) => {
+                        match hold(scene, dynamics, finder, &next, next_ev, i, at) {
+                            Ok(held) => held,
+                            Err(e) => return fail(o, &y, &ev, e),
+                        }
+                    }
+                    _ => (next, next_ev),
+                };
                 o.travel += (next_ev.pose.cm - ev.pose.cm).norm();
                 y = next;
                 ev = next_ev;
+                anchor = anchor_of(&ev, anchor);
                 t += h_try;
                 if h_try >= h {
                     h = (2.0 * h).min(dt);
@@ -422,7 +528,7 @@ pub(super) fn slide(
                 Ok((heading.event(&e.motion).or(crossed), yh))
             };
             let (mut lo, mut hi) = (0.0, h_try);
-            let mut y_lo = y;
+            let (mut y_lo, mut y_hi) = (y, next);
             let mut found = None;
             for _ in 0..60 {
                 if hi - lo <= 1e-12 * dt {
@@ -434,19 +540,39 @@ pub(super) fn slide(
                         lo = mid;
                         y_lo = ym;
                     }
-                    Ok((event, _)) => {
+                    Ok((event, ym)) => {
                         hi = mid;
+                        y_hi = ym;
                         found = event;
                     }
                     Err(_) => hi = mid,
                 }
+            }
+            if let (Some(stop), None) = (&failed, found) {
+                // No event before the failure: the route ends where it fails, after the last
+                // state that stands.
+                if lo > 0.0 {
+                    match evaluate(scene, dynamics, finder, &y_lo, stuck) {
+                        Ok(e) => {
+                            o.travel += (e.pose.cm - ev.pose.cm).norm();
+                            y = accept(&y_lo, &e);
+                            ev = e;
+                        }
+                        Err(e) => return fail(o, &y, &ev, e),
+                    }
+                }
+                let t_end = t + lo;
+                o.rows.push(row(t_end, &y, &ev));
+                o.increments = k;
+                o.energy = Some(balance(&y, &ev, start));
+                return o.end(stop.reason, t_end, stop.detail.clone());
             }
             // The substep up to the event must itself be resolved: else approach it in shorter
             // substeps.
             if lo > 0.0 {
                 let mut f = finder.clone();
                 match evaluate(scene, dynamics, &mut f, &y_lo, stuck) {
-                    Ok(e) if unresolved(lo, &with_rates(&y_lo, e.rates), &e) => {
+                    Ok(e) if unresolved(lo, &accept(&y_lo, &e), &e) => {
                         h = 0.5 * lo;
                         continue;
                     }
@@ -466,6 +592,21 @@ pub(super) fn slide(
             };
             let t_event = t + hi;
             events += 1;
+            if let Event::Release(i) = event {
+                // Contact i's cone no longer holds it: go on from just past the moment, where
+                // it starts to slip (`rigid_body::accelerations` gives the direction).
+                let released = match evaluate(scene, dynamics, finder, &y_hi, None) {
+                    Ok(e) => e,
+                    Err(e) => return fail(o, &y, &ev, e),
+                };
+                debug_assert_ne!(released.motion.stuck, Some(i));
+                o.travel += (released.pose.cm - ev.pose.cm).norm();
+                y = accept(&y_hi, &released);
+                ev = released;
+                anchor = anchor_of(&ev, None);
+                t += hi;
+                continue;
+            }
             if let Event::Pivot(i) = event {
                 // The slip of contact i vanished: turn about it, stuck while its cone allows
                 // (the rates' remaining slip of i, of the bisection's size, projected out).
@@ -474,8 +615,9 @@ pub(super) fn slide(
                     Err(e) => return fail(o, &y, &ev, e),
                 };
                 o.travel += (pivot_ev.pose.cm - ev.pose.cm).norm();
-                y = with_rates(&y_lo, pivot_ev.rates);
+                y = accept(&y_lo, &pivot_ev);
                 ev = pivot_ev;
+                anchor = anchor_of(&ev, None);
                 t += lo;
                 continue;
             }
@@ -503,8 +645,8 @@ pub(super) fn slide(
                     t_event,
                     format!(
                         "the motion stopped at t = {t_event:.6} s and static friction holds \
-                         the block there (factor of safety {:.4})",
-                        check.factor_of_safety
+                         the block there (factor of safety {})",
+                        check.factor_of_safety()
                     ),
                 );
             }
@@ -517,6 +659,7 @@ pub(super) fn slide(
                 }
             };
             y = stopped;
+            anchor = anchor_of(&ev, None);
             t = t_event;
         }
         t = t_target;

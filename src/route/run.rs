@@ -7,8 +7,10 @@ use super::pose_finder::{PoseFinder, PoseMethod};
 use super::rhs::{Evaluation, Stop, evaluate, velocity};
 use super::state::{Row, State};
 use super::termination::{Reason, Termination};
+use crate::mechanics::ContactGeometry;
 use crate::mechanics::loads::Applied;
 use crate::mechanics::onset::factor_of_safety;
+use crate::mechanics::static_friction::{self, FactorOfSafety};
 use crate::scene::{DynamicsModel, Integrator, Scene, SceneError};
 use std::time::Instant;
 
@@ -34,7 +36,10 @@ fn row(s: &State, ev: Option<&Evaluation>, pose: &crate::geometry::Pose) -> Row 
 pub(super) struct Outcome {
     pub rows: Vec<Row>,
     pub termination: Termination,
-    pub fs: Option<f64>,
+    /// The factor of safety at the start (the friction cones' definition).
+    pub fs: Option<FactorOfSafety>,
+    /// The paper's resisting-over-driving ratio at the start (paper's dynamics).
+    pub paper_ratio: Option<f64>,
     pub travel: f64,
     pub increments: usize,
     /// How often the paper's frictional solution was chosen afresh (paper's dynamics).
@@ -54,6 +59,7 @@ impl Outcome {
                 detail: String::new(),
             },
             fs: None,
+            paper_ratio: None,
             travel: 0.0,
             increments: 0,
             switches: 0,
@@ -93,10 +99,24 @@ pub fn run_with(
     let dynamics = scene.require_dynamics()?;
     let solver = *dynamics.solver;
     let mut finder = PoseFinder::new(scene, solver.mode, method);
-    let o = match solver.dynamics {
+    let start_pose = finder.pose();
+    let mut o = match solver.dynamics {
         DynamicsModel::Paper => slide(scene, &dynamics, &mut finder, progress),
         DynamicsModel::RigidBody => super::rigid::slide(scene, &dynamics, &mut finder, progress),
     };
+    if o.fs.is_none() {
+        // One factor of safety whatever the dynamics: the friction cones' at the start.
+        o.fs = start_pose.and_then(|pose| {
+            let geom = ContactGeometry::with_normals(&dynamics.normals, &pose);
+            let applied = Applied::new(dynamics.loads, dynamics.block, &geom.frame);
+            static_friction::at_rest(&geom, &applied, dynamics.friction)
+                .ok()
+                .map(|c| c.factor_of_safety())
+        });
+    }
+    if solver.dynamics == DynamicsModel::Paper {
+        explain_paper_end(&mut o);
+    }
     Ok(Route {
         scene: scene.name.clone(),
         mode: solver.mode,
@@ -105,7 +125,8 @@ pub fn run_with(
         pose_method: method,
         rows: o.rows,
         termination: o.termination,
-        factor_of_safety_onset: o.fs,
+        factor_of_safety: o.fs,
+        paper_ratio: o.paper_ratio,
         travel_m: o.travel,
         increments: o.increments,
         friction_switches: o.switches,
@@ -114,6 +135,33 @@ pub fn run_with(
         energy: o.energy,
         wall_s: started.elapsed().as_secs_f64(),
     })
+}
+
+/// Where the paper's dynamics cannot start or continue the block, the detail says so and names
+/// the rigid body's (issue #12): its kinematics hold only where its frictional system has a
+/// solution and its contacts stay on their planes, which is not physics ending the route.
+fn explain_paper_end(o: &mut Outcome) {
+    let t = &mut o.termination;
+    let hint = match t.reason {
+        Reason::DoesNotSlide if o.fs.is_some_and(|f| !f.at_least_one()) => Some(format!(
+            "the paper's dynamics cannot start this block, yet the friction cones cannot hold \
+             it (factor of safety {}): run it with --dynamics rigid-body",
+            o.fs.map(|f| f.to_string()).unwrap_or_default()
+        )),
+        Reason::NoFrictionSolution
+        | Reason::NoAdmissibleRoot
+        | Reason::ContactLeftPlane
+        | Reason::ContactLiftedOff => Some(
+            "the paper's dynamics cannot continue here (its kinematics, translation along x' and \
+             turning about y', need a solution of its frictional system); --dynamics rigid-body \
+             follows the block by Newton's laws"
+                .to_string(),
+        ),
+        _ => None,
+    };
+    if let Some(h) = hint {
+        t.detail = format!("{}; {h}", t.detail);
+    }
 }
 
 fn slide(
@@ -153,7 +201,7 @@ fn slide(
     let applied = Applied::new(dynamics.loads, dynamics.block, &ev.geom.frame);
     let (fs, driving, resisting) =
         factor_of_safety(&ev.geom, &applied, &ev.statics, dynamics.friction);
-    o.fs = fs.is_finite().then_some(fs);
+    o.paper_ratio = fs.is_finite().then_some(fs);
     o.rows.push(row(&state, Some(&ev), &ev.pose));
     if scene.initial.at_rest() && (fs >= 1.0 || ev.reaction.accel <= 0.0) {
         let detail = if driving <= 0.0 {

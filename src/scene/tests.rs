@@ -269,9 +269,14 @@ fn unknown_friction_model_and_solver_mode_are_named() {
 
 #[test]
 fn integrator_and_stride_are_optional_and_checked() {
+    // The default dynamics is the rigid body's, which integrates with RK4; the paper's takes
+    // its own update by default.
     let s = Scene::from_toml(GOOD, "d").unwrap();
-    assert_eq!(s.solver.unwrap().integrator, Integrator::Paper);
+    assert_eq!(s.solver.unwrap().integrator, Integrator::Rk4);
     assert_eq!(s.solver.unwrap().stride, 1);
+    let paper = with("t_end_s = 20.0", "t_end_s = 20.0\ndynamics = \"paper\"");
+    let s = Scene::from_toml(&paper, "d").unwrap();
+    assert_eq!(s.solver.unwrap().integrator, Integrator::Paper);
     let t = with(
         "t_end_s = 20.0",
         "t_end_s = 20.0\nintegrator = \"rk4\"\nstride = 10",
@@ -380,7 +385,7 @@ fn rigid_body_keys_default_to_a_thin_plate_and_are_checked() {
         (b.inertia_x, b.inertia_z, b.inertia_xz),
         (5.5e6, 5.5e6, 0.0)
     );
-    assert_eq!(s.solver.unwrap().dynamics, DynamicsModel::Paper);
+    assert_eq!(s.solver.unwrap().dynamics, DynamicsModel::RigidBody);
     let rb = with(
         "t_end_s = 20.0",
         "t_end_s = 20.0\ndynamics = \"rigid-body\"",
@@ -449,4 +454,17 @@ fn initial_motion_defaults_to_rest_and_is_read_in_degrees_and_checked() {
         "initial.speed_m_s",
         "unknown key",
     );
+}
+
+#[test]
+fn rigid_body_with_small_angle_geometry_is_refused_naming_the_mode() {
+    // Issue #12: the combination cost about a thousand tracker steps an increment; it is
+    // refused with the reason, and the paper's dynamics keep the small-angle system.
+    let small = with("mode = \"exact\"", "mode = \"small-angle\"");
+    let s = Scene::from_toml(&small, "s.toml").unwrap();
+    let e = s.require_dynamics().unwrap_err();
+    assert_eq!(e.key, "solver.mode");
+    assert!(e.to_string().contains("needs mode = \"exact\""), "{e}");
+    let paper = s.with_dynamics(DynamicsModel::Paper);
+    assert!(paper.require_dynamics().is_ok());
 }
