@@ -79,7 +79,7 @@ fn rigid_body_moves_where_the_papers_frictional_system_has_no_solution() {
         ("κ = 0", &kappa0 as &dyn Fn(&mut Scene)),
         ("μ = 0.05", &mu005),
     ] {
-        let mut paper = Scene::default_scene();
+        let mut paper = Scene::default_scene().with_dynamics(DynamicsModel::Paper);
         edit(&mut paper);
         let p = run(&paper);
         assert_eq!(
@@ -87,6 +87,12 @@ fn rigid_body_moves_where_the_papers_frictional_system_has_no_solution() {
             Reason::NoFrictionSolution,
             "{name}: paper {:?}",
             p.termination
+        );
+        // Its end says that the paper's dynamics cannot go on, and names the rigid body's.
+        assert!(
+            p.termination.detail.contains("--dynamics rigid-body"),
+            "{name}: {}",
+            p.termination.detail
         );
         let r = run(&paper.with_dynamics(DynamicsModel::RigidBody));
         println!(
@@ -241,4 +247,130 @@ fn a_kicked_block_on_the_paper_like_foundation_stops_and_is_held() {
     let e = r.energy.unwrap();
     assert!(e.residual_j.abs() < 1e-6 * e.work_friction_j.abs(), "{e:?}");
     common::assert_rows_match_direct(&s, &r.rows);
+}
+
+// ---- issue #12: routes end only where the physics does ----
+
+fn scene_file(name: &str, f: impl FnOnce(&mut Scene)) -> Scene {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("scenes")
+        .join(format!("{name}.toml"));
+    let mut s = Scene::from_file(&path).unwrap();
+    f(&mut s);
+    s
+}
+
+/// The largest normal-force ratio |S|/N of a contact over rows in [t0, t1].
+fn shear_ratio(r: &Route, contact: usize, t0: f64, t1: f64) -> (f64, f64) {
+    r.rows
+        .iter()
+        .filter(|w| w.t_s >= t0 && w.t_s <= t1)
+        .filter_map(|w| Some(w.s_n?[contact] / w.n_n?[contact]))
+        .fold((f64::INFINITY, 0.0), |(lo, hi), q| (lo.min(q), hi.max(q)))
+}
+
+#[test]
+fn a_contact_sticking_on_its_strike_line_stays_on_its_plane_whatever_dt() {
+    // Issue #12's first scene (c = −1.5 m, FS 0.60): contact 2 sticks on plane 2's strike line,
+    // where it started, with shear 0.18–0.35 of its normal force, and holds there until contact
+    // 0 reaches plane 1 (Drake: 1.959 s). It used to end "a contact left its plane" once
+    // speed × dt reached about 4e-5 m: after 0.010 / 0.018 / 0.035 s at dt = 2 / 1 / 0.5 ms.
+    let ends: Vec<(f64, f64)> = [2e-3, 1e-3, 0.5e-3]
+        .into_iter()
+        .map(|dt| {
+            let r = run(&scene_file("pivot-held", |s| set_time(s, dt, 3.0)));
+            assert_eq!(
+                r.termination.reason,
+                Reason::Contact0ReachedInclinedPlane,
+                "dt {dt}: {:?}",
+                r.termination
+            );
+            // β = 0 exactly when contact 2 is on plane 2's strike: it stays there (to 1e-9°).
+            let beta = r.rows.iter().map(|w| w.beta_deg.abs()).fold(0.0, f64::max);
+            assert!(
+                beta < 1e-9,
+                "dt {dt}: contact 2 moved off its strike, β = {beta}°"
+            );
+            let (lo, hi) = shear_ratio(&r, 2, 0.0, 1.9);
+            assert!(
+                lo > 0.1 && hi < 0.39,
+                "dt {dt}: contact 2 sticks inside its cone ({lo}, {hi})"
+            );
+            (dt, r.termination.t_s)
+        })
+        .collect();
+    for w in ends.windows(2) {
+        let ((dt, a), (_, b)) = (w[0], w[1]);
+        assert!((a - b).abs() < 2.0 * dt, "the end moves with dt: {ends:?}");
+    }
+    assert!((ends[1].1 - 1.959).abs() < 0.005, "{ends:?}");
+}
+
+#[test]
+fn a_sticking_pivot_that_reaches_its_cone_starts_to_slip_and_the_route_goes_on() {
+    // Issue #12's second scene (10 MN): contact 2, stuck, reaches its cone's edge at 1.482 s
+    // and slips from there (|S| = μN); the block goes on until contact 0 reaches plane 1 at
+    // 1.540 s (Drake: 1.540 s). It used to end "the contact forces are not determined".
+    let r = run(&scene_file("pivot-released", |_| ()));
+    assert_eq!(
+        r.termination.reason,
+        Reason::Contact0ReachedInclinedPlane,
+        "{:?}",
+        r.termination
+    );
+    assert!(
+        (r.termination.t_s - 1.540).abs() < 0.005,
+        "{:?}",
+        r.termination
+    );
+    let (_, before) = shear_ratio(&r, 2, 1.30, 1.481);
+    assert!(before < 0.399, "stuck inside its cone before: {before}");
+    let (lo, hi) = shear_ratio(&r, 2, 1.484, 1.53);
+    assert!(
+        (lo - 0.4).abs() < 1e-9 && (hi - 0.4).abs() < 1e-9,
+        "slipping after: {lo} {hi}"
+    );
+}
+
+#[test]
+fn energy_on_a_sticking_pivot_route_converges_at_fourth_order() {
+    // The route turns about a sticking contact for 1.44 s: the energy balance's residual falls
+    // about 16× per halving of dt (the sticking contact's velocity projection removes only
+    // second-order energy, booked as friction work).
+    let residual = |dt: f64| {
+        let r = run(&scene_file("pivot-held", |s| set_time(s, dt, 1.44)));
+        assert_eq!(
+            r.termination.reason,
+            Reason::TimeLimit,
+            "{:?}",
+            r.termination
+        );
+        r.energy.unwrap().residual_j.abs()
+    };
+    let (a, b, c) = (residual(16e-3), residual(8e-3), residual(4e-3));
+    println!("residuals {a:.3e} {b:.3e} {c:.3e} J");
+    assert!(a > 1e-4, "above round-off: {a}");
+    assert!(a / b > 12.0 && b / c > 12.0, "order 4: {a} {b} {c}");
+}
+
+#[test]
+fn ends_where_a_contact_slips_off_its_plane_do_not_depend_on_dt() {
+    // c = −2 m, 9 MN: contact 2 sticks, is released and slips back off plane 2's region at
+    // 1.592 s (Drake's contact 2 crosses the strike at 1.584 s). At dt = 2 ms the route used to
+    // end at 0.002 s, where one RK4 step over a young slip turned it round.
+    let ends: Vec<f64> = [2e-3, 1e-3, 0.5e-3]
+        .into_iter()
+        .map(|dt| {
+            let r = run(&scene_file("pivot-held", |s| {
+                set_time(s, dt, 3.0);
+                let l = s.loads.as_mut().unwrap();
+                l.eccentricity = -2.0;
+                l.hydraulic_force = 9.0e6;
+            }));
+            assert_eq!(r.termination.reason, Reason::ContactLeftPlane, "dt {dt}");
+            assert!(r.termination.detail.contains("contact 2 left plane 2"));
+            r.termination.t_s
+        })
+        .collect();
+    assert!(ends.iter().all(|t| (t - 1.5925).abs() < 2e-3), "{ends:?}");
 }

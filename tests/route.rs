@@ -99,7 +99,9 @@ fn observed_orders(s: &Scene, integrator: Integrator, t_end: f64) -> Vec<f64> {
 
 #[test]
 fn paper_integrator_converges_at_first_order() {
-    let shallow = Scene::from_toml(include_str!("../scenes/shallow.toml"), "shallow").unwrap();
+    let shallow = Scene::from_toml(include_str!("../scenes/shallow.toml"), "shallow")
+        .unwrap()
+        .with_dynamics(DynamicsModel::Paper);
     for (s, t_end) in [(paper_scene(), 1.0), (shallow, 0.5)] {
         for o in observed_orders(&s, Integrator::Paper, t_end) {
             assert!((0.9..1.1).contains(&o), "{}: order {o}", s.name);
@@ -109,7 +111,9 @@ fn paper_integrator_converges_at_first_order() {
 
 #[test]
 fn rk4_converges_at_fourth_order() {
-    let shallow = Scene::from_toml(include_str!("../scenes/shallow.toml"), "shallow").unwrap();
+    let shallow = Scene::from_toml(include_str!("../scenes/shallow.toml"), "shallow")
+        .unwrap()
+        .with_dynamics(DynamicsModel::Paper);
     for (s, t_end) in [(paper_scene(), 1.0), (shallow, 0.5)] {
         for o in observed_orders(&s, Integrator::Rk4, t_end) {
             assert!((3.7..4.3).contains(&o), "{}: order {o}", s.name);

@@ -88,6 +88,13 @@ pub fn check_pose_within(scene: &Scene, p: &Pose, region_tol: f64) -> Result<(),
     let beta_min = -(2.0 * tol * g.zeta.tan() / (std::f64::consts::SQRT_2 * l))
         .min(1.0)
         .asin();
+    // The tilts' upper bounds first: a tilt reaching its dip is its own end.
+    if !(p.alpha < g.xi) {
+        return Err(Inadmissible::AlphaOutOfRange);
+    }
+    if !(p.beta < g.zeta) {
+        return Err(Inadmissible::BetaOutOfRange);
+    }
     let (l2x, r2) = (scene.frame.l2x, r(scene));
     let [p0, p1, p2] = p.vertices;
     if p0.x > l2x + tol || along_dip_2(scene, p0.x, p0.z) > r2 + tol {
@@ -99,10 +106,10 @@ pub fn check_pose_within(scene: &Scene, p: &Pose, region_tol: f64) -> Result<(),
     if along_dip_2(scene, p2.x, p2.z) < r2 - tol {
         return Err(Inadmissible::Contact2LeftPlane2);
     }
-    if !(p.alpha >= alpha_min && p.alpha < g.xi) {
+    if !(p.alpha >= alpha_min) {
         return Err(Inadmissible::AlphaOutOfRange);
     }
-    if !(p.beta >= beta_min && p.beta < g.zeta) {
+    if !(p.beta >= beta_min) {
         return Err(Inadmissible::BetaOutOfRange);
     }
     Ok(())
