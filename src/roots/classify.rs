@@ -89,10 +89,10 @@ pub fn check_pose_within(scene: &Scene, p: &Pose, region_tol: f64) -> Result<(),
         .min(1.0)
         .asin();
     // The tilts' upper bounds first: a tilt reaching its dip is its own end.
-    if !(p.alpha < g.xi) {
+    if p.alpha.is_nan() || p.alpha >= g.xi {
         return Err(Inadmissible::AlphaOutOfRange);
     }
-    if !(p.beta < g.zeta) {
+    if p.beta.is_nan() || p.beta >= g.zeta {
         return Err(Inadmissible::BetaOutOfRange);
     }
     let (l2x, r2) = (scene.frame.l2x, r(scene));
@@ -106,10 +106,10 @@ pub fn check_pose_within(scene: &Scene, p: &Pose, region_tol: f64) -> Result<(),
     if along_dip_2(scene, p2.x, p2.z) < r2 - tol {
         return Err(Inadmissible::Contact2LeftPlane2);
     }
-    if !(p.alpha >= alpha_min) {
+    if p.alpha < alpha_min {
         return Err(Inadmissible::AlphaOutOfRange);
     }
-    if !(p.beta >= beta_min) {
+    if p.beta < beta_min {
         return Err(Inadmissible::BetaOutOfRange);
     }
     Ok(())
