@@ -374,3 +374,35 @@ fn ends_where_a_contact_slips_off_its_plane_do_not_depend_on_dt() {
         .collect();
     assert!(ends.iter().all(|t| (t - 1.5925).abs() < 2e-3), "{ends:?}");
 }
+
+#[test]
+fn the_factor_of_safety_is_the_cones_whatever_the_dynamics_and_typed_where_it_has_no_number() {
+    use slideroute::mechanics::static_friction::FactorOfSafety;
+    // One definition for both dynamics (the paper's ratio, 0.7333, has its own name).
+    let paper = run(&rigid(|s| set_time(s, 1e-3, 0.05)).with_dynamics(DynamicsModel::Paper));
+    let rigid_body = run(&rigid(|s| set_time(s, 1e-3, 0.05)));
+    assert_eq!(paper.factor_of_safety, rigid_body.factor_of_safety);
+    let fs = rigid_body.factor_of_safety.unwrap().value().unwrap();
+    assert!((fs - 0.8624).abs() < 1e-3, "{fs}");
+    assert!((paper.paper_ratio.unwrap() - 0.7333).abs() < 1e-3);
+    assert_eq!(rigid_body.paper_ratio, None);
+    // μ = 0.05 on 20° and 25° dips: the weight alone slides the block (it printed "-inf").
+    let slippery = run(&rigid(|s| {
+        s.friction = Some(Friction::Coulomb { mu_k: 0.05 });
+        set_time(s, 1e-3, 0.05);
+    }));
+    assert_eq!(slippery.factor_of_safety, Some(FactorOfSafety::NotHoldable));
+    // No water load: no multiple of it starts the block.
+    let dry = run(&rigid(|s| s.loads.as_mut().unwrap().hydraulic_force = 0.0));
+    assert_eq!(dry.factor_of_safety, Some(FactorOfSafety::Unbounded));
+    // In JSON: a tagged value, never null or an infinity.
+    for (r, kind) in [
+        (&slippery, "not-holdable"),
+        (&dry, "unbounded"),
+        (&rigid_body, "finite"),
+    ] {
+        let v = serde_json::to_value(r).unwrap();
+        assert_eq!(v["factor_of_safety"]["kind"], kind);
+        assert!(!serde_json::to_string(r).unwrap().contains("null"));
+    }
+}

@@ -122,3 +122,20 @@ fn poses_beyond_a_contact_leaving_its_plane_are_refused_with_the_reason() {
     let e = roots::select(&s, d, Mode::Exact).unwrap_err();
     assert!(e.to_string().contains("contact 2 left plane 2"), "{e}");
 }
+
+#[test]
+fn the_rest_pose_is_a_selected_root() {
+    // X = Z = θ = 0, both inclined contacts on their strikes: the eigenvalue solve of the
+    // resultant misses this root (the system degenerates there), and `roots` answered "no pose
+    // selected" (issue #12). The tracked pose, which satisfies the equations, is the root.
+    let s = Scene::default_scene();
+    for mode in [Mode::Exact, Mode::SmallAngle] {
+        let all = roots::solve_all(&s, Displacement::new(0.0, 0.0, 0.0), mode).unwrap();
+        let k = all
+            .selected
+            .unwrap_or_else(|| panic!("{mode:?}: {:?}", all.selection_error));
+        let r = &all.roots[k];
+        assert!(r.admissible && r.real);
+        assert!(r.alpha.re.abs() < 1e-12 && r.beta.re.abs() < 1e-12, "{r:?}");
+    }
+}

@@ -396,8 +396,7 @@ pub(super) fn slide(
             Reason::DoesNotSlide,
             0.0,
             format!(
-                "static friction within the three cones holds the block: factor of safety {} \
-                 (the largest multiple of the hydraulic loads it can hold)",
+                "static friction within the three cones holds the block: factor of safety {}",
                 check.factor_of_safety()
             ),
         );

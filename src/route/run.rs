@@ -153,8 +153,9 @@ fn explain_paper_end(o: &mut Outcome) {
         | Reason::ContactLeftPlane
         | Reason::ContactLiftedOff => Some(
             "the paper's dynamics cannot continue here (its kinematics, translation along x' and \
-             turning about y', need a solution of its frictional system); --dynamics rigid-body \
-             follows the block by Newton's laws"
+             turning about y', hold only where its frictional system has a solution that keeps \
+             the contacts on their planes); --dynamics rigid-body follows the block by Newton's \
+             laws"
                 .to_string(),
         ),
         _ => None,
