@@ -12,9 +12,13 @@
 //! stays put when static friction within the three cones can hold it
 //! (`mechanics::static_friction`); otherwise it slips from rest in the direction that
 //! reproduces itself. While sliding, each step is checked for events — a stop (the twist
-//! reverses) or a pivot (a contact's slip reverses) — found by bisection on the step length, and
-//! taken in shorter substeps where the energy balance says RK4 does not resolve the motion
-//! (`derivations/08-rigid-body.md` §3). At a stop the velocity is set to exactly zero.
+//! reverses), a pivot (a contact's slip reverses), a release (a sticking contact's cone no
+//! longer holds it) or a failure (a state off the model) — found by bisection on the step
+//! length, and taken in shorter substeps where the energy balance says RK4 does not resolve the
+//! motion (`derivations/08-rigid-body.md` §3). At a stop the velocity is set to exactly zero.
+//! A sticking contact is held where it stuck (`hold`), its slip projected out as an impulse
+//! would (`accept` books the energy that takes as friction work), so that it stays on its plane
+//! whatever dt (issue #12).
 
 use super::pose_finder::PoseFinder;
 use super::rhs::{Stop, pose_at};
@@ -588,33 +592,25 @@ pub(super) fn slide(
             };
             let t_event = t + hi;
             events += 1;
-            if let Event::Release(i) = event {
-                // Contact i's cone no longer holds it: go on from just past the moment, where
-                // it starts to slip (`rigid_body::accelerations` gives the direction).
-                let released = match evaluate(scene, dynamics, finder, &y_hi, None) {
+            // A release goes on from just past the moment (the contact then slips, in the
+            // direction `rigid_body::accelerations` gives); a pivot from just before it, the
+            // contact's remaining slip (of the bisection's size) projected out, stuck while its
+            // cone allows.
+            let resume = match event {
+                Event::Release(_) => Some((y_hi, hi, None)),
+                Event::Pivot(i) => Some((y_lo, lo, Some(i))),
+                Event::Stop => None,
+            };
+            if let Some((y_at, len, stick)) = resume {
+                let at = match evaluate(scene, dynamics, finder, &y_at, stick) {
                     Ok(e) => e,
                     Err(e) => return fail(o, &y, &ev, e),
                 };
-                debug_assert_ne!(released.motion.stuck, Some(i));
-                o.travel += (released.pose.cm - ev.pose.cm).norm();
-                y = accept(&y_hi, &released);
-                ev = released;
+                o.travel += (at.pose.cm - ev.pose.cm).norm();
+                y = accept(&y_at, &at);
+                ev = at;
                 anchor = anchor_of(&ev, None);
-                t += hi;
-                continue;
-            }
-            if let Event::Pivot(i) = event {
-                // The slip of contact i vanished: turn about it, stuck while its cone allows
-                // (the rates' remaining slip of i, of the bisection's size, projected out).
-                let pivot_ev = match evaluate(scene, dynamics, finder, &y_lo, Some(i)) {
-                    Ok(e) => e,
-                    Err(e) => return fail(o, &y, &ev, e),
-                };
-                o.travel += (pivot_ev.pose.cm - ev.pose.cm).norm();
-                y = accept(&y_lo, &pivot_ev);
-                ev = pivot_ev;
-                anchor = anchor_of(&ev, None);
-                t += lo;
+                t += len;
                 continue;
             }
             // The state just before the stop, at rest.
