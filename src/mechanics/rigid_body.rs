@@ -443,6 +443,35 @@ pub fn accelerations(
     friction: &Friction,
     rates: [f64; 3],
 ) -> Result<Motion, RigidError> {
+    accelerations_slaved(geom, applied, block, friction, rates, 0.0)
+}
+
+/// [`accelerations`] for an integrator of step `step` (s): the direction of a *young, slow*
+/// slip — slower than 4 μ λ / m × `step` (the speed friction takes away in four steps) while
+/// its tangential acceleration is under a tenth of μ λ / m — is slaved to its quasi-static
+/// value instead of being read off the slip velocity (issue #12).
+///
+/// Why: a slip s of a contact turns towards the direction its friction allows at a rate of
+/// order μ λ (e·A e) / |s| (A the contact's tangential inverse mass), which grows without bound
+/// as |s| → 0, while its magnitude changes at the rate |a_t| / |s|. Where |a_t| ≪ μ λ / m — a
+/// slip just started at the edge of the cone (a release), or dying away towards a pivot — the
+/// first rate is far beyond any step's reach for many steps, and an explicit integrator makes
+/// the direction swing about and the slip turn round again and again (chatter: hundreds of
+/// events, an energy error of a joule that does not converge). A slip from rest, whose
+/// acceleration is of the order of μ λ / m, leaves that band within a few steps, and RK4
+/// follows it (the band would cost it its order). The slaved direction d is the one the slip settles to within that time: the
+/// tangential acceleration it gives is parallel to it, (d × a_t)·n = 0, the root nearest the
+/// slip's own direction; the slip then grows or shrinks along d, and a slip that shrinks passes
+/// through zero where the route's pivot event finds it. As `step` → 0 the band vanishes and the
+/// law is Coulomb's.
+pub fn accelerations_slaved(
+    geom: &ContactGeometry,
+    applied: &Applied,
+    block: &Block,
+    friction: &Friction,
+    rates: [f64; 3],
+    step: f64,
+) -> Result<Motion, RigidError> {
     let inertia = Inertia::new(block, geom)?;
     let tw = twist(geom, rates)?;
     let ctx = Ctx {
@@ -488,6 +517,22 @@ pub fn accelerations(
         let pivot = (0..3).find(|&i| slip[i].norm() <= ZERO_SLIP * scale);
         let mut dir = slip.map(unit);
         let mut mu = coefficients(&sol.lambda);
+        let mut slaved = false;
+        for j in (0..3).filter(|&j| Some(j) != pivot) {
+            let friction_accel = mu[j] * sol.lambda[j].abs() / block.mass;
+            if slip[j].norm() >= 4.0 * friction_accel * step {
+                continue;
+            }
+            if let Some((d, a)) = slaved_direction(&ctx, &dir, &mu, j, &dir[j])? {
+                if a < 0.1 * friction_accel {
+                    dir[j] = d;
+                    slaved = true;
+                }
+            }
+        }
+        if slaved && pivot.is_none() {
+            sol = ctx.solve(&dir, &mu)?;
+        }
         let mut stuck = None;
         if let Some(i) = pivot {
             for _ in 0..MAX_FIXED_POINT {
@@ -571,20 +616,88 @@ pub fn accelerations(
     })
 }
 
-/// Directions sampled round contact `i`'s tangent plane when its slip starts while the block
-/// moves (each a 3×3 solve); sign changes between them are refined by bisection.
+/// Directions sampled round contact `i`'s tangent plane when its slip direction is sought
+/// (each a 3×3 solve); sign changes between them are refined by bisection.
 const SLIP_START_SAMPLES: usize = 72;
+
+/// Every direction d on contact `i`'s tangent plane whose friction −μλ d (the other contacts
+/// slipping along `dir`) gives a tangential acceleration parallel to d, (d × a_t)·n = 0, with
+/// all normal forces positive: (d, a_t·d, the solution).
+fn consistent_directions(
+    ctx: &Ctx<'_>,
+    dir: &[Vector3<f64>; 3],
+    mu: &[f64; 3],
+    i: usize,
+) -> Result<Vec<(Vector3<f64>, f64, Solved)>, RigidError> {
+    let n = ctx.geom.n[i];
+    let (t1, t2) = ctx.geom.tangents(i);
+    let along = |phi: f64| t1 * phi.cos() + t2 * phi.sin();
+    let eval = |phi: f64| -> Result<(f64, f64, Solved), RigidError> {
+        let d = along(phi);
+        let mut dd = *dir;
+        dd[i] = d;
+        let s = ctx.solve(&dd, mu)?;
+        let a = ctx.tangential_accel(i, &s);
+        Ok((n.dot(&d.cross(&a)), d.dot(&a), s))
+    };
+    let step = 2.0 * std::f64::consts::PI / SLIP_START_SAMPLES as f64;
+    let mut out = Vec::new();
+    let mut prev = eval(0.0)?;
+    for k in 1..=SLIP_START_SAMPLES {
+        let phi = k as f64 * step;
+        let cur = eval(phi)?;
+        if prev.0 == 0.0 || prev.0.signum() != cur.0.signum() {
+            // Bisection on the sign of (d × a_t)·n.
+            let (mut lo, mut hi, mut g_lo) = (phi - step, phi, prev.0);
+            for _ in 0..60 {
+                let mid = 0.5 * (lo + hi);
+                let g = eval(mid)?.0;
+                if g == 0.0 {
+                    (lo, hi) = (mid, mid);
+                    break;
+                }
+                if g.signum() == g_lo.signum() {
+                    (lo, g_lo) = (mid, g);
+                } else {
+                    hi = mid;
+                }
+            }
+            let phi_r = 0.5 * (lo + hi);
+            let (_, h, s) = eval(phi_r)?;
+            if s.lambda.iter().all(|&l| l > 0.0) {
+                out.push((along(phi_r), h, s));
+            }
+        }
+        prev = cur;
+    }
+    Ok(out)
+}
+
+/// The slaved direction of contact `j`'s young slip (see [`accelerations_slaved`]): of the
+/// consistent directions, the one nearest `current`, with the size of the contact's tangential
+/// acceleration there; `None` if there is none.
+fn slaved_direction(
+    ctx: &Ctx<'_>,
+    dir: &[Vector3<f64>; 3],
+    mu: &[f64; 3],
+    j: usize,
+    current: &Vector3<f64>,
+) -> Result<Option<(Vector3<f64>, f64)>, RigidError> {
+    Ok(consistent_directions(ctx, dir, mu, j)?
+        .into_iter()
+        .map(|(d, h, _)| (d, h.abs()))
+        .max_by(|a, b| a.0.dot(current).total_cmp(&b.0.dot(current))))
+}
 
 /// A pivot whose cone cannot hold it starts to slip while the block moves (issue #12): the
 /// direction d of its slip is the one whose friction −μλ d makes its tangential acceleration
 /// point along d itself (the slip then grows from zero along d: the consistent slip-start
-/// problem, as from rest, for one contact). d is sought on the unit circle of the contact's
-/// tangent plane: the tangential acceleration a_t(d) must be parallel to d, (d × a_t)·n = 0,
-/// and not against it, a_t·d ≥ 0. Of several such directions the one nearest to the opposite of
-/// the shear that would hold the contact is taken: where the stick force reaches the cone's
-/// edge, that is the direction in which the contact gives way, so the forces are continuous.
-/// The other contacts keep their slip directions `dir`; a stress-dependent criterion's
-/// coefficients `mu` are settled by a fixed point around the search.
+/// problem, as from rest, for one contact): a consistent direction
+/// ([`consistent_directions`]) with a_t·d ≥ 0. Of several such directions the one nearest to the
+/// opposite of the shear that would hold the contact is taken: where the stick force reaches the
+/// cone's edge, that is the direction in which the contact gives way, so the forces are
+/// continuous. The other contacts keep their slip directions `dir`; a stress-dependent
+/// criterion's coefficients `mu` are settled by a fixed point around the search.
 fn slip_start(
     ctx: &Ctx<'_>,
     dir: &mut [Vector3<f64>; 3],
@@ -592,9 +705,6 @@ fn slip_start(
     i: usize,
     coefficients: &dyn Fn(&[f64; 3]) -> [f64; 3],
 ) -> Result<Solved, RigidError> {
-    let n = ctx.geom.n[i];
-    let (t1, t2) = ctx.geom.tangents(i);
-    let along = |phi: f64| t1 * phi.cos() + t2 * phi.sin();
     let no_direction = RigidError::SlipStart { contact: i };
     for _ in 0..MAX_FIXED_POINT {
         // The shear that would hold contact i: the direction it gives way in is its opposite.
@@ -602,53 +712,18 @@ fn slip_start(
         let give = if hold.norm() > 0.0 {
             -hold / hold.norm()
         } else {
-            t1
+            ctx.geom.tangents(i).0
         };
-        let eval = |phi: f64| -> Result<(f64, f64, Solved), RigidError> {
-            let d = along(phi);
-            let mut dd = *dir;
-            dd[i] = d;
-            let s = ctx.solve(&dd, mu)?;
-            let a = ctx.tangential_accel(i, &s);
-            Ok((n.dot(&d.cross(&a)), d.dot(&a), s))
-        };
-        let step = 2.0 * std::f64::consts::PI / SLIP_START_SAMPLES as f64;
-        let mut best: Option<(f64, f64, Solved)> = None;
-        let mut prev = eval(0.0)?;
-        for k in 1..=SLIP_START_SAMPLES {
-            let phi = k as f64 * step;
-            let cur = eval(phi)?;
-            if prev.0 == 0.0 || prev.0.signum() != cur.0.signum() {
-                // Bisection on the sign of (d × a_t)·n.
-                let (mut lo, mut hi, mut g_lo) = (phi - step, phi, prev.0);
-                for _ in 0..60 {
-                    let mid = 0.5 * (lo + hi);
-                    let g = eval(mid)?.0;
-                    if g == 0.0 {
-                        (lo, hi) = (mid, mid);
-                        break;
-                    }
-                    if g.signum() == g_lo.signum() {
-                        (lo, g_lo) = (mid, g);
-                    } else {
-                        hi = mid;
-                    }
-                }
-                let phi_r = 0.5 * (lo + hi);
-                let (_, h, s) = eval(phi_r)?;
-                let positive = s.lambda.iter().all(|&l| l > 0.0);
-                let scale = ctx.tangential_accel(i, &s).norm();
-                if h >= -1e-9 * scale.max(f64::MIN_POSITIVE) && positive {
-                    let closeness = along(phi_r).dot(&give);
-                    if best.as_ref().is_none_or(|b| closeness > b.1) {
-                        best = Some((phi_r, closeness, s));
-                    }
-                }
-            }
-            prev = cur;
-        }
-        let (phi, _, s) = best.ok_or(no_direction)?;
-        dir[i] = along(phi);
+        let (d, s) = consistent_directions(ctx, dir, mu, i)?
+            .into_iter()
+            .filter(|(_, h, s)| {
+                let scale = ctx.tangential_accel(i, s).norm();
+                *h >= -1e-9 * scale.max(f64::MIN_POSITIVE)
+            })
+            .max_by(|a, b| a.0.dot(&give).total_cmp(&b.0.dot(&give)))
+            .map(|(d, _, s)| (d, s))
+            .ok_or(no_direction)?;
+        dir[i] = d;
         let new_mu = coefficients(&s.lambda);
         let change = (0..3)
             .map(|j| (new_mu[j] - mu[j]).abs())

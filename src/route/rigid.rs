@@ -94,8 +94,8 @@ fn stop_of(e: RigidError) -> Stop {
 }
 
 /// The right-hand side at state `y`. `stuck`: the contact that stuck at the start of the step;
-/// the integrator's drift of its slip (at most [`DRIFT`] of the speed) is projected out so that
-/// it stays stuck while its cone allows.
+/// the integrator's drift of its slip is projected out (as an impulse would, the energy it
+/// takes in `Eval::removed`) so that it stays stuck while its cone allows.
 fn evaluate(
     scene: &Scene,
     dynamics: &Dynamics<'_>,
@@ -115,9 +115,15 @@ fn evaluate(
         (rates, removed) =
             rigid_body::pivot_rates(&geom, dynamics.block, rates, i).map_err(stop_of)?;
     }
-    let motion =
-        rigid_body::accelerations(&geom, &applied, dynamics.block, dynamics.friction, rates)
-            .map_err(stop_of)?;
+    let motion = rigid_body::accelerations_slaved(
+        &geom,
+        &applied,
+        dynamics.block,
+        dynamics.friction,
+        rates,
+        dynamics.solver.dt,
+    )
+    .map_err(stop_of)?;
     Ok(Eval {
         pose,
         motion,
@@ -193,10 +199,6 @@ const MAX_EVENTS: usize = 16;
 /// The shortest substep, as a fraction of dt (then the step is taken as it is).
 const MIN_SUBSTEP: f64 = 1e-3;
 
-/// The largest slip of a sticking contact, relative to the block's speed, taken for the
-/// integrator's drift (and projected out) rather than for slip.
-const DRIFT: f64 = 1e-6;
-
 fn derivative(y: &Y, m: &Motion) -> Y {
     [
         y[3],
@@ -223,14 +225,13 @@ fn axpy(y: &Y, h: f64, k: &Y) -> Y {
 
 /// The motion at the start of a step, against which the events of the step are recognised:
 /// a stop — a later twist t has reversed, ⟨t, before⟩ ≤ 0 in the kinetic-energy inner
-/// product — or a pivot — the slip velocity of a slipping contact has reversed, i.e. passed
+/// product —, a release — the contact that stuck no longer does — or a pivot — the slip of a
+/// slipping contact no longer runs the way its friction at the start opposed, i.e. it passed
 /// through zero.
 #[derive(Clone, Copy)]
 struct Heading<'a> {
     before: &'a Motion,
     mass: f64,
-    /// The side length L, which puts angular speeds among the speeds.
-    length: f64,
 }
 
 /// What happened within a step.
@@ -257,12 +258,12 @@ impl Heading<'_> {
         if let Some(i) = b.stuck.filter(|&i| m.stuck != Some(i)) {
             return Some(Event::Release(i));
         }
-        // A contact that starts the step with a slip of the drift's size (just released from
-        // sticking) has no direction to reverse yet.
-        let scale = b.twist.v.norm() + b.twist.w.norm() * self.length;
+        // The slip's direction at the step's start is the one its friction opposes (for a slip
+        // just started, the direction it starts in, which its velocity, still of round-off's
+        // size, does not yet show).
         (0..3)
-            .filter(|&i| b.stuck != Some(i) && b.slip[i].norm() > DRIFT * scale)
-            .find(|&i| m.slip[i].dot(&b.slip[i]) <= 0.0)
+            .filter(|&i| b.stuck != Some(i) && b.shear[i].norm() > 0.0)
+            .find(|&i| m.slip[i].dot(&b.shear[i]) >= 0.0)
             .map(Event::Pivot)
     }
 }
@@ -448,7 +449,6 @@ pub(super) fn slide(
             let heading = Heading {
                 before: &ev.motion,
                 mass,
-                length: scene.l(),
             };
             let stuck = ev.motion.stuck;
             let fail = |o: Outcome, y: &Y, ev: &Eval, s: Stop| {
