@@ -13,7 +13,8 @@ use slideroute::scene::{DynamicsModel, Friction, Mode, Scene};
 use std::hint::black_box;
 
 fn whole_routes(c: &mut Criterion) {
-    let base = Scene::default_scene();
+    // The paper's dynamics (the default is the rigid body's).
+    let base = Scene::default_scene().with_dynamics(DynamicsModel::Paper);
     let mut small = base.clone();
     small.solver.as_mut().unwrap().mode = Mode::SmallAngle;
     let mut frictionless = base.clone();
@@ -39,7 +40,7 @@ fn whole_routes(c: &mut Criterion) {
 }
 
 fn one_increment(c: &mut Criterion) {
-    let scene = Scene::default_scene();
+    let scene = Scene::default_scene().with_dynamics(DynamicsModel::Paper);
     let dynamics = scene.require_dynamics().unwrap();
     for method in [PoseMethod::Continuation, PoseMethod::AllRoots] {
         // Position the finder and the chosen reaction at X = 0.5 m, then time the next 1 mm.

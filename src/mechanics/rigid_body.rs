@@ -673,9 +673,11 @@ fn consistent_directions(
     Ok(out)
 }
 
-/// The slaved direction of contact `j`'s young slip (see [`accelerations_slaved`]): of the
-/// consistent directions, the one nearest `current`, with the size of the contact's tangential
-/// acceleration there; `None` if there is none.
+/// The slaved direction of contact `j`'s young slip (see [`accelerations_slaved`]): the
+/// consistent direction ((d × a_t)·n = 0, every normal force positive) nearest `current`,
+/// found from `current` outwards — a bracket widened from 2° by half again each time, then the
+/// Illinois method — with the size of the contact's tangential acceleration there; `None` if
+/// there is none. About twenty solves where a scan of the circle takes some three hundred.
 fn slaved_direction(
     ctx: &Ctx<'_>,
     dir: &[Vector3<f64>; 3],
@@ -683,10 +685,59 @@ fn slaved_direction(
     j: usize,
     current: &Vector3<f64>,
 ) -> Result<Option<(Vector3<f64>, f64)>, RigidError> {
-    Ok(consistent_directions(ctx, dir, mu, j)?
-        .into_iter()
-        .map(|(d, h, _)| (d, h.abs()))
-        .max_by(|a, b| a.0.dot(current).total_cmp(&b.0.dot(current))))
+    let n = ctx.geom.n[j];
+    let (t1, t2) = ctx.geom.tangents(j);
+    let along = |phi: f64| t1 * phi.cos() + t2 * phi.sin();
+    let eval = |phi: f64| -> Result<(f64, f64, bool), RigidError> {
+        let d = along(phi);
+        let mut dd = *dir;
+        dd[j] = d;
+        let s = ctx.solve(&dd, mu)?;
+        let a = ctx.tangential_accel(j, &s);
+        Ok((n.dot(&d.cross(&a)), d.dot(&a), s.lambda.iter().all(|&l| l > 0.0)))
+    };
+    let phi0 = current.dot(&t2).atan2(current.dot(&t1));
+    let g0 = eval(phi0)?.0;
+    let mut bracket = None;
+    let mut delta = 2f64.to_radians();
+    while bracket.is_none() && delta <= std::f64::consts::PI {
+        for side in [1.0, -1.0] {
+            let phi = phi0 + side * delta;
+            let g = eval(phi)?.0;
+            if g0 == 0.0 || g.signum() != g0.signum() {
+                bracket = Some((phi0, g0, phi, g));
+                break;
+            }
+        }
+        delta *= 1.5;
+    }
+    let Some((mut a, mut ga, mut b, mut gb)) = bracket else {
+        return Ok(None);
+    };
+    // Illinois: regula falsi that halves the stale end's value.
+    let mut side = 0;
+    for _ in 0..60 {
+        if ga == 0.0 || (b - a).abs() < 1e-13 {
+            break;
+        }
+        let c = (a * gb - b * ga) / (gb - ga);
+        let gc = eval(c)?.0;
+        if gc.signum() == gb.signum() {
+            (b, gb) = (a, ga);
+            if side == -1 {
+                gb *= 0.5;
+            }
+            side = -1;
+        } else {
+            if side == 1 {
+                gb *= 0.5;
+            }
+            side = 1;
+        }
+        (a, ga) = (c, gc);
+    }
+    let (_, h, positive) = eval(a)?;
+    Ok(positive.then(|| (along(a), h.abs())))
 }
 
 /// A pivot whose cone cannot hold it starts to slip while the block moves (issue #12): the

@@ -84,10 +84,9 @@ pub fn check_pose_within(scene: &Scene, p: &Pose, region_tol: f64) -> Result<(),
     let g = &scene.foundation;
     let l = scene.l();
     let tol = region_tol * l;
-    let alpha_min = -(2.0 * tol * g.xi.tan() / l).min(1.0).asin();
-    let beta_min = -(2.0 * tol * g.zeta.tan() / (std::f64::consts::SQRT_2 * l))
-        .min(1.0)
-        .asin();
+    // sin α and α agree to round-off at these angles (about 1e-8 rad): no asin.
+    let alpha_min = -2.0 * region_tol * g.xi.tan();
+    let beta_min = -2.0 * region_tol * g.zeta.tan() / std::f64::consts::SQRT_2;
     // The tilts' upper bounds first: a tilt reaching its dip is its own end.
     if p.alpha.is_nan() || p.alpha >= g.xi {
         return Err(Inadmissible::AlphaOutOfRange);
