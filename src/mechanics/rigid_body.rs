@@ -694,7 +694,11 @@ fn slaved_direction(
         dd[j] = d;
         let s = ctx.solve(&dd, mu)?;
         let a = ctx.tangential_accel(j, &s);
-        Ok((n.dot(&d.cross(&a)), d.dot(&a), s.lambda.iter().all(|&l| l > 0.0)))
+        Ok((
+            n.dot(&d.cross(&a)),
+            d.dot(&a),
+            s.lambda.iter().all(|&l| l > 0.0),
+        ))
     };
     let phi0 = current.dot(&t2).atan2(current.dot(&t1));
     let g0 = eval(phi0)?.0;
