@@ -377,6 +377,25 @@ impl Ctx<'_> {
     fn pivot_direction(&self, i: usize) -> Result<Vector3<f64>, RigidError> {
         pivot_direction(self.geom, self.arm, i)
     }
+
+    /// Contact `i` slipping along the direction at angle `phi` on its tangent plane (the others
+    /// along `dir`): the direction d, (d × a_t)·n (zero where the tangential acceleration is
+    /// parallel to d), a_t·d, and the solution.
+    fn slipping_at(
+        &self,
+        dir: &[Vector3<f64>; 3],
+        mu: &[f64; 3],
+        i: usize,
+        phi: f64,
+    ) -> Result<(Vector3<f64>, f64, f64, Solved), RigidError> {
+        let (t1, t2) = self.geom.tangents(i);
+        let d = t1 * phi.cos() + t2 * phi.sin();
+        let mut dd = *dir;
+        dd[i] = d;
+        let s = self.solve(&dd, mu)?;
+        let a = self.tangential_accel(i, &s);
+        Ok((d, self.geom.n[i].dot(&d.cross(&a)), d.dot(&a), s))
+    }
 }
 
 /// The longest arm from the CM to a contact (m): the length that puts θ̇ among the velocities.
@@ -629,16 +648,9 @@ fn consistent_directions(
     mu: &[f64; 3],
     i: usize,
 ) -> Result<Vec<(Vector3<f64>, f64, Solved)>, RigidError> {
-    let n = ctx.geom.n[i];
-    let (t1, t2) = ctx.geom.tangents(i);
-    let along = |phi: f64| t1 * phi.cos() + t2 * phi.sin();
-    let eval = |phi: f64| -> Result<(f64, f64, Solved), RigidError> {
-        let d = along(phi);
-        let mut dd = *dir;
-        dd[i] = d;
-        let s = ctx.solve(&dd, mu)?;
-        let a = ctx.tangential_accel(i, &s);
-        Ok((n.dot(&d.cross(&a)), d.dot(&a), s))
+    let eval = |phi: f64| {
+        ctx.slipping_at(dir, mu, i, phi)
+            .map(|(_, g, h, s)| (g, h, s))
     };
     let step = 2.0 * std::f64::consts::PI / SLIP_START_SAMPLES as f64;
     let mut out = Vec::new();
@@ -663,9 +675,9 @@ fn consistent_directions(
                 }
             }
             let phi_r = 0.5 * (lo + hi);
-            let (_, h, s) = eval(phi_r)?;
+            let (d, _, h, s) = ctx.slipping_at(dir, mu, i, phi_r)?;
             if s.lambda.iter().all(|&l| l > 0.0) {
-                out.push((along(phi_r), h, s));
+                out.push((d, h, s));
             }
         }
         prev = cur;
@@ -685,21 +697,8 @@ fn slaved_direction(
     j: usize,
     current: &Vector3<f64>,
 ) -> Result<Option<(Vector3<f64>, f64)>, RigidError> {
-    let n = ctx.geom.n[j];
     let (t1, t2) = ctx.geom.tangents(j);
-    let along = |phi: f64| t1 * phi.cos() + t2 * phi.sin();
-    let eval = |phi: f64| -> Result<(f64, f64, bool), RigidError> {
-        let d = along(phi);
-        let mut dd = *dir;
-        dd[j] = d;
-        let s = ctx.solve(&dd, mu)?;
-        let a = ctx.tangential_accel(j, &s);
-        Ok((
-            n.dot(&d.cross(&a)),
-            d.dot(&a),
-            s.lambda.iter().all(|&l| l > 0.0),
-        ))
-    };
+    let eval = |phi: f64| ctx.slipping_at(dir, mu, j, phi).map(|(_, g, _, s)| (g, s));
     let phi0 = current.dot(&t2).atan2(current.dot(&t1));
     let g0 = eval(phi0)?.0;
     let mut bracket = None;
@@ -740,8 +739,8 @@ fn slaved_direction(
         }
         (a, ga) = (c, gc);
     }
-    let (_, h, positive) = eval(a)?;
-    Ok(positive.then(|| (along(a), h.abs())))
+    let (d, _, h, s) = ctx.slipping_at(dir, mu, j, a)?;
+    Ok(s.lambda.iter().all(|&l| l > 0.0).then(|| (d, h.abs())))
 }
 
 /// A pivot whose cone cannot hold it starts to slip while the block moves (issue #12): the
