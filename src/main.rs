@@ -72,7 +72,7 @@ enum Command {
     },
     /// Run the route for every combination of scene values, in parallel, and write
     /// DIR/sweep.csv (one row per combination: the varied values, how the route ended, travel,
-    /// final yaw, largest tilts, factor of safety at onset) and DIR/sweep.svg (travel against
+    /// final yaw, largest tilts, factor of safety) and DIR/sweep.svg (travel against
     /// the first varied key). A combination that fails is a row with its reason.
     Sweep {
         #[command(flatten)]
@@ -519,10 +519,13 @@ fn scene_cmd(print_default: bool, check: Option<&PathBuf>) -> Result<(), String>
         }
         (false, Some(p)) => {
             let s = Scene::from_file(p).map_err(|e| e.to_string())?;
-            let sections = if s.require_dynamics().is_ok() {
-                "all sections"
-            } else {
-                "geometry only (frame, foundation)"
+            let sections = match s.require_dynamics() {
+                Ok(_) => "all sections",
+                Err(e) if e.reason.starts_with("missing section") => {
+                    "geometry only (frame, foundation)"
+                }
+                // Present but not runnable as written (e.g. small-angle with the rigid body).
+                Err(e) => return Err(e.to_string()),
             };
             println!("{}: ok ({sections})", p.display());
             Ok(())

@@ -629,3 +629,58 @@ fn a_kicked_scene_ends_stopped_with_its_last_row_at_rest() {
     // vx_m_s, vz_m_s, omega_deg_s are columns 9–11.
     assert_eq!(&last[8..11], &["0", "0", "0"], "{last:?}");
 }
+
+#[test]
+fn small_angle_geometry_with_the_default_rigid_body_is_refused_and_runs_with_the_papers_dynamics() {
+    // Issue #12: the combination cost about a thousand tracker steps an increment; `scene
+    // --check` and `run` refuse it naming the key and the remedy, `--dynamics paper` runs it.
+    let dir = temp_dir("small-angle");
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = dir.join("sa.toml");
+    let text = slideroute::scene::DEFAULT_SCENE_TOML.replace(
+        "mode = \"exact\"       # or \"small-angle\"",
+        "mode = \"small-angle\" # or \"exact\"",
+    );
+    assert!(text.contains("mode = \"small-angle\""));
+    std::fs::write(&scene, text).unwrap();
+    let s = scene.to_str().unwrap();
+    for args in [
+        vec!["scene", "--check", s],
+        vec![
+            "run",
+            "--quiet",
+            "--no-plots",
+            "--scene",
+            s,
+            "--out",
+            dir.join("o").to_str().unwrap(),
+        ],
+    ] {
+        assert_bad_input(&run(&args), &["solver.mode", "exact", "--dynamics paper"]);
+    }
+    let o = run(&[
+        "run",
+        "--quiet",
+        "--no-plots",
+        "--dynamics",
+        "paper",
+        "--scene",
+        s,
+        "--out",
+        dir.join("p").to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn roots_at_the_rest_pose_select_the_flat_frame() {
+    // Issue #12: `roots` at X = Z = θ = 0 answered "no pose selected".
+    let o = run(&["roots", "--x", "0", "--z", "0", "--theta-deg", "0"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        out.contains("selected: α = 0.000000°, β = 0.000000°"),
+        "{out}"
+    );
+}
