@@ -149,9 +149,67 @@ enum Command {
 }
 
 /// One line on standard error, exit code 2: bad input.
-fn fail(msg: impl std::fmt::Display) -> ExitCode {
-    eprintln!("slideroute: {msg}");
-    ExitCode::from(2)
+/// How a command failed, which decides the exit code (README, "Exit codes"): 2 for bad input
+/// (a scene, flag or input file that is wrong), 1 for any other failure (an output that cannot be
+/// written, a full disk), and a quiet 0 when whoever reads standard output has closed it (as
+/// `head` does), like other Unix tools.
+#[derive(Debug)]
+enum CliError {
+    BadInput(String),
+    Failed(String),
+    ClosedPipe,
+}
+
+/// Errors of the commands' input side are bad input unless said otherwise.
+impl From<String> for CliError {
+    fn from(msg: String) -> Self {
+        CliError::BadInput(msg)
+    }
+}
+
+/// An output that could not be written: exit 1.
+fn failed(msg: String) -> CliError {
+    CliError::Failed(msg)
+}
+
+/// Writes to standard output without panicking: a closed pipe ends the command quietly, any
+/// other error (a full disk) is a one-line failure.
+fn stdout_error(e: std::io::Error) -> CliError {
+    if e.kind() == std::io::ErrorKind::BrokenPipe {
+        CliError::ClosedPipe
+    } else {
+        CliError::Failed(format!("standard output: {e}"))
+    }
+}
+
+macro_rules! out {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let mut o = std::io::stdout().lock();
+        write!(o, $($arg)*).and_then(|_| o.flush()).map_err(stdout_error)?
+    }};
+}
+
+macro_rules! outln {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let mut o = std::io::stdout().lock();
+        writeln!(o, $($arg)*).and_then(|_| o.flush()).map_err(stdout_error)?
+    }};
+}
+
+fn fail(e: CliError) -> ExitCode {
+    match e {
+        CliError::BadInput(msg) => {
+            eprintln!("slideroute: {msg}");
+            ExitCode::from(2)
+        }
+        CliError::Failed(msg) => {
+            eprintln!("slideroute: {msg}");
+            ExitCode::from(1)
+        }
+        CliError::ClosedPipe => ExitCode::SUCCESS,
+    }
 }
 
 fn load(arg: &SceneArg) -> Result<Scene, String> {
@@ -174,19 +232,19 @@ fn displacement(p: &PoseArgs) -> Result<Displacement, String> {
     ))
 }
 
-fn print_json(value: &impl serde::Serialize) -> Result<(), String> {
+fn print_json(value: &impl serde::Serialize) -> Result<(), CliError> {
     let s = serde_json::to_string_pretty(value).map_err(|e| format!("cannot write JSON: {e}"))?;
-    println!("{s}");
+    outln!("{s}");
     Ok(())
 }
 
-fn coeffs(scene: &SceneArg, pose: &PoseArgs, json: bool) -> Result<(), String> {
+fn coeffs(scene: &SceneArg, pose: &PoseArgs, json: bool) -> Result<(), CliError> {
     let scene = load(scene)?;
     let report = CoeffReport::new(&scene, displacement(pose)?);
     if json {
         print_json(&report)
     } else {
-        print!("{report}");
+        out!("{report}");
         Ok(())
     }
 }
@@ -198,7 +256,7 @@ fn roots_cmd(
     grid: Option<&PathBuf>,
     out: Option<&PathBuf>,
     json: bool,
-) -> Result<(), String> {
+) -> Result<(), CliError> {
     let scene = load(scene)?;
     let mode = mode.or(scene.solver.map(|s| s.mode)).unwrap_or(Mode::Exact);
     let report = |d: Displacement| {
@@ -217,9 +275,10 @@ fn roots_cmd(
                 .map(|p| report(p.displacement()))
                 .collect::<Result<Vec<_>, _>>()?;
             let out_name = out.display().to_string();
-            let file =
-                std::fs::File::create(out).map_err(|e| format!("{out_name}: cannot write: {e}"))?;
-            grid_csv::write_rows(file, &poses, &reports).map_err(|e| format!("{out_name}: {e}"))?;
+            let file = std::fs::File::create(out)
+                .map_err(|e| failed(format!("{out_name}: cannot write: {e}")))?;
+            grid_csv::write_rows(file, &poses, &reports)
+                .map_err(|e| failed(format!("{out_name}: {e}")))?;
             eprintln!("slideroute: {} poses written to {out_name}", reports.len());
             Ok(())
         }
@@ -228,7 +287,7 @@ fn roots_cmd(
             if json {
                 print_json(&r)
             } else {
-                print!("{r}");
+                out!("{r}");
                 Ok(())
             }
         }
@@ -255,7 +314,7 @@ fn run_cmd(
     quiet: bool,
     no_plots: bool,
     dynamics: Option<DynamicsModel>,
-) -> Result<(), String> {
+) -> Result<(), CliError> {
     let mut scene = load(scene)?;
     if let Some(model) = dynamics {
         scene = scene.with_dynamics(model);
@@ -265,12 +324,14 @@ fn run_cmd(
         .map_err(|e| e.to_string())?;
     bar.finish_and_clear();
     #[allow(unused_mut)]
-    let mut files: Vec<PathBuf> = slideroute::output::route_files::write(out, &route)?.to_vec();
+    let mut files: Vec<PathBuf> = slideroute::output::route_files::write(out, &route)
+        .map_err(failed)?
+        .to_vec();
     #[cfg(feature = "plots")]
     if !no_plots {
-        files.extend(slideroute::output::plots::write_route_plots(
-            out, &scene, &route,
-        )?);
+        files.extend(
+            slideroute::output::plots::write_route_plots(out, &scene, &route).map_err(failed)?,
+        );
     }
     #[cfg(not(feature = "plots"))]
     let _ = no_plots;
@@ -278,21 +339,25 @@ fn run_cmd(
         return Ok(());
     }
     let t = &route.termination;
-    println!("scene {}: {} at t = {} s", route.scene, t.reason, t.t_s);
-    println!("  {}", t.detail);
+    outln!("scene {}: {} at t = {} s", route.scene, t.reason, t.t_s);
+    outln!("  {}", t.detail);
     if let Some(last) = route.rows.last() {
-        println!(
+        outln!(
             "  travel {:.3} m; final yaw θ = {:.3}°, tilts α = {:.3}°, β = {:.3}°, γ = {:.3}°",
-            route.travel_m, last.theta_deg, last.alpha_deg, last.beta_deg, last.gamma_deg
+            route.travel_m,
+            last.theta_deg,
+            last.alpha_deg,
+            last.beta_deg,
+            last.gamma_deg
         );
     }
     if let Some(fs) = route.factor_of_safety {
-        println!("  factor of safety {fs} (friction cones at the start)");
+        outln!("  factor of safety {fs} (friction cones at the start)");
     }
     if let Some(ratio) = route.paper_ratio {
-        println!("  the paper's resisting/driving ratio along x' at the start {ratio:.4}");
+        outln!("  the paper's resisting/driving ratio along x' at the start {ratio:.4}");
     }
-    println!(
+    outln!(
         "  {} increments ({} dynamics, {} mode, {} integrator) in {:.3} s",
         route.increments,
         route.dynamics.as_str(),
@@ -309,14 +374,17 @@ fn run_cmd(
         } else {
             format!("kinetic {:.6e} J", e.kinetic_j)
         };
-        println!(
+        outln!(
             "  energy: hydraulic work {:.6e} J, friction work {:.6e} J, {kinetic}, \
              potential change {:.6e} J, balance residual {:.3e} J",
-            e.work_hydraulic_j, e.work_friction_j, e.potential_change_j, e.residual_j
+            e.work_hydraulic_j,
+            e.work_friction_j,
+            e.potential_change_j,
+            e.residual_j
         );
     }
     let names: Vec<String> = files.iter().map(|f| f.display().to_string()).collect();
-    println!("  wrote {}", names.join(", "));
+    outln!("  wrote {}", names.join(", "));
     Ok(())
 }
 
@@ -325,11 +393,11 @@ fn compare_cmd(
     out: &std::path::Path,
     quiet: bool,
     no_plots: bool,
-) -> Result<(), String> {
+) -> Result<(), CliError> {
     let scene = load(scene)?;
     let c = slideroute::compare::compare_dynamics(&scene).map_err(|e| e.to_string())?;
     #[allow(unused_mut)]
-    let mut files = slideroute::output::compare_files::write(out, &c)?;
+    let mut files = slideroute::output::compare_files::write(out, &c).map_err(failed)?;
     #[cfg(feature = "plots")]
     if !no_plots {
         use plotters::style::RGBColor;
@@ -357,7 +425,8 @@ fn compare_cmd(
                     RGBColor(230, 140, 0),
                 ),
             ],
-        )?;
+        )
+        .map_err(failed)?;
         files.push(path);
     }
     #[cfg(not(feature = "plots"))]
@@ -370,7 +439,7 @@ fn compare_cmd(
         ("rigid body", &c.rigid_body),
     ] {
         let last = r.rows.last();
-        println!(
+        outln!(
             "{name}: {} at t = {} s; travel {:.3} m, final yaw θ = {:.3}°",
             r.termination.reason,
             r.termination.t_s,
@@ -380,18 +449,18 @@ fn compare_cmd(
     }
     let p = &c.parting;
     match p.parted_at_s {
-        Some(t) => println!(
+        Some(t) => outln!(
             "  the routes part (CM {:.3} m apart, 1% of L) at t = {t:.3} s, near X = {:.3} m, Z = {:.3} m",
             p.threshold_m,
             p.parted_at_x_m.unwrap_or(f64::NAN),
             p.parted_at_z_m.unwrap_or(f64::NAN)
         ),
-        None => println!(
+        None => outln!(
             "  the routes stay within {:.3} m (1% of L) while both run",
             p.threshold_m
         ),
     }
-    println!(
+    outln!(
         "  until t = {:.3} s: largest separation {:.3} m (at {:.3} s); at the end {:.3} m apart, yaw rigid − paper {:+.3}°",
         p.common_until_s,
         p.max_separation_m,
@@ -400,7 +469,7 @@ fn compare_cmd(
         p.yaw_difference_at_end_deg
     );
     let names: Vec<String> = files.iter().map(|f| f.display().to_string()).collect();
-    println!("  wrote {}", names.join(", "));
+    outln!("  wrote {}", names.join(", "));
     Ok(())
 }
 
@@ -409,7 +478,7 @@ fn sweep_cmd(
     vary: &[String],
     out: &std::path::Path,
     quiet: bool,
-) -> Result<(), String> {
+) -> Result<(), CliError> {
     let (text, origin) = match &scene.scene {
         Some(p) => (
             std::fs::read_to_string(p)
@@ -433,23 +502,25 @@ fn sweep_cmd(
         return Err(format!(
             "--vary: {n} combinations, more than the {} one sweep may run",
             slideroute::sweep::MAX_COMBINATIONS
-        ));
+        )
+        .into());
     }
     let bar = progress_bar(quiet, n as u64, "sweep");
     let rows = slideroute::sweep::run(&text, &origin, &varies, || bar.inc(1))?;
     bar.finish_and_clear();
-    std::fs::create_dir_all(out).map_err(|e| format!("{}: cannot create: {e}", out.display()))?;
+    std::fs::create_dir_all(out)
+        .map_err(|e| failed(format!("{}: cannot create: {e}", out.display())))?;
     let csv_path = out.join("sweep.csv");
     let file = std::fs::File::create(&csv_path)
-        .map_err(|e| format!("{}: cannot write: {e}", csv_path.display()))?;
+        .map_err(|e| failed(format!("{}: cannot write: {e}", csv_path.display())))?;
     slideroute::output::sweep_files::write_csv(file, &varies, &rows)
-        .map_err(|e| format!("{}: {e}", csv_path.display()))?;
+        .map_err(|e| failed(format!("{}: {e}", csv_path.display())))?;
     #[allow(unused_mut)]
     let mut written = vec![csv_path.display().to_string()];
     #[cfg(feature = "plots")]
     {
         let svg = out.join("sweep.svg");
-        slideroute::output::plots::sweep(&svg, &varies, &rows)?;
+        slideroute::output::plots::sweep(&svg, &varies, &rows).map_err(failed)?;
         written.push(svg.display().to_string());
     }
     if !quiet {
@@ -458,13 +529,13 @@ fn sweep_cmd(
             *counts.entry(r.reason.as_str()).or_default() += 1;
         }
         let summary: Vec<String> = counts.iter().map(|(k, v)| format!("{v} × {k}")).collect();
-        println!("{n} combinations: {}", summary.join(", "));
-        println!("wrote {}", written.join(", "));
+        outln!("{n} combinations: {}", summary.join(", "));
+        outln!("wrote {}", written.join(", "));
     }
     Ok(())
 }
 
-fn report_cmd(quick: bool, out: &std::path::Path, quiet: bool) -> Result<(), String> {
+fn report_cmd(quick: bool, out: &std::path::Path, quiet: bool) -> Result<(), CliError> {
     let bar = progress_bar(
         quiet,
         slideroute::report::point_count(quick) as u64,
@@ -473,16 +544,17 @@ fn report_cmd(quick: bool, out: &std::path::Path, quiet: bool) -> Result<(), Str
     let (points, references) = slideroute::report::work_precision(quick, || bar.inc(1))?;
     bar.finish_and_clear();
     let extreme = slideroute::report::extreme(if quick { 20 } else { 200 });
-    std::fs::create_dir_all(out).map_err(|e| format!("{}: cannot create: {e}", out.display()))?;
+    std::fs::create_dir_all(out)
+        .map_err(|e| failed(format!("{}: cannot create: {e}", out.display())))?;
     let csv_path = out.join("work-precision.csv");
     let file = std::fs::File::create(&csv_path)
-        .map_err(|e| format!("{}: cannot write: {e}", csv_path.display()))?;
+        .map_err(|e| failed(format!("{}: cannot write: {e}", csv_path.display())))?;
     slideroute::output::report_files::write_csv(file, &points)
-        .map_err(|e| format!("{}: {e}", csv_path.display()))?;
+        .map_err(|e| failed(format!("{}: {e}", csv_path.display())))?;
     let md = slideroute::output::report_files::markdown(&points, &references, &extreme, quick);
     let md_path = out.join("work-precision.md");
     std::fs::write(&md_path, &md)
-        .map_err(|e| format!("{}: cannot write: {e}", md_path.display()))?;
+        .map_err(|e| failed(format!("{}: cannot write: {e}", md_path.display())))?;
     #[allow(unused_mut)]
     let mut written = vec![
         csv_path.display().to_string(),
@@ -491,17 +563,20 @@ fn report_cmd(quick: bool, out: &std::path::Path, quiet: bool) -> Result<(), Str
     #[cfg(feature = "plots")]
     {
         let svg = out.join("work-precision.svg");
-        slideroute::output::plots::work_precision(&svg, &points)?;
+        slideroute::output::plots::work_precision(&svg, &points).map_err(failed)?;
         written.push(svg.display().to_string());
     }
     if !quiet {
         for r in &references {
-            println!(
+            outln!(
                 "reference {}: dt {:.4e} s, change at dt/2 {:.1e} m (bound {:.0e} m)",
-                r.scene, r.dt_s, r.change_m, r.bound_m
+                r.scene,
+                r.dt_s,
+                r.change_m,
+                r.bound_m
             );
         }
-        println!(
+        outln!(
             "{} points, {} extreme cases; wrote {}",
             points.len(),
             extreme.len(),
@@ -511,10 +586,10 @@ fn report_cmd(quick: bool, out: &std::path::Path, quiet: bool) -> Result<(), Str
     Ok(())
 }
 
-fn scene_cmd(print_default: bool, check: Option<&PathBuf>) -> Result<(), String> {
+fn scene_cmd(print_default: bool, check: Option<&PathBuf>) -> Result<(), CliError> {
     match (print_default, check) {
         (true, _) => {
-            print!("{}", slideroute::scene::DEFAULT_SCENE_TOML);
+            out!("{}", slideroute::scene::DEFAULT_SCENE_TOML);
             Ok(())
         }
         (false, Some(p)) => {
@@ -525,12 +600,14 @@ fn scene_cmd(print_default: bool, check: Option<&PathBuf>) -> Result<(), String>
                     "geometry only (frame, foundation)"
                 }
                 // Present but not runnable as written (e.g. small-angle with the rigid body).
-                Err(e) => return Err(e.to_string()),
+                Err(e) => return Err(e.to_string().into()),
             };
-            println!("{}: ok ({sections})", p.display());
+            outln!("{}: ok ({sections})", p.display());
             Ok(())
         }
-        (false, None) => Err("scene: say --print-default or --check FILE".to_string()),
+        (false, None) => Err("scene: say --print-default or --check FILE"
+            .to_string()
+            .into()),
     }
 }
 

@@ -684,3 +684,63 @@ fn roots_at_the_rest_pose_select_the_flat_frame() {
         "{out}"
     );
 }
+
+#[test]
+fn a_closed_pipe_on_stdout_ends_quietly() {
+    // Issue #13, item 5: like `slideroute roots … --json | head -0`, whoever reads standard
+    // output has gone before it is written. It used to panic ("failed printing to stdout", exit
+    // 101); now it ends quietly, as other Unix tools do.
+    for args in [
+        vec![
+            "roots",
+            "--x",
+            "1",
+            "--z",
+            "0",
+            "--theta-deg",
+            "0",
+            "--json",
+        ],
+        vec!["scene", "--print-default"],
+    ] {
+        let (reader, writer) = std::io::pipe().unwrap();
+        drop(reader);
+        let o = Command::new(env!("CARGO_BIN_EXE_slideroute"))
+            .args(&args)
+            .stdout(writer)
+            .output()
+            .unwrap();
+        assert_eq!(o.status.code(), Some(0), "{args:?}: {}", stderr(&o));
+        assert!(stderr(&o).is_empty(), "{args:?}: {}", stderr(&o));
+    }
+}
+
+#[test]
+fn a_full_disk_is_a_one_line_failure_with_exit_code_1() {
+    // Issue #13, item 5: standard output on a full device (/dev/full) and an output folder that
+    // cannot be made are failures, not bad input: one line, exit 1.
+    let full = std::fs::File::options()
+        .write(true)
+        .open("/dev/full")
+        .unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_slideroute"))
+        .args(["scene", "--print-default"])
+        .stdout(full)
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let err = stderr(&o);
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(
+        err.contains("standard output") && !err.contains("panicked"),
+        "{err}"
+    );
+    let o = run(&["run", "--quiet", "--out", "/dev/full/out"]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("/dev/full/out"), "{}", stderr(&o));
+    // Bad input stays exit 2.
+    assert_bad_input(
+        &run(&["run", "--scene", "/nonexistent.toml"]),
+        &["/nonexistent.toml"],
+    );
+}
