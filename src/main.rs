@@ -213,10 +213,15 @@ fn fail(e: CliError) -> ExitCode {
 }
 
 fn load(arg: &SceneArg) -> Result<Scene, String> {
-    match &arg.scene {
-        Some(p) => Scene::from_file(p).map_err(|e| e.to_string()),
-        None => Ok(Scene::default_scene()),
+    let scene = match &arg.scene {
+        Some(p) => Scene::from_file(p).map_err(|e| e.to_string())?,
+        None => Scene::default_scene(),
+    };
+    // Likely mistakes get a line on standard error, not silence.
+    for w in scene.warnings() {
+        eprintln!("slideroute: warning: {w}");
     }
+    Ok(scene)
 }
 
 fn displacement(p: &PoseArgs) -> Result<Displacement, String> {

@@ -386,3 +386,37 @@ fn a_kicked_block_stops_exactly_at_rest() {
     println!("stop at {t1:.6} {t2:.6} {t4:.6} s; gap ratio {ratio:.2}");
     assert!((1.5..2.5).contains(&ratio), "{ratio}");
 }
+
+#[test]
+fn the_last_increment_ends_exactly_at_t_end_and_the_final_state_is_the_last_row() {
+    // Issue #13: t_end_s = 1.1605 with dt 1 ms ran to 1.161 s; a stride > 1 dropped the final
+    // state from route.csv (by up to stride − 1 increments), also where a route ends early.
+    for dynamics in [DynamicsModel::Paper, DynamicsModel::RigidBody] {
+        for (t_end, stride) in [(1.1605, 7), (0.05, 1)] {
+            let mut s = paper_scene().with_dynamics(dynamics);
+            let sv = s.solver.as_mut().unwrap();
+            sv.t_end = t_end;
+            sv.stride = stride;
+            let r = run(&s);
+            assert_eq!(r.termination.reason, Reason::TimeLimit, "{dynamics:?}");
+            assert_eq!(r.termination.t_s, t_end, "{dynamics:?}");
+            assert_eq!(
+                r.rows.last().unwrap().t_s,
+                t_end,
+                "{dynamics:?} {t_end} {stride}"
+            );
+        }
+        // An early end (the paper's dynamics at 2.024 s; the rigid body's at 4.36 s) with a
+        // stride: its last state is still the last row.
+        let mut s = paper_scene().with_dynamics(dynamics);
+        s.solver.as_mut().unwrap().stride = 7;
+        let r = run(&s);
+        assert_ne!(r.termination.reason, Reason::TimeLimit);
+        assert_eq!(
+            r.rows.last().unwrap().t_s,
+            r.termination.t_s,
+            "{dynamics:?}: {:?}",
+            r.termination
+        );
+    }
+}

@@ -354,7 +354,7 @@ pub(super) fn slide(
     let solver = *dynamics.solver;
     let dt = solver.dt;
     let stride = solver.stride.max(1);
-    let n_steps = (solver.t_end / dt).round().max(1.0) as usize;
+    let n_steps = super::run::increments(solver.t_end, dt);
     let mass = dynamics.block.mass;
     let g = dynamics.loads.gravity;
     let mut o = Outcome::new();
@@ -435,7 +435,8 @@ pub(super) fn slide(
     // the motion (see `MIN_SUBSTEP`), and grown back by doubling.
     let mut h = dt;
     for k in 1..=n_steps {
-        let t_target = k as f64 * dt;
+        // The last increment ends exactly at t_end.
+        let t_target = super::run::increment_end(solver.t_end, dt, k);
         // Substeps until the increment's end; events (a stop, a pivot) cut them.
         let mut events = 0usize;
         while t < t_target * (1.0 - 1e-15) {
@@ -454,7 +455,7 @@ pub(super) fn slide(
             let fail = |o: Outcome, y: &Y, ev: &Eval, s: Stop| {
                 let mut o = o;
                 o.energy = Some(balance(y, ev, start));
-                o.end(s.reason, t, s.detail)
+                o.finish(row(t, y, ev), s.reason, t, s.detail)
             };
             // The step, and the state at its end. Where either fails (a stage or the end
             // state off the model: a contact lifting off, leaving its plane's region, …) the

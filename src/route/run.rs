@@ -67,6 +67,15 @@ impl Outcome {
         }
     }
 
+    /// The route ends for `reason` at `t`, its last state `last` recorded as the last row
+    /// whatever the stride (issue #13).
+    pub fn finish(mut self, last: Row, reason: Reason, t: f64, detail: String) -> Self {
+        if self.rows.last().is_none_or(|r| r.t_s != last.t_s) {
+            self.rows.push(last);
+        }
+        self.end(reason, t, detail)
+    }
+
     /// The route ends for `reason` at `t`.
     pub fn end(mut self, reason: Reason, t: f64, detail: String) -> Self {
         self.termination = Termination {
@@ -135,6 +144,26 @@ pub fn run_with(
         energy: o.energy,
         wall_s: started.elapsed().as_secs_f64(),
     })
+}
+
+/// The number of increments of dt that reach `t_end`: the last may be shorter, so that the route
+/// ends exactly at `t_end` (issue #13); a remainder below 1e-9·dt is dropped as round-off.
+pub(super) fn increments(t_end: f64, dt: f64) -> usize {
+    ((t_end / dt - 1e-9).ceil()).max(1.0) as usize
+}
+
+/// The time at which increment `k` (1-based) ends: k·dt, and `t_end` for the last.
+pub(super) fn increment_end(t_end: f64, dt: f64, k: usize) -> f64 {
+    if k >= increments(t_end, dt) {
+        t_end
+    } else {
+        k as f64 * dt
+    }
+}
+
+/// The length of increment `k`.
+fn increment_length(t_end: f64, dt: f64, k: usize) -> f64 {
+    increment_end(t_end, dt, k) - (k - 1) as f64 * dt
 }
 
 /// Where the paper's dynamics cannot start or continue the block, the detail says so and names
@@ -221,9 +250,10 @@ fn slide(
     }
 
     let stride = solver.stride.max(1);
-    let n_steps = (solver.t_end / dt).round().max(1.0) as usize;
+    let n_steps = increments(solver.t_end, dt);
     for k in 1..=n_steps {
-        // Advance one increment.
+        // Advance one increment; the last one ends exactly at t_end.
+        let dt = increment_length(solver.t_end, dt, k);
         let next = match solver.integrator {
             Integrator::Paper => Ok(paper_step(&state, &ev.acc, dt)),
             Integrator::Rk4 => {
@@ -244,12 +274,14 @@ fn slide(
             }
         };
         let next = match next {
-            // Time as k·dt, not a running sum.
+            // Time as k·dt (t_end at the last), not a running sum.
             Ok(n) => State {
-                t: k as f64 * dt,
+                t: increment_end(solver.t_end, solver.dt, k),
                 ..n
             },
-            Err(Stop { reason, detail }) => return o.end(reason, state.t, detail),
+            Err(Stop { reason, detail }) => {
+                return o.finish(row(&state, Some(&ev), &ev.pose), reason, state.t, detail);
+            }
         };
         let new_ev = match evaluate(
             scene,
@@ -260,7 +292,9 @@ fn slide(
             velocity(&next),
         ) {
             Ok(e) => e,
-            Err(Stop { reason, detail }) => return o.end(reason, state.t, detail),
+            Err(Stop { reason, detail }) => {
+                return o.finish(row(&state, Some(&ev), &ev.pose), reason, state.t, detail);
+            }
         };
         if new_ev.fresh {
             o.switches += 1;
@@ -291,7 +325,9 @@ fn slide(
                 None,
             ) {
                 Ok(e) => e,
-                Err(Stop { reason, detail }) => return o.end(reason, state.t, detail),
+                Err(Stop { reason, detail }) => {
+                    return o.finish(row(&state, Some(&ev), &ev.pose), reason, state.t, detail);
+                }
             };
             let applied = Applied::new(dynamics.loads, dynamics.block, &stop_ev.geom.frame);
             let (fs_here, _, _) =

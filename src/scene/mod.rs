@@ -290,6 +290,35 @@ impl Scene {
         self.frame.l()
     }
 
+    /// Values that are valid but likely mistakes, one line each naming the key (issue #13): a
+    /// dip under 1° (often radians typed as degrees) and a friction coefficient over 2.
+    pub fn warnings(&self) -> Vec<String> {
+        let mut w = Vec::new();
+        for (key, dip) in [
+            ("foundation.xi_deg", self.foundation.xi),
+            ("foundation.zeta_deg", self.foundation.zeta),
+        ] {
+            let deg = dip.to_degrees();
+            if deg < 1.0 {
+                w.push(format!(
+                    "{}: {key}: a dip of {deg}° is under 1° — degrees are meant (were radians \
+                     typed?)",
+                    self.origin
+                ));
+            }
+        }
+        if let Some(Friction::Coulomb { mu_k }) = self.friction {
+            if mu_k > 2.0 {
+                w.push(format!(
+                    "{}: friction.mu_k: μ = {mu_k} is over 2, far above any rock joint's (about \
+                     0.3–1)",
+                    self.origin
+                ));
+            }
+        }
+        w
+    }
+
     /// The block, loads, friction and solver sections, or an error naming the first missing one.
     pub fn require_dynamics(&self) -> Result<Dynamics<'_>, SceneError> {
         let missing = |section: &str| {
@@ -482,6 +511,19 @@ fn validate(raw: raw::RawScene, o: &str) -> Result<Scene, SceneError> {
         l2z: positive(o, "frame.l2z", f.l2z)?,
     };
     let (lx, lz) = (frame.l1x + frame.l2x, frame.l1z + frame.l2z);
+    // Each length is finite, but their sum (L, on which every derived length and the pose's
+    // coordinates rest) may not be (issue #13: 1.5e308 m each gave NaN tilts); nor may L²,
+    // which the pose and the inertia scales use.
+    if !(lx * lx).is_finite() || !(lz * lz).is_finite() {
+        return Err(SceneError::new(
+            o,
+            "frame",
+            format!(
+                "l1x + l2x = {lx:e} m and l1z + l2z = {lz:e} m: the frame's side L (and L²) must \
+                 be finite numbers"
+            ),
+        ));
+    }
     if (lx - lz).abs() > FRAME_TOLERANCE * lx.max(lz) {
         return Err(SceneError::new(
             o,
@@ -554,6 +596,16 @@ fn validate(raw: raw::RawScene, o: &str) -> Result<Scene, SceneError> {
         }),
     };
     if let Some(s) = &raw.solver {
+        if s.dt_s > s.t_end_s && s.t_end_s > 0.0 {
+            return Err(SceneError::new(
+                o,
+                "solver.dt_s",
+                format!(
+                    "the increment ({} s) is longer than the whole route (t_end_s = {} s)",
+                    s.dt_s, s.t_end_s
+                ),
+            ));
+        }
         let n = s.t_end_s / s.dt_s;
         if s.dt_s > 0.0 && s.t_end_s > 0.0 && n > MAX_INCREMENTS {
             return Err(SceneError::new(

@@ -468,3 +468,39 @@ fn rigid_body_with_small_angle_geometry_is_refused_naming_the_mode() {
     let paper = s.with_dynamics(DynamicsModel::Paper);
     assert!(paper.require_dynamics().is_ok());
 }
+
+#[test]
+fn an_increment_longer_than_the_route_is_an_error_naming_solver_dt_s() {
+    // Issue #13: dt_s 30 with t_end_s 20 ran and ended "no admissible root".
+    assert_names(
+        &with("dt_s = 1.0e-3", "dt_s = 30.0"),
+        "solver.dt_s",
+        "longer than the whole route",
+    );
+}
+
+#[test]
+fn a_frame_whose_side_overflows_is_an_error_naming_the_frame() {
+    // Issue #13: four lengths of 1.5e308 m passed and wrote NaN tilts.
+    let text = ["l1x = 6.0", "l2x = 4.0", "l1z = 5.0", "l2z = 5.0"]
+        .iter()
+        .fold(GOOD.to_string(), |t, k| {
+            t.replace(k, &format!("{} = 1.5e308", &k[..3]))
+        });
+    assert_names(&text, "frame", "must be finite");
+}
+
+#[test]
+fn likely_mistakes_give_warnings_naming_the_key() {
+    // Issue #13: a dip under 1° (radians typed as degrees) and μ over 2 ran without a word.
+    let s = Scene::from_toml(GOOD, "d").unwrap();
+    assert!(s.warnings().is_empty(), "{:?}", s.warnings());
+    let text = with("xi_deg = 20.0", "xi_deg = 0.35").replace("mu_k = 0.40", "mu_k = 22");
+    let w = Scene::from_toml(&text, "d").unwrap().warnings();
+    assert_eq!(w.len(), 2, "{w:?}");
+    assert!(
+        w[0].contains("foundation.xi_deg") && w[0].contains("radians"),
+        "{w:?}"
+    );
+    assert!(w[1].contains("friction.mu_k"), "{w:?}");
+}
