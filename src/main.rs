@@ -344,7 +344,12 @@ fn run_cmd(
         return Ok(());
     }
     let t = &route.termination;
-    outln!("scene {}: {} at t = {} s", route.scene, t.reason, t.t_s);
+    outln!(
+        "scene {}: {} at t = {} s",
+        route.scene,
+        t.reason,
+        slideroute::numeric::seconds(t.t_s)
+    );
     outln!("  {}", t.detail);
     if let Some(last) = route.rows.last() {
         outln!(
@@ -447,7 +452,7 @@ fn compare_cmd(
         outln!(
             "{name}: {} at t = {} s; travel {:.3} m, final yaw θ = {:.3}°",
             r.termination.reason,
-            r.termination.t_s,
+            slideroute::numeric::seconds(r.termination.t_s),
             r.travel_m,
             last.map_or(0.0, |l| l.theta_deg)
         );
@@ -534,7 +539,8 @@ fn sweep_cmd(
             *counts.entry(r.reason.as_str()).or_default() += 1;
         }
         let summary: Vec<String> = counts.iter().map(|(k, v)| format!("{v} × {k}")).collect();
-        outln!("{n} combinations: {}", summary.join(", "));
+        let plural = if n == 1 { "" } else { "s" };
+        outln!("{n} combination{plural}: {}", summary.join(", "));
         outln!("wrote {}", written.join(", "));
     }
     Ok(())

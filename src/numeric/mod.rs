@@ -2,6 +2,9 @@
 //! dense polynomial products.
 
 pub mod hessenberg;
+mod shown;
+
+pub use shown::{Shown, fixed, seconds};
 
 /// An angle folded into (−π, π] by arithmetic (no trigonometric calls).
 #[inline]

@@ -118,9 +118,9 @@ impl fmt::Display for RootsReport {
             "scene {} ({} mode): X = {} m, Z = {} m, θ = {}°",
             self.scene,
             self.mode.as_str(),
-            self.x_m,
-            self.z_m,
-            self.theta_deg
+            crate::numeric::fixed(self.x_m, 6),
+            crate::numeric::fixed(self.z_m, 6),
+            crate::numeric::fixed(self.theta_deg, 6)
         )?;
         match (&self.selected, &self.selection_error) {
             (Some(s), _) => writeln!(

@@ -17,6 +17,7 @@ use super::classify::{Inadmissible, REGION_TOL, check_pose_within, exact_mirrore
 use super::system::Equations;
 use crate::coeffs::{CoeffInputs, FoundationTrig};
 use crate::geometry::{Displacement, Pose};
+use crate::numeric::fixed;
 use crate::scene::{Mode, Scene};
 
 /// A point on the followed branch: displacement and u = (α, β) (small-angle) or (α, ψ) (exact).
@@ -33,7 +34,10 @@ pub enum TrackError {
     NonFinite(Displacement),
     /// The corrector failed at every step size down to the minimum: a turning point, roots
     /// merging, or the equations losing a real solution.
-    #[error("the branch ends near X = {x:.6} m, Z = {z:.6} m, θ = {theta_deg:.6}°: {diagnosis}")]
+    #[error(
+        "the branch ends near X = {} m, Z = {} m, θ = {}°: {diagnosis}",
+        fixed(*x, 6), fixed(*z, 6), fixed(*theta_deg, 6)
+    )]
     BranchEnded {
         x: f64,
         z: f64,
@@ -41,7 +45,10 @@ pub enum TrackError {
         diagnosis: String,
     },
     /// The branch continues but the pose is no longer admissible.
-    #[error("at X = {x:.6} m, Z = {z:.6} m, θ = {theta_deg:.6}°: {reason}")]
+    #[error(
+        "at X = {} m, Z = {} m, θ = {}°: {reason}",
+        fixed(*x, 6), fixed(*z, 6), fixed(*theta_deg, 6)
+    )]
     Inadmissible {
         x: f64,
         z: f64,

@@ -20,6 +20,7 @@ use crate::geometry::{Displacement, Pose};
 use crate::mechanics::loads::Applied;
 use crate::mechanics::reactions_paper::{self, Reaction, ReactionsError};
 use crate::mechanics::{ContactGeometry, statics};
+use crate::numeric::fixed;
 use crate::scene::{Dynamics, Scene};
 use nalgebra::Vector3;
 
@@ -107,10 +108,10 @@ pub fn evaluate(
                 .ok_or_else(|| Stop {
                     reason: Reason::NoFrictionSolution,
                     detail: format!(
-                        "no solution with N0 > 0 at X = {:.6} m, Z = {:.6} m, θ = {:.6}°",
-                        d.x,
-                        d.z,
-                        d.theta.to_degrees()
+                        "no solution with N0 > 0 at X = {} m, Z = {} m, θ = {}°",
+                        fixed(d.x, 6),
+                        fixed(d.z, 6),
+                        fixed(d.theta.to_degrees(), 6)
                     ),
                 })?;
             let continued =

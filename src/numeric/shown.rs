@@ -1,0 +1,71 @@
+//! Numbers for people (issue #13): messages give a length, a time or an angle at a sensible
+//! precision, not every digit of a double (`t = 1.6260000000000001 s`) nor 300 digits of a huge
+//! input (`--x 1e308`). Files (CSV, JSON) keep full precision; these are for messages only.
+
+use std::fmt;
+
+/// `value` with `decimals` decimals; in scientific notation past 1e6 in size (or for a value
+/// that is not finite, as Rust writes it); with `trim`, trailing zeros of the decimals dropped
+/// (`1.626`, not `1.626000`).
+#[derive(Debug, Clone, Copy)]
+pub struct Shown {
+    value: f64,
+    decimals: usize,
+    trim: bool,
+}
+
+/// A length or an angle at `decimals` decimals.
+pub fn fixed(value: f64, decimals: usize) -> Shown {
+    Shown {
+        value,
+        decimals,
+        trim: false,
+    }
+}
+
+/// A time or a duration: to the microsecond, trailing zeros dropped.
+pub fn seconds(value: f64) -> Shown {
+    Shown {
+        value,
+        decimals: 6,
+        trim: true,
+    }
+}
+
+impl fmt::Display for Shown {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let v = self.value;
+        if !v.is_finite() || v.abs() >= 1e6 {
+            return write!(f, "{v:.4e}");
+        }
+        let s = format!("{v:.*}", self.decimals);
+        if self.trim && s.contains('.') {
+            let t = s.trim_end_matches('0').trim_end_matches('.');
+            // −0 after trimming reads as 0.
+            f.write_str(if t == "-0" { "0" } else { t })
+        } else {
+            f.write_str(&s)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn times_drop_float_noise_and_trailing_zeros() {
+        assert_eq!(seconds(1.6260000000000001).to_string(), "1.626");
+        assert_eq!(seconds(4.364835837701146).to_string(), "4.364836");
+        assert_eq!(seconds(3.0).to_string(), "3");
+        assert_eq!(seconds(0.0).to_string(), "0");
+    }
+
+    #[test]
+    fn huge_and_non_finite_values_are_short() {
+        assert_eq!(fixed(1e308, 6).to_string(), "1.0000e308");
+        assert_eq!(fixed(-2.5e7, 3).to_string(), "-2.5000e7");
+        assert_eq!(fixed(f64::INFINITY, 6).to_string(), "inf");
+        assert_eq!(fixed(0.123456789, 6).to_string(), "0.123457");
+    }
+}
