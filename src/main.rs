@@ -82,6 +82,9 @@ enum Command {
         /// `loads.hydraulic_force_n=6e6:1e7:9`). Repeat for more keys; every combination is run.
         #[arg(long, value_name = "KEY=START:STOP:COUNT", required = true)]
         vary: Vec<String>,
+        /// Dynamics model for every combination, overriding the scene's `[solver] dynamics`.
+        #[arg(long, value_enum)]
+        dynamics: Option<DynamicsModel>,
         /// Output folder (created if needed).
         #[arg(long, value_name = "DIR", default_value = "out")]
         out: PathBuf,
@@ -486,10 +489,11 @@ fn compare_cmd(
 fn sweep_cmd(
     scene: &SceneArg,
     vary: &[String],
+    dynamics: Option<DynamicsModel>,
     out: &std::path::Path,
     quiet: bool,
 ) -> Result<(), CliError> {
-    let (text, origin) = match &scene.scene {
+    let (mut text, origin) = match &scene.scene {
         Some(p) => (
             std::fs::read_to_string(p)
                 .map_err(|e| format!("{}: cannot read the file: {e}", p.display()))?,
@@ -502,6 +506,10 @@ fn sweep_cmd(
     };
     // The base scene must itself be valid.
     Scene::from_toml(&text, &origin).map_err(|e| e.to_string())?;
+    if let Some(model) = dynamics {
+        text = slideroute::sweep::with_dynamics(&text, model)?;
+        Scene::from_toml(&text, &origin).map_err(|e| e.to_string())?;
+    }
     let varies = vary
         .iter()
         .map(|v| slideroute::sweep::parse_vary(v))
@@ -642,9 +650,10 @@ fn main() -> ExitCode {
         Command::Sweep {
             scene,
             vary,
+            dynamics,
             out,
             quiet,
-        } => sweep_cmd(scene, vary, out, *quiet),
+        } => sweep_cmd(scene, vary, *dynamics, out, *quiet),
         Command::Report { quick, out, quiet } => report_cmd(*quick, out, *quiet),
         Command::Scene {
             print_default,

@@ -55,8 +55,15 @@ pub fn parse_vary(s: &str) -> Result<Vary, String> {
     let values = if n == 1 {
         vec![a]
     } else {
+        // STOP itself as the last value, not START + (STOP − START) with its rounding.
         (0..n)
-            .map(|k| a + (b - a) * k as f64 / (n - 1) as f64)
+            .map(|k| {
+                if k == n - 1 {
+                    b
+                } else {
+                    a + (b - a) * k as f64 / (n - 1) as f64
+                }
+            })
             .collect()
     };
     Ok(Vary {
@@ -98,6 +105,27 @@ fn row_of(values: Vec<f64>, route: &Route) -> SweepRow {
     }
 }
 
+/// The scene text with `[solver] dynamics` set to `model` (`sweep --dynamics`); the integrator
+/// key is dropped so that each dynamics takes its own default.
+pub fn with_dynamics(
+    base_text: &str,
+    model: crate::scene::DynamicsModel,
+) -> Result<String, String> {
+    let mut table: toml::Table = base_text
+        .parse()
+        .map_err(|e: toml::de::Error| e.message().to_string())?;
+    let solver = table
+        .get_mut("solver")
+        .and_then(|s| s.as_table_mut())
+        .ok_or("--dynamics: the scene has no [solver] section")?;
+    solver.insert(
+        "dynamics".into(),
+        toml::Value::String(model.as_str().into()),
+    );
+    solver.remove("integrator");
+    toml::to_string(&table).map_err(|e| e.to_string())
+}
+
 /// The number of combinations (saturating).
 pub fn count(varies: &[Vary]) -> usize {
     varies
@@ -113,7 +141,14 @@ pub fn check_keys(base_text: &str, varies: &[Vary]) -> Result<toml::Table, Strin
     let table: toml::Table = base_text
         .parse()
         .map_err(|e: toml::de::Error| e.message().to_string())?;
-    for v in varies {
+    for (k, v) in varies.iter().enumerate() {
+        if varies[..k].iter().any(|w| w.key == v.key) {
+            return Err(format!(
+                "--vary {}: the key is given twice (each key varies once; put all its values \
+                 in one range)",
+                v.key
+            ));
+        }
         let (section, key) = v.key.split_once('.').unwrap_or(("", ""));
         let sec = table
             .get(section)
@@ -134,13 +169,32 @@ pub fn check_keys(base_text: &str, varies: &[Vary]) -> Result<toml::Table, Strin
                         .join(", ")
                 )
             })?;
-        if !sec.contains_key(key) {
-            let names: Vec<&str> = sec.keys().map(String::as_str).collect();
-            return Err(format!(
-                "--vary {}: no key `{key}` in [{section}] (keys: {})",
-                v.key,
-                names.join(", ")
-            ));
+        match sec.get(key) {
+            None => {
+                let names: Vec<&str> = sec.keys().map(String::as_str).collect();
+                return Err(format!(
+                    "--vary {}: no key `{key}` in [{section}] (keys: {})",
+                    v.key,
+                    names.join(", ")
+                ));
+            }
+            // A whole-number key (such as solver.stride) takes whole numbers only.
+            Some(toml::Value::Integer(_)) => {
+                if let Some(x) = v.values.iter().find(|x| x.fract() != 0.0) {
+                    return Err(format!(
+                        "--vary {}: the key takes whole numbers, and the range gives {x}",
+                        v.key
+                    ));
+                }
+            }
+            Some(toml::Value::Float(_)) => {}
+            Some(other) => {
+                return Err(format!(
+                    "--vary {}: the key is a {}, not a number; a range cannot vary it",
+                    v.key,
+                    other.type_str()
+                ));
+            }
         }
     }
     Ok(table)
@@ -175,7 +229,11 @@ pub fn run(
             for (v, &x) in varies.iter().zip(&values) {
                 let (section, key) = v.key.split_once('.').unwrap_or(("", ""));
                 if let Some(sec) = t.get_mut(section).and_then(|s| s.as_table_mut()) {
-                    sec.insert(key.to_string(), toml::Value::Float(x));
+                    let value = match sec.get(key) {
+                        Some(toml::Value::Integer(_)) => toml::Value::Integer(x as i64),
+                        _ => toml::Value::Float(x),
+                    };
+                    sec.insert(key.to_string(), value);
                 }
             }
             let row = match toml::to_string(&t)

@@ -744,3 +744,113 @@ fn a_full_disk_is_a_one_line_failure_with_exit_code_1() {
         &["/nonexistent.toml"],
     );
 }
+
+#[test]
+fn sweep_keys_are_given_once_whole_number_keys_take_whole_numbers_and_stop_is_hit_exactly() {
+    // Issue #13, item 7.
+    let dir = temp_dir("sweep-keys");
+    let d = dir.to_str().unwrap();
+    assert_bad_input(
+        &run(&[
+            "sweep",
+            "--quiet",
+            "--out",
+            d,
+            "--vary",
+            "friction.mu_k=0.3:0.5:2",
+            "--vary",
+            "friction.mu_k=0.4:0.6:2",
+        ]),
+        &["friction.mu_k", "twice"],
+    );
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = dir.join("stride.toml");
+    std::fs::write(
+        &scene,
+        slideroute::scene::DEFAULT_SCENE_TOML
+            .replace("# stride = 1             #", "stride = 1 #")
+            .replace("t_end_s = 20.0", "t_end_s = 0.05"),
+    )
+    .unwrap();
+    let s = scene.to_str().unwrap();
+    assert_bad_input(
+        &run(&[
+            "sweep",
+            "--quiet",
+            "--scene",
+            s,
+            "--out",
+            d,
+            "--vary",
+            "solver.stride=1:10:3",
+        ]),
+        &["solver.stride", "whole numbers", "5.5"],
+    );
+    let o = run(&[
+        "sweep",
+        "--quiet",
+        "--scene",
+        s,
+        "--out",
+        d,
+        "--vary",
+        "solver.stride=1:10:4",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let csv = std::fs::read_to_string(dir.join("sweep.csv")).unwrap();
+    let strides: Vec<&str> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').next().unwrap())
+        .collect();
+    assert_eq!(strides, ["1", "4", "7", "10"]);
+    assert!(
+        csv.lines().skip(1).all(|l| !l.contains("invalid scene")),
+        "{csv}"
+    );
+    // STOP itself, not 0.1 + 0.6 with its rounding (0.7000000000000001).
+    let o = run(&[
+        "sweep",
+        "--quiet",
+        "--scene",
+        s,
+        "--out",
+        d,
+        "--vary",
+        "friction.mu_k=0.1:0.7:7",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let csv = std::fs::read_to_string(dir.join("sweep.csv")).unwrap();
+    assert_eq!(
+        csv.lines().last().unwrap().split(',').next().unwrap(),
+        "0.7"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn sweep_dynamics_flag_runs_every_combination_with_that_dynamics() {
+    // Issue #13, item 7: `sweep --dynamics paper` on the default (rigid-body) scene.
+    let dir = temp_dir("sweep-dynamics");
+    let d = dir.to_str().unwrap();
+    let o = run(&[
+        "sweep",
+        "--quiet",
+        "--dynamics",
+        "paper",
+        "--out",
+        d,
+        "--vary",
+        "friction.mu_k=0.4:0.4:1",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let csv = std::fs::read_to_string(dir.join("sweep.csv")).unwrap();
+    let row = csv.lines().nth(1).unwrap();
+    // The paper's dynamics end on the default scene: its frictional system at 2.024 s.
+    assert!(
+        row.contains("the paper's frictional system has no solution"),
+        "{row}"
+    );
+    assert!(row.contains(",2.024,"), "{row}");
+    let _ = std::fs::remove_dir_all(&dir);
+}
