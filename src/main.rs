@@ -275,8 +275,11 @@ fn roots_cmd(
     match (grid, out) {
         (Some(grid), Some(out)) => {
             let name = grid.display().to_string();
-            let file =
-                std::fs::File::open(grid).map_err(|e| format!("{name}: cannot read: {e}"))?;
+            let file = slideroute::scene::input::open_bounded(
+                grid,
+                slideroute::scene::input::MAX_GRID_BYTES,
+            )
+            .map_err(|e| format!("{name}: {e}"))?;
             let poses = grid_csv::read_poses(file, &name).map_err(|e| e.to_string())?;
             let reports = poses
                 .iter()
@@ -495,8 +498,8 @@ fn sweep_cmd(
 ) -> Result<(), CliError> {
     let (mut text, origin) = match &scene.scene {
         Some(p) => (
-            std::fs::read_to_string(p)
-                .map_err(|e| format!("{}: cannot read the file: {e}", p.display()))?,
+            slideroute::scene::input::read_bounded(p, slideroute::scene::input::MAX_SCENE_BYTES)
+                .map_err(|e| format!("{}: {e}", p.display()))?,
             p.display().to_string(),
         ),
         None => (

@@ -854,3 +854,37 @@ fn sweep_dynamics_flag_runs_every_combination_with_that_dynamics() {
     assert!(row.contains(",2.024,"), "{row}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn inputs_that_are_not_regular_files_or_too_large_are_refused() {
+    // Issue #13, item 4: `scene --check /dev/zero` grew to 3.3 GB, `roots --grid /dev/zero`
+    // aborted on an 8 GB allocation, a FIFO with no writer blocked for ever.
+    assert_bad_input(
+        &run(&["scene", "--check", "/dev/zero"]),
+        &["/dev/zero", "regular file"],
+    );
+    assert_bad_input(
+        &run(&["roots", "--grid", "/dev/zero", "--out", "/dev/null"]),
+        &["/dev/zero", "regular file"],
+    );
+    let dir = temp_dir("inputs");
+    std::fs::create_dir_all(&dir).unwrap();
+    let fifo = dir.join("fifo");
+    let made = Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .map(|s| s.success());
+    if made.unwrap_or(false) {
+        assert_bad_input(
+            &run(&["scene", "--check", fifo.to_str().unwrap()]),
+            &["fifo", "regular file"],
+        );
+    }
+    let big = dir.join("big.toml");
+    std::fs::write(&big, " ".repeat(2 << 20)).unwrap();
+    assert_bad_input(
+        &run(&["run", "--scene", big.to_str().unwrap()]),
+        &["big.toml", "bytes"],
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -6,6 +6,7 @@
 //! and radians in these types. Coordinates follow `shared/conventions.md` (README, "Coordinates").
 
 mod error;
+pub mod input;
 mod raw;
 
 pub use error::SceneError;
@@ -257,8 +258,8 @@ impl Scene {
     /// Reads and validates a scene file.
     pub fn from_file(path: &Path) -> Result<Scene, SceneError> {
         let origin = path.display().to_string();
-        let text = std::fs::read_to_string(path)
-            .map_err(|e| SceneError::new(&origin, "", format!("cannot read the file: {e}")))?;
+        let text = input::read_bounded(path, input::MAX_SCENE_BYTES)
+            .map_err(|e| SceneError::new(&origin, "", e))?;
         Scene::from_toml(&text, &origin)
     }
 
