@@ -319,6 +319,44 @@ fn progress_bar(quiet: bool, len: u64, what: &str) -> indicatif::ProgressBar {
     bar
 }
 
+/// route.csv, the pictures (unless `no_plots`) and summary.json (with the manifest, last) into
+/// the locked output folder, each whole or absent, replacing an earlier run's outputs there.
+fn write_route_folder(
+    mut folder: slideroute::output::folder::Folder,
+    scene: &Scene,
+    route: &slideroute::route::Route,
+    no_plots: bool,
+) -> Result<Vec<PathBuf>, String> {
+    use slideroute::output::route_files;
+    let mut files = vec![route_files::write_route_csv(
+        &mut folder,
+        "route.csv",
+        &route.rows,
+    )?];
+    #[cfg(feature = "plots")]
+    if !no_plots {
+        let staging = folder.staging()?;
+        for staged in slideroute::output::plots::write_route_plots(&staging, scene, route)? {
+            let name = staged
+                .file_name()
+                .map(|n| n.to_string_lossy().into_owned())
+                .unwrap_or_default();
+            files.push(folder.adopt(&name, &staged)?);
+        }
+    }
+    #[cfg(not(feature = "plots"))]
+    let _ = no_plots;
+    let manifest = route_files::Manifest::new(scene, &folder);
+    files.push(route_files::write_json_with_manifest(
+        &mut folder,
+        "summary.json",
+        route,
+        &manifest,
+    )?);
+    folder.finish()?;
+    Ok(files)
+}
+
 fn run_cmd(
     scene: &SceneArg,
     out: &std::path::Path,
@@ -330,22 +368,13 @@ fn run_cmd(
     if let Some(model) = dynamics {
         scene = scene.with_dynamics(model);
     }
+    // Locked before the work, so that a second run into the same folder is refused at once.
+    let folder = slideroute::output::folder::Folder::open(out).map_err(failed)?;
     let bar = progress_bar(quiet, 1000, "route");
     let route = slideroute::route::run_observed(&scene, |f| bar.set_position((f * 1000.0) as u64))
         .map_err(|e| e.to_string())?;
     bar.finish_and_clear();
-    #[allow(unused_mut)]
-    let mut files: Vec<PathBuf> = slideroute::output::route_files::write(out, &route)
-        .map_err(failed)?
-        .to_vec();
-    #[cfg(feature = "plots")]
-    if !no_plots {
-        files.extend(
-            slideroute::output::plots::write_route_plots(out, &scene, &route).map_err(failed)?,
-        );
-    }
-    #[cfg(not(feature = "plots"))]
-    let _ = no_plots;
+    let files = write_route_folder(folder, &scene, &route, no_plots).map_err(failed)?;
     if quiet {
         return Ok(());
     }
@@ -411,13 +440,14 @@ fn compare_cmd(
     no_plots: bool,
 ) -> Result<(), CliError> {
     let scene = load(scene)?;
+    let mut folder = slideroute::output::folder::Folder::open(out).map_err(failed)?;
     let c = slideroute::compare::compare_dynamics(&scene).map_err(|e| e.to_string())?;
     #[allow(unused_mut)]
-    let mut files = slideroute::output::compare_files::write(out, &c).map_err(failed)?;
+    let mut files =
+        slideroute::output::compare_files::write(&mut folder, &scene, &c).map_err(failed)?;
     #[cfg(feature = "plots")]
     if !no_plots {
         use plotters::style::RGBColor;
-        let path = out.join("compare-plan.svg");
         let title = format!("{}: plan view of both dynamics", scene.name);
         let label = |what: &str, r: &slideroute::route::Route| {
             format!(
@@ -425,28 +455,32 @@ fn compare_cmd(
                 r.termination.reason, r.termination.t_s
             )
         };
-        slideroute::output::plots::plan_routes(
-            &path,
-            &scene,
-            &title,
-            &[
-                (
-                    &label("rigid body", &c.rigid_body),
-                    &c.rigid_body.rows,
-                    RGBColor(200, 30, 30),
-                ),
-                (
-                    &label("paper's dynamics", &c.paper),
-                    &c.paper.rows,
-                    RGBColor(230, 140, 0),
-                ),
-            ],
-        )
-        .map_err(failed)?;
+        let path = folder
+            .write_with("compare-plan.svg", |tmp| {
+                slideroute::output::plots::plan_routes(
+                    tmp,
+                    &scene,
+                    &title,
+                    &[
+                        (
+                            &label("rigid body", &c.rigid_body),
+                            &c.rigid_body.rows,
+                            RGBColor(200, 30, 30),
+                        ),
+                        (
+                            &label("paper's dynamics", &c.paper),
+                            &c.paper.rows,
+                            RGBColor(230, 140, 0),
+                        ),
+                    ],
+                )
+            })
+            .map_err(failed)?;
         files.push(path);
     }
     #[cfg(not(feature = "plots"))]
     let _ = no_plots;
+    folder.finish().map_err(failed)?;
     if quiet {
         return Ok(());
     }
@@ -526,24 +560,30 @@ fn sweep_cmd(
         )
         .into());
     }
+    let mut folder = slideroute::output::folder::Folder::open(out).map_err(failed)?;
     let bar = progress_bar(quiet, n as u64, "sweep");
     let rows = slideroute::sweep::run(&text, &origin, &varies, || bar.inc(1))?;
     bar.finish_and_clear();
-    std::fs::create_dir_all(out)
-        .map_err(|e| failed(format!("{}: cannot create: {e}", out.display())))?;
-    let csv_path = out.join("sweep.csv");
-    let file = std::fs::File::create(&csv_path)
-        .map_err(|e| failed(format!("{}: cannot write: {e}", csv_path.display())))?;
-    slideroute::output::sweep_files::write_csv(file, &varies, &rows)
-        .map_err(|e| failed(format!("{}: {e}", csv_path.display())))?;
+    let csv_path = folder
+        .write_with("sweep.csv", |tmp| {
+            let file = std::fs::File::create(tmp)
+                .map_err(|e| format!("{}: cannot write: {e}", tmp.display()))?;
+            slideroute::output::sweep_files::write_csv(file, &varies, &rows)
+                .map_err(|e| format!("sweep.csv: {e}"))
+        })
+        .map_err(failed)?;
     #[allow(unused_mut)]
     let mut written = vec![csv_path.display().to_string()];
     #[cfg(feature = "plots")]
     {
-        let svg = out.join("sweep.svg");
-        slideroute::output::plots::sweep(&svg, &varies, &rows).map_err(failed)?;
+        let svg = folder
+            .write_with("sweep.svg", |tmp| {
+                slideroute::output::plots::sweep(tmp, &varies, &rows)
+            })
+            .map_err(failed)?;
         written.push(svg.display().to_string());
     }
+    folder.finish().map_err(failed)?;
     if !quiet {
         let mut counts: std::collections::BTreeMap<&str, usize> = std::collections::BTreeMap::new();
         for r in &rows {
@@ -566,17 +606,19 @@ fn report_cmd(quick: bool, out: &std::path::Path, quiet: bool) -> Result<(), Cli
     let (points, references) = slideroute::report::work_precision(quick, || bar.inc(1))?;
     bar.finish_and_clear();
     let extreme = slideroute::report::extreme(if quick { 20 } else { 200 });
-    std::fs::create_dir_all(out)
-        .map_err(|e| failed(format!("{}: cannot create: {e}", out.display())))?;
-    let csv_path = out.join("work-precision.csv");
-    let file = std::fs::File::create(&csv_path)
-        .map_err(|e| failed(format!("{}: cannot write: {e}", csv_path.display())))?;
-    slideroute::output::report_files::write_csv(file, &points)
-        .map_err(|e| failed(format!("{}: {e}", csv_path.display())))?;
+    let mut folder = slideroute::output::folder::Folder::open(out).map_err(failed)?;
+    let csv_path = folder
+        .write_with("work-precision.csv", |tmp| {
+            let file = std::fs::File::create(tmp)
+                .map_err(|e| format!("{}: cannot write: {e}", tmp.display()))?;
+            slideroute::output::report_files::write_csv(file, &points)
+                .map_err(|e| format!("work-precision.csv: {e}"))
+        })
+        .map_err(failed)?;
     let md = slideroute::output::report_files::markdown(&points, &references, &extreme, quick);
-    let md_path = out.join("work-precision.md");
-    std::fs::write(&md_path, &md)
-        .map_err(|e| failed(format!("{}: cannot write: {e}", md_path.display())))?;
+    let md_path = folder
+        .write_bytes("work-precision.md", md.as_bytes())
+        .map_err(failed)?;
     #[allow(unused_mut)]
     let mut written = vec![
         csv_path.display().to_string(),
@@ -584,10 +626,14 @@ fn report_cmd(quick: bool, out: &std::path::Path, quiet: bool) -> Result<(), Cli
     ];
     #[cfg(feature = "plots")]
     {
-        let svg = out.join("work-precision.svg");
-        slideroute::output::plots::work_precision(&svg, &points).map_err(failed)?;
+        let svg = folder
+            .write_with("work-precision.svg", |tmp| {
+                slideroute::output::plots::work_precision(tmp, &points)
+            })
+            .map_err(failed)?;
         written.push(svg.display().to_string());
     }
+    folder.finish().map_err(failed)?;
     if !quiet {
         for r in &references {
             outln!(

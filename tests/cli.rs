@@ -888,3 +888,114 @@ fn inputs_that_are_not_regular_files_or_too_large_are_refused() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn a_second_run_into_a_folder_in_use_is_refused() {
+    // Issue #13, item 1: two runs into one --out spliced their route.csv files. A run holds a
+    // lock on its folder (here held as if by this test's own, living, process).
+    let dir = temp_dir("locked");
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join(".slideroute.lock"), std::process::id().to_string()).unwrap();
+    let o = run(&["run", "--quiet", "--out", dir.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("another slideroute run"),
+        "{}",
+        stderr(&o)
+    );
+    assert!(!dir.join("route.csv").exists());
+    // A lock left by a process that is gone is taken over.
+    std::fs::write(dir.join(".slideroute.lock"), "4294967295").unwrap();
+    let o = run(&[
+        "run",
+        "--quiet",
+        "--no-plots",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(!dir.join(".slideroute.lock").exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_run_replaces_every_output_of_an_earlier_run_and_nothing_else() {
+    // Issue #13, item 1: `--no-plots` or `--compare-dynamics` into a used folder left another
+    // run's pictures beside the new route.
+    let dir = temp_dir("replace");
+    let d = dir.to_str().unwrap();
+    assert!(run(&["run", "--quiet", "--out", d]).status.success());
+    std::fs::write(dir.join("notes.txt"), "mine").unwrap();
+    assert!(
+        run(&[
+            "run",
+            "--quiet",
+            "--compare-dynamics",
+            "--no-plots",
+            "--out",
+            d
+        ])
+        .status
+        .success()
+    );
+    let mut names: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert_eq!(
+        names,
+        ["comparison.json", "notes.txt", "paper", "rigid-body"]
+    );
+    assert!(
+        run(&["run", "--quiet", "--no-plots", "--out", d])
+            .status
+            .success()
+    );
+    let mut names: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert_eq!(names, ["notes.txt", "route.csv", "summary.json"]);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn summary_json_is_a_manifest_of_what_produced_the_folder() {
+    // Issue #13, item 2: the version, the command line, the scene as used (defaults filled in)
+    // and the files written with their sizes.
+    let dir = temp_dir("manifest");
+    let d = dir.to_str().unwrap();
+    assert!(
+        run(&["run", "--quiet", "--dynamics", "paper", "--out", d])
+            .status
+            .success()
+    );
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
+    let m = &v["manifest"];
+    assert_eq!(m["slideroute_version"], env!("CARGO_PKG_VERSION"));
+    let cmd: Vec<&str> = m["command_line"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_str().unwrap())
+        .collect();
+    assert_eq!(
+        &cmd[1..],
+        ["run", "--quiet", "--dynamics", "paper", "--out", d]
+    );
+    assert_eq!(m["scene"]["solver"]["dynamics"], "paper");
+    assert_eq!(m["scene"]["solver"]["integrator"], "paper");
+    assert_eq!(m["scene"]["foundation"]["xi_deg"], 20.0);
+    assert_eq!(m["scene"]["block"]["inertia_x_kg_m2"], 5.5e6);
+    let files = m["files"].as_array().unwrap();
+    assert_eq!(files.len(), 5, "route.csv and four pictures: {files:?}");
+    for f in files {
+        let name = f["name"].as_str().unwrap();
+        let size = std::fs::metadata(dir.join(name)).unwrap().len();
+        assert_eq!(f["bytes"].as_u64(), Some(size), "{name}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

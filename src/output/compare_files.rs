@@ -1,20 +1,37 @@
 //! Files of `slideroute run --compare-dynamics`: each route in its own folder (`paper/`,
 //! `rigid-body/`: route.csv and summary.json), `comparison.json` (both summaries and where
-//! they part) and, with plots, `compare-plan.svg` (both CM paths on one plan view).
+//! they part, with the manifest) and, with plots, `compare-plan.svg` (both CM paths on one plan
+//! view, drawn by the command).
 
-use super::route_files;
+use super::folder::Folder;
+use super::route_files::{self, Manifest};
 use crate::compare::Comparison;
-use std::path::{Path, PathBuf};
+use crate::scene::Scene;
+use std::path::PathBuf;
 
-/// Writes the comparison into `dir`; returns the paths written.
-pub fn write(dir: &Path, c: &Comparison) -> Result<Vec<PathBuf>, String> {
+/// Writes both routes and `comparison.json` into `folder`; returns the paths written.
+pub fn write(folder: &mut Folder, scene: &Scene, c: &Comparison) -> Result<Vec<PathBuf>, String> {
     let mut files = Vec::new();
-    files.extend(route_files::write(&dir.join("paper"), &c.paper)?);
-    files.extend(route_files::write(&dir.join("rigid-body"), &c.rigid_body)?);
-    let path = dir.join("comparison.json");
-    let text = serde_json::to_string_pretty(c).map_err(|e| format!("comparison: {e}"))?;
-    std::fs::write(&path, text + "\n")
-        .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
-    files.push(path);
+    for (sub, route) in [("paper", &c.paper), ("rigid-body", &c.rigid_body)] {
+        files.push(route_files::write_route_csv(
+            folder,
+            &format!("{sub}/route.csv"),
+            &route.rows,
+        )?);
+        let manifest = Manifest::new(&scene.with_dynamics(route.dynamics), folder);
+        files.push(route_files::write_json_with_manifest(
+            folder,
+            &format!("{sub}/summary.json"),
+            route,
+            &manifest,
+        )?);
+    }
+    let manifest = Manifest::new(scene, folder);
+    files.push(route_files::write_json_with_manifest(
+        folder,
+        "comparison.json",
+        c,
+        &manifest,
+    )?);
     Ok(files)
 }

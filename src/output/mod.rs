@@ -4,6 +4,8 @@ pub mod coeffs_report;
 #[cfg(feature = "cli")]
 pub mod compare_files;
 #[cfg(feature = "cli")]
+pub mod folder;
+#[cfg(feature = "cli")]
 pub mod grid_csv;
 #[cfg(feature = "plots")]
 pub mod plots;

@@ -1,8 +1,9 @@
 //! `route.csv` and `summary.json` for a computed route.
 
-use crate::route::{ROUTE_HEADER, Route, Row};
+use super::folder::Folder;
+use crate::route::{ROUTE_HEADER, Row};
 use std::io::Write;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 /// Writes the rows with the header [`ROUTE_HEADER`]; reactions that could not be had are empty.
 pub fn write_csv(out: impl Write, rows: &[Row]) -> Result<(), csv::Error> {
@@ -37,16 +38,70 @@ pub fn write_csv(out: impl Write, rows: &[Row]) -> Result<(), csv::Error> {
     Ok(())
 }
 
-/// Writes `route.csv` and `summary.json` into `dir` (created if needed); returns their paths.
-pub fn write(dir: &Path, route: &Route) -> Result<[PathBuf; 2], String> {
-    std::fs::create_dir_all(dir).map_err(|e| format!("{}: cannot create: {e}", dir.display()))?;
-    let csv_path = dir.join("route.csv");
-    let file = std::fs::File::create(&csv_path)
-        .map_err(|e| format!("{}: cannot write: {e}", csv_path.display()))?;
-    write_csv(file, &route.rows).map_err(|e| format!("{}: {e}", csv_path.display()))?;
-    let json_path = dir.join("summary.json");
-    let text = serde_json::to_string_pretty(route).map_err(|e| format!("summary: {e}"))?;
-    std::fs::write(&json_path, text + "\n")
-        .map_err(|e| format!("{}: cannot write: {e}", json_path.display()))?;
-    Ok([csv_path, json_path])
+/// What produced an output folder (issue #13): `summary.json` carries it, so that anyone
+/// holding the folder can tell.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct Manifest {
+    /// The slideroute version.
+    pub slideroute_version: &'static str,
+    /// The command line, word for word.
+    pub command_line: Vec<String>,
+    /// The scene exactly as used: every value, defaults filled in, in the file's keys and units
+    /// (`Scene::as_used`).
+    pub scene: toml::Table,
+    /// The other files this run wrote into the folder, with their sizes.
+    pub files: Vec<FileEntry>,
+}
+
+/// One file of an output folder.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct FileEntry {
+    pub name: String,
+    pub bytes: u64,
+}
+
+impl Manifest {
+    /// For this process's command line, `scene`, and the files `folder` holds so far.
+    pub fn new(scene: &crate::scene::Scene, folder: &Folder) -> Manifest {
+        Manifest {
+            slideroute_version: env!("CARGO_PKG_VERSION"),
+            command_line: std::env::args().collect(),
+            scene: scene.as_used(),
+            files: folder
+                .written()
+                .iter()
+                .map(|(name, bytes)| FileEntry {
+                    name: name.clone(),
+                    bytes: *bytes,
+                })
+                .collect(),
+        }
+    }
+}
+
+/// Writes the rows as `name` (CSV) into `folder`, whole or not at all.
+pub fn write_route_csv(folder: &mut Folder, name: &str, rows: &[Row]) -> Result<PathBuf, String> {
+    folder.write_with(name, |tmp| {
+        let file = std::fs::File::create(tmp)
+            .map_err(|e| format!("{}: cannot write: {e}", tmp.display()))?;
+        write_csv(std::io::BufWriter::new(file), rows).map_err(|e| format!("{name}: {e}"))
+    })
+}
+
+/// `value` with the manifest, as pretty JSON, written as `name` into `folder`.
+pub fn write_json_with_manifest(
+    folder: &mut Folder,
+    name: &str,
+    value: &impl serde::Serialize,
+    manifest: &Manifest,
+) -> Result<PathBuf, String> {
+    #[derive(serde::Serialize)]
+    struct WithManifest<'a, T: serde::Serialize> {
+        #[serde(flatten)]
+        value: &'a T,
+        manifest: &'a Manifest,
+    }
+    let text = serde_json::to_string_pretty(&WithManifest { value, manifest })
+        .map_err(|e| format!("{name}: {e}"))?;
+    folder.write_bytes(name, (text + "\n").as_bytes())
 }

@@ -5,6 +5,7 @@
 //! bad input is a [`SceneError`] naming the key and the reason. Angles are degrees in the file
 //! and radians in these types. Coordinates follow `shared/conventions.md` (README, "Coordinates").
 
+mod echo;
 mod error;
 pub mod input;
 mod raw;
