@@ -7,6 +7,7 @@ use slideroute::roots;
 use slideroute::scene::{DynamicsModel, Mode, Scene};
 use std::path::PathBuf;
 use std::process::ExitCode;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 /// Three-dimensional failure route of a sliding dam monolith (after Galic & Glaser).
 ///
@@ -371,10 +372,25 @@ fn run_cmd(
     // Locked before the work, so that a second run into the same folder is refused at once.
     let folder = slideroute::output::folder::Folder::open(out).map_err(failed)?;
     let bar = progress_bar(quiet, 1000, "route");
-    let route = slideroute::route::run_observed(&scene, |f| bar.set_position((f * 1000.0) as u64))
-        .map_err(|e| e.to_string())?;
+    let route = slideroute::route::run_observed(&scene, |f| {
+        bar.set_position((f * 1000.0) as u64);
+        if INTERRUPTED.load(Ordering::Relaxed) {
+            std::ops::ControlFlow::Break(())
+        } else {
+            std::ops::ControlFlow::Continue(())
+        }
+    })
+    .map_err(|e| e.to_string())?;
     bar.finish_and_clear();
     let files = write_route_folder(folder, &scene, &route, no_plots).map_err(failed)?;
+    if route.termination.reason == slideroute::route::Reason::Interrupted {
+        let names: Vec<String> = files.iter().map(|f| f.display().to_string()).collect();
+        return Err(failed(format!(
+            "{}; wrote what was computed: {}",
+            route.termination.detail,
+            names.join(", ")
+        )));
+    }
     if quiet {
         return Ok(());
     }
@@ -679,8 +695,17 @@ fn scene_cmd(print_default: bool, check: Option<&PathBuf>) -> Result<(), CliErro
     }
 }
 
+/// Set by Ctrl-C (SIGINT) and SIGTERM: a route stops at its next increment and writes what it
+/// computed, with termination "interrupted" (issue #13); a second signal ends the process.
+static INTERRUPTED: AtomicBool = AtomicBool::new(false);
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    let _ = ctrlc::set_handler(|| {
+        if INTERRUPTED.swap(true, Ordering::Relaxed) {
+            std::process::exit(130);
+        }
+    });
     let result = match &cli.command {
         Command::Run {
             scene,

@@ -59,7 +59,8 @@ fn with_solver(scene: &Scene, mode: Mode, integrator: Integrator, dt: f64, t_end
 }
 
 fn run(scene: &Scene, method: PoseMethod) -> Result<Route, String> {
-    route::run_with(scene, method, |_| ()).map_err(|e| e.to_string())
+    route::run_with(scene, method, |_| std::ops::ControlFlow::Continue(()))
+        .map_err(|e| e.to_string())
 }
 
 /// Largest CM distance between `coarse` and `fine` at the coarse times (fine dt divides coarse).

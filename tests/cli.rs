@@ -999,3 +999,59 @@ fn summary_json_is_a_manifest_of_what_produced_the_folder() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn an_interrupted_run_stops_at_the_next_increment_and_writes_what_it_computed() {
+    // Issue #13, item 3: Ctrl-C (here SIGINT by `kill`) while a long route runs.
+    let dir = temp_dir("interrupt");
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = dir.join("long.toml");
+    std::fs::write(
+        &scene,
+        slideroute::scene::DEFAULT_SCENE_TOML
+            .replace("dt_s = 1.0e-3", "dt_s = 1.0e-5")
+            .replace("eccentricity_m = 1.0 ", "eccentricity_m = 0.0 ")
+            .replace("hydraulic_force_n = 8.0e6", "hydraulic_force_n = 7.0e6"),
+    )
+    .unwrap();
+    let out = dir.join("out");
+    let child = Command::new(env!("CARGO_BIN_EXE_slideroute"))
+        .args(["run", "--quiet", "--scene", scene.to_str().unwrap()])
+        .arg("--out")
+        .arg(&out)
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(500));
+    let killed = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(killed.success());
+    let o = child.wait_with_output().unwrap();
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("interrupted"), "{}", stderr(&o));
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(v["termination"]["reason"], "interrupted");
+    let t = v["termination"]["t_s"].as_f64().unwrap();
+    assert!(t > 0.0 && t < 20.0, "{t}");
+    // route.csv is whole: every line has all its fields, and the last row is the last state.
+    let csv = std::fs::read_to_string(out.join("route.csv")).unwrap();
+    assert!(
+        csv.lines().all(|l| l.split(',').count() == 17),
+        "a cut line"
+    );
+    let last: f64 = csv
+        .lines()
+        .last()
+        .unwrap()
+        .split(',')
+        .next()
+        .unwrap()
+        .parse()
+        .unwrap();
+    assert_eq!(last, t);
+    assert!(!out.join(".slideroute.lock").exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -336,8 +336,14 @@ fn all_roots_method_gives_the_same_route_as_continuation() {
             sv.t_end = 1.0;
             sv.mode = mode;
         });
-        let a = route::run_with(&s, PoseMethod::Continuation, |_| ()).unwrap();
-        let b = route::run_with(&s, PoseMethod::AllRoots, |_| ()).unwrap();
+        let a = route::run_with(&s, PoseMethod::Continuation, |_| {
+            std::ops::ControlFlow::Continue(())
+        })
+        .unwrap();
+        let b = route::run_with(&s, PoseMethod::AllRoots, |_| {
+            std::ops::ControlFlow::Continue(())
+        })
+        .unwrap();
         assert_eq!(a.rows.len(), b.rows.len());
         let worst = a
             .rows

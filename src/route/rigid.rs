@@ -349,7 +349,7 @@ pub(super) fn slide(
     scene: &Scene,
     dynamics: &Dynamics<'_>,
     finder: &mut PoseFinder<'_>,
-    mut progress: impl FnMut(f64),
+    mut progress: impl FnMut(f64) -> std::ops::ControlFlow<()>,
 ) -> Outcome {
     let solver = *dynamics.solver;
     let dt = solver.dt;
@@ -657,9 +657,17 @@ pub(super) fn slide(
         }
         t = t_target;
         o.increments = k;
-        progress((t / solver.t_end).min(1.0));
         if k % stride == 0 || k == n_steps {
             o.rows.push(row(t, &y, &ev));
+        }
+        if progress((t / solver.t_end).min(1.0)).is_break() {
+            o.energy = Some(balance(&y, &ev, start));
+            return o.finish(
+                row(t, &y, &ev),
+                Reason::Interrupted,
+                t,
+                format!("interrupted at t = {} s", crate::numeric::seconds(t)),
+            );
         }
     }
     o.energy = Some(balance(&y, &ev, start));

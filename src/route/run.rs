@@ -12,6 +12,7 @@ use crate::mechanics::loads::Applied;
 use crate::mechanics::onset::factor_of_safety;
 use crate::mechanics::static_friction::{self, FactorOfSafety};
 use crate::scene::{DynamicsModel, Integrator, Scene, SceneError};
+use std::ops::ControlFlow;
 use std::time::Instant;
 
 fn row(s: &State, ev: Option<&Evaluation>, pose: &crate::geometry::Pose) -> Row {
@@ -90,11 +91,16 @@ impl Outcome {
 /// Runs the route of a scene (which needs its `[block]`, `[loads]`, `[friction]` and
 /// `[solver]` sections).
 pub fn run(scene: &Scene) -> Result<Route, SceneError> {
-    run_observed(scene, |_| ())
+    run_observed(scene, |_| ControlFlow::Continue(()))
 }
 
-/// [`run`], calling `progress(t / t_end)` after every increment (for progress bars).
-pub fn run_observed(scene: &Scene, progress: impl FnMut(f64)) -> Result<Route, SceneError> {
+/// [`run`], calling `progress(t / t_end)` after every increment (for progress bars); when it
+/// answers `ControlFlow::Break`, the route stops there with [`Reason::Interrupted`], its last
+/// state the last row (issue #13: Ctrl-C writes what was computed).
+pub fn run_observed(
+    scene: &Scene,
+    progress: impl FnMut(f64) -> ControlFlow<()>,
+) -> Result<Route, SceneError> {
     run_with(scene, PoseMethod::Continuation, progress)
 }
 
@@ -102,7 +108,7 @@ pub fn run_observed(scene: &Scene, progress: impl FnMut(f64)) -> Result<Route, S
 pub fn run_with(
     scene: &Scene,
     method: PoseMethod,
-    progress: impl FnMut(f64),
+    progress: impl FnMut(f64) -> ControlFlow<()>,
 ) -> Result<Route, SceneError> {
     let started = Instant::now();
     let dynamics = scene.require_dynamics()?;
@@ -198,7 +204,7 @@ fn slide(
     scene: &Scene,
     dynamics: &crate::scene::Dynamics<'_>,
     finder: &mut PoseFinder<'_>,
-    mut progress: impl FnMut(f64),
+    mut progress: impl FnMut(f64) -> ControlFlow<()>,
 ) -> Outcome {
     let solver = *dynamics.solver;
     let dt = solver.dt;
@@ -345,9 +351,17 @@ fn slide(
         o.travel += (new_ev.pose.cm - ev.pose.cm).norm();
         state = next;
         ev = new_ev;
-        progress(k as f64 / n_steps as f64);
         if k % stride == 0 || k == n_steps {
             o.rows.push(row(&state, Some(&ev), &ev.pose));
+        }
+        if progress(k as f64 / n_steps as f64).is_break() {
+            let t = state.t;
+            return o.finish(
+                row(&state, Some(&ev), &ev.pose),
+                Reason::Interrupted,
+                t,
+                format!("interrupted at t = {} s", crate::numeric::seconds(t)),
+            );
         }
     }
     let detail = format!("t reached t_end = {} s", solver.t_end);

@@ -29,6 +29,8 @@ pub enum Reason {
     /// Rigid-body mode: the contact forces are not determined by the state (a singular
     /// contact system, Painlevé's paradox, or slip from rest with no consistent direction).
     ContactForcesUndetermined,
+    /// The caller asked the route to stop (Ctrl-C, SIGTERM): what was computed stands.
+    Interrupted,
 }
 
 impl Reason {
@@ -44,6 +46,7 @@ impl Reason {
             Reason::NoAdmissibleRoot => "no admissible root",
             Reason::TimeLimit => "time limit",
             Reason::ContactForcesUndetermined => "the contact forces are not determined",
+            Reason::Interrupted => "interrupted",
         }
     }
 }
