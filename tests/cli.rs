@@ -1055,3 +1055,39 @@ fn an_interrupted_run_stops_at_the_next_increment_and_writes_what_it_computed() 
     assert!(!out.join(".slideroute.lock").exists());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn pictures_stay_small_whatever_the_routes_length() {
+    // Issue #13, item 4: a 4.4e6-increment route drew a 207 MB reactions.svg. Here 202 400
+    // increments (the paper's dynamics at dt = 10 µs): every picture under 2 MB.
+    let dir = temp_dir("big-pictures");
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = dir.join("fine.toml");
+    std::fs::write(
+        &scene,
+        slideroute::scene::DEFAULT_SCENE_TOML.replace("dt_s = 1.0e-3", "dt_s = 1.0e-5"),
+    )
+    .unwrap();
+    let out = dir.join("out");
+    let o = run(&[
+        "run",
+        "--quiet",
+        "--dynamics",
+        "paper",
+        "--scene",
+        scene.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let rows = std::fs::read_to_string(out.join("route.csv"))
+        .unwrap()
+        .lines()
+        .count();
+    assert!(rows > 200_000, "{rows}");
+    for name in ["plan.svg", "profile.svg", "angles.svg", "reactions.svg"] {
+        let size = std::fs::metadata(out.join(name)).unwrap().len();
+        assert!(size < 2 << 20, "{name}: {size} bytes");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

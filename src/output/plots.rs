@@ -95,6 +95,24 @@ fn outlines_of(scene: &Scene, rows: &[Row]) -> Vec<[(f64, f64); 3]> {
         .collect()
 }
 
+/// The most points a picture draws of a route (issue #13): past this, rows are thinned evenly
+/// (the first and last always kept), so that no picture grows with the route's length — about
+/// 0.5 MB for the largest, the reactions, whatever the number of increments.
+pub const MAX_POINTS: usize = 4000;
+
+/// The rows a picture draws: all of them up to [`MAX_POINTS`], else every k-th and the last.
+pub fn thinned(rows: &[Row]) -> Vec<Row> {
+    if rows.len() <= MAX_POINTS {
+        return rows.to_vec();
+    }
+    let every = rows.len().div_ceil(MAX_POINTS - 1);
+    rows.iter()
+        .enumerate()
+        .filter(|(k, _)| k % every == 0 || *k + 1 == rows.len())
+        .map(|(_, r)| *r)
+        .collect()
+}
+
 /// The plan view of one or more routes of the same scene, each CM path and its frame outlines
 /// in its own colour (the first route's start and end contacts marked).
 pub fn plan_routes(
@@ -103,6 +121,13 @@ pub fn plan_routes(
     title: &str,
     routes: &[(&str, &[Row], RGBColor)],
 ) -> Res<()> {
+    let thin: Vec<Vec<Row>> = routes.iter().map(|r| thinned(r.1)).collect();
+    let routes: Vec<(&str, &[Row], RGBColor)> = routes
+        .iter()
+        .zip(&thin)
+        .map(|(r, t)| (r.0, t.as_slice(), r.2))
+        .collect();
+    let routes = routes.as_slice();
     let all_outlines: Vec<Vec<[(f64, f64); 3]>> =
         routes.iter().map(|r| outlines_of(scene, r.1)).collect();
     let outlines: &[[(f64, f64); 3]] = all_outlines.first().map_or(&[], |o| o.as_slice());
@@ -317,7 +342,8 @@ const COLORS: [RGBColor; 6] = [
 
 /// plan.svg, profile.svg, angles.svg, reactions.svg in `dir`.
 pub fn write_route_plots(dir: &Path, scene: &Scene, route: &Route) -> Res<Vec<PathBuf>> {
-    let rows = &route.rows;
+    let thin = thinned(&route.rows);
+    let rows = &thin;
     let t: Vec<f64> = rows.iter().map(|r| r.t_s).collect();
     let mut out = Vec::new();
 
