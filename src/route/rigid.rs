@@ -431,6 +431,11 @@ pub(super) fn slide(
     };
     anchor = anchor_of(&ev, anchor);
     let mut ke_max = 0.0f64;
+    // The balance's own round-off: its potential energy m g ΔY carries that of a height of the
+    // size of L. No substep can resolve it below that; near the start from rest, where the
+    // energies are tiny, the tolerance alone asked for it, and every increment was halved down to
+    // the shortest substep (36 000 halvings in the first 0.2 ms at dt = 10 µs).
+    let round_off = 64.0 * f64::EPSILON * mass * g * scene.l();
     // The substep: the increment dt, halved where the energy balance says RK4 does not resolve
     // the motion (see `MIN_SUBSTEP`), and grown back by doubling.
     let mut h = dt;
@@ -478,7 +483,7 @@ pub(super) fn slide(
                 let drift = balance(y2, e2, start).residual_j - residual;
                 let scale = ke_max.max(y[6].abs()).max(y[7].abs()).max(y2[6].abs());
                 resolve
-                    && drift.abs() > ENERGY_TOLERANCE * scale * (len / dt)
+                    && drift.abs() > (ENERGY_TOLERANCE * scale * (len / dt)).max(round_off)
                     && len > MIN_SUBSTEP * dt
             };
             // A failure over a long substep may be the integrator's (a slip too young to be
