@@ -16,18 +16,111 @@ use serde::Serialize;
 pub struct Vary {
     /// `section.key`.
     pub key: String,
+    /// The numbers, or for a list of words the indices 0, 1, … into [`Vary::words`].
     pub values: Vec<f64>,
+    /// For a key that takes words (`solver.dynamics=paper,rigid-body`): the words.
+    pub words: Option<Vec<String>>,
 }
 
-/// Parses `KEY=START:STOP:COUNT` (COUNT ≥ 1 evenly spaced values, START and STOP included).
+impl Vary {
+    /// Value `x` of this key as a table cell: the number, or the word it stands for.
+    pub fn cell(&self, x: f64) -> String {
+        match &self.words {
+            Some(w) => w.get(x as usize).cloned().unwrap_or_default(),
+            None => x.to_string(),
+        }
+    }
+
+    /// Value `x` as a TOML value for a key whose base value (if any) is `base`.
+    fn toml_value(&self, x: f64, base: Option<&toml::Value>) -> toml::Value {
+        match (&self.words, base) {
+            (Some(w), _) => toml::Value::String(w.get(x as usize).cloned().unwrap_or_default()),
+            (None, Some(toml::Value::Integer(_))) => toml::Value::Integer(x as i64),
+            (None, None) if INTEGER_KEYS.contains(&self.key.as_str()) => {
+                toml::Value::Integer(x as i64)
+            }
+            _ => toml::Value::Float(x),
+        }
+    }
+}
+
+/// Optional scene keys that a sweep may vary although the base scene leaves them out (their
+/// default then stands in the base).
+const OPTIONAL_KEYS: [&str; 9] = [
+    "solver.dynamics",
+    "solver.integrator",
+    "solver.stride",
+    "block.inertia_x_kg_m2",
+    "block.inertia_z_kg_m2",
+    "block.inertia_xz_kg_m2",
+    "initial.vx_m_s",
+    "initial.vz_m_s",
+    "initial.omega_deg_s",
+];
+
+/// Keys that take whole numbers.
+const INTEGER_KEYS: [&str; 1] = ["solver.stride"];
+
+/// Keys that take words, and their words.
+const WORDS: [(&str, &[&str]); 4] = [
+    ("solver.dynamics", &["paper", "rigid-body"]),
+    ("solver.integrator", &["paper", "rk4"]),
+    ("solver.mode", &["exact", "small-angle"]),
+    ("friction.model", &["coulomb", "barton-choubey"]),
+];
+
+fn takes_words(key: &str) -> bool {
+    WORDS.iter().any(|(k, _)| *k == key)
+}
+
+/// Parses `KEY=START:STOP:COUNT` (COUNT ≥ 1 evenly spaced values, START and STOP included) or
+/// `KEY=A,B,C` (a list: numbers, or words for a key that takes words, such as
+/// `solver.dynamics=paper,rigid-body`).
 pub fn parse_vary(s: &str) -> Result<Vary, String> {
     let bad = |why: &str| {
-        format!("--vary {s}: {why} (expected KEY=START:STOP:COUNT, e.g. friction.mu_k=0.2:0.6:5)")
+        format!(
+            "--vary {s}: {why} (expected KEY=START:STOP:COUNT, e.g. friction.mu_k=0.2:0.6:5, \
+             or KEY=A,B,…, e.g. solver.dynamics=paper,rigid-body)"
+        )
     };
     let (key, range) = s.split_once('=').ok_or_else(|| bad("no `=`"))?;
     let key = key.trim();
     if key.split('.').count() != 2 || key.split('.').any(str::is_empty) {
         return Err(bad("KEY must be `section.key`"));
+    }
+    if range.contains(',') || takes_words(key) {
+        let items: Vec<&str> = range.split(',').map(str::trim).collect();
+        if items.iter().any(|i| i.is_empty()) {
+            return Err(bad("the list has an empty item"));
+        }
+        if items.len() > 100_000 {
+            return Err(bad("the list has more than 100000 items"));
+        }
+        if let Some(&(_, allowed)) = WORDS.iter().find(|(k, _)| *k == key) {
+            if let Some(w) = items.iter().find(|w| !allowed.contains(w)) {
+                return Err(bad(&format!(
+                    "`{w}` is not one of {} (the key takes words, as a list)",
+                    allowed.join(", ")
+                )));
+            }
+            return Ok(Vary {
+                key: key.to_string(),
+                values: (0..items.len()).map(|k| k as f64).collect(),
+                words: Some(items.iter().map(|w| w.to_string()).collect()),
+            });
+        }
+        let values = items
+            .iter()
+            .map(|t| match t.parse::<f64>() {
+                Ok(v) if v.is_finite() => Ok(v),
+                _ => Err(bad(&format!("`{t}` is not a finite number"))),
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        return Ok(Vary {
+            key: key.to_string(),
+            values,
+            words: None,
+        });
     }
     let parts: Vec<&str> = range.split(':').collect();
     if parts.len() != 3 {
@@ -69,6 +162,7 @@ pub fn parse_vary(s: &str) -> Result<Vary, String> {
     Ok(Vary {
         key: key.to_string(),
         values,
+        words: None,
     })
 }
 
@@ -150,9 +244,11 @@ pub fn check_keys(base_text: &str, varies: &[Vary]) -> Result<toml::Table, Strin
             ));
         }
         let (section, key) = v.key.split_once('.').unwrap_or(("", ""));
+        let empty = toml::Table::new();
         let sec = table
             .get(section)
             .and_then(|t| t.as_table())
+            .or_else(|| OPTIONAL_KEYS.contains(&v.key.as_str()).then_some(&empty))
             .ok_or_else(|| {
                 let names: Vec<&String> = table
                     .iter()
@@ -169,7 +265,18 @@ pub fn check_keys(base_text: &str, varies: &[Vary]) -> Result<toml::Table, Strin
                         .join(", ")
                 )
             })?;
+        let words_key = takes_words(&v.key);
         match sec.get(key) {
+            None if OPTIONAL_KEYS.contains(&v.key.as_str()) => {
+                if INTEGER_KEYS.contains(&v.key.as_str()) {
+                    if let Some(x) = v.values.iter().find(|x| x.fract() != 0.0) {
+                        return Err(format!(
+                            "--vary {}: the key takes whole numbers, and the range gives {x}",
+                            v.key
+                        ));
+                    }
+                }
+            }
             None => {
                 let names: Vec<&str> = sec.keys().map(String::as_str).collect();
                 return Err(format!(
@@ -178,6 +285,18 @@ pub fn check_keys(base_text: &str, varies: &[Vary]) -> Result<toml::Table, Strin
                     names.join(", ")
                 ));
             }
+            Some(_) if words_key != v.words.is_some() => {
+                return Err(format!(
+                    "--vary {}: the key takes {}",
+                    v.key,
+                    if words_key {
+                        "words, as a list (KEY=A,B,…)"
+                    } else {
+                        "numbers"
+                    }
+                ));
+            }
+            Some(toml::Value::String(_)) => {}
             // A whole-number key (such as solver.stride) takes whole numbers only.
             Some(toml::Value::Integer(_)) => {
                 if let Some(x) = v.values.iter().find(|x| x.fract() != 0.0) {
@@ -190,7 +309,7 @@ pub fn check_keys(base_text: &str, varies: &[Vary]) -> Result<toml::Table, Strin
             Some(toml::Value::Float(_)) => {}
             Some(other) => {
                 return Err(format!(
-                    "--vary {}: the key is a {}, not a number; a range cannot vary it",
+                    "--vary {}: the key is a {}, which a sweep cannot vary",
                     v.key,
                     other.type_str()
                 ));
@@ -228,12 +347,18 @@ pub fn run(
             let mut t = table.clone();
             for (v, &x) in varies.iter().zip(&values) {
                 let (section, key) = v.key.split_once('.').unwrap_or(("", ""));
-                if let Some(sec) = t.get_mut(section).and_then(|s| s.as_table_mut()) {
-                    let value = match sec.get(key) {
-                        Some(toml::Value::Integer(_)) => toml::Value::Integer(x as i64),
-                        _ => toml::Value::Float(x),
-                    };
+                let sec = t
+                    .entry(section.to_string())
+                    .or_insert_with(|| toml::Value::Table(toml::Table::new()));
+                if let Some(sec) = sec.as_table_mut() {
+                    let value = v.toml_value(x, sec.get(key));
                     sec.insert(key.to_string(), value);
+                    // Each dynamics takes its own integrator when the dynamics varies.
+                    if v.key == "solver.dynamics"
+                        && !varies.iter().any(|w| w.key == "solver.integrator")
+                    {
+                        sec.remove("integrator");
+                    }
                 }
             }
             let row = match toml::to_string(&t)
@@ -274,6 +399,15 @@ mod tests {
             parse_vary("loads.eccentricity_m=1:1:1").unwrap().values,
             vec![1.0]
         );
+        let list = parse_vary("friction.mu_k=0.3, 0.5,0.45").unwrap();
+        assert_eq!((list.values, list.words), (vec![0.3, 0.5, 0.45], None));
+        let words = parse_vary("solver.dynamics=paper,rigid-body").unwrap();
+        assert_eq!(words.values, vec![0.0, 1.0]);
+        assert_eq!(words.cell(1.0), "rigid-body");
+        for bad in ["solver.dynamics=0:1:2", "solver.dynamics=paper,rigid"] {
+            let e = parse_vary(bad).unwrap_err();
+            assert!(e.contains("not one of paper, rigid-body"), "{e}");
+        }
         for bad in [
             "mu=1:2:3",
             "friction.mu_k",
@@ -281,6 +415,8 @@ mod tests {
             "friction.mu_k=a:2:3",
             "friction.mu_k=1:2:0",
             "friction.mu_k=1:inf:2",
+            "friction.mu_k=0.3,,0.4",
+            "friction.mu_k=0.3,abc",
         ] {
             let e = parse_vary(bad).unwrap_err();
             assert!(e.starts_with(&format!("--vary {bad}")), "{e}");

@@ -1091,3 +1091,45 @@ fn pictures_stay_small_whatever_the_routes_length() {
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn sweeps_vary_words_and_lists() {
+    // Issue #13, item 7: `--vary solver.dynamics=paper,rigid-body`, `solver.mode=…`, number
+    // lists; a wrong word is bad input (it made every row "invalid scene" with exit 0).
+    let dir = temp_dir("sweep-words");
+    let d = dir.to_str().unwrap();
+    let o = run(&[
+        "sweep",
+        "--quiet",
+        "--out",
+        d,
+        "--vary",
+        "solver.dynamics=paper,rigid-body",
+        "--vary",
+        "friction.mu_k=0.3,0.4",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let csv = std::fs::read_to_string(dir.join("sweep.csv")).unwrap();
+    let lines: Vec<&str> = csv.lines().collect();
+    assert_eq!(lines.len(), 5, "{csv}");
+    assert!(
+        lines[1].starts_with("paper,0.3,the paper's frictional system"),
+        "{csv}"
+    );
+    assert!(
+        lines[4].starts_with("rigid-body,0.4,contact 0 reached an inclined plane"),
+        "{csv}"
+    );
+    assert_bad_input(
+        &run(&[
+            "sweep",
+            "--quiet",
+            "--out",
+            d,
+            "--vary",
+            "solver.dynamics=paper,rigid",
+        ]),
+        &["solver.dynamics", "not one of paper, rigid-body"],
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -447,7 +447,10 @@ pub fn sweep(
         let label = varies[1..]
             .iter()
             .zip(&r.values[1..])
-            .map(|(v, x)| format!("{} = {x:.4}", v.key))
+            .map(|(v, &x)| match v.words {
+                Some(_) => format!("{} = {}", v.key, v.cell(x)),
+                None => format!("{} = {x:.4}", v.key),
+            })
             .collect::<Vec<_>>()
             .join(", ");
         if let Some(t) = r.travel_m {
@@ -467,7 +470,18 @@ pub fn sweep(
         &root,
         path,
         &title,
-        first.key.as_str(),
+        &match &first.words {
+            Some(w) => format!(
+                "{} ({})",
+                first.key,
+                w.iter()
+                    .enumerate()
+                    .map(|(k, w)| format!("{k} = {w}"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ),
+            None => first.key.clone(),
+        },
         "travel (m)",
         ranges(rows.iter().map(|r| r.values[0])),
         ranges(rows.iter().filter_map(|r| r.travel_m).chain([0.0])),

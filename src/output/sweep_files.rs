@@ -25,7 +25,11 @@ pub fn write_csv(out: impl Write, varies: &[Vary], rows: &[SweepRow]) -> Result<
     w.write_record(&header)?;
     let opt = |v: Option<f64>| v.map_or(String::new(), |x| x.to_string());
     for r in rows {
-        let mut rec: Vec<String> = r.values.iter().map(|v| v.to_string()).collect();
+        let mut rec: Vec<String> = varies
+            .iter()
+            .zip(&r.values)
+            .map(|(v, &x)| v.cell(x))
+            .collect();
         rec.push(r.reason.clone());
         rec.extend(
             [
