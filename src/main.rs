@@ -320,8 +320,9 @@ fn progress_bar(quiet: bool, len: u64, what: &str) -> indicatif::ProgressBar {
     bar
 }
 
-/// route.csv, the pictures (unless `no_plots`) and summary.json (with the manifest, last) into
-/// the locked output folder, each whole or absent, replacing an earlier run's outputs there.
+/// The pictures (unless `no_plots`) and summary.json (with the manifest, last) into the locked
+/// output folder, beside route.csv, each whole or absent, replacing an earlier run's outputs
+/// there.
 fn write_route_folder(
     mut folder: slideroute::output::folder::Folder,
     scene: &Scene,
@@ -329,11 +330,7 @@ fn write_route_folder(
     no_plots: bool,
 ) -> Result<Vec<PathBuf>, String> {
     use slideroute::output::route_files;
-    let mut files = vec![route_files::write_route_csv(
-        &mut folder,
-        "route.csv",
-        &route.rows,
-    )?];
+    let mut files = Vec::new();
     #[cfg(feature = "plots")]
     if !no_plots {
         let staging = folder.staging()?;
@@ -372,17 +369,45 @@ fn run_cmd(
     // Locked before the work, so that a second run into the same folder is refused at once.
     let folder = slideroute::output::folder::Folder::open(out).map_err(failed)?;
     let bar = progress_bar(quiet, 1000, "route");
-    let route = slideroute::route::run_observed(&scene, |f| {
+    let progress = |f: f64| {
         bar.set_position((f * 1000.0) as u64);
         if INTERRUPTED.load(Ordering::Relaxed) {
             std::ops::ControlFlow::Break(())
         } else {
             std::ops::ControlFlow::Continue(())
         }
-    })
-    .map_err(|e| e.to_string())?;
+    };
+    // Rows stream to route.csv as they are computed; the route keeps a bounded number of them
+    // for the pictures and the summary (issue #13: memory does not grow with its length).
+    let keep_every = scene.solver.map_or(1, |s| {
+        let rows = (s.t_end / s.dt).ceil() / s.stride as f64;
+        (rows / 4000.0).ceil().max(1.0) as usize
+    });
+    let mut folder = folder;
+    let mut computed = None;
+    let mut bad_scene = None;
+    let csv_path = folder.write_with("route.csv", |tmp| {
+        let file = std::fs::File::create(tmp)
+            .map_err(|e| format!("{}: cannot write: {e}", tmp.display()))?;
+        let mut rows = slideroute::output::route_files::CsvRows::new(std::io::BufWriter::new(file))
+            .map_err(|e| format!("route.csv: {e}"))?;
+        match slideroute::route::run_streamed(&scene, progress, keep_every, |r| rows.push(r)) {
+            Ok(route) => computed = Some(route),
+            Err(e) => {
+                bad_scene = Some(e.to_string());
+                return Err(String::new());
+            }
+        }
+        rows.finish().map_err(|e| format!("route.csv: {e}"))
+    });
     bar.finish_and_clear();
-    let files = write_route_folder(folder, &scene, &route, no_plots).map_err(failed)?;
+    if let Some(e) = bad_scene {
+        return Err(e.into());
+    }
+    let csv_path = csv_path.map_err(failed)?;
+    let route = computed.ok_or_else(|| failed("route.csv: no route".to_string()))?;
+    let mut files = vec![csv_path];
+    files.extend(write_route_folder(folder, &scene, &route, no_plots).map_err(failed)?);
     if route.termination.reason == slideroute::route::Reason::Interrupted {
         let names: Vec<String> = files.iter().map(|f| f.display().to_string()).collect();
         return Err(failed(format!(

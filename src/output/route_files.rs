@@ -5,11 +5,26 @@ use crate::route::{ROUTE_HEADER, Row};
 use std::io::Write;
 use std::path::PathBuf;
 
-/// Writes the rows with the header [`ROUTE_HEADER`]; reactions that could not be had are empty.
-pub fn write_csv(out: impl Write, rows: &[Row]) -> Result<(), csv::Error> {
-    let mut w = csv::Writer::from_writer(out);
-    w.write_record(ROUTE_HEADER)?;
-    for r in rows {
+/// route.csv written row by row as the route computes them (issue #13: memory does not grow
+/// with the route's length): the header [`ROUTE_HEADER`], then one record per [`CsvRows::push`];
+/// reactions that could not be had are empty. The first write error is kept and returned by
+/// [`CsvRows::finish`].
+pub struct CsvRows<W: Write> {
+    w: csv::Writer<W>,
+    error: Option<csv::Error>,
+}
+
+impl<W: Write> CsvRows<W> {
+    pub fn new(out: W) -> Result<Self, csv::Error> {
+        let mut w = csv::Writer::from_writer(out);
+        w.write_record(ROUTE_HEADER)?;
+        Ok(CsvRows { w, error: None })
+    }
+
+    pub fn push(&mut self, r: &Row) {
+        if self.error.is_some() {
+            return;
+        }
         let mut rec: Vec<String> = [
             r.t_s,
             r.x_m,
@@ -32,10 +47,27 @@ pub fn write_csv(out: impl Write, rows: &[Row]) -> Result<(), csv::Error> {
                 None => rec.extend(std::iter::repeat_n(String::new(), 3)),
             }
         }
-        w.write_record(&rec)?;
+        if let Err(e) = self.w.write_record(&rec) {
+            self.error = Some(e);
+        }
     }
-    w.flush()?;
-    Ok(())
+
+    pub fn finish(mut self) -> Result<(), csv::Error> {
+        if let Some(e) = self.error {
+            return Err(e);
+        }
+        self.w.flush()?;
+        Ok(())
+    }
+}
+
+/// Writes the rows with the header [`ROUTE_HEADER`]; reactions that could not be had are empty.
+pub fn write_csv(out: impl Write, rows: &[Row]) -> Result<(), csv::Error> {
+    let mut w = CsvRows::new(out)?;
+    for r in rows {
+        w.push(r);
+    }
+    w.finish()
 }
 
 /// What produced an output folder (issue #13): `summary.json` carries it, so that anyone

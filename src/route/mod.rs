@@ -17,7 +17,7 @@ pub mod termination;
 
 pub use pose_finder::PoseMethod;
 pub use rigid::EnergyBalance;
-pub use run::{run, run_observed, run_with};
+pub use run::{run, run_observed, run_streamed, run_with};
 pub use state::{ROUTE_HEADER, Row, State};
 pub use termination::{Reason, Termination};
 

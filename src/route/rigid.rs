@@ -345,19 +345,20 @@ fn static_check(dynamics: &Dynamics<'_>, geom: &ContactGeometry) -> Result<Stati
 }
 
 /// The rigid body's route loop (`super::run::run_with` adds the diagnostics).
-pub(super) fn slide(
+pub(super) fn slide<'s>(
     scene: &Scene,
     dynamics: &Dynamics<'_>,
     finder: &mut PoseFinder<'_>,
     mut progress: impl FnMut(f64) -> std::ops::ControlFlow<()>,
-) -> Outcome {
+    outcome: Outcome<'s>,
+) -> Outcome<'s> {
     let solver = *dynamics.solver;
     let dt = solver.dt;
     let stride = solver.stride.max(1);
     let n_steps = super::run::increments(solver.t_end, dt);
     let mass = dynamics.block.mass;
     let g = dynamics.loads.gravity;
-    let mut o = Outcome::new();
+    let mut o = outcome;
     let init = scene.initial;
     let mut y: Y = [0.0, 0.0, 0.0, init.vx, init.vz, init.omega, 0.0, 0.0];
     let mut t = 0.0;
@@ -390,13 +391,13 @@ pub(super) fn slide(
     let check = match static_check(dynamics, &ContactGeometry::new(scene, &start_pose)) {
         Ok(c) => c,
         Err(Stop { reason, detail }) => {
-            o.rows.push(rest_row(0.0, &y, &start_pose));
+            o.push(rest_row(0.0, &y, &start_pose));
             return o.end(reason, 0.0, detail);
         }
     };
     o.fs = Some(check.factor_of_safety());
     if init.at_rest() && check.holds() {
-        o.rows.push(rest_row(0.0, &y, &start_pose));
+        o.push(rest_row(0.0, &y, &start_pose));
         let mut done = o.end(
             Reason::DoesNotSlide,
             0.0,
@@ -411,11 +412,11 @@ pub(super) fn slide(
     let mut ev = match evaluate(scene, dynamics, finder, &y, None) {
         Ok(e) => e,
         Err(Stop { reason, detail }) => {
-            o.rows.push(rest_row(0.0, &y, &start_pose));
+            o.push(rest_row(0.0, &y, &start_pose));
             return o.end(reason, 0.0, detail);
         }
     };
-    o.rows.push(row(0.0, &y, &ev));
+    o.push(row(0.0, &y, &ev));
     // The reference of the energy balance: the start's kinetic energy and CM height.
     let start = (
         ev.motion.twist.kinetic_energy(mass, &ev.motion.inertia),
@@ -457,7 +458,7 @@ pub(super) fn slide(
                 mass,
             };
             let stuck = ev.motion.stuck;
-            let fail = |o: Outcome, y: &Y, ev: &Eval, s: Stop| {
+            let fail = |o: Outcome<'s>, y: &Y, ev: &Eval, s: Stop| -> Outcome<'s> {
                 let mut o = o;
                 o.energy = Some(balance(y, ev, start));
                 o.finish(row(t, y, ev), s.reason, t, s.detail)
@@ -568,7 +569,7 @@ pub(super) fn slide(
                     }
                 }
                 let t_end = t + lo;
-                o.rows.push(row(t_end, &y, &ev));
+                o.push(row(t_end, &y, &ev));
                 o.increments = k;
                 o.energy = Some(balance(&y, &ev, start));
                 return o.end(stop.reason, t_end, stop.detail.clone());
@@ -636,7 +637,7 @@ pub(super) fn slide(
                 Err(Stop { reason, detail }) => return o.end(reason, t, detail),
             };
             if check.holds() {
-                o.rows.push(rest_row(t_event, &stopped, &stop_pose));
+                o.push(rest_row(t_event, &stopped, &stop_pose));
                 o.energy = Some(energy(&stopped, 0.0, stop_pose.cm.y, start));
                 return o.end(
                     Reason::Stopped,
@@ -663,7 +664,7 @@ pub(super) fn slide(
         t = t_target;
         o.increments = k;
         if k % stride == 0 || k == n_steps {
-            o.rows.push(row(t, &y, &ev));
+            o.push(row(t, &y, &ev));
         }
         if progress((t / solver.t_end).min(1.0)).is_break() {
             o.energy = Some(balance(&y, &ev, start));

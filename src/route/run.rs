@@ -33,9 +33,15 @@ fn row(s: &State, ev: Option<&Evaluation>, pose: &crate::geometry::Pose) -> Row 
     }
 }
 
-/// What a route's loop produced (either dynamics), before the diagnostics are added.
-pub(super) struct Outcome {
-    pub rows: Vec<Row>,
+/// What a route's loop produced (either dynamics), before the diagnostics are added. Rows go
+/// through [`Outcome::push`]: each to the sink, if any (streamed as computed), and every
+/// `keep_every`-th (and the last) kept in `rows`.
+pub(super) struct Outcome<'s> {
+    rows: Vec<Row>,
+    sink: Option<&'s mut dyn FnMut(&Row)>,
+    keep_every: usize,
+    pushed: usize,
+    last: Option<Row>,
     pub termination: Termination,
     /// The factor of safety at the start (the friction cones' definition).
     pub fs: Option<FactorOfSafety>,
@@ -49,11 +55,16 @@ pub(super) struct Outcome {
     pub energy: Option<super::rigid::EnergyBalance>,
 }
 
-impl Outcome {
-    /// Nothing yet: ends at the time limit unless told otherwise.
-    pub fn new() -> Self {
+impl<'s> Outcome<'s> {
+    /// Nothing yet: ends at the time limit unless told otherwise. Rows go to `sink` (if any)
+    /// and every `keep_every`-th is kept.
+    pub fn new(sink: Option<&'s mut dyn FnMut(&Row)>, keep_every: usize) -> Self {
         Outcome {
             rows: Vec::new(),
+            sink,
+            keep_every: keep_every.max(1),
+            pushed: 0,
+            last: None,
             termination: Termination {
                 reason: Reason::TimeLimit,
                 t_s: 0.0,
@@ -71,10 +82,32 @@ impl Outcome {
     /// The route ends for `reason` at `t`, its last state `last` recorded as the last row
     /// whatever the stride (issue #13).
     pub fn finish(mut self, last: Row, reason: Reason, t: f64, detail: String) -> Self {
-        if self.rows.last().is_none_or(|r| r.t_s != last.t_s) {
-            self.rows.push(last);
+        if self.last.is_none_or(|r| r.t_s != last.t_s) {
+            self.push(last);
         }
         self.end(reason, t, detail)
+    }
+
+    /// One row of the route: to the sink, and kept if it is a `keep_every`-th.
+    pub fn push(&mut self, row: Row) {
+        if let Some(sink) = self.sink.as_mut() {
+            sink(&row);
+        }
+        if self.pushed.is_multiple_of(self.keep_every) {
+            self.rows.push(row);
+        }
+        self.pushed += 1;
+        self.last = Some(row);
+    }
+
+    /// The kept rows, the last row always among them.
+    fn into_rows(mut self) -> Vec<Row> {
+        if let Some(last) = self.last {
+            if self.rows.last().is_none_or(|r| r.t_s != last.t_s) {
+                self.rows.push(last);
+            }
+        }
+        self.rows
     }
 
     /// The route ends for `reason` at `t`.
@@ -110,14 +143,42 @@ pub fn run_with(
     method: PoseMethod,
     progress: impl FnMut(f64) -> ControlFlow<()>,
 ) -> Result<Route, SceneError> {
+    drive(scene, method, progress, Outcome::new(None, 1))
+}
+
+/// [`run_observed`] for routes of any length in bounded memory (issue #13): every row goes to
+/// `sink` as it is computed (to be written out), and the returned route keeps only every
+/// `keep_every`-th row and the last (for pictures and summaries).
+pub fn run_streamed(
+    scene: &Scene,
+    progress: impl FnMut(f64) -> ControlFlow<()>,
+    keep_every: usize,
+    mut sink: impl FnMut(&Row),
+) -> Result<Route, SceneError> {
+    drive(
+        scene,
+        PoseMethod::Continuation,
+        progress,
+        Outcome::new(Some(&mut sink), keep_every),
+    )
+}
+
+fn drive(
+    scene: &Scene,
+    method: PoseMethod,
+    progress: impl FnMut(f64) -> ControlFlow<()>,
+    outcome: Outcome<'_>,
+) -> Result<Route, SceneError> {
     let started = Instant::now();
     let dynamics = scene.require_dynamics()?;
     let solver = *dynamics.solver;
     let mut finder = PoseFinder::new(scene, solver.mode, method);
     let start_pose = finder.pose();
     let mut o = match solver.dynamics {
-        DynamicsModel::Paper => slide(scene, &dynamics, &mut finder, progress),
-        DynamicsModel::RigidBody => super::rigid::slide(scene, &dynamics, &mut finder, progress),
+        DynamicsModel::Paper => slide(scene, &dynamics, &mut finder, progress, outcome),
+        DynamicsModel::RigidBody => {
+            super::rigid::slide(scene, &dynamics, &mut finder, progress, outcome)
+        }
     };
     if o.fs.is_none() {
         // One factor of safety whatever the dynamics: the friction cones' at the start.
@@ -132,22 +193,31 @@ pub fn run_with(
     if solver.dynamics == DynamicsModel::Paper {
         explain_paper_end(&mut o);
     }
+    let (termination, fs, paper_ratio, travel, increments, switches, energy) = (
+        o.termination.clone(),
+        o.fs,
+        o.paper_ratio,
+        o.travel,
+        o.increments,
+        o.switches,
+        o.energy,
+    );
     Ok(Route {
         scene: scene.name.clone(),
         mode: solver.mode,
         integrator: solver.integrator,
         dynamics: solver.dynamics,
         pose_method: method,
-        rows: o.rows,
-        termination: o.termination,
-        factor_of_safety: o.fs,
-        paper_ratio: o.paper_ratio,
-        travel_m: o.travel,
-        increments: o.increments,
-        friction_switches: o.switches,
+        rows: o.into_rows(),
+        termination,
+        factor_of_safety: fs,
+        paper_ratio,
+        travel_m: travel,
+        increments,
+        friction_switches: switches,
         tracker: finder.stats(),
         end_jacobian_condition: finder.jacobian_condition(),
-        energy: o.energy,
+        energy,
         wall_s: started.elapsed().as_secs_f64(),
     })
 }
@@ -175,7 +245,7 @@ fn increment_length(t_end: f64, dt: f64, k: usize) -> f64 {
 /// Where the paper's dynamics cannot start or continue the block, the detail says so and names
 /// the rigid body's (issue #12): its kinematics hold only where its frictional system has a
 /// solution and its contacts stay on their planes, which is not physics ending the route.
-fn explain_paper_end(o: &mut Outcome) {
+fn explain_paper_end(o: &mut Outcome<'_>) {
     let t = &mut o.termination;
     let hint = match t.reason {
         Reason::DoesNotSlide if o.fs.is_some_and(|f| !f.at_least_one()) => Some(format!(
@@ -200,12 +270,13 @@ fn explain_paper_end(o: &mut Outcome) {
     }
 }
 
-fn slide(
+fn slide<'s>(
     scene: &Scene,
     dynamics: &crate::scene::Dynamics<'_>,
     finder: &mut PoseFinder<'_>,
     mut progress: impl FnMut(f64) -> ControlFlow<()>,
-) -> Outcome {
+    outcome: Outcome<'s>,
+) -> Outcome<'s> {
     let solver = *dynamics.solver;
     let dt = solver.dt;
     // At rest, or moving as the scene's [initial] says.
@@ -215,7 +286,7 @@ fn slide(
         omega: scene.initial.omega,
         ..State::default()
     };
-    let mut o = Outcome::new();
+    let mut o = outcome;
 
     // The start: pose, statics and whether the block slides at all (a block that starts
     // moving goes on until it stops, whatever the factor of safety).
@@ -230,7 +301,7 @@ fn slide(
     ) {
         Ok(ev) => ev,
         Err(Stop { reason, detail }) => {
-            o.rows.push(row(&state, None, &start_pose));
+            o.push(row(&state, None, &start_pose));
             return o.end(reason, 0.0, detail);
         }
     };
@@ -238,7 +309,7 @@ fn slide(
     let (fs, driving, resisting) =
         factor_of_safety(&ev.geom, &applied, &ev.statics, dynamics.friction);
     o.paper_ratio = fs.is_finite().then_some(fs);
-    o.rows.push(row(&state, Some(&ev), &ev.pose));
+    o.push(row(&state, Some(&ev), &ev.pose));
     if scene.initial.at_rest() && (fs >= 1.0 || ev.reaction.accel <= 0.0) {
         let detail = if driving <= 0.0 {
             format!("nothing drives the block: net driving force along x' is {driving:.6e} N")
@@ -340,7 +411,7 @@ fn slide(
                 factor_of_safety(&stop_ev.geom, &applied, &stop_ev.statics, dynamics.friction);
             if fs_here >= 1.0 {
                 o.travel += (stop_ev.pose.cm - ev.pose.cm).norm();
-                o.rows.push(row(&stop, Some(&stop_ev), &stop_ev.pose));
+                o.push(row(&stop, Some(&stop_ev), &stop_ev.pose));
                 let detail = format!(
                     "speed reached zero at t = {:.6} s; factor of safety there {fs_here:.4}",
                     stop.t
@@ -352,7 +423,7 @@ fn slide(
         state = next;
         ev = new_ev;
         if k % stride == 0 || k == n_steps {
-            o.rows.push(row(&state, Some(&ev), &ev.pose));
+            o.push(row(&state, Some(&ev), &ev.pose));
         }
         if progress(k as f64 / n_steps as f64).is_break() {
             let t = state.t;
