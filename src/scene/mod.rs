@@ -504,6 +504,74 @@ fn block(o: &str, b: &raw::RawBlock) -> Result<Block, SceneError> {
     Ok(block)
 }
 
+/// The most a derived ratio may be, either way: the water load against the weight, and a
+/// moment of inertia against m L². Each input is finite and positive on its own, but together
+/// they can leave the mechanics nothing to compute with (issue #13: a mass of 1e308 kg made the
+/// weight infinite and the contact problem "singular"; a water load of 1e308 N, the cone program
+/// fail). A dam monolith's ratios are of order one.
+const MAX_RATIO: f64 = 1e6;
+
+/// Checks what follows from the inputs: the weight m g is a finite, normal number, the water
+/// load is within [`MAX_RATIO`] of it, and each moment of inertia within [`MAX_RATIO`] of m L²
+/// either way. The error names the key to change.
+fn derived(
+    o: &str,
+    frame: &Frame,
+    block: Option<&Block>,
+    loads: Option<&Loads>,
+) -> Result<(), SceneError> {
+    let (Some(b), Some(l)) = (block, loads) else {
+        return Ok(());
+    };
+    let weight = b.mass * l.gravity;
+    if !weight.is_normal() {
+        let key = if b.mass > l.gravity {
+            "block.mass_kg"
+        } else {
+            "loads.gravity_m_s2"
+        };
+        return Err(SceneError::new(
+            o,
+            key,
+            format!(
+                "the weight m g = {weight:e} N is not a usable number (mass {:e} kg, gravity {:e} \
+                 m/s²)",
+                b.mass, l.gravity
+            ),
+        ));
+    }
+    if l.hydraulic_force > MAX_RATIO * weight {
+        return Err(SceneError::new(
+            o,
+            "loads.hydraulic_force_n",
+            format!(
+                "{:e} N is more than {MAX_RATIO:e} times the weight ({weight:e} N, from a mass of \
+                 {:e} kg)",
+                l.hydraulic_force, b.mass
+            ),
+        ));
+    }
+    let ml2 = b.mass * frame.l() * frame.l();
+    for (key, i) in [
+        ("block.inertia_kg_m2", b.inertia),
+        ("block.inertia_x_kg_m2", b.inertia_x),
+        ("block.inertia_z_kg_m2", b.inertia_z),
+    ] {
+        let ratio = i / ml2;
+        if !(ratio.is_finite() && (1.0 / MAX_RATIO..=MAX_RATIO).contains(&ratio)) {
+            return Err(SceneError::new(
+                o,
+                key,
+                format!(
+                    "{i:e} kg·m² against m L² = {ml2:e} kg·m²: a ratio of {ratio:e}, outside \
+                     1e-6 … 1e6 (a monolith's is of order 0.1)"
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
 fn validate(raw: raw::RawScene, o: &str) -> Result<Scene, SceneError> {
     let f = &raw.frame;
     let frame = Frame {
@@ -664,6 +732,7 @@ fn validate(raw: raw::RawScene, o: &str) -> Result<Scene, SceneError> {
             }
         }
     };
+    derived(o, &frame, block.as_ref(), loads.as_ref())?;
     Ok(Scene {
         name: raw.name.unwrap_or_else(|| "unnamed".to_string()),
         origin: o.to_string(),

@@ -504,3 +504,29 @@ fn likely_mistakes_give_warnings_naming_the_key() {
     );
     assert!(w[1].contains("friction.mu_k"), "{w:?}");
 }
+
+#[test]
+fn derived_quantities_that_are_not_usable_are_errors_naming_the_key() {
+    // Issue #13, item 6: each input finite and positive, but the weight infinite, the water
+    // load or a moment of inertia absurd against it: one line naming the key to change.
+    assert_names(
+        &with("mass_kg = 1.0e6", "mass_kg = 1.0e308"),
+        "block.mass_kg",
+        "weight",
+    );
+    assert_names(
+        &with("gravity_m_s2 = 9.81", "gravity_m_s2 = 1e308"),
+        "loads.gravity_m_s2",
+        "weight",
+    );
+    assert_names(
+        &with("hydraulic_force_n = 8.0e6", "hydraulic_force_n = 1e308"),
+        "loads.hydraulic_force_n",
+        "times the weight",
+    );
+    assert_names(
+        &with("inertia_kg_m2 = 1.1e7", "inertia_kg_m2 = 1e-300"),
+        "block.inertia_kg_m2",
+        "outside 1e-6",
+    );
+}
