@@ -362,6 +362,15 @@ fn run_on_a_geometry_only_scene_names_the_missing_section() {
     );
 }
 
+/// Runs `slideroute sweep --quiet --out DIR` with `args`; on success, sweep.csv's text.
+fn sweep_csv(dir: &std::path::Path, args: &[&str]) -> String {
+    let mut all = vec!["sweep", "--quiet", "--out", dir.to_str().unwrap()];
+    all.extend_from_slice(args);
+    let o = run(&all);
+    assert!(o.status.success(), "{}", stderr(&o));
+    std::fs::read_to_string(dir.join("sweep.csv")).unwrap()
+}
+
 fn temp_dir(name: &str) -> std::path::PathBuf {
     let d = std::env::temp_dir().join(format!("slideroute-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&d);
@@ -786,18 +795,7 @@ fn sweep_keys_are_given_once_whole_number_keys_take_whole_numbers_and_stop_is_hi
         ]),
         &["solver.stride", "whole numbers", "5.5"],
     );
-    let o = run(&[
-        "sweep",
-        "--quiet",
-        "--scene",
-        s,
-        "--out",
-        d,
-        "--vary",
-        "solver.stride=1:10:4",
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let csv = std::fs::read_to_string(dir.join("sweep.csv")).unwrap();
+    let csv = sweep_csv(&dir, &["--scene", s, "--vary", "solver.stride=1:10:4"]);
     let strides: Vec<&str> = csv
         .lines()
         .skip(1)
@@ -809,18 +807,7 @@ fn sweep_keys_are_given_once_whole_number_keys_take_whole_numbers_and_stop_is_hi
         "{csv}"
     );
     // STOP itself, not 0.1 + 0.6 with its rounding (0.7000000000000001).
-    let o = run(&[
-        "sweep",
-        "--quiet",
-        "--scene",
-        s,
-        "--out",
-        d,
-        "--vary",
-        "friction.mu_k=0.1:0.7:7",
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let csv = std::fs::read_to_string(dir.join("sweep.csv")).unwrap();
+    let csv = sweep_csv(&dir, &["--scene", s, "--vary", "friction.mu_k=0.1:0.7:7"]);
     assert_eq!(
         csv.lines().last().unwrap().split(',').next().unwrap(),
         "0.7"
@@ -832,19 +819,10 @@ fn sweep_keys_are_given_once_whole_number_keys_take_whole_numbers_and_stop_is_hi
 fn sweep_dynamics_flag_runs_every_combination_with_that_dynamics() {
     // Issue #13, item 7: `sweep --dynamics paper` on the default (rigid-body) scene.
     let dir = temp_dir("sweep-dynamics");
-    let d = dir.to_str().unwrap();
-    let o = run(&[
-        "sweep",
-        "--quiet",
-        "--dynamics",
-        "paper",
-        "--out",
-        d,
-        "--vary",
-        "friction.mu_k=0.4:0.4:1",
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let csv = std::fs::read_to_string(dir.join("sweep.csv")).unwrap();
+    let csv = sweep_csv(
+        &dir,
+        &["--dynamics", "paper", "--vary", "friction.mu_k=0.4:0.4:1"],
+    );
     let row = csv.lines().nth(1).unwrap();
     // The paper's dynamics end on the default scene: its frictional system at 2.024 s.
     assert!(
@@ -1098,18 +1076,15 @@ fn sweeps_vary_words_and_lists() {
     // lists; a wrong word is bad input (it made every row "invalid scene" with exit 0).
     let dir = temp_dir("sweep-words");
     let d = dir.to_str().unwrap();
-    let o = run(&[
-        "sweep",
-        "--quiet",
-        "--out",
-        d,
-        "--vary",
-        "solver.dynamics=paper,rigid-body",
-        "--vary",
-        "friction.mu_k=0.3,0.4",
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let csv = std::fs::read_to_string(dir.join("sweep.csv")).unwrap();
+    let csv = sweep_csv(
+        &dir,
+        &[
+            "--vary",
+            "solver.dynamics=paper,rigid-body",
+            "--vary",
+            "friction.mu_k=0.3,0.4",
+        ],
+    );
     let lines: Vec<&str> = csv.lines().collect();
     assert_eq!(lines.len(), 5, "{csv}");
     assert!(
