@@ -40,6 +40,11 @@ pub struct FoundationTrig {
 }
 
 impl FoundationTrig {
+    /// tan ξ and tan ζ (for the admissibility check's tilt bounds).
+    pub fn tan_dips(&self) -> (f64, f64) {
+        (1.0 / self.cot_xi, 1.0 / self.cot_zeta)
+    }
+
     pub fn new(scene: &Scene) -> Self {
         let g = &scene.foundation;
         let (sk, ck) = g.kappa.sin_cos();

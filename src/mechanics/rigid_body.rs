@@ -403,20 +403,28 @@ fn longest_arm(geom: &ContactGeometry) -> f64 {
     geom.r.iter().map(|r| r.norm()).fold(0.0, f64::max)
 }
 
+/// The velocity of contact `i` for each unit rate of (Ẋ, Ż, L θ̇), L = `arm`: the columns of its
+/// velocity map (global), through the constrained twist.
+pub fn contact_velocity_map(
+    geom: &ContactGeometry,
+    arm: f64,
+    i: usize,
+) -> Result<[Vector3<f64>; 3], RigidError> {
+    let column = |c: usize| {
+        let mut y = [0.0; 3];
+        y[c] = if c == 2 { 1.0 / arm } else { 1.0 };
+        twist(geom, y).map(|tw| tw.at(&geom.r[i]))
+    };
+    Ok([column(0)?, column(1)?, column(2)?])
+}
+
 /// Rates (Ẋ, Ż, L θ̇), L = `arm`, along which contact `i` does not slip: the null vector of its
 /// 2×3 tangential velocity map (unit).
 fn pivot_direction(geom: &ContactGeometry, arm: f64, i: usize) -> Result<Vector3<f64>, RigidError> {
     let (t1, t2) = geom.tangents(i);
-    let mut rows = [Vector3::zeros(); 2];
-    for c in 0..3 {
-        let mut y = [0.0; 3];
-        y[c] = if c == 2 { 1.0 / arm } else { 1.0 };
-        let tw = twist(geom, y)?;
-        let v = tw.at(&geom.r[i]);
-        rows[0][c] = v.dot(&t1);
-        rows[1][c] = v.dot(&t2);
-    }
-    Ok(unit(rows[0].cross(&rows[1])))
+    let v = contact_velocity_map(geom, arm, i)?;
+    let row = |t: &Vector3<f64>| Vector3::new(v[0].dot(t), v[1].dot(t), v[2].dot(t));
+    Ok(unit(row(&t1).cross(&row(&t2))))
 }
 
 /// The rates (Ẋ, Ż, θ̇) with the slip of contact `i` removed, and the kinetic energy this
@@ -478,11 +486,13 @@ pub fn accelerations(
 /// the direction swing about and the slip turn round again and again (chatter: hundreds of
 /// events, an energy error of a joule that does not converge). A slip from rest, whose
 /// acceleration is of the order of μ λ / m, leaves that band within a few steps, and RK4
-/// follows it (the band would cost it its order). The slaved direction d is the one the slip settles to within that time: the
-/// tangential acceleration it gives is parallel to it, (d × a_t)·n = 0, the root nearest the
-/// slip's own direction; the slip then grows or shrinks along d, and a slip that shrinks passes
-/// through zero where the route's pivot event finds it. As `step` → 0 the band vanishes and the
-/// law is Coulomb's.
+/// follows it (the band would cost it its order).
+///
+/// The slaved direction d is the one the slip settles to within that time: the tangential
+/// acceleration it gives is parallel to it, (d × a_t)·n = 0, the root nearest the slip's own
+/// direction; the slip then grows or shrinks along d, and a slip that shrinks passes through
+/// zero where the route's pivot event finds it. As `step` → 0 the band vanishes and the law is
+/// Coulomb's.
 pub fn accelerations_slaved(
     geom: &ContactGeometry,
     applied: &Applied,
@@ -1000,6 +1010,51 @@ mod tests {
         }
         // About 1 m/s² forward at the start (issue #7's prototype).
         assert!((0.8..1.3).contains(&m.accel.x), "{}", m.accel.x);
+    }
+
+    #[test]
+    fn a_pivot_its_cone_cannot_hold_slips_along_its_own_tangential_acceleration() {
+        // Issue #12: while the block moves, a contact whose slip is zero and whose cone cannot
+        // hold it starts to slip along d with its friction −μλ d, where the tangential
+        // acceleration this gives points along d itself (a_t ∥ d, a_t·d ≥ 0). Checked by
+        // recomputing a_t from the returned accelerations.
+        let scene = Scene::from_toml(
+            &crate::scene::DEFAULT_SCENE_TOML.replace("mu_k = 0.40", "mu_k = 0.05"),
+            "t",
+        )
+        .unwrap();
+        let d = scene.require_dynamics().unwrap();
+        let geom = at(&scene, Displacement::new(0.5, 0.1, 0.05));
+        let applied = Applied::new(d.loads, d.block, &geom.frame);
+        let arm = longest_arm(&geom);
+        let mut checked = 0;
+        for i in 0..3 {
+            let p = pivot_direction(&geom, arm, i).unwrap() * 2.0;
+            let rates = [p.x, p.y, p.z / arm];
+            let m = accelerations(&geom, &applied, d.block, d.friction, rates).unwrap();
+            assert!(
+                m.slip[i].norm() < 1e-12,
+                "contact {i} does not slip at the start"
+            );
+            if m.stuck == Some(i) {
+                continue;
+            }
+            let r = geom.r[i];
+            let acc = m.accel + m.ang_accel.cross(&r) + m.twist.w.cross(&m.twist.w.cross(&r));
+            let a_t = acc - geom.n[i] * acc.dot(&geom.n[i]);
+            let dir = -m.shear[i] / m.shear[i].norm();
+            assert!((m.shear[i].norm() - 0.05 * m.normal[i]).abs() < 1e-9 * m.normal[i]);
+            assert!(
+                dir.cross(&a_t).norm() < 1e-8 * a_t.norm().max(1e-12),
+                "{i}: {a_t:?} {dir:?}"
+            );
+            assert!(a_t.dot(&dir) >= 0.0, "{i}: the slip grows along d");
+            checked += 1;
+        }
+        assert!(
+            checked > 0,
+            "no contact's cone failed: the test checks nothing"
+        );
     }
 
     #[test]

@@ -6,7 +6,7 @@
 //! * **admissible**: real, not spurious, 0 ≤ α < ξ, 0 ≤ β < ζ, and each contact over its own
 //!   plane (vertex 0 over the horizontal part, vertex 1 over plane 1, vertex 2 over plane 2).
 
-use crate::coeffs::SmallAngleUnsquared;
+use crate::coeffs::{FoundationTrig, SmallAngleUnsquared};
 use crate::geometry::planes::{along_dip_2, r};
 use crate::geometry::{Displacement, Pose};
 use crate::scene::{Mode, Scene};
@@ -73,20 +73,26 @@ pub fn pose(scene: &Scene, d: Displacement, mode: Mode, u: [f64; 2]) -> Option<P
 
 /// Checks tilt ranges and contact regions of a real, non-spurious pose, with [`REGION_TOL`].
 pub fn check_pose(scene: &Scene, p: &Pose) -> Result<(), Inadmissible> {
-    check_pose_within(scene, p, REGION_TOL)
+    check_pose_within(scene, &FoundationTrig::new(scene), p, REGION_TOL)
 }
 
 /// [`check_pose`] with the regions' tolerance `region_tol` (a fraction of L; infinite: the
 /// regions are not checked, only the tilts' upper bounds, as for the intermediate stages of an
 /// integrator, which are no states of the route: each contact's equations hold on its whole
 /// plane, and only the states the route accepts must lie in the regions).
-pub fn check_pose_within(scene: &Scene, p: &Pose, region_tol: f64) -> Result<(), Inadmissible> {
+pub fn check_pose_within(
+    scene: &Scene,
+    trig: &FoundationTrig,
+    p: &Pose,
+    region_tol: f64,
+) -> Result<(), Inadmissible> {
     let g = &scene.foundation;
     let l = scene.l();
     let tol = region_tol * l;
     // sin α and α agree to round-off at these angles (about 1e-8 rad): no asin.
-    let alpha_min = -2.0 * region_tol * g.xi.tan();
-    let beta_min = -2.0 * region_tol * g.zeta.tan() / std::f64::consts::SQRT_2;
+    let (tan_xi, tan_zeta) = trig.tan_dips();
+    let alpha_min = -2.0 * region_tol * tan_xi;
+    let beta_min = -2.0 * region_tol * tan_zeta / std::f64::consts::SQRT_2;
     // The tilts' upper bounds first: a tilt reaching its dip is its own end.
     if p.alpha.is_nan() || p.alpha >= g.xi {
         return Err(Inadmissible::AlphaOutOfRange);

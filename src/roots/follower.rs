@@ -104,7 +104,7 @@ impl<'s> EigenFollower<'s> {
                 classify::pose(self.scene, target, self.mode, u)
                     .ok_or(Inadmissible::NoRealFrame)
                     .and_then(|pose| {
-                        classify::check_pose_within(self.scene, &pose, self.region_tol)
+                        classify::check_pose_within(self.scene, &self.trig, &pose, self.region_tol)
                     })
             };
             match verdict {

@@ -327,7 +327,7 @@ impl<'s> Tracker<'s> {
         let p = self
             .current_pose
             .ok_or_else(|| fail(Inadmissible::NoRealFrame))?;
-        check_pose_within(self.scene, &p, self.region_tol).map_err(fail)
+        check_pose_within(self.scene, &self.trig, &p, self.region_tol).map_err(fail)
     }
 }
 

@@ -157,14 +157,9 @@ fn hold(
             break;
         }
         let geom = ContactGeometry::with_normals(&dynamics.normals, &ev.pose);
-        let mut j = [[0.0; 3]; 2];
-        for c in 0..3 {
-            let mut e = [0.0; 3];
-            e[c] = if c == 2 { 1.0 / l } else { 1.0 };
-            let v = rigid_body::twist(&geom, e).map_err(stop_of)?.at(&geom.r[i]);
-            j[0][c] = v.x;
-            j[1][c] = v.z;
-        }
+        // The contact's horizontal velocity for unit (Ẋ, Ż, L θ̇): rows X and Z.
+        let v = rigid_body::contact_velocity_map(&geom, l, i).map_err(stop_of)?;
+        let j = [v.map(|c| c.x), v.map(|c| c.z)];
         let dot = |a: &[f64; 3], b: &[f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
         let (a, b, d) = (dot(&j[0], &j[0]), dot(&j[0], &j[1]), dot(&j[1], &j[1]));
         let det = a * d - b * b;

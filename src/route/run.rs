@@ -100,14 +100,14 @@ impl<'s> Outcome<'s> {
         self.last = Some(row);
     }
 
-    /// The kept rows, the last row always among them.
-    fn into_rows(mut self) -> Vec<Row> {
+    /// The kept rows, the last row always among them (taken out of the outcome).
+    fn take_rows(&mut self) -> Vec<Row> {
         if let Some(last) = self.last {
             if self.rows.last().is_none_or(|r| r.t_s != last.t_s) {
                 self.rows.push(last);
             }
         }
-        self.rows
+        std::mem::take(&mut self.rows)
     }
 
     /// The route ends for `reason` at `t`.
@@ -193,31 +193,22 @@ fn drive(
     if solver.dynamics == DynamicsModel::Paper {
         explain_paper_end(&mut o);
     }
-    let (termination, fs, paper_ratio, travel, increments, switches, energy) = (
-        o.termination.clone(),
-        o.fs,
-        o.paper_ratio,
-        o.travel,
-        o.increments,
-        o.switches,
-        o.energy,
-    );
     Ok(Route {
         scene: scene.name.clone(),
         mode: solver.mode,
         integrator: solver.integrator,
         dynamics: solver.dynamics,
         pose_method: method,
-        rows: o.into_rows(),
-        termination,
-        factor_of_safety: fs,
-        paper_ratio,
-        travel_m: travel,
-        increments,
-        friction_switches: switches,
+        rows: o.take_rows(),
+        termination: o.termination,
+        factor_of_safety: o.fs,
+        paper_ratio: o.paper_ratio,
+        travel_m: o.travel,
+        increments: o.increments,
+        friction_switches: o.switches,
         tracker: finder.stats(),
         end_jacobian_condition: finder.jacobian_condition(),
-        energy,
+        energy: o.energy,
         wall_s: started.elapsed().as_secs_f64(),
     })
 }
