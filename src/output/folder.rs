@@ -89,11 +89,6 @@ impl Folder {
         Err(format!("{}: cannot lock the folder", dir.display()))
     }
 
-    /// The folder.
-    pub fn dir(&self) -> &Path {
-        &self.dir
-    }
-
     /// Writes `name` (relative; its folder is created) through `write`, which is given the
     /// temporary path to write to; renames it into place when `write` succeeded. Returns the
     /// final path.
