@@ -98,8 +98,24 @@ pub fn parting(scene: &Scene, a: &[Row], b: &[Row]) -> Parting {
 
 /// Runs the scene with the paper's dynamics and with the rigid body's.
 pub fn compare_dynamics(scene: &Scene) -> Result<Comparison, SceneError> {
-    let paper = route::run(&scene.with_dynamics(DynamicsModel::Paper))?;
-    let rigid_body = route::run(&scene.with_dynamics(DynamicsModel::RigidBody))?;
+    compare_dynamics_observed(scene, || false)
+}
+
+/// [`compare_dynamics`], both routes ending at their next increment as "interrupted" once
+/// `stop()` answers true (Ctrl-C).
+pub fn compare_dynamics_observed(
+    scene: &Scene,
+    stop: impl Fn() -> bool,
+) -> Result<Comparison, SceneError> {
+    let observe = |_: f64| {
+        if stop() {
+            std::ops::ControlFlow::Break(())
+        } else {
+            std::ops::ControlFlow::Continue(())
+        }
+    };
+    let paper = route::run_observed(&scene.with_dynamics(DynamicsModel::Paper), observe)?;
+    let rigid_body = route::run_observed(&scene.with_dynamics(DynamicsModel::RigidBody), observe)?;
     let parting = parting(scene, &paper.rows, &rigid_body.rows);
     Ok(Comparison {
         paper,

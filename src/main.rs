@@ -482,39 +482,16 @@ fn compare_cmd(
 ) -> Result<(), CliError> {
     let scene = load(scene)?;
     let mut folder = slideroute::output::folder::Folder::open(out).map_err(failed)?;
-    let c = slideroute::compare::compare_dynamics(&scene).map_err(|e| e.to_string())?;
+    let c = slideroute::compare::compare_dynamics_observed(&scene, interrupted)
+        .map_err(|e| e.to_string())?;
     #[allow(unused_mut)]
     let mut files =
         slideroute::output::compare_files::write(&mut folder, &scene, &c).map_err(failed)?;
     #[cfg(feature = "plots")]
     if !no_plots {
-        use plotters::style::RGBColor;
-        let title = format!("{}: plan view of both dynamics", scene.name);
-        let label = |what: &str, r: &slideroute::route::Route| {
-            format!(
-                "{what}: CM path ({} at {:.2} s)",
-                r.termination.reason, r.termination.t_s
-            )
-        };
         let path = folder
             .write_with("compare-plan.svg", |tmp| {
-                slideroute::output::plots::plan_routes(
-                    tmp,
-                    &scene,
-                    &title,
-                    &[
-                        (
-                            &label("rigid body", &c.rigid_body),
-                            &c.rigid_body.rows,
-                            RGBColor(200, 30, 30),
-                        ),
-                        (
-                            &label("paper's dynamics", &c.paper),
-                            &c.paper.rows,
-                            RGBColor(230, 140, 0),
-                        ),
-                    ],
-                )
+                slideroute::output::plots::compare_plan(tmp, &scene, &c)
             })
             .map_err(failed)?;
         files.push(path);
@@ -522,6 +499,13 @@ fn compare_cmd(
     #[cfg(not(feature = "plots"))]
     let _ = no_plots;
     folder.finish().map_err(failed)?;
+    if interrupted() {
+        let names: Vec<String> = files.iter().map(|f| f.display().to_string()).collect();
+        return Err(failed(format!(
+            "interrupted: the routes stopped at their next increment; wrote what was computed: {}",
+            names.join(", ")
+        )));
+    }
     if quiet {
         return Ok(());
     }
@@ -603,7 +587,7 @@ fn sweep_cmd(
     }
     let mut folder = slideroute::output::folder::Folder::open(out).map_err(failed)?;
     let bar = progress_bar(quiet, n as u64, "sweep");
-    let rows = slideroute::sweep::run(&text, &origin, &varies, || bar.inc(1))?;
+    let rows = slideroute::sweep::run(&text, &origin, &varies, || bar.inc(1), interrupted)?;
     bar.finish_and_clear();
     let csv_path = folder
         .write_with("sweep.csv", |tmp| {
@@ -625,6 +609,13 @@ fn sweep_cmd(
         written.push(svg.display().to_string());
     }
     folder.finish().map_err(failed)?;
+    if interrupted() {
+        return Err(failed(format!(
+            "interrupted: combinations under way stopped, those not started are rows \"{}\"; wrote {}",
+            slideroute::sweep::NOT_RUN,
+            written.join(", ")
+        )));
+    }
     if !quiet {
         let mut counts: std::collections::BTreeMap<&str, usize> = std::collections::BTreeMap::new();
         for r in &rows {
@@ -644,7 +635,15 @@ fn report_cmd(quick: bool, out: &std::path::Path, quiet: bool) -> Result<(), Cli
         slideroute::report::point_count(quick) as u64,
         "report",
     );
-    let (points, references) = slideroute::report::work_precision(quick, || bar.inc(1))?;
+    let (points, references) = slideroute::report::work_precision(quick, || {
+        bar.inc(1);
+        if interrupted() {
+            std::ops::ControlFlow::Break(())
+        } else {
+            std::ops::ControlFlow::Continue(())
+        }
+    })
+    .map_err(failed)?;
     bar.finish_and_clear();
     let extreme = slideroute::report::extreme(if quick { 20 } else { 200 });
     let mut folder = slideroute::output::folder::Folder::open(out).map_err(failed)?;
@@ -723,6 +722,11 @@ fn scene_cmd(print_default: bool, check: Option<&PathBuf>) -> Result<(), CliErro
 /// Set by Ctrl-C (SIGINT) and SIGTERM: a route stops at its next increment and writes what it
 /// computed, with termination "interrupted" (issue #13); a second signal ends the process.
 static INTERRUPTED: AtomicBool = AtomicBool::new(false);
+
+/// Whether Ctrl-C or SIGTERM has come.
+fn interrupted() -> bool {
+    INTERRUPTED.load(Ordering::Relaxed)
+}
 
 fn main() -> ExitCode {
     let cli = Cli::parse();

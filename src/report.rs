@@ -88,11 +88,17 @@ pub fn scenes() -> Vec<(Scene, f64)> {
     ]
 }
 
+/// The error of a report stopped by its caller.
+pub const INTERRUPTED: &str =
+    "interrupted: the report was stopped before it was complete, and nothing was written";
+
 /// Runs the ladder. `quick`: three steps of dt and three repeats (under a minute here);
-/// otherwise six and seven. `progress()` is called after each point.
+/// otherwise six and seven. `progress()` is called after each point; when it answers
+/// `ControlFlow::Break` (Ctrl-C) the report stops with the error [`INTERRUPTED`]: a report
+/// half measured is not written.
 pub fn work_precision(
     quick: bool,
-    progress: impl Fn(),
+    progress: impl Fn() -> std::ops::ControlFlow<()>,
 ) -> Result<(Vec<Point>, Vec<Reference>), String> {
     let (levels, repeats) = if quick { (3, 3) } else { (6, 7) };
     let ref_dt = DT0 / 512.0;
@@ -140,7 +146,9 @@ pub fn work_precision(
                             wall_s: times[times.len() / 2],
                             error_m: max_distance(&r, &reference, (dt / ref_dt).round() as usize),
                         });
-                        progress();
+                        if progress().is_break() {
+                            return Err(INTERRUPTED.into());
+                        }
                     }
                 }
             }

@@ -10,6 +10,7 @@ use crate::route::{self, Route};
 use crate::scene::Scene;
 use rayon::prelude::*;
 use serde::Serialize;
+use std::ops::ControlFlow;
 
 /// One varied key and its values.
 #[derive(Debug, Clone, PartialEq)]
@@ -319,13 +320,20 @@ pub fn check_keys(base_text: &str, varies: &[Vary]) -> Result<toml::Table, Strin
     Ok(table)
 }
 
+/// The reason of a combination a stopped sweep did not start.
+pub const NOT_RUN: &str = "not run (interrupted)";
+
 /// Runs every combination in parallel; rows in the order of the combinations (the last
-/// `--vary` varying fastest). `progress()` is called once per finished combination.
+/// `--vary` varying fastest). `progress()` is called once per finished combination. Once
+/// `stop()` answers true (Ctrl-C), routes under way end at their next increment as
+/// "interrupted" and combinations not yet started are rows "not run (interrupted)": every
+/// combination still has its row.
 pub fn run(
     base_text: &str,
     origin: &str,
     varies: &[Vary],
     progress: impl Fn() + Sync,
+    stop: impl Fn() -> bool + Sync,
 ) -> Result<Vec<SweepRow>, String> {
     let table = check_keys(base_text, varies)?;
     let n = count(varies);
@@ -343,6 +351,20 @@ pub fn run(
             for (k, v) in varies.iter().enumerate().rev() {
                 values[k] = v.values[rest % v.values.len()];
                 rest /= v.values.len();
+            }
+            if stop() {
+                progress();
+                return SweepRow {
+                    values,
+                    reason: NOT_RUN.into(),
+                    t_end_s: None,
+                    travel_m: None,
+                    final_theta_deg: None,
+                    max_alpha_deg: None,
+                    max_beta_deg: None,
+                    factor_of_safety: None,
+                    detail: "the sweep was interrupted before this combination started".into(),
+                };
             }
             let mut t = table.clone();
             for (v, &x) in varies.iter().zip(&values) {
@@ -364,8 +386,16 @@ pub fn run(
             let row = match toml::to_string(&t)
                 .map_err(|e| e.to_string())
                 .and_then(|text| Scene::from_toml(&text, origin).map_err(|e| e.to_string()))
-                .and_then(|scene| route::run(&scene).map_err(|e| e.to_string()))
-            {
+                .and_then(|scene| {
+                    route::run_observed(&scene, |_| {
+                        if stop() {
+                            ControlFlow::Break(())
+                        } else {
+                            ControlFlow::Continue(())
+                        }
+                    })
+                    .map_err(|e| e.to_string())
+                }) {
                 Ok(r) => row_of(values, &r),
                 Err(e) => SweepRow {
                     values,
@@ -439,7 +469,7 @@ mod tests {
             parse_vary("foundation.xi_deg=20:95:2").unwrap(),
             parse_vary("loads.hydraulic_force_n=0:8e6:2").unwrap(),
         ];
-        let rows = run(base, "base", &varies, || ()).unwrap();
+        let rows = run(base, "base", &varies, || (), || false).unwrap();
         assert_eq!(rows.len(), 4);
         assert_eq!(rows[1].values, vec![20.0, 8e6]);
         assert_eq!(rows[0].reason, "does not slide");
@@ -449,5 +479,28 @@ mod tests {
             "{}",
             rows[2].detail
         );
+    }
+
+    #[test]
+    fn a_stopped_sweep_still_has_a_row_for_every_combination() {
+        let varies = [parse_vary("friction.mu_k=0.2:0.6:5").unwrap()];
+        let done = std::sync::atomic::AtomicUsize::new(0);
+        let rows = run(
+            crate::scene::DEFAULT_SCENE_TOML,
+            "base",
+            &varies,
+            || {
+                done.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+            },
+            || true,
+        )
+        .unwrap();
+        assert_eq!(rows.len(), 5);
+        assert!(
+            rows.iter()
+                .all(|r| r.reason == NOT_RUN && r.travel_m.is_none())
+        );
+        assert_eq!(rows[4].values, vec![0.6]);
+        assert_eq!(done.into_inner(), 5, "progress counts every combination");
     }
 }

@@ -392,7 +392,7 @@ fn run_without_arguments_draws_the_four_pictures() {
         );
     }
     let plan = std::fs::read_to_string(dir.join("plan.svg")).unwrap();
-    assert!(plan.contains("strike of plane 1") && plan.contains("path of the centre of mass"));
+    assert!(plan.contains("plane 1, dip 20°") && plan.contains("path of the centre of mass"));
     let out = String::from_utf8_lossy(&o.stdout);
     for part in ["travel", "final yaw", "factor of safety", "increments"] {
         assert!(out.contains(part), "summary lacks {part}: {out}");
@@ -1031,6 +1031,135 @@ fn an_interrupted_run_stops_at_the_next_increment_and_writes_what_it_computed() 
         .unwrap();
     assert_eq!(last, t);
     assert!(!out.join(".slideroute.lock").exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Starts `slideroute args…`, sends it SIGINT after `ms` milliseconds, and waits for it.
+fn interrupted_after(args: &[&str], ms: u64) -> std::process::Output {
+    let child = Command::new(env!("CARGO_BIN_EXE_slideroute"))
+        .args(args)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(ms));
+    let killed = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(killed.success());
+    child.wait_with_output().unwrap()
+}
+
+/// A scene whose route takes many seconds (dt = 10 µs, a slow slide).
+fn long_scene(dir: &std::path::Path) -> std::path::PathBuf {
+    std::fs::create_dir_all(dir).unwrap();
+    let scene = dir.join("long.toml");
+    std::fs::write(
+        &scene,
+        slideroute::scene::DEFAULT_SCENE_TOML
+            .replace("dt_s = 1.0e-3", "dt_s = 1.0e-5")
+            .replace("eccentricity_m = 1.0 ", "eccentricity_m = 0.0 ")
+            .replace("hydraulic_force_n = 8.0e6", "hydraulic_force_n = 7.0e6"),
+    )
+    .unwrap();
+    scene
+}
+
+#[test]
+fn an_interrupted_sweep_writes_a_row_for_every_combination() {
+    // Issue #13, item 3 for sweeps: routes under way stop at their next increment, those not
+    // started are rows "not run (interrupted)"; the files are whole, the lock gone.
+    let dir = temp_dir("interrupt-sweep");
+    let scene = long_scene(&dir);
+    let out = dir.join("out");
+    let o = interrupted_after(
+        &[
+            "sweep",
+            "--quiet",
+            "--scene",
+            scene.to_str().unwrap(),
+            "--vary",
+            "friction.mu_k=0.2:0.3:12",
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        500,
+    );
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("interrupted"), "{}", stderr(&o));
+    let mut csv = csv::Reader::from_path(out.join("sweep.csv")).unwrap();
+    let column = csv.headers().unwrap().iter().position(|h| h == "reason");
+    let column = column.expect("a reason column");
+    let reasons: Vec<String> = csv
+        .records()
+        .map(|r| r.unwrap()[column].to_string())
+        .collect();
+    assert_eq!(reasons.len(), 12, "a row for every combination");
+    assert!(
+        reasons
+            .iter()
+            .all(|r| r == "interrupted" || r == "not run (interrupted)"),
+        "{reasons:?}"
+    );
+    assert!(out.join("sweep.svg").exists());
+    assert!(!out.join(".slideroute.lock").exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn an_interrupted_comparison_writes_both_routes_as_far_as_they_went() {
+    let dir = temp_dir("interrupt-compare");
+    let scene = long_scene(&dir);
+    let out = dir.join("out");
+    let o = interrupted_after(
+        &[
+            "run",
+            "--compare-dynamics",
+            "--quiet",
+            "--scene",
+            scene.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        500,
+    );
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("interrupted"), "{}", stderr(&o));
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("comparison.json")).unwrap())
+            .unwrap();
+    assert_eq!(v["rigid_body"]["termination"]["reason"], "interrupted");
+    for sub in ["paper", "rigid-body"] {
+        let csv = std::fs::read_to_string(out.join(sub).join("route.csv")).unwrap();
+        assert!(
+            csv.lines().all(|l| l.split(',').count() == 17),
+            "{sub}: a cut line"
+        );
+    }
+    assert!(!out.join(".slideroute.lock").exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn an_interrupted_report_writes_nothing_and_says_so() {
+    // A work–precision report half measured would mislead: it is not written.
+    let dir = temp_dir("interrupt-report");
+    let out = dir.join("out");
+    let o = interrupted_after(
+        &[
+            "report",
+            "--quick",
+            "--quiet",
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        300,
+    );
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("interrupted"), "{}", stderr(&o));
+    assert!(!out.join("work-precision.csv").exists());
+    assert!(!out.join("work-precision.md").exists());
     let _ = std::fs::remove_dir_all(&dir);
 }
 

@@ -53,7 +53,8 @@ fn extreme_cases_that_slide_converge_as_dt_halves() {
 
 #[test]
 fn quick_report_establishes_its_references_and_shows_the_orders() {
-    let (points, references) = report::work_precision(true, || ()).unwrap();
+    let (points, references) =
+        report::work_precision(true, || std::ops::ControlFlow::Continue(())).unwrap();
     assert_eq!(points.len(), report::point_count(true));
     for r in &references {
         assert!(

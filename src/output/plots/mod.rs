@@ -1,0 +1,320 @@
+//! Pictures (SVG, pure Rust) an engineer reads at a glance (issue #13, item 9): the plan view
+//! like the paper's Figure 12, the CM profile, the angles and the reactions against time, the
+//! sweep and the work–precision report. Every picture keeps its legend in a side panel, off the
+//! data; a route that does not move gets a picture that says why instead of empty axes; no
+//! picture grows with the route's length ([`MAX_POINTS`]).
+
+mod plan;
+mod series;
+mod sheet;
+#[cfg(feature = "cli")]
+mod sweep;
+#[cfg(feature = "cli")]
+mod work_precision;
+
+#[cfg(feature = "cli")]
+pub use sweep::sweep;
+#[cfg(feature = "cli")]
+pub use work_precision::work_precision;
+
+use crate::mechanics::static_friction::FactorOfSafety;
+use crate::numeric::{fixed, seconds};
+use crate::route::{Reason, Route, Row};
+use crate::scene::Scene;
+use plan::Track;
+use plotters::style::RGBColor;
+use series::Series;
+use sheet::{Entry, Mark, Res};
+use std::path::{Path, PathBuf};
+
+/// The most points a picture draws of a route (issue #13): past this, rows are thinned evenly
+/// (the first and last always kept), so that no picture grows with the route's length — about
+/// 0.5 MB for the largest, the reactions, whatever the number of increments.
+pub const MAX_POINTS: usize = 4000;
+
+/// The rows a picture draws: all of them up to [`MAX_POINTS`], else every k-th and the last.
+pub fn thinned(rows: &[Row]) -> Vec<Row> {
+    if rows.len() <= MAX_POINTS {
+        return rows.to_vec();
+    }
+    let every = rows.len().div_ceil(MAX_POINTS - 1);
+    rows.iter()
+        .enumerate()
+        .filter(|(k, _)| k % every == 0 || *k + 1 == rows.len())
+        .map(|(_, r)| *r)
+        .collect()
+}
+
+const COLORS: [RGBColor; 6] = [
+    RGBColor(200, 30, 30),
+    RGBColor(30, 90, 200),
+    RGBColor(30, 150, 60),
+    RGBColor(230, 140, 0),
+    RGBColor(140, 40, 170),
+    RGBColor(0, 150, 160),
+];
+
+/// The factor of safety in a few words.
+fn fs_words(fs: Option<FactorOfSafety>) -> String {
+    match fs {
+        Some(FactorOfSafety::Finite { value }) => format!("factor of safety {value:.4}"),
+        Some(FactorOfSafety::Unbounded) => "factor of safety unbounded".into(),
+        Some(FactorOfSafety::NotHoldable) => {
+            "no factor of safety: the weight alone slides the block".into()
+        }
+        None => "factor of safety not known".into(),
+    }
+}
+
+/// How the route ended, its travel and its factor of safety, for a picture's panel.
+fn route_notes(route: &Route) -> Vec<Entry> {
+    let mut notes = vec![Entry::new(
+        Mark::None,
+        format!(
+            "{} at t = {} s",
+            route.termination.reason,
+            seconds(route.termination.t_s)
+        ),
+    )];
+    if let Some(last) = route.rows.last() {
+        notes.push(Entry::new(
+            Mark::None,
+            format!(
+                "travel {} m; final yaw θ = {}°",
+                fixed(route.travel_m, 3),
+                fixed(last.theta_deg, 2)
+            ),
+        ));
+    }
+    notes.push(Entry::new(Mark::None, fs_words(route.factor_of_safety)));
+    notes.push(Entry::new(
+        Mark::None,
+        format!(
+            "{} dynamics, {} mode, {} increments",
+            route.dynamics.as_str(),
+            route.mode.as_str(),
+            route.increments
+        ),
+    ));
+    notes
+}
+
+/// Whether the route has anything to draw against time (it moved past its first row).
+fn moved(route: &Route) -> bool {
+    route.rows.len() > 1
+}
+
+/// Why a route has nothing to draw against time, in sentences.
+fn still_words(route: &Route, what: &str) -> Vec<String> {
+    let t = &route.termination;
+    let first = if t.reason == Reason::DoesNotSlide {
+        format!(
+            "{} does not slide: static friction within the three contacts' cones holds the \
+             block under its weight and the water load ({}).",
+            route.scene,
+            fs_words(route.factor_of_safety)
+        )
+    } else {
+        format!(
+            "The route of {} ended at once (t = {} s): {}. {}",
+            route.scene,
+            seconds(t.t_s),
+            t.reason,
+            fs_words(route.factor_of_safety)
+        )
+    };
+    let mut lines = vec![first];
+    if !t.detail.is_empty() && t.reason != Reason::DoesNotSlide {
+        lines.push(t.detail.clone());
+    }
+    lines.push(format!(
+        "The block does not move, so there are no {what} to draw; plan.svg shows the scene at rest."
+    ));
+    lines
+}
+
+/// The plan view of one route.
+pub fn plan(path: &Path, scene: &Scene, route: &Route) -> Res<()> {
+    let rows = thinned(&route.rows);
+    let title = if route.termination.reason == Reason::DoesNotSlide {
+        format!(
+            "{}: plan view from above — does not slide ({})",
+            route.scene,
+            fs_words(route.factor_of_safety)
+        )
+    } else {
+        format!(
+            "{}: plan view from above — {} at t = {} s",
+            route.scene,
+            route.termination.reason,
+            seconds(route.termination.t_s)
+        )
+    };
+    plan::plan_view(
+        path,
+        scene,
+        &title,
+        &[Track {
+            name: "path of the centre of mass (CM)".into(),
+            rows: &rows,
+            color: COLORS[0],
+        }],
+        &route_notes(route),
+    )
+}
+
+/// Both dynamics' routes of one scene on one plan view (`run --compare-dynamics`).
+pub fn compare_plan(path: &Path, scene: &Scene, c: &crate::compare::Comparison) -> Res<()> {
+    let (rigid, paper) = (thinned(&c.rigid_body.rows), thinned(&c.paper.rows));
+    let name = |what: &str, r: &Route| {
+        format!(
+            "{what}: CM path ({} at t = {} s, travel {} m)",
+            r.termination.reason,
+            seconds(r.termination.t_s),
+            fixed(r.travel_m, 3)
+        )
+    };
+    plan::plan_view(
+        path,
+        scene,
+        &format!("{}: plan view of both dynamics", scene.name),
+        &[
+            Track {
+                name: name("rigid body", &c.rigid_body),
+                rows: &rigid,
+                color: COLORS[0],
+            },
+            Track {
+                name: name("paper's dynamics", &c.paper),
+                rows: &paper,
+                color: COLORS[3],
+            },
+        ],
+        &[Entry::new(
+            Mark::None,
+            fs_words(c.rigid_body.factor_of_safety),
+        )],
+    )
+}
+
+/// plan.svg, profile.svg, angles.svg, reactions.svg in `dir`.
+pub fn write_route_plots(dir: &Path, scene: &Scene, route: &Route) -> Res<Vec<PathBuf>> {
+    let thin = thinned(&route.rows);
+    let rows = &thin;
+    let t: Vec<f64> = rows.iter().map(|r| r.t_s).collect();
+    let notes = route_notes(route);
+    let mut out = Vec::new();
+
+    let p = dir.join("plan.svg");
+    plan(&p, scene, route)?;
+    out.push(p);
+
+    // Distance travelled by the CM (3-D path length).
+    let mut s = Vec::with_capacity(rows.len());
+    let mut acc = 0.0;
+    for (k, r) in rows.iter().enumerate() {
+        if k > 0 {
+            let q = &rows[k - 1];
+            acc += ((r.x_m - q.x_m).powi(2) + (r.y_m - q.y_m).powi(2) + (r.z_m - q.z_m).powi(2))
+                .sqrt();
+        }
+        s.push(acc);
+    }
+    let still = |p: &Path, title: String, what: &str| {
+        sheet::message(p, series::SIZE, &title, &still_words(route, what))
+    };
+    let p = dir.join("profile.svg");
+    let title = format!("{}: elevation of the centre of mass", route.scene);
+    if moved(route) {
+        series::lines(
+            &p,
+            &title,
+            ("distance travelled by the CM (m)", "CM height Y (m)"),
+            &s,
+            &[Series {
+                name: "CM height",
+                values: rows.iter().map(|r| r.y_m).collect(),
+                color: COLORS[0],
+            }],
+            &notes,
+        )?;
+    } else {
+        still(&p, title, "heights along a path")?;
+    }
+    out.push(p);
+
+    let p = dir.join("angles.svg");
+    let title = format!("{}: tilts and yaw", route.scene);
+    if moved(route) {
+        let angle = |f: fn(&Row) -> f64| rows.iter().map(f).collect();
+        series::lines(
+            &p,
+            &title,
+            ("time (s)", "angle (°)"),
+            &t,
+            &[
+                Series {
+                    name: "α: tilt of side 01",
+                    values: angle(|r| r.alpha_deg),
+                    color: COLORS[0],
+                },
+                Series {
+                    name: "β: tilt of side 02",
+                    values: angle(|r| r.beta_deg),
+                    color: COLORS[1],
+                },
+                Series {
+                    name: "γ: tilt of side 1→2",
+                    values: angle(|r| r.gamma_deg),
+                    color: COLORS[2],
+                },
+                Series {
+                    name: "θ: yaw",
+                    values: angle(|r| r.theta_deg),
+                    color: COLORS[3],
+                },
+            ],
+            &notes,
+        )?;
+    } else {
+        still(&p, title, "angles over time")?;
+    }
+    out.push(p);
+
+    let mn = |pick: fn(&Row) -> Option<[f64; 3]>, i: usize| -> Vec<f64> {
+        rows.iter()
+            .map(|r| pick(r).map_or(f64::NAN, |v| v[i] / 1e6))
+            .collect()
+    };
+    let p = dir.join("reactions.svg");
+    let title = format!("{}: contact reactions", route.scene);
+    if moved(route) {
+        let names = [
+            "N0 normal, contact 0",
+            "N1 normal, contact 1",
+            "N2 normal, contact 2",
+            "S0 shear, contact 0",
+            "S1 shear, contact 1",
+            "S2 shear, contact 2",
+        ];
+        let series: Vec<Series> = (0..6)
+            .map(|k| Series {
+                name: names[k],
+                values: if k < 3 {
+                    mn(|r| r.n_n, k)
+                } else {
+                    mn(|r| r.s_n, k - 3)
+                },
+                color: COLORS[k],
+            })
+            .collect();
+        series::lines(&p, &title, ("time (s)", "force (MN)"), &t, &series, &notes)?;
+    } else {
+        still(&p, title, "reactions over time")?;
+    }
+    out.push(p);
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests;

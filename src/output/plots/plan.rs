@@ -1,0 +1,717 @@
+//! The plan view from above, like the paper's Figure 12 (issue #13, item 9): the foundation's
+//! three regions shaded and named with their dips and down-dip arrows, the strike lines, the
+//! hydraulic force on its line of action at the start, the contact frame along the route with
+//! the contacts numbered at the start and the end, and the CM path — enlarged in an inset when
+//! it is short beside the frame.
+
+use super::sheet::{self, Area, Entry, Mark, Res, Sheet, err};
+use crate::geometry::planes::{Plane, r as strike_2_distance};
+use crate::geometry::{Displacement, Pose};
+use crate::route::Row;
+use crate::scene::Scene;
+use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
+use std::path::Path;
+
+pub(super) const PLANE_1: RGBColor = RGBColor(30, 90, 200);
+pub(super) const PLANE_2: RGBColor = RGBColor(0, 140, 60);
+pub(super) const HORIZONTAL: RGBColor = RGBColor(150, 130, 100);
+const FORCE: RGBColor = RGBColor(150, 30, 150);
+
+/// Sheet size of a plan view (pixels).
+pub(super) const SIZE: (u32, u32) = (1200, 760);
+const MARGIN: u32 = 10;
+const X_LABELS: u32 = 40;
+const Y_LABELS: u32 = 55;
+
+/// One route on a plan view: its name in the legend, its rows (thinned) and its colour.
+pub(super) struct Track<'r> {
+    pub name: String,
+    pub rows: &'r [Row],
+    pub color: RGBColor,
+}
+
+type P = (f64, f64);
+
+/// The frame's vertices in plan at a row's pose.
+fn vertices(scene: &Scene, row: &Row) -> Option<[P; 3]> {
+    let d = Displacement::new(row.x_m, row.z_m, row.theta_deg.to_radians());
+    let p = Pose::from_tilts(
+        scene,
+        d,
+        row.alpha_deg.to_radians(),
+        row.beta_deg.to_radians(),
+    )
+    .ok()?;
+    Some(p.vertices.map(|v| (v.x, v.z)))
+}
+
+/// Frame outlines every 1/8 of a route's rows (and at its end).
+fn outlines_of(scene: &Scene, rows: &[Row]) -> Vec<[P; 3]> {
+    let every = (rows.len() / 8).max(1);
+    rows.iter()
+        .enumerate()
+        .filter(|(k, _)| k % every == 0 || *k + 1 == rows.len())
+        .filter_map(|(_, r)| vertices(scene, r))
+        .collect()
+}
+
+/// The part of convex `poly` where a·x + b·z ≥ c (one pass of Sutherland–Hodgman).
+fn clip_half_plane(poly: &[P], (a, b, c): (f64, f64, f64)) -> Vec<P> {
+    let inside = |p: P| a * p.0 + b * p.1 >= c;
+    let mut out = Vec::new();
+    for k in 0..poly.len() {
+        let (p, q) = (poly[k], poly[(k + 1) % poly.len()]);
+        if inside(p) {
+            out.push(p);
+        }
+        if inside(p) != inside(q) {
+            let (fp, fq) = (a * p.0 + b * p.1 - c, a * q.0 + b * q.1 - c);
+            let t = fp / (fp - fq);
+            out.push((p.0 + t * (q.0 - p.0), p.1 + t * (q.1 - p.1)));
+        }
+    }
+    out
+}
+
+/// The half-planes (a, b, c: a·X + b·Z ≥ c) where planes 1 and 2 are real (their regions).
+fn region_half_planes(scene: &Scene) -> [(f64, f64, f64); 2] {
+    let (sk, ck) = scene.foundation.kappa.sin_cos();
+    [
+        (1.0, 0.0, scene.frame.l2x),
+        (ck, -sk, strike_2_distance(scene)),
+    ]
+}
+
+/// The region of each plane inside the view `[x0, x1] × [z0, z1]`, as convex polygons (the
+/// horizontal one where neither inclined plane is; planes 1 and 2 overlap beyond both strikes,
+/// where each contact still uses only its own plane).
+fn regions(scene: &Scene, (x0, x1, z0, z1): (f64, f64, f64, f64)) -> [(Plane, Vec<P>); 3] {
+    let rect = vec![(x0, z0), (x1, z0), (x1, z1), (x0, z1)];
+    let [h1, h2] = region_half_planes(scene);
+    let neg = |(a, b, c): (f64, f64, f64)| (-a, -b, -c);
+    [
+        (
+            Plane::Horizontal,
+            clip_half_plane(&clip_half_plane(&rect, neg(h1)), neg(h2)),
+        ),
+        (Plane::One, clip_half_plane(&rect, h1)),
+        (Plane::Two, clip_half_plane(&rect, h2)),
+    ]
+}
+
+fn area_of(poly: &[P]) -> f64 {
+    let n = poly.len();
+    0.5 * (0..n)
+        .map(|k| {
+            let (p, q) = (poly[k], poly[(k + 1) % n]);
+            p.0 * q.1 - q.0 * p.1
+        })
+        .sum::<f64>()
+        .abs()
+}
+
+fn segment_distance(p: P, a: P, b: P) -> f64 {
+    let (dx, dz) = (b.0 - a.0, b.1 - a.1);
+    let len2 = dx * dx + dz * dz;
+    let t = if len2 > 0.0 {
+        (((p.0 - a.0) * dx + (p.1 - a.1) * dz) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (p.0 - a.0 - t * dx).hypot(p.1 - a.1 - t * dz)
+}
+
+/// The point of convex `poly` farthest from every obstacle point and from its own edges, with
+/// that distance; labels go there so that they stay off the data.
+fn free_spot(poly: &[P], obstacles: &[P], view: (f64, f64, f64, f64)) -> Option<(P, f64)> {
+    let (x0, x1, z0, z1) = view;
+    let n = poly.len();
+    if n < 3 {
+        return None;
+    }
+    let mut best: Option<(P, f64)> = None;
+    for i in 0..=40 {
+        for j in 0..=30 {
+            let p = (
+                x0 + (x1 - x0) * f64::from(i) / 40.0,
+                z0 + (z1 - z0) * f64::from(j) / 30.0,
+            );
+            let edge = (0..n)
+                .map(|k| segment_distance(p, poly[k], poly[(k + 1) % n]))
+                .fold(f64::INFINITY, f64::min);
+            // Inside a convex polygon: on the same side of every edge as its centroid.
+            let c = poly.iter().fold((0.0, 0.0), |s, q| {
+                (s.0 + q.0 / n as f64, s.1 + q.1 / n as f64)
+            });
+            let inside = (0..n).all(|k| {
+                let (a, b) = (poly[k], poly[(k + 1) % n]);
+                let side = |q: P| (b.0 - a.0) * (q.1 - a.1) - (b.1 - a.1) * (q.0 - a.0);
+                side(p) * side(c) >= 0.0
+            });
+            if !inside {
+                continue;
+            }
+            let clear = obstacles
+                .iter()
+                .map(|q| (p.0 - q.0).hypot(p.1 - q.1))
+                .fold(edge, f64::min);
+            if best.is_none_or(|b| clear > b.1) {
+                best = Some((p, clear));
+            }
+        }
+    }
+    best
+}
+
+/// An arrow from `from` along unit `dir` of length `len` (data units): the shaft and its head.
+fn arrow(from: P, dir: P, len: f64) -> [Vec<P>; 2] {
+    let tip = (from.0 + len * dir.0, from.1 + len * dir.1);
+    let h = 0.25 * len;
+    let (c, s) = (0.42f64.cos(), 0.42f64.sin());
+    let back = |sgn: f64| {
+        let d = (
+            -(dir.0 * c - sgn * dir.1 * s),
+            -(sgn * dir.0 * s + dir.1 * c),
+        );
+        (tip.0 + h * d.0, tip.1 + h * d.1)
+    };
+    [vec![from, tip], vec![back(1.0), tip, back(-1.0)]]
+}
+
+/// Points along the segment a–b, for the label placer's obstacles.
+fn along(a: P, b: P, n: usize) -> impl Iterator<Item = P> {
+    (0..=n).map(move |k| {
+        let t = k as f64 / n as f64;
+        (a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1))
+    })
+}
+
+/// The hydraulic force at the start, in plan: the point of its line of action nearest the CM
+/// and its direction (x' at the start). F·i' with the couple −c·F·j' (eqs. 40, 41) is F acting
+/// along x' on the line offset by −c along z' (`shared/conventions.md`: c > 0 turns θ up).
+fn line_of_action(scene: &Scene, start: &Row) -> Option<(P, P, f64, f64)> {
+    let loads = scene.loads.as_ref()?;
+    let (s, c) = start.theta_deg.to_radians().sin_cos();
+    let x_dir = (c, s);
+    let z_dir = (-s, c);
+    let e = loads.eccentricity;
+    let q = (start.x_m - e * z_dir.0, start.z_m - e * z_dir.1);
+    Some((q, x_dir, loads.hydraulic_force, e))
+}
+
+/// Draws the plan view of `tracks` (the first one's frame in black) with `notes` in the panel.
+pub(super) fn plan_view(
+    path: &Path,
+    scene: &Scene,
+    title: &str,
+    tracks: &[Track],
+    notes: &[Entry],
+) -> Res<()> {
+    let sheet = Sheet::new(path, SIZE, title)?;
+    let outlines: Vec<Vec<[P; 3]>> = tracks.iter().map(|t| outlines_of(scene, t.rows)).collect();
+    let l = scene.frame.l();
+    let start = tracks.first().and_then(|t| t.rows.first()).copied();
+    let force = start.as_ref().and_then(|s| line_of_action(scene, s));
+    let arrow_len = 0.3 * l;
+    let force_tail = force.map(|(q, d, _, _)| (q.0 - arrow_len * d.0, q.1 - arrow_len * d.1));
+
+    // The view: every path, outline and the force arrow, at equal scales on both axes.
+    let pts: Vec<P> = tracks
+        .iter()
+        .flat_map(|t| t.rows.iter().map(|r| (r.x_m, r.z_m)))
+        .chain(outlines.iter().flatten().flatten().copied())
+        .chain(force_tail)
+        .chain(force.map(|f| f.0))
+        .collect();
+    // Room round the frame for the regions' names.
+    let pad = 0.15 * l;
+    let (mut x0, mut x1) = sheet::ranges(pts.iter().map(|p| p.0));
+    let (mut z0, mut z1) = sheet::ranges(pts.iter().map(|p| p.1));
+    (x0, x1, z0, z1) = (x0 - pad, x1 + pad, z0 - pad, z1 + pad);
+    let (cw, ch) = sheet.chart.dim_in_pixel();
+    let plot_w = f64::from(cw - 2 * MARGIN - Y_LABELS);
+    let plot_h = f64::from(ch - 2 * MARGIN - X_LABELS);
+    let scale = ((x1 - x0) / plot_w).max((z1 - z0) / plot_h) * 1.04;
+    let (cx, cz) = (0.5 * (x0 + x1), 0.5 * (z0 + z1));
+    x0 = cx - 0.5 * scale * plot_w;
+    x1 = cx + 0.5 * scale * plot_w;
+    z0 = cz - 0.5 * scale * plot_h;
+    z1 = cz + 0.5 * scale * plot_h;
+    let view = (x0, x1, z0, z1);
+
+    let mut chart = ChartBuilder::on(&sheet.chart)
+        .margin(MARGIN)
+        .x_label_area_size(X_LABELS)
+        .y_label_area_size(Y_LABELS)
+        .build_cartesian_2d(x0..x1, z1..z0)
+        .map_err(err(path))?;
+    let (fx, fz) = (sheet::ticks(x0, x1), sheet::ticks(z0, z1));
+    chart
+        .configure_mesh()
+        .max_light_lines(1)
+        .x_desc("X (m), forward")
+        .y_desc("Z (m), lateral (down the page)")
+        .x_label_formatter(&fx)
+        .y_label_formatter(&fz)
+        .light_line_style(BLACK.mix(0.05))
+        .bold_line_style(BLACK.mix(0.12))
+        .draw()
+        .map_err(err(path))?;
+
+    // The regions, shaded.
+    let g = &scene.foundation;
+    let regions = regions(scene, view);
+    for (plane, poly) in &regions {
+        if poly.len() >= 3 {
+            let color = match plane {
+                Plane::Horizontal => HORIZONTAL,
+                Plane::One => PLANE_1,
+                Plane::Two => PLANE_2,
+            };
+            chart
+                .draw_series(std::iter::once(Polygon::new(
+                    poly.clone(),
+                    color.mix(0.10).filled(),
+                )))
+                .map_err(err(path))?;
+        }
+    }
+    // Strike lines: the regions' edges.
+    for (poly, (a, b, c), color) in [
+        (&regions[1].1, region_half_planes(scene)[0], PLANE_1),
+        (&regions[2].1, region_half_planes(scene)[1], PLANE_2),
+    ] {
+        let on: Vec<P> = poly
+            .iter()
+            .copied()
+            .filter(|p| (a * p.0 + b * p.1 - c).abs() <= 1e-9 * (1.0 + c.abs()) * (x1 - x0))
+            .collect();
+        if on.len() == 2 {
+            chart
+                .draw_series(LineSeries::new(on, color.stroke_width(2)))
+                .map_err(err(path))?;
+        }
+    }
+
+    // The frame along each route, the CM paths.
+    for (k, (outlines, track)) in outlines.iter().zip(tracks).enumerate() {
+        let ink = if k == 0 { BLACK } else { track.color };
+        for (j, o) in outlines.iter().enumerate() {
+            let mut pts = o.to_vec();
+            pts.push(o[0]);
+            let style = if j == 0 || j + 1 == outlines.len() {
+                ink.stroke_width(2)
+            } else {
+                ink.mix(0.3).stroke_width(1)
+            };
+            chart
+                .draw_series(std::iter::once(PathElement::new(pts, style)))
+                .map_err(err(path))?;
+        }
+    }
+    for track in tracks {
+        chart
+            .draw_series(LineSeries::new(
+                track.rows.iter().map(|r| (r.x_m, r.z_m)),
+                track.color.stroke_width(2),
+            ))
+            .map_err(err(path))?;
+        if let (Some(a), Some(b)) = (track.rows.first(), track.rows.last()) {
+            chart
+                .draw_series(std::iter::once(
+                    EmptyElement::at((a.x_m, a.z_m)) + Circle::new((0, 0), 4, track.color.filled()),
+                ))
+                .map_err(err(path))?;
+            if a == b {
+                continue;
+            }
+            chart
+                .draw_series(std::iter::once(
+                    EmptyElement::at((b.x_m, b.z_m))
+                        + Circle::new((0, 0), 4, WHITE.filled())
+                        + Circle::new((0, 0), 4, track.color.stroke_width(2)),
+                ))
+                .map_err(err(path))?;
+        }
+    }
+
+    // The hydraulic force on its line of action at the start.
+    let mut obstacles: Vec<P> = Vec::new();
+    if let (Some((q, d, f, e)), Some(tail), Some(s)) = (force, force_tail, start) {
+        let far = (q.0 + 0.5 * l * d.0, q.1 + 0.5 * l * d.1);
+        chart
+            .draw_series(DashedLineSeries::new(
+                [tail, far],
+                6,
+                4,
+                FORCE.mix(0.8).stroke_width(1),
+            ))
+            .map_err(err(path))?;
+        for part in arrow(tail, d, arrow_len) {
+            chart
+                .draw_series(std::iter::once(PathElement::new(
+                    part,
+                    FORCE.stroke_width(3),
+                )))
+                .map_err(err(path))?;
+        }
+        if e != 0.0 {
+            chart
+                .draw_series(std::iter::once(PathElement::new(
+                    vec![(s.x_m, s.z_m), q],
+                    FORCE.stroke_width(1),
+                )))
+                .map_err(err(path))?;
+        }
+        let label = ("sans-serif", 14)
+            .into_font()
+            .color(&FORCE)
+            .pos(Pos::new(HPos::Right, VPos::Center));
+        chart
+            .draw_series(std::iter::once(Text::new(
+                format!("F = {}", sheet::force(f)),
+                (tail.0 - 0.02 * l * d.0, tail.1 - 0.02 * l * d.1),
+                label,
+            )))
+            .map_err(err(path))?;
+        obstacles.extend(along(tail, far, 20));
+    }
+
+    // Contacts numbered at the start (dots) and at the end (crosses) of every route.
+    let starts: Vec<P> = outlines
+        .first()
+        .and_then(|o| o.first())
+        .map_or(vec![], |o| o.to_vec());
+    for (k, (outlines, track)) in outlines.iter().zip(tracks).enumerate() {
+        let ink = if k == 0 { BLACK } else { track.color };
+        let number = |i: usize| {
+            Text::new(
+                format!("{i}"),
+                (7, -15),
+                ("sans-serif", 15).into_font().color(&ink),
+            )
+        };
+        let moved = track.rows.len() > 1 && track.rows.first() != track.rows.last();
+        if let Some(first) = outlines.first().filter(|_| k == 0) {
+            chart
+                .draw_series(first.iter().enumerate().map(|(i, &p)| {
+                    EmptyElement::at(p) + Circle::new((0, 0), 5, ink.filled()) + number(i)
+                }))
+                .map_err(err(path))?;
+        }
+        if let Some(last) = outlines.last().filter(|_| moved) {
+            let first = outlines.first().copied().unwrap_or(*last);
+            chart
+                .draw_series(
+                    last.iter()
+                        .map(|&p| EmptyElement::at(p) + Cross::new((0, 0), 6, ink.stroke_width(2))),
+                )
+                .map_err(err(path))?;
+            // Numbered where they stand clear of the start's numbers (a short route's would
+            // print over them).
+            let starts: Vec<P> = starts.iter().chain(first.iter()).copied().collect();
+            chart
+                .draw_series(
+                    last.iter()
+                        .enumerate()
+                        .filter(|(_, p)| {
+                            starts
+                                .iter()
+                                .all(|q| (p.0 - q.0).hypot(p.1 - q.1) > 14.0 * scale)
+                        })
+                        .map(|(i, &p)| EmptyElement::at(p) + number(i)),
+                )
+                .map_err(err(path))?;
+        }
+    }
+
+    // Names, dips and down-dip arrows of the regions, where they keep off the data.
+    for t in tracks {
+        let every = (t.rows.len() / 400).max(1);
+        obstacles.extend(t.rows.iter().step_by(every).map(|r| (r.x_m, r.z_m)));
+    }
+    for o in outlines.iter().flatten() {
+        for k in 0..3 {
+            obstacles.extend(along(o[k], o[(k + 1) % 3], 12));
+        }
+    }
+    let (sk, ck) = g.kappa.sin_cos();
+    let label_room = 45.0 * scale;
+    let view_area = (x1 - x0) * (z1 - z0);
+    let [h1, h2] = region_half_planes(scene);
+    let neg = |(a, b, c): (f64, f64, f64)| (-a, -b, -c);
+    for (plane, poly) in &regions {
+        // Named where the plane is the only inclined one, if there is room there.
+        let own = match plane {
+            Plane::Horizontal => poly.clone(),
+            Plane::One => clip_half_plane(poly, neg(h2)),
+            Plane::Two => clip_half_plane(poly, neg(h1)),
+        };
+        let poly = if own.len() >= 3 && area_of(&own) >= 0.02 * view_area {
+            &own
+        } else {
+            poly
+        };
+        if poly.len() < 3 || area_of(poly) < 0.02 * view_area {
+            continue;
+        }
+        let Some((spot, clear)) = free_spot(poly, &obstacles, view) else {
+            continue;
+        };
+        if clear < label_room {
+            continue;
+        }
+        let (text, color, down) = match plane {
+            Plane::Horizontal => ("horizontal".to_string(), HORIZONTAL, None),
+            Plane::One => (
+                format!("plane 1, dip {}°", sheet::short(g.xi.to_degrees())),
+                PLANE_1,
+                Some((-1.0, 0.0)),
+            ),
+            Plane::Two => (
+                format!("plane 2, dip {}°", sheet::short(g.zeta.to_degrees())),
+                PLANE_2,
+                Some((-ck, sk)),
+            ),
+        };
+        let style = ("sans-serif", 15)
+            .into_font()
+            .color(&color)
+            .pos(Pos::new(HPos::Center, VPos::Bottom));
+        chart
+            .draw_series(std::iter::once(Text::new(text, spot, style)))
+            .map_err(err(path))?;
+        if let Some(d) = down {
+            // Centred just under the name (Z grows down the page).
+            let len = 36.0 * scale;
+            let centre = (spot.0, spot.1 + 22.0 * scale);
+            let from = (centre.0 - 0.5 * len * d.0, centre.1 - 0.5 * len * d.1);
+            for part in arrow(from, d, len) {
+                chart
+                    .draw_series(std::iter::once(PathElement::new(
+                        part,
+                        color.stroke_width(2),
+                    )))
+                    .map_err(err(path))?;
+            }
+        }
+        obstacles.extend(along(
+            (spot.0 - label_room, spot.1),
+            (spot.0 + label_room, spot.1),
+            8,
+        ));
+    }
+
+    // A short route: its extent boxed here and drawn enlarged in the panel.
+    let cm: Vec<P> = tracks
+        .iter()
+        .flat_map(|t| t.rows.iter().map(|r| (r.x_m, r.z_m)))
+        .collect();
+    let span = |f: fn(&P) -> f64| {
+        cm.iter().map(f).fold(f64::NEG_INFINITY, f64::max)
+            - cm.iter().map(f).fold(f64::INFINITY, f64::min)
+    };
+    let cm_span = span(|p| p.0).max(span(|p| p.1));
+    let inset = cm_span > 0.0 && cm_span < 0.12 * (x1 - x0).min(z1 - z0);
+    if inset {
+        let (ix0, ix1) = sheet::ranges(cm.iter().map(|p| p.0));
+        let (iz0, iz1) = sheet::ranges(cm.iter().map(|p| p.1));
+        chart
+            .draw_series(std::iter::once(Rectangle::new(
+                [(ix0, iz0), (ix1, iz1)],
+                BLACK.mix(0.6).stroke_width(1),
+            )))
+            .map_err(err(path))?;
+    }
+
+    // The panel: legend, notes, inset.
+    let mut entries = vec![
+        Entry::new(Mark::Swatch(HORIZONTAL), "horizontal plane (contact 0)"),
+        Entry::new(
+            Mark::Swatch(PLANE_1),
+            format!(
+                "plane 1 (contact 1), dip ξ = {}°; solid line: its strike",
+                sheet::short(g.xi.to_degrees())
+            ),
+        ),
+        Entry::new(
+            Mark::Swatch(PLANE_2),
+            format!(
+                "plane 2 (contact 2), dip ζ = {}°; solid line: its strike",
+                sheet::short(g.zeta.to_degrees())
+            ),
+        ),
+        Entry::new(Mark::None, "arrows on the planes point down-dip"),
+    ];
+    if let Some((_, _, f, e)) = force {
+        entries.push(Entry::new(
+            Mark::Line(FORCE),
+            format!(
+                "hydraulic force F = {} at the start, its line of action {} m from the CM",
+                sheet::force(f),
+                sheet::short(e.abs())
+            ),
+        ));
+    }
+    for t in tracks {
+        entries.push(Entry::new(Mark::Line(t.color), t.name.clone()));
+    }
+    entries.push(Entry::new(
+        Mark::Dot(BLACK),
+        "contacts 0, 1, 2 at the start; thick frame: start and end, thin: every 1/8 of the route",
+    ));
+    if tracks
+        .iter()
+        .any(|t| t.rows.len() > 1 && t.rows.first() != t.rows.last())
+    {
+        entries.push(Entry::new(Mark::Cross(BLACK), "contacts at the end"));
+        entries.push(Entry::new(
+            Mark::Ring(BLACK),
+            "CM at the end (filled dot: at the start)",
+        ));
+    }
+    let mut y = sheet::heading(path, &sheet.panel, "Legend", 0)?;
+    y = sheet::legend(path, &sheet.panel, &entries, y)?;
+    if !notes.is_empty() {
+        y = sheet::heading(path, &sheet.panel, "Route", y + 6)?;
+        y = sheet::legend(path, &sheet.panel, notes, y)?;
+    }
+    if inset {
+        draw_inset(path, &sheet.panel, y + 8, tracks, scale)?;
+    }
+    sheet.root.present().map_err(err(path))
+}
+
+/// The CM paths enlarged, at equal scales, in the lower part of the panel from `y`.
+fn draw_inset(path: &Path, panel: &Area, y: i32, tracks: &[Track], main_scale: f64) -> Res<()> {
+    let (_, ph) = panel.dim_in_pixel();
+    let top = (y.max(0) as u32).min(ph.saturating_sub(200));
+    let (_, area) = panel.split_vertically(top);
+    let (w, h) = area.dim_in_pixel();
+    let cm: Vec<P> = tracks
+        .iter()
+        .flat_map(|t| t.rows.iter().map(|r| (r.x_m, r.z_m)))
+        .collect();
+    let (mut x0, mut x1) = sheet::ranges(cm.iter().map(|p| p.0));
+    let (mut z0, mut z1) = sheet::ranges(cm.iter().map(|p| p.1));
+    let (pw, ph) = (f64::from(w - 60), f64::from(h - 70));
+    let scale = ((x1 - x0) / pw).max((z1 - z0) / ph);
+    let (cx, cz) = (0.5 * (x0 + x1), 0.5 * (z0 + z1));
+    (x0, x1) = (cx - 0.5 * scale * pw, cx + 0.5 * scale * pw);
+    (z0, z1) = (cz - 0.5 * scale * ph, cz + 0.5 * scale * ph);
+    let zoom = main_scale / scale;
+    let mut chart = ChartBuilder::on(&area)
+        .caption(
+            format!(
+                "CM path enlarged {}× (boxed on the plan)",
+                sheet::short(zoom.round())
+            ),
+            ("sans-serif", 13),
+        )
+        .margin(4)
+        .x_label_area_size(24)
+        .y_label_area_size(40)
+        .build_cartesian_2d(x0..x1, z1..z0)
+        .map_err(err(path))?;
+    let (fx, fz) = (sheet::ticks(x0, x1), sheet::ticks(z0, z1));
+    chart
+        .configure_mesh()
+        .max_light_lines(0)
+        .x_labels(4)
+        .y_labels(4)
+        .x_label_formatter(&fx)
+        .y_label_formatter(&fz)
+        .label_style(("sans-serif", 11))
+        .draw()
+        .map_err(err(path))?;
+    for t in tracks {
+        chart
+            .draw_series(LineSeries::new(
+                t.rows.iter().map(|r| (r.x_m, r.z_m)),
+                t.color.stroke_width(2),
+            ))
+            .map_err(err(path))?;
+        if let (Some(a), Some(b)) = (t.rows.first(), t.rows.last()) {
+            chart
+                .draw_series(std::iter::once(
+                    EmptyElement::at((a.x_m, a.z_m)) + Circle::new((0, 0), 4, t.color.filled()),
+                ))
+                .map_err(err(path))?;
+            chart
+                .draw_series(std::iter::once(
+                    EmptyElement::at((b.x_m, b.z_m))
+                        + Circle::new((0, 0), 4, WHITE.filled())
+                        + Circle::new((0, 0), 4, t.color.stroke_width(2)),
+                ))
+                .map_err(err(path))?;
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn regions_tile_the_view_with_the_inclined_ones_overlapping_beyond_both_strikes() {
+        let scene = Scene::default_scene();
+        let view = (-20.0, 30.0, -15.0, 25.0);
+        let [h, one, two] = regions(&scene, view);
+        let whole = 50.0 * 40.0;
+        // Inclusion–exclusion: horizontal + plane 1 + plane 2 − overlap = the view.
+        let [h1, h2] = region_half_planes(&scene);
+        let rect = vec![(-20.0, -15.0), (30.0, -15.0), (30.0, 25.0), (-20.0, 25.0)];
+        let both = clip_half_plane(&clip_half_plane(&rect, h1), h2);
+        let sum = area_of(&h.1) + area_of(&one.1) + area_of(&two.1) - area_of(&both);
+        assert!((sum - whole).abs() < 1e-9 * whole, "{sum} vs {whole}");
+        // Plane 1 is X ≥ L2X: its area is known in closed form.
+        let l2x = scene.frame.l2x;
+        assert!((area_of(&one.1) - (30.0 - l2x) * 40.0).abs() < 1e-9);
+        // Every vertex of the horizontal region is in it (to round-off).
+        for &(x, z) in &h.1 {
+            assert!(x <= l2x + 1e-9);
+            let (sk, ck) = scene.foundation.kappa.sin_cos();
+            assert!(x * ck - z * sk <= strike_2_distance(&scene) + 1e-9);
+        }
+    }
+
+    #[test]
+    fn the_force_acts_on_the_side_that_turns_theta_up() {
+        // c > 0 must turn θ up (shared/conventions.md): F along +X on the line Z = −c.
+        let scene = Scene::default_scene();
+        let start = Row {
+            t_s: 0.0,
+            x_m: 0.0,
+            y_m: 0.0,
+            z_m: 0.0,
+            theta_deg: 0.0,
+            alpha_deg: 0.0,
+            beta_deg: 0.0,
+            gamma_deg: 0.0,
+            vx_m_s: 0.0,
+            vz_m_s: 0.0,
+            omega_deg_s: 0.0,
+            n_n: None,
+            s_n: None,
+        };
+        let (q, d, f, e) = line_of_action(&scene, &start).unwrap();
+        assert!(e > 0.0 && f > 0.0);
+        assert_eq!(d, (1.0, 0.0));
+        assert!((q.0).abs() < 1e-12 && (q.1 + e).abs() < 1e-12, "{q:?}");
+        // Moment about +Y of F·X̂ applied at (0, 0, q_z): r × F has Y part z·F_x.
+        let moment_y = q.1 * f;
+        // A negative moment about +Y raises θ (θ is measured from +X towards +Z).
+        assert!(moment_y < 0.0);
+    }
+
+    #[test]
+    fn labels_go_where_the_data_is_not() {
+        let poly = vec![(0.0, 0.0), (10.0, 0.0), (10.0, 10.0), (0.0, 10.0)];
+        let obstacles: Vec<P> = (0..=10).map(|k| (f64::from(k), 2.0)).collect();
+        let (p, clear) = free_spot(&poly, &obstacles, (0.0, 10.0, 0.0, 10.0)).unwrap();
+        // The clearest point lies between the line Z = 2 and the far edge Z = 10.
+        assert!((p.1 - 6.0).abs() < 0.5 && clear > 3.5, "{p:?} {clear}");
+    }
+}

@@ -1,0 +1,395 @@
+//! The sheet every picture is drawn on (issue #13, item 9): the chart on the left and a side
+//! panel on the right for the legend, notes, an inset or a colour bar. Nothing in the panel is
+//! drawn over the chart, so a legend can never cover data.
+
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
+use std::path::Path;
+
+pub(super) type Res<T> = Result<T, String>;
+pub(super) type Area<'a> = DrawingArea<SVGBackend<'a>, Shift>;
+
+/// The error of drawing `path`, as one line.
+pub(super) fn err<E: std::fmt::Display>(path: &Path) -> impl Fn(E) -> String + '_ {
+    move |e| format!("{}: cannot draw: {e}", path.display())
+}
+
+/// Width of the side panel (pixels).
+pub(super) const PANEL_W: u32 = 300;
+/// Font size of legends and notes, and the width a character of it takes, about.
+const FONT: f64 = 14.0;
+const CHAR_W: f64 = 0.5 * FONT;
+/// Height of one line of legend or notes.
+const LINE_H: i32 = 18;
+/// Room left of a legend's text for its mark.
+const MARK_W: i32 = 34;
+
+/// A picture: the whole sheet, the chart's part of it and the side panel.
+pub(super) struct Sheet<'a> {
+    pub root: Area<'a>,
+    pub chart: Area<'a>,
+    pub panel: Area<'a>,
+}
+
+impl<'a> Sheet<'a> {
+    /// A white sheet of `w` × `h` pixels: `title` across the top, the chart below it on the left,
+    /// the panel of [`PANEL_W`] on the right.
+    pub fn new(path: &'a Path, (w, h): (u32, u32), title: &str) -> Res<Sheet<'a>> {
+        let root = SVGBackend::new(path, (w, h)).into_drawing_area();
+        root.fill(&WHITE).map_err(err(path))?;
+        let body = root.titled(title, ("sans-serif", 18)).map_err(err(path))?;
+        let (chart, panel) = body.split_horizontally(w - PANEL_W);
+        let panel = panel.margin(8, 8, 6, 6);
+        Ok(Sheet { root, chart, panel })
+    }
+}
+
+/// How an entry of a legend is marked.
+#[derive(Debug, Clone, Copy)]
+pub(super) enum Mark {
+    Line(RGBColor),
+    Dashed(RGBColor),
+    Dot(RGBColor),
+    Ring(RGBColor),
+    Square(RGBColor),
+    Cross(RGBColor),
+    Triangle(RGBColor, bool),
+    Swatch(RGBColor),
+    /// No mark: a heading or a note.
+    None,
+}
+
+/// One line of a legend.
+#[derive(Debug, Clone)]
+pub(super) struct Entry {
+    pub mark: Mark,
+    pub text: String,
+}
+
+impl Entry {
+    pub fn new(mark: Mark, text: impl Into<String>) -> Entry {
+        Entry {
+            mark,
+            text: text.into(),
+        }
+    }
+}
+
+/// `text` broken at spaces into lines of at most `width` pixels (about).
+fn wrap(text: &str, width: i32) -> Vec<String> {
+    let max = ((f64::from(width) / CHAR_W) as usize).max(8);
+    let mut lines = Vec::new();
+    let mut line = String::new();
+    for word in text.split(' ') {
+        if !line.is_empty() && line.chars().count() + 1 + word.chars().count() > max {
+            lines.push(std::mem::take(&mut line));
+        }
+        if !line.is_empty() {
+            line.push(' ');
+        }
+        line.push_str(word);
+    }
+    if !line.is_empty() {
+        lines.push(line);
+    }
+    lines
+}
+
+fn font<'b>(size: f64) -> TextStyle<'b> {
+    ("sans-serif", size)
+        .into_font()
+        .color(&BLACK)
+        .pos(Pos::new(HPos::Left, VPos::Center))
+}
+
+/// Draws `mark` centred at (x, y) of `area` (pixels).
+pub(super) fn draw_mark<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    mark: Mark,
+    (x, y): (i32, i32),
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    match mark {
+        Mark::Line(c) => area.draw(&PathElement::new(
+            vec![(x - 12, y), (x + 12, y)],
+            c.stroke_width(2),
+        )),
+        Mark::Dashed(c) => {
+            for k in 0..3 {
+                let x0 = x - 12 + 9 * k;
+                area.draw(&PathElement::new(
+                    vec![(x0, y), (x0 + 5, y)],
+                    c.stroke_width(2),
+                ))?;
+            }
+            Ok(())
+        }
+        Mark::Dot(c) => area.draw(&Circle::new((x, y), 4, c.filled())),
+        Mark::Ring(c) => area.draw(&Circle::new((x, y), 5, c.stroke_width(2))),
+        Mark::Square(c) => area.draw(&Rectangle::new(
+            [(x - 5, y - 5), (x + 5, y + 5)],
+            c.stroke_width(2),
+        )),
+        Mark::Cross(c) => area.draw(&Cross::new((x, y), 5, c.stroke_width(2))),
+        Mark::Triangle(c, up) => {
+            let s = if up { -1 } else { 1 };
+            area.draw(&Polygon::new(
+                vec![(x - 6, y - 4 * s), (x + 6, y - 4 * s), (x, y + 6 * s)],
+                c.filled(),
+            ))
+        }
+        Mark::Swatch(c) => {
+            area.draw(&Rectangle::new(
+                [(x - 12, y - 6), (x + 12, y + 6)],
+                c.mix(0.25).filled(),
+            ))?;
+            area.draw(&Rectangle::new(
+                [(x - 12, y - 6), (x + 12, y + 6)],
+                c.mix(0.6),
+            ))
+        }
+        Mark::None => Ok(()),
+    }
+}
+
+/// Draws `entries` down the panel from `y` (pixels from its top), long texts wrapped to the
+/// panel's width; returns the y below the last line.
+pub(super) fn legend(path: &Path, panel: &Area, entries: &[Entry], mut y: i32) -> Res<i32> {
+    let width = panel.dim_in_pixel().0 as i32;
+    for e in entries {
+        let (indent, size) = match e.mark {
+            Mark::None => (0, FONT),
+            _ => (MARK_W, FONT),
+        };
+        let lines = wrap(&e.text, width - indent);
+        draw_mark(panel, e.mark, (MARK_W / 2 - 2, y + LINE_H / 2)).map_err(err(path))?;
+        for line in lines {
+            panel
+                .draw(&Text::new(line, (indent, y + LINE_H / 2), font(size)))
+                .map_err(err(path))?;
+            y += LINE_H;
+        }
+        y += 3;
+    }
+    Ok(y)
+}
+
+/// A heading in the panel at `y`; returns the y below it.
+pub(super) fn heading(path: &Path, panel: &Area, text: &str, y: i32) -> Res<i32> {
+    let style = ("sans-serif", FONT + 1.0)
+        .into_font()
+        .style(FontStyle::Bold)
+        .color(&BLACK)
+        .pos(Pos::new(HPos::Left, VPos::Center));
+    panel
+        .draw(&Text::new(text.to_string(), (0, y + LINE_H / 2), style))
+        .map_err(err(path))?;
+    Ok(y + LINE_H + 4)
+}
+
+/// A picture that says in words why there is nothing to plot (a scene that does not slide, a
+/// route that ended at once), instead of empty axes.
+pub(super) fn message(path: &Path, size: (u32, u32), title: &str, lines: &[String]) -> Res<()> {
+    let root = SVGBackend::new(path, size).into_drawing_area();
+    root.fill(&WHITE).map_err(err(path))?;
+    let body = root.titled(title, ("sans-serif", 18)).map_err(err(path))?;
+    let (w, h) = body.dim_in_pixel();
+    let (w, h) = (w as i32, h as i32);
+    let width = (w - 160).max(200);
+    // Paragraphs apart by a blank line.
+    let wrapped: Vec<String> = lines
+        .iter()
+        .enumerate()
+        .flat_map(|(k, l)| {
+            let gap = (k > 0).then(String::new);
+            gap.into_iter().chain(wrap(l, width))
+        })
+        .collect();
+    let top = (h - LINE_H * wrapped.len() as i32) / 2 - 20;
+    body.draw(&Rectangle::new(
+        [
+            (60, top - 20),
+            (w - 60, top + LINE_H * wrapped.len() as i32 + 20),
+        ],
+        RGBColor(240, 240, 235).filled(),
+    ))
+    .map_err(err(path))?;
+    for (k, line) in wrapped.into_iter().enumerate() {
+        body.draw(&Text::new(
+            line,
+            (80, top + LINE_H * k as i32 + LINE_H / 2),
+            font(FONT + 1.0),
+        ))
+        .map_err(err(path))?;
+    }
+    root.present().map_err(err(path))
+}
+
+/// The range of the finite `values`, padded by 5 %; a constant (or no) value gets a range
+/// about it wide enough for readable ticks, not `-0.0 … 0.0`.
+pub(super) fn ranges(values: impl Iterator<Item = f64>) -> (f64, f64) {
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for v in values.filter(|v| v.is_finite()) {
+        lo = lo.min(v);
+        hi = hi.max(v);
+    }
+    if !lo.is_finite() {
+        return (0.0, 1.0);
+    }
+    let size = hi.abs().max(lo.abs());
+    if hi - lo <= 1e-9 * size.max(1e-300) {
+        let pad = if size > 0.0 { 0.1 * size } else { 1.0 };
+        return (lo - pad, hi + pad);
+    }
+    let pad = ((hi - lo) * 0.05).max(1e-3 * size);
+    (lo - pad, hi + pad)
+}
+
+/// Tick labels for an axis over `lo..hi`: as many decimals as about ten ticks need, no `-0`.
+pub(super) fn ticks(lo: f64, hi: f64) -> impl Fn(&f64) -> String {
+    let span = (hi - lo).abs().max(f64::MIN_POSITIVE);
+    let decimals = (-(span / 10.0).log10().floor()).clamp(0.0, 9.0) as usize;
+    move |v: &f64| {
+        if v.abs() >= 1e6 || (v.abs() < 1e-4 && decimals > 4 && *v != 0.0) {
+            return format!("{v:.1e}");
+        }
+        let s = format!("{v:.decimals$}");
+        if s.trim_start_matches('-')
+            .chars()
+            .all(|c| c == '0' || c == '.')
+        {
+            s.trim_start_matches('-').to_string()
+        } else {
+            s
+        }
+    }
+}
+
+/// A value for a legend or note, short: four significant digits, trailing zeros dropped, in
+/// powers of ten (`6×10⁶`) past a million or under a thousandth.
+pub(super) fn short(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() {
+        return format!("{}", if v == 0.0 { 0.0 } else { v });
+    }
+    let a = v.abs();
+    if (1e-3..1e6).contains(&a) {
+        let decimals = (3 - a.log10().floor() as i32).max(0) as usize;
+        let s = format!("{v:.decimals$}");
+        let s = if s.contains('.') {
+            s.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            s
+        };
+        return if s == "-0" { "0".into() } else { s };
+    }
+    let e = a.log10().floor() as i32;
+    let m = v / 10f64.powi(e);
+    let m = short(m);
+    let sup: String = e
+        .to_string()
+        .chars()
+        .map(|c| match c {
+            '-' => '⁻',
+            d => ['⁰', '¹', '²', '³', '⁴', '⁵', '⁶', '⁷', '⁸', '⁹'][(d as u8 - b'0') as usize],
+        })
+        .collect();
+    if m == "1" {
+        format!("10{sup}")
+    } else {
+        format!("{m}×10{sup}")
+    }
+}
+
+/// A force in N as a person writes it: `8 MN`, `650 kN`, `12 N`.
+pub(super) fn force(f: f64) -> String {
+    let a = f.abs();
+    if a >= 1e6 {
+        format!("{} MN", short(f / 1e6))
+    } else if a >= 1e3 {
+        format!("{} kN", short(f / 1e3))
+    } else {
+        format!("{} N", short(f))
+    }
+}
+
+/// The unit of a scene key, from its suffix (`_deg` °, `_m` m, …); empty when it has none.
+pub(super) fn unit_of(key: &str) -> &'static str {
+    const UNITS: [(&str, &str); 10] = [
+        ("_deg_s", "°/s"),
+        ("_m_s2", "m/s²"),
+        ("_m_s", "m/s"),
+        ("_kg_m2", "kg·m²"),
+        ("_kg", "kg"),
+        ("_deg", "°"),
+        ("_n_m", "N·m"),
+        ("_n", "N"),
+        ("_m", "m"),
+        ("_s", "s"),
+    ];
+    UNITS
+        .iter()
+        .find(|(s, _)| key.ends_with(s))
+        .map_or("", |(_, u)| u)
+}
+
+/// `key = value unit`, the value short.
+pub(super) fn key_value(key: &str, value: &str) -> String {
+    match unit_of(key) {
+        "" => format!("{key} = {value}"),
+        "°" => format!("{key} = {value}°"),
+        u => format!("{key} = {value} {u}"),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn constant_values_get_a_readable_range_and_no_negative_zero_ticks() {
+        let (lo, hi) = ranges([0.0, 0.0].into_iter());
+        assert!(lo <= -0.5 && hi >= 0.5, "{lo} {hi}");
+        let t = ticks(lo, hi);
+        assert_eq!(t(&-0.0), "0.0");
+        assert_eq!(t(&-1e-17), "0.0");
+        assert_eq!(t(&-0.5), "-0.5");
+        let (lo, hi) = ranges([5e6].into_iter());
+        assert!(lo < 5e6 && hi > 5e6 && (hi - lo) > 1e5);
+    }
+
+    #[test]
+    fn short_numbers_for_legends() {
+        assert_eq!(short(0.30000000000000004), "0.3");
+        assert_eq!(short(-0.5), "-0.5");
+        assert_eq!(short(6e6), "6×10⁶");
+        assert_eq!(short(1e7), "10⁷");
+        assert_eq!(short(2.5e-5), "2.5×10⁻⁵");
+        assert_eq!(short(123.456), "123.5");
+        assert_eq!(force(8e6), "8 MN");
+        assert_eq!(force(6.5e5), "650 kN");
+    }
+
+    #[test]
+    fn units_come_from_the_key_suffix() {
+        assert_eq!(unit_of("friction.mu_k"), "");
+        assert_eq!(unit_of("foundation.xi_deg"), "°");
+        assert_eq!(unit_of("loads.eccentricity_m"), "m");
+        assert_eq!(unit_of("loads.hydraulic_force_n"), "N");
+        assert_eq!(unit_of("block.inertia_kg_m2"), "kg·m²");
+        assert_eq!(unit_of("initial.omega_deg_s"), "°/s");
+        assert_eq!(
+            key_value("foundation.xi_deg", "20"),
+            "foundation.xi_deg = 20°"
+        );
+    }
+
+    #[test]
+    fn long_legend_texts_wrap_at_spaces() {
+        let lines = wrap(
+            "contacts 0, 1, 2 at the start and their frame every eighth",
+            140,
+        );
+        assert!(lines.len() > 1);
+        assert!(lines.iter().all(|l| l.chars().count() <= 20), "{lines:?}");
+    }
+}

@@ -1,0 +1,603 @@
+//! The sweep picture (issue #13, item 9): the CM's travel and the factor of safety against the
+//! first varied key, one line per combination of the other keys. Legends are in numeric order
+//! with units; past a handful of groups the colour follows the second key on a scale with a
+//! colour bar; a block that did not slide, a route that ended at once and one that slid are
+//! marked apart.
+
+use super::COLORS;
+use super::sheet::{self, Area, Entry, Mark, Res, Sheet, err};
+use crate::mechanics::static_friction::FactorOfSafety;
+use crate::sweep::{SweepRow, Vary};
+use plotters::prelude::*;
+use plotters::style::colors::colormaps::{ColorMap, ViridisRGB};
+use plotters::style::text_anchor::{HPos, Pos, VPos};
+use std::path::Path;
+
+const SIZE: (u32, u32) = (1200, 820);
+const DID_NOT_SLIDE: &str = "does not slide";
+
+/// How a combination came out, for its marker.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Outcome {
+    Slid,
+    DidNotSlide,
+    EndedAtOnce,
+    /// No route (an invalid scene): not drawn, counted.
+    NoRoute,
+}
+
+fn outcome(r: &SweepRow) -> Outcome {
+    if r.travel_m.is_none() {
+        Outcome::NoRoute
+    } else if r.reason == DID_NOT_SLIDE {
+        Outcome::DidNotSlide
+    } else if r.t_end_s == Some(0.0) {
+        Outcome::EndedAtOnce
+    } else {
+        Outcome::Slid
+    }
+}
+
+/// The combinations grouped by the values of every key but the first, groups in numeric
+/// order of those values (−1, −0.5, 0; 6×10⁶ before 10⁷), each group's rows by the first key.
+fn groups(rows: &[SweepRow]) -> Vec<(Vec<f64>, Vec<&SweepRow>)> {
+    let mut groups: Vec<(Vec<f64>, Vec<&SweepRow>)> = Vec::new();
+    for r in rows {
+        let key = r.values.get(1..).unwrap_or(&[]).to_vec();
+        match groups.iter_mut().find(|g| g.0 == key) {
+            Some(g) => g.1.push(r),
+            None => groups.push((key, vec![r])),
+        }
+    }
+    groups.sort_by(|a, b| {
+        a.0.iter()
+            .zip(&b.0)
+            .map(|(x, y)| x.total_cmp(y))
+            .find(|o| o.is_ne())
+            .unwrap_or(std::cmp::Ordering::Equal)
+    });
+    for g in &mut groups {
+        g.1.sort_by(|a, b| a.values[0].total_cmp(&b.values[0]));
+    }
+    groups
+}
+
+/// A varied value for people: the word, or the number short with the key's unit.
+fn value_text(v: &Vary, x: f64) -> String {
+    match &v.words {
+        Some(_) => format!("{} = {}", v.key, v.cell(x)),
+        None => sheet::key_value(&v.key, &sheet::short(x)),
+    }
+}
+
+/// The x-axis description: the key and its unit.
+fn axis_name(v: &Vary) -> String {
+    match sheet::unit_of(&v.key) {
+        "" => v.key.clone(),
+        u => format!("{} ({u})", v.key),
+    }
+}
+
+/// The colour of value `x` of a key spanning `lo..=hi` on the scale.
+fn scale_color(x: f64, lo: f64, hi: f64) -> RGBColor {
+    let h = if hi > lo { (x - lo) / (hi - lo) } else { 0.5 };
+    // Viridis, stopped short of its palest yellow, which is hard to see on white.
+    ViridisRGB.get_color((0.9 * h.clamp(0.0, 1.0)) as f32)
+}
+
+/// Travel and factor of safety against the first varied key.
+pub fn sweep(path: &Path, varies: &[Vary], rows: &[SweepRow]) -> Res<()> {
+    let Some(first) = varies.first() else {
+        return sheet::message(
+            path,
+            (900, 300),
+            "sweep",
+            &["No key was varied, so there is nothing to plot.".into()],
+        );
+    };
+    let groups = groups(rows);
+    let few = groups.len() <= COLORS.len();
+    let second = varies.get(1);
+    let (lo2, hi2) = second.map_or((0.0, 0.0), |v| {
+        v.values
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |a, &x| {
+                (a.0.min(x), a.1.max(x))
+            })
+    });
+    let color_of = |k: usize, key: &[f64]| -> RGBColor {
+        if groups.len() == 1 {
+            COLORS[1]
+        } else if few {
+            COLORS[k % COLORS.len()]
+        } else {
+            scale_color(key.first().copied().unwrap_or(0.0), lo2, hi2)
+        }
+    };
+
+    let title = format!(
+        "sweep: travel of the centre of mass and factor of safety against {}",
+        first.key
+    );
+    let sheet = Sheet::new(path, SIZE, &title)?;
+    let (_, ch) = sheet.chart.dim_in_pixel();
+    let (top, bottom) = sheet.chart.split_vertically((f64::from(ch) * 0.6) as u32);
+
+    // The x axis: numbers, or the words of a word key at 0, 1, ….
+    let (x0, x1) = match &first.words {
+        Some(w) => (-0.5, w.len() as f64 - 0.5),
+        None => sheet::ranges(rows.iter().map(|r| r.values[0])),
+    };
+    let words = first.words.clone();
+    let numbers = sheet::ticks(x0, x1);
+    let x_label = move |v: &f64| match &words {
+        Some(w) => {
+            let k = v.round();
+            if (v - k).abs() < 1e-6 && k >= 0.0 {
+                w.get(k as usize).cloned().unwrap_or_default()
+            } else {
+                String::new()
+            }
+        }
+        None => numbers(v),
+    };
+
+    // Travel.
+    let (t0, t1) = sheet::ranges(rows.iter().filter_map(|r| r.travel_m).chain([0.0]));
+    let x_count = first.words.as_ref().map_or(10, |w| w.len());
+    let mut chart = ChartBuilder::on(&top)
+        .margin(10)
+        .x_label_area_size(40)
+        .y_label_area_size(65)
+        .build_cartesian_2d(x0..x1, t0..t1)
+        .map_err(err(path))?;
+    let fy = sheet::ticks(t0, t1);
+    chart
+        .configure_mesh()
+        .max_light_lines(1)
+        .x_desc(axis_name(first))
+        .y_desc("travel of the CM (m)")
+        .x_labels(x_count)
+        .x_label_formatter(&x_label)
+        .y_label_formatter(&fy)
+        .draw()
+        .map_err(err(path))?;
+    for (k, (key, members)) in groups.iter().enumerate() {
+        let color = color_of(k, key);
+        let pts: Vec<(f64, f64)> = members
+            .iter()
+            .filter_map(|r| r.travel_m.map(|t| (r.values[0], t)))
+            .collect();
+        chart
+            .draw_series(LineSeries::new(pts, color.mix(0.8).stroke_width(2)))
+            .map_err(err(path))?;
+        for r in members {
+            let Some(t) = r.travel_m else { continue };
+            let at = (r.values[0], t);
+            let mark = match outcome(r) {
+                Outcome::Slid => Mark::Dot(color),
+                Outcome::DidNotSlide => Mark::Square(color),
+                Outcome::EndedAtOnce => Mark::Cross(color),
+                Outcome::NoRoute => continue,
+            };
+            draw_at(path, &chart, at, mark)?;
+        }
+    }
+
+    // Factor of safety.
+    let finite: Vec<f64> = rows
+        .iter()
+        .filter_map(|r| r.factor_of_safety.and_then(|f| f.value()))
+        .collect();
+    let (f0, f1) = sheet::ranges(finite.iter().copied().chain([1.0]));
+    let mut fs_chart = ChartBuilder::on(&bottom)
+        .margin(10)
+        .x_label_area_size(40)
+        .y_label_area_size(65)
+        .build_cartesian_2d(x0..x1, f0..f1)
+        .map_err(err(path))?;
+    let ff = sheet::ticks(f0, f1);
+    fs_chart
+        .configure_mesh()
+        .max_light_lines(1)
+        .x_desc(axis_name(first))
+        .y_desc("factor of safety")
+        .x_labels(x_count)
+        .x_label_formatter(&x_label)
+        .y_label_formatter(&ff)
+        .draw()
+        .map_err(err(path))?;
+    fs_chart
+        .draw_series(DashedLineSeries::new(
+            [(x0, 1.0), (x1, 1.0)],
+            8,
+            5,
+            BLACK.mix(0.7).stroke_width(1),
+        ))
+        .map_err(err(path))?;
+    for (k, (key, members)) in groups.iter().enumerate() {
+        let color = color_of(k, key);
+        let pts: Vec<(f64, f64)> = members
+            .iter()
+            .filter_map(|r| {
+                r.factor_of_safety
+                    .and_then(|f| f.value())
+                    .map(|f| (r.values[0], f))
+            })
+            .collect();
+        fs_chart
+            .draw_series(LineSeries::new(pts.clone(), color.mix(0.8).stroke_width(2)))
+            .map_err(err(path))?;
+        for r in members {
+            let (at, mark) = match r.factor_of_safety {
+                Some(FactorOfSafety::Finite { value }) => ((r.values[0], value), Mark::Dot(color)),
+                Some(FactorOfSafety::Unbounded) => ((r.values[0], f1), Mark::Triangle(color, true)),
+                Some(FactorOfSafety::NotHoldable) => {
+                    ((r.values[0], f0), Mark::Triangle(color, false))
+                }
+                None => continue,
+            };
+            draw_at(path, &fs_chart, at, mark)?;
+        }
+    }
+
+    // The panel: groups or colour bar, markers, counts.
+    let mut y = 0;
+    if groups.len() > 1 && few {
+        y = sheet::heading(path, &sheet.panel, "Lines", y)?;
+        let entries: Vec<Entry> = groups
+            .iter()
+            .enumerate()
+            .map(|(k, (key, _))| {
+                let text = varies[1..]
+                    .iter()
+                    .zip(key)
+                    .map(|(v, &x)| value_text(v, x))
+                    .collect::<Vec<_>>()
+                    .join(", ");
+                Entry::new(Mark::Line(color_of(k, key)), text)
+            })
+            .collect();
+        y = sheet::legend(path, &sheet.panel, &entries, y)?;
+    } else if let Some(v) = second.filter(|_| !few) {
+        y = sheet::heading(path, &sheet.panel, "Colour", y)?;
+        y = colour_bar(path, &sheet.panel, v, (lo2, hi2), y)?;
+        if varies.len() > 2 {
+            let others: Vec<&str> = varies[2..].iter().map(|v| v.key.as_str()).collect();
+            y = sheet::legend(
+                path,
+                &sheet.panel,
+                &[Entry::new(
+                    Mark::None,
+                    format!(
+                        "one line for each value of {} and of {}",
+                        v.key,
+                        others.join(", ")
+                    ),
+                )],
+                y,
+            )?;
+        }
+    }
+    // One group: its own colour; several: the markers' shapes are what the legend explains.
+    let marker = if groups.len() == 1 { COLORS[1] } else { BLACK };
+    y = sheet::heading(path, &sheet.panel, "Markers", y + 6)?;
+    // Only the marks this sweep uses.
+    let has = |o: Outcome| rows.iter().any(|r| outcome(r) == o);
+    let has_fs = |f: FactorOfSafety| rows.iter().any(|r| r.factor_of_safety == Some(f));
+    let marks = [
+        (
+            has(Outcome::Slid) || !finite.is_empty(),
+            Entry::new(
+                Mark::Dot(marker),
+                "the block slid (its travel), or a factor of safety",
+            ),
+        ),
+        (
+            has(Outcome::DidNotSlide),
+            Entry::new(
+                Mark::Square(marker),
+                "did not slide: travel 0, friction holds it",
+            ),
+        ),
+        (
+            has(Outcome::EndedAtOnce),
+            Entry::new(
+                Mark::Cross(marker),
+                "ended at once (t = 0) for another reason: see sweep.csv",
+            ),
+        ),
+        (
+            has_fs(FactorOfSafety::Unbounded),
+            Entry::new(
+                Mark::Triangle(marker, true),
+                "factor of safety unbounded (no multiple of the water load starts it)",
+            ),
+        ),
+        (
+            has_fs(FactorOfSafety::NotHoldable),
+            Entry::new(
+                Mark::Triangle(marker, false),
+                "no factor of safety: the weight alone slides it",
+            ),
+        ),
+        (
+            true,
+            Entry::new(
+                Mark::Dashed(BLACK),
+                "factor of safety 1: the loads just start the block",
+            ),
+        ),
+    ];
+    let marks: Vec<Entry> = marks.into_iter().filter(|m| m.0).map(|m| m.1).collect();
+    y = sheet::legend(path, &sheet.panel, &marks, y)?;
+    let count = |o: Outcome| rows.iter().filter(|r| outcome(r) == o).count();
+    let plural = if rows.len() == 1 { "" } else { "s" };
+    let mut counts = format!(
+        "{} combination{plural}: {} slid, {} did not slide, {} ended at once",
+        rows.len(),
+        count(Outcome::Slid),
+        count(Outcome::DidNotSlide),
+        count(Outcome::EndedAtOnce)
+    );
+    if count(Outcome::NoRoute) > 0 {
+        counts.push_str(&format!(
+            ", {} had no route (not drawn; see sweep.csv)",
+            count(Outcome::NoRoute)
+        ));
+    }
+    y = sheet::heading(path, &sheet.panel, "Sweep", y + 6)?;
+    sheet::legend(path, &sheet.panel, &[Entry::new(Mark::None, counts)], y)?;
+    sheet.root.present().map_err(err(path))
+}
+
+/// Draws `mark` at data point `at` of `chart`.
+fn draw_at(
+    path: &Path,
+    chart: &ChartContext<
+        '_,
+        SVGBackend<'_>,
+        Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+    >,
+    at: (f64, f64),
+    mark: Mark,
+) -> Res<()> {
+    let (x, y) = chart.backend_coord(&at);
+    let area = chart.plotting_area().strip_coord_spec();
+    let (ox, oy) = area.get_base_pixel();
+    sheet::draw_mark(&area, mark, (x - ox, y - oy)).map_err(err(path))
+}
+
+/// A vertical colour bar of the second key's values from `y` in the panel, its values marked
+/// (the words, for a word key); returns the y below it.
+fn colour_bar(path: &Path, panel: &Area, v: &Vary, (lo, hi): (f64, f64), y: i32) -> Res<i32> {
+    let (bar_h, bar_w, x) = (200, 22, 4);
+    let steps = 100;
+    for k in 0..steps {
+        let h = f64::from(k) / f64::from(steps);
+        let color = scale_color(lo + h * (hi - lo), lo, hi);
+        let y1 = y + bar_h - (bar_h * k) / steps;
+        let y0 = y + bar_h - (bar_h * (k + 1)) / steps;
+        panel
+            .draw(&Rectangle::new([(x, y0), (x + bar_w, y1)], color.filled()))
+            .map_err(err(path))?;
+    }
+    panel
+        .draw(&Rectangle::new([(x, y), (x + bar_w, y + bar_h)], BLACK))
+        .map_err(err(path))?;
+    // Ticks: every value when they are few, else the ends and three between.
+    let mut values = v.values.clone();
+    values.sort_by(f64::total_cmp);
+    values.dedup();
+    let shown: Vec<f64> = if values.len() <= 9 {
+        values
+    } else {
+        (0..5)
+            .map(|k| lo + (hi - lo) * f64::from(k) / 4.0)
+            .collect()
+    };
+    let label = |x: f64| match &v.words {
+        Some(_) => v.cell(x),
+        None => sheet::short(x),
+    };
+    for value in shown {
+        let h = if hi > lo {
+            (value - lo) / (hi - lo)
+        } else {
+            0.5
+        };
+        let yy = y + bar_h - (f64::from(bar_h) * h).round() as i32;
+        panel
+            .draw(&PathElement::new(
+                vec![(x + bar_w, yy), (x + bar_w + 5, yy)],
+                BLACK,
+            ))
+            .map_err(err(path))?;
+        panel
+            .draw(&Text::new(
+                label(value),
+                (x + bar_w + 9, yy),
+                ("sans-serif", 13)
+                    .into_font()
+                    .color(&BLACK)
+                    .pos(Pos::new(HPos::Left, VPos::Center)),
+            ))
+            .map_err(err(path))?;
+    }
+    let name = axis_name(v);
+    sheet::legend(
+        path,
+        panel,
+        &[Entry::new(Mark::None, format!("colour: {name}"))],
+        y + bar_h + 8,
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn row(values: Vec<f64>) -> SweepRow {
+        SweepRow {
+            values,
+            reason: "stopped".into(),
+            t_end_s: Some(1.0),
+            travel_m: Some(1.0),
+            final_theta_deg: Some(0.0),
+            max_alpha_deg: Some(0.0),
+            max_beta_deg: Some(0.0),
+            factor_of_safety: None,
+            detail: String::new(),
+        }
+    }
+
+    #[test]
+    fn groups_sort_numerically_not_as_text() {
+        let rows: Vec<SweepRow> = [0.0, -0.5, -1.0, 1e7, 6e6]
+            .iter()
+            .map(|&e| row(vec![0.1, e]))
+            .collect();
+        let keys: Vec<f64> = groups(&rows).iter().map(|g| g.0[0]).collect();
+        assert_eq!(keys, vec![-1.0, -0.5, 0.0, 6e6, 1e7]);
+    }
+
+    #[test]
+    fn outcomes_tell_did_not_slide_from_ended_at_once() {
+        let mut held = row(vec![0.1]);
+        held.reason = DID_NOT_SLIDE.into();
+        held.t_end_s = Some(0.0);
+        held.travel_m = Some(0.0);
+        let mut at_once = row(vec![0.1]);
+        at_once.reason = "the contact forces are not determined".into();
+        at_once.t_end_s = Some(0.0);
+        at_once.travel_m = Some(0.0);
+        let mut invalid = row(vec![0.1]);
+        invalid.travel_m = None;
+        assert_eq!(outcome(&held), Outcome::DidNotSlide);
+        assert_eq!(outcome(&at_once), Outcome::EndedAtOnce);
+        assert_eq!(outcome(&invalid), Outcome::NoRoute);
+        assert_eq!(outcome(&row(vec![0.1])), Outcome::Slid);
+    }
+
+    fn vary(key: &str, values: &[f64]) -> Vary {
+        Vary {
+            key: key.into(),
+            values: values.to_vec(),
+            words: None,
+        }
+    }
+
+    /// The texts of an SVG, in order, with their y.
+    fn texts(svg: &str) -> Vec<(f64, String)> {
+        svg.split("<text")
+            .skip(1)
+            .filter_map(|s| {
+                let (tag, rest) = s.split_once('>')?;
+                let y = tag.split(" y=\"").nth(1)?.split('"').next()?.parse().ok()?;
+                Some((y, rest.split("</text>").next()?.trim().to_string()))
+            })
+            .collect()
+    }
+
+    fn draw(name: &str, varies: &[Vary], rows: &[SweepRow]) -> String {
+        let path = std::env::temp_dir().join(format!(
+            "slideroute-sweep-{name}-{}.svg",
+            std::process::id()
+        ));
+        sweep(&path, varies, rows).unwrap();
+        let svg = std::fs::read_to_string(&path).unwrap();
+        let _ = std::fs::remove_file(&path);
+        svg
+    }
+
+    fn grid(first: &[f64], second: &[f64]) -> Vec<SweepRow> {
+        second
+            .iter()
+            .flat_map(|&e| first.iter().map(move |&m| row(vec![m, e])))
+            .collect()
+    }
+
+    #[test]
+    fn sweep_legend_is_in_numeric_order_with_units() {
+        let varies = [
+            vary("friction.mu_k", &[0.2, 0.4]),
+            vary("loads.eccentricity_m", &[0.0, -0.5, -1.0]),
+        ];
+        let svg = draw("order", &varies, &grid(&[0.2, 0.4], &[0.0, -0.5, -1.0]));
+        let mut legend: Vec<(f64, String)> = texts(&svg)
+            .into_iter()
+            .filter(|t| t.1.starts_with("loads.eccentricity_m = "))
+            .collect();
+        legend.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let order: Vec<&str> = legend.iter().map(|t| t.1.as_str()).collect();
+        assert_eq!(
+            order,
+            [
+                "loads.eccentricity_m = -1 m",
+                "loads.eccentricity_m = -0.5 m",
+                "loads.eccentricity_m = 0 m"
+            ]
+        );
+    }
+
+    #[test]
+    fn sweep_past_six_groups_colours_by_a_scale_with_a_colour_bar() {
+        let second: Vec<f64> = (0..8).map(f64::from).collect();
+        let varies = [
+            vary("friction.mu_k", &[0.2, 0.4]),
+            vary("loads.eccentricity_m", &second),
+        ];
+        let svg = draw("bar", &varies, &grid(&[0.2, 0.4], &second));
+        let t = texts(&svg);
+        assert!(t.iter().any(|t| t.1 == "Colour"));
+        assert!(t.iter().any(|t| t.1 == "colour: loads.eccentricity_m (m)"));
+        // Every value of the key marked on the bar; no legend line per group.
+        for v in ["0", "3", "7"] {
+            assert!(t.iter().any(|t| t.1 == v), "{v} not on the bar");
+        }
+        assert!(!t.iter().any(|t| t.1 == "Lines"));
+        // Eight groups, eight colours of the scale on their lines.
+        let lines: std::collections::BTreeSet<&str> = svg
+            .split("<polyline")
+            .skip(1)
+            .filter_map(|p| p.split("stroke=\"").nth(1)?.split('"').next())
+            .collect();
+        assert!(lines.len() >= 8, "{lines:?}");
+    }
+
+    #[test]
+    fn sweep_marks_did_not_slide_and_ended_at_once_apart_and_shows_the_factor_of_safety() {
+        let mut rows = grid(&[0.2, 0.4, 0.6], &[0.0]);
+        rows[0].factor_of_safety = Some(FactorOfSafety::Finite { value: 0.7 });
+        rows[1].reason = DID_NOT_SLIDE.into();
+        rows[1].t_end_s = Some(0.0);
+        rows[1].travel_m = Some(0.0);
+        rows[1].factor_of_safety = Some(FactorOfSafety::Finite { value: 1.2 });
+        rows[2].reason = "the contact forces are not determined".into();
+        rows[2].t_end_s = Some(0.0);
+        rows[2].travel_m = Some(0.0);
+        rows[2].factor_of_safety = Some(FactorOfSafety::Unbounded);
+        let varies = [vary("friction.mu_k", &[0.2, 0.4, 0.6])];
+        let svg = draw("marks", &varies, &rows);
+        let t: Vec<String> = texts(&svg).into_iter().map(|t| t.1).collect();
+        let words = t.join(" ");
+        for want in [
+            "did not slide: travel 0, friction holds it",
+            "ended at once (t = 0) for another reason: see sweep.csv",
+            "3 combinations: 1 slid, 1 did not slide, 1 ended at once",
+        ] {
+            assert!(words.contains(want), "{want:?} in {words}");
+        }
+        assert!(
+            t.iter().any(|s| s == "factor of safety"),
+            "no axis of the factor of safety"
+        );
+        // The square of "did not slide" and the cross of "ended at once" are drawn on the
+        // chart, not only in the legend (one each there, one each on the chart).
+        let squares = svg.matches("<rect").count();
+        assert!(squares >= 2, "{squares} rects");
+        // The unbounded factor of safety: a triangle, on the chart and in the legend.
+        assert!(svg.matches("<polygon").count() >= 2);
+        assert!(words.contains("factor of safety unbounded"));
+    }
+}

@@ -1,0 +1,231 @@
+//! The pictures read back as SVG: where their legends and data lie, what they name and mark.
+
+use super::*;
+
+/// A text element of an SVG: its position and content.
+#[derive(Debug)]
+struct SvgText {
+    x: f64,
+    size: f64,
+    text: String,
+}
+
+fn attr(tag: &str, name: &str) -> Option<f64> {
+    let key = format!(" {name}=\"");
+    let start = tag.find(&key)? + key.len();
+    tag[start..].split('"').next()?.parse().ok()
+}
+
+fn texts(svg: &str) -> Vec<SvgText> {
+    svg.split("<text")
+        .skip(1)
+        .filter_map(|s| {
+            let (tag, rest) = s.split_once('>')?;
+            let text = rest.split("</text>").next()?.trim().replace("&amp;", "&");
+            Some(SvgText {
+                x: attr(tag, "x")?,
+                size: attr(tag, "font-size")?,
+                text,
+            })
+        })
+        .collect()
+}
+
+/// Every point of every polyline of data (plotters draws line series as polylines; a legend's
+/// mark is a polyline of two or three points).
+fn polyline_points(svg: &str) -> Vec<(f64, f64)> {
+    svg.split("<polyline")
+        .skip(1)
+        .filter(|s| {
+            let points = s
+                .split(" points=\"")
+                .nth(1)
+                .and_then(|p| p.split('"').next());
+            points.is_some_and(|p| p.split_whitespace().count() > 3)
+        })
+        .flat_map(|s| {
+            let points = s.split("points=\"").nth(1).unwrap_or("").split('"').next();
+            points
+                .unwrap_or("")
+                .split_whitespace()
+                .filter_map(|p| {
+                    let (x, y) = p.split_once(',')?;
+                    Some((x.parse().ok()?, y.parse().ok()?))
+                })
+                .collect::<Vec<_>>()
+        })
+        .collect()
+}
+
+/// A temporary folder, removed when the test ends, passed or failed.
+struct TempDir(PathBuf);
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+impl std::ops::Deref for TempDir {
+    type Target = Path;
+    fn deref(&self) -> &Path {
+        &self.0
+    }
+}
+
+fn temp_dir(name: &str) -> TempDir {
+    let dir = std::env::temp_dir().join(format!("slideroute-plots-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    TempDir(dir)
+}
+
+/// The default scene with `t_end_s` and the hydraulic force replaced.
+fn scene_with(t_end: f64, force: f64) -> Scene {
+    let text = crate::scene::DEFAULT_SCENE_TOML
+        .replace("t_end_s = 20.0", &format!("t_end_s = {t_end:?}"))
+        .replace(
+            "hydraulic_force_n = 8.0e6",
+            &format!("hydraulic_force_n = {force:?}"),
+        );
+    let scene = Scene::from_toml(&text, "test").unwrap();
+    assert_eq!(
+        scene.solver.as_ref().unwrap().t_end,
+        t_end,
+        "t_end not replaced"
+    );
+    assert_eq!(scene.loads.as_ref().unwrap().hydraulic_force, force);
+    scene
+}
+
+fn route_pictures(name: &str, scene: &Scene) -> (TempDir, Route) {
+    let route = crate::route::run(scene).unwrap();
+    let dir = temp_dir(name);
+    write_route_plots(&dir, scene, &route).unwrap();
+    (dir, route)
+}
+
+fn read(dir: &Path, file: &str) -> String {
+    std::fs::read_to_string(dir.join(file)).unwrap()
+}
+
+/// The left edge of the side panel of a sheet `w` wide.
+fn panel_left(w: u32) -> f64 {
+    f64::from(w - sheet::PANEL_W)
+}
+
+#[test]
+fn legends_never_cover_data() {
+    let (dir, _) = route_pictures("legends", &scene_with(4.0, 8e6));
+    for (file, (w, _), legend) in [
+        ("reactions.svg", series::SIZE, "N2 normal, contact 2"),
+        ("angles.svg", series::SIZE, "θ: yaw"),
+        ("profile.svg", series::SIZE, "CM height"),
+        ("plan.svg", plan::SIZE, "path of the centre of mass (CM)"),
+    ] {
+        let svg = read(&dir, file);
+        let t = texts(&svg);
+        let entry = t.iter().find(|t| t.text == legend);
+        let entry = entry.unwrap_or_else(|| panic!("{file}: no legend entry {legend:?}"));
+        assert!(
+            entry.x >= panel_left(w),
+            "{file}: legend at x = {}",
+            entry.x
+        );
+        // Every line of data lies left of the panel (the plan's inset is not drawn for a route
+        // this long).
+        let points = polyline_points(&svg);
+        assert!(!points.is_empty(), "{file}: no lines");
+        let right = points.iter().map(|p| p.0).fold(f64::NEG_INFINITY, f64::max);
+        assert!(right < panel_left(w), "{file}: data reaches x = {right}");
+    }
+}
+
+#[test]
+fn the_plan_view_shades_and_names_the_regions_and_draws_the_water_force() {
+    let (dir, _) = route_pictures("regions", &scene_with(4.0, 8e6));
+    let svg = read(&dir, "plan.svg");
+    // The three regions filled in their own colours.
+    for color in [plan::PLANE_1, plan::PLANE_2, plan::HORIZONTAL] {
+        let fill = format!("fill=\"#{:02X}{:02X}{:02X}\"", color.0, color.1, color.2);
+        assert!(
+            svg.split("<polygon").skip(1).any(|p| p.contains(&fill)),
+            "no region filled {fill}"
+        );
+    }
+    let names: Vec<String> = texts(&svg).into_iter().map(|t| t.text).collect();
+    for name in [
+        "horizontal",
+        "plane 1, dip 20°",
+        "plane 2, dip 25°",
+        "F = 8 MN",
+    ] {
+        assert!(
+            names.iter().any(|n| n == name),
+            "{name:?} missing: {names:?}"
+        );
+    }
+    let words = names.join(" ");
+    assert!(words.contains("line of action 1 m from the CM"), "{words}");
+}
+
+#[test]
+fn the_plan_view_numbers_the_contacts_at_the_start_and_the_end() {
+    let (dir, _) = route_pictures("numbers", &scene_with(4.0, 8e6));
+    let t = texts(&read(&dir, "plan.svg"));
+    for i in ["0", "1", "2"] {
+        // The contacts' numbers are 15 px (12.1 in the SVG), larger than the ticks'.
+        let n = t
+            .iter()
+            .filter(|t| t.text == i && t.x < panel_left(plan::SIZE.0) && t.size > 11.5)
+            .count();
+        assert_eq!(n, 2, "contact {i} numbered {n} times");
+    }
+}
+
+#[test]
+fn a_short_route_is_drawn_enlarged_beside_the_plan() {
+    let (dir, route) = route_pictures("short", &scene_with(0.2, 8e6));
+    assert!(
+        route.travel_m > 0.0 && route.travel_m < 0.1,
+        "{}",
+        route.travel_m
+    );
+    let svg = read(&dir, "plan.svg");
+    let inset = texts(&svg)
+        .into_iter()
+        .find(|t| t.text.starts_with("CM path enlarged"))
+        .expect("no inset");
+    assert!(inset.x >= panel_left(plan::SIZE.0));
+    // In the inset the path spans a good part of the panel, not a dash.
+    let xs: Vec<f64> = polyline_points(&svg)
+        .into_iter()
+        .filter(|p| p.0 > panel_left(plan::SIZE.0))
+        .map(|p| p.0)
+        .collect();
+    let span = xs.iter().copied().fold(f64::NEG_INFINITY, f64::max)
+        - xs.iter().copied().fold(f64::INFINITY, f64::min);
+    assert!(span > 100.0, "inset path spans {span} px");
+    // A long route needs none.
+    let (long, _) = route_pictures("long", &scene_with(4.0, 8e6));
+    assert!(!read(&long, "plan.svg").contains("CM path enlarged"));
+}
+
+#[test]
+fn a_scene_that_does_not_slide_gets_pictures_that_say_so() {
+    let (dir, route) = route_pictures("still", &scene_with(20.0, 1e6));
+    assert_eq!(route.termination.reason, Reason::DoesNotSlide);
+    for file in ["profile.svg", "angles.svg", "reactions.svg"] {
+        let svg = read(&dir, file);
+        let words: String = texts(&svg).into_iter().map(|t| t.text + " ").collect();
+        assert!(words.contains("does not slide"), "{file}: {words}");
+        assert!(words.contains("factor of safety 6.8"), "{file}: {words}");
+        // No axes: no tick labels, no lines.
+        assert!(!svg.contains("<polyline"), "{file} has lines");
+    }
+    let plan = read(&dir, "plan.svg");
+    assert!(
+        texts(&plan)
+            .iter()
+            .any(|t| t.text.contains("does not slide"))
+    );
+}
