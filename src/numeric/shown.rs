@@ -39,10 +39,14 @@ impl fmt::Display for Shown {
             return write!(f, "{v:.4e}");
         }
         let s = format!("{v:.*}", self.decimals);
+        // A value that rounds to zero reads without a sign (`0.00`, not `-0.00`).
+        let s = if s.starts_with('-') && s[1..].chars().all(|c| c == '0' || c == '.') {
+            s[1..].to_string()
+        } else {
+            s
+        };
         if self.trim && s.contains('.') {
-            let t = s.trim_end_matches('0').trim_end_matches('.');
-            // −0 after trimming reads as 0.
-            f.write_str(if t == "-0" { "0" } else { t })
+            f.write_str(s.trim_end_matches('0').trim_end_matches('.'))
         } else {
             f.write_str(&s)
         }
@@ -67,5 +71,13 @@ mod tests {
         assert_eq!(fixed(-2.5e7, 3).to_string(), "-2.5000e7");
         assert_eq!(fixed(f64::INFINITY, 6).to_string(), "inf");
         assert_eq!(fixed(0.123456789, 6).to_string(), "0.123457");
+    }
+
+    #[test]
+    fn values_that_round_to_zero_carry_no_sign() {
+        assert_eq!(fixed(-0.001, 2).to_string(), "0.00");
+        assert_eq!(fixed(-0.0, 3).to_string(), "0.000");
+        assert_eq!(seconds(-1e-9).to_string(), "0");
+        assert_eq!(fixed(-0.006, 2).to_string(), "-0.01");
     }
 }

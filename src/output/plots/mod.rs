@@ -68,10 +68,11 @@ fn fs_words(fs: Option<FactorOfSafety>) -> String {
 
 /// How the route ended, its travel and its factor of safety, for a picture's panel.
 fn route_notes(route: &Route) -> Vec<Entry> {
+    // No-break spaces keep a number with its unit when the panel wraps the line.
     let mut notes = vec![Entry::new(
         Mark::None,
         format!(
-            "{} at t = {} s",
+            "{} at t\u{a0}=\u{a0}{}\u{a0}s",
             route.termination.reason,
             seconds(route.termination.t_s)
         ),
@@ -80,7 +81,7 @@ fn route_notes(route: &Route) -> Vec<Entry> {
         notes.push(Entry::new(
             Mark::None,
             format!(
-                "travel {} m; final yaw θ = {}°",
+                "travel {}\u{a0}m; final yaw θ\u{a0}=\u{a0}{}°",
                 fixed(route.travel_m, 3),
                 fixed(last.theta_deg, 2)
             ),

@@ -583,6 +583,15 @@ pub(super) fn plan_view(
     sheet.root.present().map_err(err(path))
 }
 
+/// `v` to two significant digits (a magnification needs no more).
+fn round_2(v: f64) -> f64 {
+    if v <= 0.0 || !v.is_finite() {
+        return v;
+    }
+    let e = 10f64.powi(v.log10().floor() as i32 - 1);
+    (v / e).round() * e
+}
+
 /// The CM paths enlarged, at equal scales, in the lower part of the panel from `y`.
 fn draw_inset(path: &Path, panel: &Area, y: i32, tracks: &[Track], main_scale: f64) -> Res<()> {
     let (_, ph) = panel.dim_in_pixel();
@@ -605,7 +614,7 @@ fn draw_inset(path: &Path, panel: &Area, y: i32, tracks: &[Track], main_scale: f
         .caption(
             format!(
                 "CM path enlarged {}× (boxed on the plan)",
-                sheet::short(zoom.round())
+                sheet::short(round_2(zoom))
             ),
             ("sans-serif", 13),
         )
@@ -704,6 +713,13 @@ mod tests {
         let moment_y = q.1 * f;
         // A negative moment about +Y raises θ (θ is measured from +X towards +Z).
         assert!(moment_y < 0.0);
+    }
+
+    #[test]
+    fn magnifications_have_two_significant_digits() {
+        assert_eq!(sheet::short(round_2(3.043e8)), "3×10⁸");
+        assert_eq!(sheet::short(round_2(87.4)), "87");
+        assert_eq!(sheet::short(round_2(111.2)), "110");
     }
 
     #[test]

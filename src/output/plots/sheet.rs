@@ -250,7 +250,12 @@ pub(super) fn ticks(lo: f64, hi: f64) -> impl Fn(&f64) -> String {
     let span = (hi - lo).abs().max(f64::MIN_POSITIVE);
     let decimals = (-(span / 10.0).log10().floor()).clamp(0.0, 9.0) as usize;
     move |v: &f64| {
-        if v.abs() >= 1e6 || (v.abs() < 1e-4 && decimals > 4 && *v != 0.0) {
+        // A tick at zero computed as lo + k·step carries round-off (−3.3e-24): it is zero.
+        let v = &(if v.abs() < 1e-9 * span { 0.0 } else { *v });
+        if *v == 0.0 && decimals > 4 {
+            return "0".into();
+        }
+        if v.abs() >= 1e6 || (v.abs() < 1e-4 && decimals > 4) {
             return format!("{v:.1e}");
         }
         let s = format!("{v:.decimals$}");
@@ -353,6 +358,8 @@ mod tests {
         assert_eq!(t(&-0.0), "0.0");
         assert_eq!(t(&-1e-17), "0.0");
         assert_eq!(t(&-0.5), "-0.5");
+        let t = ticks(-2e-8, 1e-9);
+        assert_eq!(t(&-3.3e-24), "0");
         let (lo, hi) = ranges([5e6].into_iter());
         assert!(lo < 5e6 && hi > 5e6 && (hi - lo) > 1e5);
     }
