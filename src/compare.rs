@@ -137,17 +137,8 @@ mod tests {
                 Row {
                     t_s: t,
                     x_m: t * t,
-                    y_m: 0.0,
-                    z_m: 0.0,
                     theta_deg: 10.0 * t,
-                    alpha_deg: 0.0,
-                    beta_deg: 0.0,
-                    gamma_deg: 0.0,
-                    vx_m_s: 0.0,
-                    vz_m_s: 0.0,
-                    omega_deg_s: 0.0,
-                    n_n: None,
-                    s_n: None,
+                    ..Row::default()
                 }
             })
             .collect();

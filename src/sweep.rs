@@ -184,6 +184,23 @@ pub struct SweepRow {
     pub detail: String,
 }
 
+impl SweepRow {
+    /// The row of a combination that has no route (an invalid scene, a sweep stopped first).
+    fn without_route(values: Vec<f64>, reason: &str, detail: String) -> SweepRow {
+        SweepRow {
+            values,
+            reason: reason.into(),
+            t_end_s: None,
+            travel_m: None,
+            final_theta_deg: None,
+            max_alpha_deg: None,
+            max_beta_deg: None,
+            factor_of_safety: None,
+            detail,
+        }
+    }
+}
+
 fn row_of(values: Vec<f64>, route: &Route) -> SweepRow {
     let max =
         |f: fn(&route::Row) -> f64| route.rows.iter().map(f).fold(f64::NEG_INFINITY, f64::max);
@@ -354,17 +371,11 @@ pub fn run(
             }
             if stop() {
                 progress();
-                return SweepRow {
+                return SweepRow::without_route(
                     values,
-                    reason: NOT_RUN.into(),
-                    t_end_s: None,
-                    travel_m: None,
-                    final_theta_deg: None,
-                    max_alpha_deg: None,
-                    max_beta_deg: None,
-                    factor_of_safety: None,
-                    detail: "the sweep was interrupted before this combination started".into(),
-                };
+                    NOT_RUN,
+                    "the sweep was interrupted before this combination started".into(),
+                );
             }
             let mut t = table.clone();
             for (v, &x) in varies.iter().zip(&values) {
@@ -397,17 +408,7 @@ pub fn run(
                     .map_err(|e| e.to_string())
                 }) {
                 Ok(r) => row_of(values, &r),
-                Err(e) => SweepRow {
-                    values,
-                    reason: "invalid scene".into(),
-                    t_end_s: None,
-                    travel_m: None,
-                    final_theta_deg: None,
-                    max_alpha_deg: None,
-                    max_beta_deg: None,
-                    factor_of_safety: None,
-                    detail: e,
-                },
+                Err(e) => SweepRow::without_route(values, "invalid scene", e),
             };
             progress();
             row

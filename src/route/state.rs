@@ -27,8 +27,9 @@ impl State {
     }
 }
 
-/// One recorded increment, in the units of `route.csv` (degrees, m, s, N).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+/// One recorded increment, in the units of `route.csv` (degrees, m, s, N). The default is the
+/// start at rest, without reactions.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Default)]
 pub struct Row {
     pub t_s: f64,
     pub x_m: f64,

@@ -690,21 +690,7 @@ mod tests {
     fn the_force_acts_on_the_side_that_turns_theta_up() {
         // c > 0 must turn θ up (shared/conventions.md): F along +X on the line Z = −c.
         let scene = Scene::default_scene();
-        let start = Row {
-            t_s: 0.0,
-            x_m: 0.0,
-            y_m: 0.0,
-            z_m: 0.0,
-            theta_deg: 0.0,
-            alpha_deg: 0.0,
-            beta_deg: 0.0,
-            gamma_deg: 0.0,
-            vx_m_s: 0.0,
-            vz_m_s: 0.0,
-            omega_deg_s: 0.0,
-            n_n: None,
-            s_n: None,
-        };
+        let start = Row::default();
         let (q, d, f, e) = line_of_action(&scene, &start).unwrap();
         assert!(e > 0.0 && f > 0.0);
         assert_eq!(d, (1.0, 0.0));

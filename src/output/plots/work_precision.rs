@@ -6,17 +6,17 @@ use plotters::prelude::*;
 use std::collections::BTreeMap;
 use std::path::Path;
 
+/// The route pictures' six colours and two more.
 const PALETTE: [RGBColor; 8] = [
-    RGBColor(200, 30, 30),
-    RGBColor(30, 90, 200),
-    RGBColor(30, 150, 60),
-    RGBColor(230, 140, 0),
-    RGBColor(140, 40, 170),
-    RGBColor(0, 150, 160),
+    super::COLORS[0],
+    super::COLORS[1],
+    super::COLORS[2],
+    super::COLORS[3],
+    super::COLORS[4],
+    super::COLORS[5],
     RGBColor(120, 80, 40),
     RGBColor(90, 90, 90),
 ];
-
 /// Log–log error against wall time, one line per series (scene, method, mode, integrator);
 /// past eight series the colours repeat with dashed lines.
 pub fn work_precision(path: &Path, points: &[crate::report::Point]) -> Res<()> {
