@@ -6,7 +6,7 @@
 //! previous increment's solution ([`reactions_paper::follow`]); with all roots, the pose by the
 //! eigenvalue solve and the reactions by all solutions of their degree-8 resultant
 //! ([`reactions_paper::all_solutions`]), the one continuing the previous chosen by the stated
-//! rule ([`reactions_paper::select`]). Both give the same route (`tests/route.rs`).
+//! rule ([`reactions_paper::select`]). Both give the same route (`tests/integration/route.rs`).
 //!
 //! The paper's kinematics (eqs. 23, 30–35): the CM accelerates along i' by a = ΣF·i'/m, whose
 //! horizontal components give Ẍ, Z̈ (eqs. 30, 31, 33, 34); the block turns about j' by

@@ -3,9 +3,7 @@
 //! the small-angle error. These tests exist so that nobody "fixes" our coefficients back.
 //! See `derivations/05-paper-differences.md`.
 
-mod common;
-
-use common::{printed_f1_f2_f7_f11, scene};
+use crate::common::{printed_f1_f2_f7_f11, scene};
 use slideroute::coeffs::{CoeffInputs, SmallAngle};
 use slideroute::geometry::{Displacement, direct};
 use slideroute::scene::Scene;

@@ -3,9 +3,7 @@
 //! κ from 0 to 80°, lopsided frames, and displacements from 1e-6·L to where a contact leaves
 //! its plane.
 
-mod common;
-
-use common::scene;
+use crate::common::scene;
 use proptest::prelude::*;
 use slideroute::geometry::{Displacement, Pose, direct};
 use slideroute::roots::{self, classify};

@@ -5,7 +5,7 @@
 //!
 //! The references are the routes as they were before the layer above the numerical core was
 //! reshaped. To record them again, deliberately, after a change that is meant to move routes:
-//! `SLIDEROUTE_BLESS=1 cargo test --test route_reference`.
+//! `SLIDEROUTE_BLESS=1 cargo test --test integration route_reference`.
 
 use slideroute::route::{self, Row};
 use slideroute::scene::{DynamicsModel, Scene};

@@ -1,8 +1,6 @@
 //! The traps measured in the roots issue, each a test named after the behaviour it protects.
 
-mod common;
-
-use common::scene;
+use crate::common::scene;
 use slideroute::geometry::{Displacement, Pose, direct};
 use slideroute::roots::{self, Tracker};
 use slideroute::scene::{Mode, Scene};

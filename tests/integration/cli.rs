@@ -83,7 +83,7 @@ fn coeffs_table_is_readable() {
 
 #[test]
 fn coeffs_reads_a_scene_file() {
-    let p = temp_file("shallow.toml", include_str!("../scenes/shallow.toml"));
+    let p = temp_file("shallow.toml", include_str!("../../scenes/shallow.toml"));
     let o = run(&[
         "coeffs",
         "--scene",
@@ -103,7 +103,8 @@ fn coeffs_reads_a_scene_file() {
 
 #[test]
 fn bad_scene_file_is_one_line_naming_file_and_key() {
-    let text = include_str!("../scenes/paper-like.toml").replace("xi_deg = 20.0", "xi_deg = 95.0");
+    let text =
+        include_str!("../../scenes/paper-like.toml").replace("xi_deg = 20.0", "xi_deg = 95.0");
     let p = temp_file("steep.toml", &text);
     let o = run(&[
         "coeffs",
@@ -353,7 +354,7 @@ fn run_writes_route_csv_and_summary_json() {
 
 #[test]
 fn run_on_a_geometry_only_scene_names_the_missing_section() {
-    let text = include_str!("../scenes/paper-like.toml");
+    let text = include_str!("../../scenes/paper-like.toml");
     let geo = text.split("[block]").next().unwrap();
     let p = temp_file("geo.toml", geo);
     assert_bad_input(

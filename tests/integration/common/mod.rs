@@ -1,6 +1,5 @@
 //! Shared test helpers: scenes built from numbers, and the hand-derived formulas typed from
 //! `derivations/03-small-angle.md` and `derivations/04-exact.md`.
-#![allow(dead_code)]
 
 use slideroute::geometry::Displacement;
 use slideroute::scene::{Foundation, Frame, Scene};
@@ -37,11 +36,6 @@ pub fn scene(
         solver: None,
         initial: Default::default(),
     }
-}
-
-/// The paper-like geometry (L = 10 m, ξ = 20°, ζ = 25°, κ = 30°) with other frame proportions.
-pub fn paper_like() -> Scene {
-    Scene::default_scene()
 }
 
 /// The trigonometric quantities every hand formula uses.

@@ -1,7 +1,7 @@
 //! The rigid-body dynamics mode (issue #7): energy, the direct pose solver, the scenes where
 //! the paper's dynamics has no solution, the flat limit with friction, and the start.
 
-mod common;
+use crate::common;
 
 use slideroute::route::{self, Reason, Route};
 use slideroute::scene::{DynamicsModel, Friction, Scene};

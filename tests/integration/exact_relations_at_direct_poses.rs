@@ -2,9 +2,7 @@
 //! constraints, no polynomials), the paper's exact relations and our exact polynomial system
 //! vanish to round-off, and the paper's geometry (eqs. 1, 2, 21) rebuilds the same frame.
 
-mod common;
-
-use common::scene;
+use crate::common::scene;
 use proptest::prelude::*;
 use slideroute::coeffs::{CoeffInputs, Exact};
 use slideroute::geometry::{Displacement, Pose, direct, relations};

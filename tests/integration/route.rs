@@ -1,7 +1,7 @@
 //! The incremental route (paper §7): against the direct pose solver, the integrators' orders,
 //! the flat limit, and the stated ends.
 
-mod common;
+use crate::common;
 
 use slideroute::mechanics::static_friction::FactorOfSafety;
 use slideroute::route::{self, Reason, Route};
@@ -99,7 +99,7 @@ fn observed_orders(s: &Scene, integrator: Integrator, t_end: f64) -> Vec<f64> {
 
 #[test]
 fn paper_integrator_converges_at_first_order() {
-    let shallow = Scene::from_toml(include_str!("../scenes/shallow.toml"), "shallow")
+    let shallow = Scene::from_toml(include_str!("../../scenes/shallow.toml"), "shallow")
         .unwrap()
         .with_dynamics(DynamicsModel::Paper);
     for (s, t_end) in [(paper_scene(), 1.0), (shallow, 0.5)] {
@@ -111,7 +111,7 @@ fn paper_integrator_converges_at_first_order() {
 
 #[test]
 fn rk4_converges_at_fourth_order() {
-    let shallow = Scene::from_toml(include_str!("../scenes/shallow.toml"), "shallow")
+    let shallow = Scene::from_toml(include_str!("../../scenes/shallow.toml"), "shallow")
         .unwrap()
         .with_dynamics(DynamicsModel::Paper);
     for (s, t_end) in [(paper_scene(), 1.0), (shallow, 0.5)] {

@@ -1,9 +1,7 @@
 //! The eigenvalue solver finds every finite root: the same set as an independent method —
 //! Newton's method from a dense grid of complex starting points, deduplicated.
 
-mod common;
-
-use common::scene;
+use crate::common::scene;
 use num_complex::Complex64 as C;
 use slideroute::geometry::Displacement;
 use slideroute::roots::{self, eigen, system};

@@ -5,8 +5,6 @@
 // The three contacts are indexed in parallel arrays (normals, arms, forces).
 #![allow(clippy::needless_range_loop)]
 
-mod common;
-
 use slideroute::geometry::Displacement;
 use slideroute::mechanics::friction::FrictionCriterion;
 use slideroute::mechanics::reactions_paper::{self, Reaction};

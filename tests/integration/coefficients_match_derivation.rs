@@ -5,9 +5,7 @@
 //! natural magnitude (for coefficients that pass through zero, where a relative error is not
 //! meaningful: there both sides carry round-off of the size of their largest terms).
 
-mod common;
-
-use common::{hand_exact, hand_small_angle, scene};
+use crate::common::{hand_exact, hand_small_angle, scene};
 use proptest::prelude::*;
 use slideroute::coeffs::{CoeffInputs, EXACT_NAMES_13, EXACT_NAMES_14, Exact, SmallAngle};
 use slideroute::geometry::Displacement;

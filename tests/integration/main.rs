@@ -1,0 +1,25 @@
+//! The integration tests, one crate (issue #14: one binary links the library once, not
+//! thirteen times). Each module is one concern; `common` holds the hand derivations and helpers
+//! they share. Data files live beside this folder: `tests/corpus/` (malformed scenes) and
+//! `tests/reference/` (the stored routes).
+//!
+//! The Drake cross-check is `#[ignore]`d here and run by CI after `crosscheck/setup.sh`:
+//! `cargo test --test integration drake_crosscheck -- --ignored`.
+
+mod common;
+
+mod cli;
+mod coefficients_match_derivation;
+mod drake_crosscheck;
+mod exact_relations_at_direct_poses;
+mod extreme;
+mod memory;
+mod paper_misprints;
+mod reactions_paper;
+mod rigid_body;
+mod roots_against_direct;
+mod roots_completeness;
+mod roots_traps;
+mod route;
+mod route_reference;
+mod scene_fuzz;
