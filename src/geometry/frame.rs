@@ -28,14 +28,4 @@ impl LocalFrame {
     pub fn r(&self) -> Matrix3<f64> {
         Matrix3::from_rows(&[self.i.transpose(), self.j.transpose(), self.k.transpose()])
     }
-
-    /// Global → local.
-    pub fn to_local(&self, v: &Vector3<f64>) -> Vector3<f64> {
-        self.r() * v
-    }
-
-    /// Local → global (Rᵀ).
-    pub fn to_global(&self, v: &Vector3<f64>) -> Vector3<f64> {
-        self.i * v.x + self.j * v.y + self.k * v.z
-    }
 }

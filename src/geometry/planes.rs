@@ -1,4 +1,4 @@
-//! The foundation (see `shared/conventions.md`, "The foundation"): the horizontal plane Y = 0
+//! The foundation (see `docs/conventions.md`, "The foundation"): the horizontal plane Y = 0
 //! carries vertex 0; plane 1, Y = (X − L2X) tan ξ for X ≥ L2X, carries vertex 1; plane 2,
 //! Y = (n·(X, Z) − R) tan ζ for n·(X, Z) ≥ R with n = (cos κ, −sin κ), carries vertex 2.
 //! Each contact is held on its own infinite plane; the regions say where the plane is real.
@@ -44,18 +44,6 @@ pub fn height(scene: &Scene, plane: Plane, x: f64, z: f64) -> f64 {
         Plane::Horizontal => 0.0,
         Plane::One => (x - scene.frame.l2x) * g.xi.tan(),
         Plane::Two => (along_dip_2(scene, x, z) - r(scene)) * g.zeta.tan(),
-    }
-}
-
-/// Whether (X, Z) lies over the real part of `plane`. The horizontal plane is real where
-/// neither inclined plane is.
-pub fn in_region(scene: &Scene, plane: Plane, x: f64, z: f64) -> bool {
-    let on1 = x >= scene.frame.l2x;
-    let on2 = along_dip_2(scene, x, z) >= r(scene);
-    match plane {
-        Plane::Horizontal => !on1 && !on2,
-        Plane::One => on1,
-        Plane::Two => on2,
     }
 }
 

@@ -47,11 +47,6 @@ pub fn cm_height(scene: &Scene, alpha: f64, beta: f64) -> f64 {
     (f.l1x - f.l1z) * alpha.sin() + SQRT_2 * f.l1z * beta.sin()
 }
 
-/// sin β from (α, ψ): √2 sin β = sin α − cos α sin ψ (heights of vertices 1 and 2).
-pub fn beta_of_roll(alpha: f64, psi: f64) -> f64 {
-    ((alpha.sin() - alpha.cos() * psi.sin()) / SQRT_2).asin()
-}
-
 /// ψ from (α, β) on the branch cos ψ ≥ 0 (sin h ≥ 0).
 pub fn roll_of_tilts(alpha: f64, beta: f64) -> f64 {
     (-sin_gamma(alpha, beta) / alpha.cos()).asin()

@@ -9,7 +9,7 @@ use nalgebra::Vector3;
 pub struct Applied {
     /// F·i' (eq. 40).
     pub force: Vector3<f64>,
-    /// −c·F·j' (eq. 41 with the sign of `shared/conventions.md`: c > 0 makes θ grow).
+    /// −c·F·j' (eq. 41 with the sign of `docs/conventions.md`: c > 0 makes θ grow).
     pub moment: Vector3<f64>,
     /// −m g Y.
     pub weight: Vector3<f64>,

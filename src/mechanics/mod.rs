@@ -1,7 +1,7 @@
 //! Forces on the block at one pose: loads, friction criteria, the frictionless normal
 //! reactions (paper eqs. 25–27) and the paper's frictional reactions (eqs. 22–24, 28).
 //!
-//! Conventions (`shared/conventions.md`): F acts along i'; the hydraulic couple is −c·F about
+//! Conventions (`docs/conventions.md`): F acts along i'; the hydraulic couple is −c·F about
 //! j' (c > 0 turns the block so that θ grows); weight −m g along Y; each normal reaction lies
 //! along the upward unit normal of its contact's plane and each shear reaction in that plane.
 

@@ -10,7 +10,6 @@
 //! block (it does not slide); with D ≤ 0 nothing drives it and FS is infinite.
 
 use super::ContactGeometry;
-use super::friction::FrictionCriterion;
 use super::loads::Applied;
 use crate::scene::Friction;
 

@@ -12,14 +12,13 @@
 //! the two circles is the resultant of two quadratics, a trigonometric polynomial of degree 4
 //! in φ0 — a polynomial of degree 8 in t = tan((φ0 − δ)/2). Its real roots, from the eigenvalues
 //! of the companion matrix, are *all* the solutions (at most 8); each is refined by Newton's
-//! method on the four equations. `derivations/07-reactions.md` has the details and what we
+//! method on the four equations. `derivations/07-reactions-and-route.md` has the details and what we
 //! measured; we choose among the solutions by the stated rule in [`select`].
 
 // The three contacts are handled by index into parallel arrays (normals, tangents, arms).
 #![allow(clippy::needless_range_loop)]
 
 use super::ContactGeometry;
-use super::friction::FrictionCriterion;
 use super::loads::Applied;
 use super::statics::ratios;
 use crate::numeric::{poly_mul, poly_roots, wrap_angle as wrap};
@@ -467,7 +466,7 @@ fn settle(
     friction: &Friction,
     mut p: Point,
 ) -> Option<Point> {
-    if matches!(friction, Friction::Coulomb { .. }) {
+    if !friction.is_stress_dependent() {
         return Some(p);
     }
     for _ in 0..60 {

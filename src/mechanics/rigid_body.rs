@@ -17,7 +17,6 @@
 //! not a regularising velocity), found by a fixed point.
 
 use super::ContactGeometry;
-use super::friction::FrictionCriterion;
 use super::loads::Applied;
 use crate::scene::{Block, Friction};
 use nalgebra::{Matrix3, Matrix6, SMatrix, SVector, Vector3, Vector6};
@@ -520,7 +519,7 @@ pub fn accelerations_slaved(
             lambda.map(|l| friction.coefficient(l.max(0.0)))
         }
     };
-    let stress_dependent = matches!(friction, Friction::BartonChoubey { .. });
+    let stress_dependent = friction.is_stress_dependent();
 
     let slip = ctx.slip_of(&tw);
     let zero = [Vector3::zeros(); 3];
@@ -564,19 +563,14 @@ pub fn accelerations_slaved(
         }
         let mut stuck = None;
         if let Some(i) = pivot {
-            for _ in 0..MAX_FIXED_POINT {
-                let s = ctx.solve_stick(&dir, &mu, i)?;
-                let new_mu = coefficients(&s.lambda);
-                let change = (0..3)
-                    .map(|j| (new_mu[j] - mu[j]).abs())
-                    .fold(0.0, f64::max);
-                mu = new_mu;
-                if change < 1e-13 {
-                    if in_cone(&s.shear[i], mu[i], s.lambda[i]) {
-                        stuck = Some(s);
-                    }
-                    break;
-                }
+            let (s, settled) = friction.settle(
+                &mut mu,
+                (1e-13, MAX_FIXED_POINT),
+                |mu| ctx.solve_stick(&dir, mu, i),
+                |s| Some(s.lambda),
+            )?;
+            if settled && in_cone(&s.shear[i], mu[i], s.lambda[i]) {
+                stuck = Some(s);
             }
         }
         sol = match (stuck, pivot) {
@@ -590,20 +584,12 @@ pub fn accelerations_slaved(
             // Coulomb without a pivot: the solve above is the answer.
             (None, None) if !stress_dependent => sol,
             (None, None) => {
-                sol = ctx.solve(&dir, &mu)?;
-                let mut settled = false;
-                for _ in 0..MAX_FIXED_POINT {
-                    if settled {
-                        break;
-                    }
-                    let new_mu = coefficients(&sol.lambda);
-                    let change: f64 = (0..3)
-                        .map(|j| (new_mu[j] - mu[j]).abs())
-                        .fold(0.0, f64::max);
-                    mu = new_mu;
-                    sol = ctx.solve(&dir, &mu)?;
-                    settled = change < 1e-13;
-                }
+                let (sol, settled) = friction.settle(
+                    &mut mu,
+                    (1e-13, MAX_FIXED_POINT),
+                    |mu| ctx.solve(&dir, mu),
+                    |s| Some(s.lambda),
+                )?;
                 if !settled {
                     return Err(RigidError::SlipFromRest);
                 }

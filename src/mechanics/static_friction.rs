@@ -18,7 +18,6 @@
 //! coefficient μ_i = S(λ_i)/λ_i at its own normal force, iterated to a fixed point.
 
 use super::ContactGeometry;
-use super::friction::FrictionCriterion;
 use super::loads::Applied;
 use crate::scene::Friction;
 use clarabel::algebra::CscMatrix;
@@ -218,24 +217,20 @@ pub fn check(
 ) -> Result<StaticCheck, StaticError> {
     let w = applied.weight.norm();
     let mut mu = statics.map(|c| friction.coefficient(c.max(0.0)));
-    let stress_dependent = matches!(friction, Friction::BartonChoubey { .. });
-    let mut hi = extreme_t(geom, applied, &mu, -1.0)?;
-    if stress_dependent {
-        for _ in 0..50 {
-            if !hi.1[0].is_finite() {
-                break;
-            }
-            let new_mu = hi.1.map(|l| friction.coefficient((l * w).max(0.0)));
-            let change = (0..3)
-                .map(|i| (new_mu[i] - mu[i]).abs())
-                .fold(0.0, f64::max);
-            mu = new_mu;
-            hi = extreme_t(geom, applied, &mu, -1.0)?;
-            if change < 1e-10 {
-                break;
-            }
-        }
-    }
+    let stress_dependent = friction.is_stress_dependent();
+    let hi = if stress_dependent {
+        // The normals are per unit weight: the coefficients are those at λ·W.
+        friction
+            .settle(
+                &mut mu,
+                (1e-10, 50),
+                |mu| extreme_t(geom, applied, mu, -1.0),
+                |hi| hi.1[0].is_finite().then(|| hi.1.map(|l| l * w)),
+            )?
+            .0
+    } else {
+        extreme_t(geom, applied, &mu, -1.0)?
+    };
     let lo = extreme_t(geom, applied, &mu, 1.0)?;
     if hi.0.is_nan() {
         // No multiple of the loads is held.

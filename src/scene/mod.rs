@@ -3,7 +3,7 @@
 //!
 //! A scene is read from TOML ([`Scene::from_toml`], [`Scene::from_file`]) and validated: every
 //! bad input is a [`SceneError`] naming the key and the reason. Angles are degrees in the file
-//! and radians in these types. Coordinates follow `shared/conventions.md` (README, "Coordinates").
+//! and radians in these types. Coordinates follow `docs/conventions.md` (README, "Coordinates").
 
 mod echo;
 mod error;

@@ -10,6 +10,7 @@ mod common;
 
 mod cli;
 mod coefficients_match_derivation;
+mod docs;
 mod drake_crosscheck;
 mod exact_relations_at_direct_poses;
 mod extreme;

@@ -1,12 +1,11 @@
 //! The paper's reactions (§6), checked against what we measured with an independent prototype
-//! (`shared/conventions.md`, "The paper's dynamics, measured") and against the equations
+//! (`docs/conventions.md`, "The paper's dynamics, measured") and against the equations
 //! themselves, evaluated independently of the solver.
 
 // The three contacts are indexed in parallel arrays (normals, arms, forces).
 #![allow(clippy::needless_range_loop)]
 
 use slideroute::geometry::Displacement;
-use slideroute::mechanics::friction::FrictionCriterion;
 use slideroute::mechanics::reactions_paper::{self, Reaction};
 use slideroute::mechanics::{ContactGeometry, loads::Applied, statics};
 use slideroute::roots;
@@ -131,7 +130,7 @@ fn paper_system_has_exactly_four_solutions_at_the_measured_pose() {
 
 #[test]
 fn angular_accelerations_differ_by_a_factor_of_several_between_solutions() {
-    // With the couple as `shared/conventions.md` fixes it (−cF about y', c > 0 turns θ up) the
+    // With the couple as `docs/conventions.md` fixes it (−cF about y', c > 0 turns θ up) the
     // angular accelerations about j' span 0.23–2.13 rad/s². The prototype's 1.7–3.6 rad/s² are
     // (cF + friction moment)/I, i.e. the couple applied as +cF about y' (eq. 41 read
     // literally): the same solutions, the couple's sign differing (derivations/07).

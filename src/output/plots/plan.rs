@@ -189,7 +189,7 @@ fn along(a: P, b: P, n: usize) -> impl Iterator<Item = P> {
 
 /// The hydraulic force at the start, in plan: the point of its line of action nearest the CM
 /// and its direction (x' at the start). F·i' with the couple −c·F·j' (eqs. 40, 41) is F acting
-/// along x' on the line offset by −c along z' (`shared/conventions.md`: c > 0 turns θ up).
+/// along x' on the line offset by −c along z' (`docs/conventions.md`: c > 0 turns θ up).
 fn line_of_action(scene: &Scene, start: &Row) -> Option<(P, P, f64, f64)> {
     let loads = scene.loads.as_ref()?;
     let (s, c) = start.theta_deg.to_radians().sin_cos();
@@ -688,7 +688,7 @@ mod tests {
 
     #[test]
     fn the_force_acts_on_the_side_that_turns_theta_up() {
-        // c > 0 must turn θ up (shared/conventions.md): F along +X on the line Z = −c.
+        // c > 0 must turn θ up (docs/conventions.md): F along +X on the line Z = −c.
         let scene = Scene::default_scene();
         let start = Row::default();
         let (q, d, f, e) = line_of_action(&scene, &start).unwrap();
