@@ -324,16 +324,7 @@ impl System {
         let (a2, a1, a0) = circle(0);
         let (b2, b1, b0) = circle(2);
         // R = (a2 b0 − a0 b2)² − (a2 b1 − a1 b2)(a1 b0 − a0 b1).
-        let p: Vec<f64> = (0..5).map(|d| a2 * b0[d] - a0[d] * b2).collect();
-        let qq: Vec<f64> = (0..3).map(|d| a2 * b1[d] - a1[d] * b2).collect();
-        let (mut a1b0, mut a0b1) = ([0.0; 7], [0.0; 7]);
-        poly_mul(&a1, &b0, &mut a1b0);
-        poly_mul(&a0, &b1, &mut a0b1);
-        let rr: Vec<f64> = (0..7).map(|d| a1b0[d] - a0b1[d]).collect();
-        let (mut pp, mut qr) = ([0.0; 9], [0.0; 9]);
-        poly_mul(&p, &p, &mut pp);
-        poly_mul(&qq, &rr, &mut qr);
-        let res: Vec<f64> = (0..9).map(|d| pp[d] - qr[d]).collect();
+        let (res, _, _) = crate::numeric::quadratic_resultant([&a0, &a1, &[a2]], [&b0, &b1, &[b2]]);
         let Some(ts) = poly_roots(&res) else {
             return Vec::new();
         };

@@ -1,5 +1,5 @@
-//! Small numerical kernels shared by the stages: eigenvalues of small Hessenberg matrices and
-//! dense polynomial products.
+//! Small numerical kernels shared by the stages: eigenvalues of small Hessenberg matrices,
+//! dense polynomial products and the resultant of two quadratics.
 
 pub mod hessenberg;
 mod shown;
@@ -25,6 +25,65 @@ pub fn poly_mul(a: &[f64], b: &[f64], out: &mut [f64]) {
     }
 }
 
+/// The resultant in y of two quadratics p = a0 + a1 y + a2 y² and q = b0 + b1 y + b2 y² whose
+/// coefficients are polynomials in x (lowest degree first; the resultant's degree at most 8):
+/// R = (a2 b0 − a0 b2)² − (a2 b1 − a1 b2)(a1 b0 − a0 b1) (the determinant of the Bézout
+/// matrix). Returns R and the magnitudes of its two terms — the same products with every
+/// coefficient and difference taken in absolute value and summed — for a bound on its rounding.
+/// One kernel for the pose system's x-roots (`roots::eigen`) and the paper's reactions
+/// (`mechanics::reactions_paper`).
+pub fn quadratic_resultant(a: [&[f64]; 3], b: [&[f64]; 3]) -> ([f64; 9], [f64; 9], [f64; 9]) {
+    // u·v − w·z (degree ≤ 8) and |u|·|v| + |w|·|z|.
+    let cross = |u: &[f64], v: &[f64], w: &[f64], z: &[f64]| {
+        let (mut l, mut r, mut la, mut ra) = ([0.0; 9], [0.0; 9], [0.0; 9], [0.0; 9]);
+        let abs = |c: &[f64]| {
+            let mut out = [0.0; 9];
+            out[..c.len()]
+                .iter_mut()
+                .zip(c)
+                .for_each(|(o, x)| *o = x.abs());
+            out
+        };
+        poly_mul(u, v, &mut l[..u.len() + v.len() - 1]);
+        poly_mul(w, z, &mut r[..w.len() + z.len() - 1]);
+        poly_mul(
+            &abs(u)[..u.len()],
+            &abs(v)[..v.len()],
+            &mut la[..u.len() + v.len() - 1],
+        );
+        poly_mul(
+            &abs(w)[..w.len()],
+            &abs(z)[..z.len()],
+            &mut ra[..w.len() + z.len() - 1],
+        );
+        let len = (u.len() + v.len()).max(w.len() + z.len()) - 1;
+        let (mut val, mut mag) = ([0.0; 9], [0.0; 9]);
+        for k in 0..len {
+            val[k] = l[k] - r[k];
+            mag[k] = la[k] + ra[k];
+        }
+        (val, mag, len)
+    };
+    let (c20, m20, n20) = cross(a[2], b[0], a[0], b[2]);
+    let (c21, m21, n21) = cross(a[2], b[1], a[1], b[2]);
+    let (c10, m10, n10) = cross(a[1], b[0], a[0], b[1]);
+    let (mut sq, mut pr, mut msq, mut mpr) = ([0.0; 17], [0.0; 17], [0.0; 17], [0.0; 17]);
+    poly_mul(&c20[..n20], &c20[..n20], &mut sq[..2 * n20 - 1]);
+    poly_mul(&c21[..n21], &c10[..n10], &mut pr[..n21 + n10 - 1]);
+    poly_mul(&m20[..n20], &m20[..n20], &mut msq[..2 * n20 - 1]);
+    poly_mul(&m21[..n21], &m10[..n10], &mut mpr[..n21 + n10 - 1]);
+    debug_assert!(sq[9..].iter().chain(&pr[9..]).all(|&v| v == 0.0));
+    let mut res = [0.0; 9];
+    for k in 0..9 {
+        res[k] = sq[k] - pr[k];
+    }
+    (
+        res,
+        msq[..9].try_into().unwrap_or([0.0; 9]),
+        mpr[..9].try_into().unwrap_or([0.0; 9]),
+    )
+}
+
 /// All roots of the polynomial Σ c[k] x^k (lowest degree first) as (re, im), by the eigenvalues
 /// of its balanced companion matrix. Leading coefficients that are exactly zero are dropped;
 /// degree at most [`hessenberg::N`]. `None` if the QR iteration fails to converge.
@@ -46,6 +105,20 @@ pub fn poly_roots(c: &[f64]) -> Option<Vec<(f64, f64)>> {
 
 #[cfg(test)]
 mod tests {
+
+    #[test]
+    fn the_resultant_of_two_quadratics_vanishes_where_they_share_a_root() {
+        // p = y² − x and q = (y − 1)(y − 2) share a root where x = 1 or x = 4:
+        // Res = ∏ p(y_i) over q's roots = (1 − x)(4 − x) = x² − 5x + 4.
+        let (r, sq, pr) =
+            quadratic_resultant([&[0.0, -1.0], &[0.0], &[1.0]], [&[2.0], &[-3.0], &[1.0]]);
+        assert_eq!(&r[..3], &[4.0, -5.0, 1.0]);
+        assert!(r[3..].iter().all(|&v| v == 0.0));
+        // Magnitudes: (|a2 b0| + |a0 b2|)² = (2 + x)², |a2 b1|·|a0 b1| = 9x, all ≥ |R|.
+        assert_eq!(&sq[..3], &[4.0, 4.0, 1.0]);
+        assert_eq!(&pr[..3], &[0.0, 9.0, 0.0]);
+    }
+
     use super::*;
 
     #[test]

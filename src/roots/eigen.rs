@@ -271,32 +271,13 @@ fn x_roots_resultant(p: &Coeffs, q: &Coeffs) -> Option<([C; 8], usize, usize)> {
             accumulate(1.0, prod(&q2, &l0, &l0));
         }
         (false, false) => {
-            let cross = |u: &[f64; 3], v: &[f64; 3], w: &[f64; 3], z: &[f64; 3]| {
-                // u·v − w·z, each a product of quadratics (degree 4), and |u|·|v| + |w|·|z|.
-                let (mut l, mut r, mut la, mut ra) = ([0.0; 5], [0.0; 5], [0.0; 5], [0.0; 5]);
-                poly_mul(u, v, &mut l);
-                poly_mul(w, z, &mut r);
-                poly_mul(&u.map(f64::abs), &v.map(f64::abs), &mut la);
-                poly_mul(&w.map(f64::abs), &z.map(f64::abs), &mut ra);
-                let mut val = [0.0; 5];
-                let mut mag = [0.0; 5];
-                for k in 0..5 {
-                    val[k] = l[k] - r[k];
-                    mag[k] = la[k] + ra[k];
-                }
-                (val, mag)
-            };
             // (a2 b0 − a0 b2)² − (a2 b1 − a1 b2)(a1 b0 − a0 b1)
-            let (c20, m20) = cross(&a2, &b0, &a0, &b2);
-            let (c21, m21) = cross(&a2, &b1, &a1, &b2);
-            let (c10, m10) = cross(&a1, &b0, &a0, &b1);
-            let (mut sq, mut pr, mut msq, mut mpr) = ([0.0; 9], [0.0; 9], [0.0; 9], [0.0; 9]);
-            poly_mul(&c20, &c20, &mut sq);
-            poly_mul(&c21, &c10, &mut pr);
-            poly_mul(&m20, &m20, &mut msq);
-            poly_mul(&m21, &m10, &mut mpr);
-            accumulate(1.0, (sq, msq));
-            accumulate(-1.0, (pr, mpr));
+            let (r, msq, mpr) =
+                crate::numeric::quadratic_resultant([&a0, &a1, &a2], [&b0, &b1, &b2]);
+            for k in 0..9 {
+                res[k] = r[k];
+                bound[k] = 32.0 * f64::EPSILON * msq[k] + 32.0 * f64::EPSILON * mpr[k];
+            }
         }
     }
     // Degree: a leading coefficient within its own rounding error is zero (a root at infinity).
