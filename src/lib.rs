@@ -24,11 +24,6 @@ pub mod compare;
 pub mod geometry;
 pub mod mechanics;
 pub mod numeric;
-pub mod output;
-#[cfg(feature = "cli")]
-pub mod report;
 pub mod roots;
 pub mod route;
 pub mod scene;
-#[cfg(feature = "cli")]
-pub mod sweep;

@@ -540,7 +540,8 @@ fn report_quick_writes_csv_markdown_and_picture() {
     );
     assert_eq!(
         csv.lines().count(),
-        1 + slideroute::report::point_count(true)
+        // Quick: 2 scenes × 2 pose methods × 2 modes × 2 integrators × 3 steps of dt.
+        1 + 2 * 2 * 2 * 2 * 3
     );
     let md = std::fs::read_to_string(dir.join("work-precision.md")).unwrap();
     assert!(md.contains("## Stiff and extreme cases") && md.contains("## References"));

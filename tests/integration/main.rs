@@ -13,7 +13,6 @@ mod coefficients_match_derivation;
 mod docs;
 mod drake_crosscheck;
 mod exact_relations_at_direct_poses;
-mod extreme;
 mod memory;
 mod paper_misprints;
 mod reactions_paper;

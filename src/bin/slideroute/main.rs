@@ -1,8 +1,12 @@
 //! The `slideroute` command line: parses, calls the library, prints.
 
+mod output;
+mod report;
+mod sweep;
+
+use crate::output::{CoeffReport, RootsReport, grid_csv};
 use clap::{Args, Parser, Subcommand};
 use slideroute::geometry::Displacement;
-use slideroute::output::{CoeffReport, RootsReport, grid_csv};
 use slideroute::roots;
 use slideroute::scene::{DynamicsModel, Mode, Scene};
 use std::path::PathBuf;
@@ -324,17 +328,17 @@ fn progress_bar(quiet: bool, len: u64, what: &str) -> indicatif::ProgressBar {
 /// output folder, beside route.csv, each whole or absent, replacing an earlier run's outputs
 /// there.
 fn write_route_folder(
-    mut folder: slideroute::output::folder::Folder,
+    mut folder: crate::output::folder::Folder,
     scene: &Scene,
     route: &slideroute::route::Route,
     no_plots: bool,
 ) -> Result<Vec<PathBuf>, String> {
-    use slideroute::output::route_files;
+    use crate::output::route_files;
     let mut files = Vec::new();
     #[cfg(feature = "plots")]
     if !no_plots {
         let staging = folder.staging()?;
-        for staged in slideroute::output::plots::write_route_plots(&staging, scene, route)? {
+        for staged in crate::output::plots::write_route_plots(&staging, scene, route)? {
             let name = staged
                 .file_name()
                 .map(|n| n.to_string_lossy().into_owned())
@@ -367,7 +371,7 @@ fn run_cmd(
         scene = scene.with_dynamics(model);
     }
     // Locked before the work, so that a second run into the same folder is refused at once.
-    let folder = slideroute::output::folder::Folder::open(out).map_err(failed)?;
+    let folder = crate::output::folder::Folder::open(out).map_err(failed)?;
     let bar = progress_bar(quiet, 1000, "route");
     let progress = |f: f64| {
         bar.set_position((f * 1000.0) as u64);
@@ -389,7 +393,7 @@ fn run_cmd(
     let csv_path = folder.write_with("route.csv", |tmp| {
         let file = std::fs::File::create(tmp)
             .map_err(|e| format!("{}: cannot write: {e}", tmp.display()))?;
-        let mut rows = slideroute::output::route_files::CsvRows::new(std::io::BufWriter::new(file))
+        let mut rows = crate::output::route_files::CsvRows::new(std::io::BufWriter::new(file))
             .map_err(|e| format!("route.csv: {e}"))?;
         match slideroute::route::run_streamed(&scene, progress, keep_every, |r| rows.push(r)) {
             Ok(route) => computed = Some(route),
@@ -481,17 +485,16 @@ fn compare_cmd(
     no_plots: bool,
 ) -> Result<(), CliError> {
     let scene = load(scene)?;
-    let mut folder = slideroute::output::folder::Folder::open(out).map_err(failed)?;
+    let mut folder = crate::output::folder::Folder::open(out).map_err(failed)?;
     let c = slideroute::compare::compare_dynamics_observed(&scene, interrupted)
         .map_err(|e| e.to_string())?;
     #[allow(unused_mut)]
-    let mut files =
-        slideroute::output::compare_files::write(&mut folder, &scene, &c).map_err(failed)?;
+    let mut files = crate::output::compare_files::write(&mut folder, &scene, &c).map_err(failed)?;
     #[cfg(feature = "plots")]
     if !no_plots {
         let path = folder
             .write_with("compare-plan.svg", |tmp| {
-                slideroute::output::plots::compare_plan(tmp, &scene, &c)
+                crate::output::plots::compare_plan(tmp, &scene, &c)
             })
             .map_err(failed)?;
         files.push(path);
@@ -569,31 +572,31 @@ fn sweep_cmd(
     // The base scene must itself be valid.
     Scene::from_toml(&text, &origin).map_err(|e| e.to_string())?;
     if let Some(model) = dynamics {
-        text = slideroute::sweep::with_dynamics(&text, model)?;
+        text = crate::sweep::with_dynamics(&text, model)?;
         Scene::from_toml(&text, &origin).map_err(|e| e.to_string())?;
     }
     let varies = vary
         .iter()
-        .map(|v| slideroute::sweep::parse_vary(v))
+        .map(|v| crate::sweep::parse_vary(v))
         .collect::<Result<Vec<_>, _>>()?;
-    slideroute::sweep::check_keys(&text, &varies)?;
-    let n = slideroute::sweep::count(&varies);
-    if n > slideroute::sweep::MAX_COMBINATIONS {
+    crate::sweep::check_keys(&text, &varies)?;
+    let n = crate::sweep::count(&varies);
+    if n > crate::sweep::MAX_COMBINATIONS {
         return Err(format!(
             "--vary: {n} combinations, more than the {} one sweep may run",
-            slideroute::sweep::MAX_COMBINATIONS
+            crate::sweep::MAX_COMBINATIONS
         )
         .into());
     }
-    let mut folder = slideroute::output::folder::Folder::open(out).map_err(failed)?;
+    let mut folder = crate::output::folder::Folder::open(out).map_err(failed)?;
     let bar = progress_bar(quiet, n as u64, "sweep");
-    let rows = slideroute::sweep::run(&text, &origin, &varies, || bar.inc(1), interrupted)?;
+    let rows = crate::sweep::run(&text, &origin, &varies, || bar.inc(1), interrupted)?;
     bar.finish_and_clear();
     let csv_path = folder
         .write_with("sweep.csv", |tmp| {
             let file = std::fs::File::create(tmp)
                 .map_err(|e| format!("{}: cannot write: {e}", tmp.display()))?;
-            slideroute::output::sweep_files::write_csv(file, &varies, &rows)
+            crate::output::sweep_files::write_csv(file, &varies, &rows)
                 .map_err(|e| format!("sweep.csv: {e}"))
         })
         .map_err(failed)?;
@@ -603,7 +606,7 @@ fn sweep_cmd(
     {
         let svg = folder
             .write_with("sweep.svg", |tmp| {
-                slideroute::output::plots::sweep(tmp, &varies, &rows)
+                crate::output::plots::sweep(tmp, &varies, &rows)
             })
             .map_err(failed)?;
         written.push(svg.display().to_string());
@@ -612,7 +615,7 @@ fn sweep_cmd(
     if interrupted() {
         return Err(failed(format!(
             "interrupted: combinations under way stopped, those not started are rows \"{}\"; wrote {}",
-            slideroute::sweep::NOT_RUN,
+            crate::sweep::NOT_RUN,
             written.join(", ")
         )));
     }
@@ -630,12 +633,8 @@ fn sweep_cmd(
 }
 
 fn report_cmd(quick: bool, out: &std::path::Path, quiet: bool) -> Result<(), CliError> {
-    let bar = progress_bar(
-        quiet,
-        slideroute::report::point_count(quick) as u64,
-        "report",
-    );
-    let (points, references) = slideroute::report::work_precision(quick, || {
+    let bar = progress_bar(quiet, crate::report::point_count(quick) as u64, "report");
+    let (points, references) = crate::report::work_precision(quick, || {
         bar.inc(1);
         if interrupted() {
             std::ops::ControlFlow::Break(())
@@ -645,17 +644,17 @@ fn report_cmd(quick: bool, out: &std::path::Path, quiet: bool) -> Result<(), Cli
     })
     .map_err(failed)?;
     bar.finish_and_clear();
-    let extreme = slideroute::report::extreme(if quick { 20 } else { 200 });
-    let mut folder = slideroute::output::folder::Folder::open(out).map_err(failed)?;
+    let extreme = crate::report::extreme(if quick { 20 } else { 200 });
+    let mut folder = crate::output::folder::Folder::open(out).map_err(failed)?;
     let csv_path = folder
         .write_with("work-precision.csv", |tmp| {
             let file = std::fs::File::create(tmp)
                 .map_err(|e| format!("{}: cannot write: {e}", tmp.display()))?;
-            slideroute::output::report_files::write_csv(file, &points)
+            crate::output::report_files::write_csv(file, &points)
                 .map_err(|e| format!("work-precision.csv: {e}"))
         })
         .map_err(failed)?;
-    let md = slideroute::output::report_files::markdown(&points, &references, &extreme, quick);
+    let md = crate::output::report_files::markdown(&points, &references, &extreme, quick);
     let md_path = folder
         .write_bytes("work-precision.md", md.as_bytes())
         .map_err(failed)?;
@@ -668,7 +667,7 @@ fn report_cmd(quick: bool, out: &std::path::Path, quiet: bool) -> Result<(), Cli
     {
         let svg = folder
             .write_with("work-precision.svg", |tmp| {
-                slideroute::output::plots::work_precision(tmp, &points)
+                crate::output::plots::work_precision(tmp, &points)
             })
             .map_err(failed)?;
         written.push(svg.display().to_string());

@@ -1,9 +1,8 @@
 //! Stiff and extreme cases (`report::extreme_cases`): each agrees with the direct pose solver
 //! and converges, or ends with its typed reason — never NaN, a panic, a hang or a branch jump.
 //! And the work–precision report's own claims.
-#![cfg(feature = "cli")]
 
-use slideroute::report;
+use crate::report;
 use slideroute::route::{self, PoseMethod, Reason};
 use slideroute::scene::{Integrator, Mode};
 

@@ -5,8 +5,8 @@
 
 use super::folder::Folder;
 use super::route_files::{self, Manifest};
-use crate::compare::Comparison;
-use crate::scene::Scene;
+use slideroute::compare::Comparison;
+use slideroute::scene::Scene;
 use std::path::PathBuf;
 
 /// Writes both routes and `comparison.json` into `folder`; returns the paths written.

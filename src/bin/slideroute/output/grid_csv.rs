@@ -1,8 +1,8 @@
 //! Batch poses for `slideroute roots --grid`: read `x_m,z_m,theta_deg` rows, write one result
 //! row per pose, in order.
 
-use crate::geometry::Displacement;
 use crate::output::roots_report::RootsReport;
+use slideroute::geometry::Displacement;
 use std::io::{Read, Write};
 
 /// A grid file that cannot be used: names the file, the line and the reason.

@@ -5,12 +5,12 @@
 //! it is short beside the frame.
 
 use super::sheet::{self, Area, Entry, Mark, Res, Sheet, err};
-use crate::geometry::planes::{Plane, r as strike_2_distance};
-use crate::geometry::{Displacement, Pose};
-use crate::route::Row;
-use crate::scene::Scene;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
+use slideroute::geometry::planes::{Plane, r as strike_2_distance};
+use slideroute::geometry::{Displacement, Pose};
+use slideroute::route::Row;
+use slideroute::scene::Scene;
 use std::path::Path;
 
 pub(super) const PLANE_1: RGBColor = RGBColor(30, 90, 200);

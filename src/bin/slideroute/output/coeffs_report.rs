@@ -1,12 +1,12 @@
 //! The `coeffs` report: both coefficient sets at one displacement.
 
 use super::Ordered;
-use crate::coeffs::{
+use serde::Serialize;
+use slideroute::coeffs::{
     CoeffInputs, EXACT_NAMES_13, EXACT_NAMES_14, Exact, SMALL_ANGLE_NAMES, SmallAngle,
 };
-use crate::geometry::Displacement;
-use crate::scene::Scene;
-use serde::Serialize;
+use slideroute::geometry::Displacement;
+use slideroute::scene::Scene;
 use std::fmt;
 
 /// The exact form's coefficients, by basis monomial, plus its tangent half-angle matrices.
