@@ -3,8 +3,9 @@
 //! * [`paper_step`]: eqs. (33)–(38) as printed: with the accelerations of the state at the
 //!   start of the increment, v += a·dt and x += v·dt + a·dt²/2 (first order in dt overall,
 //!   because the accelerations are frozen over the increment).
-//! * [`rk4_step`]: classic fourth-order Runge–Kutta on y = (X, Z, θ, Ẋ, Ż, θ̇) with the same
-//!   right-hand side, the accelerations evaluated at the stage positions.
+//! * [`rk4`]: classic fourth-order Runge–Kutta, the one both dynamics use; [`rk4_step`] applies
+//!   it to y = (X, Z, θ, Ẋ, Ż, θ̇) with the paper's right-hand side, the accelerations
+//!   evaluated at the stage positions.
 
 use super::state::State;
 
@@ -21,51 +22,53 @@ pub fn paper_step(s: &State, acc: &[f64; 3], dt: f64) -> State {
     }
 }
 
-/// The state reached from `s` after `h` with constant derivative (position rates `v`,
-/// accelerations `a`): the RK4 stage point.
-fn stage(s: &State, v: &[f64; 3], a: &[f64; 3], h: f64) -> State {
-    State {
-        t: s.t + h,
-        x: s.x + h * v[0],
-        z: s.z + h * v[1],
-        theta: s.theta + h * v[2],
-        vx: s.vx + h * a[0],
-        vz: s.vz + h * a[1],
-        omega: s.omega + h * a[2],
-    }
+/// One classic RK4 step of length `h` from `y`, whose derivative `k1` is known:
+/// y + h/6 (k1 + 2 k2 + 2 k3 + k4) with the stages at y + h/2 k1, y + h/2 k2 and y + h k3.
+/// `f(stage)` gives the derivative at a stage (or an error, which ends the step). The one RK4
+/// of both dynamics: the paper's on (X, Z, θ, Ẋ, Ż, θ̇), the rigid body's on that state and
+/// the two works.
+pub fn rk4<const N: usize, E>(
+    y: &[f64; N],
+    k1: &[f64; N],
+    h: f64,
+    mut f: impl FnMut(&[f64; N]) -> Result<[f64; N], E>,
+) -> Result<[f64; N], E> {
+    let axpy = |k: &[f64; N], c: f64| -> [f64; N] { std::array::from_fn(|i| y[i] + c * k[i]) };
+    let k2 = f(&axpy(k1, 0.5 * h))?;
+    let k3 = f(&axpy(&k2, 0.5 * h))?;
+    let k4 = f(&axpy(&k3, h))?;
+    Ok(std::array::from_fn(|i| {
+        y[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i])
+    }))
 }
 
-/// One RK4 step. `acc(state)` gives the accelerations at a stage state (or an error, which
-/// ends the step).
+/// [`rk4`] on the paper's state. `acc(state)` gives the accelerations at a stage state.
 pub fn rk4_step<E>(
     s: &State,
     acc0: &[f64; 3],
     dt: f64,
     mut acc: impl FnMut(&State) -> Result<[f64; 3], E>,
 ) -> Result<State, E> {
-    let v1 = [s.vx, s.vz, s.omega];
-    let a1 = *acc0;
-    let s2 = stage(s, &v1, &a1, 0.5 * dt);
-    let v2 = [s2.vx, s2.vz, s2.omega];
-    let a2 = acc(&s2)?;
-    let s3 = stage(s, &v2, &a2, 0.5 * dt);
-    let v3 = [s3.vx, s3.vz, s3.omega];
-    let a3 = acc(&s3)?;
-    let s4 = stage(s, &v3, &a3, dt);
-    let v4 = [s4.vx, s4.vz, s4.omega];
-    let a4 = acc(&s4)?;
-    let comb = |k: usize, p: &[f64; 3], q: &[f64; 3], r: &[f64; 3], u: &[f64; 3]| {
-        (p[k] + 2.0 * q[k] + 2.0 * r[k] + u[k]) * dt / 6.0
+    let y = [s.x, s.z, s.theta, s.vx, s.vz, s.omega];
+    let of = |y: &[f64; 6], h: f64| State {
+        t: s.t + h,
+        x: y[0],
+        z: y[1],
+        theta: y[2],
+        vx: y[3],
+        vz: y[4],
+        omega: y[5],
     };
-    Ok(State {
-        t: s.t + dt,
-        x: s.x + comb(0, &v1, &v2, &v3, &v4),
-        z: s.z + comb(1, &v1, &v2, &v3, &v4),
-        theta: s.theta + comb(2, &v1, &v2, &v3, &v4),
-        vx: s.vx + comb(0, &a1, &a2, &a3, &a4),
-        vz: s.vz + comb(1, &a1, &a2, &a3, &a4),
-        omega: s.omega + comb(2, &a1, &a2, &a3, &a4),
-    })
+    let derivative = |y: &[f64; 6], a: [f64; 3]| [y[3], y[4], y[5], a[0], a[1], a[2]];
+    let k1 = derivative(&y, *acc0);
+    // The stages' times: the first two at half the step, the last at its end.
+    let mut stage = 0;
+    let next = rk4(&y, &k1, dt, |z| {
+        stage += 1;
+        let h = if stage < 3 { 0.5 * dt } else { dt };
+        acc(&of(z, h)).map(|a| derivative(z, a))
+    })?;
+    Ok(of(&next, dt))
 }
 
 #[cfg(test)]

@@ -214,10 +214,6 @@ fn with_rates(y: &Y, rates: [f64; 3]) -> Y {
     z
 }
 
-fn axpy(y: &Y, h: f64, k: &Y) -> Y {
-    std::array::from_fn(|i| y[i] + h * k[i])
-}
-
 /// The motion at the start of a step, against which the events of the step are recognised:
 /// a stop — a later twist t has reversed, ⟨t, before⟩ ≤ 0 in the kinetic-energy inner
 /// product —, a release — the contact that stuck no longer does — or a pivot — the slip of a
@@ -285,11 +281,7 @@ fn rk4(
             derivative(&with_rates(y, e.rates), &e.motion)
         })
     };
-    let k2 = stage(&axpy(y, 0.5 * h, k1))?;
-    let k3 = stage(&axpy(y, 0.5 * h, &k2))?;
-    let k4 = stage(&axpy(y, h, &k3))?;
-    let next =
-        std::array::from_fn(|i| y[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]));
+    let next = super::integrator::rk4(y, k1, h, &mut stage)?;
     Ok((next, crossed))
 }
 
