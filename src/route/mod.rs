@@ -7,7 +7,11 @@
 //! println!("{} after {} s, {:.2} m", route.termination.reason, route.termination.t_s, route.travel_m);
 //! ```
 
+mod driver;
+mod dynamics;
 pub mod integrator;
+mod outcome;
+mod paper;
 pub mod pose_finder;
 pub mod rhs;
 mod rigid;
@@ -15,8 +19,8 @@ mod run;
 pub mod state;
 pub mod termination;
 
+pub use outcome::EnergyBalance;
 pub use pose_finder::PoseMethod;
-pub use rigid::EnergyBalance;
 pub use run::{run, run_observed, run_streamed, run_with};
 pub use state::{ROUTE_HEADER, Row, State};
 pub use termination::{Reason, Termination};

@@ -20,9 +20,10 @@
 //! would (`accept` books the energy that takes as friction work), so that it stays on its plane
 //! whatever dt (issue #12).
 
+use super::dynamics::{Dynamics, Flow, Start};
+use super::outcome::{EnergyBalance, Outcome};
 use super::pose_finder::PoseFinder;
 use super::rhs::{Stop, pose_at};
-use super::run::Outcome;
 use super::state::Row;
 use super::termination::Reason;
 use crate::geometry::{Displacement, Pose};
@@ -30,27 +31,8 @@ use crate::mechanics::ContactGeometry;
 use crate::mechanics::loads::Applied;
 use crate::mechanics::rigid_body::{self, Motion, RigidError};
 use crate::mechanics::static_friction::{self, StaticCheck};
-use crate::scene::{Dynamics, Scene};
+use crate::scene::{Dynamics as Sections, Scene};
 use nalgebra::Vector3;
-use serde::Serialize;
-
-/// Energy bookkeeping of a rigid-body route (J), from the start to its last state.
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
-pub struct EnergyBalance {
-    /// Work of the hydraulic force and its couple.
-    pub work_hydraulic_j: f64,
-    /// Work of friction (≤ 0).
-    pub work_friction_j: f64,
-    /// Kinetic energy at the end.
-    pub kinetic_j: f64,
-    /// Kinetic energy at the start (0 unless the scene's `[initial]` sets the block moving).
-    pub kinetic_initial_j: f64,
-    /// Change of potential energy m g ΔY_cm.
-    pub potential_change_j: f64,
-    /// W_h + W_f − (kinetic − initial kinetic + potential change): zero up to the integrator's
-    /// error.
-    pub residual_j: f64,
-}
 
 type Y = [f64; 8];
 
@@ -98,7 +80,7 @@ fn stop_of(e: RigidError) -> Stop {
 /// takes in `Eval::removed`) so that it stays stuck while its cone allows.
 fn evaluate(
     scene: &Scene,
-    dynamics: &Dynamics<'_>,
+    dynamics: &Sections<'_>,
     finder: &mut PoseFinder<'_>,
     y: &Y,
     stuck: Option<usize>,
@@ -141,7 +123,7 @@ fn evaluate(
 /// plane through the pose), a move of the size of the integrator's error.
 fn hold(
     scene: &Scene,
-    dynamics: &Dynamics<'_>,
+    dynamics: &Sections<'_>,
     finder: &mut PoseFinder<'_>,
     y: &Y,
     ev: Eval,
@@ -265,7 +247,7 @@ impl Heading<'_> {
 /// nothing (its later stages push on with friction turned round).
 fn rk4(
     scene: &Scene,
-    dynamics: &Dynamics<'_>,
+    dynamics: &Sections<'_>,
     finder: &PoseFinder<'_>,
     y: &Y,
     k1: &Y,
@@ -323,7 +305,7 @@ fn rest_row(t: f64, y: &Y, pose: &Pose) -> Row {
 }
 
 /// The static check at a pose.
-fn static_check(dynamics: &Dynamics<'_>, geom: &ContactGeometry) -> Result<StaticCheck, Stop> {
+fn static_check(dynamics: &Sections<'_>, geom: &ContactGeometry) -> Result<StaticCheck, Stop> {
     let applied = Applied::new(dynamics.loads, dynamics.block, &geom.frame);
     static_friction::at_rest(geom, &applied, dynamics.friction).map_err(|err| Stop {
         reason: Reason::ContactForcesUndetermined,
@@ -331,105 +313,261 @@ fn static_check(dynamics: &Dynamics<'_>, geom: &ContactGeometry) -> Result<Stati
     })
 }
 
-/// The rigid body's route loop (`super::run::run_with` adds the diagnostics).
-pub(super) fn slide<'s>(
+/// Substep control: whether a substep of length `len` (of an increment `dt`) moved the energy
+/// balance's residual from `before` to `after` by more than the tolerance — a fraction
+/// `ENERGY_TOLERANCE` of the route's energy `scale`, prorated to the substep, and never below
+/// the balance's own round-off — and may still be halved (it is longer than `MIN_SUBSTEP`·dt).
+fn unresolved_substep(
+    (before, after): (f64, f64),
+    scale: f64,
+    (len, dt): (f64, f64),
+    round_off: f64,
+) -> bool {
+    (after - before).abs() > (ENERGY_TOLERANCE * scale * (len / dt)).max(round_off)
+        && len > MIN_SUBSTEP * dt
+}
+
+/// Where within a step an event lies: the longest step length `lo` known not to reach it (its
+/// state `y_lo`), the shortest `hi` known to (its state `y_hi`), and the event, if one was seen.
+struct Bracket {
+    lo: f64,
+    hi: f64,
+    y_lo: Y,
+    y_hi: Y,
+    found: Option<Event>,
+}
+
+/// Event location: bisection on the length of the step from `y` (derivative `k1`) between 0
+/// and `h` (whose end state is `end`), down to 1e-12·dt, for the longest step that neither
+/// meets an event of `heading` (at its end or at one of its stages) nor fails.
+fn bracket_event(
     scene: &Scene,
-    dynamics: &Dynamics<'_>,
-    finder: &mut PoseFinder<'_>,
-    mut progress: impl FnMut(f64) -> std::ops::ControlFlow<()>,
-    outcome: Outcome<'s>,
-) -> Outcome<'s> {
-    let solver = *dynamics.solver;
-    let dt = solver.dt;
-    let stride = solver.stride.max(1);
-    let n_steps = super::run::increments(solver.t_end, dt);
-    let mass = dynamics.block.mass;
-    let g = dynamics.loads.gravity;
-    let mut o = outcome;
-    let init = scene.initial;
-    let mut y: Y = [0.0, 0.0, 0.0, init.vx, init.vz, init.omega, 0.0, 0.0];
-    let mut t = 0.0;
-    // The energy balance at a state with kinetic energy `kinetic` and CM height `cm_y`, from
-    // the start's kinetic energy `k0` and CM height `y0`.
-    let energy = |y: &Y, kinetic: f64, cm_y: f64, (k0, y0): (f64, f64)| {
-        let potential = mass * g * (cm_y - y0);
-        EnergyBalance {
-            work_hydraulic_j: y[6],
-            work_friction_j: y[7],
-            kinetic_j: kinetic,
-            kinetic_initial_j: k0,
-            potential_change_j: potential,
-            residual_j: y[6] + y[7] - (kinetic - k0) - potential,
-        }
+    sections: &Sections<'_>,
+    finder: &PoseFinder<'_>,
+    (y, k1): (&Y, &Y),
+    (h, end): (f64, Y),
+    heading: &Heading<'_>,
+) -> Bracket {
+    let stuck = heading.before.stuck;
+    let reaches = |len: f64| -> Result<(Option<Event>, Y), Stop> {
+        let (yh, crossed) = rk4(scene, sections, finder, y, k1, len, heading)?;
+        let mut f = finder.clone();
+        let e = evaluate(scene, sections, &mut f, &yh, stuck)?;
+        Ok((heading.event(&e.motion).or(crossed), yh))
     };
-    let balance = |y: &Y, e: &Eval, start: (f64, f64)| {
+    let mut b = Bracket {
+        lo: 0.0,
+        hi: h,
+        y_lo: *y,
+        y_hi: end,
+        found: None,
+    };
+    for _ in 0..60 {
+        if b.hi - b.lo <= 1e-12 * sections.solver.dt {
+            break;
+        }
+        let mid = 0.5 * (b.lo + b.hi);
+        match reaches(mid) {
+            Ok((None, ym)) => {
+                b.lo = mid;
+                b.y_lo = ym;
+            }
+            Ok((event, ym)) => {
+                b.hi = mid;
+                b.y_hi = ym;
+                b.found = event;
+            }
+            Err(_) => b.hi = mid,
+        }
+    }
+    b
+}
+
+/// The energy balance at a state with kinetic energy `kinetic` and CM height `cm_y`, from the
+/// start's kinetic energy and CM height `(k0, y0)`.
+fn energy(
+    y: &Y,
+    kinetic: f64,
+    cm_y: f64,
+    (k0, y0): (f64, f64),
+    mass: f64,
+    g: f64,
+) -> EnergyBalance {
+    let potential = mass * g * (cm_y - y0);
+    EnergyBalance {
+        work_hydraulic_j: y[6],
+        work_friction_j: y[7],
+        kinetic_j: kinetic,
+        kinetic_initial_j: k0,
+        potential_change_j: potential,
+        residual_j: y[6] + y[7] - (kinetic - k0) - potential,
+    }
+}
+
+/// The sticking contact and the point where it stuck (see [`hold`]), after evaluation `ev`.
+fn anchor_of(ev: &Eval, anchor: Option<(usize, Vector3<f64>)>) -> Option<(usize, Vector3<f64>)> {
+    match ev.motion.stuck {
+        Some(i) if anchor.is_some_and(|a| a.0 == i) => anchor,
+        Some(i) => Some((i, ev.pose.vertices[i])),
+        None => None,
+    }
+}
+
+/// The rigid body under way: the state y, the evaluation at it, the substep and what the
+/// energy balance and the stick hold need. A [`Dynamics`] the driver (`driver.rs`) runs.
+pub(super) struct RigidBody<'a> {
+    scene: &'a Scene,
+    sections: &'a Sections<'a>,
+    y: Y,
+    t: f64,
+    ev: Eval,
+    /// The sticking contact and where it stuck.
+    anchor: Option<(usize, Vector3<f64>)>,
+    /// The largest kinetic energy so far (the energy balance's scale).
+    ke_max: f64,
+    /// The substep: dt, halved where the energy balance says RK4 does not resolve the motion
+    /// (see `MIN_SUBSTEP`), grown back by doubling.
+    h: f64,
+    /// The reference of the energy balance: the start's kinetic energy and CM height.
+    origin: (f64, f64),
+    /// The balance's own round-off: its potential energy m g ΔY carries that of a height of the
+    /// size of L. No substep can resolve it below that; near the start from rest, where the
+    /// energies are tiny, the tolerance alone asked for it, and every increment was halved down
+    /// to the shortest substep (36 000 halvings in the first 0.2 ms at dt = 10 µs).
+    round_off: f64,
+}
+
+impl RigidBody<'_> {
+    fn balance(&self, y: &Y, e: &Eval) -> EnergyBalance {
+        let (mass, g) = (self.sections.block.mass, self.sections.loads.gravity);
         energy(
             y,
             e.motion.twist.kinetic_energy(mass, &e.motion.inertia),
             e.pose.cm.y,
-            start,
+            self.origin,
+            mass,
+            g,
         )
-    };
-
-    // The start: at rest, held or not by static friction (decided before any acceleration is
-    // sought: a held block has no consistent way to slip); or moving as `[initial]` says, when
-    // it goes on until it stops (the factor of safety is reported all the same).
-    let start_pose = finder.pose().expect("the flat start pose exists");
-    let check = match static_check(dynamics, &ContactGeometry::new(scene, &start_pose)) {
-        Ok(c) => c,
-        Err(Stop { reason, detail }) => {
-            o.push(rest_row(0.0, &y, &start_pose));
-            return o.end(reason, 0.0, detail);
-        }
-    };
-    o.fs = Some(check.factor_of_safety());
-    if init.at_rest() && check.holds() {
-        o.push(rest_row(0.0, &y, &start_pose));
-        let mut done = o.end(
-            Reason::DoesNotSlide,
-            0.0,
-            format!(
-                "static friction within the three cones holds the block: factor of safety {}",
-                check.factor_of_safety()
-            ),
-        );
-        done.energy = Some(EnergyBalance::default());
-        return done;
     }
-    let mut ev = match evaluate(scene, dynamics, finder, &y, None) {
-        Ok(e) => e,
-        Err(Stop { reason, detail }) => {
-            o.push(rest_row(0.0, &y, &start_pose));
-            return o.end(reason, 0.0, detail);
-        }
-    };
-    o.push(row(0.0, &y, &ev));
-    // The reference of the energy balance: the start's kinetic energy and CM height.
-    let start = (
-        ev.motion.twist.kinetic_energy(mass, &ev.motion.inertia),
-        start_pose.cm.y,
-    );
+}
 
-    // The sticking contact and the point where it stuck (see `hold`).
-    let mut anchor: Option<(usize, Vector3<f64>)> = None;
-    let anchor_of = |ev: &Eval, anchor: Option<(usize, Vector3<f64>)>| match ev.motion.stuck {
-        Some(i) if anchor.is_some_and(|a| a.0 == i) => anchor,
-        Some(i) => Some((i, ev.pose.vertices[i])),
-        None => None,
-    };
-    anchor = anchor_of(&ev, anchor);
-    let mut ke_max = 0.0f64;
-    // The balance's own round-off: its potential energy m g ΔY carries that of a height of the
-    // size of L. No substep can resolve it below that; near the start from rest, where the
-    // energies are tiny, the tolerance alone asked for it, and every increment was halved down to
-    // the shortest substep (36 000 halvings in the first 0.2 ms at dt = 10 µs).
-    let round_off = 64.0 * f64::EPSILON * mass * g * scene.l();
-    // The substep: the increment dt, halved where the energy balance says RK4 does not resolve
-    // the motion (see `MIN_SUBSTEP`), and grown back by doubling.
-    let mut h = dt;
-    for k in 1..=n_steps {
-        // The last increment ends exactly at t_end.
-        let t_target = super::run::increment_end(solver.t_end, dt, k);
+impl<'a> Dynamics<'a> for RigidBody<'a> {
+    fn start<'s>(
+        scene: &'a Scene,
+        sections: &'a Sections<'a>,
+        finder: &mut PoseFinder<'_>,
+        mut o: Outcome<'s>,
+    ) -> Start<'s, Self> {
+        let mass = sections.block.mass;
+        let init = scene.initial;
+        let y: Y = [0.0, 0.0, 0.0, init.vx, init.vz, init.omega, 0.0, 0.0];
+        // The start: at rest, held or not by static friction (decided before any acceleration
+        // is sought: a held block has no consistent way to slip); or moving as `[initial]`
+        // says, when it goes on until it stops (the factor of safety is reported all the same).
+        let Some(start_pose) = finder.pose() else {
+            return Start::Ended(o.end(
+                Reason::NoAdmissibleRoot,
+                0.0,
+                "the flat start pose has no root to follow".into(),
+            ));
+        };
+        let check = match static_check(sections, &ContactGeometry::new(scene, &start_pose)) {
+            Ok(c) => c,
+            Err(Stop { reason, detail }) => {
+                o.push(rest_row(0.0, &y, &start_pose));
+                return Start::Ended(o.end(reason, 0.0, detail));
+            }
+        };
+        o.fs = Some(check.factor_of_safety());
+        if init.at_rest() && check.holds() {
+            o.push(rest_row(0.0, &y, &start_pose));
+            let mut done = o.end(
+                Reason::DoesNotSlide,
+                0.0,
+                format!(
+                    "static friction within the three cones holds the block: factor of safety {}",
+                    check.factor_of_safety()
+                ),
+            );
+            done.energy = Some(EnergyBalance::default());
+            return Start::Ended(done);
+        }
+        let ev = match evaluate(scene, sections, finder, &y, None) {
+            Ok(e) => e,
+            Err(Stop { reason, detail }) => {
+                o.push(rest_row(0.0, &y, &start_pose));
+                return Start::Ended(o.end(reason, 0.0, detail));
+            }
+        };
+        o.push(row(0.0, &y, &ev));
+        let origin = (
+            ev.motion.twist.kinetic_energy(mass, &ev.motion.inertia),
+            start_pose.cm.y,
+        );
+        let anchor = anchor_of(&ev, None);
+        Start::Moving(
+            RigidBody {
+                scene,
+                sections,
+                y,
+                t: 0.0,
+                ev,
+                anchor,
+                ke_max: 0.0,
+                h: sections.solver.dt,
+                origin,
+                round_off: 64.0 * f64::EPSILON * mass * sections.loads.gravity * scene.l(),
+            },
+            o,
+        )
+    }
+
+    fn advance<'s>(
+        &mut self,
+        finder: &mut PoseFinder<'_>,
+        k: usize,
+        t_to: f64,
+        o: Outcome<'s>,
+    ) -> Flow<'s> {
+        self.substeps(finder, k, t_to, o)
+    }
+
+    fn row(&self) -> Row {
+        row(self.t, &self.y, &self.ev)
+    }
+
+    fn close(&self, o: &mut Outcome<'_>) {
+        o.energy = Some(self.balance(&self.y, &self.ev));
+    }
+}
+
+impl RigidBody<'_> {
+    /// Increment `k` to `t_target` in substeps: each step checked for events — a stop, a
+    /// pivot, a release, a failure — found by bisection on the step length, and halved where
+    /// the energy balance says RK4 does not resolve the motion.
+    fn substeps<'s>(
+        &mut self,
+        finder: &mut PoseFinder<'_>,
+        k: usize,
+        t_target: f64,
+        mut o: Outcome<'s>,
+    ) -> Flow<'s> {
+        let (scene, sections) = (self.scene, self.sections);
+        let dt = sections.solver.dt;
+        let (mass, g) = (sections.block.mass, sections.loads.gravity);
+        let (start, round_off) = (self.origin, self.round_off);
+        let (mut y, mut t, mut ev) = (self.y, self.t, self.ev);
+        let (mut anchor, mut ke_max, mut h) = (self.anchor, self.ke_max, self.h);
+        let balance = |y: &Y, e: &Eval| {
+            energy(
+                y,
+                e.motion.twist.kinetic_energy(mass, &e.motion.inertia),
+                e.pose.cm.y,
+                start,
+                mass,
+                g,
+            )
+        };
         // Substeps until the increment's end; events (a stop, a pivot) cut them.
         let mut events = 0usize;
         while t < t_target * (1.0 - 1e-15) {
@@ -447,7 +585,7 @@ pub(super) fn slide<'s>(
             let stuck = ev.motion.stuck;
             let fail = |o: Outcome<'s>, y: &Y, ev: &Eval, s: Stop| -> Outcome<'s> {
                 let mut o = o;
-                o.energy = Some(balance(y, ev, start));
+                o.energy = Some(balance(y, ev));
                 o.finish(row(t, y, ev), s.reason, t, s.detail)
             };
             // The step, and the state at its end. Where either fails (a stage or the end
@@ -456,8 +594,8 @@ pub(super) fn slide<'s>(
             // pivot that would keep the contact on its plane) is handled first and a route that
             // ends does so at the moment it must, not at the next increment's end.
             let mut at_next = finder.clone();
-            let step = rk4(scene, dynamics, finder, &y, &k1, h_try, &heading).and_then(|(n, c)| {
-                let e = evaluate(scene, dynamics, &mut at_next, &n, stuck)?;
+            let step = rk4(scene, sections, finder, &y, &k1, h_try, &heading).and_then(|(n, c)| {
+                let e = evaluate(scene, sections, &mut at_next, &n, stuck)?;
                 Ok((n, c.filter(|_| resolve), e))
             });
             let (next, crossed, next_ev, failed) = match step {
@@ -466,13 +604,15 @@ pub(super) fn slide<'s>(
             };
             // Whether a substep of length `len` from y to (y2, e2) moved the energy balance by
             // more than the tolerance (and may still be halved).
-            let residual = balance(&y, &ev, start).residual_j;
+            let residual = balance(&y, &ev).residual_j;
             let unresolved = |len: f64, y2: &Y, e2: &Eval| {
-                let drift = balance(y2, e2, start).residual_j - residual;
-                let scale = ke_max.max(y[6].abs()).max(y[7].abs()).max(y2[6].abs());
                 resolve
-                    && drift.abs() > (ENERGY_TOLERANCE * scale * (len / dt)).max(round_off)
-                    && len > MIN_SUBSTEP * dt
+                    && unresolved_substep(
+                        (residual, balance(y2, e2).residual_j),
+                        ke_max.max(y[6].abs()).max(y[7].abs()).max(y2[6].abs()),
+                        (len, dt),
+                        round_off,
+                    )
             };
             // A failure over a long substep may be the integrator's (a slip too young to be
             // watched for reversal, turned round within the step): retry in shorter substeps
@@ -495,9 +635,9 @@ pub(super) fn slide<'s>(
                 *finder = at_next;
                 let (next, next_ev) = match anchor {
                     Some((i, at)) if next_ev.motion.stuck == Some(i) => {
-                        match hold(scene, dynamics, finder, &next, next_ev, i, at) {
+                        match hold(scene, sections, finder, &next, next_ev, i, at) {
                             Ok(held) => held,
-                            Err(e) => return fail(o, &y, &ev, e),
+                            Err(e) => return Flow::Ended(fail(o, &y, &ev, e)),
                         }
                     }
                     _ => (next, next_ev),
@@ -515,63 +655,43 @@ pub(super) fn slide<'s>(
             // An event inside the substep (at its end or at one of its stages): bisection on
             // the step length for the longest step that does not reach it, then the event's
             // own handling.
-            let reaches = |len: f64| -> Result<(Option<Event>, Y), Stop> {
-                let (yh, crossed) = rk4(scene, dynamics, finder, &y, &k1, len, &heading)?;
-                let mut f = finder.clone();
-                let e = evaluate(scene, dynamics, &mut f, &yh, stuck)?;
-                Ok((heading.event(&e.motion).or(crossed), yh))
-            };
-            let (mut lo, mut hi) = (0.0, h_try);
-            let (mut y_lo, mut y_hi) = (y, next);
-            let mut found = None;
-            for _ in 0..60 {
-                if hi - lo <= 1e-12 * dt {
-                    break;
-                }
-                let mid = 0.5 * (lo + hi);
-                match reaches(mid) {
-                    Ok((None, ym)) => {
-                        lo = mid;
-                        y_lo = ym;
-                    }
-                    Ok((event, ym)) => {
-                        hi = mid;
-                        y_hi = ym;
-                        found = event;
-                    }
-                    Err(_) => hi = mid,
-                }
-            }
+            let Bracket {
+                lo,
+                hi,
+                y_lo,
+                y_hi,
+                found,
+            } = bracket_event(scene, sections, finder, (&y, &k1), (h_try, next), &heading);
             if let (Some(stop), None) = (&failed, found) {
                 // No event before the failure: the route ends where it fails, after the last
                 // state that stands.
                 if lo > 0.0 {
-                    match evaluate(scene, dynamics, finder, &y_lo, stuck) {
+                    match evaluate(scene, sections, finder, &y_lo, stuck) {
                         Ok(e) => {
                             o.travel += (e.pose.cm - ev.pose.cm).norm();
                             y = accept(&y_lo, &e);
                             ev = e;
                         }
-                        Err(e) => return fail(o, &y, &ev, e),
+                        Err(e) => return Flow::Ended(fail(o, &y, &ev, e)),
                     }
                 }
                 let t_end = t + lo;
                 o.push(row(t_end, &y, &ev));
                 o.increments = k;
-                o.energy = Some(balance(&y, &ev, start));
-                return o.end(stop.reason, t_end, stop.detail.clone());
+                o.energy = Some(balance(&y, &ev));
+                return Flow::Ended(o.end(stop.reason, t_end, stop.detail.clone()));
             }
             // The substep up to the event must itself be resolved: else approach it in shorter
             // substeps.
             if lo > 0.0 {
                 let mut f = finder.clone();
-                match evaluate(scene, dynamics, &mut f, &y_lo, stuck) {
+                match evaluate(scene, sections, &mut f, &y_lo, stuck) {
                     Ok(e) if unresolved(lo, &accept(&y_lo, &e), &e) => {
                         h = 0.5 * lo;
                         continue;
                     }
                     Ok(_) => {}
-                    Err(e) => return fail(o, &y, &ev, e),
+                    Err(e) => return Flow::Ended(fail(o, &y, &ev, e)),
                 }
             }
             // Which event: what the shortest step that reaches it shows. A pivot with the
@@ -596,9 +716,9 @@ pub(super) fn slide<'s>(
                 Event::Stop => None,
             };
             if let Some((y_at, len, stick)) = resume {
-                let at = match evaluate(scene, dynamics, finder, &y_at, stick) {
+                let at = match evaluate(scene, sections, finder, &y_at, stick) {
                     Ok(e) => e,
-                    Err(e) => return fail(o, &y, &ev, e),
+                    Err(e) => return Flow::Ended(fail(o, &y, &ev, e)),
                 };
                 o.travel += (at.pose.cm - ev.pose.cm).norm();
                 y = accept(&y_at, &at);
@@ -614,59 +734,42 @@ pub(super) fn slide<'s>(
             stopped[5] = 0.0;
             let stop_pose = match pose_at(scene, finder, displacement(&stopped)) {
                 Ok(p) => p,
-                Err(e) => return fail(o, &y, &ev, e),
+                Err(e) => return Flow::Ended(fail(o, &y, &ev, e)),
             };
             o.travel += (stop_pose.cm - ev.pose.cm).norm();
             o.increments = k;
-            let geom = ContactGeometry::with_normals(&dynamics.normals, &stop_pose);
-            let check = match static_check(dynamics, &geom) {
+            let geom = ContactGeometry::with_normals(&sections.normals, &stop_pose);
+            let check = match static_check(sections, &geom) {
                 Ok(c) => c,
-                Err(Stop { reason, detail }) => return o.end(reason, t, detail),
+                Err(Stop { reason, detail }) => return Flow::Ended(o.end(reason, t, detail)),
             };
             if check.holds() {
                 o.push(rest_row(t_event, &stopped, &stop_pose));
-                o.energy = Some(energy(&stopped, 0.0, stop_pose.cm.y, start));
-                return o.end(
+                o.energy = Some(energy(&stopped, 0.0, stop_pose.cm.y, start, mass, g));
+                return Flow::Ended(o.end(
                     Reason::Stopped,
                     t_event,
                     format!(
                         "the motion stopped at t = {t_event:.6} s and static friction holds \
-                         the block there (factor of safety {})",
+                     the block there (factor of safety {})",
                         check.factor_of_safety()
                     ),
-                );
+                ));
             }
             // Not held: it slips again from rest.
-            ev = match evaluate(scene, dynamics, finder, &stopped, None) {
+            ev = match evaluate(scene, sections, finder, &stopped, None) {
                 Ok(e) => e,
                 Err(Stop { reason, detail }) => {
-                    o.energy = Some(energy(&stopped, 0.0, stop_pose.cm.y, start));
-                    return o.end(reason, t_event, detail);
+                    o.energy = Some(energy(&stopped, 0.0, stop_pose.cm.y, start, mass, g));
+                    return Flow::Ended(o.end(reason, t_event, detail));
                 }
             };
             y = stopped;
             anchor = anchor_of(&ev, None);
             t = t_event;
         }
-        t = t_target;
-        o.increments = k;
-        if k % stride == 0 || k == n_steps {
-            o.push(row(t, &y, &ev));
-        }
-        if progress((t / solver.t_end).min(1.0)).is_break() {
-            o.energy = Some(balance(&y, &ev, start));
-            return o.finish(
-                row(t, &y, &ev),
-                Reason::Interrupted,
-                t,
-                format!("interrupted at t = {} s", crate::numeric::seconds(t)),
-            );
-        }
+        self.t = t_target;
+        (self.y, self.ev, self.anchor, self.ke_max, self.h) = (y, ev, anchor, ke_max, h);
+        Flow::Go(o)
     }
-    o.energy = Some(balance(&y, &ev, start));
-    o.end(
-        Reason::TimeLimit,
-        t,
-        format!("t reached t_end = {} s", solver.t_end),
-    )
 }

@@ -1,0 +1,113 @@
+//! What a route's loop produces, whatever the dynamics: the rows (streamed to a sink, a bounded
+//! number kept), how the route ended, and the quantities gathered along it.
+
+use super::state::Row;
+use super::termination::{Reason, Termination};
+use crate::mechanics::static_friction::FactorOfSafety;
+use serde::Serialize;
+
+/// Energy bookkeeping of a rigid-body route (J), from the start to its last state.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct EnergyBalance {
+    /// Work of the hydraulic force and its couple.
+    pub work_hydraulic_j: f64,
+    /// Work of friction (≤ 0).
+    pub work_friction_j: f64,
+    /// Kinetic energy at the end.
+    pub kinetic_j: f64,
+    /// Kinetic energy at the start (0 unless the scene's `[initial]` sets the block moving).
+    pub kinetic_initial_j: f64,
+    /// Change of potential energy m g ΔY_cm.
+    pub potential_change_j: f64,
+    /// W_h + W_f − (kinetic − initial kinetic + potential change): zero up to the integrator's
+    /// error.
+    pub residual_j: f64,
+}
+
+/// What a route's loop produced (either dynamics), before the diagnostics are added. Rows go
+/// through [`Outcome::push`]: each to the sink, if any (streamed as computed), and every
+/// `keep_every`-th (and the last) kept in `rows`.
+pub(super) struct Outcome<'s> {
+    rows: Vec<Row>,
+    sink: Option<&'s mut dyn FnMut(&Row)>,
+    keep_every: usize,
+    pushed: usize,
+    last: Option<Row>,
+    pub termination: Termination,
+    /// The factor of safety at the start (the friction cones' definition).
+    pub fs: Option<FactorOfSafety>,
+    /// The paper's resisting-over-driving ratio at the start (paper's dynamics).
+    pub paper_ratio: Option<f64>,
+    pub travel: f64,
+    pub increments: usize,
+    /// How often the paper's frictional solution was chosen afresh (paper's dynamics).
+    pub switches: usize,
+    /// The energy balance (rigid-body dynamics).
+    pub energy: Option<EnergyBalance>,
+}
+
+impl<'s> Outcome<'s> {
+    /// Nothing yet: ends at the time limit unless told otherwise. Rows go to `sink` (if any)
+    /// and every `keep_every`-th is kept.
+    pub fn new(sink: Option<&'s mut dyn FnMut(&Row)>, keep_every: usize) -> Self {
+        Outcome {
+            rows: Vec::new(),
+            sink,
+            keep_every: keep_every.max(1),
+            pushed: 0,
+            last: None,
+            termination: Termination {
+                reason: Reason::TimeLimit,
+                t_s: 0.0,
+                detail: String::new(),
+            },
+            fs: None,
+            paper_ratio: None,
+            travel: 0.0,
+            increments: 0,
+            switches: 0,
+            energy: None,
+        }
+    }
+
+    /// The route ends for `reason` at `t`, its last state `last` recorded as the last row
+    /// whatever the stride (issue #13).
+    pub fn finish(mut self, last: Row, reason: Reason, t: f64, detail: String) -> Self {
+        if self.last.is_none_or(|r| r.t_s != last.t_s) {
+            self.push(last);
+        }
+        self.end(reason, t, detail)
+    }
+
+    /// One row of the route: to the sink, and kept if it is a `keep_every`-th.
+    pub fn push(&mut self, row: Row) {
+        if let Some(sink) = self.sink.as_mut() {
+            sink(&row);
+        }
+        if self.pushed.is_multiple_of(self.keep_every) {
+            self.rows.push(row);
+        }
+        self.pushed += 1;
+        self.last = Some(row);
+    }
+
+    /// The kept rows, the last row always among them (taken out of the outcome).
+    pub fn take_rows(&mut self) -> Vec<Row> {
+        if let Some(last) = self.last {
+            if self.rows.last().is_none_or(|r| r.t_s != last.t_s) {
+                self.rows.push(last);
+            }
+        }
+        std::mem::take(&mut self.rows)
+    }
+
+    /// The route ends for `reason` at `t`.
+    pub fn end(mut self, reason: Reason, t: f64, detail: String) -> Self {
+        self.termination = Termination {
+            reason,
+            t_s: t,
+            detail,
+        };
+        self
+    }
+}
