@@ -7,9 +7,9 @@
 //!   predictor, Newton corrector, admissibility check).
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use slideroute::geometry::Displacement;
-use slideroute::roots::{self, Tracker, eigen, system};
-use slideroute::scene::{Mode, Scene};
+use slideroute::stages::geometry::Displacement;
+use slideroute::stages::roots::{self, Tracker, eigen, system};
+use slideroute::stages::scene::{Mode, Scene};
 use std::hint::black_box;
 
 fn all_roots(c: &mut Criterion) {

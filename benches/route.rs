@@ -6,10 +6,10 @@
 //!   reactions, accelerations — and the same with the pose by all roots.
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use slideroute::geometry::Displacement;
-use slideroute::route::pose_finder::PoseFinder;
-use slideroute::route::{self, PoseMethod, rhs};
-use slideroute::scene::{DynamicsModel, Friction, Mode, Scene};
+use slideroute::stages::geometry::Displacement;
+use slideroute::stages::route::pose_finder::PoseFinder;
+use slideroute::stages::route::{self, PoseMethod, rhs};
+use slideroute::stages::scene::{DynamicsModel, Friction, Mode, Scene};
 use std::hint::black_box;
 
 fn whole_routes(c: &mut Criterion) {

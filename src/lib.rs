@@ -5,25 +5,90 @@
 //! after Galic & Glaser, "Outline of a Method for Determining the Three Dimensional Failure
 //! Route of a Sliding Block". Equation numbers in the docs are the paper's.
 //!
-//! Data flows one way, one module per stage:
-//! [`scene`] → [`coeffs`] (generated at build time by `codegen/`) → [`roots`] → [`geometry`]
-//! (exact pose, and the independent direct pose solver that every test measures against) →
-//! [`mechanics`] (loads, friction, the paper's reactions or the rigid body's) → [`route`] →
-//! [`output`]. [`compare`] puts the paper's route beside the rigid body's.
+//! A route from a scene file:
 //!
 //! ```
-//! use slideroute::{coeffs, geometry::Displacement, scene::Scene};
+//! let scene = slideroute::Scene::from_file("scenes/turning.toml".as_ref())?;
+//! let route = slideroute::run(&scene)?;
+//! println!("{} at t = {} s after {:.3} m", route.termination.reason, route.termination.t_s, route.travel_m);
+//! # assert!(route.travel_m > 0.0);
+//! # Ok::<(), slideroute::SceneError>(())
+//! ```
+//!
+//! The poses behind it — the coefficients of the pose system, all its roots, the physical one
+//! followed by continuation, and the independent direct solver every test measures against:
+//!
+//! ```
+//! use slideroute::{CoeffInputs, Displacement, Mode, Scene, SmallAngle, Tracker};
 //! let scene = Scene::default_scene();
 //! let d = Displacement::new(0.5, 0.1, 2f64.to_radians());
-//! let f = coeffs::SmallAngle::new(&coeffs::CoeffInputs::new(&scene, d));
+//! let f = SmallAngle::new(&CoeffInputs::new(&scene, d)); // f1–f12 of (15)
 //! assert_eq!(f.f.len(), 12);
+//! let all = slideroute::solve_all(&scene, d, Mode::Exact).unwrap(); // every root, classified
+//! let mut tracker = Tracker::new(&scene, Mode::Exact);
+//! let here = tracker.advance(d).unwrap(); // u = (α, ψ) on the physical branch
+//! let oracle = slideroute::direct_pose(&scene, d).unwrap();
+//! assert!((here.u[0] - oracle.alpha(scene.l())).abs() < 1e-9 && !all.roots.is_empty());
 //! ```
+//!
+//! Data flows one way, one private module per stage (`ARCHITECTURE.md` says where each lives):
+//! scene → geometry (the model's frame and planes) → coefficients (generated at build time by
+//! `codegen/`) → roots → pose → mechanics (loads, friction, reactions) → route (one driver, a
+//! [`Dynamics`](stages::route) per model) → rows. [`stages`] opens them for the command line,
+//! the tests and the benchmarks; it is not the library's interface.
 
-pub mod coeffs;
-pub mod compare;
-pub mod geometry;
-pub mod mechanics;
-pub mod numeric;
-pub mod roots;
-pub mod route;
-pub mod scene;
+mod coeffs;
+mod compare;
+mod geometry;
+mod mechanics;
+mod numeric;
+mod roots;
+mod route;
+mod scene;
+
+pub use coeffs::{CoeffInputs, Exact, SmallAngle};
+pub use compare::{Comparison, compare_dynamics, compare_dynamics_observed};
+pub use geometry::direct::solve as direct_pose;
+pub use geometry::{Displacement, Pose};
+pub use mechanics::static_friction::FactorOfSafety;
+pub use roots::{AllRoots, Root, Tracker, solve_all};
+pub use route::{
+    EnergyBalance, PoseMethod, Reason, Route, Row, Termination, run, run_observed, run_streamed,
+    run_with,
+};
+pub use scene::{DynamicsModel, Friction, Integrator, Mode, Scene, SceneError};
+
+/// The stages themselves, each with everything in it public, so that the command line can
+/// report them and the tests and benchmarks can measure them one by one. Not the library's
+/// interface: use the items at the crate's root.
+pub mod stages {
+    pub mod coeffs {
+        pub use crate::coeffs::*;
+    }
+    pub mod compare {
+        pub use crate::compare::*;
+    }
+    pub mod geometry {
+        pub use crate::geometry::*;
+    }
+    pub mod mechanics {
+        pub use crate::mechanics::*;
+    }
+    pub mod numeric {
+        pub use crate::numeric::*;
+    }
+    pub mod roots {
+        pub use crate::roots::*;
+    }
+    pub mod route {
+        pub use crate::route::*;
+    }
+    pub mod scene {
+        pub use crate::scene::*;
+    }
+}
+
+/// The README's Rust examples, compiled and run as doc-tests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;

@@ -22,8 +22,8 @@ pub struct Hessenberg {
 const RADIX: f64 = 2.0;
 
 impl Hessenberg {
-    /// The companion matrix of the monic polynomial x^n + c[n−1] x^(n−1) + … + c[0]:
-    /// first row −c[n−1], …, −c[0]; ones on the subdiagonal.
+    /// The companion matrix of the monic polynomial x^n + c\[n−1\] x^(n−1) + … + c\[0\]:
+    /// first row −c\[n−1\], …, −c\[0\]; ones on the subdiagonal.
     pub fn companion(c: &[f64]) -> Self {
         let n = c.len();
         assert!(n <= N, "order {n} > {N}");

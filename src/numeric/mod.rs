@@ -84,7 +84,7 @@ pub fn quadratic_resultant(a: [&[f64]; 3], b: [&[f64]; 3]) -> ([f64; 9], [f64; 9
     )
 }
 
-/// All roots of the polynomial Σ c[k] x^k (lowest degree first) as (re, im), by the eigenvalues
+/// All roots of the polynomial Σ c\[k\] x^k (lowest degree first) as (re, im), by the eigenvalues
 /// of its balanced companion matrix. Leading coefficients that are exactly zero are dropped;
 /// degree at most [`hessenberg::N`]. `None` if the QR iteration fails to converge.
 pub fn poly_roots(c: &[f64]) -> Option<Vec<(f64, f64)>> {

@@ -9,7 +9,7 @@
 //!   along the straight segment to (X, Z, θ) ([`Tracker`]).
 //!
 //! ```
-//! use slideroute::{geometry::Displacement, roots, scene::{Mode, Scene}};
+//! use slideroute::stages::{geometry::Displacement, roots, scene::{Mode, Scene}};
 //! let scene = Scene::default_scene();
 //! let d = Displacement::new(0.5, 0.1, 2f64.to_radians());
 //! let all = roots::solve_all(&scene, d, Mode::Exact).unwrap();

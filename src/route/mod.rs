@@ -1,14 +1,16 @@
-//! The failure route: state, right-hand side, integrators, termination, and the run loop
-//! (paper §7).
+//! The failure route (paper §7): one driver loop (`driver.rs`) runs a [`Dynamics`] model — the
+//! paper's (`paper.rs`) or the rigid body's (`rigid.rs`) — from its start, increment by
+//! increment, until the route ends for a stated reason; `run.rs` adds what the route is
+//! computed with and how (the factor of safety at the start, the diagnostics).
 //!
 //! ```no_run
-//! let scene = slideroute::scene::Scene::default_scene();
-//! let route = slideroute::route::run(&scene).unwrap();
+//! let scene = slideroute::Scene::default_scene();
+//! let route = slideroute::run(&scene).unwrap();
 //! println!("{} after {} s, {:.2} m", route.termination.reason, route.termination.t_s, route.travel_m);
 //! ```
 
 mod driver;
-mod dynamics;
+pub(crate) mod dynamics;
 pub mod integrator;
 mod outcome;
 mod paper;

@@ -22,7 +22,7 @@ pub fn run(scene: &Scene) -> Result<Route, SceneError> {
 }
 
 /// [`run`], calling `progress(t / t_end)` after every increment (for progress bars); when it
-/// answers `ControlFlow::Break`, the route stops there with [`Reason::Interrupted`], its last
+/// answers `ControlFlow::Break`, the route stops there with [`Reason::Interrupted`](super::Reason::Interrupted), its last
 /// state the last row (issue #13: Ctrl-C writes what was computed).
 pub fn run_observed(
     scene: &Scene,

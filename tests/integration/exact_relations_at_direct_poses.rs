@@ -4,9 +4,9 @@
 
 use crate::common::scene;
 use proptest::prelude::*;
-use slideroute::coeffs::{CoeffInputs, Exact};
-use slideroute::geometry::{Displacement, Pose, direct, relations};
-use slideroute::scene::Scene;
+use slideroute::stages::coeffs::{CoeffInputs, Exact};
+use slideroute::stages::geometry::{Displacement, Pose, direct, relations};
+use slideroute::stages::scene::Scene;
 
 prop_compose! {
     fn scene_and_reachable_pose()(
@@ -98,7 +98,7 @@ fn small_angle_residual_falls_at_second_order_in_the_dips() {
         let s = scene(10.0, 0.4, 0.5, 20.0 * eps, 25.0 * eps, 30.0);
         let p = direct::solve(&s, d).unwrap();
         let l = s.l();
-        let f = slideroute::coeffs::SmallAngle::new(&CoeffInputs::new(&s, d));
+        let f = slideroute::stages::coeffs::SmallAngle::new(&CoeffInputs::new(&s, d));
         let r = f.residual(p.alpha(l), p.beta(l));
         let size = r[0].abs().max(r[1].abs()) / (l * l);
         if let Some(q) = prev {
@@ -125,7 +125,7 @@ fn exact_system_vanishes_where_the_small_angle_one_does_not() {
         pose.psi.sin(),
         pose.psi.cos(),
     );
-    let sa = slideroute::coeffs::SmallAngle::new(&inputs).residual(p.alpha(l), p.beta(l));
+    let sa = slideroute::stages::coeffs::SmallAngle::new(&inputs).residual(p.alpha(l), p.beta(l));
     assert!(e[0].abs().max(e[1].abs()) < 1e-13 * l);
     assert!(sa[0].abs().max(sa[1].abs()) > 1e-4 * l * l);
 }

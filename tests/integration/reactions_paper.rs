@@ -5,11 +5,11 @@
 // The three contacts are indexed in parallel arrays (normals, arms, forces).
 #![allow(clippy::needless_range_loop)]
 
-use slideroute::geometry::Displacement;
-use slideroute::mechanics::reactions_paper::{self, Reaction};
-use slideroute::mechanics::{ContactGeometry, loads::Applied, statics};
-use slideroute::roots;
-use slideroute::scene::{Friction, Mode, Scene};
+use slideroute::stages::geometry::Displacement;
+use slideroute::stages::mechanics::reactions_paper::{self, Reaction};
+use slideroute::stages::mechanics::{ContactGeometry, loads::Applied, statics};
+use slideroute::stages::roots;
+use slideroute::stages::scene::{Friction, Mode, Scene};
 
 /// Geometry, loads and frictionless normals of `scene` at `d` (exact pose).
 fn at(scene: &Scene, d: Displacement) -> (ContactGeometry, Applied, [f64; 3]) {

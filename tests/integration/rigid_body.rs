@@ -3,8 +3,8 @@
 
 use crate::common;
 
-use slideroute::route::{self, Reason, Route};
-use slideroute::scene::{DynamicsModel, Friction, Scene};
+use slideroute::stages::route::{self, Reason, Route};
+use slideroute::stages::scene::{DynamicsModel, Friction, Scene};
 
 fn rigid(f: impl FnOnce(&mut Scene)) -> Scene {
     let mut s = Scene::default_scene().with_dynamics(DynamicsModel::RigidBody);
@@ -377,7 +377,7 @@ fn ends_where_a_contact_slips_off_its_plane_do_not_depend_on_dt() {
 
 #[test]
 fn the_factor_of_safety_is_the_cones_whatever_the_dynamics_and_typed_where_it_has_no_number() {
-    use slideroute::mechanics::static_friction::FactorOfSafety;
+    use slideroute::stages::mechanics::static_friction::FactorOfSafety;
     // One definition for both dynamics (the paper's ratio, 0.7333, has its own name).
     let paper = run(&rigid(|s| set_time(s, 1e-3, 0.05)).with_dynamics(DynamicsModel::Paper));
     let rigid_body = run(&rigid(|s| set_time(s, 1e-3, 0.05)));

@@ -5,9 +5,9 @@
 
 use crate::common::scene;
 use proptest::prelude::*;
-use slideroute::geometry::{Displacement, Pose, direct};
-use slideroute::roots::{self, classify};
-use slideroute::scene::{Mode, Scene};
+use slideroute::stages::geometry::{Displacement, Pose, direct};
+use slideroute::stages::roots::{self, classify};
+use slideroute::stages::scene::{Mode, Scene};
 
 fn dip() -> impl Strategy<Value = f64> {
     prop_oneof![1.0..3.0f64, 3.0..55.0f64, 55.0..70.0f64]

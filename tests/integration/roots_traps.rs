@@ -1,9 +1,9 @@
 //! The traps measured in the roots issue, each a test named after the behaviour it protects.
 
 use crate::common::scene;
-use slideroute::geometry::{Displacement, Pose, direct};
-use slideroute::roots::{self, Tracker};
-use slideroute::scene::{Mode, Scene};
+use slideroute::stages::geometry::{Displacement, Pose, direct};
+use slideroute::stages::roots::{self, Tracker};
+use slideroute::stages::scene::{Mode, Scene};
 
 fn oracle_ab(s: &Scene, d: Displacement) -> (f64, f64) {
     let p = direct::solve(s, d).expect("direct pose");
@@ -122,8 +122,8 @@ fn unsquared_tracking_never_lands_on_a_spurious_root() {
             let Ok(p) = roots::select(&s, d, Mode::SmallAngle) else {
                 continue;
             };
-            let u = slideroute::coeffs::SmallAngleUnsquared::new(
-                &slideroute::coeffs::CoeffInputs::new(&s, d),
+            let u = slideroute::stages::coeffs::SmallAngleUnsquared::new(
+                &slideroute::stages::coeffs::CoeffInputs::new(&s, d),
             );
             assert!(
                 !roots::classify::small_angle_spurious(&u, p.u[0], p.u[1]),

@@ -3,9 +3,9 @@
 
 use crate::common;
 
-use slideroute::mechanics::static_friction::FactorOfSafety;
-use slideroute::route::{self, Reason, Route};
-use slideroute::scene::{DynamicsModel, Friction, Integrator, Scene};
+use slideroute::stages::mechanics::static_friction::FactorOfSafety;
+use slideroute::stages::route::{self, Reason, Route};
+use slideroute::stages::scene::{DynamicsModel, Friction, Integrator, Scene};
 
 /// The embedded scene under the paper's dynamics (this file's subject; the default is the
 /// rigid body's).
@@ -128,7 +128,7 @@ fn large_eccentricity_gives_a_visibly_curved_route() {
         s.loads.as_mut().unwrap().hydraulic_force = 1.2e7;
         s.loads.as_mut().unwrap().eccentricity = 1.5;
     }));
-    let heading = |r: &slideroute::route::Row| r.vz_m_s.atan2(r.vx_m_s).to_degrees();
+    let heading = |r: &slideroute::stages::route::Row| r.vz_m_s.atan2(r.vx_m_s).to_degrees();
     let rows = &curved.rows;
     let turn = heading(&rows[rows.len() - 1]) - heading(&rows[rows.len() / 10]);
     assert!(turn.abs() > 10.0, "heading turned by {turn}°");
@@ -326,10 +326,10 @@ fn every_example_scene_runs_to_a_stated_end() {
 
 #[test]
 fn all_roots_method_gives_the_same_route_as_continuation() {
-    use slideroute::route::PoseMethod;
+    use slideroute::stages::route::PoseMethod;
     for mode in [
-        slideroute::scene::Mode::Exact,
-        slideroute::scene::Mode::SmallAngle,
+        slideroute::stages::scene::Mode::Exact,
+        slideroute::stages::scene::Mode::SmallAngle,
     ] {
         let s = with(|s| {
             let sv = s.solver.as_mut().unwrap();

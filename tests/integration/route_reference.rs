@@ -7,8 +7,8 @@
 //! reshaped. To record them again, deliberately, after a change that is meant to move routes:
 //! `SLIDEROUTE_BLESS=1 cargo test --test integration route_reference`.
 
-use slideroute::route::{self, Row};
-use slideroute::scene::{DynamicsModel, Scene};
+use slideroute::stages::route::{self, Row};
+use slideroute::stages::scene::{DynamicsModel, Scene};
 use std::path::{Path, PathBuf};
 
 const EVERY: usize = 25;

@@ -3,7 +3,7 @@
 //! (Arbitrary text and single-value replacements are fuzzed in `src/scene/tests.rs` too.)
 
 use proptest::prelude::*;
-use slideroute::scene::Scene;
+use slideroute::stages::scene::Scene;
 
 fn assert_one_line(text: &str, origin: &str) {
     if let Err(e) = Scene::from_toml(text, origin) {

@@ -6,9 +6,9 @@ mod sweep;
 
 use crate::output::{CoeffReport, RootsReport, grid_csv};
 use clap::{Args, Parser, Subcommand};
-use slideroute::geometry::Displacement;
-use slideroute::roots;
-use slideroute::scene::{DynamicsModel, Mode, Scene};
+use slideroute::stages::geometry::Displacement;
+use slideroute::stages::roots;
+use slideroute::stages::scene::{DynamicsModel, Mode, Scene};
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -280,9 +280,9 @@ fn roots_cmd(
     match (grid, out) {
         (Some(grid), Some(out)) => {
             let name = grid.display().to_string();
-            let file = slideroute::scene::input::open_bounded(
+            let file = slideroute::stages::scene::input::open_bounded(
                 grid,
-                slideroute::scene::input::MAX_GRID_BYTES,
+                slideroute::stages::scene::input::MAX_GRID_BYTES,
             )
             .map_err(|e| format!("{name}: {e}"))?;
             let poses = grid_csv::read_poses(file, &name).map_err(|e| e.to_string())?;
@@ -330,7 +330,7 @@ fn progress_bar(quiet: bool, len: u64, what: &str) -> indicatif::ProgressBar {
 fn write_route_folder(
     mut folder: crate::output::folder::Folder,
     scene: &Scene,
-    route: &slideroute::route::Route,
+    route: &slideroute::stages::route::Route,
     no_plots: bool,
 ) -> Result<Vec<PathBuf>, String> {
     use crate::output::route_files;
@@ -395,7 +395,9 @@ fn run_cmd(
             .map_err(|e| format!("{}: cannot write: {e}", tmp.display()))?;
         let mut rows = crate::output::route_files::CsvRows::new(std::io::BufWriter::new(file))
             .map_err(|e| format!("route.csv: {e}"))?;
-        match slideroute::route::run_streamed(&scene, progress, keep_every, |r| rows.push(r)) {
+        match slideroute::stages::route::run_streamed(&scene, progress, keep_every, |r| {
+            rows.push(r)
+        }) {
             Ok(route) => computed = Some(route),
             Err(e) => {
                 bad_scene = Some(e.to_string());
@@ -412,7 +414,7 @@ fn run_cmd(
     let route = computed.ok_or_else(|| failed("route.csv: no route".to_string()))?;
     let mut files = vec![csv_path];
     files.extend(write_route_folder(folder, &scene, &route, no_plots).map_err(failed)?);
-    if route.termination.reason == slideroute::route::Reason::Interrupted {
+    if route.termination.reason == slideroute::stages::route::Reason::Interrupted {
         let names: Vec<String> = files.iter().map(|f| f.display().to_string()).collect();
         return Err(failed(format!(
             "{}; wrote what was computed: {}",
@@ -428,7 +430,7 @@ fn run_cmd(
         "scene {}: {} at t = {} s",
         route.scene,
         t.reason,
-        slideroute::numeric::seconds(t.t_s)
+        slideroute::stages::numeric::seconds(t.t_s)
     );
     outln!("  {}", t.detail);
     if let Some(last) = route.rows.last() {
@@ -486,7 +488,7 @@ fn compare_cmd(
 ) -> Result<(), CliError> {
     let scene = load(scene)?;
     let mut folder = crate::output::folder::Folder::open(out).map_err(failed)?;
-    let c = slideroute::compare::compare_dynamics_observed(&scene, interrupted)
+    let c = slideroute::stages::compare::compare_dynamics_observed(&scene, interrupted)
         .map_err(|e| e.to_string())?;
     #[allow(unused_mut)]
     let mut files = crate::output::compare_files::write(&mut folder, &scene, &c).map_err(failed)?;
@@ -520,7 +522,7 @@ fn compare_cmd(
         outln!(
             "{name}: {} at t = {} s; travel {:.3} m, final yaw θ = {:.3}°",
             r.termination.reason,
-            slideroute::numeric::seconds(r.termination.t_s),
+            slideroute::stages::numeric::seconds(r.termination.t_s),
             r.travel_m,
             last.map_or(0.0, |l| l.theta_deg)
         );
@@ -560,13 +562,16 @@ fn sweep_cmd(
 ) -> Result<(), CliError> {
     let (mut text, origin) = match &scene.scene {
         Some(p) => (
-            slideroute::scene::input::read_bounded(p, slideroute::scene::input::MAX_SCENE_BYTES)
-                .map_err(|e| format!("{}: {e}", p.display()))?,
+            slideroute::stages::scene::input::read_bounded(
+                p,
+                slideroute::stages::scene::input::MAX_SCENE_BYTES,
+            )
+            .map_err(|e| format!("{}: {e}", p.display()))?,
             p.display().to_string(),
         ),
         None => (
-            slideroute::scene::DEFAULT_SCENE_TOML.to_string(),
-            slideroute::scene::DEFAULT_ORIGIN.to_string(),
+            slideroute::stages::scene::DEFAULT_SCENE_TOML.to_string(),
+            slideroute::stages::scene::DEFAULT_ORIGIN.to_string(),
         ),
     };
     // The base scene must itself be valid.
@@ -696,7 +701,7 @@ fn report_cmd(quick: bool, out: &std::path::Path, quiet: bool) -> Result<(), Cli
 fn scene_cmd(print_default: bool, check: Option<&PathBuf>) -> Result<(), CliError> {
     match (print_default, check) {
         (true, _) => {
-            out!("{}", slideroute::scene::DEFAULT_SCENE_TOML);
+            out!("{}", slideroute::stages::scene::DEFAULT_SCENE_TOML);
             Ok(())
         }
         (false, Some(p)) => {

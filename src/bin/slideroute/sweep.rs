@@ -8,8 +8,8 @@
 
 use rayon::prelude::*;
 use serde::Serialize;
-use slideroute::route::{self, Route};
-use slideroute::scene::Scene;
+use slideroute::stages::route::{self, Route};
+use slideroute::stages::scene::Scene;
 use std::ops::ControlFlow;
 
 /// One varied key and its values.
@@ -180,7 +180,7 @@ pub struct SweepRow {
     pub max_alpha_deg: Option<f64>,
     pub max_beta_deg: Option<f64>,
     /// The factor of safety at the start (friction cones), whatever the dynamics.
-    pub factor_of_safety: Option<slideroute::mechanics::static_friction::FactorOfSafety>,
+    pub factor_of_safety: Option<slideroute::stages::mechanics::static_friction::FactorOfSafety>,
     pub detail: String,
 }
 
@@ -221,7 +221,7 @@ fn row_of(values: Vec<f64>, route: &Route) -> SweepRow {
 /// key is dropped so that each dynamics takes its own default.
 pub fn with_dynamics(
     base_text: &str,
-    model: slideroute::scene::DynamicsModel,
+    model: slideroute::stages::scene::DynamicsModel,
 ) -> Result<String, String> {
     let mut table: toml::Table = base_text
         .parse()
@@ -456,7 +456,7 @@ mod tests {
 
     #[test]
     fn unknown_keys_are_named() {
-        let base = slideroute::scene::DEFAULT_SCENE_TOML;
+        let base = slideroute::stages::scene::DEFAULT_SCENE_TOML;
         let e = check_keys(base, &[parse_vary("friction.mu=0:1:2").unwrap()]).unwrap_err();
         assert!(e.contains("friction.mu") && e.contains("mu_k"), "{e}");
         let e = check_keys(base, &[parse_vary("water.level=0:1:2").unwrap()]).unwrap_err();
@@ -465,7 +465,7 @@ mod tests {
 
     #[test]
     fn combinations_are_ordered_with_the_last_key_fastest_and_invalid_ones_are_rows() {
-        let base = slideroute::scene::DEFAULT_SCENE_TOML;
+        let base = slideroute::stages::scene::DEFAULT_SCENE_TOML;
         let varies = [
             parse_vary("foundation.xi_deg=20:95:2").unwrap(),
             parse_vary("loads.hydraulic_force_n=0:8e6:2").unwrap(),
@@ -487,7 +487,7 @@ mod tests {
         let varies = [parse_vary("friction.mu_k=0.2:0.6:5").unwrap()];
         let done = std::sync::atomic::AtomicUsize::new(0);
         let rows = run(
-            slideroute::scene::DEFAULT_SCENE_TOML,
+            slideroute::stages::scene::DEFAULT_SCENE_TOML,
             "base",
             &varies,
             || {

@@ -5,8 +5,8 @@
 
 use super::folder::Folder;
 use super::route_files::{self, Manifest};
-use slideroute::compare::Comparison;
-use slideroute::scene::Scene;
+use slideroute::stages::compare::Comparison;
+use slideroute::stages::scene::Scene;
 use std::path::PathBuf;
 
 /// Writes both routes and `comparison.json` into `folder`; returns the paths written.

@@ -1,9 +1,9 @@
 //! The `roots` report: every root at one displacement, and the selected one.
 
 use serde::Serialize;
-use slideroute::geometry::{Displacement, pose::cm_height};
-use slideroute::roots::{AllRoots, Inadmissible, Root};
-use slideroute::scene::{Mode, Scene};
+use slideroute::stages::geometry::{Displacement, pose::cm_height};
+use slideroute::stages::roots::{AllRoots, Inadmissible, Root};
+use slideroute::stages::scene::{Mode, Scene};
 use std::f64::consts::SQRT_2;
 use std::fmt;
 
@@ -118,9 +118,9 @@ impl fmt::Display for RootsReport {
             "scene {} ({} mode): X = {} m, Z = {} m, θ = {}°",
             self.scene,
             self.mode.as_str(),
-            slideroute::numeric::fixed(self.x_m, 6),
-            slideroute::numeric::fixed(self.z_m, 6),
-            slideroute::numeric::fixed(self.theta_deg, 6)
+            slideroute::stages::numeric::fixed(self.x_m, 6),
+            slideroute::stages::numeric::fixed(self.z_m, 6),
+            slideroute::stages::numeric::fixed(self.theta_deg, 6)
         )?;
         match (&self.selected, &self.selection_error) {
             (Some(s), _) => writeln!(

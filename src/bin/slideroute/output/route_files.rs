@@ -1,7 +1,7 @@
 //! `route.csv` and `summary.json` for a computed route.
 
 use super::folder::Folder;
-use slideroute::route::{ROUTE_HEADER, Row};
+use slideroute::stages::route::{ROUTE_HEADER, Row};
 use std::io::Write;
 use std::path::PathBuf;
 
@@ -94,7 +94,7 @@ pub struct FileEntry {
 
 impl Manifest {
     /// For this process's command line, `scene`, and the files `folder` holds so far.
-    pub fn new(scene: &slideroute::scene::Scene, folder: &Folder) -> Manifest {
+    pub fn new(scene: &slideroute::stages::scene::Scene, folder: &Folder) -> Manifest {
         Manifest {
             slideroute_version: env!("CARGO_PKG_VERSION"),
             command_line: std::env::args().collect(),

@@ -3,8 +3,8 @@
 //! And the work–precision report's own claims.
 
 use crate::report;
-use slideroute::route::{self, PoseMethod, Reason};
-use slideroute::scene::{Integrator, Mode};
+use slideroute::stages::route::{self, PoseMethod, Reason};
+use slideroute::stages::scene::{Integrator, Mode};
 
 #[test]
 fn every_extreme_case_agrees_with_the_direct_solver_or_ends_with_its_reason() {

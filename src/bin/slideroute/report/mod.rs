@@ -8,8 +8,8 @@
 //! be below 1e-9·L (reported as `reference_change_m`).
 
 use serde::Serialize;
-use slideroute::route::{self, PoseMethod, Route};
-use slideroute::scene::{Integrator, Mode, Scene};
+use slideroute::stages::route::{self, PoseMethod, Route};
+use slideroute::stages::scene::{Integrator, Mode, Scene};
 use std::time::Instant;
 
 /// The shallow example scene, compiled in for the report.
@@ -48,7 +48,7 @@ fn with_solver(scene: &Scene, mode: Mode, integrator: Integrator, dt: f64, t_end
     let mut s = scene.clone();
     if let Some(sv) = s.solver.as_mut() {
         // The ladder compares the paper's dynamics' integrators and modes.
-        sv.dynamics = slideroute::scene::DynamicsModel::Paper;
+        sv.dynamics = slideroute::stages::scene::DynamicsModel::Paper;
         sv.mode = mode;
         sv.integrator = integrator;
         sv.dt = dt;
@@ -236,7 +236,8 @@ fn set_l1z_over_l2z(s: &mut Scene, ratio: f64) {
 /// Scenes chosen to break naive code (see `docs/performance.md`, "Stiff and extreme cases").
 pub fn extreme_cases() -> Vec<Case> {
     // The stiff and extreme cases are the paper's dynamics' unless a case says otherwise.
-    let base = Scene::default_scene().with_dynamics(slideroute::scene::DynamicsModel::Paper);
+    let base =
+        Scene::default_scene().with_dynamics(slideroute::stages::scene::DynamicsModel::Paper);
     let case = |name: &'static str, f: &dyn Fn(&mut Scene)| {
         let mut s = base.clone();
         f(&mut s);
@@ -291,15 +292,15 @@ pub fn extreme_cases() -> Vec<Case> {
             }
         }),
         case("frictionless", &|s| {
-            s.friction = Some(slideroute::scene::Friction::Coulomb { mu_k: 0.0 })
+            s.friction = Some(slideroute::stages::scene::Friction::Coulomb { mu_k: 0.0 })
         }),
         case("kicked: 0.3 m/s under 3 MN (FS 6.3)", &|s| {
             set_force(s, 3.0e6);
             s.initial.vx = 0.3;
         }),
         case("kicked, rigid body: 1 m/s, μ = 0.6", &|s| {
-            *s = s.with_dynamics(slideroute::scene::DynamicsModel::RigidBody);
-            s.friction = Some(slideroute::scene::Friction::Coulomb { mu_k: 0.6 });
+            *s = s.with_dynamics(slideroute::stages::scene::DynamicsModel::RigidBody);
+            s.friction = Some(slideroute::stages::scene::Friction::Coulomb { mu_k: 0.6 });
             s.initial.vx = 1.0;
         }),
     ]
@@ -352,12 +353,12 @@ pub fn extreme(sample: usize) -> Vec<ExtremeRow> {
                     .iter()
                     .step_by(every)
                     .filter_map(|row| {
-                        let d = slideroute::geometry::Displacement::new(
+                        let d = slideroute::stages::geometry::Displacement::new(
                             row.x_m,
                             row.z_m,
                             row.theta_deg.to_radians(),
                         );
-                        let p = slideroute::geometry::direct::solve(&c.scene, d).ok()?;
+                        let p = slideroute::stages::geometry::direct::solve(&c.scene, d).ok()?;
                         Some(
                             (p.alpha(l) - row.alpha_deg.to_radians())
                                 .abs()

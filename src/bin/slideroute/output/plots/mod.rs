@@ -21,10 +21,10 @@ use plan::Track;
 use plotters::style::RGBColor;
 use series::Series;
 use sheet::{Entry, Mark, Res};
-use slideroute::mechanics::static_friction::FactorOfSafety;
-use slideroute::numeric::{fixed, seconds};
-use slideroute::route::{Reason, Route, Row};
-use slideroute::scene::Scene;
+use slideroute::stages::mechanics::static_friction::FactorOfSafety;
+use slideroute::stages::numeric::{fixed, seconds};
+use slideroute::stages::route::{Reason, Route, Row};
+use slideroute::stages::scene::Scene;
 use std::path::{Path, PathBuf};
 
 /// The most points a picture draws of a route (issue #13): past this, rows are thinned evenly
@@ -165,7 +165,11 @@ pub fn plan(path: &Path, scene: &Scene, route: &Route) -> Res<()> {
 }
 
 /// Both dynamics' routes of one scene on one plan view (`run --compare-dynamics`).
-pub fn compare_plan(path: &Path, scene: &Scene, c: &slideroute::compare::Comparison) -> Res<()> {
+pub fn compare_plan(
+    path: &Path,
+    scene: &Scene,
+    c: &slideroute::stages::compare::Comparison,
+) -> Res<()> {
     let (rigid, paper) = (thinned(&c.rigid_body.rows), thinned(&c.paper.rows));
     let name = |what: &str, r: &Route| {
         format!(

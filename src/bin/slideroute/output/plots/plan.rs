@@ -7,10 +7,10 @@
 use super::sheet::{self, Area, Entry, Mark, Res, Sheet, err};
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
-use slideroute::geometry::planes::{Plane, r as strike_2_distance};
-use slideroute::geometry::{Displacement, Pose};
-use slideroute::route::Row;
-use slideroute::scene::Scene;
+use slideroute::stages::geometry::planes::{Plane, r as strike_2_distance};
+use slideroute::stages::geometry::{Displacement, Pose};
+use slideroute::stages::route::Row;
+use slideroute::stages::scene::Scene;
 use std::path::Path;
 
 pub(super) const PLANE_1: RGBColor = RGBColor(30, 90, 200);

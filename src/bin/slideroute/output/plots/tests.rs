@@ -81,7 +81,7 @@ fn temp_dir(name: &str) -> TempDir {
 
 /// The default scene with `t_end_s` and the hydraulic force replaced.
 fn scene_with(t_end: f64, force: f64) -> Scene {
-    let text = slideroute::scene::DEFAULT_SCENE_TOML
+    let text = slideroute::stages::scene::DEFAULT_SCENE_TOML
         .replace("t_end_s = 20.0", &format!("t_end_s = {t_end:?}"))
         .replace(
             "hydraulic_force_n = 8.0e6",
@@ -98,7 +98,7 @@ fn scene_with(t_end: f64, force: f64) -> Scene {
 }
 
 fn route_pictures(name: &str, scene: &Scene) -> (TempDir, Route) {
-    let route = slideroute::route::run(scene).unwrap();
+    let route = slideroute::stages::route::run(scene).unwrap();
     let dir = temp_dir(name);
     write_route_plots(&dir, scene, &route).unwrap();
     (dir, route)
