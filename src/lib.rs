@@ -53,8 +53,8 @@ pub use geometry::{Displacement, Pose};
 pub use mechanics::static_friction::FactorOfSafety;
 pub use roots::{AllRoots, Root, Tracker, solve_all};
 pub use route::{
-    EnergyBalance, PoseMethod, Reason, Route, Row, Termination, run, run_observed, run_streamed,
-    run_with,
+    Diagnostics, EnergyBalance, PoseMethod, Reason, Route, Row, Termination, run, run_observed,
+    run_streamed, run_with,
 };
 pub use scene::{DynamicsModel, Friction, Integrator, Mode, Scene, SceneError};
 

@@ -24,14 +24,16 @@ pub mod termination;
 pub use outcome::EnergyBalance;
 pub use pose_finder::PoseMethod;
 pub use run::{run, run_observed, run_streamed, run_with};
-pub use state::{ROUTE_HEADER, Row, State};
+pub use state::{Row, State};
 pub use termination::{Reason, Termination};
 
 use crate::scene::{DynamicsModel, Integrator, Mode};
 use serde::Serialize;
 
-/// A computed route: the recorded rows and how it ended.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+/// A computed route: the recorded rows, how it ended and what it came to. Two routes are
+/// equal when these are: the [`Diagnostics`] (run time, the tracker's counts) are not
+/// compared, so that two runs of one scene compare equal.
+#[derive(Debug, Clone, Serialize)]
 pub struct Route {
     pub scene: String,
     pub mode: Mode,
@@ -56,7 +58,38 @@ pub struct Route {
     pub travel_m: f64,
     /// Increments taken.
     pub increments: usize,
-    /// How often the followed friction solution was lost and chosen afresh by the rule.
+    /// Energy balance (rigid-body dynamics only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub energy: Option<EnergyBalance>,
+    /// How the route was computed: written beside the results (summary.json keeps one flat
+    /// object), never compared.
+    #[serde(flatten)]
+    pub diagnostics: Diagnostics,
+}
+
+impl PartialEq for Route {
+    fn eq(&self, other: &Route) -> bool {
+        self.scene == other.scene
+            && self.mode == other.mode
+            && self.integrator == other.integrator
+            && self.dynamics == other.dynamics
+            && self.pose_method == other.pose_method
+            && self.rows == other.rows
+            && self.termination == other.termination
+            && self.factor_of_safety == other.factor_of_safety
+            && self.paper_ratio == other.paper_ratio
+            && self.travel_m == other.travel_m
+            && self.increments == other.increments
+            && self.energy == other.energy
+    }
+}
+
+/// How one computation of a route went: its cost and the pose method's statistics. They vary
+/// from run to run (the time) or with the method, not with the physics.
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct Diagnostics {
+    /// How often the followed friction solution was lost and chosen afresh by the rule (the
+    /// paper's dynamics).
     pub friction_switches: usize,
     /// Continuation statistics: accepted and rejected steps, Newton iterations (continuation
     /// method only).
@@ -64,9 +97,22 @@ pub struct Route {
     /// Condition number of the tracked equations' Jacobian at the last pose (continuation only):
     /// large near a turning point or where roots merge.
     pub end_jacobian_condition: Option<f64>,
-    /// Energy balance (rigid-body dynamics only).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub energy: Option<EnergyBalance>,
     /// Wall-clock time of the computation (s).
     pub wall_s: f64,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn two_runs_of_one_scene_compare_equal_whatever_their_time() {
+        let scene = crate::scene::Scene::default_scene();
+        let a = run(&scene).unwrap();
+        let mut b = run(&scene).unwrap();
+        b.diagnostics.wall_s = a.diagnostics.wall_s + 1.0;
+        assert_eq!(a, b);
+        b.travel_m += 1e-9;
+        assert_ne!(a, b, "a result that differs makes them differ");
+    }
 }

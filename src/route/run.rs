@@ -102,10 +102,12 @@ fn drive(
         paper_ratio: o.paper_ratio,
         travel_m: o.travel,
         increments: o.increments,
-        friction_switches: o.switches,
-        tracker: finder.stats(),
-        end_jacobian_condition: finder.jacobian_condition(),
         energy: o.energy,
-        wall_s: started.elapsed().as_secs_f64(),
+        diagnostics: super::Diagnostics {
+            friction_switches: o.switches,
+            tracker: finder.stats(),
+            end_jacobian_condition: finder.jacobian_condition(),
+            wall_s: started.elapsed().as_secs_f64(),
+        },
     })
 }

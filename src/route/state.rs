@@ -47,24 +47,3 @@ pub struct Row {
     pub n_n: Option<[f64; 3]>,
     pub s_n: Option<[f64; 3]>,
 }
-
-/// The header of `route.csv`.
-pub const ROUTE_HEADER: [&str; 17] = [
-    "t_s",
-    "x_m",
-    "y_m",
-    "z_m",
-    "theta_deg",
-    "alpha_deg",
-    "beta_deg",
-    "gamma_deg",
-    "vx_m_s",
-    "vz_m_s",
-    "omega_deg_s",
-    "n0_n",
-    "n1_n",
-    "n2_n",
-    "s0_n",
-    "s1_n",
-    "s2_n",
-];

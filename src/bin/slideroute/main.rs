@@ -455,7 +455,7 @@ fn run_cmd(
         route.dynamics.as_str(),
         route.mode.as_str(),
         route.integrator.as_str(),
-        route.wall_s,
+        route.diagnostics.wall_s,
     );
     if let Some(e) = &route.energy {
         let kinetic = if e.kinetic_initial_j != 0.0 {

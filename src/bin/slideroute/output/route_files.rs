@@ -1,9 +1,30 @@
 //! `route.csv` and `summary.json` for a computed route.
 
 use super::folder::Folder;
-use slideroute::stages::route::{ROUTE_HEADER, Row};
+use slideroute::Row;
 use std::io::Write;
 use std::path::PathBuf;
+
+/// The header of `route.csv`: the fields of a [`Row`], in its order, with their units.
+pub const ROUTE_HEADER: [&str; 17] = [
+    "t_s",
+    "x_m",
+    "y_m",
+    "z_m",
+    "theta_deg",
+    "alpha_deg",
+    "beta_deg",
+    "gamma_deg",
+    "vx_m_s",
+    "vz_m_s",
+    "omega_deg_s",
+    "n0_n",
+    "n1_n",
+    "n2_n",
+    "s0_n",
+    "s1_n",
+    "s2_n",
+];
 
 /// route.csv written row by row as the route computes them (issue #13: memory does not grow
 /// with the route's length): the header [`ROUTE_HEADER`], then one record per [`CsvRows::push`];

@@ -367,7 +367,7 @@ pub fn extreme(sample: usize) -> Vec<ExtremeRow> {
                     })
                     .fold(0.0, f64::max)
             });
-            let stats = r.tracker.unwrap_or_default();
+            let stats = r.diagnostics.tracker.unwrap_or_default();
             ExtremeRow {
                 case: c.name.into(),
                 reason: r.termination.reason.as_str().into(),
@@ -376,7 +376,7 @@ pub fn extreme(sample: usize) -> Vec<ExtremeRow> {
                 increments: r.increments,
                 rejected_steps: stats.rejected,
                 newton_per_step: stats.newton_iterations as f64 / stats.steps.max(1) as f64,
-                end_jacobian_condition: r.end_jacobian_condition,
+                end_jacobian_condition: r.diagnostics.end_jacobian_condition,
                 max_tilt_error_rad: tilt_error,
                 detail: r.termination.detail.clone(),
             }
