@@ -47,17 +47,14 @@ pub fn height(scene: &Scene, plane: Plane, x: f64, z: f64) -> f64 {
     }
 }
 
-/// The upward unit normal of `plane`.
+/// The upward unit normal of `plane` ([`Foundation::normals`](crate::scene::Foundation::normals)).
 pub fn normal(scene: &Scene, plane: Plane) -> Vector3<f64> {
-    let g = &scene.foundation;
-    match plane {
-        Plane::Horizontal => Vector3::y(),
-        Plane::One => Vector3::new(-g.xi.sin(), g.xi.cos(), 0.0),
-        Plane::Two => {
-            let (s, c) = g.zeta.sin_cos();
-            Vector3::new(-s * g.kappa.cos(), c, s * g.kappa.sin())
-        }
-    }
+    let k = match plane {
+        Plane::Horizontal => 0,
+        Plane::One => 1,
+        Plane::Two => 2,
+    };
+    scene.foundation.normals()[k]
 }
 
 #[cfg(test)]

@@ -13,7 +13,6 @@ pub mod rigid_body;
 pub mod static_friction;
 pub mod statics;
 
-use crate::geometry::planes::{Plane, normal};
 use crate::geometry::{LocalFrame, Pose};
 use crate::scene::Scene;
 use nalgebra::Vector3;
@@ -36,7 +35,7 @@ impl ContactGeometry {
 
     /// The upward unit normals of the planes carrying vertices 0, 1, 2.
     pub fn plane_normals(scene: &Scene) -> [Vector3<f64>; 3] {
-        [0, 1, 2].map(|i| normal(scene, Plane::of_vertex(i)))
+        scene.foundation.normals()
     }
 
     /// With the [`ContactGeometry::plane_normals`] computed before (as

@@ -58,6 +58,20 @@ pub struct Foundation {
     pub kappa: f64,
 }
 
+impl Foundation {
+    /// The upward unit normals of the horizontal plane, plane 1 and plane 2 (the planes under
+    /// vertices 0, 1 and 2; `docs/conventions.md`, "The foundation").
+    pub fn normals(&self) -> [nalgebra::Vector3<f64>; 3] {
+        let (s1, c1) = self.xi.sin_cos();
+        let (s2, c2) = self.zeta.sin_cos();
+        [
+            nalgebra::Vector3::y(),
+            nalgebra::Vector3::new(-s1, c1, 0.0),
+            nalgebra::Vector3::new(-s2 * self.kappa.cos(), c2, s2 * self.kappa.sin()),
+        ]
+    }
+}
+
 /// Mass properties of the monolith.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Block {
@@ -350,7 +364,7 @@ impl Scene {
             loads,
             friction,
             solver,
-            normals: crate::mechanics::ContactGeometry::plane_normals(self),
+            normals: self.foundation.normals(),
         })
     }
 }

@@ -8,6 +8,7 @@
 
 mod common;
 
+mod architecture;
 mod cli;
 mod coefficients_match_derivation;
 mod docs;

@@ -1,0 +1,182 @@
+//! The shape of the library (issue #14): data flows one way. No stage imports a stage that
+//! imports it back, and within a stage no file imports a sibling that imports it back. (A
+//! stage's `mod.rs` is its facade — it re-exports its files and holds what they share — so
+//! edges to and from it are not cycles of the flow.)
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
+
+fn sources(dir: &Path, out: &mut Vec<PathBuf>) {
+    for e in std::fs::read_dir(dir).unwrap() {
+        let p = e.unwrap().path();
+        if p.is_dir() {
+            if p.file_name().is_some_and(|n| n != "bin") {
+                sources(&p, out);
+            }
+        } else if p.extension().is_some_and(|x| x == "rs") {
+            out.push(p);
+        }
+    }
+}
+
+/// The code of a file without its tests and comments.
+fn code(path: &Path) -> String {
+    let text = std::fs::read_to_string(path).unwrap();
+    let text = match text.find("#[cfg(test)]") {
+        Some(k) => &text[..k],
+        None => &text[..],
+    };
+    text.lines()
+        .map(|l| l.split("//").next().unwrap_or(""))
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// The identifiers after each `prefix` in `text`: `prefix::name` and `prefix::{a, b::c}`.
+fn names_after(text: &str, prefix: &str) -> Vec<String> {
+    let ident = |s: &str| -> String {
+        s.chars()
+            .take_while(|c| c.is_alphanumeric() || *c == '_')
+            .collect()
+    };
+    let mut out = Vec::new();
+    for (k, _) in text.match_indices(prefix) {
+        let before = text[..k].chars().next_back();
+        if before.is_some_and(|c| c.is_alphanumeric() || c == '_') {
+            continue;
+        }
+        let rest = &text[k + prefix.len()..];
+        if let Some(list) = rest.strip_prefix('{') {
+            let list = &list[..list.find('}').unwrap_or(list.len())];
+            out.extend(list.split(',').map(|p| ident(p.trim())));
+        } else {
+            out.push(ident(rest));
+        }
+    }
+    out.retain(|n| !n.is_empty());
+    out
+}
+
+fn cycle(graph: &BTreeMap<String, BTreeSet<String>>) -> Option<Vec<String>> {
+    fn visit(
+        v: &str,
+        g: &BTreeMap<String, BTreeSet<String>>,
+        state: &mut BTreeMap<String, u8>,
+        path: &mut Vec<String>,
+    ) -> Option<Vec<String>> {
+        state.insert(v.to_string(), 1);
+        path.push(v.to_string());
+        for w in g.get(v).into_iter().flatten() {
+            match state.get(w.as_str()) {
+                Some(1) => {
+                    let at = path.iter().position(|p| p == w).unwrap_or(0);
+                    let mut c = path[at..].to_vec();
+                    c.push(w.clone());
+                    return Some(c);
+                }
+                Some(_) => {}
+                None => {
+                    if let Some(c) = visit(w, g, state, path) {
+                        return Some(c);
+                    }
+                }
+            }
+        }
+        path.pop();
+        state.insert(v.to_string(), 2);
+        None
+    }
+    let mut state = BTreeMap::new();
+    for v in graph.keys() {
+        if !state.contains_key(v.as_str()) {
+            if let Some(c) = visit(v, graph, &mut state, &mut Vec::new()) {
+                return Some(c);
+            }
+        }
+    }
+    None
+}
+
+#[test]
+fn no_import_cycle_between_stages_or_between_the_files_of_a_stage() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = Vec::new();
+    sources(&src, &mut files);
+    let rel = |p: &Path| {
+        p.strip_prefix(&src)
+            .unwrap()
+            .to_string_lossy()
+            .replace('\\', "/")
+    };
+    let stage_of = |r: &str| {
+        r.split('/')
+            .next()
+            .unwrap()
+            .trim_end_matches(".rs")
+            .to_string()
+    };
+    let stages: BTreeSet<String> = files
+        .iter()
+        .map(|p| stage_of(&rel(p)))
+        .filter(|s| s != "lib")
+        .collect();
+    assert!(stages.len() >= 8, "{stages:?}");
+    let mut between: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
+    let mut within: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
+    for p in &files {
+        let r = rel(p);
+        let stage = stage_of(&r);
+        if stage == "lib" {
+            continue;
+        }
+        let text = code(p);
+        let to: BTreeSet<String> = names_after(&text, "crate::")
+            .into_iter()
+            .filter(|n| stages.contains(n) && *n != stage)
+            .collect();
+        between.entry(stage.clone()).or_default().extend(to);
+        // Siblings: files of one folder, not its mod.rs.
+        let dir = p.parent().unwrap();
+        if p.file_name().is_some_and(|n| n == "mod.rs") || dir == src {
+            continue;
+        }
+        let sibling = |n: &str| dir.join(format!("{n}.rs")).exists() || dir.join(n).is_dir();
+        let me = p.file_stem().unwrap().to_string_lossy().to_string();
+        let mut to: Vec<String> = names_after(&text, "super::");
+        to.extend(names_after(&text, &format!("crate::{stage}::")));
+        let key = |n: &str| format!("{}/{n}", rel(dir));
+        let edges: BTreeSet<String> = to
+            .into_iter()
+            .filter(|n| *n != me && sibling(n))
+            .map(|n| key(&n))
+            .collect();
+        within.entry(key(&me)).or_default().extend(edges);
+    }
+    assert!(
+        between.values().map(BTreeSet::len).sum::<usize>() >= 10,
+        "the scan found too few imports: {between:?}"
+    );
+    assert_eq!(cycle(&between), None, "stages: {between:?}");
+    assert_eq!(cycle(&within), None);
+}
+
+#[test]
+fn the_cycle_finder_finds_a_cycle() {
+    let g: BTreeMap<String, BTreeSet<String>> = [
+        ("a", vec!["b"]),
+        ("b", vec!["c"]),
+        ("c", vec!["a"]),
+        ("d", vec![]),
+    ]
+    .into_iter()
+    .map(|(k, v)| (k.into(), v.into_iter().map(String::from).collect()))
+    .collect();
+    assert_eq!(
+        cycle(&g),
+        Some(vec!["a".into(), "b".into(), "c".into(), "a".into()])
+    );
+    assert_eq!(
+        names_after("use super::{rhs::Stop, state};", "super::"),
+        vec!["rhs", "state"]
+    );
+}
