@@ -425,58 +425,13 @@ fn run_cmd(
     if quiet {
         return Ok(());
     }
-    let t = &route.termination;
-    outln!(
-        "scene {}: {} at t = {} s",
-        route.scene,
-        t.reason,
-        slideroute::stages::numeric::seconds(t.t_s)
+    out!(
+        "{}",
+        crate::output::summary::RouteSummary {
+            route: &route,
+            files: &files
+        }
     );
-    outln!("  {}", t.detail);
-    if let Some(last) = route.rows.last() {
-        outln!(
-            "  travel {:.3} m; final yaw θ = {:.3}°, tilts α = {:.3}°, β = {:.3}°, γ = {:.3}°",
-            route.travel_m,
-            last.theta_deg,
-            last.alpha_deg,
-            last.beta_deg,
-            last.gamma_deg
-        );
-    }
-    if let Some(fs) = route.factor_of_safety {
-        outln!("  factor of safety {fs} (friction cones at the start)");
-    }
-    if let Some(ratio) = route.paper_ratio {
-        outln!("  the paper's resisting/driving ratio along x' at the start {ratio:.4}");
-    }
-    outln!(
-        "  {} increments ({} dynamics, {} mode, {} integrator) in {:.3} s",
-        route.increments,
-        route.dynamics.as_str(),
-        route.mode.as_str(),
-        route.integrator.as_str(),
-        route.diagnostics.wall_s,
-    );
-    if let Some(e) = &route.energy {
-        let kinetic = if e.kinetic_initial_j != 0.0 {
-            format!(
-                "kinetic {:.6e} J (from {:.6e} J)",
-                e.kinetic_j, e.kinetic_initial_j
-            )
-        } else {
-            format!("kinetic {:.6e} J", e.kinetic_j)
-        };
-        outln!(
-            "  energy: hydraulic work {:.6e} J, friction work {:.6e} J, {kinetic}, \
-             potential change {:.6e} J, balance residual {:.3e} J",
-            e.work_hydraulic_j,
-            e.work_friction_j,
-            e.potential_change_j,
-            e.residual_j
-        );
-    }
-    let names: Vec<String> = files.iter().map(|f| f.display().to_string()).collect();
-    outln!("  wrote {}", names.join(", "));
     Ok(())
 }
 
@@ -514,42 +469,13 @@ fn compare_cmd(
     if quiet {
         return Ok(());
     }
-    for (name, r) in [
-        ("paper's dynamics", &c.paper),
-        ("rigid body", &c.rigid_body),
-    ] {
-        let last = r.rows.last();
-        outln!(
-            "{name}: {} at t = {} s; travel {:.3} m, final yaw θ = {:.3}°",
-            r.termination.reason,
-            slideroute::stages::numeric::seconds(r.termination.t_s),
-            r.travel_m,
-            last.map_or(0.0, |l| l.theta_deg)
-        );
-    }
-    let p = &c.parting;
-    match p.parted_at_s {
-        Some(t) => outln!(
-            "  the routes part (CM {:.3} m apart, 1% of L) at t = {t:.3} s, near X = {:.3} m, Z = {:.3} m",
-            p.threshold_m,
-            p.parted_at_x_m.unwrap_or(f64::NAN),
-            p.parted_at_z_m.unwrap_or(f64::NAN)
-        ),
-        None => outln!(
-            "  the routes stay within {:.3} m (1% of L) while both run",
-            p.threshold_m
-        ),
-    }
-    outln!(
-        "  until t = {:.3} s: largest separation {:.3} m (at {:.3} s); at the end {:.3} m apart, yaw rigid − paper {:+.3}°",
-        p.common_until_s,
-        p.max_separation_m,
-        p.max_separation_at_s,
-        p.separation_at_end_m,
-        p.yaw_difference_at_end_deg
+    out!(
+        "{}",
+        crate::output::summary::CompareSummary {
+            comparison: &c,
+            files: &files
+        }
     );
-    let names: Vec<String> = files.iter().map(|f| f.display().to_string()).collect();
-    outln!("  wrote {}", names.join(", "));
     Ok(())
 }
 

@@ -1,4 +1,5 @@
-//! What the library hands to people: typed reports that serialise to JSON and print as tables.
+//! What the command line hands to people: typed reports that serialise to JSON and print as
+//! tables, summaries, the files of an output folder and the pictures.
 
 pub mod coeffs_report;
 #[cfg(feature = "cli")]
@@ -14,6 +15,8 @@ pub mod report_files;
 pub mod roots_report;
 #[cfg(feature = "cli")]
 pub mod route_files;
+#[cfg(feature = "cli")]
+pub mod summary;
 #[cfg(feature = "cli")]
 pub mod sweep_files;
 

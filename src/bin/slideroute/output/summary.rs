@@ -1,0 +1,164 @@
+//! The short summaries `run` and `run --compare-dynamics` print: how the route ended, where, at
+//! what factor of safety, at what cost, and what was written. Numbers at a precision for people
+//! (the files keep every digit).
+
+use slideroute::stages::numeric::{fixed, seconds};
+use slideroute::{Comparison, Route};
+use std::fmt;
+use std::path::PathBuf;
+
+/// The files written, as one line.
+fn written(files: &[PathBuf]) -> String {
+    let names: Vec<String> = files.iter().map(|f| f.display().to_string()).collect();
+    names.join(", ")
+}
+
+/// The summary of one route and the files written for it.
+pub struct RouteSummary<'a> {
+    pub route: &'a Route,
+    pub files: &'a [PathBuf],
+}
+
+impl fmt::Display for RouteSummary<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let r = self.route;
+        let t = &r.termination;
+        writeln!(
+            f,
+            "scene {}: {} at t = {} s",
+            r.scene,
+            t.reason,
+            seconds(t.t_s)
+        )?;
+        writeln!(f, "  {}", t.detail)?;
+        if let Some(last) = r.rows.last() {
+            writeln!(
+                f,
+                "  travel {} m; final yaw θ = {}°, tilts α = {}°, β = {}°, γ = {}°",
+                fixed(r.travel_m, 3),
+                fixed(last.theta_deg, 3),
+                fixed(last.alpha_deg, 3),
+                fixed(last.beta_deg, 3),
+                fixed(last.gamma_deg, 3)
+            )?;
+        }
+        if let Some(fs) = r.factor_of_safety {
+            writeln!(f, "  factor of safety {fs} (friction cones at the start)")?;
+        }
+        if let Some(ratio) = r.paper_ratio {
+            writeln!(
+                f,
+                "  the paper's resisting/driving ratio along x' at the start {ratio:.4}"
+            )?;
+        }
+        writeln!(
+            f,
+            "  {} increments ({} dynamics, {} mode, {} integrator) in {} s",
+            r.increments,
+            r.dynamics.as_str(),
+            r.mode.as_str(),
+            r.integrator.as_str(),
+            fixed(r.diagnostics.wall_s, 3),
+        )?;
+        // A block that never moved has no energy to account for.
+        if let Some(e) = r.energy.filter(|_| r.increments > 0) {
+            let kinetic = if e.kinetic_initial_j != 0.0 {
+                format!(
+                    "kinetic {:.6e} J (from {:.6e} J)",
+                    e.kinetic_j, e.kinetic_initial_j
+                )
+            } else {
+                format!("kinetic {:.6e} J", e.kinetic_j)
+            };
+            writeln!(
+                f,
+                "  energy: hydraulic work {:.6e} J, friction work {:.6e} J, {kinetic}, \
+                 potential change {:.6e} J, balance residual {:.3e} J",
+                e.work_hydraulic_j, e.work_friction_j, e.potential_change_j, e.residual_j
+            )?;
+        }
+        writeln!(f, "  wrote {}", written(self.files))
+    }
+}
+
+/// The summary of both dynamics' routes of one scene, where they part, and the files written.
+pub struct CompareSummary<'a> {
+    pub comparison: &'a Comparison,
+    pub files: &'a [PathBuf],
+}
+
+impl fmt::Display for CompareSummary<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let c = self.comparison;
+        for (name, r) in [
+            ("paper's dynamics", &c.paper),
+            ("rigid body", &c.rigid_body),
+        ] {
+            writeln!(
+                f,
+                "{name}: {} at t = {} s; travel {} m, final yaw θ = {}°",
+                r.termination.reason,
+                seconds(r.termination.t_s),
+                fixed(r.travel_m, 3),
+                fixed(r.rows.last().map_or(0.0, |l| l.theta_deg), 3)
+            )?;
+        }
+        let p = &c.parting;
+        match p.parted_at_s {
+            Some(t) => writeln!(
+                f,
+                "  the routes part (CM {} m apart, 1% of L) at t = {} s, near X = {} m, Z = {} m",
+                fixed(p.threshold_m, 3),
+                fixed(t, 3),
+                fixed(p.parted_at_x_m.unwrap_or(f64::NAN), 3),
+                fixed(p.parted_at_z_m.unwrap_or(f64::NAN), 3)
+            )?,
+            None => writeln!(
+                f,
+                "  the routes stay within {} m (1% of L) while both run",
+                fixed(p.threshold_m, 3)
+            )?,
+        }
+        writeln!(
+            f,
+            "  until t = {} s: largest separation {} m (at {} s); at the end {} m apart, yaw \
+             rigid − paper {:+.3}°",
+            fixed(p.common_until_s, 3),
+            fixed(p.max_separation_m, 3),
+            fixed(p.max_separation_at_s, 3),
+            fixed(p.separation_at_end_m, 3),
+            p.yaw_difference_at_end_deg
+        )?;
+        writeln!(f, "  wrote {}", written(self.files))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_still_block_has_no_energy_line_and_numbers_are_short() {
+        let scene = slideroute::Scene::default_scene();
+        let mut route = slideroute::run(&scene).unwrap();
+        route.diagnostics.wall_s = 0.123456789;
+        let s = RouteSummary {
+            route: &route,
+            files: &[PathBuf::from("out/route.csv")],
+        }
+        .to_string();
+        assert!(s.contains("in 0.123 s"), "{s}");
+        assert!(
+            s.contains("energy:"),
+            "a moving rigid body has its balance: {s}"
+        );
+        assert!(s.ends_with("wrote out/route.csv\n"), "{s}");
+        route.increments = 0;
+        let still = RouteSummary {
+            route: &route,
+            files: &[],
+        }
+        .to_string();
+        assert!(!still.contains("energy:"), "{still}");
+    }
+}
