@@ -168,11 +168,9 @@ enum CliError {
     ClosedPipe,
 }
 
-/// Errors of the commands' input side are bad input unless said otherwise.
-impl From<String> for CliError {
-    fn from(msg: String) -> Self {
-        CliError::BadInput(msg)
-    }
+/// A scene, flag or input file that is wrong: exit 2.
+fn bad_input(msg: String) -> CliError {
+    CliError::BadInput(msg)
 }
 
 /// An output that could not be written: exit 1.
@@ -220,9 +218,9 @@ fn fail(e: CliError) -> ExitCode {
     }
 }
 
-fn load(arg: &SceneArg) -> Result<Scene, String> {
+fn load(arg: &SceneArg) -> Result<Scene, CliError> {
     let scene = match &arg.scene {
-        Some(p) => Scene::from_file(p).map_err(|e| e.to_string())?,
+        Some(p) => Scene::from_file(p).map_err(|e| bad_input(e.to_string()))?,
         None => Scene::default_scene(),
     };
     // Likely mistakes get a line on standard error, not silence.
@@ -232,21 +230,24 @@ fn load(arg: &SceneArg) -> Result<Scene, String> {
     Ok(scene)
 }
 
-fn displacement(p: &PoseArgs) -> Result<Displacement, String> {
+fn displacement(p: &PoseArgs) -> Result<Displacement, CliError> {
     let get = |name: &str, v: Option<f64>| match v {
         None => Err(format!("--{name} is required")),
         Some(v) if !v.is_finite() => Err(format!("--{name}: must be a finite number, got {v}")),
         Some(v) => Ok(v),
     };
     Ok(Displacement::new(
-        get("x", p.x)?,
-        get("z", p.z)?,
-        get("theta-deg", p.theta_deg)?.to_radians(),
+        get("x", p.x).map_err(bad_input)?,
+        get("z", p.z).map_err(bad_input)?,
+        get("theta-deg", p.theta_deg)
+            .map_err(bad_input)?
+            .to_radians(),
     ))
 }
 
 fn print_json(value: &impl serde::Serialize) -> Result<(), CliError> {
-    let s = serde_json::to_string_pretty(value).map_err(|e| format!("cannot write JSON: {e}"))?;
+    let s = serde_json::to_string_pretty(value)
+        .map_err(|e| failed(format!("cannot write JSON: {e}")))?;
     outln!("{s}");
     Ok(())
 }
@@ -284,12 +285,13 @@ fn roots_cmd(
                 grid,
                 slideroute::stages::scene::input::MAX_GRID_BYTES,
             )
-            .map_err(|e| format!("{name}: {e}"))?;
-            let poses = grid_csv::read_poses(file, &name).map_err(|e| e.to_string())?;
+            .map_err(|e| bad_input(format!("{name}: {e}")))?;
+            let poses = grid_csv::read_poses(file, &name).map_err(|e| bad_input(e.to_string()))?;
             let reports = poses
                 .iter()
                 .map(|p| report(p.displacement()))
-                .collect::<Result<Vec<_>, _>>()?;
+                .collect::<Result<Vec<_>, _>>()
+                .map_err(bad_input)?;
             let out_name = out.display().to_string();
             let file = std::fs::File::create(out)
                 .map_err(|e| failed(format!("{out_name}: cannot write: {e}")))?;
@@ -299,7 +301,7 @@ fn roots_cmd(
             Ok(())
         }
         _ => {
-            let r = report(displacement(pose)?)?;
+            let r = report(displacement(pose)?).map_err(bad_input)?;
             if json {
                 print_json(&r)
             } else {
@@ -408,7 +410,7 @@ fn run_cmd(
     });
     bar.finish_and_clear();
     if let Some(e) = bad_scene {
-        return Err(e.into());
+        return Err(bad_input(e));
     }
     let csv_path = csv_path.map_err(failed)?;
     let route = computed.ok_or_else(|| failed("route.csv: no route".to_string()))?;
@@ -444,7 +446,7 @@ fn compare_cmd(
     let scene = load(scene)?;
     let mut folder = crate::output::folder::Folder::open(out).map_err(failed)?;
     let c = slideroute::stages::compare::compare_dynamics_observed(&scene, interrupted)
-        .map_err(|e| e.to_string())?;
+        .map_err(|e| bad_input(e.to_string()))?;
     #[allow(unused_mut)]
     let mut files = crate::output::compare_files::write(&mut folder, &scene, &c).map_err(failed)?;
     #[cfg(feature = "plots")]
@@ -492,7 +494,7 @@ fn sweep_cmd(
                 p,
                 slideroute::stages::scene::input::MAX_SCENE_BYTES,
             )
-            .map_err(|e| format!("{}: {e}", p.display()))?,
+            .map_err(|e| bad_input(format!("{}: {e}", p.display())))?,
             p.display().to_string(),
         ),
         None => (
@@ -501,27 +503,29 @@ fn sweep_cmd(
         ),
     };
     // The base scene must itself be valid.
-    Scene::from_toml(&text, &origin).map_err(|e| e.to_string())?;
+    let check = |text: &str| Scene::from_toml(text, &origin).map_err(|e| bad_input(e.to_string()));
+    check(&text)?;
     if let Some(model) = dynamics {
-        text = crate::sweep::with_dynamics(&text, model)?;
-        Scene::from_toml(&text, &origin).map_err(|e| e.to_string())?;
+        text = crate::sweep::with_dynamics(&text, model).map_err(bad_input)?;
+        check(&text)?;
     }
     let varies = vary
         .iter()
         .map(|v| crate::sweep::parse_vary(v))
-        .collect::<Result<Vec<_>, _>>()?;
-    crate::sweep::check_keys(&text, &varies)?;
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(bad_input)?;
+    crate::sweep::check_keys(&text, &varies).map_err(bad_input)?;
     let n = crate::sweep::count(&varies);
     if n > crate::sweep::MAX_COMBINATIONS {
-        return Err(format!(
+        return Err(bad_input(format!(
             "--vary: {n} combinations, more than the {} one sweep may run",
             crate::sweep::MAX_COMBINATIONS
-        )
-        .into());
+        )));
     }
     let mut folder = crate::output::folder::Folder::open(out).map_err(failed)?;
     let bar = progress_bar(quiet, n as u64, "sweep");
-    let rows = crate::sweep::run(&text, &origin, &varies, || bar.inc(1), interrupted)?;
+    let rows = crate::sweep::run(&text, &origin, &varies, || bar.inc(1), interrupted)
+        .map_err(bad_input)?;
     bar.finish_and_clear();
     let csv_path = folder
         .write_with("sweep.csv", |tmp| {
@@ -631,21 +635,21 @@ fn scene_cmd(print_default: bool, check: Option<&PathBuf>) -> Result<(), CliErro
             Ok(())
         }
         (false, Some(p)) => {
-            let s = Scene::from_file(p).map_err(|e| e.to_string())?;
+            let s = Scene::from_file(p).map_err(|e| bad_input(e.to_string()))?;
             let sections = match s.require_dynamics() {
                 Ok(_) => "all sections",
                 Err(e) if e.reason.starts_with("missing section") => {
                     "geometry only (frame, foundation)"
                 }
                 // Present but not runnable as written (e.g. small-angle with the rigid body).
-                Err(e) => return Err(e.to_string().into()),
+                Err(e) => return Err(bad_input(e.to_string())),
             };
             outln!("{}: ok ({sections})", p.display());
             Ok(())
         }
-        (false, None) => Err("scene: say --print-default or --check FILE"
-            .to_string()
-            .into()),
+        (false, None) => Err(bad_input(
+            "scene: say --print-default or --check FILE".to_string(),
+        )),
     }
 }
 
