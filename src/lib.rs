@@ -27,7 +27,7 @@
 //! let all = slideroute::solve_all(&scene, d, Mode::Exact).unwrap(); // every root, classified
 //! let mut tracker = Tracker::new(&scene, Mode::Exact);
 //! let here = tracker.advance(d).unwrap(); // u = (α, ψ) on the physical branch
-//! let oracle = slideroute::direct_pose(&scene, d).unwrap();
+//! let oracle = slideroute::direct_pose(&scene.site(), d).unwrap();
 //! assert!((here.u[0] - oracle.alpha(scene.l())).abs() < 1e-9 && !all.roots.is_empty());
 //! ```
 //!
@@ -49,7 +49,7 @@ mod scene;
 pub use coeffs::{CoeffInputs, Exact, SmallAngle};
 pub use compare::{Comparison, compare_dynamics, compare_dynamics_observed};
 pub use geometry::direct::solve as direct_pose;
-pub use geometry::{Displacement, Pose};
+pub use geometry::{Displacement, Pose, Site};
 pub use mechanics::static_friction::FactorOfSafety;
 pub use roots::{AllRoots, Root, Tracker, solve_all};
 pub use route::{

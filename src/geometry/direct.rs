@@ -11,8 +11,8 @@
 //! by sliding, not another solution of the same constraints.
 
 use super::planes::{Plane, height};
+use super::site::Site;
 use super::{Displacement, GeometryError, LocalFrame};
-use crate::scene::Scene;
 use nalgebra::{Matrix3, Rotation3, Vector3};
 use std::f64::consts::SQRT_2;
 
@@ -60,36 +60,35 @@ const MAX_ITERATIONS: usize = 60;
 
 /// Places the rigid frame: yaw θ about +Y (so x' projects to (cos θ, 0, sin θ)), then tilt
 /// about the body z axis, then roll about the body x axis.
-fn place(scene: &Scene, d: Displacement, u: &Vector3<f64>) -> [Vector3<f64>; 3] {
+fn place(site: &Site, d: Displacement, u: &Vector3<f64>) -> [Vector3<f64>; 3] {
     let rot = Rotation3::from_axis_angle(&Vector3::y_axis(), -d.theta)
         * Rotation3::from_axis_angle(&Vector3::z_axis(), u[0])
         * Rotation3::from_axis_angle(&Vector3::x_axis(), -u[1]);
     let cm = Vector3::new(d.x, u[2], d.z);
-    scene
-        .frame
+    site.frame
         .vertices()
         .map(|[x, z]| cm + rot * Vector3::new(x, 0.0, z))
 }
 
-fn residual(scene: &Scene, d: Displacement, u: &Vector3<f64>) -> Vector3<f64> {
-    let p = place(scene, d, u);
+fn residual(site: &Site, d: Displacement, u: &Vector3<f64>) -> Vector3<f64> {
+    let p = place(site, d, u);
     let mut r = Vector3::zeros();
     for (i, v) in p.iter().enumerate() {
-        r[i] = v.y - height(scene, Plane::of_vertex(i), v.x, v.z);
+        r[i] = v.y - height(site, Plane::of_vertex(i), v.x, v.z);
     }
     r
 }
 
 /// Newton from `guess` at a fixed displacement.
 fn newton(
-    scene: &Scene,
+    site: &Site,
     d: Displacement,
     guess: Vector3<f64>,
 ) -> Result<(Vector3<f64>, f64, usize), GeometryError> {
-    let l = scene.l();
+    let l = site.l();
     let tol = 1e-14 * l;
     let mut u = guess;
-    let mut r = residual(scene, d, &u);
+    let mut r = residual(site, d, &u);
     for it in 1..=MAX_ITERATIONS {
         let mut jac = Matrix3::zeros();
         for j in 0..3 {
@@ -98,14 +97,14 @@ fn newton(
             let mut dn = u;
             up[j] += step;
             dn[j] -= step;
-            let col = (residual(scene, d, &up) - residual(scene, d, &dn)) / (2.0 * step);
+            let col = (residual(site, d, &up) - residual(site, d, &dn)) / (2.0 * step);
             jac.set_column(j, &col);
         }
         let Some(delta) = jac.lu().solve(&(-r)) else {
             break;
         };
         u += delta;
-        r = residual(scene, d, &u);
+        r = residual(site, d, &u);
         let small_step =
             delta[0].abs() < 1e-15 && delta[1].abs() < 1e-15 && delta[2].abs() < 1e-15 * l;
         if r.amax() <= tol || (small_step && r.amax() <= 1e-12 * l) {
@@ -120,37 +119,37 @@ fn newton(
 }
 
 /// The pose reached by sliding from the start to `d` along a straight segment.
-pub fn solve(scene: &Scene, d: Displacement) -> Result<DirectPose, GeometryError> {
+pub fn solve(site: &Site, d: Displacement) -> Result<DirectPose, GeometryError> {
     if !d.is_finite() {
         return Err(GeometryError::NonFinite(format!("{d:?}")));
     }
     let mut u = Vector3::zeros();
     let mut result = (u, 0.0, 0);
     for k in 1..=STEPS {
-        result = newton(scene, d.scaled(k as f64 / STEPS as f64), u)?;
+        result = newton(site, d.scaled(k as f64 / STEPS as f64), u)?;
         u = result.0;
     }
-    Ok(finish(scene, d, result))
+    Ok(finish(site, d, result))
 }
 
 /// The pose at `d` by Newton from a nearby pose (e.g. the previous increment's).
 pub fn solve_from(
-    scene: &Scene,
+    site: &Site,
     d: Displacement,
     near: &DirectPose,
 ) -> Result<DirectPose, GeometryError> {
     let guess = Vector3::new(near.tilt, near.roll, near.cm_y);
-    let result = newton(scene, d, guess)?;
-    Ok(finish(scene, d, result))
+    let result = newton(site, d, guess)?;
+    Ok(finish(site, d, result))
 }
 
-fn finish(scene: &Scene, d: Displacement, (u, res, it): (Vector3<f64>, f64, usize)) -> DirectPose {
+fn finish(site: &Site, d: Displacement, (u, res, it): (Vector3<f64>, f64, usize)) -> DirectPose {
     DirectPose {
         displacement: d,
         tilt: u[0],
         roll: u[1],
         cm_y: u[2],
-        vertices: place(scene, d, &u),
+        vertices: place(site, d, &u),
         residual: res,
         iterations: it,
     }
@@ -159,11 +158,12 @@ fn finish(scene: &Scene, d: Displacement, (u, res, it): (Vector3<f64>, f64, usiz
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scene::Scene;
 
     #[test]
     fn start_is_the_flat_frame() {
         let s = Scene::default_scene();
-        let p = solve(&s, Displacement::default()).unwrap();
+        let p = solve(&s.site(), Displacement::default()).unwrap();
         assert!(p.tilt.abs() < 1e-15 && p.roll.abs() < 1e-15 && p.cm_y.abs() < 1e-15);
     }
 
@@ -171,7 +171,7 @@ mod tests {
     fn pure_forward_slide_lifts_vertex_1_onto_plane_1() {
         // Sliding forward by X with θ = 0: vertex 1 climbs plane 1, vertex 0 stays down.
         let s = Scene::default_scene();
-        let p = solve(&s, Displacement::new(0.5, 0.0, 0.0)).unwrap();
+        let p = solve(&s.site(), Displacement::new(0.5, 0.0, 0.0)).unwrap();
         let l = s.l();
         assert!(p.residual < 1e-12 * l);
         assert!(p.vertices[0].y.abs() < 1e-12);

@@ -1,5 +1,6 @@
 //! Exact geometry of the sliding frame.
 //!
+//! * [`site`]: the frame and the foundation, all that geometry takes of a scene.
 //! * [`planes`]: the three foundation planes, their heights, normals and regions.
 //! * [`frame`]: the local frame (i', j', k') built from the actual vertex positions, and R.
 //! * [`pose`]: the pose from (X, Z, θ, α, β) through the paper's relations (1), (2), (21), and
@@ -13,10 +14,12 @@ pub mod frame;
 pub mod planes;
 pub mod pose;
 pub mod relations;
+pub mod site;
 
 pub use direct::DirectPose;
 pub use frame::LocalFrame;
 pub use pose::Pose;
+pub use site::{Foundation, Frame, Site};
 
 /// The horizontal displacement of the block: CM moved by (X, Z) (m), side 01 yawed by θ (rad,
 /// from +X towards +Z). The start of sliding is the default, (0, 0, 0).

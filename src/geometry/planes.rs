@@ -3,7 +3,7 @@
 //! Y = (n·(X, Z) − R) tan ζ for n·(X, Z) ≥ R with n = (cos κ, −sin κ), carries vertex 2.
 //! Each contact is held on its own infinite plane; the regions say where the plane is real.
 
-use crate::scene::Scene;
+use super::site::Site;
 use nalgebra::Vector3;
 
 /// Which plane.
@@ -26,58 +26,59 @@ impl Plane {
 }
 
 /// R: the distance from the start CM to int. line 2/horiz (eq. 4).
-pub fn r(scene: &Scene) -> f64 {
-    let k = scene.foundation.kappa;
-    scene.frame.l2x * k.cos() + scene.frame.l2z * k.sin()
+pub fn r(site: &Site) -> f64 {
+    let k = site.foundation.kappa;
+    site.frame.l2x * k.cos() + site.frame.l2z * k.sin()
 }
 
 /// n·(X, Z) with n = (cos κ, −sin κ) (S of eq. 5 when applied to the CM).
-pub fn along_dip_2(scene: &Scene, x: f64, z: f64) -> f64 {
-    let k = scene.foundation.kappa;
+pub fn along_dip_2(site: &Site, x: f64, z: f64) -> f64 {
+    let k = site.foundation.kappa;
     x * k.cos() - z * k.sin()
 }
 
 /// The height of `plane` (extended without limit) above (X, Z).
-pub fn height(scene: &Scene, plane: Plane, x: f64, z: f64) -> f64 {
-    let g = &scene.foundation;
+pub fn height(site: &Site, plane: Plane, x: f64, z: f64) -> f64 {
+    let g = &site.foundation;
     match plane {
         Plane::Horizontal => 0.0,
-        Plane::One => (x - scene.frame.l2x) * g.xi.tan(),
-        Plane::Two => (along_dip_2(scene, x, z) - r(scene)) * g.zeta.tan(),
+        Plane::One => (x - site.frame.l2x) * g.xi.tan(),
+        Plane::Two => (along_dip_2(site, x, z) - r(site)) * g.zeta.tan(),
     }
 }
 
-/// The upward unit normal of `plane` ([`Foundation::normals`](crate::scene::Foundation::normals)).
-pub fn normal(scene: &Scene, plane: Plane) -> Vector3<f64> {
+/// The upward unit normal of `plane` ([`Foundation::normals`](super::site::Foundation::normals)).
+pub fn normal(site: &Site, plane: Plane) -> Vector3<f64> {
     let k = match plane {
         Plane::Horizontal => 0,
         Plane::One => 1,
         Plane::Two => 2,
     };
-    scene.foundation.normals()[k]
+    site.foundation.normals()[k]
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scene::Scene;
 
     #[test]
     fn start_vertices_lie_on_the_strike_lines() {
         let scene = Scene::default_scene();
         let v = scene.frame.vertices();
         // Vertex 1 on int. line 1/horiz, vertex 2 on int. line 2/horiz: both heights zero.
-        assert!(height(&scene, Plane::One, v[1][0], v[1][1]).abs() < 1e-12);
-        assert!(height(&scene, Plane::Two, v[2][0], v[2][1]).abs() < 1e-12);
+        assert!(height(&scene.site(), Plane::One, v[1][0], v[1][1]).abs() < 1e-12);
+        assert!(height(&scene.site(), Plane::Two, v[2][0], v[2][1]).abs() < 1e-12);
     }
 
     #[test]
     fn normals_are_unit_and_orthogonal_to_the_planes() {
         let scene = Scene::default_scene();
         for plane in [Plane::Horizontal, Plane::One, Plane::Two] {
-            let n = normal(&scene, plane);
+            let n = normal(&scene.site(), plane);
             assert!((n.norm() - 1.0).abs() < 1e-15);
             // Two points of the plane: the difference is orthogonal to n.
-            let p = |x: f64, z: f64| Vector3::new(x, height(&scene, plane, x, z), z);
+            let p = |x: f64, z: f64| Vector3::new(x, height(&scene.site(), plane, x, z), z);
             let d1 = p(7.0, 1.0) - p(5.0, -2.0);
             assert!(n.dot(&d1).abs() < 1e-12);
         }

@@ -6,8 +6,8 @@
 //! `derivations/04-exact.md`). Neither checks that the contacts are on their planes: that is
 //! what the polynomial systems and the direct solver decide.
 
+use super::site::Site;
 use super::{Displacement, GeometryError, LocalFrame};
-use crate::scene::Scene;
 use nalgebra::Vector3;
 use std::f64::consts::SQRT_2;
 
@@ -42,8 +42,8 @@ pub fn sin_gamma(alpha: f64, beta: f64) -> f64 {
 }
 
 /// CM height from eq. (21): (L1X − L1Z) sin α + √2 L1Z sin β.
-pub fn cm_height(scene: &Scene, alpha: f64, beta: f64) -> f64 {
-    let f = &scene.frame;
+pub fn cm_height(site: &Site, alpha: f64, beta: f64) -> f64 {
+    let f = &site.frame;
     (f.l1x - f.l1z) * alpha.sin() + SQRT_2 * f.l1z * beta.sin()
 }
 
@@ -66,7 +66,7 @@ fn finite(d: Displacement, a: f64, b: f64) -> Result<(), GeometryError> {
 impl Pose {
     /// The pose at displacement `d` with tilts α, β (rad), by the paper's relations.
     pub fn from_tilts(
-        scene: &Scene,
+        site: &Site,
         d: Displacement,
         alpha: f64,
         beta: f64,
@@ -84,7 +84,7 @@ impl Pose {
         let h = ch.acos();
         let (sa, ca) = alpha.sin_cos();
         let cb = beta.cos();
-        let l = scene.l();
+        let l = site.l();
         let (st, ct) = d.theta.sin_cos();
         let (sth, cth) = (d.theta - h).sin_cos();
         // Projected sides (Figure 5): 01 along θ with length L cos α, 02 along θ − h with
@@ -95,8 +95,8 @@ impl Pose {
             -sg,
             ca * st - SQRT_2 * cb * sth,
         );
-        let f = &scene.frame;
-        let cm = Vector3::new(d.x, cm_height(scene, alpha, beta), d.z);
+        let f = &site.frame;
+        let cm = Vector3::new(d.x, cm_height(site, alpha, beta), d.z);
         let p0 = cm - f.l1x * i + f.l1z * k;
         let vertices = [p0, p0 + l * i, p0 + l * i - l * k];
         let frame = LocalFrame::from_vertices(&vertices, l);
@@ -116,7 +116,7 @@ impl Pose {
     /// The pose at displacement `d` with tilt α of side 01 and roll ψ about it (rad), with
     /// vertex 0 on Y = 0. Any ψ is allowed (cos ψ < 0 is the mirrored frame, h < 0).
     pub fn from_tilt_roll(
-        scene: &Scene,
+        site: &Site,
         d: Displacement,
         alpha: f64,
         psi: f64,
@@ -129,8 +129,8 @@ impl Pose {
         let w = Vector3::new(-st, 0.0, ct);
         let n = Vector3::new(-sa * ct, ca, -sa * st);
         let k = cp * w + sp * n;
-        let f = &scene.frame;
-        let l = scene.l();
+        let f = &site.frame;
+        let l = site.l();
         // Vertex 0 on the horizontal plane fixes the CM height.
         let cm_y = f.l1x * i.y - f.l1z * k.y;
         let cm = Vector3::new(d.x, cm_y, d.z);
@@ -161,6 +161,7 @@ impl Pose {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scene::Scene;
 
     fn scene() -> Scene {
         Scene::default_scene()
@@ -169,7 +170,7 @@ mod tests {
     #[test]
     fn flat_pose_puts_vertices_at_their_start_positions() {
         let s = scene();
-        let p = Pose::from_tilts(&s, Displacement::default(), 0.0, 0.0).unwrap();
+        let p = Pose::from_tilts(&s.site(), Displacement::default(), 0.0, 0.0).unwrap();
         for (v, r) in p.vertices.iter().zip(s.frame.vertices()) {
             assert!((v - Vector3::new(r[0], 0.0, r[1])).norm() < 1e-14);
         }
@@ -181,8 +182,8 @@ mod tests {
         let s = scene();
         let d = Displacement::new(0.8, -0.4, 0.2);
         for &(alpha, psi) in &[(0.05, 0.02), (0.3, -0.25), (0.6, 0.9)] {
-            let a = Pose::from_tilt_roll(&s, d, alpha, psi).unwrap();
-            let b = Pose::from_tilts(&s, d, alpha, a.beta).unwrap();
+            let a = Pose::from_tilt_roll(&s.site(), d, alpha, psi).unwrap();
+            let b = Pose::from_tilts(&s.site(), d, alpha, a.beta).unwrap();
             for (u, v) in a.vertices.iter().zip(&b.vertices) {
                 assert!((u - v).norm() < 1e-12, "{u} vs {v}");
             }
@@ -203,9 +204,9 @@ mod tests {
     #[test]
     fn tilts_without_a_real_frame_are_an_error() {
         let s = scene();
-        let e = Pose::from_tilts(&s, Displacement::default(), 1.5, -1.5);
+        let e = Pose::from_tilts(&s.site(), Displacement::default(), 1.5, -1.5);
         assert!(matches!(e, Err(GeometryError::NoRealFrame(_))));
-        let e = Pose::from_tilts(&s, Displacement::default(), f64::NAN, 0.0);
+        let e = Pose::from_tilts(&s.site(), Displacement::default(), f64::NAN, 0.0);
         assert!(matches!(e, Err(GeometryError::NonFinite(_))));
     }
 }

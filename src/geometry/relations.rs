@@ -6,13 +6,13 @@
 //! the generated coefficients come from, so tests compare the two.
 
 use super::pose::cos_h;
+use super::site::Site;
 use super::{Displacement, GeometryError};
-use crate::scene::Scene;
 use std::f64::consts::SQRT_2;
 
 /// LHS − RHS of (13) and (14) (m) at tilts α, β (rad).
 pub fn law_of_sines(
-    scene: &Scene,
+    site: &Site,
     d: Displacement,
     alpha: f64,
     beta: f64,
@@ -24,9 +24,9 @@ pub fn law_of_sines(
         )));
     }
     let h = ch.acos();
-    let f = &scene.frame;
-    let g = &scene.foundation;
-    let l = scene.l();
+    let f = &site.frame;
+    let g = &site.foundation;
+    let l = site.l();
     let (sa, ca) = alpha.sin_cos();
     let (sb, cb) = beta.sin_cos();
     let th = d.theta;

@@ -48,7 +48,7 @@ mod tests {
         // FS = μ (c0 + c1 + c2) / (F − c1 sin ξ − c2 sin ζ cos κ).
         let s = Scene::default_scene();
         let d = s.require_dynamics().unwrap();
-        let pose = Pose::from_tilts(&s, Default::default(), 0.0, 0.0).unwrap();
+        let pose = Pose::from_tilts(&s.site(), Default::default(), 0.0, 0.0).unwrap();
         let geom = ContactGeometry::new(&s, &pose);
         let applied = Applied::new(d.loads, d.block, &geom.frame);
         let c = frictionless_normals(&geom, &applied).unwrap();

@@ -256,7 +256,7 @@ mod tests {
 
     fn start(toml: &str) -> (Scene, ContactGeometry) {
         let s = Scene::from_toml(toml, "t").unwrap();
-        let pose = Pose::from_tilts(&s, Default::default(), 0.0, 0.0).unwrap();
+        let pose = Pose::from_tilts(&s.site(), Default::default(), 0.0, 0.0).unwrap();
         let g = ContactGeometry::new(&s, &pose);
         (s, g)
     }

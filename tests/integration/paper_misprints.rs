@@ -10,7 +10,7 @@ use slideroute::stages::scene::Scene;
 
 /// (15) residuals with our coefficients, and with one printed coefficient swapped in.
 fn residuals_with_printed(index: usize, s: &Scene, d: Displacement) -> (f64, f64) {
-    let p = direct::solve(s, d).expect("direct pose");
+    let p = direct::solve(&s.site(), d).expect("direct pose");
     let l = s.l();
     let (a, b) = (p.alpha(l), p.beta(l));
     let ours = SmallAngle::new(&CoeffInputs::new(s, d));

@@ -175,8 +175,8 @@ pub fn assert_rows_match_direct(s: &Scene, rows: &[slideroute::stages::route::Ro
     for row in rows {
         let d = Displacement::new(row.x_m, row.z_m, row.theta_deg.to_radians());
         let p = match near {
-            Some(ref q) => direct::solve_from(s, d, q).unwrap(),
-            None => direct::solve(s, d).unwrap(),
+            Some(ref q) => direct::solve_from(&s.site(), d, q).unwrap(),
+            None => direct::solve(&s.site(), d).unwrap(),
         };
         assert!(
             (p.alpha(l).to_degrees() - row.alpha_deg).abs() < 1e-10f64.to_degrees(),

@@ -358,7 +358,8 @@ pub fn extreme(sample: usize) -> Vec<ExtremeRow> {
                             row.z_m,
                             row.theta_deg.to_radians(),
                         );
-                        let p = slideroute::stages::geometry::direct::solve(&c.scene, d).ok()?;
+                        let p =
+                            slideroute::stages::geometry::direct::solve(&c.scene.site(), d).ok()?;
                         Some(
                             (p.alpha(l) - row.alpha_deg.to_radians())
                                 .abs()

@@ -37,7 +37,7 @@ type P = (f64, f64);
 fn vertices(scene: &Scene, row: &Row) -> Option<[P; 3]> {
     let d = Displacement::new(row.x_m, row.z_m, row.theta_deg.to_radians());
     let p = Pose::from_tilts(
-        scene,
+        &scene.site(),
         d,
         row.alpha_deg.to_radians(),
         row.beta_deg.to_radians(),
@@ -79,7 +79,7 @@ fn region_half_planes(scene: &Scene) -> [(f64, f64, f64); 2] {
     let (sk, ck) = scene.foundation.kappa.sin_cos();
     [
         (1.0, 0.0, scene.frame.l2x),
-        (ck, -sk, strike_2_distance(scene)),
+        (ck, -sk, strike_2_distance(&scene.site())),
     ]
 }
 
@@ -682,7 +682,7 @@ mod tests {
         for &(x, z) in &h.1 {
             assert!(x <= l2x + 1e-9);
             let (sk, ck) = scene.foundation.kappa.sin_cos();
-            assert!(x * ck - z * sk <= strike_2_distance(&scene) + 1e-9);
+            assert!(x * ck - z * sk <= strike_2_distance(&scene.site()) + 1e-9);
         }
     }
 
