@@ -41,7 +41,7 @@ fn whole_routes(c: &mut Criterion) {
 
 fn one_increment(c: &mut Criterion) {
     let scene = Scene::default_scene().with_dynamics(DynamicsModel::Paper);
-    let dynamics = scene.require_dynamics().unwrap();
+    let dynamics = slideroute::stages::scene::Simulation::new(&scene).unwrap();
     for method in [PoseMethod::Continuation, PoseMethod::AllRoots] {
         // Position the finder and the chosen reaction at X = 0.5 m, then time the next 1 mm.
         let mut finder = PoseFinder::new(&scene, Mode::Exact, method);

@@ -5,7 +5,8 @@
 //! after Galic & Glaser, "Outline of a Method for Determining the Three Dimensional Failure
 //! Route of a Sliding Block". Equation numbers in the docs are the paper's.
 //!
-//! A route from a scene file:
+//! A route from a scene file (`run` checks the scene first; [`Simulation::new`] then
+//! [`simulate`] does it in two steps, and a `Simulation` runs without failing):
 //!
 //! ```
 //! let scene = slideroute::Scene::from_file("scenes/turning.toml".as_ref())?;
@@ -54,9 +55,9 @@ pub use mechanics::static_friction::FactorOfSafety;
 pub use roots::{AllRoots, Root, Tracker, solve_all};
 pub use route::{
     Diagnostics, EnergyBalance, PoseMethod, Reason, Route, Row, Termination, run, run_observed,
-    run_streamed, run_with,
+    run_streamed, run_with, simulate,
 };
-pub use scene::{DynamicsModel, Friction, Integrator, Mode, Scene, SceneError};
+pub use scene::{DynamicsModel, Friction, Integrator, Mode, Scene, SceneError, Simulation};
 
 /// The stages themselves, each with everything in it public, so that the command line can
 /// report them and the tests and benchmarks can measure them one by one. Not the library's

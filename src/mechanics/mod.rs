@@ -39,7 +39,7 @@ impl ContactGeometry {
     }
 
     /// With the [`ContactGeometry::plane_normals`] computed before (as
-    /// [`crate::scene::Dynamics::normals`]).
+    /// [`crate::scene::Simulation::normals`]).
     pub fn with_normals(normals: &[Vector3<f64>; 3], pose: &Pose) -> Self {
         ContactGeometry {
             frame: pose.frame,

@@ -47,16 +47,16 @@ mod tests {
         // Flat frame: i' = X, so N0·i' = 0, N1·i' = −c1 sin ξ, N2·i' = −c2 sin ζ cos κ, W·i' = 0:
         // FS = μ (c0 + c1 + c2) / (F − c1 sin ξ − c2 sin ζ cos κ).
         let s = Scene::default_scene();
-        let d = s.require_dynamics().unwrap();
+        let d = crate::scene::Simulation::new(&s).unwrap();
         let pose = Pose::from_tilts(&s.site(), Default::default(), 0.0, 0.0).unwrap();
         let geom = ContactGeometry::new(&s, &pose);
-        let applied = Applied::new(d.loads, d.block, &geom.frame);
+        let applied = Applied::new(d.loads(), d.block(), &geom.frame);
         let c = frictionless_normals(&geom, &applied).unwrap();
         let g = &s.foundation;
         let driving =
-            d.loads.hydraulic_force - c[1] * g.xi.sin() - c[2] * g.zeta.sin() * g.kappa.cos();
+            d.loads().hydraulic_force - c[1] * g.xi.sin() - c[2] * g.zeta.sin() * g.kappa.cos();
         let want = 0.4 * (c[0] + c[1] + c[2]) / driving;
-        let (fs, dd, _) = factor_of_safety(&geom, &applied, &c, d.friction);
+        let (fs, dd, _) = factor_of_safety(&geom, &applied, &c, d.friction());
         assert!((fs - want).abs() < 1e-12 * want, "{fs} vs {want}");
         assert!((dd - driving).abs() < 1e-6);
     }

@@ -944,10 +944,10 @@ mod tests {
             "t",
         )
         .unwrap();
-        let d = scene.require_dynamics().unwrap();
+        let d = crate::scene::Simulation::new(&scene).unwrap();
         let geom = at(&scene, Displacement::new(0.7, 0.2, 0.1));
-        let applied = Applied::new(d.loads, d.block, &geom.frame);
-        let m = accelerations(&geom, &applied, d.block, d.friction, [1.0, 0.1, 0.2]).unwrap();
+        let applied = Applied::new(d.loads(), d.block(), &geom.frame);
+        let m = accelerations(&geom, &applied, d.block(), d.friction(), [1.0, 0.1, 0.2]).unwrap();
         for i in 0..3 {
             let r = geom.r[i];
             let acc = m.accel + m.ang_accel.cross(&r) + m.twist.w.cross(&m.twist.w.cross(&r));
@@ -960,16 +960,16 @@ mod tests {
             + (0..3)
                 .map(|i| geom.n[i] * m.normal[i])
                 .sum::<Vector3<f64>>();
-        assert!((total / d.block.mass - m.accel).norm() < 1e-12);
+        assert!((total / d.block().mass - m.accel).norm() < 1e-12);
     }
 
     #[test]
     fn shear_opposes_slip_with_the_criterion_magnitude() {
         let scene = Scene::default_scene();
-        let d = scene.require_dynamics().unwrap();
+        let d = crate::scene::Simulation::new(&scene).unwrap();
         let geom = at(&scene, Displacement::new(0.5, 0.0, -0.05));
-        let applied = Applied::new(d.loads, d.block, &geom.frame);
-        let m = accelerations(&geom, &applied, d.block, d.friction, [1.0, 0.1, 0.2]).unwrap();
+        let applied = Applied::new(d.loads(), d.block(), &geom.frame);
+        let m = accelerations(&geom, &applied, d.block(), d.friction(), [1.0, 0.1, 0.2]).unwrap();
         for i in 0..3 {
             let s = m.slip[i];
             assert!((m.shear[i].norm() - 0.4 * m.normal[i]).abs() < 1e-6);
@@ -981,10 +981,10 @@ mod tests {
     #[test]
     fn from_rest_each_shear_opposes_its_contacts_tangential_acceleration() {
         let scene = Scene::default_scene();
-        let d = scene.require_dynamics().unwrap();
+        let d = crate::scene::Simulation::new(&scene).unwrap();
         let geom = at(&scene, Displacement::new(0.0, 0.0, 0.0));
-        let applied = Applied::new(d.loads, d.block, &geom.frame);
-        let m = accelerations(&geom, &applied, d.block, d.friction, [0.0; 3]).unwrap();
+        let applied = Applied::new(d.loads(), d.block(), &geom.frame);
+        let m = accelerations(&geom, &applied, d.block(), d.friction(), [0.0; 3]).unwrap();
         for i in 0..3 {
             let r = geom.r[i];
             let acc = m.accel + m.ang_accel.cross(&r);
@@ -1009,15 +1009,15 @@ mod tests {
             "t",
         )
         .unwrap();
-        let d = scene.require_dynamics().unwrap();
+        let d = crate::scene::Simulation::new(&scene).unwrap();
         let geom = at(&scene, Displacement::new(0.5, 0.1, 0.05));
-        let applied = Applied::new(d.loads, d.block, &geom.frame);
+        let applied = Applied::new(d.loads(), d.block(), &geom.frame);
         let arm = longest_arm(&geom);
         let mut checked = 0;
         for i in 0..3 {
             let p = pivot_direction(&geom, arm, i).unwrap() * 2.0;
             let rates = [p.x, p.y, p.z / arm];
-            let m = accelerations(&geom, &applied, d.block, d.friction, rates).unwrap();
+            let m = accelerations(&geom, &applied, d.block(), d.friction(), rates).unwrap();
             assert!(
                 m.slip[i].norm() < 1e-12,
                 "contact {i} does not slip at the start"
@@ -1047,14 +1047,14 @@ mod tests {
     fn one_contact_stick_satisfies_newton_euler_and_its_constraints() {
         // The 11-equation stick mode, checked by recomputing the forces it returns.
         let scene = Scene::default_scene();
-        let d = scene.require_dynamics().unwrap();
+        let d = crate::scene::Simulation::new(&scene).unwrap();
         let geom = at(&scene, Displacement::new(0.5, 0.1, 0.05));
-        let applied = Applied::new(d.loads, d.block, &geom.frame);
-        let inertia = Inertia::new(d.block, &geom).unwrap();
+        let applied = Applied::new(d.loads(), d.block(), &geom.frame);
+        let inertia = Inertia::new(d.block(), &geom).unwrap();
         let ctx = Ctx {
             geom: &geom,
             inertia,
-            mass: d.block.mass,
+            mass: d.block().mass,
             force: applied.force + applied.weight,
             torque: applied.moment,
             centripetal: [Vector3::zeros(); 3],
@@ -1079,7 +1079,7 @@ mod tests {
                 assert!((s.shear[j].norm() - 0.4 * s.lambda[j]).abs() < 1e-6 * s.lambda[j]);
             }
         }
-        assert!((f - s.a * d.block.mass).norm() < 1e-6 * f.norm().max(1.0));
+        assert!((f - s.a * d.block().mass).norm() < 1e-6 * f.norm().max(1.0));
         assert!((m - inertia.world * s.e).norm() < 1e-6 * m.norm().max(1.0));
     }
 }

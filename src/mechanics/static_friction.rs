@@ -270,10 +270,10 @@ mod tests {
             .replace("zeta_deg = 25.0", "zeta_deg = 0.01")
             .replace("eccentricity_m = 1.0", "eccentricity_m = 0.0");
         let (s, g) = start(&toml);
-        let d = s.require_dynamics().unwrap();
-        let applied = Applied::new(d.loads, d.block, &g.frame);
+        let d = crate::scene::Simulation::new(&s).unwrap();
+        let applied = Applied::new(d.loads(), d.block(), &g.frame);
         let c = frictionless_normals(&g, &applied).unwrap();
-        let st = check(&g, &applied, d.friction, &c).unwrap();
+        let st = check(&g, &applied, d.friction(), &c).unwrap();
         let want = 0.4 * 9.81e6 / 8e6;
         assert!(
             (st.factor_of_safety - want).abs() < 1e-3 * want,
@@ -289,10 +289,10 @@ mod tests {
         let slip = crate::scene::DEFAULT_SCENE_TOML.replace("mu_k = 0.40", "mu_k = 0.0");
         for (toml, holds) in [(hold, true), (slip, false)] {
             let (s, g) = start(&toml);
-            let d = s.require_dynamics().unwrap();
-            let applied = Applied::new(d.loads, d.block, &g.frame);
+            let d = crate::scene::Simulation::new(&s).unwrap();
+            let applied = Applied::new(d.loads(), d.block(), &g.frame);
             let c = frictionless_normals(&g, &applied).unwrap();
-            let st = check(&g, &applied, d.friction, &c).unwrap();
+            let st = check(&g, &applied, d.friction(), &c).unwrap();
             assert_eq!(st.holds(), holds, "{st:?}");
         }
     }

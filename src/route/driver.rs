@@ -6,7 +6,7 @@ use super::dynamics::{Dynamics, Flow, Start};
 use super::outcome::Outcome;
 use super::pose_finder::PoseFinder;
 use super::termination::Reason;
-use crate::scene::{Dynamics as Sections, Scene};
+use crate::scene::{Scene, Simulation};
 use std::ops::ControlFlow;
 
 /// The number of increments of dt that reach `t_end`: the last may be shorter, so that the route
@@ -27,12 +27,12 @@ pub(super) fn increment_end(t_end: f64, dt: f64, k: usize) -> f64 {
 /// Drives model `M` from its start to the end of its route.
 pub(super) fn drive<'a, 's, M: Dynamics<'a>>(
     scene: &'a Scene,
-    sections: &'a Sections<'a>,
+    sections: &'a Simulation,
     finder: &mut PoseFinder<'_>,
     mut progress: impl FnMut(f64) -> ControlFlow<()>,
     outcome: Outcome<'s>,
 ) -> Outcome<'s> {
-    let solver = *sections.solver;
+    let solver = *sections.solver();
     let (mut model, mut o) = match M::start(scene, sections, finder, outcome) {
         Start::Moving(model, o) => (model, o),
         Start::Ended(o) => return o,

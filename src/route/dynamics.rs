@@ -7,7 +7,7 @@
 use super::outcome::Outcome;
 use super::pose_finder::PoseFinder;
 use super::state::Row;
-use crate::scene::{Dynamics as Sections, Scene};
+use crate::scene::{Scene, Simulation};
 
 /// How a start came out: the block moves (the model, ready to advance), or the route ended at
 /// t = 0 (it does not slide, or cannot be started), its row and reason in the outcome.
@@ -28,7 +28,7 @@ pub(super) trait Dynamics<'a>: Sized {
     /// The start at t = 0 from the scene's `[initial]` state, its first row pushed.
     fn start<'s>(
         scene: &'a Scene,
-        sections: &'a Sections<'a>,
+        sections: &'a Simulation,
         finder: &mut PoseFinder<'_>,
         o: Outcome<'s>,
     ) -> Start<'s, Self>;

@@ -23,7 +23,7 @@ pub mod termination;
 
 pub use outcome::EnergyBalance;
 pub use pose_finder::PoseMethod;
-pub use run::{run, run_observed, run_streamed, run_with};
+pub use run::{run, run_observed, run_streamed, run_with, simulate};
 pub use state::{Row, State};
 pub use termination::{Reason, Termination};
 
@@ -114,5 +114,22 @@ mod tests {
         assert_eq!(a, b);
         b.travel_m += 1e-9;
         assert_ne!(a, b, "a result that differs makes them differ");
+    }
+
+    #[test]
+    fn a_simulation_is_checked_once_and_then_runs_without_failing() {
+        // A geometry-only scene has no simulation: the missing section is named.
+        let geometry_only = crate::scene::Scene::from_toml(
+            "[frame]\nl1x = 6.0\nl2x = 4.0\nl1z = 5.0\nl2z = 5.0\n\
+             [foundation]\nxi_deg = 20.0\nzeta_deg = 25.0\nkappa_deg = 30.0\n",
+            "test",
+        )
+        .unwrap();
+        let e = crate::scene::Simulation::new(&geometry_only).unwrap_err();
+        assert_eq!(e.key, "block", "{e}");
+        // A full one runs, infallibly, to the same route as `run`.
+        let scene = crate::scene::Scene::default_scene();
+        let sim = crate::scene::Simulation::new(&scene).unwrap();
+        assert_eq!(simulate(&sim), run(&scene).unwrap());
     }
 }

@@ -11,7 +11,7 @@ use super::state::{Row, State};
 use super::termination::Reason;
 use crate::mechanics::loads::Applied;
 use crate::mechanics::onset::factor_of_safety;
-use crate::scene::{Dynamics as Sections, Integrator, Scene};
+use crate::scene::{Integrator, Scene, Simulation};
 
 fn row(s: &State, ev: Option<&Evaluation>, pose: &crate::geometry::Pose) -> Row {
     Row {
@@ -35,7 +35,7 @@ fn row(s: &State, ev: Option<&Evaluation>, pose: &crate::geometry::Pose) -> Row 
 /// accelerations) at it.
 pub(super) struct Paper<'a> {
     scene: &'a Scene,
-    sections: &'a Sections<'a>,
+    sections: &'a Simulation,
     state: State,
     ev: Evaluation,
 }
@@ -43,7 +43,7 @@ pub(super) struct Paper<'a> {
 impl<'a> Dynamics<'a> for Paper<'a> {
     fn start<'s>(
         scene: &'a Scene,
-        sections: &'a Sections<'a>,
+        sections: &'a Simulation,
         finder: &mut PoseFinder<'_>,
         mut o: Outcome<'s>,
     ) -> Start<'s, Self> {
@@ -77,9 +77,9 @@ impl<'a> Dynamics<'a> for Paper<'a> {
                 return Start::Ended(o.end(reason, 0.0, detail));
             }
         };
-        let applied = Applied::new(sections.loads, sections.block, &ev.geom.frame);
+        let applied = Applied::new(sections.loads(), sections.block(), &ev.geom.frame);
         let (fs, driving, resisting) =
-            factor_of_safety(&ev.geom, &applied, &ev.statics, sections.friction);
+            factor_of_safety(&ev.geom, &applied, &ev.statics, sections.friction());
         o.paper_ratio = fs.is_finite().then_some(fs);
         o.push(row(&state, Some(&ev), &ev.pose));
         if scene.initial.at_rest() && (fs >= 1.0 || ev.reaction.accel <= 0.0) {
@@ -118,8 +118,8 @@ impl<'a> Dynamics<'a> for Paper<'a> {
         let (scene, sections) = (self.scene, self.sections);
         let (state, ev) = (&self.state, &self.ev);
         // The increment ends at t_to (exactly t_end for the last one).
-        let dt = t_to - (k - 1) as f64 * sections.solver.dt;
-        let next = match sections.solver.integrator {
+        let dt = t_to - (k - 1) as f64 * sections.solver().dt;
+        let next = match sections.solver().integrator {
             Integrator::Paper => Ok(paper_step(state, &ev.acc, dt)),
             Integrator::Rk4 => {
                 let base = finder.clone();
@@ -191,9 +191,13 @@ impl<'a> Dynamics<'a> for Paper<'a> {
                     return Flow::Ended(o.finish(self.row(), reason, state.t, detail));
                 }
             };
-            let applied = Applied::new(sections.loads, sections.block, &stop_ev.geom.frame);
-            let (fs_here, _, _) =
-                factor_of_safety(&stop_ev.geom, &applied, &stop_ev.statics, sections.friction);
+            let applied = Applied::new(sections.loads(), sections.block(), &stop_ev.geom.frame);
+            let (fs_here, _, _) = factor_of_safety(
+                &stop_ev.geom,
+                &applied,
+                &stop_ev.statics,
+                sections.friction(),
+            );
             if fs_here >= 1.0 {
                 o.travel += (stop_ev.pose.cm - ev.pose.cm).norm();
                 o.push(row(&stop, Some(&stop_ev), &stop_ev.pose));

@@ -21,7 +21,7 @@ use crate::mechanics::loads::Applied;
 use crate::mechanics::reactions_paper::{self, Reaction, ReactionsError};
 use crate::mechanics::{ContactGeometry, statics};
 use crate::numeric::fixed;
-use crate::scene::{Dynamics, Scene};
+use crate::scene::{Scene, Simulation};
 use nalgebra::Vector3;
 
 /// Everything known at one state.
@@ -69,15 +69,15 @@ pub fn pose_at(scene: &Scene, tracker: &mut PoseFinder<'_>, d: Displacement) -> 
 /// angular velocity (None at rest).
 pub fn evaluate(
     scene: &Scene,
-    dynamics: &Dynamics<'_>,
+    dynamics: &Simulation,
     tracker: &mut PoseFinder<'_>,
     d: Displacement,
     previous: Option<&Reaction>,
     velocity: Option<(Vector3<f64>, Vector3<f64>)>,
 ) -> Result<Evaluation, Stop> {
     let pose = pose_at(scene, tracker, d)?;
-    let geom = ContactGeometry::with_normals(&dynamics.normals, &pose);
-    let applied = Applied::new(dynamics.loads, dynamics.block, &geom.frame);
+    let geom = ContactGeometry::with_normals(dynamics.normals(), &pose);
+    let applied = Applied::new(dynamics.loads(), dynamics.block(), &geom.frame);
     let c = statics::frictionless_normals(&geom, &applied).ok_or_else(|| Stop {
         reason: Reason::NoAdmissibleRoot,
         detail: "the frictionless statics are singular".into(),
@@ -87,10 +87,15 @@ pub fn evaluate(
         detail: e.to_string(),
     };
     let followed = match previous {
-        Some(p) if tracker.method() == PoseMethod::Continuation => {
-            reactions_paper::follow(&geom, &applied, dynamics.block, &c, dynamics.friction, p)
-                .map_err(lift)?
-        }
+        Some(p) if tracker.method() == PoseMethod::Continuation => reactions_paper::follow(
+            &geom,
+            &applied,
+            dynamics.block(),
+            &c,
+            dynamics.friction(),
+            p,
+        )
+        .map_err(lift)?,
         _ => None,
     };
     let (reaction, fresh) = match followed {
@@ -99,9 +104,9 @@ pub fn evaluate(
             let all = reactions_paper::all_solutions(
                 &geom,
                 &applied,
-                dynamics.block,
+                dynamics.block(),
                 &c,
-                dynamics.friction,
+                dynamics.friction(),
             )
             .map_err(lift)?;
             let k = reactions_paper::select(&geom, &all, previous.map(|p| &p.angles), velocity)

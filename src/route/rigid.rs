@@ -31,7 +31,7 @@ use crate::mechanics::ContactGeometry;
 use crate::mechanics::loads::Applied;
 use crate::mechanics::rigid_body::{self, Motion, RigidError};
 use crate::mechanics::static_friction::{self, StaticCheck};
-use crate::scene::{Dynamics as Sections, Scene};
+use crate::scene::{Scene, Simulation};
 use nalgebra::Vector3;
 
 type Y = [f64; 8];
@@ -80,14 +80,14 @@ fn stop_of(e: RigidError) -> Stop {
 /// takes in `Eval::removed`) so that it stays stuck while its cone allows.
 fn evaluate(
     scene: &Scene,
-    dynamics: &Sections<'_>,
+    dynamics: &Simulation,
     finder: &mut PoseFinder<'_>,
     y: &Y,
     stuck: Option<usize>,
 ) -> Result<Eval, Stop> {
     let pose = pose_at(scene, finder, displacement(y))?;
-    let geom = ContactGeometry::with_normals(&dynamics.normals, &pose);
-    let applied = Applied::new(dynamics.loads, dynamics.block, &geom.frame);
+    let geom = ContactGeometry::with_normals(dynamics.normals(), &pose);
+    let applied = Applied::new(dynamics.loads(), dynamics.block(), &geom.frame);
     let mut rates = [y[3], y[4], y[5]];
     let mut removed = 0.0;
     if let Some(i) = stuck {
@@ -95,15 +95,15 @@ fn evaluate(
         // cone no longer holding it (the release, which `accelerations` sees after this
         // projection), never by the integrator's drift, however long the step.
         (rates, removed) =
-            rigid_body::pivot_rates(&geom, dynamics.block, rates, i).map_err(stop_of)?;
+            rigid_body::pivot_rates(&geom, dynamics.block(), rates, i).map_err(stop_of)?;
     }
     let motion = rigid_body::accelerations_slaved(
         &geom,
         &applied,
-        dynamics.block,
-        dynamics.friction,
+        dynamics.block(),
+        dynamics.friction(),
         rates,
-        dynamics.solver.dt,
+        dynamics.solver().dt,
     )
     .map_err(stop_of)?;
     Ok(Eval {
@@ -123,7 +123,7 @@ fn evaluate(
 /// plane through the pose), a move of the size of the integrator's error.
 fn hold(
     scene: &Scene,
-    dynamics: &Sections<'_>,
+    dynamics: &Simulation,
     finder: &mut PoseFinder<'_>,
     y: &Y,
     ev: Eval,
@@ -138,7 +138,7 @@ fn hold(
         if r[0].hypot(r[1]) <= 1e-14 * l || ev.motion.stuck != Some(i) {
             break;
         }
-        let geom = ContactGeometry::with_normals(&dynamics.normals, &ev.pose);
+        let geom = ContactGeometry::with_normals(dynamics.normals(), &ev.pose);
         // The contact's horizontal velocity for unit (Ẋ, Ż, L θ̇): rows X and Z.
         let v = rigid_body::contact_velocity_map(&geom, l, i).map_err(stop_of)?;
         let j = [v.map(|c| c.x), v.map(|c| c.z)];
@@ -247,7 +247,7 @@ impl Heading<'_> {
 /// nothing (its later stages push on with friction turned round).
 fn rk4(
     scene: &Scene,
-    dynamics: &Sections<'_>,
+    dynamics: &Simulation,
     finder: &PoseFinder<'_>,
     y: &Y,
     k1: &Y,
@@ -305,9 +305,9 @@ fn rest_row(t: f64, y: &Y, pose: &Pose) -> Row {
 }
 
 /// The static check at a pose.
-fn static_check(dynamics: &Sections<'_>, geom: &ContactGeometry) -> Result<StaticCheck, Stop> {
-    let applied = Applied::new(dynamics.loads, dynamics.block, &geom.frame);
-    static_friction::at_rest(geom, &applied, dynamics.friction).map_err(|err| Stop {
+fn static_check(dynamics: &Simulation, geom: &ContactGeometry) -> Result<StaticCheck, Stop> {
+    let applied = Applied::new(dynamics.loads(), dynamics.block(), &geom.frame);
+    static_friction::at_rest(geom, &applied, dynamics.friction()).map_err(|err| Stop {
         reason: Reason::ContactForcesUndetermined,
         detail: err.to_string(),
     })
@@ -342,7 +342,7 @@ struct Bracket {
 /// meets an event of `heading` (at its end or at one of its stages) nor fails.
 fn bracket_event(
     scene: &Scene,
-    sections: &Sections<'_>,
+    sections: &Simulation,
     finder: &PoseFinder<'_>,
     (y, k1): (&Y, &Y),
     (h, end): (f64, Y),
@@ -363,7 +363,7 @@ fn bracket_event(
         found: None,
     };
     for _ in 0..60 {
-        if b.hi - b.lo <= 1e-12 * sections.solver.dt {
+        if b.hi - b.lo <= 1e-12 * sections.solver().dt {
             break;
         }
         let mid = 0.5 * (b.lo + b.hi);
@@ -417,7 +417,7 @@ fn anchor_of(ev: &Eval, anchor: Option<(usize, Vector3<f64>)>) -> Option<(usize,
 /// energy balance and the stick hold need. A [`Dynamics`] the driver (`driver.rs`) runs.
 pub(super) struct RigidBody<'a> {
     scene: &'a Scene,
-    sections: &'a Sections<'a>,
+    sections: &'a Simulation,
     y: Y,
     t: f64,
     ev: Eval,
@@ -439,7 +439,7 @@ pub(super) struct RigidBody<'a> {
 
 impl RigidBody<'_> {
     fn balance(&self, y: &Y, e: &Eval) -> EnergyBalance {
-        let (mass, g) = (self.sections.block.mass, self.sections.loads.gravity);
+        let (mass, g) = (self.sections.block().mass, self.sections.loads().gravity);
         energy(
             y,
             e.motion.twist.kinetic_energy(mass, &e.motion.inertia),
@@ -454,11 +454,11 @@ impl RigidBody<'_> {
 impl<'a> Dynamics<'a> for RigidBody<'a> {
     fn start<'s>(
         scene: &'a Scene,
-        sections: &'a Sections<'a>,
+        sections: &'a Simulation,
         finder: &mut PoseFinder<'_>,
         mut o: Outcome<'s>,
     ) -> Start<'s, Self> {
-        let mass = sections.block.mass;
+        let mass = sections.block().mass;
         let init = scene.initial;
         let y: Y = [0.0, 0.0, 0.0, init.vx, init.vz, init.omega, 0.0, 0.0];
         // The start: at rest, held or not by static friction (decided before any acceleration
@@ -514,9 +514,9 @@ impl<'a> Dynamics<'a> for RigidBody<'a> {
                 ev,
                 anchor,
                 ke_max: 0.0,
-                h: sections.solver.dt,
+                h: sections.solver().dt,
                 origin,
-                round_off: 64.0 * f64::EPSILON * mass * sections.loads.gravity * scene.l(),
+                round_off: 64.0 * f64::EPSILON * mass * sections.loads().gravity * scene.l(),
             },
             o,
         )
@@ -553,8 +553,8 @@ impl RigidBody<'_> {
         mut o: Outcome<'s>,
     ) -> Flow<'s> {
         let (scene, sections) = (self.scene, self.sections);
-        let dt = sections.solver.dt;
-        let (mass, g) = (sections.block.mass, sections.loads.gravity);
+        let dt = sections.solver().dt;
+        let (mass, g) = (sections.block().mass, sections.loads().gravity);
         let (start, round_off) = (self.origin, self.round_off);
         let (mut y, mut t, mut ev) = (self.y, self.t, self.ev);
         let (mut anchor, mut ke_max, mut h) = (self.anchor, self.ke_max, self.h);
@@ -738,7 +738,7 @@ impl RigidBody<'_> {
             };
             o.travel += (stop_pose.cm - ev.pose.cm).norm();
             o.increments = k;
-            let geom = ContactGeometry::with_normals(&sections.normals, &stop_pose);
+            let geom = ContactGeometry::with_normals(sections.normals(), &stop_pose);
             let check = match static_check(sections, &geom) {
                 Ok(c) => c,
                 Err(Stop { reason, detail }) => return Flow::Ended(o.end(reason, t, detail)),

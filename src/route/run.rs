@@ -11,14 +11,26 @@ use super::state::Row;
 use crate::mechanics::ContactGeometry;
 use crate::mechanics::loads::Applied;
 use crate::mechanics::static_friction;
-use crate::scene::{DynamicsModel, Scene, SceneError};
+use crate::scene::{DynamicsModel, Scene, SceneError, Simulation};
 use std::ops::ControlFlow;
 use std::time::Instant;
 
 /// Runs the route of a scene (which needs its `[block]`, `[loads]`, `[friction]` and
-/// `[solver]` sections).
+/// `[solver]` sections): [`simulate`] on the scene's [`Simulation`], whose building is the
+/// only thing that can fail.
 pub fn run(scene: &Scene) -> Result<Route, SceneError> {
     run_observed(scene, |_| ControlFlow::Continue(()))
+}
+
+/// The route of a simulation, checked when it was built: nothing here can fail, every end is a
+/// [`Reason`](super::Reason).
+pub fn simulate(sim: &Simulation) -> Route {
+    drive(
+        sim,
+        PoseMethod::Continuation,
+        |_| ControlFlow::Continue(()),
+        Outcome::new(None, 1),
+    )
 }
 
 /// [`run`], calling `progress(t / t_end)` after every increment (for progress bars); when it
@@ -37,7 +49,8 @@ pub fn run_with(
     method: PoseMethod,
     progress: impl FnMut(f64) -> ControlFlow<()>,
 ) -> Result<Route, SceneError> {
-    drive(scene, method, progress, Outcome::new(None, 1))
+    let sim = Simulation::new(scene)?;
+    Ok(drive(&sim, method, progress, Outcome::new(None, 1)))
 }
 
 /// [`run_observed`] for routes of any length in bounded memory (issue #13): every row goes to
@@ -49,40 +62,41 @@ pub fn run_streamed(
     keep_every: usize,
     mut sink: impl FnMut(&Row),
 ) -> Result<Route, SceneError> {
-    drive(
-        scene,
+    let sim = Simulation::new(scene)?;
+    Ok(drive(
+        &sim,
         PoseMethod::Continuation,
         progress,
         Outcome::new(Some(&mut sink), keep_every),
-    )
+    ))
 }
 
 fn drive(
-    scene: &Scene,
+    dynamics: &Simulation,
     method: PoseMethod,
     progress: impl FnMut(f64) -> ControlFlow<()>,
     outcome: Outcome<'_>,
-) -> Result<Route, SceneError> {
+) -> Route {
     let started = Instant::now();
-    let dynamics = scene.require_dynamics()?;
-    let solver = *dynamics.solver;
+    let scene = dynamics.scene();
+    let solver = *dynamics.solver();
     let mut finder = PoseFinder::new(scene, solver.mode, method);
     let start_pose = finder.pose();
     // One driver; the model is the only difference.
     let mut o = match solver.dynamics {
         DynamicsModel::Paper => {
-            drive_model::<Paper>(scene, &dynamics, &mut finder, progress, outcome)
+            drive_model::<Paper>(scene, dynamics, &mut finder, progress, outcome)
         }
         DynamicsModel::RigidBody => {
-            drive_model::<RigidBody>(scene, &dynamics, &mut finder, progress, outcome)
+            drive_model::<RigidBody>(scene, dynamics, &mut finder, progress, outcome)
         }
     };
     if o.fs.is_none() {
         // One factor of safety whatever the dynamics: the friction cones' at the start.
         o.fs = start_pose.and_then(|pose| {
-            let geom = ContactGeometry::with_normals(&dynamics.normals, &pose);
-            let applied = Applied::new(dynamics.loads, dynamics.block, &geom.frame);
-            static_friction::at_rest(&geom, &applied, dynamics.friction)
+            let geom = ContactGeometry::with_normals(dynamics.normals(), &pose);
+            let applied = Applied::new(dynamics.loads(), dynamics.block(), &geom.frame);
+            static_friction::at_rest(&geom, &applied, dynamics.friction())
                 .ok()
                 .map(|c| c.factor_of_safety())
         });
@@ -90,7 +104,7 @@ fn drive(
     if solver.dynamics == DynamicsModel::Paper {
         paper::explain_end(&mut o);
     }
-    Ok(Route {
+    Route {
         scene: scene.name.clone(),
         mode: solver.mode,
         integrator: solver.integrator,
@@ -109,5 +123,5 @@ fn drive(
             end_jacobian_condition: finder.jacobian_condition(),
             wall_s: started.elapsed().as_secs_f64(),
         },
-    })
+    }
 }

@@ -56,7 +56,7 @@ fn good_scene_loads_in_radians() {
     assert_eq!(s.name, "t");
     assert!((s.foundation.xi - 20f64.to_radians()).abs() < 1e-15);
     assert_eq!(s.l(), 10.0);
-    assert!(s.require_dynamics().is_ok());
+    assert!(crate::scene::Simulation::new(&s).is_ok());
     assert_eq!(s.solver.unwrap().mode, Mode::Exact);
 }
 
@@ -82,7 +82,7 @@ fn integers_are_accepted_for_numbers() {
 fn geometry_only_scene_loads_but_cannot_simulate() {
     let text = GOOD.split("[block]").next().unwrap();
     let s = Scene::from_toml(text, "geo.toml").unwrap();
-    let e = s.require_dynamics().unwrap_err();
+    let e = crate::scene::Simulation::new(&s).unwrap_err();
     assert_eq!(e.key, "block");
     assert!(e.to_string().contains("missing section [block]"));
 }
@@ -462,11 +462,11 @@ fn rigid_body_with_small_angle_geometry_is_refused_naming_the_mode() {
     // refused with the reason, and the paper's dynamics keep the small-angle system.
     let small = with("mode = \"exact\"", "mode = \"small-angle\"");
     let s = Scene::from_toml(&small, "s.toml").unwrap();
-    let e = s.require_dynamics().unwrap_err();
+    let e = crate::scene::Simulation::new(&s).unwrap_err();
     assert_eq!(e.key, "solver.mode");
     assert!(e.to_string().contains("needs mode = \"exact\""), "{e}");
     let paper = s.with_dynamics(DynamicsModel::Paper);
-    assert!(paper.require_dynamics().is_ok());
+    assert!(crate::scene::Simulation::new(&paper).is_ok());
 }
 
 #[test]

@@ -16,8 +16,8 @@ fn at(scene: &Scene, d: Displacement) -> (ContactGeometry, Applied, [f64; 3]) {
     let p = roots::select(scene, d, Mode::Exact).expect("pose");
     let pose = roots::classify::pose(scene, d, Mode::Exact, p.u).unwrap();
     let geom = ContactGeometry::new(scene, &pose);
-    let dy = scene.require_dynamics().unwrap();
-    let applied = Applied::new(dy.loads, dy.block, &geom.frame);
+    let dy = slideroute::stages::scene::Simulation::new(scene).unwrap();
+    let applied = Applied::new(dy.loads(), dy.block(), &geom.frame);
     let c = statics::frictionless_normals(&geom, &applied).expect("statics");
     (geom, applied, c)
 }
@@ -30,8 +30,9 @@ fn paper_like(mu: f64) -> Scene {
 
 fn solutions(scene: &Scene, d: Displacement) -> (ContactGeometry, Applied, Vec<Reaction>) {
     let (geom, applied, c) = at(scene, d);
-    let dy = scene.require_dynamics().unwrap();
-    let sols = reactions_paper::all_solutions(&geom, &applied, dy.block, &c, dy.friction).unwrap();
+    let dy = slideroute::stages::scene::Simulation::new(scene).unwrap();
+    let sols =
+        reactions_paper::all_solutions(&geom, &applied, dy.block(), &c, dy.friction()).unwrap();
     (geom, applied, sols)
 }
 

@@ -636,7 +636,7 @@ fn scene_cmd(print_default: bool, check: Option<&PathBuf>) -> Result<(), CliErro
         }
         (false, Some(p)) => {
             let s = Scene::from_file(p).map_err(|e| bad_input(e.to_string()))?;
-            let sections = match s.require_dynamics() {
+            let sections = match slideroute::stages::scene::Simulation::new(&s) {
                 Ok(_) => "all sections",
                 Err(e) if e.reason.starts_with("missing section") => {
                     "geometry only (frame, foundation)"
