@@ -2,7 +2,7 @@
 //!
 //! Needs the cross-check's Python environment: `crosscheck/setup.sh` (pydrake in
 //! `crosscheck/.venv`; or set `SLIDEROUTE_DRAKE_PYTHON` to a Python that has it). `.ci/run`
-//! sets it up and runs these with `cargo test --test integration drake_crosscheck -- --ignored`.
+//! sets it up and runs these with `cargo test --workspace drake_crosscheck -- --ignored`.
 //! Without the environment the tests fail with that instruction (they never pass silently).
 //!
 //! Each scene is compared until our route ends; where it ends before the horizon, Drake's path

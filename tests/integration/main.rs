@@ -4,7 +4,7 @@
 //! `tests/reference/` (the stored routes).
 //!
 //! The Drake cross-check is `#[ignore]`d here and run by CI after `crosscheck/setup.sh`:
-//! `cargo test --test integration drake_crosscheck -- --ignored`.
+//! `cargo test --workspace drake_crosscheck -- --ignored`.
 
 mod common;
 
