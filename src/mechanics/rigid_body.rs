@@ -939,11 +939,8 @@ mod tests {
 
     #[test]
     fn frictionless_accelerations_keep_contact_accelerations_on_the_planes() {
-        let scene = Scene::from_toml(
-            &crate::scene::DEFAULT_SCENE_TOML.replace("mu_k = 0.40", "mu_k = 0.0"),
-            "t",
-        )
-        .unwrap();
+        let mut scene = Scene::default_scene();
+        scene.friction = Some(crate::scene::Friction::Coulomb { mu_k: 0.0 });
         let d = crate::scene::Simulation::new(&scene).unwrap();
         let geom = at(&scene, Displacement::new(0.7, 0.2, 0.1));
         let applied = Applied::new(d.loads(), d.block(), &geom.frame);
@@ -1004,11 +1001,8 @@ mod tests {
         // hold it starts to slip along d with its friction −μλ d, where the tangential
         // acceleration this gives points along d itself (a_t ∥ d, a_t·d ≥ 0). Checked by
         // recomputing a_t from the returned accelerations.
-        let scene = Scene::from_toml(
-            &crate::scene::DEFAULT_SCENE_TOML.replace("mu_k = 0.40", "mu_k = 0.05"),
-            "t",
-        )
-        .unwrap();
+        let mut scene = Scene::default_scene();
+        scene.friction = Some(crate::scene::Friction::Coulomb { mu_k: 0.05 });
         let d = crate::scene::Simulation::new(&scene).unwrap();
         let geom = at(&scene, Displacement::new(0.5, 0.1, 0.05));
         let applied = Applied::new(d.loads(), d.block(), &geom.frame);

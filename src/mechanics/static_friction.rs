@@ -254,8 +254,10 @@ mod tests {
     use crate::mechanics::statics::frictionless_normals;
     use crate::scene::Scene;
 
-    fn start(toml: &str) -> (Scene, ContactGeometry) {
-        let s = Scene::from_toml(toml, "t").unwrap();
+    /// The default scene changed by `edit`, and its contact geometry at the start.
+    fn start(edit: impl FnOnce(&mut Scene)) -> (Scene, ContactGeometry) {
+        let mut s = Scene::default_scene();
+        edit(&mut s);
         let pose = Pose::from_tilts(&s.site(), Default::default(), 0.0, 0.0).unwrap();
         let g = ContactGeometry::new(&s, &pose);
         (s, g)
@@ -265,11 +267,11 @@ mod tests {
     fn a_flat_block_without_couple_is_held_up_to_mu_times_weight() {
         // Nearly flat planes, no eccentricity: the held force is μ W (the planes' normals lean
         // by 0.01°, which changes it by O(1e-4)).
-        let toml = crate::scene::DEFAULT_SCENE_TOML
-            .replace("xi_deg = 20.0", "xi_deg = 0.01")
-            .replace("zeta_deg = 25.0", "zeta_deg = 0.01")
-            .replace("eccentricity_m = 1.0", "eccentricity_m = 0.0");
-        let (s, g) = start(&toml);
+        let (s, g) = start(|s| {
+            s.foundation.xi = 0.01f64.to_radians();
+            s.foundation.zeta = 0.01f64.to_radians();
+            s.loads.as_mut().unwrap().eccentricity = 0.0;
+        });
         let d = crate::scene::Simulation::new(&s).unwrap();
         let applied = Applied::new(d.loads(), d.block(), &g.frame);
         let c = frictionless_normals(&g, &applied).unwrap();
@@ -285,10 +287,8 @@ mod tests {
 
     #[test]
     fn high_friction_holds_and_zero_friction_does_not() {
-        let hold = crate::scene::DEFAULT_SCENE_TOML.replace("mu_k = 0.40", "mu_k = 2.0");
-        let slip = crate::scene::DEFAULT_SCENE_TOML.replace("mu_k = 0.40", "mu_k = 0.0");
-        for (toml, holds) in [(hold, true), (slip, false)] {
-            let (s, g) = start(&toml);
+        for (mu_k, holds) in [(2.0, true), (0.0, false)] {
+            let (s, g) = start(|s| s.friction = Some(crate::scene::Friction::Coulomb { mu_k }));
             let d = crate::scene::Simulation::new(&s).unwrap();
             let applied = Applied::new(d.loads(), d.block(), &g.frame);
             let c = frictionless_normals(&g, &applied).unwrap();

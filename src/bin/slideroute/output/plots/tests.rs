@@ -79,21 +79,11 @@ fn temp_dir(name: &str) -> TempDir {
     TempDir(dir)
 }
 
-/// The default scene with `t_end_s` and the hydraulic force replaced.
+/// The default scene with `t_end` (s) and the hydraulic force (N) replaced.
 fn scene_with(t_end: f64, force: f64) -> Scene {
-    let text = slideroute::stages::scene::DEFAULT_SCENE_TOML
-        .replace("t_end_s = 20.0", &format!("t_end_s = {t_end:?}"))
-        .replace(
-            "hydraulic_force_n = 8.0e6",
-            &format!("hydraulic_force_n = {force:?}"),
-        );
-    let scene = Scene::from_toml(&text, "test").unwrap();
-    assert_eq!(
-        scene.solver.as_ref().unwrap().t_end,
-        t_end,
-        "t_end not replaced"
-    );
-    assert_eq!(scene.loads.as_ref().unwrap().hydraulic_force, force);
+    let mut scene = Scene::default_scene();
+    scene.solver.as_mut().unwrap().t_end = t_end;
+    scene.loads.as_mut().unwrap().hydraulic_force = force;
     scene
 }
 
