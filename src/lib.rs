@@ -28,7 +28,7 @@
 //! let all = slideroute::solve_all(&scene, d, Mode::Exact).unwrap(); // every root, classified
 //! let mut tracker = Tracker::new(&scene, Mode::Exact);
 //! let here = tracker.advance(d).unwrap(); // u = (α, ψ) on the physical branch
-//! let oracle = slideroute::direct_pose(&scene.site(), d).unwrap();
+//! let oracle = slideroute::direct_pose(&scene.site, d).unwrap();
 //! assert!((here.u[0] - oracle.alpha(scene.l())).abs() < 1e-9 && !all.roots.is_empty());
 //! ```
 //!

@@ -46,7 +46,7 @@ impl FoundationTrig {
     }
 
     pub fn new(scene: &Scene) -> Self {
-        let g = &scene.foundation;
+        let g = &scene.site.foundation;
         let (sk, ck) = g.kappa.sin_cos();
         FoundationTrig {
             sk,
@@ -69,7 +69,7 @@ impl CoeffInputs {
     /// c = cos(θ/2): sin θ = 2sc, 1 − cos θ = 2s², cos κ − cos(θ + κ) = 2s·sin(θ/2 + κ) and
     /// sin(θ + κ) − sin κ = 2s·cos(θ/2 + κ), the half-angle sums expanded by κ's sine and cosine.
     pub fn with_trig(scene: &Scene, trig: &FoundationTrig, d: Displacement) -> Self {
-        let f = &scene.frame;
+        let f = &scene.site.frame;
         let (s_half, c_half) = (0.5 * d.theta).sin_cos();
         let FoundationTrig {
             sk,

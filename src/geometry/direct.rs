@@ -163,7 +163,7 @@ mod tests {
     #[test]
     fn start_is_the_flat_frame() {
         let s = Scene::default_scene();
-        let p = solve(&s.site(), Displacement::default()).unwrap();
+        let p = solve(&s.site, Displacement::default()).unwrap();
         assert!(p.tilt.abs() < 1e-15 && p.roll.abs() < 1e-15 && p.cm_y.abs() < 1e-15);
     }
 
@@ -171,7 +171,7 @@ mod tests {
     fn pure_forward_slide_lifts_vertex_1_onto_plane_1() {
         // Sliding forward by X with θ = 0: vertex 1 climbs plane 1, vertex 0 stays down.
         let s = Scene::default_scene();
-        let p = solve(&s.site(), Displacement::new(0.5, 0.0, 0.0)).unwrap();
+        let p = solve(&s.site, Displacement::new(0.5, 0.0, 0.0)).unwrap();
         let l = s.l();
         assert!(p.residual < 1e-12 * l);
         assert!(p.vertices[0].y.abs() < 1e-12);

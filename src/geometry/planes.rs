@@ -65,20 +65,20 @@ mod tests {
     #[test]
     fn start_vertices_lie_on_the_strike_lines() {
         let scene = Scene::default_scene();
-        let v = scene.frame.vertices();
+        let v = scene.site.frame.vertices();
         // Vertex 1 on int. line 1/horiz, vertex 2 on int. line 2/horiz: both heights zero.
-        assert!(height(&scene.site(), Plane::One, v[1][0], v[1][1]).abs() < 1e-12);
-        assert!(height(&scene.site(), Plane::Two, v[2][0], v[2][1]).abs() < 1e-12);
+        assert!(height(&scene.site, Plane::One, v[1][0], v[1][1]).abs() < 1e-12);
+        assert!(height(&scene.site, Plane::Two, v[2][0], v[2][1]).abs() < 1e-12);
     }
 
     #[test]
     fn normals_are_unit_and_orthogonal_to_the_planes() {
         let scene = Scene::default_scene();
         for plane in [Plane::Horizontal, Plane::One, Plane::Two] {
-            let n = normal(&scene.site(), plane);
+            let n = normal(&scene.site, plane);
             assert!((n.norm() - 1.0).abs() < 1e-15);
             // Two points of the plane: the difference is orthogonal to n.
-            let p = |x: f64, z: f64| Vector3::new(x, height(&scene.site(), plane, x, z), z);
+            let p = |x: f64, z: f64| Vector3::new(x, height(&scene.site, plane, x, z), z);
             let d1 = p(7.0, 1.0) - p(5.0, -2.0);
             assert!(n.dot(&d1).abs() < 1e-12);
         }

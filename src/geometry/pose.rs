@@ -170,8 +170,8 @@ mod tests {
     #[test]
     fn flat_pose_puts_vertices_at_their_start_positions() {
         let s = scene();
-        let p = Pose::from_tilts(&s.site(), Displacement::default(), 0.0, 0.0).unwrap();
-        for (v, r) in p.vertices.iter().zip(s.frame.vertices()) {
+        let p = Pose::from_tilts(&s.site, Displacement::default(), 0.0, 0.0).unwrap();
+        for (v, r) in p.vertices.iter().zip(s.site.frame.vertices()) {
             assert!((v - Vector3::new(r[0], 0.0, r[1])).norm() < 1e-14);
         }
         assert!((p.h - std::f64::consts::FRAC_PI_4).abs() < 1e-15);
@@ -182,8 +182,8 @@ mod tests {
         let s = scene();
         let d = Displacement::new(0.8, -0.4, 0.2);
         for &(alpha, psi) in &[(0.05, 0.02), (0.3, -0.25), (0.6, 0.9)] {
-            let a = Pose::from_tilt_roll(&s.site(), d, alpha, psi).unwrap();
-            let b = Pose::from_tilts(&s.site(), d, alpha, a.beta).unwrap();
+            let a = Pose::from_tilt_roll(&s.site, d, alpha, psi).unwrap();
+            let b = Pose::from_tilts(&s.site, d, alpha, a.beta).unwrap();
             for (u, v) in a.vertices.iter().zip(&b.vertices) {
                 assert!((u - v).norm() < 1e-12, "{u} vs {v}");
             }
@@ -204,9 +204,9 @@ mod tests {
     #[test]
     fn tilts_without_a_real_frame_are_an_error() {
         let s = scene();
-        let e = Pose::from_tilts(&s.site(), Displacement::default(), 1.5, -1.5);
+        let e = Pose::from_tilts(&s.site, Displacement::default(), 1.5, -1.5);
         assert!(matches!(e, Err(GeometryError::NoRealFrame(_))));
-        let e = Pose::from_tilts(&s.site(), Displacement::default(), f64::NAN, 0.0);
+        let e = Pose::from_tilts(&s.site, Displacement::default(), f64::NAN, 0.0);
         assert!(matches!(e, Err(GeometryError::NonFinite(_))));
     }
 }

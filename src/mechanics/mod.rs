@@ -35,7 +35,7 @@ impl ContactGeometry {
 
     /// The upward unit normals of the planes carrying vertices 0, 1, 2.
     pub fn plane_normals(scene: &Scene) -> [Vector3<f64>; 3] {
-        scene.foundation.normals()
+        scene.site.foundation.normals()
     }
 
     /// With the [`ContactGeometry::plane_normals`] computed before (as

@@ -258,7 +258,7 @@ mod tests {
     fn start(edit: impl FnOnce(&mut Scene)) -> (Scene, ContactGeometry) {
         let mut s = Scene::default_scene();
         edit(&mut s);
-        let pose = Pose::from_tilts(&s.site(), Default::default(), 0.0, 0.0).unwrap();
+        let pose = Pose::from_tilts(&s.site, Default::default(), 0.0, 0.0).unwrap();
         let g = ContactGeometry::new(&s, &pose);
         (s, g)
     }
@@ -268,8 +268,8 @@ mod tests {
         // Nearly flat planes, no eccentricity: the held force is μ W (the planes' normals lean
         // by 0.01°, which changes it by O(1e-4)).
         let (s, g) = start(|s| {
-            s.foundation.xi = 0.01f64.to_radians();
-            s.foundation.zeta = 0.01f64.to_radians();
+            s.site.foundation.xi = 0.01f64.to_radians();
+            s.site.foundation.zeta = 0.01f64.to_radians();
             s.loads.as_mut().unwrap().eccentricity = 0.0;
         });
         let d = crate::scene::Simulation::new(&s).unwrap();

@@ -66,8 +66,8 @@ pub const REGION_TOL: f64 = 1e-8;
 /// The placed frame for a point of the chosen mode: u = (α, β) or (α, ψ).
 pub fn pose(scene: &Scene, d: Displacement, mode: Mode, u: [f64; 2]) -> Option<Pose> {
     match mode {
-        Mode::SmallAngle => Pose::from_tilts(&scene.site(), d, u[0], u[1]).ok(),
-        Mode::Exact => Pose::from_tilt_roll(&scene.site(), d, u[0], u[1]).ok(),
+        Mode::SmallAngle => Pose::from_tilts(&scene.site, d, u[0], u[1]).ok(),
+        Mode::Exact => Pose::from_tilt_roll(&scene.site, d, u[0], u[1]).ok(),
     }
 }
 
@@ -86,7 +86,7 @@ pub fn check_pose_within(
     p: &Pose,
     region_tol: f64,
 ) -> Result<(), Inadmissible> {
-    let g = &scene.foundation;
+    let g = &scene.site.foundation;
     let l = scene.l();
     let tol = region_tol * l;
     // sin α and α agree to round-off at these angles (about 1e-8 rad): no asin.
@@ -100,15 +100,15 @@ pub fn check_pose_within(
     if p.beta.is_nan() || p.beta >= g.zeta {
         return Err(Inadmissible::BetaOutOfRange);
     }
-    let (l2x, r2) = (scene.frame.l2x, r(&scene.site()));
+    let (l2x, r2) = (scene.site.frame.l2x, r(&scene.site));
     let [p0, p1, p2] = p.vertices;
-    if p0.x > l2x + tol || along_dip_2(&scene.site(), p0.x, p0.z) > r2 + tol {
+    if p0.x > l2x + tol || along_dip_2(&scene.site, p0.x, p0.z) > r2 + tol {
         return Err(Inadmissible::Contact0ReachedInclinedPlane);
     }
     if p1.x < l2x - tol {
         return Err(Inadmissible::Contact1LeftPlane1);
     }
-    if along_dip_2(&scene.site(), p2.x, p2.z) < r2 - tol {
+    if along_dip_2(&scene.site, p2.x, p2.z) < r2 - tol {
         return Err(Inadmissible::Contact2LeftPlane2);
     }
     if p.alpha < alpha_min {

@@ -69,7 +69,7 @@ impl Equations {
 
 /// Scales of the unknowns for the all-roots solver (see the module docs).
 pub fn unknown_scales(scene: &Scene, mode: Mode) -> (f64, f64) {
-    let g = &scene.foundation;
+    let g = &scene.site.foundation;
     match mode {
         Mode::SmallAngle => (g.xi.tan(), g.zeta.tan()),
         Mode::Exact => ((g.xi / 2.0).tan(), (g.xi.max(g.zeta) / 2.0).tan()),
@@ -101,7 +101,7 @@ pub fn perfect_squares(scene: &Scene, d: Displacement, mode: Mode) -> [bool; 2] 
     match mode {
         Mode::SmallAngle => [
             d.theta.sin().abs() < 1e-12,
-            (d.theta + scene.foundation.kappa).sin().abs() < 1e-12,
+            (d.theta + scene.site.foundation.kappa).sin().abs() < 1e-12,
         ],
         Mode::Exact => [false, false],
     }

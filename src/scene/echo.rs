@@ -21,7 +21,7 @@ impl Scene {
         let f = Value::Float;
         let mut t = Table::new();
         t.insert("name".into(), Value::String(self.name.clone()));
-        let fr = &self.frame;
+        let fr = &self.site.frame;
         t.insert(
             "frame".into(),
             table(&[
@@ -31,7 +31,7 @@ impl Scene {
                 ("l2z", f(fr.l2z)),
             ]),
         );
-        let g = &self.foundation;
+        let g = &self.site.foundation;
         t.insert(
             "foundation".into(),
             table(&[
@@ -120,12 +120,12 @@ mod tests {
         let s = Scene::default_scene();
         let text = toml::to_string(&s.as_used()).unwrap();
         let back = Scene::from_toml(&text, "echo").unwrap();
-        assert_eq!(back.frame, s.frame);
+        assert_eq!(back.site.frame, s.site.frame);
         assert_eq!(back.block, s.block);
         assert_eq!(back.loads, s.loads);
         assert_eq!(back.solver, s.solver);
-        assert!((back.foundation.xi - s.foundation.xi).abs() < 1e-15);
-        assert!((back.foundation.kappa - s.foundation.kappa).abs() < 1e-15);
+        assert!((back.site.foundation.xi - s.site.foundation.xi).abs() < 1e-15);
+        assert!((back.site.foundation.kappa - s.site.foundation.kappa).abs() < 1e-15);
         let used = s.as_used();
         assert_eq!(used["solver"]["dynamics"].as_str(), Some("rigid-body"));
         assert_eq!(used["block"]["inertia_x_kg_m2"].as_float(), Some(5.5e6));

@@ -185,8 +185,9 @@ pub struct Scene {
     pub name: String,
     /// Where the scene came from (file path or [`DEFAULT_ORIGIN`]), used in error messages.
     pub origin: String,
-    pub frame: Frame,
-    pub foundation: Foundation,
+    /// The contact frame and the foundation: all that geometry, the coefficients and the roots
+    /// take of a scene.
+    pub site: Site,
     pub block: Option<Block>,
     pub loads: Option<Loads>,
     pub friction: Option<Friction>,
@@ -243,7 +244,7 @@ impl Simulation {
             loads,
             friction,
             settings,
-            normals: scene.foundation.normals(),
+            normals: scene.site.foundation.normals(),
         })
     }
 
@@ -321,15 +322,7 @@ impl Scene {
 
     /// Side length L (m).
     pub fn l(&self) -> f64 {
-        self.frame.l()
-    }
-
-    /// The frame and the foundation: all that geometry needs of the scene.
-    pub fn site(&self) -> Site {
-        Site {
-            frame: self.frame,
-            foundation: self.foundation,
-        }
+        self.site.frame.l()
     }
 
     /// Values that are valid but likely mistakes, one line each naming the key (issue #13): a
@@ -337,8 +330,8 @@ impl Scene {
     pub fn warnings(&self) -> Vec<String> {
         let mut w = Vec::new();
         for (key, dip) in [
-            ("foundation.xi_deg", self.foundation.xi),
-            ("foundation.zeta_deg", self.foundation.zeta),
+            ("foundation.xi_deg", self.site.foundation.xi),
+            ("foundation.zeta_deg", self.site.foundation.zeta),
         ] {
             let deg = dip.to_degrees();
             if deg < 1.0 {
@@ -743,8 +736,7 @@ fn validate(raw: raw::RawScene, o: &str) -> Result<Scene, SceneError> {
     Ok(Scene {
         name: raw.name.unwrap_or_else(|| "unnamed".to_string()),
         origin: o.to_string(),
-        frame,
-        foundation,
+        site: Site { frame, foundation },
         block,
         loads,
         friction,

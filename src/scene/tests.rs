@@ -54,7 +54,7 @@ fn assert_names(text: &str, key: &str, why: &str) {
 fn good_scene_loads_in_radians() {
     let s = Scene::from_toml(GOOD, "dam.toml").unwrap();
     assert_eq!(s.name, "t");
-    assert!((s.foundation.xi - 20f64.to_radians()).abs() < 1e-15);
+    assert!((s.site.foundation.xi - 20f64.to_radians()).abs() < 1e-15);
     assert_eq!(s.l(), 10.0);
     assert!(crate::scene::Simulation::new(&s).is_ok());
     assert_eq!(s.solver.unwrap().mode, Mode::Exact);
@@ -75,7 +75,7 @@ fn embedded_and_example_scenes_are_valid() {
 #[test]
 fn integers_are_accepted_for_numbers() {
     let s = Scene::from_toml(&with("l1x = 6.0", "l1x = 6"), "d").unwrap();
-    assert_eq!(s.frame.l1x, 6.0);
+    assert_eq!(s.site.frame.l1x, 6.0);
 }
 
 #[test]

@@ -58,7 +58,7 @@ proptest! {
                 prop_assert!(g.is_some(), "eq {}: no generated term {}", eq, name);
                 let g = *g.unwrap().1;
                 let sc = if name.starts_with("sa") || name == &"ca_sp" {
-                    scale * (1.0 / s.foundation.xi.tan() + 1.0 / s.foundation.zeta.tan() + 1.0)
+                    scale * (1.0 / s.site.foundation.xi.tan() + 1.0 / s.site.foundation.zeta.tan() + 1.0)
                 } else { scale };
                 prop_assert!(close(g, *h, sc), "eq {} {}: generated {} vs hand {}", eq, name, g, h);
             }

@@ -10,7 +10,7 @@ use slideroute::stages::scene::Scene;
 
 /// (15) residuals with our coefficients, and with one printed coefficient swapped in.
 fn residuals_with_printed(index: usize, s: &Scene, d: Displacement) -> (f64, f64) {
-    let p = direct::solve(&s.site(), d).expect("direct pose");
+    let p = direct::solve(&s.site, d).expect("direct pose");
     let l = s.l();
     let (a, b) = (p.alpha(l), p.beta(l));
     let ours = SmallAngle::new(&CoeffInputs::new(s, d));
@@ -81,7 +81,7 @@ fn printed_f3_to_f6_f8_to_f10_and_f12_agree_with_ours() {
     // The rest of the printed coefficients are right; typed as printed (1.41 → √2).
     let s = scene(10.0, 0.4, 0.35, 20.0, 25.0, 30.0);
     let d = Displacement::new(0.6, 0.15, 5f64.to_radians());
-    let (f, g) = (&s.frame, &s.foundation);
+    let (f, g) = (&s.site.frame, &s.site.foundation);
     let l = s.l();
     let r2 = std::f64::consts::SQRT_2;
     let (st, ct) = d.theta.sin_cos();

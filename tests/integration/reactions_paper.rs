@@ -210,7 +210,7 @@ fn kappa_zero_has_no_solution_on_the_symmetric_path() {
     // (θ ≠ 0) solutions do appear for small μ — see derivations/07 for this difference from
     // the prototype's report.
     let mut s = Scene::default_scene();
-    s.foundation.kappa = 0.0;
+    s.site.foundation.kappa = 0.0;
     for mu in [0.05, 0.2, 0.4, 0.6] {
         s.friction = Some(Friction::Coulomb { mu_k: mu });
         for x in [0.2, 0.5, 1.0] {

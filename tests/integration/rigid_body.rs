@@ -73,7 +73,7 @@ fn every_rigid_body_row_agrees_with_the_direct_pose_solver() {
 fn rigid_body_moves_where_the_papers_frictional_system_has_no_solution() {
     // κ = 0 (a common foundation), and μ = 0.05 on the paper-like geometry: the paper's
     // dynamics ends with "no solution"; the rigid body gives a route to a stated physical end.
-    let kappa0 = |s: &mut Scene| s.foundation.kappa = 0.0;
+    let kappa0 = |s: &mut Scene| s.site.foundation.kappa = 0.0;
     let mu005 = |s: &mut Scene| s.friction = Some(Friction::Coulomb { mu_k: 0.05 });
     for (name, edit) in [
         ("κ = 0", &kappa0 as &dyn Fn(&mut Scene)),
@@ -127,8 +127,8 @@ fn flat_limit_with_friction_converges_to_the_sliding_block_closed_form() {
     // X(t) = ½ (F/m − μ g) t², Z = θ = 0. The planes' dips change it at first order.
     let err = |dip_deg: f64| {
         let s = rigid(|s| {
-            s.foundation.xi = dip_deg.to_radians();
-            s.foundation.zeta = dip_deg.to_radians();
+            s.site.foundation.xi = dip_deg.to_radians();
+            s.site.foundation.zeta = dip_deg.to_radians();
             s.loads.as_mut().unwrap().eccentricity = 0.0;
             set_time(s, 1e-3, 1.0);
         });
@@ -195,8 +195,8 @@ fn a_kicked_block_stops_where_the_sliding_block_closed_form_says() {
     let d = mu * 9.81 - 8.0;
     let err = |dip_deg: f64| {
         let s = rigid(|s| {
-            s.foundation.xi = dip_deg.to_radians();
-            s.foundation.zeta = dip_deg.to_radians();
+            s.site.foundation.xi = dip_deg.to_radians();
+            s.site.foundation.zeta = dip_deg.to_radians();
             s.loads.as_mut().unwrap().eccentricity = 0.0;
             s.friction = Some(Friction::Coulomb { mu_k: mu });
             s.initial.vx = v0;

@@ -40,10 +40,10 @@ prop_compose! {
 
 /// The oracle's pose, if it is an admissible one.
 fn oracle(s: &Scene, d: Displacement) -> Option<(f64, f64)> {
-    let p = direct::solve(&s.site(), d).ok()?;
+    let p = direct::solve(&s.site, d).ok()?;
     let l = s.l();
     let (a, b) = (p.alpha(l), p.beta(l));
-    let pose = Pose::from_tilts(&s.site(), d, a, b).ok()?;
+    let pose = Pose::from_tilts(&s.site, d, a, b).ok()?;
     classify::check_pose(s, &pose).ok()?;
     Some((a, b))
 }
@@ -65,7 +65,7 @@ fn selected_exact_root_matches_the_direct_solver() {
         let got = roots::select(&s, d, Mode::Exact);
         match (want, got) {
             (Some((a, b)), Ok(p)) => {
-                let pose = Pose::from_tilt_roll(&s.site(), d, p.u[0], p.u[1]).unwrap();
+                let pose = Pose::from_tilt_roll(&s.site, d, p.u[0], p.u[1]).unwrap();
                 assert!(
                     (pose.alpha - a).abs() <= 1e-10,
                     "α {} vs {} at {d:?} in {s:?}",

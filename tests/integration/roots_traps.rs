@@ -6,7 +6,7 @@ use slideroute::stages::roots::{self, Tracker};
 use slideroute::stages::scene::{Mode, Scene};
 
 fn oracle_ab(s: &Scene, d: Displacement) -> (f64, f64) {
-    let p = direct::solve(&s.site(), d).expect("direct pose");
+    let p = direct::solve(&s.site, d).expect("direct pose");
     (p.alpha(s.l()), p.beta(s.l()))
 }
 
@@ -206,7 +206,7 @@ fn tracking_in_small_and_large_steps_matches_solving_from_scratch() {
                         fresh.u
                     );
                     if mode == Mode::Exact {
-                        let pose = Pose::from_tilt_roll(&s.site(), d, p.u[0], p.u[1]).unwrap();
+                        let pose = Pose::from_tilt_roll(&s.site, d, p.u[0], p.u[1]).unwrap();
                         let (ea, eb) = oracle_ab(s, d);
                         assert!((pose.alpha - ea).abs() < 1e-10 && (pose.beta - eb).abs() < 1e-10);
                     }

@@ -124,7 +124,7 @@ fn rk4_converges_at_fourth_order() {
 #[test]
 fn large_eccentricity_gives_a_visibly_curved_route() {
     let curved = run(&with(|s| {
-        s.foundation.kappa = 20f64.to_radians();
+        s.site.foundation.kappa = 20f64.to_radians();
         s.loads.as_mut().unwrap().hydraulic_force = 1.2e7;
         s.loads.as_mut().unwrap().eccentricity = 1.5;
     }));
@@ -166,8 +166,8 @@ fn frictionless_flat_limit_converges_to_the_closed_form_at_first_order_in_the_di
     let mut errs = Vec::new();
     for dip in [0.04f64, 0.02, 0.01] {
         let s = with(|s| {
-            s.foundation.xi = dip.to_radians();
-            s.foundation.zeta = dip.to_radians();
+            s.site.foundation.xi = dip.to_radians();
+            s.site.foundation.zeta = dip.to_radians();
             s.friction = Some(Friction::Coulomb { mu_k: 0.0 });
             let sv = s.solver.as_mut().unwrap();
             sv.integrator = Integrator::Rk4;
@@ -202,8 +202,8 @@ fn paper_friction_does_not_reduce_to_sliding_friction_on_a_flat_plane() {
     // none with all shear forces opposing x'; the most dissipative gives a ≈ 6.61 m/s² instead
     // of F/m − μ g = 5.06 m/s² (derivations/07). Guarded so that a change is noticed.
     let s = with(|s| {
-        s.foundation.xi = 0.01f64.to_radians();
-        s.foundation.zeta = 0.01f64.to_radians();
+        s.site.foundation.xi = 0.01f64.to_radians();
+        s.site.foundation.zeta = 0.01f64.to_radians();
         s.friction = Some(Friction::Coulomb { mu_k: 0.3 });
         s.solver.as_mut().unwrap().t_end = 0.01;
     });
@@ -239,13 +239,13 @@ fn scene_with(
     c: f64,
 ) -> Scene {
     with(|s| {
-        s.frame.l2x = l2x;
-        s.frame.l1x = 10.0 - l2x;
-        s.frame.l1z = l1z;
-        s.frame.l2z = 10.0 - l1z;
-        s.foundation.xi = xi.to_radians();
-        s.foundation.zeta = zeta.to_radians();
-        s.foundation.kappa = kappa.to_radians();
+        s.site.frame.l2x = l2x;
+        s.site.frame.l1x = 10.0 - l2x;
+        s.site.frame.l1z = l1z;
+        s.site.frame.l2z = 10.0 - l1z;
+        s.site.foundation.xi = xi.to_radians();
+        s.site.foundation.zeta = zeta.to_radians();
+        s.site.foundation.kappa = kappa.to_radians();
         s.friction = Some(Friction::Coulomb { mu_k: mu });
         s.loads.as_mut().unwrap().hydraulic_force = f;
         s.loads.as_mut().unwrap().eccentricity = c;

@@ -65,7 +65,7 @@ fn selected_pose(scene: &Scene, mode: Mode, r: &Root) -> SelectedPose {
             Mode::Exact => r.psi.map(|p| p.re.to_degrees()),
             Mode::SmallAngle => None,
         },
-        cm_y_m: cm_height(&scene.site(), a, b),
+        cm_y_m: cm_height(&scene.site, a, b),
     }
 }
 

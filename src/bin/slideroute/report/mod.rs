@@ -223,14 +223,14 @@ fn set_force(s: &mut Scene, f: f64) {
 }
 
 fn set_dips(s: &mut Scene, xi_deg: f64, zeta_deg: f64) {
-    s.foundation.xi = xi_deg.to_radians();
-    s.foundation.zeta = zeta_deg.to_radians();
+    s.site.foundation.xi = xi_deg.to_radians();
+    s.site.foundation.zeta = zeta_deg.to_radians();
 }
 
 fn set_l1z_over_l2z(s: &mut Scene, ratio: f64) {
-    let l = s.frame.l();
-    s.frame.l1z = l * ratio / (1.0 + ratio);
-    s.frame.l2z = l - s.frame.l1z;
+    let l = s.site.frame.l();
+    s.site.frame.l1z = l * ratio / (1.0 + ratio);
+    s.site.frame.l2z = l - s.site.frame.l1z;
 }
 
 /// Scenes chosen to break naive code (see `docs/performance.md`, "Stiff and extreme cases").
@@ -257,10 +257,12 @@ pub fn extreme_cases() -> Vec<Case> {
             set_dips(s, 75.0, 80.0);
             set_force(s, 8.0e7);
         }),
-        case("κ = 0", &|s| s.foundation.kappa = 0.0),
-        case("κ = 85°", &|s| s.foundation.kappa = 85f64.to_radians()),
+        case("κ = 0", &|s| s.site.foundation.kappa = 0.0),
+        case("κ = 85°", &|s| {
+            s.site.foundation.kappa = 85f64.to_radians()
+        }),
         case("κ = −85°", &|s| {
-            s.foundation.kappa = (-85f64).to_radians()
+            s.site.foundation.kappa = (-85f64).to_radians()
         }),
         case("lopsided l1z/l2z = 0.05", &|s| set_l1z_over_l2z(s, 0.05)),
         case("lopsided l1z/l2z = 20", &|s| set_l1z_over_l2z(s, 20.0)),
@@ -359,7 +361,7 @@ pub fn extreme(sample: usize) -> Vec<ExtremeRow> {
                             row.theta_deg.to_radians(),
                         );
                         let p =
-                            slideroute::stages::geometry::direct::solve(&c.scene.site(), d).ok()?;
+                            slideroute::stages::geometry::direct::solve(&c.scene.site, d).ok()?;
                         Some(
                             (p.alpha(l) - row.alpha_deg.to_radians())
                                 .abs()
