@@ -11,7 +11,7 @@
 //! Evaluating one mode never evaluates the other's coefficients.
 
 use crate::geometry::Displacement;
-use crate::scene::Scene;
+use crate::geometry::Site;
 
 #[allow(clippy::all)]
 mod generated {
@@ -29,7 +29,7 @@ pub use generated::{
 pub const EXACT_LEN: usize = EXACT_TERMS[0] + EXACT_TERMS[1];
 
 /// The trigonometric functions of the foundation that [`CoeffInputs`] needs (sin κ, cos κ,
-/// cot ξ, cot ζ): fixed by the scene, so a solver that evaluates the coefficients at many
+/// cot ξ, cot ζ): fixed by the site, so a solver that evaluates the coefficients at many
 /// displacements computes them once.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FoundationTrig {
@@ -45,8 +45,8 @@ impl FoundationTrig {
         (1.0 / self.cot_xi, 1.0 / self.cot_zeta)
     }
 
-    pub fn new(scene: &Scene) -> Self {
-        let g = &scene.site.foundation;
+    pub fn new(site: &Site) -> Self {
+        let g = site.foundation;
         let (sk, ck) = g.kappa.sin_cos();
         FoundationTrig {
             sk,
@@ -58,18 +58,18 @@ impl FoundationTrig {
 }
 
 impl CoeffInputs {
-    /// The generator's inputs for a scene at displacement `d`. Differences of cosines are
+    /// The generator's inputs for a site at displacement `d`. Differences of cosines are
     /// computed from products of sines, so small displacements lose no precision.
-    pub fn new(scene: &Scene, d: Displacement) -> Self {
-        Self::with_trig(scene, &FoundationTrig::new(scene), d)
+    pub fn new(site: &Site, d: Displacement) -> Self {
+        Self::with_trig(site, &FoundationTrig::new(site), d)
     }
 
     /// As [`CoeffInputs::new`], with the foundation's trigonometric functions computed before
-    /// (`trig` must come from the same scene). One `sin_cos` per call: with s = sin(θ/2),
+    /// (`trig` must come from the same site). One `sin_cos` per call: with s = sin(θ/2),
     /// c = cos(θ/2): sin θ = 2sc, 1 − cos θ = 2s², cos κ − cos(θ + κ) = 2s·sin(θ/2 + κ) and
     /// sin(θ + κ) − sin κ = 2s·cos(θ/2 + κ), the half-angle sums expanded by κ's sine and cosine.
-    pub fn with_trig(scene: &Scene, trig: &FoundationTrig, d: Displacement) -> Self {
-        let f = &scene.site.frame;
+    pub fn with_trig(site: &Site, trig: &FoundationTrig, d: Displacement) -> Self {
+        let f = site.frame;
         let (s_half, c_half) = (0.5 * d.theta).sin_cos();
         let FoundationTrig {
             sk,
@@ -303,12 +303,13 @@ impl Exact {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scene::Scene;
 
     #[test]
     fn start_pose_is_a_root_of_both_systems() {
         // At X = Z = θ = 0 the flat frame (α = β = ψ = 0) is in contact with all three planes.
         let scene = Scene::default_scene();
-        let inputs = CoeffInputs::new(&scene, Displacement::default());
+        let inputs = CoeffInputs::new(&scene.site, Displacement::default());
         let small = SmallAngle::new(&inputs);
         let r = small.residual(0.0, 0.0);
         assert!(r[0].abs() < 1e-12 && r[1].abs() < 1e-12, "{r:?}");
@@ -325,7 +326,7 @@ mod tests {
             z: -0.3,
             theta: 0.07,
         };
-        let exact = Exact::new(&CoeffInputs::new(&scene, d));
+        let exact = Exact::new(&CoeffInputs::new(&scene.site, d));
         let h = exact.half_angle();
         for &(alpha, psi) in &[(0.1, -0.2), (0.4, 0.3), (-0.7, 1.1)] {
             let (ta, tp) = (f64::tan(alpha / 2.0), f64::tan(psi / 2.0));

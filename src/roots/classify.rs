@@ -7,9 +7,10 @@
 //!   plane (vertex 0 over the horizontal part, vertex 1 over plane 1, vertex 2 over plane 2).
 
 use crate::coeffs::{FoundationTrig, SmallAngleUnsquared};
+use crate::geometry::Site;
 use crate::geometry::planes::{along_dip_2, r};
 use crate::geometry::{Displacement, Pose};
-use crate::scene::{Mode, Scene};
+use crate::scene::Mode;
 use std::fmt;
 
 /// Why a real pose is not admissible.
@@ -64,16 +65,16 @@ impl fmt::Display for Inadmissible {
 pub const REGION_TOL: f64 = 1e-8;
 
 /// The placed frame for a point of the chosen mode: u = (α, β) or (α, ψ).
-pub fn pose(scene: &Scene, d: Displacement, mode: Mode, u: [f64; 2]) -> Option<Pose> {
+pub fn pose(site: &Site, d: Displacement, mode: Mode, u: [f64; 2]) -> Option<Pose> {
     match mode {
-        Mode::SmallAngle => Pose::from_tilts(&scene.site, d, u[0], u[1]).ok(),
-        Mode::Exact => Pose::from_tilt_roll(&scene.site, d, u[0], u[1]).ok(),
+        Mode::SmallAngle => Pose::from_tilts(site, d, u[0], u[1]).ok(),
+        Mode::Exact => Pose::from_tilt_roll(site, d, u[0], u[1]).ok(),
     }
 }
 
 /// Checks tilt ranges and contact regions of a real, non-spurious pose, with [`REGION_TOL`].
-pub fn check_pose(scene: &Scene, p: &Pose) -> Result<(), Inadmissible> {
-    check_pose_within(scene, &FoundationTrig::new(scene), p, REGION_TOL)
+pub fn check_pose(site: &Site, p: &Pose) -> Result<(), Inadmissible> {
+    check_pose_within(site, &FoundationTrig::new(site), p, REGION_TOL)
 }
 
 /// [`check_pose`] with the regions' tolerance `region_tol` (a fraction of L; infinite: the
@@ -81,13 +82,13 @@ pub fn check_pose(scene: &Scene, p: &Pose) -> Result<(), Inadmissible> {
 /// integrator, which are no states of the route: each contact's equations hold on its whole
 /// plane, and only the states the route accepts must lie in the regions).
 pub fn check_pose_within(
-    scene: &Scene,
+    site: &Site,
     trig: &FoundationTrig,
     p: &Pose,
     region_tol: f64,
 ) -> Result<(), Inadmissible> {
-    let g = &scene.site.foundation;
-    let l = scene.l();
+    let g = site.foundation;
+    let l = site.l();
     let tol = region_tol * l;
     // sin α and α agree to round-off at these angles (about 1e-8 rad): no asin.
     let (tan_xi, tan_zeta) = trig.tan_dips();
@@ -100,15 +101,15 @@ pub fn check_pose_within(
     if p.beta.is_nan() || p.beta >= g.zeta {
         return Err(Inadmissible::BetaOutOfRange);
     }
-    let (l2x, r2) = (scene.site.frame.l2x, r(&scene.site));
+    let (l2x, r2) = (site.frame.l2x, r(site));
     let [p0, p1, p2] = p.vertices;
-    if p0.x > l2x + tol || along_dip_2(&scene.site, p0.x, p0.z) > r2 + tol {
+    if p0.x > l2x + tol || along_dip_2(site, p0.x, p0.z) > r2 + tol {
         return Err(Inadmissible::Contact0ReachedInclinedPlane);
     }
     if p1.x < l2x - tol {
         return Err(Inadmissible::Contact1LeftPlane1);
     }
-    if along_dip_2(&scene.site, p2.x, p2.z) < r2 - tol {
+    if along_dip_2(site, p2.x, p2.z) < r2 - tol {
         return Err(Inadmissible::Contact2LeftPlane2);
     }
     if p.alpha < alpha_min {

@@ -7,13 +7,14 @@ use super::system::Equations;
 use super::tracker::{BranchPoint, TrackError, correct};
 use super::{eigen, system};
 use crate::coeffs::{CoeffInputs, FoundationTrig};
+use crate::geometry::Site;
 use crate::geometry::{Displacement, Pose};
-use crate::scene::{Mode, Scene};
+use crate::scene::Mode;
 
 /// Follows the physical pose by solving for all roots at every increment.
 #[derive(Debug, Clone)]
 pub struct EigenFollower<'s> {
-    scene: &'s Scene,
+    site: &'s Site,
     /// The foundation's trigonometric functions and the unknowns' scales, computed once.
     trig: FoundationTrig,
     scales: (f64, f64),
@@ -25,11 +26,11 @@ pub struct EigenFollower<'s> {
 
 impl<'s> EigenFollower<'s> {
     /// At the start of sliding (the flat frame).
-    pub fn new(scene: &'s Scene, mode: Mode) -> Self {
+    pub fn new(site: &'s Site, mode: Mode) -> Self {
         EigenFollower {
-            scene,
-            trig: FoundationTrig::new(scene),
-            scales: system::unknown_scales(scene, mode),
+            site,
+            trig: FoundationTrig::new(site),
+            scales: system::unknown_scales(site, mode),
             mode,
             current: BranchPoint {
                 d: Displacement::default(),
@@ -53,7 +54,7 @@ impl<'s> EigenFollower<'s> {
     }
 
     pub fn pose(&self) -> Option<Pose> {
-        classify::pose(self.scene, self.current.d, self.mode, self.current.u)
+        classify::pose(self.site, self.current.d, self.mode, self.current.u)
     }
 
     /// All roots at `target`; the admissible one nearest the current point becomes current.
@@ -71,9 +72,9 @@ impl<'s> EigenFollower<'s> {
             theta_deg: target.theta.to_degrees(),
             reason,
         };
-        let inputs = CoeffInputs::with_trig(self.scene, &self.trig, target);
+        let inputs = CoeffInputs::with_trig(self.site, &self.trig, target);
         let (sx, sy) = self.scales;
-        let (p, q) = system::biquadratic_from(self.scene, &inputs, self.scales, target, self.mode);
+        let (p, q) = system::biquadratic_from(self.site, &inputs, self.scales, target, self.mode);
         let raw = eigen::candidates(&p, &q);
         let mut best: Option<([f64; 2], f64)> = None;
         let mut nearest_reason = None;
@@ -101,10 +102,10 @@ impl<'s> EigenFollower<'s> {
             let verdict = if spurious {
                 Err(Inadmissible::Spurious)
             } else {
-                classify::pose(self.scene, target, self.mode, u)
+                classify::pose(self.site, target, self.mode, u)
                     .ok_or(Inadmissible::NoRealFrame)
                     .and_then(|pose| {
-                        classify::check_pose_within(self.scene, &self.trig, &pose, self.region_tol)
+                        classify::check_pose_within(self.site, &self.trig, &pose, self.region_tol)
                     })
             };
             match verdict {

@@ -10,14 +10,14 @@
 //!
 //! ```
 //! use slideroute::stages::{geometry::Displacement, roots, scene::{Mode, Scene}};
-//! let scene = Scene::default_scene();
+//! let site = Scene::default_scene().site;
 //! let d = Displacement::new(0.5, 0.1, 2f64.to_radians());
-//! let all = roots::solve_all(&scene, d, Mode::Exact).unwrap();
+//! let all = roots::solve_all(&site, d, Mode::Exact).unwrap();
 //! let chosen = all.selected.map(|k| &all.roots[k]).unwrap();
 //! assert!(chosen.admissible && chosen.alpha.im.abs() < 1e-12);
 //!
 //! // Following the branch over increments:
-//! let mut tracker = roots::Tracker::new(&scene, Mode::Exact);
+//! let mut tracker = roots::Tracker::new(&site, Mode::Exact);
 //! for k in 1..=10 {
 //!     tracker.advance(d.scaled(k as f64 / 10.0)).unwrap();
 //! }
@@ -36,7 +36,8 @@ pub use tracker::{BranchPoint, TrackError, TrackStats, Tracker};
 
 use crate::coeffs::{CoeffInputs, SmallAngleUnsquared};
 use crate::geometry::Displacement;
-use crate::scene::{Mode, Scene};
+use crate::geometry::Site;
+use crate::scene::Mode;
 use num_complex::Complex64;
 use std::f64::consts::SQRT_2;
 
@@ -89,8 +90,8 @@ const MERGE: f64 = 1e-6;
 
 /// How many roots of (15) each root of the solved system stands for: 2 for each equation that
 /// is a perfect square at `d` (solved as its root A instead, see [`system::perfect_squares`]).
-fn structural_multiplicity(scene: &Scene, d: Displacement, mode: Mode) -> usize {
-    let [a, b] = system::perfect_squares(scene, d, mode);
+fn structural_multiplicity(site: &Site, d: Displacement, mode: Mode) -> usize {
+    let [a, b] = system::perfect_squares(site, d, mode);
     1 << (usize::from(a) + usize::from(b))
 }
 
@@ -111,21 +112,21 @@ fn merge(raw: Vec<eigen::RawRoot>) -> Vec<(eigen::RawRoot, usize)> {
 }
 
 /// Every root of the chosen mode's system at `d`, classified, with the physical one selected.
-pub fn solve_all(scene: &Scene, d: Displacement, mode: Mode) -> Result<AllRoots, TrackError> {
+pub fn solve_all(site: &Site, d: Displacement, mode: Mode) -> Result<AllRoots, TrackError> {
     if !d.is_finite() {
         return Err(TrackError::NonFinite(d));
     }
-    let (p, q) = system::biquadratic(scene, d, mode);
-    let g = structural_multiplicity(scene, d, mode);
+    let (p, q) = system::biquadratic(site, d, mode);
+    let g = structural_multiplicity(site, d, mode);
     let raw = eigen::solve(&p, &q);
     let merged: Vec<(eigen::RawRoot, usize)> = merge(raw.roots)
         .into_iter()
         .map(|(r, k)| (r, k * g))
         .collect();
     let finite: usize = merged.iter().map(|(_, k)| k).sum();
-    let (sx, sy) = system::unknown_scales(scene, mode);
+    let (sx, sy) = system::unknown_scales(site, mode);
     let unsquared = match mode {
-        Mode::SmallAngle => Some(SmallAngleUnsquared::new(&CoeffInputs::new(scene, d))),
+        Mode::SmallAngle => Some(SmallAngleUnsquared::new(&CoeffInputs::new(site, d))),
         Mode::Exact => None,
     };
     let mut roots: Vec<Root> = merged
@@ -154,9 +155,9 @@ pub fn solve_all(scene: &Scene, d: Displacement, mode: Mode) -> Result<AllRoots,
             } else if spurious {
                 Some(Inadmissible::Spurious)
             } else {
-                match classify::pose(scene, d, mode, [alpha.re, second.re]) {
+                match classify::pose(site, d, mode, [alpha.re, second.re]) {
                     None => Some(Inadmissible::NoRealFrame),
-                    Some(p) => classify::check_pose(scene, &p).err(),
+                    Some(p) => classify::check_pose(site, &p).err(),
                 }
             };
             Root {
@@ -178,7 +179,7 @@ pub fn solve_all(scene: &Scene, d: Displacement, mode: Mode) -> Result<AllRoots,
             .unwrap_or(std::cmp::Ordering::Equal)
     });
 
-    let (selected, selection_error) = match select(scene, d, mode) {
+    let (selected, selection_error) = match select(site, d, mode) {
         Ok(p) => {
             let k = roots
                 .iter()
@@ -194,7 +195,7 @@ pub fn solve_all(scene: &Scene, d: Displacement, mode: Mode) -> Result<AllRoots,
             // there; issue #12): the tracked pose, when it satisfies the unsquared equations to
             // round-off, is then the selected root itself.
             let tracked = || {
-                let e = system::Equations::new(scene, d, mode).eval(p.u)?;
+                let e = system::Equations::new(site, d, mode).eval(p.u)?;
                 let rel = (0..2)
                     .map(|i| e.r[i].abs() / e.scale[i].max(f64::MIN_POSITIVE))
                     .fold(0.0, f64::max);
@@ -252,7 +253,7 @@ pub fn solve_all(scene: &Scene, d: Displacement, mode: Mode) -> Result<AllRoots,
 
 /// The physical pose at `d`: the branch followed from the start of sliding along the straight
 /// segment to `d`. u = (α, β) in small-angle mode, (α, ψ) in exact mode.
-pub fn select(scene: &Scene, d: Displacement, mode: Mode) -> Result<BranchPoint, TrackError> {
-    let mut t = Tracker::new(scene, mode);
+pub fn select(site: &Site, d: Displacement, mode: Mode) -> Result<BranchPoint, TrackError> {
+    let mut t = Tracker::new(site, mode);
     t.advance(d)
 }

@@ -13,7 +13,8 @@ use crate::coeffs::{
     SMALL_ANGLE_UNSQUARED_A14, SMALL_ANGLE_UNSQUARED_SPLIT, SmallAngle, SmallAngleUnsquared,
 };
 use crate::geometry::Displacement;
-use crate::scene::{Mode, Scene};
+use crate::geometry::Site;
+use crate::scene::Mode;
 
 /// The unsquared equations of one mode at one displacement.
 #[derive(Debug, Clone, Copy)]
@@ -30,8 +31,8 @@ pub struct Evaluated {
 }
 
 impl Equations {
-    pub fn new(scene: &Scene, d: Displacement, mode: Mode) -> Self {
-        Self::from_inputs(&CoeffInputs::new(scene, d), mode)
+    pub fn new(site: &Site, d: Displacement, mode: Mode) -> Self {
+        Self::from_inputs(&CoeffInputs::new(site, d), mode)
     }
 
     /// From the generator's inputs at one displacement.
@@ -68,8 +69,8 @@ impl Equations {
 }
 
 /// Scales of the unknowns for the all-roots solver (see the module docs).
-pub fn unknown_scales(scene: &Scene, mode: Mode) -> (f64, f64) {
-    let g = &scene.site.foundation;
+pub fn unknown_scales(site: &Site, mode: Mode) -> (f64, f64) {
+    let g = site.foundation;
     match mode {
         Mode::SmallAngle => (g.xi.tan(), g.zeta.tan()),
         Mode::Exact => ((g.xi / 2.0).tan(), (g.xi.max(g.zeta) / 2.0).tan()),
@@ -97,11 +98,11 @@ fn scaled(c: &Coeffs, sx: f64, sy: f64) -> Coeffs {
 
 /// Which small-angle equations are perfect squares at `d`: (15a) when sin θ = 0, (15b) when
 /// sin(θ + κ) = 0 (there B = 0 in A ± B·Q, so the squared equation is A²).
-pub fn perfect_squares(scene: &Scene, d: Displacement, mode: Mode) -> [bool; 2] {
+pub fn perfect_squares(site: &Site, d: Displacement, mode: Mode) -> [bool; 2] {
     match mode {
         Mode::SmallAngle => [
             d.theta.sin().abs() < 1e-12,
-            (d.theta + scene.site.foundation.kappa).sin().abs() < 1e-12,
+            (d.theta + site.foundation.kappa).sin().abs() < 1e-12,
         ],
         Mode::Exact => [false, false],
     }
@@ -110,14 +111,14 @@ pub fn perfect_squares(scene: &Scene, d: Displacement, mode: Mode) -> [bool; 2] 
 /// The mode's polynomial system as two scaled (2, 2) coefficient arrays. A small-angle equation
 /// that is a perfect square A² is replaced by A: its roots are the same, each of them simple
 /// instead of double (see [`perfect_squares`]).
-pub fn biquadratic(scene: &Scene, d: Displacement, mode: Mode) -> (Coeffs, Coeffs) {
-    let scales = unknown_scales(scene, mode);
-    biquadratic_from(scene, &CoeffInputs::new(scene, d), scales, d, mode)
+pub fn biquadratic(site: &Site, d: Displacement, mode: Mode) -> (Coeffs, Coeffs) {
+    let scales = unknown_scales(site, mode);
+    biquadratic_from(site, &CoeffInputs::new(site, d), scales, d, mode)
 }
 
 /// As [`biquadratic`], from the generator's inputs at `d` and the [`unknown_scales`].
 pub fn biquadratic_from(
-    scene: &Scene,
+    site: &Site,
     inputs: &CoeffInputs,
     (sx, sy): (f64, f64),
     d: Displacement,
@@ -125,7 +126,7 @@ pub fn biquadratic_from(
 ) -> (Coeffs, Coeffs) {
     let raw: [Coeffs; 2] = match mode {
         Mode::SmallAngle => {
-            let square = perfect_squares(scene, d, mode);
+            let square = perfect_squares(site, d, mode);
             let f = SmallAngle::new(inputs).f;
             let u = if square[0] || square[1] {
                 Some(SmallAngleUnsquared::new(inputs).c)

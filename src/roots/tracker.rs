@@ -16,9 +16,10 @@
 use super::classify::{Inadmissible, REGION_TOL, check_pose_within, exact_mirrored, pose};
 use super::system::Equations;
 use crate::coeffs::{CoeffInputs, FoundationTrig};
+use crate::geometry::Site;
 use crate::geometry::{Displacement, Pose};
 use crate::numeric::fixed;
-use crate::scene::{Mode, Scene};
+use crate::scene::Mode;
 
 /// A point on the followed branch: displacement and u = (α, β) (small-angle) or (α, ψ) (exact).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -68,7 +69,7 @@ pub struct TrackStats {
 /// Follows the physical branch of the chosen mode.
 #[derive(Debug, Clone)]
 pub struct Tracker<'s> {
-    scene: &'s Scene,
+    site: &'s Site,
     /// The foundation's trigonometric functions, computed once.
     trig: FoundationTrig,
     mode: Mode,
@@ -155,8 +156,8 @@ pub(crate) fn correct(
     Err(Refusal::NoConvergence)
 }
 
-fn distance(scene: &Scene, a: Displacement, b: Displacement) -> f64 {
-    let l = scene.l();
+fn distance(site: &Site, a: Displacement, b: Displacement) -> f64 {
+    let l = site.l();
     (a.x - b.x)
         .abs()
         .max((a.z - b.z).abs())
@@ -173,16 +174,16 @@ fn lerp(a: Displacement, b: Displacement, s: f64) -> Displacement {
 
 impl<'s> Tracker<'s> {
     /// At the start of sliding: X = Z = θ = 0, the flat frame (α = β = ψ = 0).
-    pub fn new(scene: &'s Scene, mode: Mode) -> Self {
+    pub fn new(site: &'s Site, mode: Mode) -> Self {
         Tracker {
-            scene,
-            trig: FoundationTrig::new(scene),
+            site,
+            trig: FoundationTrig::new(site),
             mode,
             current: BranchPoint {
                 d: Displacement::default(),
                 u: [0.0, 0.0],
             },
-            current_pose: pose(scene, Displacement::default(), mode, [0.0, 0.0]),
+            current_pose: pose(site, Displacement::default(), mode, [0.0, 0.0]),
             previous: None,
             h: 1.0,
             region_tol: REGION_TOL,
@@ -234,7 +235,7 @@ impl<'s> Tracker<'s> {
             let d = lerp(from, target, s_try);
             let u_pred = self.predict(d);
             let eqs = Equations::from_inputs(
-                &CoeffInputs::with_trig(self.scene, &self.trig, d),
+                &CoeffInputs::with_trig(self.site, &self.trig, d),
                 self.mode,
             );
             let result = correct(&eqs, u_pred, &mut self.stats.newton_iterations).and_then(|u| {
@@ -270,7 +271,7 @@ impl<'s> Tracker<'s> {
             }
         }
         self.h = h;
-        self.current_pose = pose(self.scene, self.current.d, self.mode, self.current.u);
+        self.current_pose = pose(self.site, self.current.d, self.mode, self.current.u);
         self.check()?;
         Ok(self.current)
     }
@@ -279,11 +280,11 @@ impl<'s> Tracker<'s> {
         let cur = self.current;
         match self.previous {
             Some(prev) => {
-                let last = distance(self.scene, cur.d, prev.d);
+                let last = distance(self.site, cur.d, prev.d);
                 if last <= 0.0 {
                     return cur.u;
                 }
-                let f = (distance(self.scene, d, cur.d) / last).min(4.0);
+                let f = (distance(self.site, d, cur.d) / last).min(4.0);
                 [
                     cur.u[0] + f * (cur.u[0] - prev.u[0]),
                     cur.u[1] + f * (cur.u[1] - prev.u[1]),
@@ -296,7 +297,7 @@ impl<'s> Tracker<'s> {
     /// Condition number (2-norm) of the Jacobian of the tracked equations at the current point:
     /// large near a turning point or where roots merge.
     pub fn jacobian_condition(&self) -> Option<f64> {
-        let e = Equations::new(self.scene, self.current.d, self.mode).eval(self.current.u)?;
+        let e = Equations::new(self.site, self.current.d, self.mode).eval(self.current.u)?;
         let [[a, b], [c, d]] = e.j;
         // Singular values of a 2×2 matrix.
         let s = a * a + b * b + c * c + d * d;
@@ -327,13 +328,14 @@ impl<'s> Tracker<'s> {
         let p = self
             .current_pose
             .ok_or_else(|| fail(Inadmissible::NoRealFrame))?;
-        check_pose_within(self.scene, &self.trig, &p, self.region_tol).map_err(fail)
+        check_pose_within(self.site, &self.trig, &p, self.region_tol).map_err(fail)
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scene::Scene;
 
     #[test]
     fn advancing_to_where_it_is_keeps_the_predictor_and_takes_no_step() {
@@ -341,7 +343,7 @@ mod tests {
         // zero-length secant behind, after which every step was refused as a jump and halved
         // about twenty times.
         let scene = Scene::default_scene();
-        let mut t = Tracker::new(&scene, Mode::Exact);
+        let mut t = Tracker::new(&scene.site, Mode::Exact);
         t.advance(Displacement::default()).unwrap();
         assert_eq!(t.stats.steps, 0);
         for k in 1..=20 {
@@ -356,9 +358,9 @@ mod tests {
     #[test]
     fn jacobian_condition_is_the_ratio_of_singular_values() {
         let scene = Scene::default_scene();
-        let mut t = Tracker::new(&scene, Mode::Exact);
+        let mut t = Tracker::new(&scene.site, Mode::Exact);
         t.advance(Displacement::new(0.8, 0.1, 0.03)).unwrap();
-        let e = Equations::new(&scene, t.point().d, Mode::Exact)
+        let e = Equations::new(&scene.site, t.point().d, Mode::Exact)
             .eval(t.point().u)
             .unwrap();
         let j = nalgebra::Matrix2::new(e.j[0][0], e.j[0][1], e.j[1][0], e.j[1][1]);

@@ -43,8 +43,8 @@ pub enum PoseFinder<'s> {
 impl<'s> PoseFinder<'s> {
     pub fn new(scene: &'s Scene, mode: Mode, method: PoseMethod) -> Self {
         match method {
-            PoseMethod::Continuation => PoseFinder::Continuation(Tracker::new(scene, mode)),
-            PoseMethod::AllRoots => PoseFinder::AllRoots(EigenFollower::new(scene, mode)),
+            PoseMethod::Continuation => PoseFinder::Continuation(Tracker::new(&scene.site, mode)),
+            PoseMethod::AllRoots => PoseFinder::AllRoots(EigenFollower::new(&scene.site, mode)),
         }
     }
 

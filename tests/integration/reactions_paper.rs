@@ -13,8 +13,8 @@ use slideroute::stages::scene::{Friction, Mode, Scene};
 
 /// Geometry, loads and frictionless normals of `scene` at `d` (exact pose).
 fn at(scene: &Scene, d: Displacement) -> (ContactGeometry, Applied, [f64; 3]) {
-    let p = roots::select(scene, d, Mode::Exact).expect("pose");
-    let pose = roots::classify::pose(scene, d, Mode::Exact, p.u).unwrap();
+    let p = roots::select(&scene.site, d, Mode::Exact).expect("pose");
+    let pose = roots::classify::pose(&scene.site, d, Mode::Exact, p.u).unwrap();
     let geom = ContactGeometry::new(scene, &pose);
     let dy = slideroute::stages::scene::Simulation::new(scene).unwrap();
     let applied = Applied::new(dy.loads(), dy.block(), &geom.frame);

@@ -274,7 +274,7 @@ fn roots_cmd(
     let scene = load(scene)?;
     let mode = mode.or(scene.solver.map(|s| s.mode)).unwrap_or(Mode::Exact);
     let report = |d: Displacement| {
-        roots::solve_all(&scene, d, mode)
+        roots::solve_all(&scene.site, d, mode)
             .map(|all| RootsReport::new(&scene, &all))
             .map_err(|e| e.to_string())
     };

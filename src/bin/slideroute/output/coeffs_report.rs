@@ -35,7 +35,7 @@ pub struct CoeffReport {
 
 impl CoeffReport {
     pub fn new(scene: &Scene, d: Displacement) -> Self {
-        let inputs = CoeffInputs::new(scene, d);
+        let inputs = CoeffInputs::new(&scene.site, d);
         let small = SmallAngle::new(&inputs);
         let exact = Exact::new(&inputs);
         let half = exact.half_angle();
