@@ -224,6 +224,14 @@ impl Simulation {
             )
         };
         let block = scene.block.ok_or_else(|| missing("block"))?;
+        // The values too, as a file's would be: a scene's fields are public, and one built by
+        // hand has not been through [`Scene::from_toml`]. Its echo in the file's own keys
+        // (`echo.rs`) is validated; the simulation keeps the scene's own numbers.
+        let echo = toml::Value::Table(scene.as_used());
+        let raw: raw::RawScene = echo.try_into().map_err(|e: toml::de::Error| {
+            SceneError::new(&scene.origin, "", e.message().to_string())
+        })?;
+        validate(raw, &scene.origin)?;
         let loads = scene.loads.ok_or_else(|| missing("loads"))?;
         let friction = scene.friction.ok_or_else(|| missing("friction"))?;
         let settings = scene.solver.ok_or_else(|| missing("solver"))?;
