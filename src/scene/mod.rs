@@ -311,9 +311,10 @@ impl Scene {
         validate(raw, origin)
     }
 
-    /// The same scene with the other dynamics model (when it has a `[solver]`): the rigid body
-    /// integrates with RK4; the paper's dynamics keeps the scene's integrator, or takes its own
-    /// default ("paper") when the scene was written for the rigid body.
+    /// The same scene with the other dynamics model (when it has a `[solver]`). A change of
+    /// model brings that model's own integrator, as a scene file without `integrator` would:
+    /// "rk4" for the rigid body (its only one), "paper" for the paper's dynamics. The command
+    /// line says so when it changes the scene's (`--dynamics`).
     pub fn with_dynamics(&self, model: DynamicsModel) -> Scene {
         let mut s = self.clone();
         if let Some(solver) = &mut s.solver {

@@ -1241,3 +1241,34 @@ fn sweeps_vary_words_and_lists() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn a_change_of_dynamics_that_changes_the_integrator_says_so() {
+    // Issue #14: `with_dynamics` brings the model's own integrator; the command line says so.
+    let dir = temp_dir("dynamics-note");
+    let o = run(&[
+        "run",
+        "--quiet",
+        "--dynamics",
+        "paper",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("--dynamics paper integrates with \"paper\""),
+        "{}",
+        stderr(&o)
+    );
+    // The same dynamics as the scene's changes nothing and says nothing.
+    let o = run(&[
+        "run",
+        "--quiet",
+        "--dynamics",
+        "rigid-body",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(o.status.success() && o.stderr.is_empty(), "{}", stderr(&o));
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -370,7 +370,20 @@ fn run_cmd(
 ) -> Result<(), CliError> {
     let mut scene = load(scene)?;
     if let Some(model) = dynamics {
+        let before = scene.solver.map(|s| s.integrator);
         scene = scene.with_dynamics(model);
+        // Each dynamics takes its own integrator: say so where that changes the scene's.
+        if let (Some(b), Some(after)) = (before, scene.solver.map(|s| s.integrator)) {
+            if b != after {
+                eprintln!(
+                    "slideroute: note: --dynamics {} integrates with \"{}\" (its own default), \
+                     not the scene's \"{}\"",
+                    model.as_str(),
+                    after.as_str(),
+                    b.as_str()
+                );
+            }
+        }
     }
     // Locked before the work, so that a second run into the same folder is refused at once.
     let folder = crate::output::folder::Folder::open(out).map_err(failed)?;
