@@ -383,6 +383,61 @@ fn bracket_event(
     b
 }
 
+/// What a stop comes to (see [`come_to_rest`]).
+enum Rest {
+    /// Not held: the block slips again from rest, from this evaluation.
+    Slips(Box<Eval>),
+    /// The route ends: held where it stopped, or the slip from rest cannot be had.
+    Ended(Reason, f64, String),
+    /// The state at rest is off the model (as a failed step).
+    Failed(Stop),
+}
+
+/// Where the motion stops, at `t_event`: the block at rest at `stopped` (the state just before
+/// the stop, its rates zeroed; `from` the evaluation the step started from). Held there by
+/// static friction, the route ends "stopped"; not held, it slips again from rest. The travel
+/// to the rest point, the increment, the rest row and the energy balance go into `o`.
+fn come_to_rest(
+    (scene, sections, finder): (&Scene, &Simulation, &mut PoseFinder<'_>),
+    (stopped, from): (&Y, &Eval),
+    (k, t, t_event): (usize, f64, f64),
+    origin: (f64, f64),
+    o: &mut Outcome<'_>,
+) -> Rest {
+    let (mass, g) = (sections.block().mass, sections.loads().gravity);
+    let stop_pose = match pose_at(scene, finder, displacement(stopped)) {
+        Ok(p) => p,
+        Err(e) => return Rest::Failed(e),
+    };
+    o.travel += (stop_pose.cm - from.pose.cm).norm();
+    o.increments = k;
+    let geom = ContactGeometry::with_normals(sections.normals(), &stop_pose);
+    let check = match static_check(sections, &geom) {
+        Ok(c) => c,
+        Err(Stop { reason, detail }) => return Rest::Ended(reason, t, detail),
+    };
+    if check.holds() {
+        o.push(rest_row(t_event, stopped, &stop_pose));
+        o.energy = Some(energy(stopped, 0.0, stop_pose.cm.y, origin, mass, g));
+        return Rest::Ended(
+            Reason::Stopped,
+            t_event,
+            format!(
+                "the motion stopped at t = {t_event:.6} s and static friction holds the block \
+                 there (factor of safety {})",
+                check.factor_of_safety()
+            ),
+        );
+    }
+    match evaluate(scene, sections, finder, stopped, None) {
+        Ok(e) => Rest::Slips(Box::new(e)),
+        Err(Stop { reason, detail }) => {
+            o.energy = Some(energy(stopped, 0.0, stop_pose.cm.y, origin, mass, g));
+            Rest::Ended(reason, t_event, detail)
+        }
+    }
+}
+
 /// The energy balance at a state with kinetic energy `kinetic` and CM height `cm_y`, from the
 /// start's kinetic energy and CM height `(k0, y0)`.
 fn energy(
@@ -732,41 +787,22 @@ impl RigidBody<'_> {
             stopped[3] = 0.0;
             stopped[4] = 0.0;
             stopped[5] = 0.0;
-            let stop_pose = match pose_at(scene, finder, displacement(&stopped)) {
-                Ok(p) => p,
-                Err(e) => return Flow::Ended(fail(o, &y, &ev, e)),
-            };
-            o.travel += (stop_pose.cm - ev.pose.cm).norm();
-            o.increments = k;
-            let geom = ContactGeometry::with_normals(sections.normals(), &stop_pose);
-            let check = match static_check(sections, &geom) {
-                Ok(c) => c,
-                Err(Stop { reason, detail }) => return Flow::Ended(o.end(reason, t, detail)),
-            };
-            if check.holds() {
-                o.push(rest_row(t_event, &stopped, &stop_pose));
-                o.energy = Some(energy(&stopped, 0.0, stop_pose.cm.y, start, mass, g));
-                return Flow::Ended(o.end(
-                    Reason::Stopped,
-                    t_event,
-                    format!(
-                        "the motion stopped at t = {t_event:.6} s and static friction holds \
-                     the block there (factor of safety {})",
-                        check.factor_of_safety()
-                    ),
-                ));
-            }
-            // Not held: it slips again from rest.
-            ev = match evaluate(scene, sections, finder, &stopped, None) {
-                Ok(e) => e,
-                Err(Stop { reason, detail }) => {
-                    o.energy = Some(energy(&stopped, 0.0, stop_pose.cm.y, start, mass, g));
-                    return Flow::Ended(o.end(reason, t_event, detail));
+            match come_to_rest(
+                (scene, sections, finder),
+                (&stopped, &ev),
+                (k, t, t_event),
+                start,
+                &mut o,
+            ) {
+                Rest::Failed(e) => return Flow::Ended(fail(o, &y, &ev, e)),
+                Rest::Ended(reason, at, detail) => return Flow::Ended(o.end(reason, at, detail)),
+                Rest::Slips(e) => {
+                    ev = *e;
+                    y = stopped;
+                    anchor = anchor_of(&ev, None);
+                    t = t_event;
                 }
-            };
-            y = stopped;
-            anchor = anchor_of(&ev, None);
-            t = t_event;
+            }
         }
         self.t = t_target;
         (self.y, self.ev, self.anchor, self.ke_max, self.h) = (y, ev, anchor, ke_max, h);
