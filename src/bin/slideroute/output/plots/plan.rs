@@ -408,19 +408,25 @@ pub(super) fn plan_view(
                         .map(|&p| EmptyElement::at(p) + Cross::new((0, 0), 6, ink.stroke_width(2))),
                 )
                 .map_err(err(path))?;
-            // Numbered where they stand clear of the start's numbers (a short route's would
-            // print over them).
+            // Numbered: not where a contact has hardly moved (its start number is there), and
+            // below and to the left where a start number stands close by.
             let starts: Vec<P> = starts.iter().chain(first.iter()).copied().collect();
+            let near = |p: &P, q: &P, px: f64| (p.0 - q.0).hypot(p.1 - q.1) <= px * scale;
             chart
                 .draw_series(
                     last.iter()
                         .enumerate()
-                        .filter(|(_, p)| {
-                            starts
-                                .iter()
-                                .all(|q| (p.0 - q.0).hypot(p.1 - q.1) > 14.0 * scale)
-                        })
-                        .map(|(i, &p)| EmptyElement::at(p) + number(i)),
+                        .filter(|(i, p)| !near(p, &first[*i], 3.0))
+                        .map(|(i, &p)| {
+                            let crowded = starts.iter().any(|q| near(&p, q, 14.0));
+                            let at = if crowded { (-16, 4) } else { (7, -15) };
+                            EmptyElement::at(p)
+                                + Text::new(
+                                    format!("{i}"),
+                                    at,
+                                    ("sans-serif", 15).into_font().color(&ink),
+                                )
+                        }),
                 )
                 .map_err(err(path))?;
         }

@@ -160,15 +160,19 @@ fn the_plan_view_shades_and_names_the_regions_and_draws_the_water_force() {
 
 #[test]
 fn the_plan_view_numbers_the_contacts_at_the_start_and_the_end() {
-    let (dir, _) = route_pictures("numbers", &scene_with(4.0, 8e6));
-    let t = texts(&read(&dir, "plan.svg"));
-    for i in ["0", "1", "2"] {
-        // The contacts' numbers are 15 px (12.1 in the SVG), larger than the ticks'.
-        let n = t
-            .iter()
-            .filter(|t| t.text == i && t.x < panel_left(plan::SIZE.0) && t.size > 11.5)
-            .count();
-        assert_eq!(n, 2, "contact {i} numbered {n} times");
+    // At 4 s the end contacts stand apart from the start's; at the route's end (t_end 20 s)
+    // contact 0 ends beside contact 1's start, and is numbered all the same.
+    for t_end in [4.0, 20.0] {
+        let (dir, _) = route_pictures("numbers", &scene_with(t_end, 8e6));
+        let t = texts(&read(&dir, "plan.svg"));
+        for i in ["0", "1", "2"] {
+            // The contacts' numbers are 15 px (12.1 in the SVG), larger than the ticks'.
+            let n = t
+                .iter()
+                .filter(|t| t.text == i && t.x < panel_left(plan::SIZE.0) && t.size > 11.5)
+                .count();
+            assert_eq!(n, 2, "t_end {t_end}: contact {i} numbered {n} times");
+        }
     }
 }
 
