@@ -600,4 +600,22 @@ mod tests {
         assert!(svg.matches("<polygon").count() >= 2);
         assert!(words.contains("factor of safety unbounded"));
     }
+
+    #[test]
+    fn a_sweep_where_no_combination_ran_still_draws_and_says_so() {
+        let mut rows = grid(&[0.2, 0.4], &[0.0, 1.0]);
+        for r in &mut rows {
+            r.reason = "invalid scene".into();
+            r.travel_m = None;
+            r.t_end_s = None;
+        }
+        let varies = [
+            vary("friction.mu_k", &[0.2, 0.4]),
+            vary("loads.eccentricity_m", &[0.0, 1.0]),
+        ];
+        let svg = draw("none", &varies, &rows);
+        assert!(svg.trim_end().ends_with("</svg>") && !svg.contains("NaN"));
+        let words: String = texts(&svg).into_iter().map(|t| t.1 + " ").collect();
+        assert!(words.contains("4 had no route"), "{words}");
+    }
 }

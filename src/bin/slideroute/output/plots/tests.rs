@@ -223,3 +223,52 @@ fn a_scene_that_does_not_slide_gets_pictures_that_say_so() {
             .any(|t| t.text.contains("does not slide"))
     );
 }
+
+#[test]
+fn pictures_of_odd_scenes_draw_without_fail() {
+    // Frames from 1 cm to 10 km, any proportions, dips and strike, loads and offsets: every
+    // scene that runs gets its four pictures, whole and small, and never a panic (issue #13:
+    // never a panic, on any input).
+    let mut seed = 0x2545_f491_4f6c_dd1du64;
+    let mut next = || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let mut drawn = 0;
+    for k in 0..40 {
+        let mut scene = Scene::default_scene();
+        let l = 10f64.powf(-2.0 + 6.0 * next());
+        let (a, b) = (0.05 + 0.9 * next(), 0.05 + 0.9 * next());
+        let site = &mut scene.site;
+        (site.frame.l1x, site.frame.l2x) = (a * l, (1.0 - a) * l);
+        (site.frame.l1z, site.frame.l2z) = (b * l, (1.0 - b) * l);
+        site.foundation.xi = (1.0 + 88.0 * next()).to_radians();
+        site.foundation.zeta = (1.0 + 88.0 * next()).to_radians();
+        site.foundation.kappa = (-89.0 + 178.0 * next()).to_radians();
+        let block = scene.block.as_mut().unwrap();
+        block.mass = 1e6 * (l / 10.0).powi(2);
+        block.inertia = 1.1e7 * (l / 10.0).powi(4);
+        block.inertia_x = 0.5 * block.inertia;
+        block.inertia_z = 0.5 * block.inertia;
+        let loads = scene.loads.as_mut().unwrap();
+        loads.hydraulic_force = 10f64.powf(5.0 + 3.0 * next()) * (l / 10.0).powi(2);
+        loads.eccentricity = (next() - 0.5) * l;
+        scene.solver.as_mut().unwrap().t_end = 1.0;
+        let Ok(route) = slideroute::run(&scene) else {
+            continue;
+        };
+        let dir = temp_dir(&format!("odd-{k}"));
+        write_route_plots(&dir, &scene, &route)
+            .unwrap_or_else(|e| panic!("scene {k} (L = {l} m): {e}"));
+        for file in ["plan.svg", "profile.svg", "angles.svg", "reactions.svg"] {
+            let svg = read(&dir, file);
+            assert!(svg.trim_end().ends_with("</svg>"), "scene {k}: {file} cut");
+            assert!(svg.len() < 2_000_000, "scene {k}: {file} {} B", svg.len());
+            assert!(!svg.contains("NaN"), "scene {k}: {file} has NaN");
+        }
+        drawn += 1;
+    }
+    assert!(drawn >= 30, "only {drawn} of 40 scenes ran");
+}
