@@ -4,7 +4,6 @@
 //! Each contact is held on its own infinite plane; the regions say where the plane is real.
 
 use super::site::Site;
-use nalgebra::Vector3;
 
 /// Which plane.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -47,20 +46,11 @@ pub fn height(site: &Site, plane: Plane, x: f64, z: f64) -> f64 {
     }
 }
 
-/// The upward unit normal of `plane` ([`Foundation::normals`](super::site::Foundation::normals)).
-pub fn normal(site: &Site, plane: Plane) -> Vector3<f64> {
-    let k = match plane {
-        Plane::Horizontal => 0,
-        Plane::One => 1,
-        Plane::Two => 2,
-    };
-    site.foundation.normals()[k]
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::scene::Scene;
+    use nalgebra::Vector3;
 
     #[test]
     fn start_vertices_lie_on_the_strike_lines() {
@@ -74,8 +64,12 @@ mod tests {
     #[test]
     fn normals_are_unit_and_orthogonal_to_the_planes() {
         let scene = Scene::default_scene();
-        for plane in [Plane::Horizontal, Plane::One, Plane::Two] {
-            let n = normal(&scene.site, plane);
+        let normals = scene.site.foundation.normals();
+        for (k, plane) in [Plane::Horizontal, Plane::One, Plane::Two]
+            .into_iter()
+            .enumerate()
+        {
+            let n = normals[k];
             assert!((n.norm() - 1.0).abs() < 1e-15);
             // Two points of the plane: the difference is orthogonal to n.
             let p = |x: f64, z: f64| Vector3::new(x, height(&scene.site, plane, x, z), z);

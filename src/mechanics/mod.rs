@@ -30,16 +30,10 @@ pub struct ContactGeometry {
 
 impl ContactGeometry {
     pub fn new(scene: &Scene, pose: &Pose) -> Self {
-        Self::with_normals(&Self::plane_normals(scene), pose)
+        Self::with_normals(&scene.site.foundation.normals(), pose)
     }
 
-    /// The upward unit normals of the planes carrying vertices 0, 1, 2.
-    pub fn plane_normals(scene: &Scene) -> [Vector3<f64>; 3] {
-        scene.site.foundation.normals()
-    }
-
-    /// With the [`ContactGeometry::plane_normals`] computed before (as
-    /// [`crate::scene::Simulation::normals`]).
+    /// With the planes' normals computed before (as [`crate::scene::Simulation::normals`]).
     pub fn with_normals(normals: &[Vector3<f64>; 3], pose: &Pose) -> Self {
         ContactGeometry {
             frame: pose.frame,

@@ -34,7 +34,7 @@ pub enum Reason {
 }
 
 impl Reason {
-    pub fn as_str(self) -> &'static str {
+    pub const fn as_str(self) -> &'static str {
         match self {
             Reason::DoesNotSlide => "does not slide",
             Reason::NoFrictionSolution => "the paper's frictional system has no solution",

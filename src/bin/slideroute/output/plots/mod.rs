@@ -202,6 +202,17 @@ pub fn compare_plan(
     )
 }
 
+/// A picture against time or distance: its file, title, axes, x values and lines, and what a
+/// route that did not move has none of (said instead of empty axes).
+struct Chart<'a> {
+    file: &'a str,
+    title: &'a str,
+    axes: (&'a str, &'a str),
+    x: &'a [f64],
+    series: Vec<Series<'a>>,
+    lacks: &'a str,
+}
+
 /// plan.svg, profile.svg, angles.svg, reactions.svg in `dir`.
 pub fn write_route_plots(dir: &Path, scene: &Scene, route: &Route) -> Res<Vec<PathBuf>> {
     let thin = thinned(&route.rows);
@@ -225,99 +236,91 @@ pub fn write_route_plots(dir: &Path, scene: &Scene, route: &Route) -> Res<Vec<Pa
         }
         s.push(acc);
     }
-    let still = |p: &Path, title: String, what: &str| {
-        sheet::message(p, series::SIZE, &title, &still_words(route, what))
-    };
-    let p = dir.join("profile.svg");
-    let title = format!("{}: elevation of the centre of mass", route.scene);
-    if moved(route) {
-        series::lines(
-            &p,
-            &title,
-            ("distance travelled by the CM (m)", "CM height Y (m)"),
-            &s,
-            &[Series {
-                name: "CM height",
-                values: rows.iter().map(|r| r.y_m).collect(),
-                color: COLORS[0],
-            }],
-            &notes,
-        )?;
-    } else {
-        still(&p, title, "heights along a path")?;
-    }
-    out.push(p);
-
-    let p = dir.join("angles.svg");
-    let title = format!("{}: tilts and yaw", route.scene);
-    if moved(route) {
-        let angle = |f: fn(&Row) -> f64| rows.iter().map(f).collect();
-        series::lines(
-            &p,
-            &title,
-            ("time (s)", "angle (°)"),
-            &t,
-            &[
-                Series {
-                    name: "α: tilt of side 01",
-                    values: angle(|r| r.alpha_deg),
-                    color: COLORS[0],
-                },
-                Series {
-                    name: "β: tilt of side 02",
-                    values: angle(|r| r.beta_deg),
-                    color: COLORS[1],
-                },
-                Series {
-                    name: "γ: tilt of side 1→2",
-                    values: angle(|r| r.gamma_deg),
-                    color: COLORS[2],
-                },
-                Series {
-                    name: "θ: yaw",
-                    values: angle(|r| r.theta_deg),
-                    color: COLORS[3],
-                },
-            ],
-            &notes,
-        )?;
-    } else {
-        still(&p, title, "angles over time")?;
-    }
-    out.push(p);
-
+    let column = |f: fn(&Row) -> f64| rows.iter().map(f).collect();
     let mn = |pick: fn(&Row) -> Option<[f64; 3]>, i: usize| -> Vec<f64> {
         rows.iter()
             .map(|r| pick(r).map_or(f64::NAN, |v| v[i] / 1e6))
             .collect()
     };
-    let p = dir.join("reactions.svg");
-    let title = format!("{}: contact reactions", route.scene);
-    if moved(route) {
-        let names = [
-            "N0 normal, contact 0",
-            "N1 normal, contact 1",
-            "N2 normal, contact 2",
-            "S0 shear, contact 0",
-            "S1 shear, contact 1",
-            "S2 shear, contact 2",
-        ];
-        let series: Vec<Series> = (0..6)
-            .map(|k| Series {
-                name: names[k],
-                values: if k < 3 {
-                    mn(|r| r.n_n, k)
-                } else {
-                    mn(|r| r.s_n, k - 3)
+    let reaction_names = [
+        "N0 normal, contact 0",
+        "N1 normal, contact 1",
+        "N2 normal, contact 2",
+        "S0 shear, contact 0",
+        "S1 shear, contact 1",
+        "S2 shear, contact 2",
+    ];
+    let charts = [
+        Chart {
+            file: "profile.svg",
+            title: "elevation of the centre of mass",
+            axes: ("distance travelled by the CM (m)", "CM height Y (m)"),
+            x: &s,
+            series: vec![Series {
+                name: "CM height",
+                values: column(|r| r.y_m),
+                color: COLORS[0],
+            }],
+            lacks: "heights along a path",
+        },
+        Chart {
+            file: "angles.svg",
+            title: "tilts and yaw",
+            axes: ("time (s)", "angle (°)"),
+            x: &t,
+            series: vec![
+                Series {
+                    name: "α: tilt of side 01",
+                    values: column(|r| r.alpha_deg),
+                    color: COLORS[0],
                 },
-                color: COLORS[k],
-            })
-            .collect();
-        series::lines(&p, &title, ("time (s)", "force (MN)"), &t, &series, &notes)?;
-    } else {
-        still(&p, title, "reactions over time")?;
+                Series {
+                    name: "β: tilt of side 02",
+                    values: column(|r| r.beta_deg),
+                    color: COLORS[1],
+                },
+                Series {
+                    name: "γ: tilt of side 1→2",
+                    values: column(|r| r.gamma_deg),
+                    color: COLORS[2],
+                },
+                Series {
+                    name: "θ: yaw",
+                    values: column(|r| r.theta_deg),
+                    color: COLORS[3],
+                },
+            ],
+            lacks: "angles over time",
+        },
+        Chart {
+            file: "reactions.svg",
+            title: "contact reactions",
+            axes: ("time (s)", "force (MN)"),
+            x: &t,
+            series: (0..6)
+                .map(|k| Series {
+                    name: reaction_names[k],
+                    values: if k < 3 {
+                        mn(|r| r.n_n, k)
+                    } else {
+                        mn(|r| r.s_n, k - 3)
+                    },
+                    color: COLORS[k],
+                })
+                .collect(),
+            lacks: "reactions over time",
+        },
+    ];
+    for c in charts {
+        let p = dir.join(c.file);
+        let title = format!("{}: {}", route.scene, c.title);
+        if moved(route) {
+            series::lines(&p, &title, c.axes, c.x, &c.series, &notes)?;
+        } else {
+            sheet::message(&p, series::SIZE, &title, &still_words(route, c.lacks))?;
+        }
+        out.push(p);
     }
-    out.push(p);
     Ok(out)
 }
 

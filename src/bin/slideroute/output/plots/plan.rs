@@ -130,6 +130,10 @@ fn free_spot(poly: &[P], obstacles: &[P], view: (f64, f64, f64, f64)) -> Option<
     if n < 3 {
         return None;
     }
+    // Inside a convex polygon: on the same side of every edge as its centroid.
+    let c = poly.iter().fold((0.0, 0.0), |s, q| {
+        (s.0 + q.0 / n as f64, s.1 + q.1 / n as f64)
+    });
     let mut best: Option<(P, f64)> = None;
     for i in 0..=40 {
         for j in 0..=30 {
@@ -140,10 +144,6 @@ fn free_spot(poly: &[P], obstacles: &[P], view: (f64, f64, f64, f64)) -> Option<
             let edge = (0..n)
                 .map(|k| segment_distance(p, poly[k], poly[(k + 1) % n]))
                 .fold(f64::INFINITY, f64::min);
-            // Inside a convex polygon: on the same side of every edge as its centroid.
-            let c = poly.iter().fold((0.0, 0.0), |s, q| {
-                (s.0 + q.0 / n as f64, s.1 + q.1 / n as f64)
-            });
             let inside = (0..n).all(|k| {
                 let (a, b) = (poly[k], poly[(k + 1) % n]);
                 let side = |q: P| (b.0 - a.0) * (q.1 - a.1) - (b.1 - a.1) * (q.0 - a.0);

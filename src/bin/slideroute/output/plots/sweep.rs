@@ -14,7 +14,8 @@ use slideroute::stages::mechanics::static_friction::FactorOfSafety;
 use std::path::Path;
 
 const SIZE: (u32, u32) = (1200, 820);
-const DID_NOT_SLIDE: &str = "does not slide";
+/// The sweep's reason for a block that did not slide (the route's own word).
+const DID_NOT_SLIDE: &str = slideroute::Reason::DoesNotSlide.as_str();
 
 /// How a combination came out, for its marker.
 #[derive(Debug, Clone, Copy, PartialEq)]
