@@ -18,17 +18,17 @@ fn all_roots(c: &mut Criterion) {
     for (name, mode) in [("small-angle", Mode::SmallAngle), ("exact", Mode::Exact)] {
         c.bench_function(&format!("all roots {name}: coefficients + eigen"), |b| {
             b.iter(|| {
-                let (p, q) = system::biquadratic(black_box(&scene.site), black_box(d), mode);
+                let (p, q) = system::biquadratic(black_box(scene.site()), black_box(d), mode);
                 eigen::solve(&p, &q)
             })
         });
         c.bench_function(&format!("all roots {name}: reference 8x8 pencil"), |b| {
-            let (p, q) = system::biquadratic(&scene.site, d, mode);
+            let (p, q) = system::biquadratic(scene.site(), d, mode);
             b.iter(|| eigen::solve_pencil(black_box(&p), black_box(&q)))
         });
         c.bench_function(
             &format!("all roots {name}: solve_all (classify + select)"),
-            |b| b.iter(|| roots::solve_all(black_box(&scene.site), black_box(d), mode)),
+            |b| b.iter(|| roots::solve_all(black_box(scene.site()), black_box(d), mode)),
         );
     }
 }
@@ -41,12 +41,12 @@ fn tracker_step(c: &mut Criterion) {
                 let t = k as f64;
                 Displacement::new(1e-3 * t, 2e-4 * t, (1e-2 * t).to_radians())
             };
-            let mut tracker = Tracker::new(&scene.site, mode);
+            let mut tracker = Tracker::new(scene.site(), mode);
             let mut k = 0usize;
             b.iter(|| {
                 k += 1;
                 if k > 2000 {
-                    tracker = Tracker::new(&scene.site, mode);
+                    tracker = Tracker::new(scene.site(), mode);
                     k = 1;
                 }
                 tracker.advance(black_box(path(k))).expect("on the branch")

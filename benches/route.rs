@@ -9,22 +9,27 @@ use criterion::{Criterion, criterion_group, criterion_main};
 use slideroute::stages::geometry::Displacement;
 use slideroute::stages::route::pose_finder::PoseFinder;
 use slideroute::stages::route::{self, PoseMethod, rhs};
-use slideroute::stages::scene::{DynamicsModel, Friction, Mode, Scene};
+use slideroute::stages::scene::{DynamicsModel, Mode, Scene};
 use std::hint::black_box;
 
 fn whole_routes(c: &mut Criterion) {
     // The paper's dynamics (the default is the rigid body's).
-    let base = Scene::default_scene().with_dynamics(DynamicsModel::Paper);
-    let mut small = base.clone();
-    small.solver.as_mut().unwrap().mode = Mode::SmallAngle;
-    let mut frictionless = base.clone();
-    frictionless.friction = Some(Friction::Coulomb { mu_k: 0.0 });
-    frictionless.loads.as_mut().unwrap().hydraulic_force = 4.0e6;
+    let base = Scene::default_scene()
+        .with_dynamics(DynamicsModel::Paper)
+        .unwrap();
+    let small = base.with("solver.mode", "small-angle").unwrap();
+    let frictionless = base
+        .with("friction.mu_k", 0.0)
+        .and_then(|s| s.with("loads.hydraulic_force_n", 4.0e6))
+        .unwrap();
     // Rigid-body dynamics, 3 s at 1 ms (RK4: four evaluations per increment).
-    let mut rigid = base.with_dynamics(DynamicsModel::RigidBody);
-    rigid.solver.as_mut().unwrap().t_end = 3.0;
-    let mut rigid_frictionless = frictionless.with_dynamics(DynamicsModel::RigidBody);
-    rigid_frictionless.solver.as_mut().unwrap().t_end = 3.0;
+    let rigid_3s = |s: &Scene| {
+        s.with_dynamics(DynamicsModel::RigidBody)
+            .and_then(|s| s.with("solver.t_end_s", 3.0))
+            .unwrap()
+    };
+    let rigid = rigid_3s(&base);
+    let rigid_frictionless = rigid_3s(&frictionless);
     for (name, s) in [
         ("paper-like route, exact, friction", &base),
         ("paper-like route, small-angle, friction", &small),
@@ -40,7 +45,9 @@ fn whole_routes(c: &mut Criterion) {
 }
 
 fn one_increment(c: &mut Criterion) {
-    let scene = Scene::default_scene().with_dynamics(DynamicsModel::Paper);
+    let scene = Scene::default_scene()
+        .with_dynamics(DynamicsModel::Paper)
+        .unwrap();
     let dynamics = slideroute::stages::scene::Simulation::new(&scene).unwrap();
     for method in [PoseMethod::Continuation, PoseMethod::AllRoots] {
         // Position the finder and the chosen reaction at X = 0.5 m, then time the next 1 mm.

@@ -114,8 +114,8 @@ pub fn compare_dynamics_observed(
             std::ops::ControlFlow::Continue(())
         }
     };
-    let paper = route::run_observed(&scene.with_dynamics(DynamicsModel::Paper), observe)?;
-    let rigid_body = route::run_observed(&scene.with_dynamics(DynamicsModel::RigidBody), observe)?;
+    let paper = route::run_observed(&scene.with_dynamics(DynamicsModel::Paper)?, observe)?;
+    let rigid_body = route::run_observed(&scene.with_dynamics(DynamicsModel::RigidBody)?, observe)?;
     let parting = parting(scene, &paper.rows, &rigid_body.rows);
     Ok(Comparison {
         paper,

@@ -23,12 +23,12 @@
 //! use slideroute::{CoeffInputs, Displacement, Mode, Scene, SmallAngle, Tracker};
 //! let scene = Scene::default_scene();
 //! let d = Displacement::new(0.5, 0.1, 2f64.to_radians());
-//! let f = SmallAngle::new(&CoeffInputs::new(&scene.site, d)); // f1–f12 of (15)
+//! let f = SmallAngle::new(&CoeffInputs::new(scene.site(), d)); // f1–f12 of (15)
 //! assert_eq!(f.f.len(), 12);
-//! let all = slideroute::solve_all(&scene.site, d, Mode::Exact).unwrap(); // every root, classified
-//! let mut tracker = Tracker::new(&scene.site, Mode::Exact);
+//! let all = slideroute::solve_all(scene.site(), d, Mode::Exact).unwrap(); // every root, classified
+//! let mut tracker = Tracker::new(scene.site(), Mode::Exact);
 //! let here = tracker.advance(d).unwrap(); // u = (α, ψ) on the physical branch
-//! let oracle = slideroute::direct_pose(&scene.site, d).unwrap();
+//! let oracle = slideroute::direct_pose(scene.site(), d).unwrap();
 //! assert!((here.u[0] - oracle.alpha(scene.l())).abs() < 1e-9 && !all.roots.is_empty());
 //! ```
 //!

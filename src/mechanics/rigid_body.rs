@@ -939,8 +939,7 @@ mod tests {
 
     #[test]
     fn frictionless_accelerations_keep_contact_accelerations_on_the_planes() {
-        let mut scene = Scene::default_scene();
-        scene.friction = Some(crate::scene::Friction::Coulomb { mu_k: 0.0 });
+        let scene = Scene::default_scene().with("friction.mu_k", 0.0).unwrap();
         let d = crate::scene::Simulation::new(&scene).unwrap();
         let geom = at(&scene, Displacement::new(0.7, 0.2, 0.1));
         let applied = Applied::new(d.loads(), d.block(), &geom.frame);
@@ -1001,8 +1000,7 @@ mod tests {
         // hold it starts to slip along d with its friction −μλ d, where the tangential
         // acceleration this gives points along d itself (a_t ∥ d, a_t·d ≥ 0). Checked by
         // recomputing a_t from the returned accelerations.
-        let mut scene = Scene::default_scene();
-        scene.friction = Some(crate::scene::Friction::Coulomb { mu_k: 0.05 });
+        let scene = Scene::default_scene().with("friction.mu_k", 0.05).unwrap();
         let d = crate::scene::Simulation::new(&scene).unwrap();
         let geom = at(&scene, Displacement::new(0.5, 0.1, 0.05));
         let applied = Applied::new(d.loads(), d.block(), &geom.frame);

@@ -255,9 +255,11 @@ mod tests {
     use crate::scene::Scene;
 
     /// The default scene changed by `edit`, and its contact geometry at the start.
-    fn start(edit: impl FnOnce(&mut Scene)) -> (Scene, ContactGeometry) {
-        let mut s = Scene::default_scene();
-        edit(&mut s);
+    /// The default scene with `keys` set, and its contact geometry at the start.
+    fn start(keys: &[(&str, f64)]) -> (Scene, ContactGeometry) {
+        let s = Scene::default_scene()
+            .with_keys(keys.iter().copied())
+            .unwrap();
         let pose = Pose::from_tilts(&s.site, Default::default(), 0.0, 0.0).unwrap();
         let g = ContactGeometry::new(&s, &pose);
         (s, g)
@@ -267,11 +269,11 @@ mod tests {
     fn a_flat_block_without_couple_is_held_up_to_mu_times_weight() {
         // Nearly flat planes, no eccentricity: the held force is μ W (the planes' normals lean
         // by 0.01°, which changes it by O(1e-4)).
-        let (s, g) = start(|s| {
-            s.site.foundation.xi = 0.01f64.to_radians();
-            s.site.foundation.zeta = 0.01f64.to_radians();
-            s.loads.as_mut().unwrap().eccentricity = 0.0;
-        });
+        let (s, g) = start(&[
+            ("foundation.xi_deg", 0.01),
+            ("foundation.zeta_deg", 0.01),
+            ("loads.eccentricity_m", 0.0),
+        ]);
         let d = crate::scene::Simulation::new(&s).unwrap();
         let applied = Applied::new(d.loads(), d.block(), &g.frame);
         let c = frictionless_normals(&g, &applied).unwrap();
@@ -288,7 +290,7 @@ mod tests {
     #[test]
     fn high_friction_holds_and_zero_friction_does_not() {
         for (mu_k, holds) in [(2.0, true), (0.0, false)] {
-            let (s, g) = start(|s| s.friction = Some(crate::scene::Friction::Coulomb { mu_k }));
+            let (s, g) = start(&[("friction.mu_k", mu_k)]);
             let d = crate::scene::Simulation::new(&s).unwrap();
             let applied = Applied::new(d.loads(), d.block(), &g.frame);
             let c = frictionless_normals(&g, &applied).unwrap();

@@ -10,7 +10,7 @@
 //!
 //! ```
 //! use slideroute::stages::{geometry::Displacement, roots, scene::{Mode, Scene}};
-//! let site = Scene::default_scene().site;
+//! let site = *Scene::default_scene().site();
 //! let d = Displacement::new(0.5, 0.1, 2f64.to_radians());
 //! let all = roots::solve_all(&site, d, Mode::Exact).unwrap();
 //! let chosen = all.selected.map(|k| &all.roots[k]).unwrap();

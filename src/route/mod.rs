@@ -127,27 +127,33 @@ mod tests {
         .unwrap();
         let e = crate::scene::Simulation::new(&geometry_only).unwrap_err();
         assert_eq!(e.key, "block", "{e}");
-        // Values are checked as a file's would be, even in a scene built by hand.
-        let mut hand = crate::scene::Scene::default_scene();
-        hand.block.as_mut().unwrap().mass = -1.0;
-        let e = crate::scene::Simulation::new(&hand).unwrap_err();
+        // A scene changed by key is checked as a file would be.
+        let default = crate::scene::Scene::default_scene();
+        let e = default.with("block.mass_kg", -1.0).unwrap_err();
         assert_eq!(e.key, "block.mass_kg", "{e}");
-        hand.block = crate::scene::Scene::default_scene().block;
-        hand.site.foundation.xi = 100f64.to_radians();
-        let e = crate::scene::Simulation::new(&hand).unwrap_err();
+        let e = default.with("foundation.xi_deg", 100.0).unwrap_err();
         assert_eq!(e.key, "foundation.xi_deg", "{e}");
-        // Every section's keys echo and validate: a stress-dependent friction criterion and an
-        // initial motion too.
-        let mut other = crate::scene::Scene::default_scene();
-        other.friction = Some(crate::scene::Friction::BartonChoubey {
-            jrc: 10.0,
-            jcs_pa: 50e6,
-            phi_r: 30f64.to_radians(),
-            contact_area_m2: 2.0,
-        });
-        other.initial.vx = 0.5;
+        // A stress-dependent friction criterion and an initial motion come through.
+        let mut doc = toml::Table::new();
+        for (k, v) in [
+            ("model", toml::Value::from("barton-choubey")),
+            ("jrc", 10.0.into()),
+            ("jcs_pa", 50e6.into()),
+            ("phi_r_deg", 30.0.into()),
+            ("contact_area_m2", 2.0.into()),
+        ] {
+            doc.insert(k.into(), v);
+        }
+        let other = default
+            .with("friction", doc)
+            .and_then(|s| s.with("initial.vx_m_s", 0.5))
+            .unwrap();
         let sim = crate::scene::Simulation::new(&other).unwrap();
-        assert_eq!(sim.friction(), other.friction.as_ref().unwrap());
+        assert!(matches!(
+            sim.friction(),
+            crate::scene::Friction::BartonChoubey { jrc: 10.0, .. }
+        ));
+        assert_eq!(sim.scene().initial.vx, 0.5);
         // A full one runs, infallibly, to the same route as `run`.
         let scene = crate::scene::Scene::default_scene();
         let sim = crate::scene::Simulation::new(&scene).unwrap();

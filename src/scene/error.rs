@@ -14,15 +14,45 @@ pub struct SceneError {
     pub reason: String,
     /// 1-based line and column in the file, when known.
     pub position: Option<(usize, usize)>,
+    /// What kind of fault it is, for callers that act on it (the reason is for people).
+    pub kind: SceneErrorKind,
+}
+
+/// The kinds of [`SceneError`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SceneErrorKind {
+    /// The file cannot be read, or is not TOML.
+    Unreadable,
+    /// A key or section no scene has.
+    UnknownKey,
+    /// A section a scene, or the command, needs is absent.
+    MissingSection,
+    /// A key its section needs is absent.
+    MissingKey,
+    /// A value of the wrong type (a word for a number, …).
+    WrongType,
+    /// A value out of its range, a name no option has, or values that do not go together.
+    Invalid,
 }
 
 impl SceneError {
+    /// An [`SceneErrorKind::Invalid`] value.
     pub(crate) fn new(origin: &str, key: impl Into<String>, reason: impl Into<String>) -> Self {
+        SceneError::of(SceneErrorKind::Invalid, origin, key, reason)
+    }
+
+    pub(crate) fn of(
+        kind: SceneErrorKind,
+        origin: &str,
+        key: impl Into<String>,
+        reason: impl Into<String>,
+    ) -> Self {
         SceneError {
             origin: origin.to_string(),
             key: key.into(),
             reason: one_line(&reason.into()),
             position: None,
+            kind,
         }
     }
 }

@@ -9,10 +9,14 @@ mod echo;
 mod error;
 pub mod input;
 mod raw;
+mod read;
+mod simulation;
+mod validate;
 
-pub use error::SceneError;
+pub use error::{SceneError, SceneErrorKind};
+pub use simulation::Simulation;
+pub use validate::MAX_INCREMENTS;
 
-use serde::Deserialize;
 use std::path::Path;
 
 /// The scene compiled into the binary: the paper-like scene of `scenes/paper-like.toml`.
@@ -22,8 +26,10 @@ pub const DEFAULT_ORIGIN: &str = "<embedded default scene>";
 
 pub use crate::geometry::site::{Foundation, Frame, Site};
 
-/// Mass properties of the monolith.
+/// Mass properties of the monolith. Read from a scene ([`Scene::block`]); built only by its
+/// validation.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub struct Block {
     /// m (kg).
     pub mass: f64,
@@ -56,7 +62,7 @@ impl Block {
 }
 
 /// Which dynamics moves the block.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
 #[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "kebab-case")]
 pub enum DynamicsModel {
@@ -72,6 +78,9 @@ pub enum DynamicsModel {
 }
 
 impl DynamicsModel {
+    /// Every model, in the order the documentation lists them.
+    pub const ALL: [DynamicsModel; 2] = [DynamicsModel::Paper, DynamicsModel::RigidBody];
+
     pub fn as_str(self) -> &'static str {
         match self {
             DynamicsModel::Paper => "paper",
@@ -82,6 +91,7 @@ impl DynamicsModel {
 
 /// The driving loads.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub struct Loads {
     /// |F| (N), acting along x'.
     pub hydraulic_force: f64,
@@ -95,9 +105,11 @@ pub struct Loads {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Friction {
     /// |S| = μ_k |N| (eq. 24b).
+    #[non_exhaustive]
     Coulomb { mu_k: f64 },
     /// Barton–Choubey, normalised per contact (eq. 43): τ = σ tan(JRC log10(JCS/σ) + φ_r),
     /// with σ = |N| / contact area. `phi_r` in radians.
+    #[non_exhaustive]
     BartonChoubey {
         jrc: f64,
         jcs_pa: f64,
@@ -107,7 +119,7 @@ pub enum Friction {
 }
 
 /// Which polynomial system gives the pose.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
 #[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 #[serde(rename_all = "kebab-case")]
 pub enum Mode {
@@ -118,6 +130,8 @@ pub enum Mode {
 }
 
 impl Mode {
+    pub const ALL: [Mode; 2] = [Mode::Exact, Mode::SmallAngle];
+
     pub fn as_str(self) -> &'static str {
         match self {
             Mode::Exact => "exact",
@@ -127,7 +141,7 @@ impl Mode {
 }
 
 /// How the state is advanced over one increment.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Integrator {
     /// The paper's update (30)–(41): accelerations at the start of the increment, then
@@ -139,6 +153,8 @@ pub enum Integrator {
 }
 
 impl Integrator {
+    pub const ALL: [Integrator; 2] = [Integrator::Paper, Integrator::Rk4];
+
     pub fn as_str(self) -> &'static str {
         match self {
             Integrator::Paper => "paper",
@@ -151,6 +167,7 @@ impl Integrator {
 /// A block set moving — by a transient such as an earthquake pulse, as in Newmark's sliding
 /// block — under loads that static friction can hold decelerates and stops.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[non_exhaustive]
 pub struct Initial {
     pub vx: f64,
     pub vz: f64,
@@ -164,8 +181,9 @@ impl Initial {
     }
 }
 
-/// Time stepping.
+/// Time stepping: the run settings of `[solver]`.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub struct Solver {
     pub mode: Mode,
     /// Increment length (s).
@@ -178,117 +196,53 @@ pub struct Solver {
     pub dynamics: DynamicsModel,
 }
 
-/// A validated scene. `frame` and `foundation` are always present; the other sections are
-/// needed only by commands that simulate ([`Simulation::new`]).
-#[derive(Debug, Clone, PartialEq)]
+/// A validated scene: read from a file or text ([`Scene::from_file`], [`Scene::from_toml`]) or
+/// made from one by changing keys ([`Scene::with`]), and in no other way, so that every scene
+/// is one a file could give. `frame` and `foundation` are always present; the other sections
+/// are needed only by commands that simulate ([`Simulation::new`]).
+#[derive(Debug, Clone)]
 pub struct Scene {
-    pub name: String,
+    pub(crate) name: String,
     /// Where the scene came from (file path or [`DEFAULT_ORIGIN`]), used in error messages.
-    pub origin: String,
+    pub(crate) origin: String,
     /// The contact frame and the foundation: all that geometry, the coefficients and the roots
     /// take of a scene.
-    pub site: Site,
-    pub block: Option<Block>,
-    pub loads: Option<Loads>,
-    pub friction: Option<Friction>,
-    pub solver: Option<Solver>,
+    pub(crate) site: Site,
+    pub(crate) block: Option<Block>,
+    pub(crate) loads: Option<Loads>,
+    pub(crate) friction: Option<Friction>,
+    pub(crate) solver: Option<Solver>,
     /// `[initial]`: the motion at t = 0 (absent: at rest).
-    pub initial: Initial,
+    pub(crate) initial: Initial,
+    /// The document as read, in the file's keys and units: what [`Scene::with`] edits.
+    pub(crate) source: toml::Table,
 }
 
-/// A scene that can be run (issue #14): its physical model — the frame and foundation, the
-/// block, the loads, the friction — and its run settings (`[solver]`), every section present and
-/// their combination valid, settled once when it is built ([`Simulation::new`]). Its fields are
-/// private: a `Simulation` exists only as validated, and running one checks nothing again.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Simulation {
-    scene: Scene,
-    block: Block,
-    loads: Loads,
-    friction: Friction,
-    settings: Solver,
-    /// The upward unit normals of the planes under vertices 0, 1, 2 (horizontal, plane 1,
-    /// plane 2), computed once.
-    normals: [nalgebra::Vector3<f64>; 3],
-}
-
-impl Simulation {
-    /// The scene's simulation, or an error naming the first missing section or the setting that
-    /// cannot be run as written.
-    pub fn new(scene: &Scene) -> Result<Simulation, SceneError> {
-        let missing = |section: &str| {
-            SceneError::new(
-                &scene.origin,
-                section,
-                format!("missing section [{section}] (needed to simulate)"),
-            )
-        };
-        let block = scene.block.ok_or_else(|| missing("block"))?;
-        // The values too, as a file's would be: a scene's fields are public, and one built by
-        // hand has not been through [`Scene::from_toml`]. Its echo in the file's own keys
-        // (`echo.rs`) is validated; the simulation keeps the scene's own numbers.
-        let echo = toml::Value::Table(scene.as_used());
-        let raw: raw::RawScene = echo.try_into().map_err(|e: toml::de::Error| {
-            SceneError::new(&scene.origin, "", e.message().to_string())
-        })?;
-        validate(raw, &scene.origin)?;
-        let loads = scene.loads.ok_or_else(|| missing("loads"))?;
-        let friction = scene.friction.ok_or_else(|| missing("friction"))?;
-        let settings = scene.solver.ok_or_else(|| missing("solver"))?;
-        if settings.dynamics == DynamicsModel::RigidBody && settings.mode == Mode::SmallAngle {
-            return Err(SceneError::new(
-                &scene.origin,
-                "solver.mode",
-                "the rigid-body dynamics needs mode = \"exact\": small-angle poses (the paper's \
-                 approximation (15)) leave the contacts off their planes (about 1 % in α at \
-                 20–25° dips), which the rigid body's contact constraints cannot follow (the \
-                 tracker then takes about a thousand steps an increment); use \"exact\", or \
-                 dynamics = \"paper\" (--dynamics paper) for the small-angle system",
-            ));
-        }
-        Ok(Simulation {
-            scene: scene.clone(),
-            block,
-            loads,
-            friction,
-            settings,
-            normals: scene.site.foundation.normals(),
-        })
-    }
-
-    /// The scene it was built from (name, frame, foundation, initial motion).
-    pub fn scene(&self) -> &Scene {
-        &self.scene
-    }
-
-    pub fn block(&self) -> &Block {
-        &self.block
-    }
-
-    pub fn loads(&self) -> &Loads {
-        &self.loads
-    }
-
-    pub fn friction(&self) -> &Friction {
-        &self.friction
-    }
-
-    /// The run settings: mode, dynamics, integrator, dt, t_end, stride.
-    pub fn solver(&self) -> &Solver {
-        &self.settings
-    }
-
-    /// The upward unit normals of the planes under vertices 0, 1, 2.
-    pub fn normals(&self) -> &[nalgebra::Vector3<f64>; 3] {
-        &self.normals
+/// Two scenes are equal when their values are (the documents may differ in how they wrote
+/// them).
+impl PartialEq for Scene {
+    fn eq(&self, other: &Scene) -> bool {
+        (
+            &self.name,
+            &self.origin,
+            &self.site,
+            &self.block,
+            &self.loads,
+            &self.friction,
+            &self.solver,
+            &self.initial,
+        ) == (
+            &other.name,
+            &other.origin,
+            &other.site,
+            &other.block,
+            &other.loads,
+            &other.friction,
+            &other.solver,
+            &other.initial,
+        )
     }
 }
-
-/// The most increments one run may take (t_end / dt).
-pub const MAX_INCREMENTS: f64 = 1e8;
-
-/// Relative tolerance on L1X + L2X = L1Z + L2Z.
-const FRAME_TOLERANCE: f64 = 1e-9;
 
 impl Scene {
     /// The embedded default scene (paper-like).
@@ -305,28 +259,112 @@ impl Scene {
         Scene::from_toml(&text, &origin)
     }
 
-    /// Parses and validates scene text; `origin` names the source in errors.
+    /// Parses and validates scene text; `origin` names the source in errors, which give the
+    /// line and column of the key they name.
     pub fn from_toml(text: &str, origin: &str) -> Result<Scene, SceneError> {
-        let raw = parse(text, origin)?;
-        validate(raw, origin)
+        read::from_toml(text, origin)
+    }
+
+    /// The same scene with one key set, in the file's own key and units
+    /// (`with("friction.mu_k", 0.3)`, `with("foundation.xi_deg", 18.0)`,
+    /// `with("solver.dynamics", "paper")`): the scene a file with that line would give, validated
+    /// as a file is. A section not yet present is added.
+    pub fn with(&self, key: &str, value: impl Into<toml::Value>) -> Result<Scene, SceneError> {
+        self.with_keys([(key, value)])
+    }
+
+    /// The same scene with several keys set at once and then validated, as [`Scene::with`]
+    /// does for one: keys that must agree (the frame's lengths) change together.
+    pub fn with_keys<K, V>(
+        &self,
+        keys: impl IntoIterator<Item = (K, V)>,
+    ) -> Result<Scene, SceneError>
+    where
+        K: AsRef<str>,
+        V: Into<toml::Value>,
+    {
+        let mut doc = self.source.clone();
+        for (key, value) in keys {
+            let key = key.as_ref();
+            let (section, name) = match key.split_once('.') {
+                Some((section, name)) => (Some(section), name),
+                None => (None, key),
+            };
+            let table = match section {
+                None => &mut doc,
+                Some(section) => doc
+                    .entry(section)
+                    .or_insert_with(|| toml::Value::Table(toml::Table::new()))
+                    .as_table_mut()
+                    .ok_or_else(|| {
+                        SceneError::of(
+                            SceneErrorKind::WrongType,
+                            &self.origin,
+                            section,
+                            "is not a table of keys",
+                        )
+                    })?,
+            };
+            table.insert(name.to_string(), value.into());
+        }
+        read::from_table(doc, &self.origin)
     }
 
     /// The same scene with the other dynamics model (when it has a `[solver]`). A change of
     /// model brings that model's own integrator, as a scene file without `integrator` would:
     /// "rk4" for the rigid body (its only one), "paper" for the paper's dynamics. The command
     /// line says so when it changes the scene's (`--dynamics`).
-    pub fn with_dynamics(&self, model: DynamicsModel) -> Scene {
-        let mut s = self.clone();
-        if let Some(solver) = &mut s.solver {
-            if solver.dynamics != model {
-                solver.integrator = match model {
-                    DynamicsModel::RigidBody => Integrator::Rk4,
-                    DynamicsModel::Paper => Integrator::Paper,
-                };
+    pub fn with_dynamics(&self, model: DynamicsModel) -> Result<Scene, SceneError> {
+        match self.solver {
+            Some(s) if s.dynamics != model => {
+                let mut doc = self.source.clone();
+                if let Some(solver) = doc.get_mut("solver").and_then(|v| v.as_table_mut()) {
+                    solver.remove("integrator");
+                }
+                read::from_table(doc, &self.origin)?.with("solver.dynamics", model.as_str())
             }
-            solver.dynamics = model;
+            _ => Ok(self.clone()),
         }
-        s
+    }
+
+    /// The scene's name (`name`; "unnamed" when the file gives none).
+    pub fn name(&self) -> &str {
+        &self.name
+    }
+
+    /// Where the scene came from: a file path or [`DEFAULT_ORIGIN`].
+    pub fn origin(&self) -> &str {
+        &self.origin
+    }
+
+    /// The frame and the foundation.
+    pub fn site(&self) -> &Site {
+        &self.site
+    }
+
+    /// `[block]`, when given.
+    pub fn block(&self) -> Option<&Block> {
+        self.block.as_ref()
+    }
+
+    /// `[loads]`, when given.
+    pub fn loads(&self) -> Option<&Loads> {
+        self.loads.as_ref()
+    }
+
+    /// `[friction]`, when given.
+    pub fn friction(&self) -> Option<&Friction> {
+        self.friction.as_ref()
+    }
+
+    /// `[solver]`, the run settings, when given.
+    pub fn solver(&self) -> Option<&Solver> {
+        self.solver.as_ref()
+    }
+
+    /// `[initial]`: the motion at t = 0 (at rest when absent).
+    pub fn initial(&self) -> &Initial {
+        &self.initial
     }
 
     /// Side length L (m).
@@ -362,396 +400,6 @@ impl Scene {
         }
         w
     }
-}
-
-fn line_col(text: &str, offset: usize) -> (usize, usize) {
-    let mut end = offset.min(text.len());
-    while !text.is_char_boundary(end) {
-        end -= 1;
-    }
-    let before = &text[..end];
-    let line = before.matches('\n').count() + 1;
-    let col = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
-    (line, col)
-}
-
-/// The first backquoted name in a serde message (`unknown field `foo`, …` → `foo`).
-fn quoted_name(msg: &str) -> Option<&str> {
-    let start = msg.find('`')? + 1;
-    let len = msg[start..].find('`')?;
-    Some(&msg[start..start + len])
-}
-
-fn parse(text: &str, origin: &str) -> Result<raw::RawScene, SceneError> {
-    let de = toml::Deserializer::parse(text).map_err(|e| {
-        let mut err = SceneError::new(origin, "", format!("not valid TOML: {}", e.message()));
-        err.position = e.span().map(|s| line_col(text, s.start));
-        err
-    })?;
-    serde_path_to_error::deserialize(de).map_err(|e| {
-        let path = e.path().to_string();
-        let inner = e.inner();
-        let msg = inner.message().to_string();
-        let parent = if path == "." { String::new() } else { path };
-        // The path ends at the offending key for unknown fields and variants, and at the
-        // enclosing table for missing fields.
-        let join = |name: &str| {
-            if parent.is_empty() {
-                name.to_string()
-            } else if parent == name || parent.ends_with(&format!(".{name}")) {
-                parent.clone()
-            } else {
-                format!("{parent}.{name}")
-            }
-        };
-        let (key, reason) = if msg.starts_with("unknown field") {
-            let name = quoted_name(&msg).unwrap_or("?");
-            (join(name), format!("unknown key; {msg}"))
-        } else if msg.starts_with("missing field") {
-            let name = quoted_name(&msg).unwrap_or("?");
-            if parent.is_empty() {
-                (name.to_string(), format!("missing section [{name}]"))
-            } else {
-                (join(name), format!("missing key `{name}`"))
-            }
-        } else if msg.starts_with("unknown variant") && parent.starts_with("friction") {
-            (join("model"), format!("unknown friction model; {msg}"))
-        } else if msg.starts_with("unknown variant") && parent.ends_with("integrator") {
-            (parent.clone(), format!("unknown integrator; {msg}"))
-        } else if msg.starts_with("unknown variant") && parent.ends_with("dynamics") {
-            (parent.clone(), format!("unknown dynamics; {msg}"))
-        } else if msg.starts_with("unknown variant") && parent.starts_with("solver") {
-            (join("mode"), format!("unknown solver mode; {msg}"))
-        } else {
-            (parent.clone(), msg.clone())
-        };
-        let mut err = SceneError::new(origin, key, reason);
-        err.position = inner.span().map(|s| line_col(text, s.start));
-        err
-    })
-}
-
-/// Checks one number: finite, and `ok(v)`; `what` says what was expected.
-fn check(origin: &str, key: &str, v: f64, ok: bool, what: &str) -> Result<f64, SceneError> {
-    if !v.is_finite() {
-        return Err(SceneError::new(
-            origin,
-            key,
-            format!("must be a finite number, got {v}"),
-        ));
-    }
-    if !ok {
-        return Err(SceneError::new(
-            origin,
-            key,
-            format!("must be {what}, got {v}"),
-        ));
-    }
-    Ok(v)
-}
-
-fn positive(origin: &str, key: &str, v: f64) -> Result<f64, SceneError> {
-    check(origin, key, v, v > 0.0, "positive")
-}
-
-fn non_negative(origin: &str, key: &str, v: f64) -> Result<f64, SceneError> {
-    check(origin, key, v, v >= 0.0, "zero or positive")
-}
-
-/// The block, with the rigid-body inertia defaults (a thin plate in the x'z' plane) and the
-/// checks a rigid body's inertia must pass (positive definite, triangle inequalities).
-fn block(o: &str, b: &raw::RawBlock) -> Result<Block, SceneError> {
-    let inertia = positive(o, "block.inertia_kg_m2", b.inertia_kg_m2)?;
-    let inertia_x = match b.inertia_x_kg_m2 {
-        Some(v) => positive(o, "block.inertia_x_kg_m2", v)?,
-        None => inertia / 2.0,
-    };
-    let inertia_z = match b.inertia_z_kg_m2 {
-        Some(v) => positive(o, "block.inertia_z_kg_m2", v)?,
-        None => inertia / 2.0,
-    };
-    let inertia_xz = match b.inertia_xz_kg_m2 {
-        Some(v) => check(o, "block.inertia_xz_kg_m2", v, true, "finite")?,
-        None => 0.0,
-    };
-    let block = Block {
-        mass: positive(o, "block.mass_kg", b.mass_kg)?,
-        inertia,
-        inertia_x,
-        inertia_z,
-        inertia_xz,
-    };
-    let key = if b.inertia_xz_kg_m2.is_some() {
-        "block.inertia_xz_kg_m2"
-    } else {
-        "block"
-    };
-    let p = block.tensor().symmetric_eigenvalues();
-    let (lo, hi, sum) = (p.min(), p.max(), p.sum());
-    if lo <= 0.0 {
-        return Err(SceneError::new(
-            o,
-            key,
-            format!(
-                "the inertia tensor is not positive definite (principal moments {:.6e}, {:.6e}, \
-                 {:.6e} kg·m²): |inertia_xz| must be below √(inertia_x · inertia_z)",
-                p[0], p[1], p[2]
-            ),
-        ));
-    }
-    if hi > (sum - hi) * (1.0 + 1e-9) {
-        return Err(SceneError::new(
-            o,
-            key,
-            format!(
-                "no rigid body has these moments of inertia: the largest principal moment \
-                 {hi:.6e} kg·m² exceeds the sum of the other two, {:.6e} kg·m²",
-                sum - hi
-            ),
-        ));
-    }
-    Ok(block)
-}
-
-/// The most a derived ratio may be, either way: the water load against the weight, and a
-/// moment of inertia against m L². Each input is finite and positive on its own, but together
-/// they can leave the mechanics nothing to compute with (issue #13: a mass of 1e308 kg made the
-/// weight infinite and the contact problem "singular"; a water load of 1e308 N, the cone program
-/// fail). A dam monolith's ratios are of order one.
-const MAX_RATIO: f64 = 1e6;
-
-/// Checks what follows from the inputs: the weight m g is a finite, normal number, the water
-/// load is within [`MAX_RATIO`] of it, and each moment of inertia within [`MAX_RATIO`] of m L²
-/// either way. The error names the key to change.
-fn derived(
-    o: &str,
-    frame: &Frame,
-    block: Option<&Block>,
-    loads: Option<&Loads>,
-) -> Result<(), SceneError> {
-    let (Some(b), Some(l)) = (block, loads) else {
-        return Ok(());
-    };
-    let weight = b.mass * l.gravity;
-    if !weight.is_normal() {
-        let key = if b.mass > l.gravity {
-            "block.mass_kg"
-        } else {
-            "loads.gravity_m_s2"
-        };
-        return Err(SceneError::new(
-            o,
-            key,
-            format!(
-                "the weight m g = {weight:e} N is not a usable number (mass {:e} kg, gravity {:e} \
-                 m/s²)",
-                b.mass, l.gravity
-            ),
-        ));
-    }
-    if l.hydraulic_force > MAX_RATIO * weight {
-        return Err(SceneError::new(
-            o,
-            "loads.hydraulic_force_n",
-            format!(
-                "{:e} N is more than {MAX_RATIO:e} times the weight ({weight:e} N, from a mass of \
-                 {:e} kg)",
-                l.hydraulic_force, b.mass
-            ),
-        ));
-    }
-    let ml2 = b.mass * frame.l() * frame.l();
-    for (key, i) in [
-        ("block.inertia_kg_m2", b.inertia),
-        ("block.inertia_x_kg_m2", b.inertia_x),
-        ("block.inertia_z_kg_m2", b.inertia_z),
-    ] {
-        let ratio = i / ml2;
-        if !(ratio.is_finite() && (1.0 / MAX_RATIO..=MAX_RATIO).contains(&ratio)) {
-            return Err(SceneError::new(
-                o,
-                key,
-                format!(
-                    "{i:e} kg·m² against m L² = {ml2:e} kg·m²: a ratio of {ratio:e}, outside \
-                     1e-6 … 1e6 (a monolith's is of order 0.1)"
-                ),
-            ));
-        }
-    }
-    Ok(())
-}
-
-fn validate(raw: raw::RawScene, o: &str) -> Result<Scene, SceneError> {
-    let f = &raw.frame;
-    let frame = Frame {
-        l1x: positive(o, "frame.l1x", f.l1x)?,
-        l2x: positive(o, "frame.l2x", f.l2x)?,
-        l1z: positive(o, "frame.l1z", f.l1z)?,
-        l2z: positive(o, "frame.l2z", f.l2z)?,
-    };
-    let (lx, lz) = (frame.l1x + frame.l2x, frame.l1z + frame.l2z);
-    // Each length is finite, but their sum (L, on which every derived length and the pose's
-    // coordinates rest) may not be (issue #13: 1.5e308 m each gave NaN tilts); nor may L²,
-    // which the pose and the inertia scales use.
-    if !(lx * lx).is_finite() || !(lz * lz).is_finite() {
-        return Err(SceneError::new(
-            o,
-            "frame",
-            format!(
-                "l1x + l2x = {lx:e} m and l1z + l2z = {lz:e} m: the frame's side L (and L²) must \
-                 be finite numbers"
-            ),
-        ));
-    }
-    if (lx - lz).abs() > FRAME_TOLERANCE * lx.max(lz) {
-        return Err(SceneError::new(
-            o,
-            "frame",
-            format!(
-                "l1x + l2x = {lx} m but l1z + l2z = {lz} m; the frame is an isosceles right \
-                 triangle, so the two sums must be equal"
-            ),
-        ));
-    }
-
-    let d = &raw.foundation;
-    let dip = |key: &str, v: f64| {
-        check(
-            o,
-            key,
-            v,
-            v > 0.0 && v < 90.0,
-            "a dip strictly between 0° and 90°",
-        )
-        .map(f64::to_radians)
-    };
-    let foundation = Foundation {
-        xi: dip("foundation.xi_deg", d.xi_deg)?,
-        zeta: dip("foundation.zeta_deg", d.zeta_deg)?,
-        kappa: check(
-            o,
-            "foundation.kappa_deg",
-            d.kappa_deg,
-            d.kappa_deg > -90.0 && d.kappa_deg < 90.0,
-            "an azimuth strictly between -90° and 90°",
-        )?
-        .to_radians(),
-    };
-
-    let block = match &raw.block {
-        None => None,
-        Some(b) => Some(block(o, b)?),
-    };
-    let loads = match &raw.loads {
-        None => None,
-        Some(l) => Some(Loads {
-            hydraulic_force: non_negative(o, "loads.hydraulic_force_n", l.hydraulic_force_n)?,
-            eccentricity: check(o, "loads.eccentricity_m", l.eccentricity_m, true, "finite")?,
-            gravity: positive(o, "loads.gravity_m_s2", l.gravity_m_s2)?,
-        }),
-    };
-    let friction = match &raw.friction {
-        None => None,
-        Some(raw::RawFriction::Coulomb { mu_k }) => Some(Friction::Coulomb {
-            mu_k: non_negative(o, "friction.mu_k", *mu_k)?,
-        }),
-        Some(raw::RawFriction::BartonChoubey {
-            jrc,
-            jcs_pa,
-            phi_r_deg,
-            contact_area_m2,
-        }) => Some(Friction::BartonChoubey {
-            jrc: non_negative(o, "friction.jrc", *jrc)?,
-            jcs_pa: positive(o, "friction.jcs_pa", *jcs_pa)?,
-            phi_r: check(
-                o,
-                "friction.phi_r_deg",
-                *phi_r_deg,
-                (0.0..90.0).contains(phi_r_deg),
-                "an angle from 0° up to (not including) 90°",
-            )?
-            .to_radians(),
-            contact_area_m2: positive(o, "friction.contact_area_m2", *contact_area_m2)?,
-        }),
-    };
-    if let Some(s) = &raw.solver {
-        if s.dt_s > s.t_end_s && s.t_end_s > 0.0 {
-            return Err(SceneError::new(
-                o,
-                "solver.dt_s",
-                format!(
-                    "the increment ({} s) is longer than the whole route (t_end_s = {} s)",
-                    s.dt_s, s.t_end_s
-                ),
-            ));
-        }
-        let n = s.t_end_s / s.dt_s;
-        if s.dt_s > 0.0 && s.t_end_s > 0.0 && n > MAX_INCREMENTS {
-            return Err(SceneError::new(
-                o,
-                "solver.dt_s",
-                format!(
-                    "t_end_s / dt_s = {n:.3e} increments, more than the {MAX_INCREMENTS:e} one run may take"
-                ),
-            ));
-        }
-    }
-    let solver = match &raw.solver {
-        None => None,
-        Some(s) => Some(Solver {
-            mode: s.mode,
-            dt: positive(o, "solver.dt_s", s.dt_s)?,
-            t_end: positive(o, "solver.t_end_s", s.t_end_s)?,
-            integrator: match (s.dynamics, s.integrator) {
-                (DynamicsModel::Paper, Some(i)) => i,
-                (DynamicsModel::Paper, None) => Integrator::Paper,
-                (DynamicsModel::RigidBody, Some(Integrator::Rk4) | None) => Integrator::Rk4,
-                (DynamicsModel::RigidBody, Some(Integrator::Paper)) => {
-                    return Err(SceneError::new(
-                        o,
-                        "solver.integrator",
-                        "the rigid-body dynamics integrates with \"rk4\" only (the paper's \
-                         update belongs to the paper's dynamics)",
-                    ));
-                }
-            },
-            dynamics: s.dynamics,
-            stride: match s.stride {
-                None => 1,
-                Some(k) if k >= 1 => k as usize,
-                Some(k) => {
-                    return Err(SceneError::new(
-                        o,
-                        "solver.stride",
-                        format!("must be a whole number of increments, 1 or more, got {k}"),
-                    ));
-                }
-            },
-        }),
-    };
-    let initial = match &raw.initial {
-        None => Initial::default(),
-        Some(i) => {
-            let finite =
-                |key: &str, v: Option<f64>| check(o, key, v.unwrap_or(0.0), true, "finite");
-            Initial {
-                vx: finite("initial.vx_m_s", i.vx_m_s)?,
-                vz: finite("initial.vz_m_s", i.vz_m_s)?,
-                omega: finite("initial.omega_deg_s", i.omega_deg_s)?.to_radians(),
-            }
-        }
-    };
-    derived(o, &frame, block.as_ref(), loads.as_ref())?;
-    Ok(Scene {
-        name: raw.name.unwrap_or_else(|| "unnamed".to_string()),
-        origin: o.to_string(),
-        site: Site { frame, foundation },
-        block,
-        loads,
-        friction,
-        solver,
-        initial,
-    })
 }
 
 #[cfg(test)]

@@ -1,14 +1,18 @@
-//! The scene file as written: TOML, degrees, exactly the documented keys (unknown keys are
-//! errors). [`super::Scene`] is the validated, typed form, in radians.
+//! The scene file as written: TOML, degrees, the documented keys. Every key is optional here and
+//! every name (mode, model, …) a string, so that serde reports only values of the wrong type;
+//! a missing key, an unknown key or an unknown name is found by [`super::validate`] and
+//! [`read`], which know which key it is, without reading serde's message text (issue #14).
+//! [`super::Scene`] is the validated, typed form, in radians.
 
 use serde::Deserialize;
+use serde::de::{self, Deserializer, Visitor};
 
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[derive(Debug, Default, Deserialize)]
+#[serde(expecting = "a scene: tables [frame], [foundation], …")]
 pub struct RawScene {
     pub name: Option<String>,
-    pub frame: RawFrame,
-    pub foundation: RawFoundation,
+    pub frame: Option<RawFrame>,
+    pub foundation: Option<RawFoundation>,
     pub block: Option<RawBlock>,
     pub loads: Option<RawLoads>,
     pub friction: Option<RawFriction>,
@@ -17,36 +21,36 @@ pub struct RawScene {
 }
 
 /// The motion at t = 0 (default: at rest).
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[derive(Debug, Default, Deserialize)]
+#[serde(expecting = "the table [initial]")]
 pub struct RawInitial {
     pub vx_m_s: Option<f64>,
     pub vz_m_s: Option<f64>,
     pub omega_deg_s: Option<f64>,
 }
 
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[derive(Debug, Default, Deserialize)]
+#[serde(expecting = "the table [frame]")]
 pub struct RawFrame {
-    pub l1x: f64,
-    pub l2x: f64,
-    pub l1z: f64,
-    pub l2z: f64,
+    pub l1x: Option<f64>,
+    pub l2x: Option<f64>,
+    pub l1z: Option<f64>,
+    pub l2z: Option<f64>,
 }
 
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[derive(Debug, Default, Deserialize)]
+#[serde(expecting = "the table [foundation]")]
 pub struct RawFoundation {
-    pub xi_deg: f64,
-    pub zeta_deg: f64,
-    pub kappa_deg: f64,
+    pub xi_deg: Option<f64>,
+    pub zeta_deg: Option<f64>,
+    pub kappa_deg: Option<f64>,
 }
 
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[derive(Debug, Default, Deserialize)]
+#[serde(expecting = "the table [block]")]
 pub struct RawBlock {
-    pub mass_kg: f64,
-    pub inertia_kg_m2: f64,
+    pub mass_kg: Option<f64>,
+    pub inertia_kg_m2: Option<f64>,
     /// Rigid-body mode: moments about x' and z' and the product ∫x'z' dm (default: a thin
     /// plate, half of `inertia_kg_m2` each, product 0).
     pub inertia_x_kg_m2: Option<f64>,
@@ -54,38 +58,140 @@ pub struct RawBlock {
     pub inertia_xz_kg_m2: Option<f64>,
 }
 
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[derive(Debug, Default, Deserialize)]
+#[serde(expecting = "the table [loads]")]
 pub struct RawLoads {
-    pub hydraulic_force_n: f64,
-    pub eccentricity_m: f64,
-    pub gravity_m_s2: f64,
+    pub hydraulic_force_n: Option<f64>,
+    pub eccentricity_m: Option<f64>,
+    pub gravity_m_s2: Option<f64>,
 }
 
-#[derive(Debug, Deserialize)]
-#[serde(tag = "model", rename_all = "kebab-case", deny_unknown_fields)]
-pub enum RawFriction {
-    Coulomb {
-        mu_k: f64,
-    },
-    BartonChoubey {
-        jrc: f64,
-        jcs_pa: f64,
-        phi_r_deg: f64,
-        contact_area_m2: f64,
-    },
+/// `[friction]`: `model` says which of the other keys belong (`coulomb`: `mu_k`;
+/// `barton-choubey`: `jrc`, `jcs_pa`, `phi_r_deg`, `contact_area_m2`).
+#[derive(Debug, Default, Deserialize)]
+#[serde(expecting = "the table [friction]")]
+pub struct RawFriction {
+    pub model: Option<String>,
+    pub mu_k: Option<f64>,
+    pub jrc: Option<f64>,
+    pub jcs_pa: Option<f64>,
+    pub phi_r_deg: Option<f64>,
+    pub contact_area_m2: Option<f64>,
 }
 
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
+#[derive(Debug, Default, Deserialize)]
+#[serde(expecting = "the table [solver]")]
 pub struct RawSolver {
-    pub mode: super::Mode,
-    pub dt_s: f64,
-    pub t_end_s: f64,
+    pub mode: Option<String>,
+    pub dt_s: Option<f64>,
+    pub t_end_s: Option<f64>,
     /// Default: "paper" for the paper's dynamics, "rk4" for the rigid body.
-    pub integrator: Option<super::Integrator>,
-    #[serde(default)]
-    pub dynamics: super::DynamicsModel,
+    pub integrator: Option<String>,
+    /// Default: "rigid-body".
+    pub dynamics: Option<String>,
     /// Record every `stride`-th increment (default 1: every one).
     pub stride: Option<i64>,
+}
+
+/// Why a document is not a [`RawScene`]: a key that is not a scene's, or a value of the wrong
+/// type. Both carry the key's dotted path.
+pub enum ReadError {
+    Unknown {
+        key: String,
+    },
+    WrongType {
+        key: String,
+        message: String,
+        span: Option<std::ops::Range<usize>>,
+    },
+}
+
+/// Reads a scene document from any deserializer (the TOML text's, or a table's), noting the
+/// first key no scene has.
+pub fn read<'de, D>(document: D) -> Result<RawScene, ReadError>
+where
+    D: Deserializer<'de, Error = toml::de::Error>,
+{
+    let mut unknown: Option<String> = None;
+    let mut note = |path: serde_ignored::Path<'_>| {
+        // `Option` sections appear as a `?` step; the key is the rest.
+        unknown.get_or_insert_with(|| {
+            let path = path.to_string();
+            let steps: Vec<_> = path.split('.').filter(|s| *s != "?").collect();
+            steps.join(".")
+        });
+    };
+    let ignored = serde_ignored::Deserializer::new(document, &mut note);
+    let raw = serde_path_to_error::deserialize(ignored).map_err(|e| {
+        let path = e.path().to_string();
+        let inner = e.into_inner();
+        ReadError::WrongType {
+            key: if path == "." { String::new() } else { path },
+            message: inner.message().to_string(),
+            span: inner.span(),
+        }
+    });
+    match (raw, unknown) {
+        (Err(e), _) => Err(e),
+        (Ok(_), Some(key)) => Err(ReadError::Unknown { key }),
+        (Ok(raw), None) => Ok(raw),
+    }
+}
+
+/// The keys a section may have (the top level's: the section names), taken from the raw type
+/// itself so that the list cannot drift from it.
+pub fn keys_of(section: &str) -> &'static [&'static str] {
+    match section {
+        "" => fields::<RawScene>(),
+        "frame" => fields::<RawFrame>(),
+        "foundation" => fields::<RawFoundation>(),
+        "block" => fields::<RawBlock>(),
+        "loads" => fields::<RawLoads>(),
+        "friction" => fields::<RawFriction>(),
+        "solver" => fields::<RawSolver>(),
+        "initial" => fields::<RawInitial>(),
+        _ => &[],
+    }
+}
+
+/// The field names serde's derive gives a struct: a deserializer that only listens for
+/// `deserialize_struct` and records the names it is told.
+fn fields<'de, T: Deserialize<'de>>() -> &'static [&'static str] {
+    struct Probe<'a>(&'a mut &'static [&'static str]);
+    impl<'de> Deserializer<'de> for Probe<'_> {
+        type Error = de::value::Error;
+        fn deserialize_any<V: Visitor<'de>>(self, _: V) -> Result<V::Value, Self::Error> {
+            Err(de::Error::custom("probe"))
+        }
+        fn deserialize_struct<V: Visitor<'de>>(
+            self,
+            _name: &'static str,
+            fields: &'static [&'static str],
+            _visitor: V,
+        ) -> Result<V::Value, Self::Error> {
+            *self.0 = fields;
+            Err(de::Error::custom("probe"))
+        }
+        serde::forward_to_deserialize_any! {
+            bool i8 i16 i32 i64 i128 u8 u16 u32 u64 u128 f32 f64 char str string bytes
+            byte_buf option unit unit_struct newtype_struct seq tuple tuple_struct map enum
+            identifier ignored_any
+        }
+    }
+    let mut names: &'static [&'static str] = &[];
+    let _ = T::deserialize(Probe(&mut names));
+    names
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_keys_of_each_section_are_the_raw_types_fields() {
+        assert_eq!(keys_of("frame"), ["l1x", "l2x", "l1z", "l2z"]);
+        assert!(keys_of("").contains(&"foundation"));
+        assert!(keys_of("solver").contains(&"stride"));
+        assert!(keys_of("nothing").is_empty());
+    }
 }

@@ -465,7 +465,7 @@ fn rigid_body_with_small_angle_geometry_is_refused_naming_the_mode() {
     let e = crate::scene::Simulation::new(&s).unwrap_err();
     assert_eq!(e.key, "solver.mode");
     assert!(e.to_string().contains("needs mode = \"exact\""), "{e}");
-    let paper = s.with_dynamics(DynamicsModel::Paper);
+    let paper = s.with_dynamics(DynamicsModel::Paper).unwrap();
     assert!(crate::scene::Simulation::new(&paper).is_ok());
 }
 
@@ -529,4 +529,108 @@ fn derived_quantities_that_are_not_usable_are_errors_naming_the_key() {
         "block.inertia_kg_m2",
         "outside 1e-6",
     );
+}
+
+#[test]
+fn every_error_gives_the_line_of_the_key_it_names() {
+    // Out of range, unknown name, missing key (its section's line), unknown key: each found by
+    // the key, not by reading an error's text (issue #14).
+    let line_of = |text: &str| err(text).position.map(|p| p.0);
+    let line = |key: &str| GOOD.lines().position(|l| l.starts_with(key)).unwrap() + 1;
+    assert_eq!(line_of(&with("l1x = 6.0", "l1x = -6.0")), Some(line("l1x")));
+    assert_eq!(
+        line_of(&with("mode = \"exact\"", "mode = \"approx\"")),
+        Some(line("mode ="))
+    );
+    assert_eq!(
+        line_of(&with("xi_deg = 20.0\n", "")),
+        Some(line("[foundation]"))
+    );
+    assert_eq!(
+        line_of(&with("mu_k = 0.40", "mu_k = 0.4\nmu_s = 0.5")),
+        Some(line("mu_k") + 1)
+    );
+}
+
+#[test]
+fn each_error_says_its_kind() {
+    let kind = |text: &str| err(text).kind;
+    assert_eq!(kind("[frame\n"), SceneErrorKind::Unreadable);
+    assert_eq!(
+        kind(&with("l2z = 5.0", "l3z = 5.0")),
+        SceneErrorKind::UnknownKey
+    );
+    assert_eq!(kind(&with("l2z = 5.0", "")), SceneErrorKind::MissingKey);
+    assert_eq!(
+        kind(&with("l2z = 5.0", "l2z = \"x\"")),
+        SceneErrorKind::WrongType
+    );
+    assert_eq!(
+        kind(&with("l2z = 5.0", "l2z = -5.0")),
+        SceneErrorKind::Invalid
+    );
+    let geometry = GOOD.split("[block]").next().unwrap();
+    let s = Scene::from_toml(geometry, "g").unwrap();
+    let e = Simulation::new(&s).unwrap_err();
+    assert_eq!(e.kind, SceneErrorKind::MissingSection);
+}
+
+#[test]
+fn a_key_of_the_other_friction_model_is_refused_not_ignored() {
+    assert_names(
+        &with("mu_k = 0.40", "mu_k = 0.40\njrc = 5.0"),
+        "friction.jrc",
+        "unknown key for model = \"coulomb\"",
+    );
+    assert_names(&with("mu_k = 0.40", ""), "friction.mu_k", "missing key");
+}
+
+#[test]
+fn a_scene_changed_by_key_is_the_scene_a_file_with_that_line_gives() {
+    let s = Scene::from_toml(GOOD, "dam.toml").unwrap();
+    let changed = s.with("foundation.xi_deg", 18.0).unwrap();
+    let file = Scene::from_toml(&with("xi_deg = 20.0", "xi_deg = 18.0"), "dam.toml").unwrap();
+    assert_eq!(changed, file);
+    assert_eq!(changed.site().foundation.xi, 18f64.to_radians());
+    // Validated as a file is, naming the key; the scene itself is unchanged.
+    let e = s.with("friction.mu_k", -0.1).unwrap_err();
+    assert_eq!(
+        (e.key.as_str(), e.kind),
+        ("friction.mu_k", SceneErrorKind::Invalid)
+    );
+    let e = s.with("frame.l3x", 1.0).unwrap_err();
+    assert_eq!(
+        (e.key.as_str(), e.kind),
+        ("frame.l3x", SceneErrorKind::UnknownKey)
+    );
+    assert_eq!(
+        s.with("solver", 1.0).unwrap_err().kind,
+        SceneErrorKind::WrongType
+    );
+    // Keys that must agree change together; one at a time the frame would not close.
+    let keys = [("frame.l1z", 4.0), ("frame.l2z", 6.0)];
+    assert!(s.with("frame.l1z", 4.0).is_err());
+    let moved = s.with_keys(keys).unwrap();
+    assert_eq!((moved.site().frame.l1z, moved.site().frame.l2z), (4.0, 6.0));
+    // A section not yet present is added.
+    let kicked = s.with("initial.vx_m_s", 0.5).unwrap();
+    assert_eq!(kicked.initial().vx, 0.5);
+}
+
+#[test]
+fn a_change_of_dynamics_brings_that_models_own_integrator() {
+    let paper = with(
+        "t_end_s = 20.0",
+        "t_end_s = 20.0\ndynamics = \"paper\"\nintegrator = \"paper\"",
+    );
+    let s = Scene::from_toml(&paper, "d").unwrap();
+    let rigid = s.with_dynamics(DynamicsModel::RigidBody).unwrap();
+    assert_eq!(rigid.solver().unwrap().integrator, Integrator::Rk4);
+    let back = rigid.with_dynamics(DynamicsModel::Paper).unwrap();
+    assert_eq!(back.solver().unwrap().integrator, Integrator::Paper);
+    // The same model keeps the scene's own choice.
+    let rk4 = paper.replace("integrator = \"paper\"", "integrator = \"rk4\"");
+    let s = Scene::from_toml(&rk4, "d").unwrap();
+    let same = s.with_dynamics(DynamicsModel::Paper).unwrap();
+    assert_eq!(same.solver().unwrap().integrator, Integrator::Rk4);
 }

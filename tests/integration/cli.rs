@@ -69,7 +69,7 @@ fn coeffs_json_on_the_default_scene_has_f1_to_f12_and_the_exact_form() {
     let scene = slideroute::stages::scene::Scene::default_scene();
     let d = slideroute::stages::geometry::Displacement::new(0.5, 0.1, (-2f64).to_radians());
     let f = slideroute::stages::coeffs::SmallAngle::new(
-        &slideroute::stages::coeffs::CoeffInputs::new(&scene.site, d),
+        &slideroute::stages::coeffs::CoeffInputs::new(scene.site(), d),
     );
     assert_eq!(small["f1"].as_f64(), Some(f.f[0]));
 }
@@ -202,7 +202,7 @@ fn roots_json_has_selected_pose_roots_and_counts() {
     // Agrees with the independent direct pose solver.
     let scene = slideroute::stages::scene::Scene::default_scene();
     let d = slideroute::stages::geometry::Displacement::new(0.5, 0.1, 2f64.to_radians());
-    let p = slideroute::stages::geometry::direct::solve(&scene.site, d).unwrap();
+    let p = slideroute::stages::geometry::direct::solve(scene.site(), d).unwrap();
     let a = v["selected"]["alpha_deg"].as_f64().unwrap();
     assert!((a - p.alpha(scene.l()).to_degrees()).abs() < 1e-8);
 
@@ -420,7 +420,7 @@ fn print_default_is_the_embedded_scene_and_loads() {
     let text = String::from_utf8_lossy(&o.stdout);
     assert!(text.contains("# ") && text.contains("hydraulic_force_n"));
     let s = slideroute::stages::scene::Scene::from_toml(&text, "printed").unwrap();
-    assert_eq!(s.name, "paper-like");
+    assert_eq!(s.name(), "paper-like");
     let p = temp_file("printed.toml", &text);
     let o = run(&["scene", "--check", p.to_str().unwrap()]);
     assert!(o.status.success() && String::from_utf8_lossy(&o.stdout).contains("ok"));

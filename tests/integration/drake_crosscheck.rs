@@ -63,10 +63,11 @@ fn drake_path(scene: &Path) -> Vec<Vec<f64>> {
 }
 
 fn ours(scene_file: &Path) -> (Vec<Row>, Reason, f64) {
-    let mut scene = Scene::from_file(scene_file)
+    let scene = Scene::from_file(scene_file)
         .unwrap()
-        .with_dynamics(DynamicsModel::RigidBody);
-    scene.solver.as_mut().unwrap().t_end = HORIZON_S;
+        .with_dynamics(DynamicsModel::RigidBody)
+        .and_then(|s| s.with("solver.t_end_s", HORIZON_S))
+        .unwrap();
     let r = route::run(&scene).unwrap();
     (r.rows, r.termination.reason, r.termination.t_s)
 }

@@ -13,8 +13,8 @@ use slideroute::stages::scene::{Friction, Mode, Scene};
 
 /// Geometry, loads and frictionless normals of `scene` at `d` (exact pose).
 fn at(scene: &Scene, d: Displacement) -> (ContactGeometry, Applied, [f64; 3]) {
-    let p = roots::select(&scene.site, d, Mode::Exact).expect("pose");
-    let pose = roots::classify::pose(&scene.site, d, Mode::Exact, p.u).unwrap();
+    let p = roots::select(scene.site(), d, Mode::Exact).expect("pose");
+    let pose = roots::classify::pose(scene.site(), d, Mode::Exact, p.u).unwrap();
     let geom = ContactGeometry::new(scene, &pose);
     let dy = slideroute::stages::scene::Simulation::new(scene).unwrap();
     let applied = Applied::new(dy.loads(), dy.block(), &geom.frame);
@@ -23,9 +23,7 @@ fn at(scene: &Scene, d: Displacement) -> (ContactGeometry, Applied, [f64; 3]) {
 }
 
 fn paper_like(mu: f64) -> Scene {
-    let mut s = Scene::default_scene();
-    s.friction = Some(Friction::Coulomb { mu_k: mu });
-    s
+    crate::common::with(&Scene::default_scene(), &[("friction.mu_k", mu)])
 }
 
 fn solutions(scene: &Scene, d: Displacement) -> (ContactGeometry, Applied, Vec<Reaction>) {
@@ -192,9 +190,9 @@ fn no_solution_for_low_friction_at_the_measured_pose() {
 #[test]
 fn eccentricity_does_not_change_the_solutions() {
     // The couple lies along j': it enters only the angular acceleration.
-    let mut s = paper_like(0.4);
+    let s = paper_like(0.4);
     let (_, _, base) = solutions(&s, MEASURED_POSE);
-    s.loads.as_mut().unwrap().eccentricity = -2.0;
+    let s = crate::common::with(&s, &[("loads.eccentricity_m", -2.0)]);
     let (_, _, other) = solutions(&s, MEASURED_POSE);
     assert_eq!(base.len(), other.len());
     for (a, b) in base.iter().zip(&other) {
@@ -209,10 +207,11 @@ fn kappa_zero_has_no_solution_on_the_symmetric_path() {
     // κ = 0 and θ = 0: none for any μ or eccentricity (as measured). Off the symmetric path
     // (θ ≠ 0) solutions do appear for small μ — see derivations/07 for this difference from
     // the prototype's report.
-    let mut s = Scene::default_scene();
-    s.site.foundation.kappa = 0.0;
     for mu in [0.05, 0.2, 0.4, 0.6] {
-        s.friction = Some(Friction::Coulomb { mu_k: mu });
+        let s = crate::common::with(
+            &Scene::default_scene(),
+            &[("foundation.kappa_deg", 0.0), ("friction.mu_k", mu)],
+        );
         for x in [0.2, 0.5, 1.0] {
             let (_, _, sols) = solutions(&s, Displacement::new(x, 0.0, 0.0));
             assert!(sols.is_empty(), "μ = {mu}, X = {x}: {}", sols.len());
@@ -304,19 +303,20 @@ fn frictionless_scene_skips_the_friction_solve_and_matches_statics() {
     let r = &sols[0];
     assert!(r.shear.iter().all(|v| v.norm() == 0.0));
     check_equations(&geom, &applied, &c, 0.0, r);
-    assert!(Friction::Coulomb { mu_k: 0.0 }.is_frictionless());
+    assert!(s.friction().unwrap().is_frictionless());
 }
 
 #[test]
 fn barton_choubey_solutions_satisfy_the_equations_with_their_own_coefficients() {
-    let mut s = Scene::default_scene();
-    let bc = Friction::BartonChoubey {
-        jrc: 8.0,
-        jcs_pa: 60e6,
-        phi_r: 25f64.to_radians(),
-        contact_area_m2: 4.0,
-    };
-    s.friction = Some(bc);
+    // The whole [friction] table replaced, as a file would give it.
+    let table: toml::Table = toml::from_str(
+        "model = \"barton-choubey\"\njrc = 8.0\njcs_pa = 60e6\nphi_r_deg = 25.0\n\
+         contact_area_m2 = 4.0",
+    )
+    .unwrap();
+    let s = Scene::default_scene().with("friction", table).unwrap();
+    let bc = *s.friction().unwrap();
+    assert!(matches!(bc, Friction::BartonChoubey { jrc: 8.0, .. }));
     let (_, _, sols) = solutions(&s, MEASURED_POSE);
     assert!(!sols.is_empty());
     for r in &sols {

@@ -4,33 +4,33 @@
 use crate::common;
 
 use slideroute::stages::route::{self, Reason, Route};
-use slideroute::stages::scene::{DynamicsModel, Friction, Scene};
+use slideroute::stages::scene::{DynamicsModel, Scene};
 
-fn rigid(f: impl FnOnce(&mut Scene)) -> Scene {
-    let mut s = Scene::default_scene().with_dynamics(DynamicsModel::RigidBody);
-    f(&mut s);
-    s
+/// The default scene under the rigid body, with `keys` set.
+fn rigid(keys: &[(&str, f64)]) -> Scene {
+    let s = Scene::default_scene()
+        .with_dynamics(DynamicsModel::RigidBody)
+        .unwrap();
+    common::with(&s, keys)
 }
 
 fn run(s: &Scene) -> Route {
     route::run(s).expect("scene has the dynamics sections")
 }
 
-fn set_time(s: &mut Scene, dt: f64, t_end: f64) {
-    let solver = s.solver.as_mut().unwrap();
-    solver.dt = dt;
-    solver.t_end = t_end;
-}
+const DT: &str = "solver.dt_s";
+const T_END: &str = "solver.t_end_s";
+const MU: &str = "friction.mu_k";
+const FORCE: &str = "loads.hydraulic_force_n";
+const ECCENTRICITY: &str = "loads.eccentricity_m";
+const V0: &str = "initial.vx_m_s";
 
 #[test]
 fn frictionless_rigid_body_conserves_energy_at_fourth_order() {
     // Work of F and its couple = kinetic + potential energy, to RK4's error: the residual
     // falls about 16× per halving of dt.
     let residual = |dt: f64| {
-        let s = rigid(|s| {
-            s.friction = Some(Friction::Coulomb { mu_k: 0.0 });
-            set_time(s, dt, 1.0);
-        });
+        let s = rigid(&[(MU, 0.0), (DT, dt), (T_END, 1.0)]);
         let r = run(&s);
         assert_eq!(
             r.termination.reason,
@@ -52,7 +52,7 @@ fn frictionless_rigid_body_conserves_energy_at_fourth_order() {
 
 #[test]
 fn with_friction_the_energy_lost_equals_the_friction_work() {
-    let s = rigid(|s| set_time(s, 1e-3, 3.0));
+    let s = rigid(&[(DT, 1e-3), (T_END, 3.0)]);
     let r = run(&s);
     let e = r.energy.unwrap();
     println!("{e:?}");
@@ -63,7 +63,7 @@ fn with_friction_the_energy_lost_equals_the_friction_work() {
 
 #[test]
 fn every_rigid_body_row_agrees_with_the_direct_pose_solver() {
-    let s = rigid(|s| set_time(s, 1e-3, 4.0));
+    let s = rigid(&[(DT, 1e-3), (T_END, 4.0)]);
     let r = run(&s);
     assert!(r.rows.len() > 3000);
     common::assert_rows_match_direct(&s, &r.rows);
@@ -73,14 +73,15 @@ fn every_rigid_body_row_agrees_with_the_direct_pose_solver() {
 fn rigid_body_moves_where_the_papers_frictional_system_has_no_solution() {
     // κ = 0 (a common foundation), and μ = 0.05 on the paper-like geometry: the paper's
     // dynamics ends with "no solution"; the rigid body gives a route to a stated physical end.
-    let kappa0 = |s: &mut Scene| s.site.foundation.kappa = 0.0;
-    let mu005 = |s: &mut Scene| s.friction = Some(Friction::Coulomb { mu_k: 0.05 });
     for (name, edit) in [
-        ("κ = 0", &kappa0 as &dyn Fn(&mut Scene)),
-        ("μ = 0.05", &mu005),
+        ("κ = 0", ("foundation.kappa_deg", 0.0)),
+        ("μ = 0.05", (MU, 0.05)),
     ] {
-        let mut paper = Scene::default_scene().with_dynamics(DynamicsModel::Paper);
-        edit(&mut paper);
+        let default = Scene::default_scene();
+        let paper = common::with(
+            &default.with_dynamics(DynamicsModel::Paper).unwrap(),
+            &[edit],
+        );
         let p = run(&paper);
         assert_eq!(
             p.termination.reason,
@@ -94,7 +95,7 @@ fn rigid_body_moves_where_the_papers_frictional_system_has_no_solution() {
             "{name}: {}",
             p.termination.detail
         );
-        let r = run(&paper.with_dynamics(DynamicsModel::RigidBody));
+        let r = run(&paper.with_dynamics(DynamicsModel::RigidBody).unwrap());
         println!(
             "{name}: paper ends at {} s ({}); rigid body {} at {} s after {:.3} m",
             p.termination.t_s,
@@ -126,12 +127,13 @@ fn flat_limit_with_friction_converges_to_the_sliding_block_closed_form() {
     // centroid of contact loads, so friction against pure translation has no moment:
     // X(t) = ½ (F/m − μ g) t², Z = θ = 0. The planes' dips change it at first order.
     let err = |dip_deg: f64| {
-        let s = rigid(|s| {
-            s.site.foundation.xi = dip_deg.to_radians();
-            s.site.foundation.zeta = dip_deg.to_radians();
-            s.loads.as_mut().unwrap().eccentricity = 0.0;
-            set_time(s, 1e-3, 1.0);
-        });
+        let s = rigid(&[
+            ("foundation.xi_deg", dip_deg),
+            ("foundation.zeta_deg", dip_deg),
+            (ECCENTRICITY, 0.0),
+            (DT, 1e-3),
+            (T_END, 1.0),
+        ]);
         let r = run(&s);
         assert_eq!(r.termination.reason, Reason::TimeLimit);
         let last = r.rows.last().unwrap();
@@ -149,8 +151,8 @@ fn flat_limit_with_friction_converges_to_the_sliding_block_closed_form() {
 
 #[test]
 fn held_blocks_do_not_slide() {
-    let no_force = rigid(|s| s.loads.as_mut().unwrap().hydraulic_force = 0.0);
-    let high_friction = rigid(|s| s.friction = Some(Friction::Coulomb { mu_k: 1.0 }));
+    let no_force = rigid(&[(FORCE, 0.0)]);
+    let high_friction = rigid(&[(MU, 1.0)]);
     for s in [no_force, high_friction] {
         let r = run(&s);
         assert_eq!(
@@ -167,15 +169,10 @@ fn held_blocks_do_not_slide() {
 #[test]
 fn factor_of_safety_onset_separates_sliding_from_holding() {
     // Just below and just above the load that static friction can hold.
-    let base = run(&rigid(|s| set_time(s, 1e-3, 0.05)));
+    let base = run(&rigid(&[(DT, 1e-3), (T_END, 0.05)]));
     let fs = base.factor_of_safety.unwrap().value().unwrap();
     assert!((0.8..0.95).contains(&fs), "{fs}");
-    let scaled = |k: f64| {
-        run(&rigid(|s| {
-            s.loads.as_mut().unwrap().hydraulic_force *= k;
-            set_time(s, 1e-3, 0.05);
-        }))
-    };
+    let scaled = |k: f64| run(&rigid(&[(FORCE, 8.0e6 * k), (DT, 1e-3), (T_END, 0.05)]));
     // Dividing F by FS puts the block at the limit: 1% less is held.
     assert_eq!(scaled(fs * 0.99).termination.reason, Reason::DoesNotSlide);
     assert_ne!(scaled(fs * 1.05).termination.reason, Reason::DoesNotSlide);
@@ -194,14 +191,15 @@ fn a_kicked_block_stops_where_the_sliding_block_closed_form_says() {
     let (v0, mu) = (2.0, 1.0);
     let d = mu * 9.81 - 8.0;
     let err = |dip_deg: f64| {
-        let s = rigid(|s| {
-            s.site.foundation.xi = dip_deg.to_radians();
-            s.site.foundation.zeta = dip_deg.to_radians();
-            s.loads.as_mut().unwrap().eccentricity = 0.0;
-            s.friction = Some(Friction::Coulomb { mu_k: mu });
-            s.initial.vx = v0;
-            set_time(s, 1e-3, 3.0);
-        });
+        let s = rigid(&[
+            ("foundation.xi_deg", dip_deg),
+            ("foundation.zeta_deg", dip_deg),
+            (ECCENTRICITY, 0.0),
+            (MU, mu),
+            (V0, v0),
+            (DT, 1e-3),
+            (T_END, 3.0),
+        ]);
         let r = run(&s);
         assert_eq!(r.termination.reason, Reason::Stopped, "{:?}", r.termination);
         assert!(ends_at_rest(&r));
@@ -251,13 +249,11 @@ fn a_kicked_block_on_the_paper_like_foundation_stops_and_is_held() {
 
 // ---- issue #12: routes end only where the physics does ----
 
-fn scene_file(name: &str, f: impl FnOnce(&mut Scene)) -> Scene {
+fn scene_file(name: &str, keys: &[(&str, f64)]) -> Scene {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("scenes")
         .join(format!("{name}.toml"));
-    let mut s = Scene::from_file(&path).unwrap();
-    f(&mut s);
-    s
+    common::with(&Scene::from_file(&path).unwrap(), keys)
 }
 
 /// The largest normal-force ratio |S|/N of a contact over rows in [t0, t1].
@@ -278,7 +274,7 @@ fn a_contact_sticking_on_its_strike_line_stays_on_its_plane_whatever_dt() {
     let ends: Vec<(f64, f64)> = [2e-3, 1e-3, 0.5e-3]
         .into_iter()
         .map(|dt| {
-            let r = run(&scene_file("pivot-held", |s| set_time(s, dt, 3.0)));
+            let r = run(&scene_file("pivot-held", &[(DT, dt), (T_END, 3.0)]));
             assert_eq!(
                 r.termination.reason,
                 Reason::Contact0ReachedInclinedPlane,
@@ -311,7 +307,7 @@ fn a_sticking_pivot_that_reaches_its_cone_starts_to_slip_and_the_route_goes_on()
     // Issue #12's second scene (10 MN): contact 2, stuck, reaches its cone's edge at 1.482 s
     // and slips from there (|S| = μN); the block goes on until contact 0 reaches plane 1 at
     // 1.540 s (Drake: 1.540 s). It used to end "the contact forces are not determined".
-    let r = run(&scene_file("pivot-released", |_| ()));
+    let r = run(&scene_file("pivot-released", &[]));
     assert_eq!(
         r.termination.reason,
         Reason::Contact0ReachedInclinedPlane,
@@ -338,7 +334,7 @@ fn energy_on_a_sticking_pivot_route_converges_at_fourth_order() {
     // about 16× per halving of dt (the sticking contact's velocity projection removes only
     // second-order energy, booked as friction work).
     let residual = |dt: f64| {
-        let r = run(&scene_file("pivot-held", |s| set_time(s, dt, 1.44)));
+        let r = run(&scene_file("pivot-held", &[(DT, dt), (T_END, 1.44)]));
         assert_eq!(
             r.termination.reason,
             Reason::TimeLimit,
@@ -361,12 +357,10 @@ fn ends_where_a_contact_slips_off_its_plane_do_not_depend_on_dt() {
     let ends: Vec<f64> = [2e-3, 1e-3, 0.5e-3]
         .into_iter()
         .map(|dt| {
-            let r = run(&scene_file("pivot-held", |s| {
-                set_time(s, dt, 3.0);
-                let l = s.loads.as_mut().unwrap();
-                l.eccentricity = -2.0;
-                l.hydraulic_force = 9.0e6;
-            }));
+            let r = run(&scene_file(
+                "pivot-held",
+                &[(DT, dt), (T_END, 3.0), (ECCENTRICITY, -2.0), (FORCE, 9.0e6)],
+            ));
             assert_eq!(r.termination.reason, Reason::ContactLeftPlane, "dt {dt}");
             assert!(r.termination.detail.contains("contact 2 left plane 2"));
             r.termination.t_s
@@ -379,21 +373,20 @@ fn ends_where_a_contact_slips_off_its_plane_do_not_depend_on_dt() {
 fn the_factor_of_safety_is_the_cones_whatever_the_dynamics_and_typed_where_it_has_no_number() {
     use slideroute::stages::mechanics::static_friction::FactorOfSafety;
     // One definition for both dynamics (the paper's ratio, 0.7333, has its own name).
-    let paper = run(&rigid(|s| set_time(s, 1e-3, 0.05)).with_dynamics(DynamicsModel::Paper));
-    let rigid_body = run(&rigid(|s| set_time(s, 1e-3, 0.05)));
+    let paper = run(&rigid(&[(DT, 1e-3), (T_END, 0.05)])
+        .with_dynamics(DynamicsModel::Paper)
+        .unwrap());
+    let rigid_body = run(&rigid(&[(DT, 1e-3), (T_END, 0.05)]));
     assert_eq!(paper.factor_of_safety, rigid_body.factor_of_safety);
     let fs = rigid_body.factor_of_safety.unwrap().value().unwrap();
     assert!((fs - 0.8624).abs() < 1e-3, "{fs}");
     assert!((paper.paper_ratio.unwrap() - 0.7333).abs() < 1e-3);
     assert_eq!(rigid_body.paper_ratio, None);
     // μ = 0.05 on 20° and 25° dips: the weight alone slides the block (it printed "-inf").
-    let slippery = run(&rigid(|s| {
-        s.friction = Some(Friction::Coulomb { mu_k: 0.05 });
-        set_time(s, 1e-3, 0.05);
-    }));
+    let slippery = run(&rigid(&[(MU, 0.05), (DT, 1e-3), (T_END, 0.05)]));
     assert_eq!(slippery.factor_of_safety, Some(FactorOfSafety::NotHoldable));
     // No water load: no multiple of it starts the block.
-    let dry = run(&rigid(|s| s.loads.as_mut().unwrap().hydraulic_force = 0.0));
+    let dry = run(&rigid(&[(FORCE, 0.0)]));
     assert_eq!(dry.factor_of_safety, Some(FactorOfSafety::Unbounded));
     // In JSON: a tagged value, never null or an infinity.
     for (r, kind) in [
@@ -412,7 +405,7 @@ fn kicked_blocks_stop_without_chatter_and_keep_their_energy_balance() {
     // Issue #12: a young, slow slip's direction is slaved to its quasi-static value. Before, 7
     // of these 18 kicked scenes chattered (a contact's slip turning round every microsecond),
     // leaving 4–300 J of energy error, up to 1.3e-3 of the friction work; now at most 1e-9.
-    let base = scene_file("kicked", |_| ());
+    let base = scene_file("kicked", &[]);
     let mut worst: f64 = 0.0;
     for (mu, force, v0) in [
         (0.6, 5.0e6, 0.5),
@@ -421,10 +414,7 @@ fn kicked_blocks_stop_without_chatter_and_keep_their_energy_balance() {
         (0.6, 3.0e6, 0.5),
         (0.6, 8.0e6, 2.0),
     ] {
-        let mut s = base.clone();
-        s.friction = Some(Friction::Coulomb { mu_k: mu });
-        s.loads.as_mut().unwrap().hydraulic_force = force;
-        s.initial.vx = v0;
+        let s = common::with(&base, &[(MU, mu), (FORCE, force), (V0, v0)]);
         let r = run(&s);
         assert_eq!(r.termination.reason, Reason::Stopped, "{mu} {force} {v0}");
         assert!(ends_at_rest(&r));
@@ -443,7 +433,7 @@ fn a_released_contact_slips_without_chatter_whatever_dt() {
     // about 1 J of 5e7 J, with hundreds of pivot events after the release), and the route ends
     // at the same moment.
     for dt in [2e-3, 1e-3, 0.5e-3] {
-        let r = run(&scene_file("pivot-released", |s| set_time(s, dt, 3.0)));
+        let r = run(&scene_file("pivot-released", &[(DT, dt), (T_END, 3.0)]));
         let e = r.energy.unwrap();
         assert!(
             e.residual_j.abs() < 1e-8 * e.work_hydraulic_j,

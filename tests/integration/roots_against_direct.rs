@@ -40,11 +40,11 @@ prop_compose! {
 
 /// The oracle's pose, if it is an admissible one.
 fn oracle(s: &Scene, d: Displacement) -> Option<(f64, f64)> {
-    let p = direct::solve(&s.site, d).ok()?;
+    let p = direct::solve(s.site(), d).ok()?;
     let l = s.l();
     let (a, b) = (p.alpha(l), p.beta(l));
-    let pose = Pose::from_tilts(&s.site, d, a, b).ok()?;
-    classify::check_pose(&s.site, &pose).ok()?;
+    let pose = Pose::from_tilts(s.site(), d, a, b).ok()?;
+    classify::check_pose(s.site(), &pose).ok()?;
     Some((a, b))
 }
 
@@ -62,10 +62,10 @@ fn selected_exact_root_matches_the_direct_solver() {
     let (mut compared, mut both_refused) = (0, 0);
     for (s, d) in sample(hard_cases(), 1500) {
         let want = oracle(&s, d);
-        let got = roots::select(&s.site, d, Mode::Exact);
+        let got = roots::select(s.site(), d, Mode::Exact);
         match (want, got) {
             (Some((a, b)), Ok(p)) => {
-                let pose = Pose::from_tilt_roll(&s.site, d, p.u[0], p.u[1]).unwrap();
+                let pose = Pose::from_tilt_roll(s.site(), d, p.u[0], p.u[1]).unwrap();
                 assert!(
                     (pose.alpha - a).abs() <= 1e-10,
                     "α {} vs {} at {d:?} in {s:?}",
@@ -102,7 +102,7 @@ fn all_roots_select_the_same_pose_as_the_tracker_and_the_oracle() {
     ] {
         let d = Displacement::new(x, z, f64::to_radians(th));
         let (a, b) = oracle(&s, d).expect("admissible");
-        let all = roots::solve_all(&s.site, d, Mode::Exact).unwrap();
+        let all = roots::solve_all(s.site(), d, Mode::Exact).unwrap();
         let k = all.selected.expect("selected");
         let r = &all.roots[k];
         assert!(r.admissible);
@@ -117,7 +117,7 @@ fn poses_beyond_a_contact_leaving_its_plane_are_refused_with_the_reason() {
     // names the contact, decides (the tilt's lower bound is the same test in another form).
     let s = Scene::default_scene();
     let d = Displacement::new(1.0, 0.0, (-30f64).to_radians());
-    let e = roots::select(&s.site, d, Mode::Exact).unwrap_err();
+    let e = roots::select(s.site(), d, Mode::Exact).unwrap_err();
     assert!(e.to_string().contains("contact 2 left plane 2"), "{e}");
 }
 
@@ -128,7 +128,7 @@ fn the_rest_pose_is_a_selected_root() {
     // selected" (issue #12). The tracked pose, which satisfies the equations, is the root.
     let s = Scene::default_scene();
     for mode in [Mode::Exact, Mode::SmallAngle] {
-        let all = roots::solve_all(&s.site, Displacement::new(0.0, 0.0, 0.0), mode).unwrap();
+        let all = roots::solve_all(s.site(), Displacement::new(0.0, 0.0, 0.0), mode).unwrap();
         let k = all
             .selected
             .unwrap_or_else(|| panic!("{mode:?}: {:?}", all.selection_error));

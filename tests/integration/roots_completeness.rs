@@ -84,7 +84,7 @@ fn eigen_roots_equal_newton_grid_roots_on_random_scenes() {
         let s = scene(l, fx, fz, xi, ze, ka);
         let d = Displacement::new(x, z, f64::to_radians(th));
         for mode in [Mode::SmallAngle, Mode::Exact] {
-            let (p, q) = system::biquadratic(&s.site, d, mode);
+            let (p, q) = system::biquadratic(s.site(), d, mode);
             let eig = eigen::solve(&p, &q);
             let grid = newton_grid(&p, &q);
             assert_eq!(
@@ -102,7 +102,7 @@ fn eigen_roots_equal_newton_grid_roots_on_random_scenes() {
                     "{mode:?}: grid root {g:?} missing from the eigen roots"
                 );
             }
-            let all = roots::solve_all(&s.site, d, mode).unwrap();
+            let all = roots::solve_all(s.site(), d, mode).unwrap();
             assert_eq!(
                 all.finite_roots + all.roots_at_infinity,
                 roots::bezout_count(mode)
@@ -115,8 +115,12 @@ fn eigen_roots_equal_newton_grid_roots_on_random_scenes() {
 fn small_angle_has_eight_finite_roots_and_eight_at_infinity() {
     // Generic case: the mixed volume of (15)'s Newton polygons is 8 (derivations/06).
     let s = scene(10.0, 0.4, 0.5, 20.0, 25.0, 30.0);
-    let all =
-        roots::solve_all(&s.site, Displacement::new(0.7, 0.2, 0.04), Mode::SmallAngle).unwrap();
+    let all = roots::solve_all(
+        s.site(),
+        Displacement::new(0.7, 0.2, 0.04),
+        Mode::SmallAngle,
+    )
+    .unwrap();
     assert_eq!(all.finite_roots, 8);
     assert_eq!(all.roots_at_infinity, 8);
 }

@@ -6,7 +6,7 @@ use slideroute::stages::roots::{self, Tracker};
 use slideroute::stages::scene::{Mode, Scene};
 
 fn oracle_ab(s: &Scene, d: Displacement) -> (f64, f64) {
-    let p = direct::solve(&s.site, d).expect("direct pose");
+    let p = direct::solve(s.site(), d).expect("direct pose");
     (p.alpha(s.l()), p.beta(s.l()))
 }
 
@@ -30,7 +30,7 @@ fn theta_zero_double_root_is_tracked() {
     // At θ = 0, (15a) is a perfect square: every root of (15) is double.
     let s = Scene::default_scene();
     let d = Displacement::new(0.8, 0.1, 0.0);
-    let all = roots::solve_all(&s.site, d, Mode::SmallAngle).unwrap();
+    let all = roots::solve_all(s.site(), d, Mode::SmallAngle).unwrap();
     assert_eq!(all.finite_roots, 8);
     assert!(
         all.roots.iter().all(|r| r.multiplicity == 2),
@@ -42,7 +42,7 @@ fn theta_zero_double_root_is_tracked() {
     // The small-angle pose is within its O(dip²) error of the true one.
     assert!((a - ea).abs() < 0.02 * ea && (b - eb).abs() < 0.02 * eb);
     // The exact system has no double roots there.
-    let ex = roots::solve_all(&s.site, d, Mode::Exact).unwrap();
+    let ex = roots::solve_all(s.site(), d, Mode::Exact).unwrap();
     assert!(ex.roots.iter().all(|r| r.multiplicity == 1));
     let (xa, xb) = selected_ab(&ex);
     assert!((xa - ea).abs() < 1e-10 && (xb - eb).abs() < 1e-10);
@@ -53,7 +53,7 @@ fn theta_plus_kappa_zero_double_root_is_tracked() {
     // At θ + κ = 0, (15b) is a perfect square.
     let s = scene(10.0, 0.4, 0.5, 20.0, 25.0, 8.0);
     let d = Displacement::new(1.0, 0.3, (-8f64).to_radians());
-    let all = roots::solve_all(&s.site, d, Mode::SmallAngle).unwrap();
+    let all = roots::solve_all(s.site(), d, Mode::SmallAngle).unwrap();
     assert!(
         all.roots.iter().all(|r| r.multiplicity == 2),
         "{:?}",
@@ -75,7 +75,7 @@ fn shallow_dips_give_beta_with_the_right_size_and_sign() {
         let s = scene(10.0, 0.4, 0.5, xi, zeta, 30.0);
         let d = Displacement::new(x, 0.1 * x, f64::to_radians(th));
         let (ea, eb) = oracle_ab(&s, d);
-        let all = roots::solve_all(&s.site, d, Mode::SmallAngle).unwrap();
+        let all = roots::solve_all(s.site(), d, Mode::SmallAngle).unwrap();
         let (a, b) = selected_ab(&all);
         assert!(b.signum() == eb.signum(), "β sign: {b} vs {eb}");
         assert!((b - eb).abs() < 1e-3 * eb.abs(), "β {b} vs {eb}");
@@ -88,7 +88,7 @@ fn spurious_twin_next_to_the_true_root_is_not_selected() {
     // Paper-like scene, X = 0.5 m: a spurious root shares β with the true one to 0.1 %.
     let s = Scene::default_scene();
     let d = Displacement::new(0.5, 0.1, 0.03);
-    let all = roots::solve_all(&s.site, d, Mode::SmallAngle).unwrap();
+    let all = roots::solve_all(s.site(), d, Mode::SmallAngle).unwrap();
     let k = all.selected.unwrap();
     let chosen = &all.roots[k];
     assert!(!chosen.spurious && chosen.admissible);
@@ -119,11 +119,11 @@ fn unsquared_tracking_never_lands_on_a_spurious_root() {
                 -0.4 + 0.16 * j as f64,
                 f64::to_radians(-3.0 + j as f64),
             );
-            let Ok(p) = roots::select(&s.site, d, Mode::SmallAngle) else {
+            let Ok(p) = roots::select(s.site(), d, Mode::SmallAngle) else {
                 continue;
             };
             let u = slideroute::stages::coeffs::SmallAngleUnsquared::new(
-                &slideroute::stages::coeffs::CoeffInputs::new(&s.site, d),
+                &slideroute::stages::coeffs::CoeffInputs::new(s.site(), d),
             );
             assert!(
                 !roots::classify::small_angle_spurious(&u, p.u[0], p.u[1]),
@@ -144,8 +144,8 @@ fn small_angle_differs_from_exact_by_about_one_percent_at_paper_dips() {
     // 20–25° dips, 2 m of travel.
     let s = Scene::default_scene();
     let d = Displacement::new(2.0, 0.2, 0.02);
-    let sa = roots::select(&s.site, d, Mode::SmallAngle).unwrap();
-    let ex = roots::select(&s.site, d, Mode::Exact).unwrap();
+    let sa = roots::select(s.site(), d, Mode::SmallAngle).unwrap();
+    let ex = roots::select(s.site(), d, Mode::Exact).unwrap();
     let rel = (sa.u[0] - ex.u[0]).abs() / ex.u[0];
     assert!(
         (0.003..0.03).contains(&rel),
@@ -159,7 +159,7 @@ fn start_of_sliding_is_a_regular_point_of_the_tracked_equations() {
     // step converges from the flat pose without help.
     let s = Scene::default_scene();
     for mode in [Mode::Exact, Mode::SmallAngle] {
-        let mut t = Tracker::new(&s.site, mode);
+        let mut t = Tracker::new(s.site(), mode);
         let p = t
             .advance(Displacement::new(1e-6 * s.l(), 0.0, 0.0))
             .unwrap();
@@ -192,13 +192,13 @@ fn tracking_in_small_and_large_steps_matches_solving_from_scratch() {
     {
         for mode in [Mode::Exact, Mode::SmallAngle] {
             for steps in [400usize, 7] {
-                let mut t = Tracker::new(&s.site, mode);
+                let mut t = Tracker::new(s.site(), mode);
                 let mut reached = 0;
                 for i in 1..=steps {
                     let d = path(s, i as f64 / steps as f64, k);
                     let Ok(p) = t.advance(d) else { break };
                     reached = i;
-                    let fresh = roots::select(&s.site, d, mode).unwrap();
+                    let fresh = roots::select(s.site(), d, mode).unwrap();
                     assert!(
                         (p.u[0] - fresh.u[0]).abs() < 1e-10 && (p.u[1] - fresh.u[1]).abs() < 1e-10,
                         "scene {k} {mode:?} {steps} steps, at {d:?}: {:?} vs {:?}",
@@ -206,7 +206,7 @@ fn tracking_in_small_and_large_steps_matches_solving_from_scratch() {
                         fresh.u
                     );
                     if mode == Mode::Exact {
-                        let pose = Pose::from_tilt_roll(&s.site, d, p.u[0], p.u[1]).unwrap();
+                        let pose = Pose::from_tilt_roll(s.site(), d, p.u[0], p.u[1]).unwrap();
                         let (ea, eb) = oracle_ab(s, d);
                         assert!((pose.alpha - ea).abs() < 1e-10 && (pose.beta - eb).abs() < 1e-10);
                     }
@@ -225,7 +225,7 @@ fn theta_zero_with_kappa_zero_gives_fourfold_roots() {
     // Both (15a) and (15b) are perfect squares: every root is fourfold.
     let s = scene(10.0, 0.4, 0.5, 20.0, 25.0, 0.0);
     let d = Displacement::new(0.8, 0.0, 0.0);
-    let all = roots::solve_all(&s.site, d, Mode::SmallAngle).unwrap();
+    let all = roots::solve_all(s.site(), d, Mode::SmallAngle).unwrap();
     assert!(
         all.roots.iter().all(|r| r.multiplicity == 4),
         "{:?}",

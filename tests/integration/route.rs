@@ -5,19 +5,23 @@ use crate::common;
 
 use slideroute::stages::mechanics::static_friction::FactorOfSafety;
 use slideroute::stages::route::{self, Reason, Route};
-use slideroute::stages::scene::{DynamicsModel, Friction, Integrator, Scene};
+use slideroute::stages::scene::{DynamicsModel, Integrator, Scene};
 
 /// The embedded scene under the paper's dynamics (this file's subject; the default is the
 /// rigid body's).
 fn paper_scene() -> Scene {
-    Scene::default_scene().with_dynamics(DynamicsModel::Paper)
+    Scene::default_scene()
+        .with_dynamics(DynamicsModel::Paper)
+        .unwrap()
 }
 
-fn with(f: impl FnOnce(&mut Scene)) -> Scene {
-    let mut s = paper_scene();
-    f(&mut s);
-    s
+/// [`paper_scene`] with `keys` set.
+fn with(keys: &[(&str, f64)]) -> Scene {
+    common::with(&paper_scene(), keys)
 }
+
+const FORCE: &str = "loads.hydraulic_force_n";
+const T_END: &str = "solver.t_end_s";
 
 fn run(s: &Scene) -> Route {
     route::run(s).expect("scene has the dynamics sections")
@@ -33,7 +37,7 @@ fn every_row_agrees_with_the_direct_pose_solver() {
 
 #[test]
 fn zero_force_does_not_slide() {
-    let r = run(&with(|s| s.loads.as_mut().unwrap().hydraulic_force = 0.0));
+    let r = run(&with(&[(FORCE, 0.0)]));
     assert_eq!(r.termination.reason, Reason::DoesNotSlide);
     // Nothing drives the block: the paper's ratio has no value, and the factor of safety (the
     // friction cones') says in words that no multiple of the load starts it.
@@ -45,10 +49,10 @@ fn zero_force_does_not_slide() {
 #[test]
 fn force_below_the_onset_threshold_does_not_slide_and_above_it_slides() {
     // Paper-like: driving (F − 2.338 MN) against capacity 4.152 MN; the threshold is 6.490 MN.
-    let below = run(&with(|s| s.loads.as_mut().unwrap().hydraulic_force = 6.4e6));
+    let below = run(&with(&[(FORCE, 6.4e6)]));
     assert_eq!(below.termination.reason, Reason::DoesNotSlide);
     assert!(below.paper_ratio.unwrap() > 1.0);
-    let above = run(&with(|s| s.loads.as_mut().unwrap().hydraulic_force = 6.6e6));
+    let above = run(&with(&[(FORCE, 6.6e6)]));
     assert_ne!(above.termination.reason, Reason::DoesNotSlide);
     assert!(above.paper_ratio.unwrap() < 1.0);
     assert!(above.travel_m > 0.1);
@@ -70,11 +74,10 @@ fn paper_like_scene_runs_to_a_stated_end() {
 
 /// End position (X, Z) at `t_end` with the given integrator and step.
 fn end(s: &Scene, integrator: Integrator, dt: f64, t_end: f64) -> (f64, f64) {
-    let mut s = s.clone();
-    let sv = s.solver.as_mut().unwrap();
-    sv.integrator = integrator;
-    sv.dt = dt;
-    sv.t_end = t_end;
+    let s = common::with(
+        &s.with("solver.integrator", integrator.as_str()).unwrap(),
+        &[("solver.dt_s", dt), (T_END, t_end)],
+    );
     let r = run(&s);
     assert_eq!(
         r.termination.reason,
@@ -101,10 +104,11 @@ fn observed_orders(s: &Scene, integrator: Integrator, t_end: f64) -> Vec<f64> {
 fn paper_integrator_converges_at_first_order() {
     let shallow = Scene::from_toml(include_str!("../../scenes/shallow.toml"), "shallow")
         .unwrap()
-        .with_dynamics(DynamicsModel::Paper);
+        .with_dynamics(DynamicsModel::Paper)
+        .unwrap();
     for (s, t_end) in [(paper_scene(), 1.0), (shallow, 0.5)] {
         for o in observed_orders(&s, Integrator::Paper, t_end) {
-            assert!((0.9..1.1).contains(&o), "{}: order {o}", s.name);
+            assert!((0.9..1.1).contains(&o), "{}: order {o}", s.name());
         }
     }
 }
@@ -113,21 +117,22 @@ fn paper_integrator_converges_at_first_order() {
 fn rk4_converges_at_fourth_order() {
     let shallow = Scene::from_toml(include_str!("../../scenes/shallow.toml"), "shallow")
         .unwrap()
-        .with_dynamics(DynamicsModel::Paper);
+        .with_dynamics(DynamicsModel::Paper)
+        .unwrap();
     for (s, t_end) in [(paper_scene(), 1.0), (shallow, 0.5)] {
         for o in observed_orders(&s, Integrator::Rk4, t_end) {
-            assert!((3.7..4.3).contains(&o), "{}: order {o}", s.name);
+            assert!((3.7..4.3).contains(&o), "{}: order {o}", s.name());
         }
     }
 }
 
 #[test]
 fn large_eccentricity_gives_a_visibly_curved_route() {
-    let curved = run(&with(|s| {
-        s.site.foundation.kappa = 20f64.to_radians();
-        s.loads.as_mut().unwrap().hydraulic_force = 1.2e7;
-        s.loads.as_mut().unwrap().eccentricity = 1.5;
-    }));
+    let curved = run(&with(&[
+        ("foundation.kappa_deg", 20.0),
+        (FORCE, 1.2e7),
+        ("loads.eccentricity_m", 1.5),
+    ]));
     let heading = |r: &slideroute::stages::route::Row| r.vz_m_s.atan2(r.vx_m_s).to_degrees();
     let rows = &curved.rows;
     let turn = heading(&rows[rows.len() - 1]) - heading(&rows[rows.len() / 10]);
@@ -165,15 +170,15 @@ fn frictionless_flat_limit_converges_to_the_closed_form_at_first_order_in_the_di
     let (cx, cz, cth) = flat_closed_form(1.0);
     let mut errs = Vec::new();
     for dip in [0.04f64, 0.02, 0.01] {
-        let s = with(|s| {
-            s.site.foundation.xi = dip.to_radians();
-            s.site.foundation.zeta = dip.to_radians();
-            s.friction = Some(Friction::Coulomb { mu_k: 0.0 });
-            let sv = s.solver.as_mut().unwrap();
-            sv.integrator = Integrator::Rk4;
-            sv.dt = 1e-3;
-            sv.t_end = 1.0;
-        });
+        let s = with(&[
+            ("foundation.xi_deg", dip),
+            ("foundation.zeta_deg", dip),
+            ("friction.mu_k", 0.0),
+            ("solver.dt_s", 1e-3),
+            (T_END, 1.0),
+        ])
+        .with("solver.integrator", "rk4")
+        .unwrap();
         let r = run(&s);
         assert_eq!(
             r.termination.reason,
@@ -201,12 +206,12 @@ fn paper_friction_does_not_reduce_to_sliding_friction_on_a_flat_plane() {
     // Measured: near-flat (0.01°), μ = 0.3, the paper's system keeps four isolated solutions,
     // none with all shear forces opposing x'; the most dissipative gives a ≈ 6.61 m/s² instead
     // of F/m − μ g = 5.06 m/s² (derivations/07). Guarded so that a change is noticed.
-    let s = with(|s| {
-        s.site.foundation.xi = 0.01f64.to_radians();
-        s.site.foundation.zeta = 0.01f64.to_radians();
-        s.friction = Some(Friction::Coulomb { mu_k: 0.3 });
-        s.solver.as_mut().unwrap().t_end = 0.01;
-    });
+    let s = with(&[
+        ("foundation.xi_deg", 0.01),
+        ("foundation.zeta_deg", 0.01),
+        ("friction.mu_k", 0.3),
+        (T_END, 0.01),
+    ]);
     let r = run(&s);
     let row = &r.rows[1];
     let a = 2.0 * row.x_m / (row.t_s * row.t_s);
@@ -215,11 +220,7 @@ fn paper_friction_does_not_reduce_to_sliding_friction_on_a_flat_plane() {
 
 #[test]
 fn stride_records_every_kth_increment_and_the_last() {
-    let r = run(&with(|s| {
-        let sv = s.solver.as_mut().unwrap();
-        sv.stride = 100;
-        sv.t_end = 1.05;
-    }));
+    let r = run(&with(&[(T_END, 1.05)]).with("solver.stride", 100).unwrap());
     assert_eq!(r.increments, 1050);
     let times: Vec<f64> = r.rows.iter().map(|w| w.t_s).collect();
     assert_eq!(times.len(), 1 + 10 + 1);
@@ -238,19 +239,19 @@ fn scene_with(
     f: f64,
     c: f64,
 ) -> Scene {
-    with(|s| {
-        s.site.frame.l2x = l2x;
-        s.site.frame.l1x = 10.0 - l2x;
-        s.site.frame.l1z = l1z;
-        s.site.frame.l2z = 10.0 - l1z;
-        s.site.foundation.xi = xi.to_radians();
-        s.site.foundation.zeta = zeta.to_radians();
-        s.site.foundation.kappa = kappa.to_radians();
-        s.friction = Some(Friction::Coulomb { mu_k: mu });
-        s.loads.as_mut().unwrap().hydraulic_force = f;
-        s.loads.as_mut().unwrap().eccentricity = c;
-        s.solver.as_mut().unwrap().dt = 2e-3;
-    })
+    with(&[
+        ("frame.l2x", l2x),
+        ("frame.l1x", 10.0 - l2x),
+        ("frame.l1z", l1z),
+        ("frame.l2z", 10.0 - l1z),
+        ("foundation.xi_deg", xi),
+        ("foundation.zeta_deg", zeta),
+        ("foundation.kappa_deg", kappa),
+        ("friction.mu_k", mu),
+        (FORCE, f),
+        ("loads.eccentricity_m", c),
+        ("solver.dt_s", 2e-3),
+    ])
 }
 
 #[test]
@@ -298,7 +299,7 @@ fn each_termination_reason_is_reached_with_its_typed_reason() {
                 .all(|w| w.x_m.is_finite() && w.theta_deg.is_finite())
         );
     }
-    let short = run(&with(|s| s.solver.as_mut().unwrap().t_end = 0.3));
+    let short = run(&with(&[(T_END, 0.3)]));
     assert_eq!(short.termination.reason, Reason::TimeLimit);
     assert!((short.termination.t_s - 0.3).abs() < 1e-12);
 }
@@ -331,11 +332,9 @@ fn all_roots_method_gives_the_same_route_as_continuation() {
         slideroute::stages::scene::Mode::Exact,
         slideroute::stages::scene::Mode::SmallAngle,
     ] {
-        let s = with(|s| {
-            let sv = s.solver.as_mut().unwrap();
-            sv.t_end = 1.0;
-            sv.mode = mode;
-        });
+        let s = with(&[(T_END, 1.0)])
+            .with("solver.mode", mode.as_str())
+            .unwrap();
         let a = route::run_with(&s, PoseMethod::Continuation, |_| {
             std::ops::ControlFlow::Continue(())
         })
@@ -366,11 +365,7 @@ fn a_kicked_block_stops_exactly_at_rest() {
     // decelerate it; the increment in which the speed passes through zero is cut where the
     // paper's update reaches zero speed, and friction holds the block there.
     let stop = |dt: f64| {
-        let s = with(|s| {
-            s.loads.as_mut().unwrap().hydraulic_force = 3.0e6;
-            s.initial.vx = 0.3;
-            s.solver.as_mut().unwrap().dt = dt;
-        });
+        let s = with(&[(FORCE, 3.0e6), ("initial.vx_m_s", 0.3), ("solver.dt_s", dt)]);
         let r = run(&s);
         assert_eq!(r.termination.reason, Reason::Stopped, "{:?}", r.termination);
         assert!(r.paper_ratio.unwrap() > 1.0);
@@ -399,10 +394,15 @@ fn the_last_increment_ends_exactly_at_t_end_and_the_final_state_is_the_last_row(
     // state from route.csv (by up to stride − 1 increments), also where a route ends early.
     for dynamics in [DynamicsModel::Paper, DynamicsModel::RigidBody] {
         for (t_end, stride) in [(1.1605, 7), (0.05, 1)] {
-            let mut s = paper_scene().with_dynamics(dynamics);
-            let sv = s.solver.as_mut().unwrap();
-            sv.t_end = t_end;
-            sv.stride = stride;
+            let s = paper_scene()
+                .with_dynamics(dynamics)
+                .and_then(|s| {
+                    s.with_keys([
+                        (T_END, toml::Value::from(t_end)),
+                        ("solver.stride", stride.into()),
+                    ])
+                })
+                .unwrap();
             let r = run(&s);
             assert_eq!(r.termination.reason, Reason::TimeLimit, "{dynamics:?}");
             assert_eq!(r.termination.t_s, t_end, "{dynamics:?}");
@@ -414,8 +414,10 @@ fn the_last_increment_ends_exactly_at_t_end_and_the_final_state_is_the_last_row(
         }
         // An early end (the paper's dynamics at 2.024 s; the rigid body's at 4.36 s) with a
         // stride: its last state is still the last row.
-        let mut s = paper_scene().with_dynamics(dynamics);
-        s.solver.as_mut().unwrap().stride = 7;
+        let s = paper_scene()
+            .with_dynamics(dynamics)
+            .and_then(|s| s.with("solver.stride", 7))
+            .unwrap();
         let r = run(&s);
         assert_ne!(r.termination.reason, Reason::TimeLimit);
         assert_eq!(

@@ -75,7 +75,7 @@ fn every_route_of_every_scene_matches_its_stored_reference() {
     for file in scenes() {
         let base = Scene::from_file(&file).unwrap();
         for model in [DynamicsModel::Paper, DynamicsModel::RigidBody] {
-            let scene = base.with_dynamics(model);
+            let scene = base.with_dynamics(model).unwrap();
             let name = format!(
                 "{}-{}.csv",
                 file.file_stem().unwrap().to_string_lossy(),

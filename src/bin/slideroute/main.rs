@@ -8,7 +8,7 @@ use crate::output::{CoeffReport, RootsReport, grid_csv};
 use clap::{Args, Parser, Subcommand};
 use slideroute::stages::geometry::Displacement;
 use slideroute::stages::roots;
-use slideroute::stages::scene::{DynamicsModel, Mode, Scene};
+use slideroute::stages::scene::{DynamicsModel, Mode, Scene, SceneErrorKind};
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -272,9 +272,11 @@ fn roots_cmd(
     json: bool,
 ) -> Result<(), CliError> {
     let scene = load(scene)?;
-    let mode = mode.or(scene.solver.map(|s| s.mode)).unwrap_or(Mode::Exact);
+    let mode = mode
+        .or(scene.solver().map(|s| s.mode))
+        .unwrap_or(Mode::Exact);
     let report = |d: Displacement| {
-        roots::solve_all(&scene.site, d, mode)
+        roots::solve_all(scene.site(), d, mode)
             .map(|all| RootsReport::new(&scene, &all))
             .map_err(|e| e.to_string())
     };
@@ -370,10 +372,12 @@ fn run_cmd(
 ) -> Result<(), CliError> {
     let mut scene = load(scene)?;
     if let Some(model) = dynamics {
-        let before = scene.solver.map(|s| s.integrator);
-        scene = scene.with_dynamics(model);
+        let before = scene.solver().map(|s| s.integrator);
+        scene = scene
+            .with_dynamics(model)
+            .map_err(|e| bad_input(e.to_string()))?;
         // Each dynamics takes its own integrator: say so where that changes the scene's.
-        if let (Some(b), Some(after)) = (before, scene.solver.map(|s| s.integrator)) {
+        if let (Some(b), Some(after)) = (before, scene.solver().map(|s| s.integrator)) {
             if b != after {
                 eprintln!(
                     "slideroute: note: --dynamics {} integrates with \"{}\" (its own default), \
@@ -398,7 +402,7 @@ fn run_cmd(
     };
     // Rows stream to route.csv as they are computed; the route keeps a bounded number of them
     // for the pictures and the summary (issue #13: memory does not grow with its length).
-    let keep_every = scene.solver.map_or(1, |s| {
+    let keep_every = scene.solver().map_or(1, |s| {
         let rows = (s.t_end / s.dt).ceil() / s.stride as f64;
         (rows / 4000.0).ceil().max(1.0) as usize
     });
@@ -651,7 +655,7 @@ fn scene_cmd(print_default: bool, check: Option<&PathBuf>) -> Result<(), CliErro
             let s = Scene::from_file(p).map_err(|e| bad_input(e.to_string()))?;
             let sections = match slideroute::stages::scene::Simulation::new(&s) {
                 Ok(_) => "all sections",
-                Err(e) if e.reason.starts_with("missing section") => {
+                Err(e) if e.kind == SceneErrorKind::MissingSection => {
                     "geometry only (frame, foundation)"
                 }
                 // Present but not runnable as written (e.g. small-angle with the rigid body).

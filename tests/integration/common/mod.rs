@@ -2,7 +2,7 @@
 //! `derivations/03-small-angle.md` and `derivations/04-exact.md`.
 
 use slideroute::stages::geometry::Displacement;
-use slideroute::stages::scene::{Foundation, Frame, Scene, Site};
+use slideroute::stages::scene::Scene;
 use std::f64::consts::SQRT_2;
 
 /// A geometry-only scene. `l2x_frac`, `l1z_frac` are fractions of L.
@@ -16,28 +16,14 @@ pub fn scene(
 ) -> Scene {
     let l2x = l * l2x_frac;
     let l1z = l * l1z_frac;
-    Scene {
-        name: "test".into(),
-        origin: "<test>".into(),
-        site: Site {
-            frame: Frame {
-                l1x: l - l2x,
-                l2x,
-                l1z,
-                l2z: l - l1z,
-            },
-            foundation: Foundation {
-                xi: xi_deg.to_radians(),
-                zeta: zeta_deg.to_radians(),
-                kappa: kappa_deg.to_radians(),
-            },
-        },
-        block: None,
-        loads: None,
-        friction: None,
-        solver: None,
-        initial: Default::default(),
-    }
+    let text = format!(
+        "name = \"test\"\n\
+         [frame]\nl1x = {:e}\nl2x = {l2x:e}\nl1z = {l1z:e}\nl2z = {:e}\n\
+         [foundation]\nxi_deg = {xi_deg:e}\nzeta_deg = {zeta_deg:e}\nkappa_deg = {kappa_deg:e}\n",
+        l - l2x,
+        l - l1z,
+    );
+    Scene::from_toml(&text, "<test>").unwrap_or_else(|e| panic!("test scene: {e}"))
 }
 
 /// The trigonometric quantities every hand formula uses.
@@ -57,8 +43,8 @@ pub struct Trig {
 
 impl Trig {
     pub fn new(s: &Scene, d: Displacement) -> Self {
-        let f = &s.site.frame;
-        let g = &s.site.foundation;
+        let f = s.site().frame;
+        let g = s.site().foundation;
         let (st, ct) = d.theta.sin_cos();
         let (sp, cp) = (d.theta + g.kappa).sin_cos();
         Trig {
@@ -83,7 +69,7 @@ pub struct Hand {
 
 /// f1–f12 by hand (re-derived; `derivations/03-small-angle.md`, "Result").
 pub fn hand_small_angle(s: &Scene, d: Displacement) -> [Hand; 12] {
-    let f = &s.site.frame;
+    let f = s.site().frame;
     let Trig {
         l,
         st,
@@ -116,7 +102,7 @@ pub fn hand_small_angle(s: &Scene, d: Displacement) -> [Hand; 12] {
 
 /// The printed (misprinted) f1, f2, f7, f11 of the paper, as printed but with 1.41 → √2.
 pub fn printed_f1_f2_f7_f11(s: &Scene, d: Displacement) -> [f64; 4] {
-    let f = &s.site.frame;
+    let f = s.site().frame;
     let Trig {
         l,
         st,
@@ -138,7 +124,7 @@ pub fn printed_f1_f2_f7_f11(s: &Scene, d: Displacement) -> [f64; 4] {
 
 /// Exact (13), (14) coefficients by hand (`derivations/04-exact.md`, "Result"), by basis name.
 pub fn hand_exact(s: &Scene, d: Displacement) -> [Vec<(&'static str, f64)>; 2] {
-    let f = &s.site.frame;
+    let f = s.site().frame;
     let Trig {
         l,
         st,
@@ -177,8 +163,8 @@ pub fn assert_rows_match_direct(s: &Scene, rows: &[slideroute::stages::route::Ro
     for row in rows {
         let d = Displacement::new(row.x_m, row.z_m, row.theta_deg.to_radians());
         let p = match near {
-            Some(ref q) => direct::solve_from(&s.site, d, q).unwrap(),
-            None => direct::solve(&s.site, d).unwrap(),
+            Some(ref q) => direct::solve_from(s.site(), d, q).unwrap(),
+            None => direct::solve(s.site(), d).unwrap(),
         };
         assert!(
             (p.alpha(l).to_degrees() - row.alpha_deg).abs() < 1e-10f64.to_degrees(),
@@ -197,4 +183,11 @@ pub fn assert_rows_match_direct(s: &Scene, rows: &[slideroute::stages::route::Ro
         );
         near = Some(p);
     }
+}
+
+/// `s` with each key set to its number, in the scene file's keys and units (validated as a file
+/// is: a scene changes in no other way).
+pub fn with(s: &Scene, keys: &[(&str, f64)]) -> Scene {
+    s.with_keys(keys.iter().copied())
+        .unwrap_or_else(|e| panic!("test scene: {e}"))
 }

@@ -35,7 +35,7 @@ pub struct CoeffReport {
 
 impl CoeffReport {
     pub fn new(scene: &Scene, d: Displacement) -> Self {
-        let inputs = CoeffInputs::new(&scene.site, d);
+        let inputs = CoeffInputs::new(scene.site(), d);
         let small = SmallAngle::new(&inputs);
         let exact = Exact::new(&inputs);
         let half = exact.half_angle();
@@ -49,7 +49,7 @@ impl CoeffReport {
             )
         };
         CoeffReport {
-            scene: scene.name.clone(),
+            scene: scene.name().to_string(),
             x_m: d.x,
             z_m: d.z,
             theta_deg: d.theta.to_degrees(),

@@ -18,7 +18,10 @@ pub fn write(folder: &mut Folder, scene: &Scene, c: &Comparison) -> Result<Vec<P
             &format!("{sub}/route.csv"),
             &route.rows,
         )?);
-        let manifest = Manifest::new(&scene.with_dynamics(route.dynamics), folder);
+        let scene = scene
+            .with_dynamics(route.dynamics)
+            .map_err(|e| e.to_string())?;
+        let manifest = Manifest::new(&scene, folder);
         files.push(route_files::write_json_with_manifest(
             folder,
             &format!("{sub}/summary.json"),

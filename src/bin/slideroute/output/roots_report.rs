@@ -65,7 +65,7 @@ fn selected_pose(scene: &Scene, mode: Mode, r: &Root) -> SelectedPose {
             Mode::Exact => r.psi.map(|p| p.re.to_degrees()),
             Mode::SmallAngle => None,
         },
-        cm_y_m: cm_height(&scene.site, a, b),
+        cm_y_m: cm_height(scene.site(), a, b),
     }
 }
 
@@ -73,7 +73,7 @@ impl RootsReport {
     pub fn new(scene: &Scene, all: &AllRoots) -> Self {
         let d: Displacement = all.displacement;
         RootsReport {
-            scene: scene.name.clone(),
+            scene: scene.name().to_string(),
             mode: all.mode,
             x_m: d.x,
             z_m: d.z,

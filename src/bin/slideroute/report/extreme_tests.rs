@@ -33,11 +33,12 @@ fn every_extreme_case_agrees_with_the_direct_solver_or_ends_with_its_reason() {
 fn extreme_cases_that_slide_converge_as_dt_halves() {
     for case in report::extreme_cases() {
         let run = |dt: f64| {
-            let mut s = case.scene.clone();
-            let sv = s.solver.as_mut().unwrap();
-            sv.dt = dt;
-            sv.t_end = 0.4;
-            sv.integrator = Integrator::Rk4;
+            let keys: [(&str, toml::Value); 3] = [
+                ("solver.dt_s", dt.into()),
+                ("solver.t_end_s", 0.4.into()),
+                ("solver.integrator", "rk4".into()),
+            ];
+            let s = case.scene.with_keys(keys).unwrap();
             route::run(&s).unwrap()
         };
         let (a, b) = (run(2e-3), run(1e-3));

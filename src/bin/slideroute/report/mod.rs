@@ -9,7 +9,7 @@
 
 use serde::Serialize;
 use slideroute::stages::route::{self, PoseMethod, Route};
-use slideroute::stages::scene::{Integrator, Mode, Scene};
+use slideroute::stages::scene::{DynamicsModel, Integrator, Mode, Scene};
 use std::time::Instant;
 
 /// The shallow example scene, compiled in for the report.
@@ -45,17 +45,19 @@ pub struct Reference {
 const DT0: f64 = 0.02;
 
 fn with_solver(scene: &Scene, mode: Mode, integrator: Integrator, dt: f64, t_end: f64) -> Scene {
-    let mut s = scene.clone();
-    if let Some(sv) = s.solver.as_mut() {
-        // The ladder compares the paper's dynamics' integrators and modes.
-        sv.dynamics = slideroute::stages::scene::DynamicsModel::Paper;
-        sv.mode = mode;
-        sv.integrator = integrator;
-        sv.dt = dt;
-        sv.t_end = t_end;
-        sv.stride = 1;
-    }
-    s
+    // The ladder compares the paper's dynamics' integrators and modes.
+    let keys: [(&str, toml::Value); 6] = [
+        ("dynamics", "paper".into()),
+        ("mode", mode.as_str().into()),
+        ("integrator", integrator.as_str().into()),
+        ("dt_s", dt.into()),
+        ("t_end_s", t_end.into()),
+        ("stride", 1.into()),
+    ];
+    // Its callers pass the report's own valid steps and horizons.
+    scene
+        .with_keys(keys.map(|(key, value)| (format!("solver.{key}"), value)))
+        .unwrap_or_else(|e| panic!("report ladder scene: {e}"))
 }
 
 fn run(scene: &Scene, method: PoseMethod) -> Result<Route, String> {
@@ -114,7 +116,7 @@ pub fn work_precision(
             PoseMethod::Continuation,
         )?;
         references.push(Reference {
-            scene: scene.name.clone(),
+            scene: scene.name().to_string(),
             horizon_s: horizon,
             dt_s: ref_dt,
             change_m: max_distance(&reference, &check, 2),
@@ -137,7 +139,7 @@ pub fn work_precision(
                         times.sort_by(f64::total_cmp);
                         let r = last.ok_or("no run")?;
                         points.push(Point {
-                            scene: scene.name.clone(),
+                            scene: scene.name().to_string(),
                             method,
                             mode,
                             integrator,
@@ -216,95 +218,82 @@ pub struct Case {
     pub scene: Scene,
 }
 
-fn set_force(s: &mut Scene, f: f64) {
-    if let Some(l) = s.loads.as_mut() {
-        l.hydraulic_force = f;
-    }
-}
-
-fn set_dips(s: &mut Scene, xi_deg: f64, zeta_deg: f64) {
-    s.site.foundation.xi = xi_deg.to_radians();
-    s.site.foundation.zeta = zeta_deg.to_radians();
-}
-
-fn set_l1z_over_l2z(s: &mut Scene, ratio: f64) {
-    let l = s.site.frame.l();
-    s.site.frame.l1z = l * ratio / (1.0 + ratio);
-    s.site.frame.l2z = l - s.site.frame.l1z;
+/// The keys that set the frame's l1z / l2z to `ratio`, keeping the side L.
+fn l1z_over_l2z(s: &Scene, ratio: f64) -> [(&'static str, toml::Value); 2] {
+    let l = s.site().frame.l();
+    let l1z = l * ratio / (1.0 + ratio);
+    [("frame.l1z", l1z.into()), ("frame.l2z", (l - l1z).into())]
 }
 
 /// Scenes chosen to break naive code (see `docs/performance.md`, "Stiff and extreme cases").
 pub fn extreme_cases() -> Vec<Case> {
     // The stiff and extreme cases are the paper's dynamics' unless a case says otherwise.
-    let base =
-        Scene::default_scene().with_dynamics(slideroute::stages::scene::DynamicsModel::Paper);
-    let case = |name: &'static str, f: &dyn Fn(&mut Scene)| {
-        let mut s = base.clone();
-        f(&mut s);
-        s.name = name.to_string();
-        Case { name, scene: s }
+    let base = Scene::default_scene()
+        .with_dynamics(DynamicsModel::Paper)
+        .expect("the default scene takes either dynamics");
+    // Each case is the base scene with some keys changed, as a scene file would change them.
+    let case = |name: &'static str, keys: &[(&str, toml::Value)]| {
+        let keys = keys.iter().map(|(k, v)| (*k, v.clone()));
+        // The cases are fixed and valid (`every_extreme_case_is_a_valid_scene`).
+        let scene = base
+            .with_keys(keys.chain([("name", name.into())]))
+            .unwrap_or_else(|e| panic!("extreme case {name}: {e}"));
+        Case { name, scene }
+    };
+    let f = |v: f64| toml::Value::Float(v);
+    let force = |v: f64| ("loads.hydraulic_force_n", f(v));
+    let dips = |xi: f64, zeta: f64| {
+        [
+            ("foundation.xi_deg", f(xi)),
+            ("foundation.zeta_deg", f(zeta)),
+        ]
     };
     // Paper-like: driving (F − 2.338 MN) against a capacity of 4.152 MN at μ = 0.4; FS = R / D.
     let force_for_fs = |fs: f64| 4.152_011e6 / fs + 2.337_862e6;
+    let rigid = ("solver.dynamics", toml::Value::from("rigid-body"));
     vec![
-        case("dips 0.5°", &|s| set_dips(s, 0.5, 0.5)),
-        case("dips 1°/2°", &|s| set_dips(s, 1.0, 2.0)),
-        case("dips 60°/65°", &|s| {
-            set_dips(s, 60.0, 65.0);
-            set_force(s, 3.0e7);
-        }),
-        case("dips 75°/80°", &|s| {
-            set_dips(s, 75.0, 80.0);
-            set_force(s, 8.0e7);
-        }),
-        case("κ = 0", &|s| s.site.foundation.kappa = 0.0),
-        case("κ = 85°", &|s| {
-            s.site.foundation.kappa = 85f64.to_radians()
-        }),
-        case("κ = −85°", &|s| {
-            s.site.foundation.kappa = (-85f64).to_radians()
-        }),
-        case("lopsided l1z/l2z = 0.05", &|s| set_l1z_over_l2z(s, 0.05)),
-        case("lopsided l1z/l2z = 20", &|s| set_l1z_over_l2z(s, 20.0)),
-        case("tiny inertia I = 1e-5 m L²", &|s| {
-            if let Some(b) = s.block.as_mut() {
-                b.inertia = 1e3;
-            }
-        }),
-        case("friction just below onset (FS 0.999)", &|s| {
-            set_force(s, force_for_fs(0.999))
-        }),
-        case("friction just above onset (FS 1.001)", &|s| {
-            set_force(s, force_for_fs(1.001))
-        }),
-        case("huge dt 0.25 s", &|s| {
-            if let Some(v) = s.solver.as_mut() {
-                v.dt = 0.25;
-            }
-        }),
-        case("tiny dt 1 µs", &|s| {
-            if let Some(v) = s.solver.as_mut() {
-                v.dt = 1e-6;
-                v.t_end = 0.05;
-            }
-        }),
-        case("small-angle mode", &|s| {
-            if let Some(v) = s.solver.as_mut() {
-                v.mode = Mode::SmallAngle;
-            }
-        }),
-        case("frictionless", &|s| {
-            s.friction = Some(slideroute::stages::scene::Friction::Coulomb { mu_k: 0.0 })
-        }),
-        case("kicked: 0.3 m/s under 3 MN (FS 6.3)", &|s| {
-            set_force(s, 3.0e6);
-            s.initial.vx = 0.3;
-        }),
-        case("kicked, rigid body: 1 m/s, μ = 0.6", &|s| {
-            *s = s.with_dynamics(slideroute::stages::scene::DynamicsModel::RigidBody);
-            s.friction = Some(slideroute::stages::scene::Friction::Coulomb { mu_k: 0.6 });
-            s.initial.vx = 1.0;
-        }),
+        case("dips 0.5°", &dips(0.5, 0.5)),
+        case("dips 1°/2°", &dips(1.0, 2.0)),
+        case(
+            "dips 60°/65°",
+            &[dips(60.0, 65.0).as_slice(), &[force(3.0e7)]].concat(),
+        ),
+        case(
+            "dips 75°/80°",
+            &[dips(75.0, 80.0).as_slice(), &[force(8.0e7)]].concat(),
+        ),
+        case("κ = 0", &[("foundation.kappa_deg", f(0.0))]),
+        case("κ = 85°", &[("foundation.kappa_deg", f(85.0))]),
+        case("κ = −85°", &[("foundation.kappa_deg", f(-85.0))]),
+        case("lopsided l1z/l2z = 0.05", &l1z_over_l2z(&base, 0.05)),
+        case("lopsided l1z/l2z = 20", &l1z_over_l2z(&base, 20.0)),
+        case(
+            "tiny inertia I = 1e-5 m L²",
+            &[("block.inertia_kg_m2", f(1e3))],
+        ),
+        case(
+            "friction just below onset (FS 0.999)",
+            &[force(force_for_fs(0.999))],
+        ),
+        case(
+            "friction just above onset (FS 1.001)",
+            &[force(force_for_fs(1.001))],
+        ),
+        case("huge dt 0.25 s", &[("solver.dt_s", f(0.25))]),
+        case(
+            "tiny dt 1 µs",
+            &[("solver.dt_s", f(1e-6)), ("solver.t_end_s", f(0.05))],
+        ),
+        case("small-angle mode", &[("solver.mode", "small-angle".into())]),
+        case("frictionless", &[("friction.mu_k", f(0.0))]),
+        case(
+            "kicked: 0.3 m/s under 3 MN (FS 6.3)",
+            &[force(3.0e6), ("initial.vx_m_s", f(0.3))],
+        ),
+        case(
+            "kicked, rigid body: 1 m/s, μ = 0.6",
+            &[rigid, ("friction.mu_k", f(0.6)), ("initial.vx_m_s", f(1.0))],
+        ),
     ]
 }
 
@@ -347,7 +336,7 @@ pub fn extreme(sample: usize) -> Vec<ExtremeRow> {
                     };
                 }
             };
-            let exact = c.scene.solver.is_some_and(|s| s.mode == Mode::Exact);
+            let exact = c.scene.solver().is_some_and(|s| s.mode == Mode::Exact);
             let tilt_error = exact.then(|| {
                 let l = c.scene.l();
                 let every = (r.rows.len() / sample.max(1)).max(1);
@@ -361,7 +350,7 @@ pub fn extreme(sample: usize) -> Vec<ExtremeRow> {
                             row.theta_deg.to_radians(),
                         );
                         let p =
-                            slideroute::stages::geometry::direct::solve(&c.scene.site, d).ok()?;
+                            slideroute::stages::geometry::direct::solve(c.scene.site(), d).ok()?;
                         Some(
                             (p.alpha(l) - row.alpha_deg.to_radians())
                                 .abs()
@@ -390,6 +379,32 @@ pub fn extreme(sample: usize) -> Vec<ExtremeRow> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn every_extreme_case_is_a_valid_scene() {
+        // Each case is the default scene with keys changed, validated as a file is; it carries
+        // its own name and differs from the base it was made from.
+        let base = Scene::default_scene()
+            .with_dynamics(DynamicsModel::Paper)
+            .unwrap();
+        let cases = extreme_cases();
+        assert_eq!(cases.len(), 18);
+        for c in &cases {
+            assert_eq!(c.scene.name(), c.name);
+            assert_ne!(
+                c.scene.with("name", base.name()).unwrap(),
+                base,
+                "{}",
+                c.name
+            );
+        }
+        let kicked = cases.last().unwrap();
+        assert_eq!(
+            kicked.scene.solver().unwrap().dynamics,
+            DynamicsModel::RigidBody
+        );
+        assert_eq!(kicked.scene.solver().unwrap().integrator, Integrator::Rk4);
+    }
 
     fn point(method: PoseMethod, dt_s: f64, wall_s: f64, error_m: f64) -> Point {
         Point {

@@ -182,7 +182,7 @@ pub fn compare_plan(
     plan::plan_view(
         path,
         scene,
-        &format!("{}: plan view of both dynamics", scene.name),
+        &format!("{}: plan view of both dynamics", scene.name()),
         &[
             Track {
                 name: name("rigid body", &c.rigid_body),

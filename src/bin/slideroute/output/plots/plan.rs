@@ -37,7 +37,7 @@ type P = (f64, f64);
 fn vertices(scene: &Scene, row: &Row) -> Option<[P; 3]> {
     let d = Displacement::new(row.x_m, row.z_m, row.theta_deg.to_radians());
     let p = Pose::from_tilts(
-        &scene.site,
+        scene.site(),
         d,
         row.alpha_deg.to_radians(),
         row.beta_deg.to_radians(),
@@ -76,10 +76,10 @@ fn clip_half_plane(poly: &[P], (a, b, c): (f64, f64, f64)) -> Vec<P> {
 
 /// The half-planes (a, b, c: a·X + b·Z ≥ c) where planes 1 and 2 are real (their regions).
 fn region_half_planes(scene: &Scene) -> [(f64, f64, f64); 2] {
-    let (sk, ck) = scene.site.foundation.kappa.sin_cos();
+    let (sk, ck) = scene.site().foundation.kappa.sin_cos();
     [
-        (1.0, 0.0, scene.site.frame.l2x),
-        (ck, -sk, strike_2_distance(&scene.site)),
+        (1.0, 0.0, scene.site().frame.l2x),
+        (ck, -sk, strike_2_distance(scene.site())),
     ]
 }
 
@@ -191,7 +191,7 @@ fn along(a: P, b: P, n: usize) -> impl Iterator<Item = P> {
 /// and its direction (x' at the start). F·i' with the couple −c·F·j' (eqs. 40, 41) is F acting
 /// along x' on the line offset by −c along z' (`docs/conventions.md`: c > 0 turns θ up).
 fn line_of_action(scene: &Scene, start: &Row) -> Option<(P, P, f64, f64)> {
-    let loads = scene.loads.as_ref()?;
+    let loads = scene.loads()?;
     let (s, c) = start.theta_deg.to_radians().sin_cos();
     let x_dir = (c, s);
     let z_dir = (-s, c);
@@ -210,7 +210,7 @@ pub(super) fn plan_view(
 ) -> Res<()> {
     let sheet = Sheet::new(path, SIZE, title)?;
     let outlines: Vec<Vec<[P; 3]>> = tracks.iter().map(|t| outlines_of(scene, t.rows)).collect();
-    let l = scene.site.frame.l();
+    let l = scene.site().frame.l();
     let start = tracks.first().and_then(|t| t.rows.first()).copied();
     let force = start.as_ref().and_then(|s| line_of_action(scene, s));
     let arrow_len = 0.3 * l;
@@ -260,7 +260,7 @@ pub(super) fn plan_view(
         .map_err(err(path))?;
 
     // The regions, shaded.
-    let g = &scene.site.foundation;
+    let g = scene.site().foundation;
     let regions = regions(scene, view);
     for (plane, poly) in &regions {
         if poly.len() >= 3 {
@@ -682,13 +682,13 @@ mod tests {
         let sum = area_of(&h.1) + area_of(&one.1) + area_of(&two.1) - area_of(&both);
         assert!((sum - whole).abs() < 1e-9 * whole, "{sum} vs {whole}");
         // Plane 1 is X ≥ L2X: its area is known in closed form.
-        let l2x = scene.site.frame.l2x;
+        let l2x = scene.site().frame.l2x;
         assert!((area_of(&one.1) - (30.0 - l2x) * 40.0).abs() < 1e-9);
         // Every vertex of the horizontal region is in it (to round-off).
         for &(x, z) in &h.1 {
             assert!(x <= l2x + 1e-9);
-            let (sk, ck) = scene.site.foundation.kappa.sin_cos();
-            assert!(x * ck - z * sk <= strike_2_distance(&scene.site) + 1e-9);
+            let (sk, ck) = scene.site().foundation.kappa.sin_cos();
+            assert!(x * ck - z * sk <= strike_2_distance(scene.site()) + 1e-9);
         }
     }
 

@@ -1,6 +1,7 @@
 //! The pictures read back as SVG: where their legends and data lie, what they name and mark.
 
 use super::*;
+use slideroute::stages::scene::SceneError;
 
 /// A text element of an SVG: its position and content.
 #[derive(Debug)]
@@ -81,10 +82,16 @@ fn temp_dir(name: &str) -> TempDir {
 
 /// The default scene with `t_end` (s) and the hydraulic force (N) replaced.
 fn scene_with(t_end: f64, force: f64) -> Scene {
-    let mut scene = Scene::default_scene();
-    scene.solver.as_mut().unwrap().t_end = t_end;
-    scene.loads.as_mut().unwrap().hydraulic_force = force;
-    scene
+    let keys = [
+        ("solver.t_end_s", t_end),
+        ("loads.hydraulic_force_n", force),
+    ];
+    with_keys(&Scene::default_scene(), &keys).unwrap()
+}
+
+/// `scene` with each key set to its value, in the scene file's keys and units.
+fn with_keys(scene: &Scene, keys: &[(&str, f64)]) -> Result<Scene, SceneError> {
+    scene.with_keys(keys.iter().copied())
 }
 
 fn route_pictures(name: &str, scene: &Scene) -> (TempDir, Route) {
@@ -238,24 +245,31 @@ fn pictures_of_odd_scenes_draw_without_fail() {
     };
     let mut drawn = 0;
     for k in 0..40 {
-        let mut scene = Scene::default_scene();
         let l = 10f64.powf(-2.0 + 6.0 * next());
         let (a, b) = (0.05 + 0.9 * next(), 0.05 + 0.9 * next());
-        let site = &mut scene.site;
-        (site.frame.l1x, site.frame.l2x) = (a * l, (1.0 - a) * l);
-        (site.frame.l1z, site.frame.l2z) = (b * l, (1.0 - b) * l);
-        site.foundation.xi = (1.0 + 88.0 * next()).to_radians();
-        site.foundation.zeta = (1.0 + 88.0 * next()).to_radians();
-        site.foundation.kappa = (-89.0 + 178.0 * next()).to_radians();
-        let block = scene.block.as_mut().unwrap();
-        block.mass = 1e6 * (l / 10.0).powi(2);
-        block.inertia = 1.1e7 * (l / 10.0).powi(4);
-        block.inertia_x = 0.5 * block.inertia;
-        block.inertia_z = 0.5 * block.inertia;
-        let loads = scene.loads.as_mut().unwrap();
-        loads.hydraulic_force = 10f64.powf(5.0 + 3.0 * next()) * (l / 10.0).powi(2);
-        loads.eccentricity = (next() - 0.5) * l;
-        scene.solver.as_mut().unwrap().t_end = 1.0;
+        let inertia = 1.1e7 * (l / 10.0).powi(4);
+        let keys = [
+            ("frame.l1x", a * l),
+            ("frame.l2x", (1.0 - a) * l),
+            ("frame.l1z", b * l),
+            ("frame.l2z", (1.0 - b) * l),
+            ("foundation.xi_deg", 1.0 + 88.0 * next()),
+            ("foundation.zeta_deg", 1.0 + 88.0 * next()),
+            ("foundation.kappa_deg", -89.0 + 178.0 * next()),
+            ("block.mass_kg", 1e6 * (l / 10.0).powi(2)),
+            ("block.inertia_kg_m2", inertia),
+            ("block.inertia_x_kg_m2", 0.5 * inertia),
+            ("block.inertia_z_kg_m2", 0.5 * inertia),
+            (
+                "loads.hydraulic_force_n",
+                10f64.powf(5.0 + 3.0 * next()) * (l / 10.0).powi(2),
+            ),
+            ("loads.eccentricity_m", (next() - 0.5) * l),
+            ("solver.t_end_s", 1.0),
+        ];
+        let Ok(scene) = with_keys(&Scene::default_scene(), &keys) else {
+            continue;
+        };
         let Ok(route) = slideroute::run(&scene) else {
             continue;
         };

@@ -1,0 +1,100 @@
+//! From TOML text to a [`Scene`]: parse once, keep the document, and give every error the line
+//! and column of the key it names (or of the nearest enclosing key the file has).
+
+use super::error::SceneErrorKind;
+use super::raw::{self, ReadError};
+use super::validate::validate;
+use super::{Scene, SceneError};
+use toml::de::{DeTable, DeValue};
+
+/// Parses and validates scene text; `origin` names the source in errors.
+pub(super) fn from_toml(text: &str, origin: &str) -> Result<Scene, SceneError> {
+    let doc = DeTable::parse(text).map_err(|e| {
+        let mut err = SceneError::of(
+            SceneErrorKind::Unreadable,
+            origin,
+            "",
+            format!("not valid TOML: {}", e.message()),
+        );
+        err.position = e.span().map(|s| line_col(text, s.start));
+        err
+    })?;
+    let located = |mut e: SceneError| {
+        if e.position.is_none() {
+            e.position = key_span(doc.get_ref(), &e.key).map(|at| line_col(text, at));
+        }
+        e
+    };
+    let table =
+        <toml::Table as serde::Deserialize>::deserialize(toml::Deserializer::from(doc.clone()))
+            .map_err(|e| {
+                SceneError::of(
+                    SceneErrorKind::Unreadable,
+                    origin,
+                    "",
+                    format!("not a table of keys: {}", e.message()),
+                )
+            })?;
+    let raw = raw::read(toml::Deserializer::from(doc.clone()))
+        .map_err(|e| located(read_error(e, origin, Some(text))))?;
+    validate(raw, origin, table).map_err(located)
+}
+
+/// A document given as a table (a scene edited by key, [`Scene::with`]): errors name the key,
+/// without a position.
+pub(super) fn from_table(table: toml::Table, origin: &str) -> Result<Scene, SceneError> {
+    let raw =
+        raw::read(toml::Value::Table(table.clone())).map_err(|e| read_error(e, origin, None))?;
+    validate(raw, origin, table)
+}
+
+fn read_error(e: ReadError, origin: &str, text: Option<&str>) -> SceneError {
+    match e {
+        ReadError::Unknown { key } => {
+            let (section, name) = key.rsplit_once('.').unwrap_or(("", &key));
+            let known = raw::keys_of(section).join(", ");
+            let reason = if section.is_empty() {
+                format!("unknown key `{name}`; a scene's sections are {known}")
+            } else {
+                format!("unknown key `{name}`; the keys of [{section}] are {known}")
+            };
+            SceneError::of(SceneErrorKind::UnknownKey, origin, key.clone(), reason)
+        }
+        ReadError::WrongType { key, message, span } => {
+            let mut err = SceneError::of(SceneErrorKind::WrongType, origin, key, message);
+            if let (Some(text), Some(span)) = (text, span) {
+                err.position = Some(line_col(text, span.start));
+            }
+            err
+        }
+    }
+}
+
+/// Where `key` (`section.key`, dotted) is written: its name's offset, or its section's when the
+/// file lacks the key itself.
+fn key_span(root: &DeTable<'_>, key: &str) -> Option<usize> {
+    let mut table = root;
+    let mut found = None;
+    for part in key.split('.').filter(|p| !p.is_empty()) {
+        let Some((name, value)) = table.iter().find(|(k, _)| k.get_ref().as_ref() == part) else {
+            break;
+        };
+        found = Some(name.span().start);
+        match value.get_ref() {
+            DeValue::Table(t) => table = t,
+            _ => break,
+        }
+    }
+    found
+}
+
+fn line_col(text: &str, offset: usize) -> (usize, usize) {
+    let mut end = offset.min(text.len());
+    while !text.is_char_boundary(end) {
+        end -= 1;
+    }
+    let before = &text[..end];
+    let line = before.matches('\n').count() + 1;
+    let col = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+    (line, col)
+}

@@ -1,0 +1,484 @@
+//! From the file's keys to the typed, checked scene: every value finite and in its range, every
+//! name one the option has, the sections consistent with each other. Each fault is one
+//! [`SceneError`] naming its key.
+
+use super::error::SceneErrorKind;
+use super::raw::{self, RawScene};
+use super::{
+    Block, DynamicsModel, Foundation, Frame, Friction, Initial, Integrator, Loads, Mode, Scene,
+    SceneError, Site, Solver,
+};
+
+/// The most increments one run may take (t_end / dt).
+pub const MAX_INCREMENTS: f64 = 1e8;
+
+/// Relative tolerance on L1X + L2X = L1Z + L2Z.
+const FRAME_TOLERANCE: f64 = 1e-9;
+
+/// The value of a key its section needs.
+fn need<T>(origin: &str, key: &str, v: Option<T>) -> Result<T, SceneError> {
+    v.ok_or_else(|| {
+        let name = key.rsplit('.').next().unwrap_or(key);
+        SceneError::of(
+            SceneErrorKind::MissingKey,
+            origin,
+            key,
+            format!("missing key `{name}`"),
+        )
+    })
+}
+
+/// A section the scene needs.
+fn section<'a, T>(origin: &str, name: &str, v: &'a Option<T>) -> Result<&'a T, SceneError> {
+    v.as_ref().ok_or_else(|| {
+        SceneError::of(
+            SceneErrorKind::MissingSection,
+            origin,
+            name,
+            format!("missing section [{name}]"),
+        )
+    })
+}
+
+/// The option named `word` among `all` (by their file names), or an error listing them.
+fn named<T: Copy>(
+    origin: &str,
+    key: &str,
+    what: &str,
+    word: &str,
+    all: &[T],
+    name: fn(T) -> &'static str,
+) -> Result<T, SceneError> {
+    all.iter()
+        .copied()
+        .find(|&t| name(t) == word)
+        .ok_or_else(|| {
+            let names: Vec<_> = all.iter().map(|&t| format!("\"{}\"", name(t))).collect();
+            SceneError::new(
+                origin,
+                key,
+                format!(
+                    "unknown {what} \"{word}\"; expected one of {}",
+                    names.join(", ")
+                ),
+            )
+        })
+}
+
+/// Checks one number: finite, and `ok(v)`; `what` says what was expected.
+fn check(origin: &str, key: &str, v: f64, ok: bool, what: &str) -> Result<f64, SceneError> {
+    if !v.is_finite() {
+        return Err(SceneError::new(
+            origin,
+            key,
+            format!("must be a finite number, got {v}"),
+        ));
+    }
+    if !ok {
+        return Err(SceneError::new(
+            origin,
+            key,
+            format!("must be {what}, got {v}"),
+        ));
+    }
+    Ok(v)
+}
+
+fn positive(origin: &str, key: &str, v: f64) -> Result<f64, SceneError> {
+    check(origin, key, v, v > 0.0, "positive")
+}
+
+fn non_negative(origin: &str, key: &str, v: f64) -> Result<f64, SceneError> {
+    check(origin, key, v, v >= 0.0, "zero or positive")
+}
+
+/// The block, with the rigid-body inertia defaults (a thin plate in the x'z' plane) and the
+/// checks a rigid body's inertia must pass (positive definite, triangle inequalities).
+fn block(o: &str, b: &raw::RawBlock) -> Result<Block, SceneError> {
+    let mass = need(o, "block.mass_kg", b.mass_kg)?;
+    let inertia = need(o, "block.inertia_kg_m2", b.inertia_kg_m2)?;
+    let inertia = positive(o, "block.inertia_kg_m2", inertia)?;
+    let inertia_x = match b.inertia_x_kg_m2 {
+        Some(v) => positive(o, "block.inertia_x_kg_m2", v)?,
+        None => inertia / 2.0,
+    };
+    let inertia_z = match b.inertia_z_kg_m2 {
+        Some(v) => positive(o, "block.inertia_z_kg_m2", v)?,
+        None => inertia / 2.0,
+    };
+    let inertia_xz = match b.inertia_xz_kg_m2 {
+        Some(v) => check(o, "block.inertia_xz_kg_m2", v, true, "finite")?,
+        None => 0.0,
+    };
+    let block = Block {
+        mass: positive(o, "block.mass_kg", mass)?,
+        inertia,
+        inertia_x,
+        inertia_z,
+        inertia_xz,
+    };
+    let key = if b.inertia_xz_kg_m2.is_some() {
+        "block.inertia_xz_kg_m2"
+    } else {
+        "block"
+    };
+    let p = block.tensor().symmetric_eigenvalues();
+    let (lo, hi, sum) = (p.min(), p.max(), p.sum());
+    if lo <= 0.0 {
+        return Err(SceneError::new(
+            o,
+            key,
+            format!(
+                "the inertia tensor is not positive definite (principal moments {:.6e}, {:.6e}, \
+                 {:.6e} kg·m²): |inertia_xz| must be below √(inertia_x · inertia_z)",
+                p[0], p[1], p[2]
+            ),
+        ));
+    }
+    if hi > (sum - hi) * (1.0 + 1e-9) {
+        return Err(SceneError::new(
+            o,
+            key,
+            format!(
+                "no rigid body has these moments of inertia: the largest principal moment \
+                 {hi:.6e} kg·m² exceeds the sum of the other two, {:.6e} kg·m²",
+                sum - hi
+            ),
+        ));
+    }
+    Ok(block)
+}
+
+/// The most a derived ratio may be, either way: the water load against the weight, and a
+/// moment of inertia against m L². Each input is finite and positive on its own, but together
+/// they can leave the mechanics nothing to compute with (issue #13: a mass of 1e308 kg made the
+/// weight infinite and the contact problem "singular"; a water load of 1e308 N, the cone program
+/// fail). A dam monolith's ratios are of order one.
+const MAX_RATIO: f64 = 1e6;
+
+/// Checks what follows from the inputs: the weight m g is a finite, normal number, the water
+/// load is within [`MAX_RATIO`] of it, and each moment of inertia within [`MAX_RATIO`] of m L²
+/// either way. The error names the key to change.
+fn derived(
+    o: &str,
+    frame: &Frame,
+    block: Option<&Block>,
+    loads: Option<&Loads>,
+) -> Result<(), SceneError> {
+    let (Some(b), Some(l)) = (block, loads) else {
+        return Ok(());
+    };
+    let weight = b.mass * l.gravity;
+    if !weight.is_normal() {
+        let key = if b.mass > l.gravity {
+            "block.mass_kg"
+        } else {
+            "loads.gravity_m_s2"
+        };
+        return Err(SceneError::new(
+            o,
+            key,
+            format!(
+                "the weight m g = {weight:e} N is not a usable number (mass {:e} kg, gravity {:e} \
+                 m/s²)",
+                b.mass, l.gravity
+            ),
+        ));
+    }
+    if l.hydraulic_force > MAX_RATIO * weight {
+        return Err(SceneError::new(
+            o,
+            "loads.hydraulic_force_n",
+            format!(
+                "{:e} N is more than {MAX_RATIO:e} times the weight ({weight:e} N, from a mass of \
+                 {:e} kg)",
+                l.hydraulic_force, b.mass
+            ),
+        ));
+    }
+    let ml2 = b.mass * frame.l() * frame.l();
+    for (key, i) in [
+        ("block.inertia_kg_m2", b.inertia),
+        ("block.inertia_x_kg_m2", b.inertia_x),
+        ("block.inertia_z_kg_m2", b.inertia_z),
+    ] {
+        let ratio = i / ml2;
+        if !(ratio.is_finite() && (1.0 / MAX_RATIO..=MAX_RATIO).contains(&ratio)) {
+            return Err(SceneError::new(
+                o,
+                key,
+                format!(
+                    "{i:e} kg·m² against m L² = {ml2:e} kg·m²: a ratio of {ratio:e}, outside \
+                     1e-6 … 1e6 (a monolith's is of order 0.1)"
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The friction criterion: `model` says which keys belong; a key of the other model is refused
+/// as unknown rather than ignored.
+fn friction(o: &str, f: &raw::RawFriction) -> Result<Friction, SceneError> {
+    const COULOMB: &str = "coulomb";
+    const BARTON: &str = "barton-choubey";
+    let model = need(o, "friction.model", f.model.as_deref())?;
+    let model = named(
+        o,
+        "friction.model",
+        "friction model",
+        model,
+        &[COULOMB, BARTON],
+        |m| m,
+    )?;
+    let given = [
+        ("mu_k", f.mu_k.is_some(), COULOMB),
+        ("jrc", f.jrc.is_some(), BARTON),
+        ("jcs_pa", f.jcs_pa.is_some(), BARTON),
+        ("phi_r_deg", f.phi_r_deg.is_some(), BARTON),
+        ("contact_area_m2", f.contact_area_m2.is_some(), BARTON),
+    ];
+    if let Some((key, _, _)) = given
+        .iter()
+        .find(|(_, present, of)| *present && *of != model)
+    {
+        let own: Vec<_> = given.iter().filter(|g| g.2 == model).map(|g| g.0).collect();
+        return Err(SceneError::of(
+            SceneErrorKind::UnknownKey,
+            o,
+            format!("friction.{key}"),
+            format!(
+                "unknown key for model = \"{model}\" (its keys: model, {})",
+                own.join(", ")
+            ),
+        ));
+    }
+    Ok(if model == COULOMB {
+        Friction::Coulomb {
+            mu_k: non_negative(o, "friction.mu_k", need(o, "friction.mu_k", f.mu_k)?)?,
+        }
+    } else {
+        let phi_r_deg = need(o, "friction.phi_r_deg", f.phi_r_deg)?;
+        Friction::BartonChoubey {
+            jrc: non_negative(o, "friction.jrc", need(o, "friction.jrc", f.jrc)?)?,
+            jcs_pa: positive(o, "friction.jcs_pa", need(o, "friction.jcs_pa", f.jcs_pa)?)?,
+            phi_r: check(
+                o,
+                "friction.phi_r_deg",
+                phi_r_deg,
+                (0.0..90.0).contains(&phi_r_deg),
+                "an angle from 0° up to (not including) 90°",
+            )?
+            .to_radians(),
+            contact_area_m2: positive(
+                o,
+                "friction.contact_area_m2",
+                need(o, "friction.contact_area_m2", f.contact_area_m2)?,
+            )?,
+        }
+    })
+}
+
+/// The run settings, with each dynamics model's default integrator.
+fn solver(o: &str, s: &raw::RawSolver) -> Result<Solver, SceneError> {
+    let mode = need(o, "solver.mode", s.mode.as_deref())?;
+    let mode = named(
+        o,
+        "solver.mode",
+        "solver mode",
+        mode,
+        &Mode::ALL,
+        Mode::as_str,
+    )?;
+    let dynamics = match s.dynamics.as_deref() {
+        None => DynamicsModel::default(),
+        Some(w) => named(
+            o,
+            "solver.dynamics",
+            "dynamics",
+            w,
+            &DynamicsModel::ALL,
+            DynamicsModel::as_str,
+        )?,
+    };
+    let integrator = match s.integrator.as_deref() {
+        None => None,
+        Some(w) => Some(named(
+            o,
+            "solver.integrator",
+            "integrator",
+            w,
+            &Integrator::ALL,
+            Integrator::as_str,
+        )?),
+    };
+    let dt = need(o, "solver.dt_s", s.dt_s)?;
+    let t_end = need(o, "solver.t_end_s", s.t_end_s)?;
+    if dt > t_end && t_end > 0.0 {
+        return Err(SceneError::new(
+            o,
+            "solver.dt_s",
+            format!("the increment ({dt} s) is longer than the whole route (t_end_s = {t_end} s)"),
+        ));
+    }
+    let n = t_end / dt;
+    if dt > 0.0 && t_end > 0.0 && n > MAX_INCREMENTS {
+        return Err(SceneError::new(
+            o,
+            "solver.dt_s",
+            format!(
+                "t_end_s / dt_s = {n:.3e} increments, more than the {MAX_INCREMENTS:e} one run may take"
+            ),
+        ));
+    }
+    Ok(Solver {
+        mode,
+        dt: positive(o, "solver.dt_s", dt)?,
+        t_end: positive(o, "solver.t_end_s", t_end)?,
+        integrator: match (dynamics, integrator) {
+            (DynamicsModel::Paper, Some(i)) => i,
+            (DynamicsModel::Paper, None) => Integrator::Paper,
+            (DynamicsModel::RigidBody, Some(Integrator::Rk4) | None) => Integrator::Rk4,
+            (DynamicsModel::RigidBody, Some(Integrator::Paper)) => {
+                return Err(SceneError::new(
+                    o,
+                    "solver.integrator",
+                    "the rigid-body dynamics integrates with \"rk4\" only (the paper's \
+                     update belongs to the paper's dynamics)",
+                ));
+            }
+        },
+        dynamics,
+        stride: match s.stride {
+            None => 1,
+            Some(k) if k >= 1 => k as usize,
+            Some(k) => {
+                return Err(SceneError::new(
+                    o,
+                    "solver.stride",
+                    format!("must be a whole number of increments, 1 or more, got {k}"),
+                ));
+            }
+        },
+    })
+}
+
+/// The frame: positive lengths, a finite side, and the two legs of the right isosceles
+/// triangle equal.
+fn frame(o: &str, f: &raw::RawFrame) -> Result<Frame, SceneError> {
+    let length = |key: &str, v: Option<f64>| positive(o, key, need(o, key, v)?);
+    let frame = Frame {
+        l1x: length("frame.l1x", f.l1x)?,
+        l2x: length("frame.l2x", f.l2x)?,
+        l1z: length("frame.l1z", f.l1z)?,
+        l2z: length("frame.l2z", f.l2z)?,
+    };
+    let (lx, lz) = (frame.l1x + frame.l2x, frame.l1z + frame.l2z);
+    // Each length is finite, but their sum (L, on which every derived length and the pose's
+    // coordinates rest) may not be (issue #13: 1.5e308 m each gave NaN tilts); nor may L²,
+    // which the pose and the inertia scales use.
+    if !(lx * lx).is_finite() || !(lz * lz).is_finite() {
+        return Err(SceneError::new(
+            o,
+            "frame",
+            format!(
+                "l1x + l2x = {lx:e} m and l1z + l2z = {lz:e} m: the frame's side L (and L²) must \
+                 be finite numbers"
+            ),
+        ));
+    }
+    if (lx - lz).abs() > FRAME_TOLERANCE * lx.max(lz) {
+        return Err(SceneError::new(
+            o,
+            "frame",
+            format!(
+                "l1x + l2x = {lx} m but l1z + l2z = {lz} m; the frame is an isosceles right \
+                 triangle, so the two sums must be equal"
+            ),
+        ));
+    }
+    Ok(frame)
+}
+
+fn foundation(o: &str, d: &raw::RawFoundation) -> Result<Foundation, SceneError> {
+    let dip = |key: &str, v: Option<f64>| {
+        let v = need(o, key, v)?;
+        check(
+            o,
+            key,
+            v,
+            v > 0.0 && v < 90.0,
+            "a dip strictly between 0° and 90°",
+        )
+        .map(f64::to_radians)
+    };
+    let kappa = need(o, "foundation.kappa_deg", d.kappa_deg)?;
+    Ok(Foundation {
+        xi: dip("foundation.xi_deg", d.xi_deg)?,
+        zeta: dip("foundation.zeta_deg", d.zeta_deg)?,
+        kappa: check(
+            o,
+            "foundation.kappa_deg",
+            kappa,
+            kappa > -90.0 && kappa < 90.0,
+            "an azimuth strictly between -90° and 90°",
+        )?
+        .to_radians(),
+    })
+}
+
+/// The typed scene of a document, or its first fault. `source` is kept as the scene's own
+/// file ([`Scene::with`] edits it).
+pub(super) fn validate(raw: RawScene, o: &str, source: toml::Table) -> Result<Scene, SceneError> {
+    let frame = frame(o, section(o, "frame", &raw.frame)?)?;
+    let foundation = foundation(o, section(o, "foundation", &raw.foundation)?)?;
+    let block = raw.block.as_ref().map(|b| block(o, b)).transpose()?;
+    let loads = match &raw.loads {
+        None => None,
+        Some(l) => Some(Loads {
+            hydraulic_force: non_negative(
+                o,
+                "loads.hydraulic_force_n",
+                need(o, "loads.hydraulic_force_n", l.hydraulic_force_n)?,
+            )?,
+            eccentricity: check(
+                o,
+                "loads.eccentricity_m",
+                need(o, "loads.eccentricity_m", l.eccentricity_m)?,
+                true,
+                "finite",
+            )?,
+            gravity: positive(
+                o,
+                "loads.gravity_m_s2",
+                need(o, "loads.gravity_m_s2", l.gravity_m_s2)?,
+            )?,
+        }),
+    };
+    let friction = raw.friction.as_ref().map(|f| friction(o, f)).transpose()?;
+    let solver = raw.solver.as_ref().map(|s| solver(o, s)).transpose()?;
+    let initial = match &raw.initial {
+        None => Initial::default(),
+        Some(i) => {
+            let finite =
+                |key: &str, v: Option<f64>| check(o, key, v.unwrap_or(0.0), true, "finite");
+            Initial {
+                vx: finite("initial.vx_m_s", i.vx_m_s)?,
+                vz: finite("initial.vz_m_s", i.vz_m_s)?,
+                omega: finite("initial.omega_deg_s", i.omega_deg_s)?.to_radians(),
+            }
+        }
+    };
+    derived(o, &frame, block.as_ref(), loads.as_ref())?;
+    Ok(Scene {
+        name: raw.name.unwrap_or_else(|| "unnamed".to_string()),
+        origin: o.to_string(),
+        site: Site { frame, foundation },
+        block,
+        loads,
+        friction,
+        solver,
+        initial,
+        source,
+    })
+}
