@@ -1,7 +1,7 @@
 //! What a dynamics model is to the route (issue #14): how the block starts, how it advances by
 //! one increment, and the row of its state. The driver (`driver.rs`) owns everything else —
 //! the increments and the exact end at t_end, the stride, progress and interruption, the time
-//! limit. The paper's dynamics (`paper.rs`) and the rigid body's (`rigid.rs`) implement it; a
+//! limit. The paper's dynamics (`paper.rs`) and the rigid body's (`rigid/`) implement it; a
 //! third model is one new file and one arm in `run.rs`.
 
 use super::outcome::Outcome;

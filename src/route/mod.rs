@@ -1,5 +1,5 @@
 //! The failure route (paper §7): one driver loop (`driver.rs`) runs a [`Dynamics`] model — the
-//! paper's (`paper.rs`) or the rigid body's (`rigid.rs`) — from its start, increment by
+//! paper's (`paper.rs`) or the rigid body's (`rigid/`) — from its start, increment by
 //! increment, until the route ends for a stated reason; `run.rs` adds what the route is
 //! computed with and how (the factor of safety at the start, the diagnostics).
 //!

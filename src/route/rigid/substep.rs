@@ -1,0 +1,379 @@
+//! Substep control of the rigid body: an increment in substeps, each tried, taken, halved
+//! where the energy balance says RK4 does not resolve the motion, or cut at an event and the
+//! event handled (`derivations/08-rigid-body.md` §3).
+
+use super::events::{Bracket, Event, Heading, Rest, bracket_event, come_to_rest};
+use super::{Eval, RigidBody, Y, accept, anchor_of, derivative, evaluate, hold, rk4, row};
+use crate::route::dynamics::Flow;
+use crate::route::outcome::Outcome;
+use crate::route::pose_finder::PoseFinder;
+use crate::route::rhs::Stop;
+use crate::route::termination::Reason;
+
+/// The fraction of the largest kinetic energy of the route below which the block counts as at
+/// rest when a contact's slip passes through zero (see `RigidBody::cut_at_event`).
+const REST: f64 = 1e-9;
+
+/// A substep is halved when the energy balance W_h + W_f − ΔK − ΔU moves over it by more than
+/// this fraction of the route's energy scale (the largest of its kinetic energy and of the
+/// works so far), prorated to the substep. Where the motion is resolved RK4 moves it by about
+/// 1e-18 a step; it is exceeded where friction makes the motion stiff — near a stop the friction
+/// moments damp the rotation at a rate ∝ μ N r² / (I |v|) — or a slip swings round near zero.
+const ENERGY_TOLERANCE: f64 = 1e-9;
+
+/// The most events (stops that restart, pivots) resolved within one increment.
+const MAX_EVENTS: usize = 16;
+
+/// The shortest substep, as a fraction of dt (then the step is taken as it is).
+const MIN_SUBSTEP: f64 = 1e-3;
+
+/// Substep control: whether a substep of length `len` (of an increment `dt`) moved the energy
+/// balance's residual from `before` to `after` by more than the tolerance — a fraction
+/// `ENERGY_TOLERANCE` of the route's energy `scale`, prorated to the substep, and never below
+/// the balance's own round-off — and may still be halved (it is longer than `MIN_SUBSTEP`·dt).
+fn unresolved_substep(
+    (before, after): (f64, f64),
+    scale: f64,
+    (len, dt): (f64, f64),
+    round_off: f64,
+) -> bool {
+    (after - before).abs() > (ENERGY_TOLERANCE * scale * (len / dt)).max(round_off)
+        && len > MIN_SUBSTEP * dt
+}
+
+/// What one substep came to.
+enum Substep {
+    /// Too long to resolve the motion or to locate a failure in: `h` was halved, try again.
+    Retry,
+    /// The state moved on without an event.
+    Moved,
+    /// An event was handled (a pivot, a release, a stop from which the block slips again).
+    Event,
+}
+
+/// How a route ends within a substep.
+enum Ending {
+    /// A state off the model: the route ends at the state before the substep.
+    Failed(Stop),
+    /// An end decided where it happened (a stop held by friction, a failure located by
+    /// bisection), its rows and energy balance already in the outcome.
+    At(Reason, f64, String),
+}
+
+/// One attempted step: its length, the derivative at its start, and what it reached.
+struct Trial<'f> {
+    h: f64,
+    k1: Y,
+    /// The end state (the start's where the step failed) and its evaluation.
+    next: Y,
+    next_ev: Eval,
+    /// An event met at one of the step's stages.
+    crossed: Option<Event>,
+    /// Where the step or its end state is off the model.
+    failed: Option<Stop>,
+    /// The pose finder at the end state.
+    at_next: PoseFinder<'f>,
+}
+
+impl RigidBody<'_> {
+    /// Increment `k` to `t_target` in substeps: each step checked for events — a stop, a
+    /// pivot, a release, a failure — found by bisection on the step length, and halved where
+    /// the energy balance says RK4 does not resolve the motion.
+    pub(super) fn substeps<'s>(
+        &mut self,
+        finder: &mut PoseFinder<'_>,
+        k: usize,
+        t_target: f64,
+        mut o: Outcome<'s>,
+    ) -> Flow<'s> {
+        let mut events = 0usize;
+        while self.t < t_target * (1.0 - 1e-15) {
+            // Past MAX_EVENTS in one increment (a contact's slip chattering about zero), the
+            // rest of the increment is taken in plain substeps: its error shows in the energy
+            // balance.
+            let resolve = events < MAX_EVENTS;
+            match self.substep(finder, k, t_target - self.t, resolve, &mut o) {
+                Ok(Substep::Event) => events += 1,
+                Ok(Substep::Retry | Substep::Moved) => {}
+                Err(Ending::Failed(stop)) => return Flow::Ended(self.fail(o, stop)),
+                Err(Ending::At(reason, t, detail)) => {
+                    return Flow::Ended(o.end(reason, t, detail));
+                }
+            }
+        }
+        self.t = t_target;
+        Flow::Go(o)
+    }
+
+    /// The route ended by a failure at the current state.
+    fn fail<'s>(&self, mut o: Outcome<'s>, s: Stop) -> Outcome<'s> {
+        o.energy = Some(self.balance(&self.y, &self.ev));
+        o.finish(row(self.t, &self.y, &self.ev), s.reason, self.t, s.detail)
+    }
+
+    /// One substep of at most `left` (s): tried, then moved on, retried shorter, or cut at an
+    /// event and the event handled.
+    fn substep<'f>(
+        &mut self,
+        finder: &mut PoseFinder<'f>,
+        k: usize,
+        left: f64,
+        resolve: bool,
+        o: &mut Outcome<'_>,
+    ) -> Result<Substep, Ending> {
+        let mass = self.sections.block().mass;
+        let motion = self.ev.motion;
+        self.ke_max = self
+            .ke_max
+            .max(motion.twist.kinetic_energy(mass, &motion.inertia));
+        let heading = Heading {
+            before: &motion,
+            mass,
+        };
+        let trial = self.trial(finder, self.h.min(left), resolve, &heading);
+        let dt = self.sections.solver().dt;
+        // A failure over a long substep may be the integrator's (a slip too young to be
+        // watched for reversal, turned round within the step): retry in shorter substeps down
+        // to the shortest, and only there locate it.
+        if trial.failed.is_some() && trial.h > 2.0 * MIN_SUBSTEP * dt {
+            self.h = 0.5 * trial.h;
+            return Ok(Substep::Retry);
+        }
+        let at_end = match trial.failed {
+            None => heading.event(&trial.next_ev.motion).filter(|_| resolve),
+            Some(_) => None,
+        };
+        if trial.crossed.is_none() && at_end.is_none() && trial.failed.is_none() {
+            return self.move_on(finder, trial, resolve, o);
+        }
+        self.cut_at_event(finder, k, trial, at_end, resolve, &heading, o)
+    }
+
+    /// The step of length `h` from the current state, and the state at its end. Where either
+    /// fails (a stage or the end state off the model: a contact lifting off, leaving its plane's
+    /// region, …) the failure is kept, to be located like an event, by bisection, so that an
+    /// event before it (a pivot that would keep the contact on its plane) is handled first and
+    /// a route that ends does so at the moment it must, not at the next increment's end.
+    fn trial<'f>(
+        &self,
+        finder: &PoseFinder<'f>,
+        h: f64,
+        resolve: bool,
+        heading: &Heading<'_>,
+    ) -> Trial<'f> {
+        let (scene, sections) = (self.scene, self.sections);
+        let stuck = self.ev.motion.stuck;
+        let k1 = derivative(&self.y, &self.ev.motion);
+        let mut at_next = finder.clone();
+        let step = rk4(scene, sections, finder, &self.y, &k1, h, heading).and_then(|(n, c)| {
+            let e = evaluate(scene, sections, &mut at_next, &n, stuck)?;
+            Ok((n, c.filter(|_| resolve), e))
+        });
+        let (next, crossed, next_ev, failed) = match step {
+            Ok((n, c, e)) => (accept(&n, &e), c, e, None),
+            Err(stop) => (self.y, None, self.ev, Some(stop)),
+        };
+        Trial {
+            h,
+            k1,
+            next,
+            next_ev,
+            crossed,
+            failed,
+            at_next,
+        }
+    }
+
+    /// Whether a substep of length `len` to (y2, e2) moved the energy balance by more than the
+    /// tolerance (and may still be halved).
+    fn unresolved(&self, resolve: bool, len: f64, y2: &Y, e2: &Eval) -> bool {
+        let y = &self.y;
+        resolve
+            && unresolved_substep(
+                (
+                    self.balance(y, &self.ev).residual_j,
+                    self.balance(y2, e2).residual_j,
+                ),
+                self.ke_max.max(y[6].abs()).max(y[7].abs()).max(y2[6].abs()),
+                (len, self.sections.solver().dt),
+                self.round_off,
+            )
+    }
+
+    /// No event in the step: take it unless the energy balance moved by more than the
+    /// tolerance (then halve the substep and try again); a sticking contact is held where it
+    /// stuck.
+    fn move_on<'f>(
+        &mut self,
+        finder: &mut PoseFinder<'f>,
+        trial: Trial<'f>,
+        resolve: bool,
+        o: &mut Outcome<'_>,
+    ) -> Result<Substep, Ending> {
+        let Trial {
+            h,
+            next,
+            next_ev,
+            at_next,
+            ..
+        } = trial;
+        if self.unresolved(resolve, h, &next, &next_ev) {
+            self.h = 0.5 * h;
+            return Ok(Substep::Retry);
+        }
+        *finder = at_next;
+        let (next, next_ev) = match self.anchor {
+            Some((i, at)) if next_ev.motion.stuck == Some(i) => {
+                hold(self.scene, self.sections, finder, &next, next_ev, i, at)
+                    .map_err(Ending::Failed)?
+            }
+            _ => (next, next_ev),
+        };
+        self.go_to(o, next, next_ev);
+        self.anchor = anchor_of(&self.ev, self.anchor);
+        self.t += h;
+        if h >= self.h {
+            self.h = (2.0 * self.h).min(self.sections.solver().dt);
+        }
+        Ok(Substep::Moved)
+    }
+
+    /// Takes the state `y`, evaluated as `e`, its travel booked.
+    fn go_to(&mut self, o: &mut Outcome<'_>, y: Y, e: Eval) {
+        o.travel += (e.pose.cm - self.ev.pose.cm).norm();
+        self.y = y;
+        self.ev = e;
+    }
+
+    /// An event inside the substep (at its end or at one of its stages), or a failure:
+    /// bisection on the step length for the longest step that does not reach it, then the
+    /// event's own handling.
+    #[allow(clippy::too_many_arguments)]
+    fn cut_at_event<'f>(
+        &mut self,
+        finder: &mut PoseFinder<'f>,
+        k: usize,
+        trial: Trial<'f>,
+        at_end: Option<Event>,
+        resolve: bool,
+        heading: &Heading<'_>,
+        o: &mut Outcome<'_>,
+    ) -> Result<Substep, Ending> {
+        let (scene, sections) = (self.scene, self.sections);
+        let stuck = self.ev.motion.stuck;
+        let Bracket {
+            lo,
+            hi,
+            y_lo,
+            y_hi,
+            found,
+        } = bracket_event(
+            scene,
+            sections,
+            finder,
+            (&self.y, &trial.k1),
+            (trial.h, trial.next),
+            heading,
+        );
+        if let (Some(stop), None) = (trial.failed, found) {
+            return Err(self.end_at_failure(finder, k, (lo, y_lo), stop, o));
+        }
+        // The substep up to the event must itself be resolved: else approach it in shorter
+        // substeps.
+        if lo > 0.0 {
+            let mut f = finder.clone();
+            let e = evaluate(scene, sections, &mut f, &y_lo, stuck).map_err(Ending::Failed)?;
+            if self.unresolved(resolve, lo, &accept(&y_lo, &e), &e) {
+                self.h = 0.5 * lo;
+                return Ok(Substep::Retry);
+            }
+        }
+        // Which event: what the shortest step that reaches it shows. A pivot with the kinetic
+        // energy at REST of the largest it had is the stop itself: as a block comes to rest its
+        // contacts' slips pass through zero one after another ever faster (the Zeno behaviour
+        // of Coulomb friction), and the travel left is of order REST of the stopping distance.
+        let mass = sections.block().mass;
+        let ke = (self.ev.motion.twist).kinetic_energy(mass, &self.ev.motion.inertia);
+        let event = match found.or(at_end).or(trial.crossed).unwrap_or(Event::Stop) {
+            Event::Pivot(_) if ke <= REST * self.ke_max => Event::Stop,
+            e => e,
+        };
+        // A release goes on from just past the moment (the contact then slips, in the
+        // direction `rigid_body::accelerations` gives); a pivot from just before it, the
+        // contact's remaining slip (of the bisection's size) projected out, stuck while its
+        // cone allows.
+        let (y_at, len, stick) = match event {
+            Event::Release(_) => (y_hi, hi, None),
+            Event::Pivot(i) => (y_lo, lo, Some(i)),
+            Event::Stop => return self.stop(finder, k, y_lo, self.t + hi, o),
+        };
+        let at = evaluate(scene, sections, finder, &y_at, stick).map_err(Ending::Failed)?;
+        self.go_to(o, accept(&y_at, &at), at);
+        self.anchor = anchor_of(&self.ev, None);
+        self.t += len;
+        Ok(Substep::Event)
+    }
+
+    /// No event before the failure: the route ends where it fails, after the last state that
+    /// stands (`y_lo`, `lo` into the substep).
+    fn end_at_failure(
+        &mut self,
+        finder: &mut PoseFinder<'_>,
+        k: usize,
+        (lo, y_lo): (f64, Y),
+        stop: Stop,
+        o: &mut Outcome<'_>,
+    ) -> Ending {
+        if lo > 0.0 {
+            match evaluate(
+                self.scene,
+                self.sections,
+                finder,
+                &y_lo,
+                self.ev.motion.stuck,
+            ) {
+                Ok(e) => self.go_to(o, accept(&y_lo, &e), e),
+                Err(e) => return Ending::Failed(e),
+            }
+        }
+        let t_end = self.t + lo;
+        o.push(row(t_end, &self.y, &self.ev));
+        o.increments = k;
+        o.energy = Some(self.balance(&self.y, &self.ev));
+        Ending::At(stop.reason, t_end, stop.detail)
+    }
+
+    /// The motion stops at `t_event`: the block at rest at the state just before it (`y_lo`,
+    /// its rates zeroed). Held there by static friction, the route ends "stopped"; not held,
+    /// it slips again from rest.
+    fn stop(
+        &mut self,
+        finder: &mut PoseFinder<'_>,
+        k: usize,
+        y_lo: Y,
+        t_event: f64,
+        o: &mut Outcome<'_>,
+    ) -> Result<Substep, Ending> {
+        let mut stopped = y_lo;
+        stopped[3] = 0.0;
+        stopped[4] = 0.0;
+        stopped[5] = 0.0;
+        match come_to_rest(
+            (self.scene, self.sections, finder),
+            (&stopped, &self.ev),
+            (k, self.t, t_event),
+            self.origin,
+            o,
+        ) {
+            Rest::Failed(e) => Err(Ending::Failed(e)),
+            Rest::Ended(reason, at, detail) => Err(Ending::At(reason, at, detail)),
+            Rest::Slips(e) => {
+                self.ev = *e;
+                self.y = stopped;
+                self.anchor = anchor_of(&self.ev, None);
+                self.t = t_event;
+                Ok(Substep::Event)
+            }
+        }
+    }
+}
