@@ -327,6 +327,12 @@ impl Scene {
         }
     }
 
+    /// The document as read, in the file's own keys and units (defaults not filled in; see
+    /// [`Scene::as_used`] for those).
+    pub fn document(&self) -> &toml::Table {
+        &self.source
+    }
+
     /// The scene's name (`name`; "unnamed" when the file gives none).
     pub fn name(&self) -> &str {
         &self.name

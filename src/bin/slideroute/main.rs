@@ -505,33 +505,19 @@ fn sweep_cmd(
     out: &std::path::Path,
     quiet: bool,
 ) -> Result<(), CliError> {
-    let (mut text, origin) = match &scene.scene {
-        Some(p) => (
-            slideroute::stages::scene::input::read_bounded(
-                p,
-                slideroute::stages::scene::input::MAX_SCENE_BYTES,
-            )
-            .map_err(|e| bad_input(format!("{}: {e}", p.display())))?,
-            p.display().to_string(),
-        ),
-        None => (
-            slideroute::stages::scene::DEFAULT_SCENE_TOML.to_string(),
-            slideroute::stages::scene::DEFAULT_ORIGIN.to_string(),
-        ),
-    };
     // The base scene must itself be valid.
-    let check = |text: &str| Scene::from_toml(text, &origin).map_err(|e| bad_input(e.to_string()));
-    check(&text)?;
+    let mut base = load(scene)?;
     if let Some(model) = dynamics {
-        text = crate::sweep::with_dynamics(&text, model).map_err(bad_input)?;
-        check(&text)?;
+        base = base
+            .with_dynamics(model)
+            .map_err(|e| bad_input(e.to_string()))?;
     }
     let varies = vary
         .iter()
         .map(|v| crate::sweep::parse_vary(v))
         .collect::<Result<Vec<_>, _>>()
         .map_err(bad_input)?;
-    crate::sweep::check_keys(&text, &varies).map_err(bad_input)?;
+    crate::sweep::check_keys(&base, &varies).map_err(bad_input)?;
     let n = crate::sweep::count(&varies);
     if n > crate::sweep::MAX_COMBINATIONS {
         return Err(bad_input(format!(
@@ -541,8 +527,7 @@ fn sweep_cmd(
     }
     let mut folder = crate::output::folder::Folder::open(out).map_err(failed)?;
     let bar = progress_bar(quiet, n as u64, "sweep");
-    let rows = crate::sweep::run(&text, &origin, &varies, || bar.inc(1), interrupted)
-        .map_err(bad_input)?;
+    let rows = crate::sweep::run(&base, &varies, || bar.inc(1), interrupted).map_err(bad_input)?;
     bar.finish_and_clear();
     let csv_path = folder
         .write_with("sweep.csv", |tmp| {

@@ -1,15 +1,15 @@
 //! Parameter sweeps: every combination of the varied scene keys, run in parallel.
 //!
 //! A key is named as in the scene file, `section.key` (e.g. `friction.mu_k`,
-//! `foundation.xi_deg`). The base scene is edited as TOML and validated again for every
-//! combination, so every key of the schema can be varied and every value is checked exactly as
-//! in a scene file; a combination that is invalid or whose route fails becomes a row with its
-//! reason, never an abort.
+//! `foundation.xi_deg`). Each combination is the base scene with its keys set
+//! ([`Scene::with_keys`]) and validated again, so every key of the schema can be varied and every
+//! value is checked exactly as in a scene file; a combination that is invalid or whose route
+//! fails becomes a row with its reason, never an abort.
 
 use rayon::prelude::*;
 use serde::Serialize;
 use slideroute::stages::route::{self, Route};
-use slideroute::stages::scene::Scene;
+use slideroute::stages::scene::{DynamicsModel, Scene};
 use std::ops::ControlFlow;
 
 /// One varied key and its values.
@@ -58,6 +58,12 @@ const OPTIONAL_KEYS: [&str; 9] = [
     "initial.vz_m_s",
     "initial.omega_deg_s",
 ];
+
+/// The base scene's own value of `key` (`section.key`), if its file gives one.
+fn document_value<'a>(base: &'a Scene, key: &str) -> Option<&'a toml::Value> {
+    let (section, name) = key.split_once('.')?;
+    base.document().get(section)?.as_table()?.get(name)
+}
 
 /// Keys that take whole numbers.
 const INTEGER_KEYS: [&str; 1] = ["solver.stride"];
@@ -217,27 +223,6 @@ fn row_of(values: Vec<f64>, route: &Route) -> SweepRow {
     }
 }
 
-/// The scene text with `[solver] dynamics` set to `model` (`sweep --dynamics`); the integrator
-/// key is dropped so that each dynamics takes its own default.
-pub fn with_dynamics(
-    base_text: &str,
-    model: slideroute::stages::scene::DynamicsModel,
-) -> Result<String, String> {
-    let mut table: toml::Table = base_text
-        .parse()
-        .map_err(|e: toml::de::Error| e.message().to_string())?;
-    let solver = table
-        .get_mut("solver")
-        .and_then(|s| s.as_table_mut())
-        .ok_or("--dynamics: the scene has no [solver] section")?;
-    solver.insert(
-        "dynamics".into(),
-        toml::Value::String(model.as_str().into()),
-    );
-    solver.remove("integrator");
-    toml::to_string(&table).map_err(|e| e.to_string())
-}
-
 /// The number of combinations (saturating).
 pub fn count(varies: &[Vary]) -> usize {
     varies
@@ -248,11 +233,10 @@ pub fn count(varies: &[Vary]) -> usize {
 /// The most combinations one sweep may run.
 pub const MAX_COMBINATIONS: usize = 1_000_000;
 
-/// Checks that every varied key exists in the base scene text; the error names the key.
-pub fn check_keys(base_text: &str, varies: &[Vary]) -> Result<toml::Table, String> {
-    let table: toml::Table = base_text
-        .parse()
-        .map_err(|e: toml::de::Error| e.message().to_string())?;
+/// Checks that every varied key exists in the base scene (or is an optional key it may
+/// have); the error names the key.
+pub fn check_keys(base: &Scene, varies: &[Vary]) -> Result<(), String> {
+    let table = base.document();
     for (k, v) in varies.iter().enumerate() {
         if varies[..k].iter().any(|w| w.key == v.key) {
             return Err(format!(
@@ -334,7 +318,7 @@ pub fn check_keys(base_text: &str, varies: &[Vary]) -> Result<toml::Table, Strin
             }
         }
     }
-    Ok(table)
+    Ok(())
 }
 
 /// The reason of a combination a stopped sweep did not start.
@@ -346,13 +330,12 @@ pub const NOT_RUN: &str = "not run (interrupted)";
 /// "interrupted" and combinations not yet started are rows "not run (interrupted)": every
 /// combination still has its row.
 pub fn run(
-    base_text: &str,
-    origin: &str,
+    base: &Scene,
     varies: &[Vary],
     progress: impl Fn() + Sync,
     stop: impl Fn() -> bool + Sync,
 ) -> Result<Vec<SweepRow>, String> {
-    let table = check_keys(base_text, varies)?;
+    check_keys(base, varies)?;
     let n = count(varies);
     if n > MAX_COMBINATIONS {
         return Err(format!(
@@ -377,36 +360,37 @@ pub fn run(
                     "the sweep was interrupted before this combination started".into(),
                 );
             }
-            let mut t = table.clone();
-            for (v, &x) in varies.iter().zip(&values) {
-                let (section, key) = v.key.split_once('.').unwrap_or(("", ""));
-                let sec = t
-                    .entry(section.to_string())
-                    .or_insert_with(|| toml::Value::Table(toml::Table::new()));
-                if let Some(sec) = sec.as_table_mut() {
-                    let value = v.toml_value(x, sec.get(key));
-                    sec.insert(key.to_string(), value);
-                    // Each dynamics takes its own integrator when the dynamics varies.
-                    if v.key == "solver.dynamics"
-                        && !varies.iter().any(|w| w.key == "solver.integrator")
-                    {
-                        sec.remove("integrator");
-                    }
-                }
+            let keys = varies.iter().zip(&values).map(|(v, &x)| {
+                (
+                    v.key.as_str(),
+                    v.toml_value(x, document_value(base, &v.key)),
+                )
+            });
+            // Each dynamics takes its own integrator when the dynamics varies.
+            let dynamics = varies
+                .iter()
+                .zip(&values)
+                .find(|(v, _)| v.key == "solver.dynamics")
+                .filter(|_| !varies.iter().any(|w| w.key == "solver.integrator"))
+                .and_then(|(v, &x)| {
+                    let word = v.cell(x);
+                    DynamicsModel::ALL.into_iter().find(|m| m.as_str() == word)
+                });
+            let scene = match dynamics {
+                Some(model) => base.with_dynamics(model),
+                None => Ok(base.clone()),
             }
-            let row = match toml::to_string(&t)
+            .and_then(|s| s.with_keys(keys));
+            let row = match scene.map_err(|e| e.to_string()).and_then(|scene| {
+                route::run_observed(&scene, |_| {
+                    if stop() {
+                        ControlFlow::Break(())
+                    } else {
+                        ControlFlow::Continue(())
+                    }
+                })
                 .map_err(|e| e.to_string())
-                .and_then(|text| Scene::from_toml(&text, origin).map_err(|e| e.to_string()))
-                .and_then(|scene| {
-                    route::run_observed(&scene, |_| {
-                        if stop() {
-                            ControlFlow::Break(())
-                        } else {
-                            ControlFlow::Continue(())
-                        }
-                    })
-                    .map_err(|e| e.to_string())
-                }) {
+            }) {
                 Ok(r) => row_of(values, &r),
                 Err(e) => SweepRow::without_route(values, "invalid scene", e),
             };
@@ -456,7 +440,7 @@ mod tests {
 
     #[test]
     fn unknown_keys_are_named() {
-        let base = slideroute::stages::scene::DEFAULT_SCENE_TOML;
+        let base = &Scene::default_scene();
         let e = check_keys(base, &[parse_vary("friction.mu=0:1:2").unwrap()]).unwrap_err();
         assert!(e.contains("friction.mu") && e.contains("mu_k"), "{e}");
         let e = check_keys(base, &[parse_vary("water.level=0:1:2").unwrap()]).unwrap_err();
@@ -465,12 +449,12 @@ mod tests {
 
     #[test]
     fn combinations_are_ordered_with_the_last_key_fastest_and_invalid_ones_are_rows() {
-        let base = slideroute::stages::scene::DEFAULT_SCENE_TOML;
+        let base = &Scene::default_scene();
         let varies = [
             parse_vary("foundation.xi_deg=20:95:2").unwrap(),
             parse_vary("loads.hydraulic_force_n=0:8e6:2").unwrap(),
         ];
-        let rows = run(base, "base", &varies, || (), || false).unwrap();
+        let rows = run(base, &varies, || (), || false).unwrap();
         assert_eq!(rows.len(), 4);
         assert_eq!(rows[1].values, vec![20.0, 8e6]);
         assert_eq!(rows[0].reason, "does not slide");
@@ -487,8 +471,7 @@ mod tests {
         let varies = [parse_vary("friction.mu_k=0.2:0.6:5").unwrap()];
         let done = std::sync::atomic::AtomicUsize::new(0);
         let rows = run(
-            slideroute::stages::scene::DEFAULT_SCENE_TOML,
-            "base",
+            &Scene::default_scene(),
             &varies,
             || {
                 done.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
