@@ -118,6 +118,11 @@ pub enum Friction {
     },
 }
 
+impl Friction {
+    /// The models' names in a scene file (`[friction] model`), in the order of the variants.
+    pub const MODELS: [&'static str; 2] = ["coulomb", "barton-choubey"];
+}
+
 /// Which polynomial system gives the pose.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
 #[cfg_attr(feature = "cli", derive(clap::ValueEnum))]

@@ -220,23 +220,22 @@ fn derived(
 /// The friction criterion: `model` says which keys belong; a key of the other model is refused
 /// as unknown rather than ignored.
 fn friction(o: &str, f: &raw::RawFriction) -> Result<Friction, SceneError> {
-    const COULOMB: &str = "coulomb";
-    const BARTON: &str = "barton-choubey";
+    let [coulomb, barton] = Friction::MODELS;
     let model = need(o, "friction.model", f.model.as_deref())?;
     let model = named(
         o,
         "friction.model",
         "friction model",
         model,
-        &[COULOMB, BARTON],
+        &[coulomb, barton],
         |m| m,
     )?;
     let given = [
-        ("mu_k", f.mu_k.is_some(), COULOMB),
-        ("jrc", f.jrc.is_some(), BARTON),
-        ("jcs_pa", f.jcs_pa.is_some(), BARTON),
-        ("phi_r_deg", f.phi_r_deg.is_some(), BARTON),
-        ("contact_area_m2", f.contact_area_m2.is_some(), BARTON),
+        ("mu_k", f.mu_k.is_some(), coulomb),
+        ("jrc", f.jrc.is_some(), barton),
+        ("jcs_pa", f.jcs_pa.is_some(), barton),
+        ("phi_r_deg", f.phi_r_deg.is_some(), barton),
+        ("contact_area_m2", f.contact_area_m2.is_some(), barton),
     ];
     if let Some((key, _, _)) = given
         .iter()
@@ -253,7 +252,7 @@ fn friction(o: &str, f: &raw::RawFriction) -> Result<Friction, SceneError> {
             ),
         ));
     }
-    Ok(if model == COULOMB {
+    Ok(if model == coulomb {
         Friction::Coulomb {
             mu_k: non_negative(o, "friction.mu_k", need(o, "friction.mu_k", f.mu_k)?)?,
         }

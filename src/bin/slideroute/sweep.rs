@@ -9,7 +9,7 @@
 use rayon::prelude::*;
 use serde::Serialize;
 use slideroute::stages::route::{self, Route};
-use slideroute::stages::scene::{DynamicsModel, Scene};
+use slideroute::stages::scene::{DynamicsModel, Friction, Integrator, Mode, Scene};
 use std::ops::ControlFlow;
 
 /// One varied key and its values.
@@ -69,15 +69,19 @@ fn document_value<'a>(base: &'a Scene, key: &str) -> Option<&'a toml::Value> {
 const INTEGER_KEYS: [&str; 1] = ["solver.stride"];
 
 /// Keys that take words, and their words.
-const WORDS: [(&str, &[&str]); 4] = [
-    ("solver.dynamics", &["paper", "rigid-body"]),
-    ("solver.integrator", &["paper", "rk4"]),
-    ("solver.mode", &["exact", "small-angle"]),
-    ("friction.model", &["coulomb", "barton-choubey"]),
-];
+/// The words a key takes, for a key that takes words: the names the scene itself accepts.
+fn words_of(key: &str) -> Option<Vec<&'static str>> {
+    Some(match key {
+        "solver.dynamics" => DynamicsModel::ALL.map(DynamicsModel::as_str).to_vec(),
+        "solver.integrator" => Integrator::ALL.map(Integrator::as_str).to_vec(),
+        "solver.mode" => Mode::ALL.map(Mode::as_str).to_vec(),
+        "friction.model" => Friction::MODELS.to_vec(),
+        _ => return None,
+    })
+}
 
 fn takes_words(key: &str) -> bool {
-    WORDS.iter().any(|(k, _)| *k == key)
+    words_of(key).is_some()
 }
 
 /// Parses `KEY=START:STOP:COUNT` (COUNT ≥ 1 evenly spaced values, START and STOP included) or
@@ -103,7 +107,7 @@ pub fn parse_vary(s: &str) -> Result<Vary, String> {
         if items.len() > 100_000 {
             return Err(bad("the list has more than 100000 items"));
         }
-        if let Some(&(_, allowed)) = WORDS.iter().find(|(k, _)| *k == key) {
+        if let Some(allowed) = words_of(key) {
             if let Some(w) = items.iter().find(|w| !allowed.contains(w)) {
                 return Err(bad(&format!(
                     "`{w}` is not one of {} (the key takes words, as a list)",
