@@ -23,7 +23,7 @@
 //! use slideroute::{CoeffInputs, Displacement, Mode, Scene, SmallAngle, Tracker};
 //! let scene = Scene::default_scene();
 //! let d = Displacement::new(0.5, 0.1, 2f64.to_radians());
-//! let f = SmallAngle::new(&CoeffInputs::new(scene.site(), d)); // f1–f12 of (15)
+//! let f = SmallAngle::new(&CoeffInputs::new(scene.site().as_paper().unwrap(), d)); // f1–f12 of (15)
 //! assert_eq!(f.f.len(), 12);
 //! let all = slideroute::solve_all(scene.site(), d, Mode::Exact).unwrap(); // every root, classified
 //! let mut tracker = Tracker::new(scene.site(), Mode::Exact);

@@ -10,15 +10,19 @@
 //!
 //! Evaluating one mode never evaluates the other's coefficients.
 
+mod general;
+
+pub use general::{GeneralExact, GeneralSmallAngle, Inputs, SiteTrig};
+
 use crate::geometry::Displacement;
-use crate::geometry::Site;
+use crate::geometry::PaperSite;
 
 #[allow(clippy::all)]
 mod generated {
     include!(concat!(env!("OUT_DIR"), "/coeffs.rs"));
 }
 
-pub use generated::CoeffInputs;
+pub use generated::{CoeffInputs, GENERAL_BASIS, GENERAL_SMALL_BASIS, GeneralInputs};
 pub use generated::{
     EXACT_BASIS_13, EXACT_BASIS_14, EXACT_NAMES_13, EXACT_NAMES_14, EXACT_TERMS,
     SMALL_ANGLE_MONOMIALS, SMALL_ANGLE_UNSQUARED_A13, SMALL_ANGLE_UNSQUARED_A14,
@@ -45,7 +49,7 @@ impl FoundationTrig {
         (1.0 / self.cot_xi, 1.0 / self.cot_zeta)
     }
 
-    pub fn new(site: &Site) -> Self {
+    pub fn new(site: &PaperSite) -> Self {
         let g = site.foundation;
         let (sk, ck) = g.kappa.sin_cos();
         FoundationTrig {
@@ -60,7 +64,7 @@ impl FoundationTrig {
 impl CoeffInputs {
     /// The generator's inputs for a site at displacement `d`. Differences of cosines are
     /// computed from products of sines, so small displacements lose no precision.
-    pub fn new(site: &Site, d: Displacement) -> Self {
+    pub fn new(site: &PaperSite, d: Displacement) -> Self {
         Self::with_trig(site, &FoundationTrig::new(site), d)
     }
 
@@ -68,7 +72,7 @@ impl CoeffInputs {
     /// (`trig` must come from the same site). One `sin_cos` per call: with s = sin(θ/2),
     /// c = cos(θ/2): sin θ = 2sc, 1 − cos θ = 2s², cos κ − cos(θ + κ) = 2s·sin(θ/2 + κ) and
     /// sin(θ + κ) − sin κ = 2s·cos(θ/2 + κ), the half-angle sums expanded by κ's sine and cosine.
-    pub fn with_trig(site: &Site, trig: &FoundationTrig, d: Displacement) -> Self {
+    pub fn with_trig(site: &PaperSite, trig: &FoundationTrig, d: Displacement) -> Self {
         let f = site.frame;
         let (s_half, c_half) = (0.5 * d.theta).sin_cos();
         let FoundationTrig {
@@ -259,45 +263,62 @@ impl Exact {
 
     /// Residuals of (13), (14) (m) at (α, ψ) and their Jacobian ∂(r13, r14)/∂(α, ψ).
     pub fn residual_jacobian(&self, alpha: f64, psi: f64) -> ([f64; 2], [[f64; 2]; 2]) {
-        let (sa, ca) = alpha.sin_cos();
-        let (sp, cp) = psi.sin_cos();
-        let mut r = [0.0; 2];
-        let mut j = [[0.0; 2]; 2];
-        let parts: [(&[[u32; 4]], &[f64]); 2] = [
-            (&EXACT_BASIS_13, self.eq13()),
-            (&EXACT_BASIS_14, self.eq14()),
-        ];
-        for (eq, (basis, coef)) in parts.into_iter().enumerate() {
-            for (e, &c) in basis.iter().zip(coef) {
-                // Each monomial is fa(α)·fp(ψ) with fa ∈ {1, sin α, cos α}, fp ∈ {1, sin ψ, cos ψ}.
-                let (fa, dfa) = match (e[0], e[1]) {
-                    (1, _) => (sa, ca),
-                    (_, 1) => (ca, -sa),
-                    _ => (1.0, 0.0),
-                };
-                let (fp, dfp) = match (e[2], e[3]) {
-                    (1, _) => (sp, cp),
-                    (_, 1) => (cp, -sp),
-                    _ => (1.0, 0.0),
-                };
-                r[eq] += c * fa * fp;
-                j[eq][0] += c * dfa * fp;
-                j[eq][1] += c * fa * dfp;
-            }
-        }
-        (r, j)
+        trig_residual_jacobian(
+            [
+                (&EXACT_BASIS_13, self.eq13()),
+                (&EXACT_BASIS_14, self.eq14()),
+            ],
+            alpha,
+            psi,
+        )
     }
 
     /// The same equations in tangent half-angles ta = tan(α/2), tp = tan(ψ/2), multiplied by
     /// (1 + ta²)(1 + tp²): `h[eq][i][j]` multiplies ta^i tp^j. Bidegree (2, 2): at most 8 roots.
     pub fn half_angle(&self) -> [[[f64; 3]; 3]; 2] {
-        let flat = generated::exact_half_angle(&self.g);
-        let mut h = [[[0.0; 3]; 3]; 2];
-        for (k, v) in flat.into_iter().enumerate() {
-            h[k / 9][(k / 3) % 3][k % 3] = v;
-        }
-        h
+        unflatten(generated::exact_half_angle(&self.g))
     }
+}
+
+/// Residuals and their Jacobian ∂r/∂(α, ψ) of two equations given in a trig basis (exponents
+/// of sin α, cos α, sin ψ, cos ψ, each pair of degree ≤ 1) with their coefficients.
+fn trig_residual_jacobian(
+    parts: [(&[[u32; 4]], &[f64]); 2],
+    alpha: f64,
+    psi: f64,
+) -> ([f64; 2], [[f64; 2]; 2]) {
+    let (sa, ca) = alpha.sin_cos();
+    let (sp, cp) = psi.sin_cos();
+    let mut r = [0.0; 2];
+    let mut j = [[0.0; 2]; 2];
+    for (eq, (basis, coef)) in parts.into_iter().enumerate() {
+        for (e, &c) in basis.iter().zip(coef) {
+            // Each monomial is fa(α)·fp(ψ) with fa ∈ {1, sin α, cos α}, fp ∈ {1, sin ψ, cos ψ}.
+            let (fa, dfa) = match (e[0], e[1]) {
+                (1, _) => (sa, ca),
+                (_, 1) => (ca, -sa),
+                _ => (1.0, 0.0),
+            };
+            let (fp, dfp) = match (e[2], e[3]) {
+                (1, _) => (sp, cp),
+                (_, 1) => (cp, -sp),
+                _ => (1.0, 0.0),
+            };
+            r[eq] += c * fa * fp;
+            j[eq][0] += c * dfa * fp;
+            j[eq][1] += c * fa * dfp;
+        }
+    }
+    (r, j)
+}
+
+/// The (2, 2) coefficient array `h[eq][i][j]` of a flat generated half-angle form.
+fn unflatten(flat: [f64; 18]) -> [[[f64; 3]; 3]; 2] {
+    let mut h = [[[0.0; 3]; 3]; 2];
+    for (k, v) in flat.into_iter().enumerate() {
+        h[k / 9][(k / 3) % 3][k % 3] = v;
+    }
+    h
 }
 
 #[cfg(test)]
@@ -309,7 +330,7 @@ mod tests {
     fn start_pose_is_a_root_of_both_systems() {
         // At X = Z = θ = 0 the flat frame (α = β = ψ = 0) is in contact with all three planes.
         let scene = Scene::default_scene();
-        let inputs = CoeffInputs::new(&scene.site, Displacement::default());
+        let inputs = CoeffInputs::new(scene.site().as_paper().unwrap(), Displacement::default());
         let small = SmallAngle::new(&inputs);
         let r = small.residual(0.0, 0.0);
         assert!(r[0].abs() < 1e-12 && r[1].abs() < 1e-12, "{r:?}");
@@ -326,7 +347,7 @@ mod tests {
             z: -0.3,
             theta: 0.07,
         };
-        let exact = Exact::new(&CoeffInputs::new(&scene.site, d));
+        let exact = Exact::new(&CoeffInputs::new(scene.site().as_paper().unwrap(), d));
         let h = exact.half_angle();
         for &(alpha, psi) in &[(0.1, -0.2), (0.4, 0.3), (-0.7, 1.1)] {
             let (ta, tp) = (f64::tan(alpha / 2.0), f64::tan(psi / 2.0));

@@ -1,8 +1,8 @@
 //! The direct pose solver: the independent oracle.
 //!
-//! Given (X, Z, θ), find the orientation and height of the rigid frame that put vertex 0 on the
-//! horizontal plane, vertex 1 on plane 1 and vertex 2 on plane 2 (each plane extended without
-//! limit). Unknowns: tilt (rotation about the horizontal normal of side 01), roll (rotation
+//! Given (X, Z, θ), find the orientation and height of the rigid frame that put each contact
+//! on its plane (the paper's: vertex 0 on the horizontal plane, vertex 1 on plane 1 and vertex 2
+//! on plane 2; each plane extended without limit). Unknowns: tilt (rotation about the horizontal normal of side 01), roll (rotation
 //! about side 01) and CM height; the body is placed with nalgebra rotations and the residuals
 //! are plain point-to-plane height differences. No polynomial and no paper formula is used.
 //!
@@ -10,7 +10,6 @@
 //! from the start pose (X = Z = θ = 0, frame flat) so that the pose found is the one reached
 //! by sliding, not another solution of the same constraints.
 
-use super::planes::{Plane, height};
 use super::site::Site;
 use super::{Displacement, GeometryError, LocalFrame};
 use nalgebra::{Matrix3, Rotation3, Vector3};
@@ -65,8 +64,7 @@ fn place(site: &Site, d: Displacement, u: &Vector3<f64>) -> [Vector3<f64>; 3] {
         * Rotation3::from_axis_angle(&Vector3::z_axis(), u[0])
         * Rotation3::from_axis_angle(&Vector3::x_axis(), -u[1]);
     let cm = Vector3::new(d.x, u[2], d.z);
-    site.frame
-        .vertices()
+    site.contacts()
         .map(|[x, z]| cm + rot * Vector3::new(x, 0.0, z))
 }
 
@@ -74,7 +72,7 @@ fn residual(site: &Site, d: Displacement, u: &Vector3<f64>) -> Vector3<f64> {
     let p = place(site, d, u);
     let mut r = Vector3::zeros();
     for (i, v) in p.iter().enumerate() {
-        r[i] = v.y - height(site, Plane::of_vertex(i), v.x, v.z);
+        r[i] = v.y - site.planes()[i].height(v.x, v.z);
     }
     r
 }
@@ -163,7 +161,7 @@ mod tests {
     #[test]
     fn start_is_the_flat_frame() {
         let s = Scene::default_scene();
-        let p = solve(&s.site, Displacement::default()).unwrap();
+        let p = solve(s.site(), Displacement::default()).unwrap();
         assert!(p.tilt.abs() < 1e-15 && p.roll.abs() < 1e-15 && p.cm_y.abs() < 1e-15);
     }
 
@@ -171,7 +169,7 @@ mod tests {
     fn pure_forward_slide_lifts_vertex_1_onto_plane_1() {
         // Sliding forward by X with θ = 0: vertex 1 climbs plane 1, vertex 0 stays down.
         let s = Scene::default_scene();
-        let p = solve(&s.site, Displacement::new(0.5, 0.0, 0.0)).unwrap();
+        let p = solve(s.site(), Displacement::new(0.5, 0.0, 0.0)).unwrap();
         let l = s.l();
         assert!(p.residual < 1e-12 * l);
         assert!(p.vertices[0].y.abs() < 1e-12);

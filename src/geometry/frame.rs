@@ -24,6 +24,15 @@ impl LocalFrame {
         LocalFrame { i, j, k }
     }
 
+    /// From the unit axes i' and k' (orthonormal): j' = k' × i'.
+    pub fn from_axes(i: Vector3<f64>, k: Vector3<f64>) -> Self {
+        LocalFrame {
+            i,
+            j: k.cross(&i),
+            k,
+        }
+    }
+
     /// R with R_ij = e'_i · e_j: rows i', j', k' (eq. (19); v_local = R v_global).
     pub fn r(&self) -> Matrix3<f64> {
         Matrix3::from_rows(&[self.i.transpose(), self.j.transpose(), self.k.transpose()])

@@ -11,6 +11,8 @@
 
 pub mod direct;
 pub mod frame;
+pub mod ground;
+pub mod plane;
 pub mod planes;
 pub mod pose;
 pub mod relations;
@@ -18,8 +20,10 @@ pub mod site;
 
 pub use direct::DirectPose;
 pub use frame::LocalFrame;
+pub use ground::Ground;
+pub use plane::Plane;
 pub use pose::Pose;
-pub use site::{Foundation, Frame, Site};
+pub use site::{Foundation, Frame, PaperSite, Site};
 
 /// The horizontal displacement of the block: CM moved by (X, Z) (m), side 01 yawed by θ (rad,
 /// from +X towards +Z). The start of sliding is the default, (0, 0, 0).

@@ -6,7 +6,7 @@
 //! `derivations/04-exact.md`). Neither checks that the contacts are on their planes: that is
 //! what the polynomial systems and the direct solver decide.
 
-use super::site::Site;
+use super::site::{PaperSite, Site};
 use super::{Displacement, GeometryError, LocalFrame};
 use nalgebra::Vector3;
 use std::f64::consts::SQRT_2;
@@ -42,7 +42,7 @@ pub fn sin_gamma(alpha: f64, beta: f64) -> f64 {
 }
 
 /// CM height from eq. (21): (L1X − L1Z) sin α + √2 L1Z sin β.
-pub fn cm_height(site: &Site, alpha: f64, beta: f64) -> f64 {
+pub fn cm_height(site: &PaperSite, alpha: f64, beta: f64) -> f64 {
     let f = &site.frame;
     (f.l1x - f.l1z) * alpha.sin() + SQRT_2 * f.l1z * beta.sin()
 }
@@ -64,9 +64,10 @@ fn finite(d: Displacement, a: f64, b: f64) -> Result<(), GeometryError> {
 }
 
 impl Pose {
-    /// The pose at displacement `d` with tilts α, β (rad), by the paper's relations.
+    /// The pose at displacement `d` with tilts α, β (rad), by the paper's relations (the
+    /// paper's frame).
     pub fn from_tilts(
-        site: &Site,
+        site: &PaperSite,
         d: Displacement,
         alpha: f64,
         beta: f64,
@@ -84,7 +85,7 @@ impl Pose {
         let h = ch.acos();
         let (sa, ca) = alpha.sin_cos();
         let cb = beta.cos();
-        let l = site.l();
+        let l = site.frame.l();
         let (st, ct) = d.theta.sin_cos();
         let (sth, cth) = (d.theta - h).sin_cos();
         // Projected sides (Figure 5): 01 along θ with length L cos α, 02 along θ − h with
@@ -113,8 +114,9 @@ impl Pose {
         })
     }
 
-    /// The pose at displacement `d` with tilt α of side 01 and roll ψ about it (rad), with
-    /// vertex 0 on Y = 0. Any ψ is allowed (cos ψ < 0 is the mirrored frame, h < 0).
+    /// The pose at displacement `d` with tilt α of the x' axis (side 01 of the paper's frame)
+    /// and roll ψ about it (rad), with contact 0 on its plane. Any ψ is allowed (cos ψ < 0 is
+    /// the mirrored frame, h < 0).
     pub fn from_tilt_roll(
         site: &Site,
         d: Displacement,
@@ -129,18 +131,42 @@ impl Pose {
         let w = Vector3::new(-st, 0.0, ct);
         let n = Vector3::new(-sa * ct, ca, -sa * st);
         let k = cp * w + sp * n;
-        let f = &site.frame;
-        let l = site.l();
-        // Vertex 0 on the horizontal plane fixes the CM height.
-        let cm_y = f.l1x * i.y - f.l1z * k.y;
-        let cm = Vector3::new(d.x, cm_y, d.z);
-        let p0 = cm - f.l1x * i + f.l1z * k;
-        let vertices = [p0, p0 + l * i, p0 + l * i - l * k];
-        let frame = LocalFrame::from_vertices(&vertices, l);
-        let beta = ((vertices[2].y - vertices[0].y) / (SQRT_2 * l)).asin();
-        let gamma = ((vertices[2].y - vertices[1].y) / l).asin();
-        // Signed projection angle between sides 01 and 02 (positive: vertex 2 on the −z' side).
-        let e01 = Vector3::new(i.x, 0.0, i.z);
+        let (vertices, cm, frame, lengths) = match site.as_paper() {
+            Some(p) => {
+                let f = &p.frame;
+                let l = f.l();
+                // Vertex 0 on the horizontal plane fixes the CM height.
+                let cm_y = f.l1x * i.y - f.l1z * k.y;
+                let cm = Vector3::new(d.x, cm_y, d.z);
+                let p0 = cm - f.l1x * i + f.l1z * k;
+                let vertices = [p0, p0 + l * i, p0 + l * i - l * k];
+                let frame = LocalFrame::from_vertices(&vertices, l);
+                (vertices, cm, frame, (SQRT_2 * l, l))
+            }
+            None => {
+                // Contact 0 on its plane fixes the CM height: m0·(C + x0 i' + z0 k') = e0.
+                let c = site.contacts();
+                let plane = site.planes()[0];
+                let m = plane.normal();
+                let local = |q: &[f64; 2]| q[0] * i + q[1] * k;
+                let cm_y = (plane.offset() - m.x * d.x - m.z * d.z - m.dot(&local(&c[0]))) / m.y;
+                let cm = Vector3::new(d.x, cm_y, d.z);
+                let vertices = c.map(|q| cm + local(&q));
+                let side = |a: usize, b: usize| (c[b][0] - c[a][0]).hypot(c[b][1] - c[a][1]);
+                (
+                    vertices,
+                    cm,
+                    LocalFrame::from_axes(i, k),
+                    (side(0, 2), side(1, 2)),
+                )
+            }
+        };
+        let beta = ((vertices[2].y - vertices[0].y) / lengths.0).asin();
+        let gamma = ((vertices[2].y - vertices[1].y) / lengths.1).asin();
+        // Signed projection angle between sides 01 and 02 (positive: vertex 2 on the −z' side
+        // of side 01, as in the paper's frame).
+        let e01 = vertices[1] - vertices[0];
+        let e01 = Vector3::new(e01.x, 0.0, e01.z);
         let e02 = vertices[2] - vertices[0];
         let e02 = Vector3::new(e02.x, 0.0, e02.z);
         let h = (e01.z * e02.x - e01.x * e02.z).atan2(e01.dot(&e02));
@@ -170,8 +196,18 @@ mod tests {
     #[test]
     fn flat_pose_puts_vertices_at_their_start_positions() {
         let s = scene();
-        let p = Pose::from_tilts(&s.site, Displacement::default(), 0.0, 0.0).unwrap();
-        for (v, r) in p.vertices.iter().zip(s.site.frame.vertices()) {
+        let p = Pose::from_tilts(
+            s.site().as_paper().unwrap(),
+            Displacement::default(),
+            0.0,
+            0.0,
+        )
+        .unwrap();
+        for (v, r) in p
+            .vertices
+            .iter()
+            .zip(s.site.as_paper().unwrap().frame.vertices())
+        {
             assert!((v - Vector3::new(r[0], 0.0, r[1])).norm() < 1e-14);
         }
         assert!((p.h - std::f64::consts::FRAC_PI_4).abs() < 1e-15);
@@ -182,8 +218,8 @@ mod tests {
         let s = scene();
         let d = Displacement::new(0.8, -0.4, 0.2);
         for &(alpha, psi) in &[(0.05, 0.02), (0.3, -0.25), (0.6, 0.9)] {
-            let a = Pose::from_tilt_roll(&s.site, d, alpha, psi).unwrap();
-            let b = Pose::from_tilts(&s.site, d, alpha, a.beta).unwrap();
+            let a = Pose::from_tilt_roll(s.site(), d, alpha, psi).unwrap();
+            let b = Pose::from_tilts(s.site().as_paper().unwrap(), d, alpha, a.beta).unwrap();
             for (u, v) in a.vertices.iter().zip(&b.vertices) {
                 assert!((u - v).norm() < 1e-12, "{u} vs {v}");
             }
@@ -204,9 +240,19 @@ mod tests {
     #[test]
     fn tilts_without_a_real_frame_are_an_error() {
         let s = scene();
-        let e = Pose::from_tilts(&s.site, Displacement::default(), 1.5, -1.5);
+        let e = Pose::from_tilts(
+            s.site().as_paper().unwrap(),
+            Displacement::default(),
+            1.5,
+            -1.5,
+        );
         assert!(matches!(e, Err(GeometryError::NoRealFrame(_))));
-        let e = Pose::from_tilts(&s.site, Displacement::default(), f64::NAN, 0.0);
+        let e = Pose::from_tilts(
+            s.site().as_paper().unwrap(),
+            Displacement::default(),
+            f64::NAN,
+            0.0,
+        );
         assert!(matches!(e, Err(GeometryError::NonFinite(_))));
     }
 }

@@ -6,13 +6,13 @@
 //! the generated coefficients come from, so tests compare the two.
 
 use super::pose::cos_h;
-use super::site::Site;
+use super::site::PaperSite;
 use super::{Displacement, GeometryError};
 use std::f64::consts::SQRT_2;
 
 /// LHS − RHS of (13) and (14) (m) at tilts α, β (rad).
 pub fn law_of_sines(
-    site: &Site,
+    site: &PaperSite,
     d: Displacement,
     alpha: f64,
     beta: f64,
@@ -26,7 +26,7 @@ pub fn law_of_sines(
     let h = ch.acos();
     let f = &site.frame;
     let g = &site.foundation;
-    let l = site.l();
+    let l = f.l();
     let (sa, ca) = alpha.sin_cos();
     let (sb, cb) = beta.sin_cos();
     let th = d.theta;

@@ -2,7 +2,10 @@
 //! (`docs/conventions.md`, "The frame" and "The foundation"). The scene builds them from its
 //! file and validates them; geometry takes nothing else.
 
+use super::ground::Ground;
+use super::plane::Plane;
 use nalgebra::Vector3;
+use std::sync::Arc;
 
 /// The contact triangle in the monolith base, in its own plane (x', z'), CM at the origin:
 /// r0 = (−L1X, L1Z), r1 = (L2X, L1Z), r2 = (L2X, −L2Z) (paper eq. (20)); all lengths in m.
@@ -56,16 +59,98 @@ impl Foundation {
     }
 }
 
-/// The frame and the foundation together.
+/// The paper's site: its right isosceles frame and its three planes.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Site {
+pub struct PaperSite {
     pub frame: Frame,
     pub foundation: Foundation,
 }
 
+/// What geometry takes of a scene: the contact triangle and the plane under each contact. A
+/// site made from the paper's frame and planes ([`Site::paper`]) keeps them
+/// ([`Site::as_paper`]), and the pose then comes from the paper's own systems (13)–(15); any
+/// other site ([`Site::general`], [`Site::on_ground`]) from the general system
+/// (`derivations/09-general-pose.md`). A site on a ground of faces knows the ground, so that a
+/// pose with a contact under another face is not admissible.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Site {
+    contacts: [[f64; 2]; 3],
+    planes: [Plane; 3],
+    paper: Option<PaperSite>,
+    l: f64,
+    ground: Option<(Arc<Ground>, [usize; 3])>,
+}
+
 impl Site {
-    /// Side length L (m).
-    pub fn l(&self) -> f64 {
-        self.frame.l()
+    /// The paper's site: the contacts of its frame, the horizontal plane, plane 1 and plane 2.
+    pub fn paper(frame: Frame, foundation: Foundation) -> Site {
+        let contacts = frame.vertices();
+        let normals = foundation.normals();
+        let start = |k: usize| Vector3::new(contacts[k][0], 0.0, contacts[k][1]);
+        Site {
+            contacts,
+            planes: std::array::from_fn(|k| Plane::through(normals[k], start(k))),
+            paper: Some(PaperSite { frame, foundation }),
+            l: frame.l(),
+            ground: None,
+        }
     }
+
+    /// Any contact triangle (x', z' of each contact, CM at the origin, m) with any plane under
+    /// each contact.
+    pub fn general(contacts: [[f64; 2]; 3], planes: [Plane; 3]) -> Site {
+        Site {
+            contacts,
+            planes,
+            paper: None,
+            l: scale(&contacts),
+            ground: None,
+        }
+    }
+
+    /// Contacts on a ground of faces, contact k on face `faces[k]`.
+    pub fn on_ground(contacts: [[f64; 2]; 3], ground: Arc<Ground>, faces: [usize; 3]) -> Site {
+        let planes = faces.map(|k| ground.faces()[k]);
+        Site {
+            ground: Some((ground, faces)),
+            ..Site::general(contacts, planes)
+        }
+    }
+
+    /// The ground and the face each contact is on, for a site on a ground of faces.
+    pub fn ground(&self) -> Option<(&Ground, [usize; 3])> {
+        self.ground.as_ref().map(|(g, f)| (g.as_ref(), *f))
+    }
+
+    /// The paper's frame and planes, when this is the paper's site.
+    pub fn as_paper(&self) -> Option<&PaperSite> {
+        self.paper.as_ref()
+    }
+
+    /// The contacts' (x', z') about the CM (m).
+    pub fn contacts(&self) -> &[[f64; 2]; 3] {
+        &self.contacts
+    }
+
+    /// The plane under each contact.
+    pub fn planes(&self) -> &[Plane; 3] {
+        &self.planes
+    }
+
+    /// The upward unit normals of the planes under contacts 0, 1, 2.
+    pub fn normals(&self) -> [Vector3<f64>; 3] {
+        self.planes.map(|p| p.normal())
+    }
+
+    /// The frame's length scale (m): the paper's L, and for any triangle the longest side over
+    /// √2 (which is L for the paper's).
+    pub fn l(&self) -> f64 {
+        self.l
+    }
+}
+
+/// The longest side of a triangle over √2.
+fn scale(c: &[[f64; 2]; 3]) -> f64 {
+    let side = |a: usize, b: usize| (c[a][0] - c[b][0]).hypot(c[a][1] - c[b][1]);
+    side(0, 1).max(side(1, 2)).max(side(0, 2)) / std::f64::consts::SQRT_2
 }

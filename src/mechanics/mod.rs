@@ -30,7 +30,7 @@ pub struct ContactGeometry {
 
 impl ContactGeometry {
     pub fn new(scene: &Scene, pose: &Pose) -> Self {
-        Self::with_normals(&scene.site.foundation.normals(), pose)
+        Self::with_normals(&scene.site.normals(), pose)
     }
 
     /// With the planes' normals computed before (as [`crate::scene::Simulation::normals`]).

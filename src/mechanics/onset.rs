@@ -48,11 +48,12 @@ mod tests {
         // FS = μ (c0 + c1 + c2) / (F − c1 sin ξ − c2 sin ζ cos κ).
         let s = Scene::default_scene();
         let d = crate::scene::Simulation::new(&s).unwrap();
-        let pose = Pose::from_tilts(&s.site, Default::default(), 0.0, 0.0).unwrap();
+        let pose =
+            Pose::from_tilts(s.site.as_paper().unwrap(), Default::default(), 0.0, 0.0).unwrap();
         let geom = ContactGeometry::new(&s, &pose);
         let applied = Applied::new(d.loads(), d.block(), &geom.frame);
         let c = frictionless_normals(&geom, &applied).unwrap();
-        let g = &s.site.foundation;
+        let g = &s.site.as_paper().unwrap().foundation;
         let driving =
             d.loads().hydraulic_force - c[1] * g.xi.sin() - c[2] * g.zeta.sin() * g.kappa.cos();
         let want = 0.4 * (c[0] + c[1] + c[2]) / driving;

@@ -883,7 +883,8 @@ mod tests {
     fn at(scene: &Scene, d: Displacement) -> ContactGeometry {
         let p = direct::solve(&scene.site, d).unwrap();
         let l = scene.l();
-        let pose = Pose::from_tilts(&scene.site, d, p.alpha(l), p.beta(l)).unwrap();
+        let pose =
+            Pose::from_tilts(scene.site.as_paper().unwrap(), d, p.alpha(l), p.beta(l)).unwrap();
         ContactGeometry::new(scene, &pose)
     }
 

@@ -260,7 +260,8 @@ mod tests {
         let s = Scene::default_scene()
             .with_keys(keys.iter().copied())
             .unwrap();
-        let pose = Pose::from_tilts(&s.site, Default::default(), 0.0, 0.0).unwrap();
+        let pose =
+            Pose::from_tilts(s.site.as_paper().unwrap(), Default::default(), 0.0, 0.0).unwrap();
         let g = ContactGeometry::new(&s, &pose);
         (s, g)
     }

@@ -6,10 +6,10 @@
 //! * **admissible**: real, not spurious, 0 ≤ α < ξ, 0 ≤ β < ζ, and each contact over its own
 //!   plane (vertex 0 over the horizontal part, vertex 1 over plane 1, vertex 2 over plane 2).
 
-use crate::coeffs::{FoundationTrig, SmallAngleUnsquared};
-use crate::geometry::Site;
+use crate::coeffs::{FoundationTrig, SiteTrig, SmallAngleUnsquared};
 use crate::geometry::planes::{along_dip_2, r};
 use crate::geometry::{Displacement, Pose};
+use crate::geometry::{PaperSite, Site};
 use crate::scene::Mode;
 use std::fmt;
 
@@ -31,6 +31,11 @@ pub enum Inadmissible {
     Contact1LeftPlane1,
     /// Vertex 2 is off plane 2 (n·P2 < R).
     Contact2LeftPlane2,
+    /// On a general site: contact `.0` is under plane `.1` of another contact (it has left the
+    /// part of the ground its own plane makes).
+    ContactUnderAnotherPlane(usize, usize),
+    /// On a ground of faces: contact `.0` is under face `.1` (it reached a crease).
+    ContactUnderAnotherFace(usize, usize),
 }
 
 impl fmt::Display for Inadmissible {
@@ -43,6 +48,8 @@ impl fmt::Display for Inadmissible {
             Inadmissible::Contact0ReachedInclinedPlane => "contact 0 reached an inclined plane",
             Inadmissible::Contact1LeftPlane1 => "contact 1 left plane 1",
             Inadmissible::Contact2LeftPlane2 => "contact 2 left plane 2",
+            Inadmissible::ContactUnderAnotherPlane(..) => "a contact is under another's plane",
+            Inadmissible::ContactUnderAnotherFace(..) => "a contact reached another face",
         })
     }
 }
@@ -65,16 +72,17 @@ impl fmt::Display for Inadmissible {
 pub const REGION_TOL: f64 = 1e-8;
 
 /// The placed frame for a point of the chosen mode: u = (α, β) or (α, ψ).
+/// On a general site u = (α, ψ) in both modes.
 pub fn pose(site: &Site, d: Displacement, mode: Mode, u: [f64; 2]) -> Option<Pose> {
-    match mode {
-        Mode::SmallAngle => Pose::from_tilts(site, d, u[0], u[1]).ok(),
-        Mode::Exact => Pose::from_tilt_roll(site, d, u[0], u[1]).ok(),
+    match (mode, site.as_paper()) {
+        (Mode::SmallAngle, Some(p)) => Pose::from_tilts(p, d, u[0], u[1]).ok(),
+        _ => Pose::from_tilt_roll(site, d, u[0], u[1]).ok(),
     }
 }
 
 /// Checks tilt ranges and contact regions of a real, non-spurious pose, with [`REGION_TOL`].
 pub fn check_pose(site: &Site, p: &Pose) -> Result<(), Inadmissible> {
-    check_pose_within(site, &FoundationTrig::new(site), p, REGION_TOL)
+    check_pose_within(site, &SiteTrig::new(site), p, REGION_TOL)
 }
 
 /// [`check_pose`] with the regions' tolerance `region_tol` (a fraction of L; infinite: the
@@ -83,12 +91,58 @@ pub fn check_pose(site: &Site, p: &Pose) -> Result<(), Inadmissible> {
 /// plane, and only the states the route accepts must lie in the regions).
 pub fn check_pose_within(
     site: &Site,
+    trig: &SiteTrig,
+    p: &Pose,
+    region_tol: f64,
+) -> Result<(), Inadmissible> {
+    match (site.as_paper(), trig) {
+        (Some(paper), SiteTrig::Paper(trig)) => check_paper_pose(paper, trig, p, region_tol),
+        _ => check_general_pose(site, p, region_tol),
+    }
+}
+
+/// On a general site without a ground, the paper's regions on any three planes: contact 0
+/// where its plane is above both others, contacts 1 and 2 where theirs is above contact 0's (each
+/// ignores the other's plane, as the paper's contact 2 ignores plane 1). On a ground of faces,
+/// each contact where no face stands above its own. Both within `region_tol`·L.
+fn check_general_pose(site: &Site, p: &Pose, region_tol: f64) -> Result<(), Inadmissible> {
+    if !p.vertices.iter().all(|v| v.iter().all(|c| c.is_finite())) {
+        return Err(Inadmissible::NoRealFrame);
+    }
+    let tol = region_tol * site.l();
+    let planes = site.planes();
+    for (i, v) in p.vertices.iter().enumerate() {
+        let own = planes[i].height(v.x, v.z);
+        match site.ground() {
+            Some((ground, _)) => {
+                let (top, h) = ground.top(v.x, v.z);
+                if h > own + tol {
+                    return Err(Inadmissible::ContactUnderAnotherFace(i, top));
+                }
+            }
+            None => {
+                let others: &[usize] = if i == 0 { &[1, 2] } else { &[0] };
+                if let Some(&j) = others
+                    .iter()
+                    .find(|&&j| planes[j].height(v.x, v.z) > own + tol)
+                {
+                    return Err(Inadmissible::ContactUnderAnotherPlane(i, j));
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The paper's admissibility: tilt ranges and the three regions.
+fn check_paper_pose(
+    site: &PaperSite,
     trig: &FoundationTrig,
     p: &Pose,
     region_tol: f64,
 ) -> Result<(), Inadmissible> {
     let g = site.foundation;
-    let l = site.l();
+    let l = site.frame.l();
     let tol = region_tol * l;
     // sin α and α agree to round-off at these angles (about 1e-8 rad): no asin.
     let (tan_xi, tan_zeta) = trig.tan_dips();
@@ -129,6 +183,12 @@ pub fn small_angle_spurious(u: &SmallAngleUnsquared, alpha: f64, beta: f64) -> b
             .iter()
             .any(|e| e.value.abs() > e.mirror.abs() && e.value.abs() > 1e-8 * e.scale),
     }
+}
+
+/// Whether the second unknown is the roll ψ (the exact form, and every mode on a general
+/// site), so that a root with cos ψ < 0 is the mirrored frame.
+pub fn roll_is_unknown(site: &Site, mode: Mode) -> bool {
+    mode == Mode::Exact || site.as_paper().is_none()
 }
 
 /// Whether an exact-mode root is the mirrored frame (cos ψ < 0).

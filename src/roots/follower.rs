@@ -6,7 +6,7 @@ use super::classify::{self, Inadmissible};
 use super::system::Equations;
 use super::tracker::{BranchPoint, TrackError, correct};
 use super::{eigen, system};
-use crate::coeffs::{CoeffInputs, FoundationTrig};
+use crate::coeffs::{Inputs, SiteTrig};
 use crate::geometry::Site;
 use crate::geometry::{Displacement, Pose};
 use crate::scene::Mode;
@@ -16,7 +16,7 @@ use crate::scene::Mode;
 pub struct EigenFollower<'s> {
     site: &'s Site,
     /// The foundation's trigonometric functions and the unknowns' scales, computed once.
-    trig: FoundationTrig,
+    trig: SiteTrig,
     scales: (f64, f64),
     mode: Mode,
     current: BranchPoint,
@@ -29,7 +29,7 @@ impl<'s> EigenFollower<'s> {
     pub fn new(site: &'s Site, mode: Mode) -> Self {
         EigenFollower {
             site,
-            trig: FoundationTrig::new(site),
+            trig: SiteTrig::new(site),
             scales: system::unknown_scales(site, mode),
             mode,
             current: BranchPoint {
@@ -72,7 +72,7 @@ impl<'s> EigenFollower<'s> {
             theta_deg: target.theta.to_degrees(),
             reason,
         };
-        let inputs = CoeffInputs::with_trig(self.site, &self.trig, target);
+        let inputs = Inputs::with_trig(self.site, &self.trig, target);
         let (sx, sy) = self.scales;
         let (p, q) = system::biquadratic_from(self.site, &inputs, self.scales, target, self.mode);
         let raw = eigen::candidates(&p, &q);
@@ -84,6 +84,7 @@ impl<'s> EigenFollower<'s> {
                 Mode::SmallAngle => [r.x * sx, r.y * sy],
                 Mode::Exact => [(r.x * sx).atan() * 2.0, (r.y * sy).atan() * 2.0],
             };
+            // (On a general site the small-angle unknowns are (α, ψ) themselves.)
             // Near θ = 0 the physical root of (15) and its spurious twin are nearly double and
             // may come out as a complex pair with small imaginary parts: every nearly real root
             // is a starting point for Newton on the unsquared equations, which are regular.
@@ -95,7 +96,8 @@ impl<'s> EigenFollower<'s> {
                 continue;
             };
             // A root of A + B·Q is never spurious; in exact mode the mirrored frame is.
-            let spurious = self.mode == Mode::Exact && classify::exact_mirrored(u[1]);
+            let spurious =
+                classify::roll_is_unknown(self.site, self.mode) && classify::exact_mirrored(u[1]);
             let dist = (u[0] - self.current.u[0])
                 .abs()
                 .max((u[1] - self.current.u[1]).abs());

@@ -10,7 +10,7 @@
 //!
 //! ```
 //! use slideroute::stages::{geometry::Displacement, roots, scene::{Mode, Scene}};
-//! let site = *Scene::default_scene().site();
+//! let site = Scene::default_scene().site().clone();
 //! let d = Displacement::new(0.5, 0.1, 2f64.to_radians());
 //! let all = roots::solve_all(&site, d, Mode::Exact).unwrap();
 //! let chosen = all.selected.map(|k| &all.roots[k]).unwrap();
@@ -125,15 +125,25 @@ pub fn solve_all(site: &Site, d: Displacement, mode: Mode) -> Result<AllRoots, T
         .collect();
     let finite: usize = merged.iter().map(|(_, k)| k).sum();
     let (sx, sy) = system::unknown_scales(site, mode);
-    let unsquared = match mode {
-        Mode::SmallAngle => Some(SmallAngleUnsquared::new(&CoeffInputs::new(site, d))),
-        Mode::Exact => None,
+    let unsquared = match (mode, site.as_paper()) {
+        (Mode::SmallAngle, Some(p)) => Some(SmallAngleUnsquared::new(&CoeffInputs::new(p, d))),
+        _ => None,
     };
+    let general = site.as_paper().is_none();
     let mut roots: Vec<Root> = merged
         .into_iter()
         .map(|(r, multiplicity)| {
             let (alpha, beta, psi) = match mode {
+                // A general site's small-angle unknowns are (α, ψ); β from the pose below.
+                Mode::SmallAngle if general => {
+                    (r.x * sx, Complex64::new(f64::NAN, f64::NAN), Some(r.y * sy))
+                }
                 Mode::SmallAngle => (r.x * sx, r.y * sy, None),
+                Mode::Exact if general => {
+                    let alpha = (r.x * sx).atan() * 2.0;
+                    let psi = (r.y * sy).atan() * 2.0;
+                    (alpha, Complex64::new(f64::NAN, f64::NAN), Some(psi))
+                }
                 Mode::Exact => {
                     let alpha = (r.x * sx).atan() * 2.0;
                     let psi = (r.y * sy).atan() * 2.0;
@@ -150,12 +160,19 @@ pub fn solve_all(site: &Site, d: Displacement, mode: Mode) -> Result<AllRoots, T
                     }
                     _ => classify::exact_mirrored(second.re),
                 };
+            let placed = real
+                .then(|| classify::pose(site, d, mode, [alpha.re, second.re]))
+                .flatten();
+            let beta = match (general, &placed) {
+                (true, Some(p)) => Complex64::new(p.beta, 0.0),
+                _ => beta,
+            };
             let why_not = if !real {
                 None
             } else if spurious {
                 Some(Inadmissible::Spurious)
             } else {
-                match classify::pose(site, d, mode, [alpha.re, second.re]) {
+                match placed {
                     None => Some(Inadmissible::NoRealFrame),
                     Some(p) => classify::check_pose(site, &p).err(),
                 }

@@ -9,18 +9,22 @@
 
 use super::eigen::Coeffs;
 use crate::coeffs::{
-    CoeffInputs, Exact, SMALL_ANGLE_MONOMIALS, SMALL_ANGLE_UNSQUARED_A13,
-    SMALL_ANGLE_UNSQUARED_A14, SMALL_ANGLE_UNSQUARED_SPLIT, SmallAngle, SmallAngleUnsquared,
+    CoeffInputs, Exact, GeneralExact, GeneralSmallAngle, Inputs, SMALL_ANGLE_MONOMIALS,
+    SMALL_ANGLE_UNSQUARED_A13, SMALL_ANGLE_UNSQUARED_A14, SMALL_ANGLE_UNSQUARED_SPLIT, SmallAngle,
+    SmallAngleUnsquared,
 };
 use crate::geometry::Displacement;
 use crate::geometry::Site;
 use crate::scene::Mode;
 
-/// The unsquared equations of one mode at one displacement.
+/// The unsquared equations of one mode at one displacement: the paper's on the paper's site,
+/// the general system's (in u = (α, ψ) for both modes) on any other.
 #[derive(Debug, Clone, Copy)]
 pub enum Equations {
     SmallAngle(SmallAngleUnsquared),
     Exact(Exact),
+    GeneralSmallAngle(GeneralSmallAngle),
+    GeneralExact(GeneralExact),
 }
 
 /// Residual, Jacobian and the size of each equation's terms (for round-off judgements).
@@ -32,14 +36,20 @@ pub struct Evaluated {
 
 impl Equations {
     pub fn new(site: &Site, d: Displacement, mode: Mode) -> Self {
-        Self::from_inputs(&CoeffInputs::new(site, d), mode)
+        Self::from_inputs(&Inputs::new(site, d), mode)
     }
 
     /// From the generator's inputs at one displacement.
-    pub fn from_inputs(inputs: &CoeffInputs, mode: Mode) -> Self {
-        match mode {
-            Mode::SmallAngle => Equations::SmallAngle(SmallAngleUnsquared::new(inputs)),
-            Mode::Exact => Equations::Exact(Exact::new(inputs)),
+    pub fn from_inputs(inputs: &Inputs, mode: Mode) -> Self {
+        match (inputs, mode) {
+            (Inputs::Paper(p), Mode::SmallAngle) => {
+                Equations::SmallAngle(SmallAngleUnsquared::new(p))
+            }
+            (Inputs::Paper(p), Mode::Exact) => Equations::Exact(Exact::new(p)),
+            (Inputs::General(g), Mode::SmallAngle) => {
+                Equations::GeneralSmallAngle(GeneralSmallAngle::new(g))
+            }
+            (Inputs::General(g), Mode::Exact) => Equations::GeneralExact(GeneralExact::new(g)),
         }
     }
 
@@ -64,16 +74,37 @@ impl Equations {
                     scale: [s, s],
                 })
             }
+            Equations::GeneralExact(e) => {
+                let (r, j) = e.residual_jacobian(u[0], u[1]);
+                let s: f64 = e.g.iter().map(|c| c.abs()).sum();
+                Some(Evaluated {
+                    r,
+                    j,
+                    scale: [s, s],
+                })
+            }
+            Equations::GeneralSmallAngle(e) => {
+                let (r, j, scale) = e.eval(u[0], u[1]);
+                Some(Evaluated { r, j, scale })
+            }
         }
     }
 }
 
-/// Scales of the unknowns for the all-roots solver (see the module docs).
+/// Scales of the unknowns for the all-roots solver (see the module docs). On a general site,
+/// the largest of the planes' dips stands for ξ and ζ (at least 0.01 rad, so that a foundation
+/// of level faces still has a scale).
 pub fn unknown_scales(site: &Site, mode: Mode) -> (f64, f64) {
-    let g = site.foundation;
+    let (xi, zeta) = match site.as_paper() {
+        Some(p) => (p.foundation.xi, p.foundation.zeta),
+        None => {
+            let dip = site.planes().iter().map(|p| p.dip()).fold(0.01, f64::max);
+            (dip, dip)
+        }
+    };
     match mode {
-        Mode::SmallAngle => (g.xi.tan(), g.zeta.tan()),
-        Mode::Exact => ((g.xi / 2.0).tan(), (g.xi.max(g.zeta) / 2.0).tan()),
+        Mode::SmallAngle => (xi.tan(), zeta.tan()),
+        Mode::Exact => ((xi / 2.0).tan(), (xi.max(zeta) / 2.0).tan()),
     }
 }
 
@@ -99,12 +130,13 @@ fn scaled(c: &Coeffs, sx: f64, sy: f64) -> Coeffs {
 /// Which small-angle equations are perfect squares at `d`: (15a) when sin θ = 0, (15b) when
 /// sin(θ + κ) = 0 (there B = 0 in A ± B·Q, so the squared equation is A²).
 pub fn perfect_squares(site: &Site, d: Displacement, mode: Mode) -> [bool; 2] {
-    match mode {
-        Mode::SmallAngle => [
+    match (mode, site.as_paper()) {
+        (Mode::SmallAngle, Some(p)) => [
             d.theta.sin().abs() < 1e-12,
-            (d.theta + site.foundation.kappa).sin().abs() < 1e-12,
+            (d.theta + p.foundation.kappa).sin().abs() < 1e-12,
         ],
-        Mode::Exact => [false, false],
+        // The exact forms and the general small-angle form are not squared.
+        _ => [false, false],
     }
 }
 
@@ -113,19 +145,20 @@ pub fn perfect_squares(site: &Site, d: Displacement, mode: Mode) -> [bool; 2] {
 /// instead of double (see [`perfect_squares`]).
 pub fn biquadratic(site: &Site, d: Displacement, mode: Mode) -> (Coeffs, Coeffs) {
     let scales = unknown_scales(site, mode);
-    biquadratic_from(site, &CoeffInputs::new(site, d), scales, d, mode)
+    biquadratic_from(site, &Inputs::new(site, d), scales, d, mode)
 }
 
 /// As [`biquadratic`], from the generator's inputs at `d` and the [`unknown_scales`].
 pub fn biquadratic_from(
     site: &Site,
-    inputs: &CoeffInputs,
+    inputs: &Inputs,
     (sx, sy): (f64, f64),
     d: Displacement,
     mode: Mode,
 ) -> (Coeffs, Coeffs) {
-    let raw: [Coeffs; 2] = match mode {
-        Mode::SmallAngle => {
+    let raw: [Coeffs; 2] = match (inputs, mode) {
+        (Inputs::Paper(inputs), Mode::SmallAngle) => {
+            let inputs: &CoeffInputs = inputs;
             let square = perfect_squares(site, d, mode);
             let f = SmallAngle::new(inputs).f;
             let u = if square[0] || square[1] {
@@ -156,7 +189,9 @@ pub fn biquadratic_from(
             }
             c
         }
-        Mode::Exact => Exact::new(inputs).half_angle(),
+        (Inputs::Paper(inputs), Mode::Exact) => Exact::new(inputs).half_angle(),
+        (Inputs::General(g), Mode::SmallAngle) => GeneralSmallAngle::new(g).coefficients(),
+        (Inputs::General(g), Mode::Exact) => GeneralExact::new(g).half_angle(),
     };
     (scaled(&raw[0], sx, sy), scaled(&raw[1], sx, sy))
 }

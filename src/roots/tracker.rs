@@ -13,9 +13,11 @@
 //! first), and a jump guard (the correction must be small against the step). A step that fails
 //! is halved; a branch that cannot be followed below a minimal step ends with a diagnosis.
 
-use super::classify::{Inadmissible, REGION_TOL, check_pose_within, exact_mirrored, pose};
+use super::classify::{
+    Inadmissible, REGION_TOL, check_pose_within, exact_mirrored, pose, roll_is_unknown,
+};
 use super::system::Equations;
-use crate::coeffs::{CoeffInputs, FoundationTrig};
+use crate::coeffs::{Inputs, SiteTrig};
 use crate::geometry::Site;
 use crate::geometry::{Displacement, Pose};
 use crate::numeric::fixed;
@@ -71,7 +73,7 @@ pub struct TrackStats {
 pub struct Tracker<'s> {
     site: &'s Site,
     /// The foundation's trigonometric functions, computed once.
-    trig: FoundationTrig,
+    trig: SiteTrig,
     mode: Mode,
     current: BranchPoint,
     /// The placed frame at `current`, built by the admissibility check.
@@ -177,7 +179,7 @@ impl<'s> Tracker<'s> {
     pub fn new(site: &'s Site, mode: Mode) -> Self {
         Tracker {
             site,
-            trig: FoundationTrig::new(site),
+            trig: SiteTrig::new(site),
             mode,
             current: BranchPoint {
                 d: Displacement::default(),
@@ -234,10 +236,8 @@ impl<'s> Tracker<'s> {
             let s_try = (s + h).min(1.0);
             let d = lerp(from, target, s_try);
             let u_pred = self.predict(d);
-            let eqs = Equations::from_inputs(
-                &CoeffInputs::with_trig(self.site, &self.trig, d),
-                self.mode,
-            );
+            let eqs =
+                Equations::from_inputs(&Inputs::with_trig(self.site, &self.trig, d), self.mode);
             let result = correct(&eqs, u_pred, &mut self.stats.newton_iterations).and_then(|u| {
                 // Jump guard: with a secant predictor the correction is second order in the step.
                 let step = norm([u[0] - self.current.u[0], u[1] - self.current.u[1]]);
@@ -322,7 +322,7 @@ impl<'s> Tracker<'s> {
             theta_deg: d.theta.to_degrees(),
             reason,
         };
-        if self.mode == Mode::Exact && exact_mirrored(self.current.u[1]) {
+        if roll_is_unknown(self.site, self.mode) && exact_mirrored(self.current.u[1]) {
             return Err(fail(Inadmissible::Spurious));
         }
         let p = self

@@ -50,9 +50,12 @@ pub struct Stop {
 /// ends (the tracker's diagnosis as a termination reason).
 pub fn pose_at(scene: &Scene, tracker: &mut PoseFinder<'_>, d: Displacement) -> Result<Pose, Stop> {
     tracker.advance(d).map_err(|e| {
-        let at_dip = tracker.pose().is_some_and(|p| {
-            p.alpha >= scene.site.foundation.xi || p.beta >= scene.site.foundation.zeta
-        });
+        let at_dip = match (tracker.pose(), scene.site.as_paper()) {
+            (Some(p), Some(paper)) => {
+                p.alpha >= paper.foundation.xi || p.beta >= paper.foundation.zeta
+            }
+            _ => false,
+        };
         Stop {
             reason: from_track_error(&e, at_dip),
             detail: e.to_string(),

@@ -22,6 +22,8 @@ pub enum Reason {
     ContactLeftPlane,
     /// A tilt reached its dip (α → ξ or β → ζ).
     TiltReachedDip,
+    /// On a foundation of faces: a contact reached a face other than its own (a crease).
+    ContactReachedAnotherFace,
     /// The pose equations have no admissible root to follow (the tracker's diagnosis).
     NoAdmissibleRoot,
     /// t reached t_end.
@@ -43,6 +45,7 @@ impl Reason {
             Reason::Contact0ReachedInclinedPlane => "contact 0 reached an inclined plane",
             Reason::ContactLeftPlane => "a contact left its plane",
             Reason::TiltReachedDip => "a tilt reached its dip",
+            Reason::ContactReachedAnotherFace => "a contact reached another face",
             Reason::NoAdmissibleRoot => "no admissible root",
             Reason::TimeLimit => "time limit",
             Reason::ContactForcesUndetermined => "the contact forces are not determined",
@@ -81,6 +84,8 @@ pub fn from_track_error(e: &TrackError, alpha_at_dip: bool) -> Reason {
             Inadmissible::AlphaOutOfRange | Inadmissible::BetaOutOfRange => {
                 Reason::ContactLeftPlane
             }
+            Inadmissible::ContactUnderAnotherPlane(..) => Reason::ContactLeftPlane,
+            Inadmissible::ContactUnderAnotherFace(..) => Reason::ContactReachedAnotherFace,
             Inadmissible::Spurious | Inadmissible::NoRealFrame => Reason::NoAdmissibleRoot,
         },
         TrackError::BranchEnded { .. } | TrackError::NonFinite(_) => Reason::NoAdmissibleRoot,

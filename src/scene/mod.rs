@@ -378,21 +378,31 @@ impl Scene {
         &self.initial
     }
 
-    /// Side length L (m).
+    /// The frame's side L (m; for any triangle, its longest side over √2).
     pub fn l(&self) -> f64 {
-        self.site.frame.l()
+        self.site.l()
     }
 
     /// Values that are valid but likely mistakes, one line each naming the key (issue #13): a
     /// dip under 1° (often radians typed as degrees) and a friction coefficient over 2.
     pub fn warnings(&self) -> Vec<String> {
         let mut w = Vec::new();
-        for (key, dip) in [
-            ("foundation.xi_deg", self.site.foundation.xi),
-            ("foundation.zeta_deg", self.site.foundation.zeta),
-        ] {
-            let deg = dip.to_degrees();
-            if deg < 1.0 {
+        // The dips as written: the paper's two, or each face's (a level face, 0°, is meant).
+        let foundation = self.source.get("foundation").and_then(|f| f.as_table());
+        let number = |v: &toml::Value| v.as_float().or_else(|| v.as_integer().map(|i| i as f64));
+        let mut dips: Vec<(String, f64)> = ["xi_deg", "zeta_deg"]
+            .into_iter()
+            .filter_map(|k| Some((format!("foundation.{k}"), number(foundation?.get(k)?)?)))
+            .collect();
+        if let Some(faces) = foundation.and_then(|f| f.get("plane")?.as_array()) {
+            for (k, face) in faces.iter().enumerate() {
+                if let Some(d) = face.get("dip_deg").and_then(number) {
+                    dips.push((format!("foundation.plane[{k}].dip_deg"), d));
+                }
+            }
+        }
+        for (key, deg) in dips {
+            if deg > 0.0 && deg < 1.0 {
                 w.push(format!(
                     "{}: {key}: a dip of {deg}° is under 1° — degrees are meant (were radians \
                      typed?)",

@@ -29,6 +29,8 @@ pub struct RawInitial {
     pub omega_deg_s: Option<f64>,
 }
 
+/// `[frame]`: the paper's right isosceles frame (`l1x` … `l2z`), or any triangle
+/// (`contacts_m`).
 #[derive(Debug, Default, Deserialize)]
 #[serde(expecting = "the table [frame]")]
 pub struct RawFrame {
@@ -36,14 +38,28 @@ pub struct RawFrame {
     pub l2x: Option<f64>,
     pub l1z: Option<f64>,
     pub l2z: Option<f64>,
+    /// The three contacts' (x', z') about the CM (m).
+    pub contacts_m: Option<Vec<Vec<f64>>>,
 }
 
+/// `[foundation]`: the paper's three planes (`xi_deg`, `zeta_deg`, `kappa_deg`), or a list of
+/// faces (`[[foundation.plane]]`).
 #[derive(Debug, Default, Deserialize)]
 #[serde(expecting = "the table [foundation]")]
 pub struct RawFoundation {
     pub xi_deg: Option<f64>,
     pub zeta_deg: Option<f64>,
     pub kappa_deg: Option<f64>,
+    pub plane: Option<Vec<RawPlane>>,
+}
+
+/// One `[[foundation.plane]]`.
+#[derive(Debug, Default, Deserialize)]
+#[serde(expecting = "a table [[foundation.plane]]")]
+pub struct RawPlane {
+    pub dip_deg: Option<f64>,
+    pub dip_direction_deg: Option<f64>,
+    pub point_m: Option<Vec<f64>>,
 }
 
 #[derive(Debug, Default, Deserialize)]
@@ -150,6 +166,7 @@ pub fn keys_of(section: &str) -> &'static [&'static str] {
         "friction" => fields::<RawFriction>(),
         "solver" => fields::<RawSolver>(),
         "initial" => fields::<RawInitial>(),
+        "foundation.plane" => fields::<RawPlane>(),
         _ => &[],
     }
 }
@@ -189,7 +206,7 @@ mod tests {
 
     #[test]
     fn the_keys_of_each_section_are_the_raw_types_fields() {
-        assert_eq!(keys_of("frame"), ["l1x", "l2x", "l1z", "l2z"]);
+        assert_eq!(keys_of("frame"), ["l1x", "l2x", "l1z", "l2z", "contacts_m"]);
         assert!(keys_of("").contains(&"foundation"));
         assert!(keys_of("solver").contains(&"stride"));
         assert!(keys_of("nothing").is_empty());

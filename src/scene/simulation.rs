@@ -54,7 +54,7 @@ impl Simulation {
             loads,
             friction,
             settings,
-            normals: scene.site.foundation.normals(),
+            normals: scene.site.normals(),
         })
     }
 

@@ -8,6 +8,7 @@ use super::{
     Block, DynamicsModel, Foundation, Frame, Friction, Initial, Integrator, Loads, Mode, Scene,
     SceneError, Site, Solver,
 };
+use crate::geometry::{Ground, Plane};
 
 /// The most increments one run may take (t_end / dt).
 pub const MAX_INCREMENTS: f64 = 1e8;
@@ -161,7 +162,7 @@ const MAX_RATIO: f64 = 1e6;
 /// either way. The error names the key to change.
 fn derived(
     o: &str,
-    frame: &Frame,
+    scale: f64,
     block: Option<&Block>,
     loads: Option<&Loads>,
 ) -> Result<(), SceneError> {
@@ -196,7 +197,7 @@ fn derived(
             ),
         ));
     }
-    let ml2 = b.mass * frame.l() * frame.l();
+    let ml2 = b.mass * scale * scale;
     for (key, i) in [
         ("block.inertia_kg_m2", b.inertia),
         ("block.inertia_x_kg_m2", b.inertia_x),
@@ -362,9 +363,84 @@ fn solver(o: &str, s: &raw::RawSolver) -> Result<Solver, SceneError> {
     })
 }
 
-/// The frame: positive lengths, a finite side, and the two legs of the right isosceles
+/// The frame as given: the paper's lengths, or any triangle's contacts.
+pub(super) enum FrameIn {
+    Paper(Frame),
+    Contacts([[f64; 2]; 3]),
+}
+
+/// The foundation as given: the paper's three planes, or a list of faces.
+pub(super) enum FoundationIn {
+    Paper(Foundation),
+    Faces(Vec<Plane>),
+}
+
+/// `[frame]`: either the paper's four lengths or `contacts_m`, not both.
+fn frame(o: &str, f: &raw::RawFrame) -> Result<FrameIn, SceneError> {
+    let paper_keys = [f.l1x, f.l2x, f.l1z, f.l2z];
+    match &f.contacts_m {
+        Some(_) if paper_keys.iter().any(Option::is_some) => Err(SceneError::new(
+            o,
+            "frame.contacts_m",
+            "give either l1x, l2x, l1z, l2z (the paper's right isosceles frame) or contacts_m \
+             (any triangle), not both",
+        )),
+        Some(c) => contacts(o, c).map(FrameIn::Contacts),
+        None if paper_keys.iter().all(Option::is_none) => Err(SceneError::of(
+            SceneErrorKind::MissingKey,
+            o,
+            "frame",
+            "give l1x, l2x, l1z, l2z (the paper's right isosceles frame) or contacts_m (any \
+             triangle)",
+        )),
+        None => paper_frame(o, f).map(FrameIn::Paper),
+    }
+}
+
+/// `contacts_m`: three points (x', z') in metres, finite, about the CM, spanning a triangle.
+fn contacts(o: &str, c: &[Vec<f64>]) -> Result<[[f64; 2]; 3], SceneError> {
+    let key = "frame.contacts_m";
+    if c.len() != 3 || c.iter().any(|p| p.len() != 2) {
+        return Err(SceneError::new(
+            o,
+            key,
+            format!(
+                "must be three points [x, z] (m), e.g. [[-6.0, 5.0], [4.0, 5.0], [4.0, -5.0]]; \
+                 got {} item(s)",
+                c.len()
+            ),
+        ));
+    }
+    let pts: [[f64; 2]; 3] = std::array::from_fn(|k| [c[k][0], c[k][1]]);
+    if let Some(v) = pts.iter().flatten().find(|v| !v.is_finite()) {
+        return Err(SceneError::new(
+            o,
+            key,
+            format!("must be finite numbers, got {v}"),
+        ));
+    }
+    let side = |a: usize, b: usize| (pts[a][0] - pts[b][0]).hypot(pts[a][1] - pts[b][1]);
+    let longest = side(0, 1).max(side(1, 2)).max(side(0, 2));
+    let twice_area = (pts[1][0] - pts[0][0]) * (pts[2][1] - pts[0][1])
+        - (pts[2][0] - pts[0][0]) * (pts[1][1] - pts[0][1]);
+    let spans = twice_area.abs() > 1e-6 * longest * longest;
+    if !(longest * longest).is_finite() || !spans {
+        return Err(SceneError::new(
+            o,
+            key,
+            format!(
+                "the three contacts must span a triangle (finite sides, not on one line): \
+                 longest side {longest:e} m, area {:e} m²",
+                0.5 * twice_area.abs()
+            ),
+        ));
+    }
+    Ok(pts)
+}
+
+/// The paper's frame: positive lengths, a finite side, and the two legs of the right isosceles
 /// triangle equal.
-fn frame(o: &str, f: &raw::RawFrame) -> Result<Frame, SceneError> {
+fn paper_frame(o: &str, f: &raw::RawFrame) -> Result<Frame, SceneError> {
     let length = |key: &str, v: Option<f64>| positive(o, key, need(o, key, v)?);
     let frame = Frame {
         l1x: length("frame.l1x", f.l1x)?,
@@ -399,7 +475,40 @@ fn frame(o: &str, f: &raw::RawFrame) -> Result<Frame, SceneError> {
     Ok(frame)
 }
 
-fn foundation(o: &str, d: &raw::RawFoundation) -> Result<Foundation, SceneError> {
+/// `[foundation]`: either the paper's three angles or a list of faces, not both.
+fn foundation(o: &str, d: &raw::RawFoundation) -> Result<FoundationIn, SceneError> {
+    let paper_keys = [d.xi_deg, d.zeta_deg, d.kappa_deg];
+    match &d.plane {
+        Some(_) if paper_keys.iter().any(Option::is_some) => Err(SceneError::new(
+            o,
+            "foundation.plane",
+            "give either xi_deg, zeta_deg, kappa_deg (the paper's three planes) or \
+             [[foundation.plane]] faces, not both",
+        )),
+        Some(planes) if planes.is_empty() => Err(SceneError::new(
+            o,
+            "foundation.plane",
+            "a foundation of faces needs at least one [[foundation.plane]]",
+        )),
+        Some(planes) => planes
+            .iter()
+            .enumerate()
+            .map(|(k, p)| face(o, k, p))
+            .collect::<Result<Vec<_>, _>>()
+            .map(FoundationIn::Faces),
+        None if paper_keys.iter().all(Option::is_none) => Err(SceneError::of(
+            SceneErrorKind::MissingKey,
+            o,
+            "foundation",
+            "give xi_deg, zeta_deg, kappa_deg (the paper's three planes) or [[foundation.plane]] \
+             faces",
+        )),
+        None => paper_foundation(o, d).map(FoundationIn::Paper),
+    }
+}
+
+/// The paper's three planes: dips strictly between 0° and 90°, κ strictly between −90° and 90°.
+fn paper_foundation(o: &str, d: &raw::RawFoundation) -> Result<Foundation, SceneError> {
     let dip = |key: &str, v: Option<f64>| {
         let v = need(o, key, v)?;
         check(
@@ -426,11 +535,113 @@ fn foundation(o: &str, d: &raw::RawFoundation) -> Result<Foundation, SceneError>
     })
 }
 
+/// One `[[foundation.plane]]`: dip in [0°, 90°), any dip direction, a point of three finite
+/// coordinates.
+fn face(o: &str, k: usize, p: &raw::RawPlane) -> Result<Plane, SceneError> {
+    let key = |name: &str| format!("foundation.plane[{k}].{name}");
+    let dip = need(o, &key("dip_deg"), p.dip_deg)?;
+    let dip = check(
+        o,
+        &key("dip_deg"),
+        dip,
+        (0.0..90.0).contains(&dip),
+        "a dip from 0° up to (not including) 90°",
+    )?;
+    let dir = need(o, &key("dip_direction_deg"), p.dip_direction_deg)?;
+    let dir = check(o, &key("dip_direction_deg"), dir, true, "finite")?;
+    let point = need(o, &key("point_m"), p.point_m.as_ref())?;
+    if point.len() != 3 || point.iter().any(|v| !v.is_finite()) {
+        return Err(SceneError::new(
+            o,
+            key("point_m"),
+            format!("must be a point [X, Y, Z] of three finite numbers (m), got {point:?}"),
+        ));
+    }
+    Ok(Plane::from_dip(
+        dip.to_radians(),
+        dir.to_radians(),
+        nalgebra::Vector3::new(point[0], point[1], point[2]),
+    ))
+}
+
+/// How far (as a fraction of the frame's scale) a contact's start may lie off the ground.
+pub const START_TOL: f64 = 1e-9;
+
+/// The site: the paper's frame on the paper's planes keeps the paper's systems; any triangle on
+/// the paper's planes (each through its contact's start, as the paper's are) takes the general
+/// system; on a list of faces each contact starts on the face under it (the block starts flat at
+/// Y = 0, so each contact must be on the ground there, neither under it nor above it).
+fn site(o: &str, frame: FrameIn, foundation: FoundationIn) -> Result<Site, SceneError> {
+    let contacts = match &frame {
+        FrameIn::Paper(f) => f.vertices(),
+        FrameIn::Contacts(c) => *c,
+    };
+    let start = |k: usize| nalgebra::Vector3::new(contacts[k][0], 0.0, contacts[k][1]);
+    match (frame, foundation) {
+        (FrameIn::Paper(f), FoundationIn::Paper(g)) => Ok(Site::paper(f, g)),
+        (FrameIn::Contacts(c), FoundationIn::Paper(g)) => {
+            let pi = std::f64::consts::PI;
+            let planes = [
+                Plane::from_dip(0.0, 0.0, start(0)),
+                Plane::from_dip(g.xi, pi, start(1)),
+                Plane::from_dip(g.zeta, pi - g.kappa, start(2)),
+            ];
+            Ok(Site::general(c, planes))
+        }
+        (_, FoundationIn::Faces(faces)) => {
+            let ground = Ground::new(faces);
+            let scale = Site::general(contacts, [ground.faces()[0]; 3]).l();
+            let tol = START_TOL * scale;
+            for (k, &[x, z]) in contacts.iter().enumerate() {
+                let (top, h) = ground.top(x, z);
+                let at = format!("contact {k} starts at (X, Z) = ({x}, {z}) m");
+                if h > tol {
+                    return Err(SceneError::new(
+                        o,
+                        "foundation.plane",
+                        format!(
+                            "{at}, under the ground: face {top} stands {h:.6} m above it (the \
+                             block starts flat at Y = 0 with every contact on the ground)"
+                        ),
+                    ));
+                }
+                if h < -tol {
+                    return Err(SceneError::new(
+                        o,
+                        "foundation.plane",
+                        format!(
+                            "{at}, above the ground: the highest face there, face {top}, is {:.6} \
+                             m below it (the block starts flat at Y = 0 with every contact on \
+                             the ground)",
+                            -h
+                        ),
+                    ));
+                }
+            }
+            // At a crease, the face that rises first along x' (the push of the water).
+            let faces = std::array::from_fn(|k| {
+                ground.face_under(
+                    contacts[k][0],
+                    contacts[k][1],
+                    (1.0, 0.0),
+                    1e-3 * scale,
+                    tol,
+                )
+            });
+            Ok(Site::on_ground(
+                contacts,
+                std::sync::Arc::new(ground),
+                faces,
+            ))
+        }
+    }
+}
 /// The typed scene of a document, or its first fault. `source` is kept as the scene's own
 /// file ([`Scene::with`] edits it).
 pub(super) fn validate(raw: RawScene, o: &str, source: toml::Table) -> Result<Scene, SceneError> {
     let frame = frame(o, section(o, "frame", &raw.frame)?)?;
     let foundation = foundation(o, section(o, "foundation", &raw.foundation)?)?;
+    let site = site(o, frame, foundation)?;
     let block = raw.block.as_ref().map(|b| block(o, b)).transpose()?;
     let loads = match &raw.loads {
         None => None,
@@ -468,11 +679,11 @@ pub(super) fn validate(raw: RawScene, o: &str, source: toml::Table) -> Result<Sc
             }
         }
     };
-    derived(o, &frame, block.as_ref(), loads.as_ref())?;
+    derived(o, site.l(), block.as_ref(), loads.as_ref())?;
     Ok(Scene {
         name: raw.name.unwrap_or_else(|| "unnamed".to_string()),
         origin: o.to_string(),
-        site: Site { frame, foundation },
+        site,
         block,
         loads,
         friction,

@@ -69,7 +69,7 @@ fn coeffs_json_on_the_default_scene_has_f1_to_f12_and_the_exact_form() {
     let scene = slideroute::stages::scene::Scene::default_scene();
     let d = slideroute::stages::geometry::Displacement::new(0.5, 0.1, (-2f64).to_radians());
     let f = slideroute::stages::coeffs::SmallAngle::new(
-        &slideroute::stages::coeffs::CoeffInputs::new(scene.site(), d),
+        &slideroute::stages::coeffs::CoeffInputs::new(scene.site().as_paper().unwrap(), d),
     );
     assert_eq!(small["f1"].as_f64(), Some(f.f[0]));
 }

@@ -35,7 +35,7 @@ proptest! {
 
     #[test]
     fn generated_f1_to_f12_equal_the_hand_derivation((s, d) in any_scene_and_pose()) {
-        let f = SmallAngle::new(&CoeffInputs::new(s.site(), d)).f;
+        let f = SmallAngle::new(&CoeffInputs::new(s.site().as_paper().unwrap(), d)).f;
         for (k, h) in hand_small_angle(&s, d).iter().enumerate() {
             prop_assert!(close(f[k], h.value, h.scale),
                 "f{}: generated {} vs hand {} (scale {})", k + 1, f[k], h.value, h.scale);
@@ -44,7 +44,7 @@ proptest! {
 
     #[test]
     fn generated_exact_coefficients_equal_the_hand_derivation((s, d) in any_scene_and_pose()) {
-        let e = Exact::new(&CoeffInputs::new(s.site(), d));
+        let e = Exact::new(&CoeffInputs::new(s.site().as_paper().unwrap(), d));
         let hand = hand_exact(&s, d);
         let scale = s.l() + d.x.abs() + d.z.abs();
         let generated = [
@@ -58,7 +58,7 @@ proptest! {
                 prop_assert!(g.is_some(), "eq {}: no generated term {}", eq, name);
                 let g = *g.unwrap().1;
                 let sc = if name.starts_with("sa") || name == &"ca_sp" {
-                    scale * (1.0 / s.site().foundation.xi.tan() + 1.0 / s.site().foundation.zeta.tan() + 1.0)
+                    scale * (1.0 / s.site().as_paper().unwrap().foundation.xi.tan() + 1.0 / s.site().as_paper().unwrap().foundation.zeta.tan() + 1.0)
                 } else { scale };
                 prop_assert!(close(g, *h, sc), "eq {} {}: generated {} vs hand {}", eq, name, g, h);
             }
@@ -71,7 +71,7 @@ proptest! {
         alpha in -1.5..1.5f64,
         psi in -1.5..1.5f64,
     ) {
-        let e = Exact::new(&CoeffInputs::new(s.site(), d));
+        let e = Exact::new(&CoeffInputs::new(s.site().as_paper().unwrap(), d));
         let h = e.half_angle();
         let (ta, tp) = ((alpha / 2.0).tan(), (psi / 2.0).tan());
         let w = (1.0 + ta * ta) * (1.0 + tp * tp);

@@ -35,17 +35,17 @@ proptest! {
         let p = p.unwrap();
         let (alpha, beta) = (p.alpha(l), p.beta(l));
         // Only physically placed frames (vertex 2 on the −z' side, tilts below 80°).
-        let pose = Pose::from_tilts(s.site(), d, alpha, beta);
+        let pose = Pose::from_tilts(s.site().as_paper().unwrap(), d, alpha, beta);
         prop_assume!(pose.is_ok() && alpha.abs() < 1.4 && beta.abs() < 1.4);
         let pose = pose.unwrap();
         prop_assume!((pose.vertices[2] - p.vertices[2]).norm() < 1e-6 * l);
 
         // (13), (14) as printed (with √2), h from (2).
-        let r = relations::law_of_sines(s.site(), d, alpha, beta).unwrap();
+        let r = relations::law_of_sines(s.site().as_paper().unwrap(), d, alpha, beta).unwrap();
         prop_assert!(r[0].abs() <= 1e-12 * l && r[1].abs() <= 1e-12 * l, "(13), (14): {:?}", r);
 
         // Our exact polynomial system, generated at build time, in (α, ψ).
-        let e = Exact::new(&CoeffInputs::new(s.site(), d));
+        let e = Exact::new(&CoeffInputs::new(s.site().as_paper().unwrap(), d));
         let psi = pose.psi;
         let r = e.residual(alpha.sin(), alpha.cos(), psi.sin(), psi.cos());
         prop_assert!(r[0].abs() <= 1e-12 * l && r[1].abs() <= 1e-12 * l, "exact: {:?}", r);
@@ -98,7 +98,10 @@ fn small_angle_residual_falls_at_second_order_in_the_dips() {
         let s = scene(10.0, 0.4, 0.5, 20.0 * eps, 25.0 * eps, 30.0);
         let p = direct::solve(s.site(), d).unwrap();
         let l = s.l();
-        let f = slideroute::stages::coeffs::SmallAngle::new(&CoeffInputs::new(s.site(), d));
+        let f = slideroute::stages::coeffs::SmallAngle::new(&CoeffInputs::new(
+            s.site().as_paper().unwrap(),
+            d,
+        ));
         let r = f.residual(p.alpha(l), p.beta(l));
         let size = r[0].abs().max(r[1].abs()) / (l * l);
         if let Some(q) = prev {
@@ -117,8 +120,8 @@ fn exact_system_vanishes_where_the_small_angle_one_does_not() {
     let d = Displacement::new(2.0, 0.3, (-3f64).to_radians());
     let p = direct::solve(s.site(), d).unwrap();
     let l = s.l();
-    let inputs = CoeffInputs::new(s.site(), d);
-    let pose = Pose::from_tilts(s.site(), d, p.alpha(l), p.beta(l)).unwrap();
+    let inputs = CoeffInputs::new(s.site().as_paper().unwrap(), d);
+    let pose = Pose::from_tilts(s.site().as_paper().unwrap(), d, p.alpha(l), p.beta(l)).unwrap();
     let e = Exact::new(&inputs).residual(
         pose.alpha.sin(),
         pose.alpha.cos(),

@@ -13,7 +13,7 @@ fn residuals_with_printed(index: usize, s: &Scene, d: Displacement) -> (f64, f64
     let p = direct::solve(s.site(), d).expect("direct pose");
     let l = s.l();
     let (a, b) = (p.alpha(l), p.beta(l));
-    let ours = SmallAngle::new(&CoeffInputs::new(s.site(), d));
+    let ours = SmallAngle::new(&CoeffInputs::new(s.site().as_paper().unwrap(), d));
     let printed = printed_f1_f2_f7_f11(s, d);
     let mut theirs = ours;
     let slot = [0, 1, 6, 10][index];
@@ -81,7 +81,10 @@ fn printed_f3_to_f6_f8_to_f10_and_f12_agree_with_ours() {
     // The rest of the printed coefficients are right; typed as printed (1.41 → √2).
     let s = scene(10.0, 0.4, 0.35, 20.0, 25.0, 30.0);
     let d = Displacement::new(0.6, 0.15, 5f64.to_radians());
-    let (f, g) = (s.site().frame, s.site().foundation);
+    let (f, g) = (
+        s.site().as_paper().unwrap().frame,
+        s.site().as_paper().unwrap().foundation,
+    );
     let l = s.l();
     let r2 = std::f64::consts::SQRT_2;
     let (st, ct) = d.theta.sin_cos();
@@ -105,7 +108,7 @@ fn printed_f3_to_f6_f8_to_f10_and_f12_agree_with_ours() {
         (9, 2.0 * l * l * cz * cz),
         (11, 2.0 * f.l2z * f.l2z),
     ];
-    let ours = SmallAngle::new(&CoeffInputs::new(s.site(), d)).f;
+    let ours = SmallAngle::new(&CoeffInputs::new(s.site().as_paper().unwrap(), d)).f;
     for (k, v) in printed {
         assert!(
             (ours[k] - v).abs() < 1e-12 * v.abs().max(l * l),

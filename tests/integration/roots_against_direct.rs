@@ -43,7 +43,7 @@ fn oracle(s: &Scene, d: Displacement) -> Option<(f64, f64)> {
     let p = direct::solve(s.site(), d).ok()?;
     let l = s.l();
     let (a, b) = (p.alpha(l), p.beta(l));
-    let pose = Pose::from_tilts(s.site(), d, a, b).ok()?;
+    let pose = Pose::from_tilts(s.site().as_paper().unwrap(), d, a, b).ok()?;
     classify::check_pose(s.site(), &pose).ok()?;
     Some((a, b))
 }

@@ -123,7 +123,7 @@ fn unsquared_tracking_never_lands_on_a_spurious_root() {
                 continue;
             };
             let u = slideroute::stages::coeffs::SmallAngleUnsquared::new(
-                &slideroute::stages::coeffs::CoeffInputs::new(s.site(), d),
+                &slideroute::stages::coeffs::CoeffInputs::new(s.site().as_paper().unwrap(), d),
             );
             assert!(
                 !roots::classify::small_angle_spurious(&u, p.u[0], p.u[1]),

@@ -254,7 +254,14 @@ fn print_json(value: &impl serde::Serialize) -> Result<(), CliError> {
 
 fn coeffs(scene: &SceneArg, pose: &PoseArgs, json: bool) -> Result<(), CliError> {
     let scene = load(scene)?;
-    let report = CoeffReport::new(&scene, displacement(pose)?);
+    let report = CoeffReport::new(&scene, displacement(pose)?).ok_or_else(|| {
+        bad_input(format!(
+            "{}: coeffs prints the paper's f1–f12 and exact (13), (14), which need the paper's \
+             frame (l1x … l2z) and planes (xi_deg, zeta_deg, kappa_deg); this scene's pose comes \
+             from the general system (derivations/09-general-pose.md)",
+            scene.origin()
+        ))
+    })?;
     if json {
         print_json(&report)
     } else {

@@ -43,8 +43,8 @@ pub struct Trig {
 
 impl Trig {
     pub fn new(s: &Scene, d: Displacement) -> Self {
-        let f = s.site().frame;
-        let g = s.site().foundation;
+        let f = s.site().as_paper().unwrap().frame;
+        let g = s.site().as_paper().unwrap().foundation;
         let (st, ct) = d.theta.sin_cos();
         let (sp, cp) = (d.theta + g.kappa).sin_cos();
         Trig {
@@ -69,7 +69,7 @@ pub struct Hand {
 
 /// f1–f12 by hand (re-derived; `derivations/03-small-angle.md`, "Result").
 pub fn hand_small_angle(s: &Scene, d: Displacement) -> [Hand; 12] {
-    let f = s.site().frame;
+    let f = s.site().as_paper().unwrap().frame;
     let Trig {
         l,
         st,
@@ -102,7 +102,7 @@ pub fn hand_small_angle(s: &Scene, d: Displacement) -> [Hand; 12] {
 
 /// The printed (misprinted) f1, f2, f7, f11 of the paper, as printed but with 1.41 → √2.
 pub fn printed_f1_f2_f7_f11(s: &Scene, d: Displacement) -> [f64; 4] {
-    let f = s.site().frame;
+    let f = s.site().as_paper().unwrap().frame;
     let Trig {
         l,
         st,
@@ -124,7 +124,7 @@ pub fn printed_f1_f2_f7_f11(s: &Scene, d: Displacement) -> [f64; 4] {
 
 /// Exact (13), (14) coefficients by hand (`derivations/04-exact.md`, "Result"), by basis name.
 pub fn hand_exact(s: &Scene, d: Displacement) -> [Vec<(&'static str, f64)>; 2] {
-    let f = s.site().frame;
+    let f = s.site().as_paper().unwrap().frame;
     let Trig {
         l,
         st,

@@ -34,8 +34,10 @@ pub struct CoeffReport {
 }
 
 impl CoeffReport {
-    pub fn new(scene: &Scene, d: Displacement) -> Self {
-        let inputs = CoeffInputs::new(scene.site(), d);
+    /// The paper's coefficients at `d`; `None` on a site that is not the paper's (its pose
+    /// comes from the general system, `derivations/09-general-pose.md`).
+    pub fn new(scene: &Scene, d: Displacement) -> Option<Self> {
+        let inputs = CoeffInputs::new(scene.site().as_paper()?, d);
         let small = SmallAngle::new(&inputs);
         let exact = Exact::new(&inputs);
         let half = exact.half_angle();
@@ -48,7 +50,7 @@ impl CoeffReport {
                     .collect(),
             )
         };
-        CoeffReport {
+        Some(CoeffReport {
             scene: scene.name().to_string(),
             x_m: d.x,
             z_m: d.z,
@@ -61,7 +63,7 @@ impl CoeffReport {
                 half_angle_eq13: half[0],
                 half_angle_eq14: half[1],
             },
-        }
+        })
     }
 }
 

@@ -1,10 +1,9 @@
 //! The `roots` report: every root at one displacement, and the selected one.
 
 use serde::Serialize;
-use slideroute::stages::geometry::{Displacement, pose::cm_height};
-use slideroute::stages::roots::{AllRoots, Inadmissible, Root};
+use slideroute::stages::geometry::Displacement;
+use slideroute::stages::roots::{AllRoots, Inadmissible, Root, classify};
 use slideroute::stages::scene::{Mode, Scene};
-use std::f64::consts::SQRT_2;
 use std::fmt;
 
 /// The physical pose chosen by continuation.
@@ -13,10 +12,10 @@ pub struct SelectedPose {
     pub alpha_deg: f64,
     pub beta_deg: f64,
     pub gamma_deg: f64,
-    /// Roll about side 01 (exact mode only).
+    /// Roll about x' (side 01 of the paper's frame); absent for the paper's small-angle system.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub psi_deg: Option<f64>,
-    /// CM height (eq. 21), m.
+    /// CM height (eq. 21 on the paper's site), m.
     pub cm_y_m: f64,
 }
 
@@ -55,18 +54,16 @@ fn deg(c: num_complex::Complex64) -> [f64; 2] {
     [c.re.to_degrees(), c.im.to_degrees()]
 }
 
-fn selected_pose(scene: &Scene, mode: Mode, r: &Root) -> SelectedPose {
-    let (a, b) = (r.alpha.re, r.beta.re);
-    SelectedPose {
-        alpha_deg: a.to_degrees(),
-        beta_deg: b.to_degrees(),
-        gamma_deg: (SQRT_2 * b.sin() - a.sin()).asin().to_degrees(),
-        psi_deg: match mode {
-            Mode::Exact => r.psi.map(|p| p.re.to_degrees()),
-            Mode::SmallAngle => None,
-        },
-        cm_y_m: cm_height(scene.site(), a, b),
-    }
+fn selected_pose(scene: &Scene, all: &AllRoots, r: &Root) -> Option<SelectedPose> {
+    let (a, second) = (r.alpha.re, r.psi.unwrap_or(r.beta).re);
+    let pose = classify::pose(scene.site(), all.displacement, all.mode, [a, second])?;
+    Some(SelectedPose {
+        alpha_deg: pose.alpha.to_degrees(),
+        beta_deg: pose.beta.to_degrees(),
+        gamma_deg: pose.gamma.to_degrees(),
+        psi_deg: r.psi.map(|p| p.re.to_degrees()),
+        cm_y_m: pose.cm.y,
+    })
 }
 
 impl RootsReport {
@@ -80,7 +77,7 @@ impl RootsReport {
             theta_deg: d.theta.to_degrees(),
             selected: all
                 .selected
-                .map(|k| selected_pose(scene, all.mode, &all.roots[k])),
+                .and_then(|k| selected_pose(scene, all, &all.roots[k])),
             selection_error: all.selection_error.as_ref().map(|e| e.to_string()),
             finite_roots: all.finite_roots,
             roots_at_infinity: all.roots_at_infinity,

@@ -220,7 +220,7 @@ pub struct Case {
 
 /// The keys that set the frame's l1z / l2z to `ratio`, keeping the side L.
 fn l1z_over_l2z(s: &Scene, ratio: f64) -> [(&'static str, toml::Value); 2] {
-    let l = s.site().frame.l();
+    let l = s.l();
     let l1z = l * ratio / (1.0 + ratio);
     [("frame.l1z", l1z.into()), ("frame.l2z", (l - l1z).into())]
 }

@@ -7,8 +7,9 @@
 use super::sheet::{self, Area, Entry, Mark, Res, Sheet, err};
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
-use slideroute::stages::geometry::planes::{Plane, r as strike_2_distance};
+use slideroute::stages::geometry::planes::{PaperPlane as Plane, r as strike_2_distance};
 use slideroute::stages::geometry::{Displacement, Pose};
+use slideroute::stages::geometry::{PaperSite, direct};
 use slideroute::stages::route::Row;
 use slideroute::stages::scene::Scene;
 use std::path::Path;
@@ -33,17 +34,24 @@ pub(super) struct Track<'r> {
 
 type P = (f64, f64);
 
-/// The frame's vertices in plan at a row's pose.
+/// The frame's vertices in plan at a row's pose: from the row's tilts on the paper's site, by
+/// the direct pose solver on any other (a row does not carry the roll ψ).
 fn vertices(scene: &Scene, row: &Row) -> Option<[P; 3]> {
     let d = Displacement::new(row.x_m, row.z_m, row.theta_deg.to_radians());
-    let p = Pose::from_tilts(
-        scene.site(),
-        d,
-        row.alpha_deg.to_radians(),
-        row.beta_deg.to_radians(),
-    )
-    .ok()?;
-    Some(p.vertices.map(|v| (v.x, v.z)))
+    let v = match scene.site().as_paper() {
+        Some(paper) => {
+            Pose::from_tilts(
+                paper,
+                d,
+                row.alpha_deg.to_radians(),
+                row.beta_deg.to_radians(),
+            )
+            .ok()?
+            .vertices
+        }
+        None => direct::solve(scene.site(), d).ok()?.vertices,
+    };
+    Some(v.map(|v| (v.x, v.z)))
 }
 
 /// Frame outlines every 1/8 of a route's rows (and at its end).
@@ -75,20 +83,20 @@ fn clip_half_plane(poly: &[P], (a, b, c): (f64, f64, f64)) -> Vec<P> {
 }
 
 /// The half-planes (a, b, c: a·X + b·Z ≥ c) where planes 1 and 2 are real (their regions).
-fn region_half_planes(scene: &Scene) -> [(f64, f64, f64); 2] {
-    let (sk, ck) = scene.site().foundation.kappa.sin_cos();
+fn region_half_planes(paper: &PaperSite) -> [(f64, f64, f64); 2] {
+    let (sk, ck) = paper.foundation.kappa.sin_cos();
     [
-        (1.0, 0.0, scene.site().frame.l2x),
-        (ck, -sk, strike_2_distance(scene.site())),
+        (1.0, 0.0, paper.frame.l2x),
+        (ck, -sk, strike_2_distance(paper)),
     ]
 }
 
 /// The region of each plane inside the view `[x0, x1] × [z0, z1]`, as convex polygons (the
 /// horizontal one where neither inclined plane is; planes 1 and 2 overlap beyond both strikes,
 /// where each contact still uses only its own plane).
-fn regions(scene: &Scene, (x0, x1, z0, z1): (f64, f64, f64, f64)) -> [(Plane, Vec<P>); 3] {
+fn regions(paper: &PaperSite, (x0, x1, z0, z1): (f64, f64, f64, f64)) -> [(Plane, Vec<P>); 3] {
     let rect = vec![(x0, z0), (x1, z0), (x1, z1), (x0, z1)];
-    let [h1, h2] = region_half_planes(scene);
+    let [h1, h2] = region_half_planes(paper);
     let neg = |(a, b, c): (f64, f64, f64)| (-a, -b, -c);
     [
         (
@@ -210,7 +218,7 @@ pub(super) fn plan_view(
 ) -> Res<()> {
     let sheet = Sheet::new(path, SIZE, title)?;
     let outlines: Vec<Vec<[P; 3]>> = tracks.iter().map(|t| outlines_of(scene, t.rows)).collect();
-    let l = scene.site().frame.l();
+    let l = scene.l();
     let start = tracks.first().and_then(|t| t.rows.first()).copied();
     let force = start.as_ref().and_then(|s| line_of_action(scene, s));
     let arrow_len = 0.3 * l;
@@ -259,9 +267,9 @@ pub(super) fn plan_view(
         .draw()
         .map_err(err(path))?;
 
-    // The regions, shaded.
-    let g = scene.site().foundation;
-    let regions = regions(scene, view);
+    // The paper's regions, shaded (a general site's faces are not drawn yet).
+    let paper = scene.site().as_paper();
+    let regions: Vec<(Plane, Vec<P>)> = paper.map_or(Vec::new(), |p| regions(p, view).into());
     for (plane, poly) in &regions {
         if poly.len() >= 3 {
             let color = match plane {
@@ -278,10 +286,14 @@ pub(super) fn plan_view(
         }
     }
     // Strike lines: the regions' edges.
-    for (poly, (a, b, c), color) in [
-        (&regions[1].1, region_half_planes(scene)[0], PLANE_1),
-        (&regions[2].1, region_half_planes(scene)[1], PLANE_2),
-    ] {
+    let strikes = match paper {
+        Some(p) => vec![
+            (&regions[1].1, region_half_planes(p)[0], PLANE_1),
+            (&regions[2].1, region_half_planes(p)[1], PLANE_2),
+        ],
+        None => Vec::new(),
+    };
+    for (poly, (a, b, c), color) in strikes {
         let on: Vec<P> = poly
             .iter()
             .copied()
@@ -442,12 +454,16 @@ pub(super) fn plan_view(
             obstacles.extend(along(o[k], o[(k + 1) % 3], 12));
         }
     }
-    let (sk, ck) = g.kappa.sin_cos();
     let label_room = 45.0 * scale;
     let view_area = (x1 - x0) * (z1 - z0);
-    let [h1, h2] = region_half_planes(scene);
     let neg = |(a, b, c): (f64, f64, f64)| (-a, -b, -c);
-    for (plane, poly) in &regions {
+    for (paper, (plane, poly)) in paper
+        .into_iter()
+        .flat_map(|p| regions.iter().map(move |r| (p, r)))
+    {
+        let g = paper.foundation;
+        let (sk, ck) = g.kappa.sin_cos();
+        let [h1, h2] = region_half_planes(paper);
         // Named where the plane is the only inclined one, if there is room there.
         let own = match plane {
             Plane::Horizontal => poly.clone(),
@@ -532,24 +548,33 @@ pub(super) fn plan_view(
     }
 
     // The panel: legend, notes, inset.
-    let mut entries = vec![
-        Entry::new(Mark::Swatch(HORIZONTAL), "horizontal plane (contact 0)"),
-        Entry::new(
-            Mark::Swatch(PLANE_1),
-            format!(
-                "plane 1 (contact 1), dip ξ = {}°; solid line: its strike",
-                sheet::short(g.xi.to_degrees())
-            ),
-        ),
-        Entry::new(
-            Mark::Swatch(PLANE_2),
-            format!(
-                "plane 2 (contact 2), dip ζ = {}°; solid line: its strike",
-                sheet::short(g.zeta.to_degrees())
-            ),
-        ),
-        Entry::new(Mark::None, "arrows on the planes point down-dip"),
-    ];
+    let mut entries = match paper {
+        Some(paper) => {
+            let g = paper.foundation;
+            vec![
+                Entry::new(Mark::Swatch(HORIZONTAL), "horizontal plane (contact 0)"),
+                Entry::new(
+                    Mark::Swatch(PLANE_1),
+                    format!(
+                        "plane 1 (contact 1), dip ξ = {}°; solid line: its strike",
+                        sheet::short(g.xi.to_degrees())
+                    ),
+                ),
+                Entry::new(
+                    Mark::Swatch(PLANE_2),
+                    format!(
+                        "plane 2 (contact 2), dip ζ = {}°; solid line: its strike",
+                        sheet::short(g.zeta.to_degrees())
+                    ),
+                ),
+                Entry::new(Mark::None, "arrows on the planes point down-dip"),
+            ]
+        }
+        None => vec![Entry::new(
+            Mark::None,
+            "foundation: the scene's planes (not drawn on a general site yet)",
+        )],
+    };
     if let Some((_, _, f, e)) = force {
         entries.push(Entry::new(
             Mark::Line(FORCE),
@@ -673,22 +698,22 @@ mod tests {
     fn regions_tile_the_view_with_the_inclined_ones_overlapping_beyond_both_strikes() {
         let scene = Scene::default_scene();
         let view = (-20.0, 30.0, -15.0, 25.0);
-        let [h, one, two] = regions(&scene, view);
+        let [h, one, two] = regions(scene.site().as_paper().unwrap(), view);
         let whole = 50.0 * 40.0;
         // Inclusion–exclusion: horizontal + plane 1 + plane 2 − overlap = the view.
-        let [h1, h2] = region_half_planes(&scene);
+        let [h1, h2] = region_half_planes(scene.site().as_paper().unwrap());
         let rect = vec![(-20.0, -15.0), (30.0, -15.0), (30.0, 25.0), (-20.0, 25.0)];
         let both = clip_half_plane(&clip_half_plane(&rect, h1), h2);
         let sum = area_of(&h.1) + area_of(&one.1) + area_of(&two.1) - area_of(&both);
         assert!((sum - whole).abs() < 1e-9 * whole, "{sum} vs {whole}");
         // Plane 1 is X ≥ L2X: its area is known in closed form.
-        let l2x = scene.site().frame.l2x;
+        let l2x = scene.site().as_paper().unwrap().frame.l2x;
         assert!((area_of(&one.1) - (30.0 - l2x) * 40.0).abs() < 1e-9);
         // Every vertex of the horizontal region is in it (to round-off).
         for &(x, z) in &h.1 {
             assert!(x <= l2x + 1e-9);
-            let (sk, ck) = scene.site().foundation.kappa.sin_cos();
-            assert!(x * ck - z * sk <= strike_2_distance(scene.site()) + 1e-9);
+            let (sk, ck) = scene.site().as_paper().unwrap().foundation.kappa.sin_cos();
+            assert!(x * ck - z * sk <= strike_2_distance(scene.site().as_paper().unwrap()) + 1e-9);
         }
     }
 
