@@ -40,17 +40,22 @@ pub enum Inadmissible {
 
 impl fmt::Display for Inadmissible {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        f.write_str(match self {
-            Inadmissible::Spurious => "spurious root (wrong sign of sin h)",
+        let text = match *self {
+            Inadmissible::ContactUnderAnotherPlane(i, j) => {
+                return write!(f, "contact {i} is under contact {j}'s plane");
+            }
+            Inadmissible::ContactUnderAnotherFace(i, j) => {
+                return write!(f, "contact {i} reached face {j} (a crease)");
+            }
+            Inadmissible::Spurious => "spurious root (wrong sign of sin h: the mirrored frame)",
             Inadmissible::NoRealFrame => "no real frame has these tilts",
             Inadmissible::AlphaOutOfRange => "tilt α outside [0, ξ)",
             Inadmissible::BetaOutOfRange => "tilt β outside [0, ζ)",
             Inadmissible::Contact0ReachedInclinedPlane => "contact 0 reached an inclined plane",
             Inadmissible::Contact1LeftPlane1 => "contact 1 left plane 1",
             Inadmissible::Contact2LeftPlane2 => "contact 2 left plane 2",
-            Inadmissible::ContactUnderAnotherPlane(..) => "a contact is under another's plane",
-            Inadmissible::ContactUnderAnotherFace(..) => "a contact reached another face",
-        })
+        };
+        f.write_str(text)
     }
 }
 

@@ -84,6 +84,9 @@ pub fn from_track_error(e: &TrackError, alpha_at_dip: bool) -> Reason {
             Inadmissible::AlphaOutOfRange | Inadmissible::BetaOutOfRange => {
                 Reason::ContactLeftPlane
             }
+            // The paper's regions on any three planes: contact 0 under another contact's plane
+            // has reached an inclined plane; contact 1 or 2 under contact 0's has left its own.
+            Inadmissible::ContactUnderAnotherPlane(0, _) => Reason::Contact0ReachedInclinedPlane,
             Inadmissible::ContactUnderAnotherPlane(..) => Reason::ContactLeftPlane,
             Inadmissible::ContactUnderAnotherFace(..) => Reason::ContactReachedAnotherFace,
             Inadmissible::Spurious | Inadmissible::NoRealFrame => Reason::NoAdmissibleRoot,

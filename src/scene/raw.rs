@@ -130,11 +130,22 @@ where
 {
     let mut unknown: Option<String> = None;
     let mut note = |path: serde_ignored::Path<'_>| {
-        // `Option` sections appear as a `?` step; the key is the rest.
+        // `Option` sections appear as a `?` step and list items as their index: the key is
+        // the rest, an item written `plane[1]`.
         unknown.get_or_insert_with(|| {
             let path = path.to_string();
-            let steps: Vec<_> = path.split('.').filter(|s| *s != "?").collect();
-            steps.join(".")
+            let mut key = String::new();
+            for step in path.split('.').filter(|s| *s != "?") {
+                if step.parse::<usize>().is_ok() {
+                    key.push_str(&format!("[{step}]"));
+                } else {
+                    if !key.is_empty() {
+                        key.push('.');
+                    }
+                    key.push_str(step);
+                }
+            }
+            key
         });
     };
     let ignored = serde_ignored::Deserializer::new(document, &mut note);
@@ -157,6 +168,8 @@ where
 /// The keys a section may have (the top level's: the section names), taken from the raw type
 /// itself so that the list cannot drift from it.
 pub fn keys_of(section: &str) -> &'static [&'static str] {
+    // A list item's keys are those of its list (`foundation.plane[1]` → `foundation.plane`).
+    let section = section.split('[').next().unwrap_or(section);
     match section {
         "" => fields::<RawScene>(),
         "frame" => fields::<RawFrame>(),

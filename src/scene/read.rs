@@ -76,11 +76,26 @@ fn key_span(root: &DeTable<'_>, key: &str) -> Option<usize> {
     let mut table = root;
     let mut found = None;
     for part in key.split('.').filter(|p| !p.is_empty()) {
+        // A list item is written `name[k]`.
+        let (part, item) = match part.split_once('[') {
+            Some((name, rest)) => (name, rest.trim_end_matches(']').parse::<usize>().ok()),
+            None => (part, None),
+        };
         let Some((name, value)) = table.iter().find(|(k, _)| k.get_ref().as_ref() == part) else {
             break;
         };
         found = Some(name.span().start);
-        match value.get_ref() {
+        let value = match (value.get_ref(), item) {
+            (DeValue::Array(items), Some(k)) => match items.get(k) {
+                Some(v) => {
+                    found = Some(v.span().start);
+                    v.get_ref()
+                }
+                None => break,
+            },
+            (v, _) => v,
+        };
+        match value {
             DeValue::Table(t) => table = t,
             _ => break,
         }

@@ -640,3 +640,149 @@ fn a_change_of_dynamics_brings_that_models_own_integrator() {
     let same = s.with_dynamics(DynamicsModel::Paper).unwrap();
     assert_eq!(same.solver().unwrap().integrator, Integrator::Rk4);
 }
+
+/// GOOD with the paper's foundation replaced by faces (each `(dip, dip direction, point)`).
+fn with_faces(faces: &[(f64, f64, [f64; 3])]) -> String {
+    let mut text = String::from("[foundation]\n");
+    for (dip, dir, p) in faces {
+        text.push_str(&format!(
+            "[[foundation.plane]]\ndip_deg = {dip:?}\ndip_direction_deg = {dir:?}\n\
+             point_m = [{:?}, {:?}, {:?}]\n",
+            p[0], p[1], p[2]
+        ));
+    }
+    with(
+        "[foundation]\nxi_deg = 20.0\nzeta_deg = 25.0\nkappa_deg = 30.0\n",
+        &text,
+    )
+}
+
+/// The paper's three planes as faces, with κ (degrees).
+fn papers_faces(kappa: f64) -> Vec<(f64, f64, [f64; 3])> {
+    vec![
+        (0.0, 0.0, [0.0, 0.0, 0.0]),
+        (20.0, 180.0, [4.0, 0.0, 0.0]),
+        (25.0, 180.0 - kappa, [4.0, 0.0, -5.0]),
+    ]
+}
+
+#[test]
+fn any_contact_triangle_is_read_from_contacts_m() {
+    let text = with(
+        "l1x = 6.0\nl2x = 4.0\nl1z = 5.0\nl2z = 5.0\n",
+        "contacts_m = [[-3.0, 2.0], [5.0, 1.0], [1.0, -4.0]]\n",
+    );
+    let s = Scene::from_toml(&text, "tri.toml").unwrap();
+    assert_eq!(s.site().contacts(), &[[-3.0, 2.0], [5.0, 1.0], [1.0, -4.0]]);
+    assert!(s.site().as_paper().is_none());
+    // The paper's planes, each through its contact's start.
+    for (k, c) in s.site().contacts().iter().enumerate() {
+        assert!(s.site().planes()[k].height(c[0], c[1]).abs() < 1e-12);
+    }
+    assert!(Simulation::new(&s).is_ok());
+    // Both forms, neither, a line, or the wrong shape: named.
+    assert_names(
+        &with(
+            "l2z = 5.0\n",
+            "l2z = 5.0\ncontacts_m = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]\n",
+        ),
+        "frame.contacts_m",
+        "not both",
+    );
+    let none = with("l1x = 6.0\nl2x = 4.0\nl1z = 5.0\nl2z = 5.0\n", "");
+    assert_names(&none, "frame", "contacts_m");
+    for bad in [
+        "[[0.0, 0.0], [1.0, 1.0], [2.0, 2.0]]",
+        "[[0.0, 0.0], [1.0, 0.0]]",
+        "[[0.0, 0.0, 1.0], [1.0, 0.0], [0.0, 1.0]]",
+        "[[0.0, 0.0], [1.0, 0.0], [0.0, nan]]",
+        "[[0.0, 0.0], [1e300, 0.0], [0.0, 1e300]]",
+    ] {
+        let text = with(
+            "l1x = 6.0\nl2x = 4.0\nl1z = 5.0\nl2z = 5.0\n",
+            &format!("contacts_m = {bad}\n"),
+        );
+        assert_names(&text, "frame.contacts_m", "must");
+    }
+}
+
+#[test]
+fn a_foundation_of_faces_puts_each_contact_on_the_face_under_it() {
+    let s = Scene::from_toml(&with_faces(&papers_faces(30.0)), "faces.toml").unwrap();
+    let (ground, faces) = s.site().ground().expect("a ground of faces");
+    assert_eq!(ground.faces().len(), 3);
+    // Contact 0 on the level face; 1 on plane 1's strike; 2 where all three meet takes plane 2,
+    // which rises first along x' (docs/conventions.md, the paper's own assignment).
+    assert_eq!(faces, [0, 1, 2]);
+    let paper = Scene::from_toml(GOOD, "paper.toml").unwrap();
+    for k in 0..3 {
+        let (a, b) = (s.site().normals()[k], paper.site().normals()[k]);
+        assert!((a - b).norm() < 1e-15, "{a} vs {b}");
+    }
+    // Echoed as given.
+    let used = s.as_used();
+    assert_eq!(used["foundation"]["plane"].as_array().unwrap().len(), 3);
+}
+
+#[test]
+fn a_start_under_the_ground_or_above_it_is_refused_naming_the_contact_and_the_face() {
+    // The paper's planes with κ = −30°: plane 2 stands 2.33 m above contact 1's start
+    // (−L sin κ tan ζ with L = 10 m, ζ = 25°).
+    let e = err(&with_faces(&papers_faces(-30.0)));
+    assert_eq!(e.key, "foundation.plane");
+    let msg = e.to_string();
+    assert!(msg.contains("contact 1") && msg.contains("face 2"), "{msg}");
+    assert!(
+        msg.contains("under the ground") && msg.contains("2.33"),
+        "{msg}"
+    );
+    // A level ground 1 m down: every contact in the air.
+    let e = err(&with_faces(&[(0.0, 0.0, [0.0, -1.0, 0.0])]));
+    assert!(e.to_string().contains("above the ground"), "{e}");
+    // The position points at the faces.
+    assert!(e.position.is_some());
+}
+
+#[test]
+fn faces_are_checked_key_by_key() {
+    let face = |dip: &str, dir: &str, point: &str| {
+        with(
+            "[foundation]\nxi_deg = 20.0\nzeta_deg = 25.0\nkappa_deg = 30.0\n",
+            &format!(
+                "[foundation]\n[[foundation.plane]]\ndip_deg = {dip}\ndip_direction_deg = {dir}\n\
+                 point_m = {point}\n"
+            ),
+        )
+    };
+    assert_names(
+        &face("90.0", "0.0", "[0.0, 0.0, 0.0]"),
+        "foundation.plane[0].dip_deg",
+        "90°",
+    );
+    assert_names(
+        &face("10.0", "inf", "[0.0, 0.0, 0.0]"),
+        "foundation.plane[0].dip_direction_deg",
+        "finite",
+    );
+    assert_names(
+        &face("10.0", "0.0", "[0.0, 0.0]"),
+        "foundation.plane[0].point_m",
+        "three finite numbers",
+    );
+    let unknown =
+        face("0.0", "0.0", "[0.0, 0.0, 0.0]").replace("dip_deg = 0.0", "dip_deg = 0.0\nstrike = 1");
+    let e = err(&unknown);
+    assert_eq!(e.key, "foundation.plane[0].strike", "{e}");
+    assert!(e.reason.contains("dip_direction_deg"), "{e}");
+    assert!(e.position.is_some(), "{e}");
+    assert_names(
+        &with("[foundation]\n", "[foundation]\nplane = []\n"),
+        "foundation.plane",
+        "not both",
+    );
+    let empty = with(
+        "[foundation]\nxi_deg = 20.0\nzeta_deg = 25.0\nkappa_deg = 30.0\n",
+        "[foundation]\nplane = []\n",
+    );
+    assert_names(&empty, "foundation.plane", "at least one");
+}

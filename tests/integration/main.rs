@@ -14,6 +14,7 @@ mod coefficients_match_derivation;
 mod docs;
 mod drake_crosscheck;
 mod exact_relations_at_direct_poses;
+mod faces;
 mod general_pose;
 mod memory;
 mod paper_misprints;

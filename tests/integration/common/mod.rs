@@ -166,13 +166,25 @@ pub fn assert_rows_match_direct(s: &Scene, rows: &[slideroute::stages::route::Ro
             Some(ref q) => direct::solve_from(s.site(), d, q).unwrap(),
             None => direct::solve(s.site(), d).unwrap(),
         };
+        // α: the tilt of x' (side 01 of the paper's frame); β: the elevation of side 02.
+        let (alpha, beta) = match s.site().as_paper() {
+            Some(_) => (p.alpha(l), p.beta(l)),
+            None => {
+                let c = s.site().contacts();
+                let side02 = (c[2][0] - c[0][0]).hypot(c[2][1] - c[0][1]);
+                (
+                    p.tilt,
+                    ((p.vertices[2].y - p.vertices[0].y) / side02).asin(),
+                )
+            }
+        };
         assert!(
-            (p.alpha(l).to_degrees() - row.alpha_deg).abs() < 1e-10f64.to_degrees(),
+            (alpha.to_degrees() - row.alpha_deg).abs() < 1e-10f64.to_degrees(),
             "α at t = {}",
             row.t_s
         );
         assert!(
-            (p.beta(l).to_degrees() - row.beta_deg).abs() < 1e-10f64.to_degrees(),
+            (beta.to_degrees() - row.beta_deg).abs() < 1e-10f64.to_degrees(),
             "β at t = {}",
             row.t_s
         );

@@ -133,7 +133,17 @@ impl fmt::Display for RootsReport {
             "{} finite roots (with multiplicity), {} at infinity:",
             self.finite_roots, self.roots_at_infinity
         )?;
-        writeln!(f, "  {:>24}  {:>24}  mult  status", "α (°)", "β (°)")?;
+        // The second column: β, or on a general site (where a complex root has no β) the roll ψ.
+        let roll = self
+            .roots
+            .iter()
+            .any(|r| r.beta_deg[0].is_nan() && r.psi_deg.is_some());
+        writeln!(
+            f,
+            "  {:>24}  {:>24}  mult  status",
+            "α (°)",
+            if roll { "ψ (°)" } else { "β (°)" }
+        )?;
         for r in &self.roots {
             let status = if r.admissible {
                 "admissible".to_string()
@@ -146,7 +156,10 @@ impl fmt::Display for RootsReport {
                 f,
                 "  {:>24}  {:>24}  {:>4}  {}",
                 cplx(r.alpha_deg),
-                cplx(r.beta_deg),
+                cplx(match (roll, r.psi_deg) {
+                    (true, Some(p)) => p,
+                    _ => r.beta_deg,
+                }),
                 r.multiplicity,
                 status
             )?;
