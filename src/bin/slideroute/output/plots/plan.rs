@@ -119,6 +119,129 @@ fn area_of(poly: &[P]) -> f64 {
         .abs()
 }
 
+/// A part of the foundation on the plan view: where it is drawn, where its name may go, its
+/// name, colour and down-dip direction (in plan, unit; none for a level plane).
+struct Region {
+    poly: Vec<P>,
+    label_poly: Vec<P>,
+    name: String,
+    color: RGBColor,
+    down: Option<P>,
+}
+
+/// Colours of a general site's planes or faces, in order.
+const FACE_COLORS: [RGBColor; 8] = [
+    HORIZONTAL,
+    PLANE_1,
+    PLANE_2,
+    RGBColor(200, 120, 0),
+    RGBColor(140, 60, 170),
+    RGBColor(0, 150, 160),
+    RGBColor(190, 50, 80),
+    RGBColor(90, 110, 30),
+];
+
+/// The down-dip direction of a plane in plan (unit), none for a level one.
+fn down_dip(plane: &slideroute::stages::geometry::Plane) -> Option<P> {
+    let dip = plane.dip();
+    (dip > 1e-9).then(|| {
+        let a = plane.dip_direction();
+        (a.cos(), a.sin())
+    })
+}
+
+/// a·X + b·Z ≥ c where plane `p` stands at least as high as plane `q`.
+fn above(
+    p: &slideroute::stages::geometry::Plane,
+    q: &slideroute::stages::geometry::Plane,
+) -> (f64, f64, f64) {
+    // height = (e − m_x X − m_z Z) / m_y
+    let (mp, mq) = (p.normal(), q.normal());
+    (
+        -mp.x / mp.y + mq.x / mq.y,
+        -mp.z / mp.y + mq.z / mq.y,
+        q.offset() / mq.y - p.offset() / mp.y,
+    )
+}
+
+/// The regions of the scene's foundation inside `view`: the paper's three (named as the paper
+/// names them), a ground's faces (each where it is the highest), or a general site's three
+/// planes (the paper's regions on them: plane 0 where it is above both others, planes 1 and 2
+/// where they are above plane 0).
+fn foundation_regions(scene: &Scene, view: (f64, f64, f64, f64)) -> Vec<Region> {
+    let (x0, x1, z0, z1) = view;
+    let rect = vec![(x0, z0), (x1, z0), (x1, z1), (x0, z1)];
+    let site = scene.site();
+    if let Some(paper) = site.as_paper() {
+        let g = paper.foundation;
+        let (sk, ck) = g.kappa.sin_cos();
+        let [h1, h2] = region_half_planes(paper);
+        let neg = |(a, b, c): (f64, f64, f64)| (-a, -b, -c);
+        return regions(paper, view)
+            .into_iter()
+            .map(|(plane, poly)| {
+                // Named where the plane is the only inclined one.
+                let label_poly = match plane {
+                    Plane::Horizontal => poly.clone(),
+                    Plane::One => clip_half_plane(&poly, neg(h2)),
+                    Plane::Two => clip_half_plane(&poly, neg(h1)),
+                };
+                let (name, color, down) = match plane {
+                    Plane::Horizontal => ("horizontal".to_string(), HORIZONTAL, None),
+                    Plane::One => (
+                        format!("plane 1, dip {}°", sheet::short(g.xi.to_degrees())),
+                        PLANE_1,
+                        Some((-1.0, 0.0)),
+                    ),
+                    Plane::Two => (
+                        format!("plane 2, dip {}°", sheet::short(g.zeta.to_degrees())),
+                        PLANE_2,
+                        Some((-ck, sk)),
+                    ),
+                };
+                Region {
+                    poly,
+                    label_poly,
+                    name,
+                    color,
+                    down,
+                }
+            })
+            .collect();
+    }
+    let (planes, word): (Vec<_>, &str) = match site.ground() {
+        Some((ground, _)) => (ground.faces().to_vec(), "face"),
+        None => (site.planes().to_vec(), "plane"),
+    };
+    (0..planes.len())
+        .map(|k| {
+            let over: Vec<usize> = match (site.ground(), k) {
+                (Some(_), _) => (0..planes.len()).filter(|&j| j != k).collect(),
+                (None, 0) => vec![1, 2],
+                (None, _) => vec![0],
+            };
+            let poly = over.iter().fold(rect.clone(), |poly, &j| {
+                if poly.len() < 3 {
+                    poly
+                } else {
+                    clip_half_plane(&poly, above(&planes[k], &planes[j]))
+                }
+            });
+            let plane = &planes[k];
+            Region {
+                label_poly: poly.clone(),
+                poly,
+                name: format!(
+                    "{word} {k}, dip {}°",
+                    sheet::short(plane.dip().to_degrees())
+                ),
+                color: FACE_COLORS[k % FACE_COLORS.len()],
+                down: down_dip(plane),
+            }
+        })
+        .collect()
+}
+
 fn segment_distance(p: P, a: P, b: P) -> f64 {
     let (dx, dz) = (b.0 - a.0, b.1 - a.1);
     let len2 = dx * dx + dz * dz;
@@ -267,43 +390,59 @@ pub(super) fn plan_view(
         .draw()
         .map_err(err(path))?;
 
-    // The paper's regions, shaded (a general site's faces are not drawn yet).
+    // The foundation's regions, shaded, and their edges: the paper's strike lines, or the
+    // creases between faces.
     let paper = scene.site().as_paper();
-    let regions: Vec<(Plane, Vec<P>)> = paper.map_or(Vec::new(), |p| regions(p, view).into());
-    for (plane, poly) in &regions {
-        if poly.len() >= 3 {
-            let color = match plane {
-                Plane::Horizontal => HORIZONTAL,
-                Plane::One => PLANE_1,
-                Plane::Two => PLANE_2,
-            };
+    let regions = foundation_regions(scene, view);
+    for r in &regions {
+        if r.poly.len() >= 3 {
             chart
                 .draw_series(std::iter::once(Polygon::new(
-                    poly.clone(),
-                    color.mix(0.10).filled(),
+                    r.poly.clone(),
+                    r.color.mix(0.10).filled(),
                 )))
                 .map_err(err(path))?;
         }
     }
-    // Strike lines: the regions' edges.
-    let strikes = match paper {
-        Some(p) => vec![
-            (&regions[1].1, region_half_planes(p)[0], PLANE_1),
-            (&regions[2].1, region_half_planes(p)[1], PLANE_2),
-        ],
-        None => Vec::new(),
-    };
-    for (poly, (a, b, c), color) in strikes {
-        let on: Vec<P> = poly
+    let on_border = |p: P, q: P| {
+        let eps = 1e-9 * (x1 - x0);
+        [(p.0, q.0, x0), (p.0, q.0, x1)]
             .iter()
-            .copied()
-            .filter(|p| (a * p.0 + b * p.1 - c).abs() <= 1e-9 * (1.0 + c.abs()) * (x1 - x0))
-            .collect();
-        if on.len() == 2 {
-            chart
-                .draw_series(LineSeries::new(on, color.stroke_width(2)))
-                .map_err(err(path))?;
-        }
+            .any(|&(a, b, c)| (a - c).abs() < eps && (b - c).abs() < eps)
+            || [(p.1, q.1, z0), (p.1, q.1, z1)]
+                .iter()
+                .any(|&(a, b, c)| (a - c).abs() < eps && (b - c).abs() < eps)
+    };
+    let edges: Vec<(Vec<P>, RGBColor)> = match paper {
+        // Strike lines: the inclined regions' edges.
+        Some(_) => regions[1..]
+            .iter()
+            .flat_map(|r| {
+                let n = r.poly.len();
+                (0..n)
+                    .map(|k| (r.poly[k], r.poly[(k + 1) % n]))
+                    .filter(|&(p, q)| !on_border(p, q))
+                    .map(|(p, q)| (vec![p, q], r.color))
+                    .collect::<Vec<_>>()
+            })
+            .collect(),
+        // Creases: every region's edges inside the view, in grey.
+        None => regions
+            .iter()
+            .flat_map(|r| {
+                let n = r.poly.len();
+                (0..n)
+                    .map(|k| (r.poly[k], r.poly[(k + 1) % n]))
+                    .filter(|&(p, q)| !on_border(p, q))
+                    .map(|(p, q)| (vec![p, q], RGBColor(90, 90, 90)))
+                    .collect::<Vec<_>>()
+            })
+            .collect(),
+    };
+    for (line, color) in edges {
+        chart
+            .draw_series(LineSeries::new(line, color.stroke_width(2)))
+            .map_err(err(path))?;
     }
 
     // The frame along each route, the CM paths.
@@ -456,24 +595,13 @@ pub(super) fn plan_view(
     }
     let label_room = 45.0 * scale;
     let view_area = (x1 - x0) * (z1 - z0);
-    let neg = |(a, b, c): (f64, f64, f64)| (-a, -b, -c);
-    for (paper, (plane, poly)) in paper
-        .into_iter()
-        .flat_map(|p| regions.iter().map(move |r| (p, r)))
-    {
-        let g = paper.foundation;
-        let (sk, ck) = g.kappa.sin_cos();
-        let [h1, h2] = region_half_planes(paper);
-        // Named where the plane is the only inclined one, if there is room there.
-        let own = match plane {
-            Plane::Horizontal => poly.clone(),
-            Plane::One => clip_half_plane(poly, neg(h2)),
-            Plane::Two => clip_half_plane(poly, neg(h1)),
-        };
-        let poly = if own.len() >= 3 && area_of(&own) >= 0.02 * view_area {
-            &own
+    for r in &regions {
+        // Named where the region is its own (for the paper's, where it is the only inclined
+        // plane), if there is room there.
+        let poly = if r.label_poly.len() >= 3 && area_of(&r.label_poly) >= 0.02 * view_area {
+            &r.label_poly
         } else {
-            poly
+            &r.poly
         };
         if poly.len() < 3 || area_of(poly) < 0.02 * view_area {
             continue;
@@ -484,19 +612,7 @@ pub(super) fn plan_view(
         if clear < label_room {
             continue;
         }
-        let (text, color, down) = match plane {
-            Plane::Horizontal => ("horizontal".to_string(), HORIZONTAL, None),
-            Plane::One => (
-                format!("plane 1, dip {}°", sheet::short(g.xi.to_degrees())),
-                PLANE_1,
-                Some((-1.0, 0.0)),
-            ),
-            Plane::Two => (
-                format!("plane 2, dip {}°", sheet::short(g.zeta.to_degrees())),
-                PLANE_2,
-                Some((-ck, sk)),
-            ),
-        };
+        let (text, color, down) = (r.name.clone(), r.color, r.down);
         let style = ("sans-serif", 15)
             .into_font()
             .color(&color)
@@ -570,10 +686,28 @@ pub(super) fn plan_view(
                 Entry::new(Mark::None, "arrows on the planes point down-dip"),
             ]
         }
-        None => vec![Entry::new(
-            Mark::None,
-            "foundation: the scene's planes (not drawn on a general site yet)",
-        )],
+        None => {
+            let mut e: Vec<Entry> = regions
+                .iter()
+                .take(8)
+                .map(|r| Entry::new(Mark::Swatch(r.color), r.name.clone()))
+                .collect();
+            if regions.len() > 8 {
+                e.push(Entry::new(
+                    Mark::None,
+                    format!("… {} faces in all", regions.len()),
+                ));
+            }
+            e.push(Entry::new(
+                Mark::None,
+                match scene.site().ground() {
+                    Some(_) => "the ground is the highest face; grey lines: its creases",
+                    None => "each contact on its own plane (the paper's model); grey: region edges",
+                },
+            ));
+            e.push(Entry::new(Mark::None, "arrows point down-dip"));
+            e
+        }
     };
     if let Some((_, _, f, e)) = force {
         entries.push(Entry::new(

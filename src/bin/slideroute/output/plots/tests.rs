@@ -166,6 +166,40 @@ fn the_plan_view_shades_and_names_the_regions_and_draws_the_water_force() {
 }
 
 #[test]
+fn a_foundation_of_faces_is_drawn_face_by_face_with_its_creases() {
+    // Four faces: the paper's three and a steep one beyond X = 14 m; the paper's dynamics keeps
+    // contact 2 on plane 2, so the route runs to its own end (2.024 s).
+    let faces = "[foundation]\n\
+        [[foundation.plane]]\ndip_deg = 0.0\ndip_direction_deg = 0.0\npoint_m = [0.0, 0.0, 0.0]\n\
+        [[foundation.plane]]\ndip_deg = 20.0\ndip_direction_deg = 180.0\npoint_m = [4.0, 0.0, 0.0]\n\
+        [[foundation.plane]]\ndip_deg = 25.0\ndip_direction_deg = 150.0\npoint_m = [4.0, 0.0, -5.0]\n\
+        [[foundation.plane]]\ndip_deg = 60.0\ndip_direction_deg = 180.0\npoint_m = [14.0, 3.64, 0.0]\n";
+    let text = slideroute::stages::scene::DEFAULT_SCENE_TOML;
+    let start = text.find("[foundation]").unwrap();
+    let end = text.find("[block]").unwrap();
+    let text = format!("{}{faces}\n{}", &text[..start], &text[end..]);
+    let scene = Scene::from_toml(&text, "four faces")
+        .unwrap()
+        .with_dynamics(slideroute::stages::scene::DynamicsModel::Paper)
+        .unwrap();
+    let (dir, route) = route_pictures("faces", &scene);
+    assert!(route.rows.len() > 100);
+    let svg = read(&dir, "plan.svg");
+    let names: Vec<String> = texts(&svg).into_iter().map(|t| t.text).collect();
+    let words = names.join(" ");
+    for name in [
+        "face 0, dip 0°",
+        "face 1, dip 20°",
+        "face 2, dip 25°",
+        "face 3, dip 60°",
+    ] {
+        assert!(words.contains(name), "{name:?} missing: {names:?}");
+    }
+    assert!(words.contains("its creases"), "{words}");
+    assert!(!words.contains("horizontal plane (contact 0)"), "{words}");
+}
+
+#[test]
 fn the_plan_view_numbers_the_contacts_at_the_start_and_the_end() {
     // At 4 s the end contacts stand apart from the start's; at the route's end (t_end 20 s)
     // contact 0 ends beside contact 1's start, and is numbered all the same.
