@@ -1,47 +1,205 @@
-//! A foundation of any number of faces (issue #15): the ground at (X, Z) is the highest of its
-//! planes there, a valley of rock faces. Faces are numbered from 0 in the order the scene lists
-//! them.
+//! A foundation of any number of faces (issue #15). Two kinds:
+//!
+//! * a list of planes: the ground at (X, Z) is the highest of them there, a valley of rock
+//!   faces, defined everywhere;
+//! * a triangulated surface (Wavefront OBJ, `[foundation] surface`): the ground at (X, Z) is the
+//!   triangle over it (the highest, where triangles overlap), found through an R*-tree of the
+//!   triangles' plan extents in O(log n); off the surface there is no ground. Ridges are allowed.
+//!
+//! Faces are numbered from 0: the planes in the order the scene lists them, the triangles in the
+//! order of the file.
 
 use super::plane::Plane;
+use nalgebra::Vector3;
+use rstar::{AABB, PointDistance, RTree, RTreeObject};
 
-/// The ground: the upper envelope of its faces.
-#[derive(Debug, Clone, PartialEq)]
+/// The ground: its faces and how to find the one over a point.
+#[derive(Debug, Clone)]
 pub struct Ground {
     faces: Vec<Plane>,
+    kind: Kind,
+}
+
+#[derive(Debug, Clone)]
+enum Kind {
+    /// The upper envelope of the faces.
+    Planes,
+    /// Triangles: the face over a point is a triangle containing its plan position (found in
+    /// the tree; `corners` by index).
+    Surface {
+        tree: RTree<Triangle>,
+        corners: Vec<[[f64; 2]; 3]>,
+    },
+}
+
+/// One triangle of a surface in plan, for the R*-tree.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Triangle {
+    index: usize,
+    corners: [[f64; 2]; 3],
+}
+
+impl RTreeObject for Triangle {
+    type Envelope = AABB<[f64; 2]>;
+
+    fn envelope(&self) -> Self::Envelope {
+        AABB::from_points(self.corners.iter())
+    }
+}
+
+impl PointDistance for Triangle {
+    fn distance_2(&self, point: &[f64; 2]) -> f64 {
+        if self.contains_point(point) {
+            return 0.0;
+        }
+        // To the nearest edge.
+        (0..3)
+            .map(|k| {
+                let (a, b) = (self.corners[k], self.corners[(k + 1) % 3]);
+                let (dx, dz) = (b[0] - a[0], b[1] - a[1]);
+                let len2 = dx * dx + dz * dz;
+                let t = if len2 > 0.0 {
+                    (((point[0] - a[0]) * dx + (point[1] - a[1]) * dz) / len2).clamp(0.0, 1.0)
+                } else {
+                    0.0
+                };
+                let (px, pz) = (a[0] + t * dx - point[0], a[1] + t * dz - point[1]);
+                px * px + pz * pz
+            })
+            .fold(f64::INFINITY, f64::min)
+    }
+
+    fn contains_point(&self, point: &[f64; 2]) -> bool {
+        let [a, b, c] = self.corners;
+        let cross = |p: [f64; 2], q: [f64; 2]| {
+            (q[0] - p[0]) * (point[1] - p[1]) - (q[1] - p[1]) * (point[0] - p[0])
+        };
+        let (d1, d2, d3) = (cross(a, b), cross(b, c), cross(c, a));
+        let neg = d1 < 0.0 || d2 < 0.0 || d3 < 0.0;
+        let pos = d1 > 0.0 || d2 > 0.0 || d3 > 0.0;
+        !(neg && pos)
+    }
+}
+
+/// Why a triangle cannot be a face.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SurfaceError {
+    #[error("the surface has no triangles")]
+    Empty,
+    #[error("triangle {0} has a corner that is not a finite number")]
+    NonFinite(usize),
+    #[error("triangle {0} has no area (its corners are on one line)")]
+    Degenerate(usize),
+    #[error("triangle {index} is vertical or overhangs (its normal's Y part is {normal_y:.3e})")]
+    Vertical { index: usize, normal_y: f64 },
 }
 
 impl Ground {
-    /// A ground of at least one face.
-    pub fn new(faces: Vec<Plane>) -> Ground {
+    /// A ground of planes (at least one).
+    pub fn planes(faces: Vec<Plane>) -> Ground {
         assert!(!faces.is_empty(), "a ground has at least one face");
-        Ground { faces }
+        Ground {
+            faces,
+            kind: Kind::Planes,
+        }
+    }
+
+    /// A triangulated surface from its triangles' corners (X, Y, Z). Each triangle must have
+    /// finite corners, an area, and face up: a normal whose Y part is at least 1e-6 (so a dip
+    /// below 90°; either winding is taken).
+    pub fn surface(triangles: &[[[f64; 3]; 3]]) -> Result<Ground, SurfaceError> {
+        if triangles.is_empty() {
+            return Err(SurfaceError::Empty);
+        }
+        let mut faces = Vec::with_capacity(triangles.len());
+        let mut tris = Vec::with_capacity(triangles.len());
+        for (index, t) in triangles.iter().enumerate() {
+            if t.iter().flatten().any(|v| !v.is_finite()) {
+                return Err(SurfaceError::NonFinite(index));
+            }
+            let p = t.map(|c| Vector3::new(c[0], c[1], c[2]));
+            let n = (p[1] - p[0]).cross(&(p[2] - p[0]));
+            let size = (p[1] - p[0]).norm().max((p[2] - p[0]).norm());
+            let has_area = n.norm() > 1e-12 * size * size;
+            if !has_area {
+                return Err(SurfaceError::Degenerate(index));
+            }
+            let n = if n.y < 0.0 { -n } else { n }.normalize();
+            if n.y < 1e-6 {
+                return Err(SurfaceError::Vertical {
+                    index,
+                    normal_y: n.y,
+                });
+            }
+            faces.push(Plane::through(n, p[0]));
+            tris.push(Triangle {
+                index,
+                corners: t.map(|c| [c[0], c[2]]),
+            });
+        }
+        let corners = tris.iter().map(|t| t.corners).collect();
+        Ok(Ground {
+            faces,
+            kind: Kind::Surface {
+                tree: RTree::bulk_load(tris),
+                corners,
+            },
+        })
     }
 
     pub fn faces(&self) -> &[Plane] {
         &self.faces
     }
 
-    /// The highest face over (X, Z) and its height there (the first listed, of equal ones).
-    pub fn top(&self, x: f64, z: f64) -> (usize, f64) {
-        self.faces
-            .iter()
-            .enumerate()
-            .map(|(k, f)| (k, f.height(x, z)))
-            .fold((0, f64::NEG_INFINITY), |best, (k, h)| {
-                if h > best.1 { (k, h) } else { best }
+    /// Whether the ground is a triangulated surface (else a list of planes).
+    pub fn is_surface(&self) -> bool {
+        matches!(self.kind, Kind::Surface { .. })
+    }
+
+    /// The face the ground is made of over (X, Z) and its height there: the highest plane, or
+    /// the highest triangle over the point; `None` off a surface.
+    pub fn top(&self, x: f64, z: f64) -> Option<(usize, f64)> {
+        let candidates: Box<dyn Iterator<Item = usize>> = match &self.kind {
+            Kind::Planes => Box::new(0..self.faces.len()),
+            Kind::Surface { tree, .. } => {
+                Box::new(tree.locate_all_at_point(&[x, z]).map(|t| t.index))
+            }
+        };
+        candidates
+            .map(|k| (k, self.faces[k].height(x, z)))
+            .fold(None, |best, (k, h)| match best {
+                Some((_, b)) if b >= h => best,
+                _ => Some((k, h)),
             })
     }
 
-    /// The face a contact at (X, Z) rests on: the highest there; where several meet within
-    /// `tol` (m) (a crease), the one that rises highest a step `step` (m) along the horizontal
-    /// direction `dir`, then across it (+90°), then the first listed.
-    pub fn face_under(&self, x: f64, z: f64, dir: (f64, f64), step: f64, tol: f64) -> usize {
-        let (_, top) = self.top(x, z);
-        let tied: Vec<usize> = (0..self.faces.len())
-            .filter(|&k| self.faces[k].height(x, z) >= top - tol)
-            .collect();
+    /// The face a contact at (X, Z) rests on: the face of the ground there; where several
+    /// meet within `tol` (m) (a crease or an edge), the one that rises highest a step `step` (m)
+    /// along the horizontal direction `dir`, then across it (+90°), then the first. `None` off
+    /// a surface.
+    pub fn face_under(
+        &self,
+        x: f64,
+        z: f64,
+        dir: (f64, f64),
+        step: f64,
+        tol: f64,
+    ) -> Option<usize> {
+        let (_, top) = self.top(x, z)?;
+        let tied: Vec<usize> = match &self.kind {
+            Kind::Planes => (0..self.faces.len()).collect::<Vec<_>>(),
+            Kind::Surface { tree, .. } => {
+                // Triangles within tol of the point in plan (an edge or a corner).
+                tree.locate_within_distance([x, z], tol * tol)
+                    .map(|t: &Triangle| t.index)
+                    .collect()
+            }
+        }
+        .into_iter()
+        .filter(|&k| (self.faces[k].height(x, z) - top).abs() <= tol)
+        .collect();
         let ahead = |k: usize, (a, b): (f64, f64)| self.faces[k].height(x + step * a, z + step * b);
-        let mut best = tied[0];
+        let mut best = *tied.first()?;
         for &k in &tied[1..] {
             let (hk, hb) = (ahead(k, dir), ahead(best, dir));
             let across = (-dir.1, dir.0);
@@ -49,20 +207,49 @@ impl Ground {
                 best = k;
             }
         }
-        best
+        Some(best)
+    }
+
+    /// Every face in a plan rectangle (for drawing): all planes, or the triangles whose extent
+    /// meets it.
+    pub fn faces_in(&self, (x0, x1, z0, z1): (f64, f64, f64, f64)) -> Vec<usize> {
+        match &self.kind {
+            Kind::Planes => (0..self.faces.len()).collect(),
+            Kind::Surface { tree, .. } => {
+                let mut v: Vec<usize> = tree
+                    .locate_in_envelope_intersecting(&AABB::from_corners([x0, z0], [x1, z1]))
+                    .map(|t| t.index)
+                    .collect();
+                v.sort_unstable();
+                v
+            }
+        }
+    }
+
+    /// The plan corners of surface triangle `k` (none for a plane).
+    pub fn triangle(&self, k: usize) -> Option<[[f64; 2]; 3]> {
+        match &self.kind {
+            Kind::Planes => None,
+            Kind::Surface { corners, .. } => corners.get(k).copied(),
+        }
+    }
+}
+
+impl PartialEq for Ground {
+    fn eq(&self, other: &Ground) -> bool {
+        self.faces == other.faces && self.is_surface() == other.is_surface()
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use nalgebra::Vector3;
     use std::f64::consts::PI;
 
     /// The paper's three planes as faces (`docs/conventions.md`).
     fn papers() -> Ground {
         let (xi, zeta, kappa) = (20f64.to_radians(), 25f64.to_radians(), 30f64.to_radians());
-        Ground::new(vec![
+        Ground::planes(vec![
             Plane::from_dip(0.0, 0.0, Vector3::zeros()),
             Plane::from_dip(xi, PI, Vector3::new(4.0, 0.0, 0.0)),
             Plane::from_dip(zeta, PI - kappa, Vector3::new(4.0, 0.0, -5.0)),
@@ -70,10 +257,10 @@ mod tests {
     }
 
     #[test]
-    fn the_ground_is_the_highest_face() {
+    fn the_ground_of_planes_is_the_highest_face() {
         let g = papers();
-        assert_eq!(g.top(-6.0, 5.0), (0, 0.0));
-        let (k, h) = g.top(6.0, 5.0);
+        assert_eq!(g.top(-6.0, 5.0), Some((0, 0.0)));
+        let (k, h) = g.top(6.0, 5.0).unwrap();
         assert_eq!(k, 1);
         assert!((h - 2.0 * 20f64.to_radians().tan()).abs() < 1e-12);
     }
@@ -83,9 +270,93 @@ mod tests {
         // The paper's contacts: 0 on the level face, 1 on plane 1's strike (plane 1 rises along
         // +X), 2 where the level face and both planes meet (plane 2 rises faster along +X).
         let g = papers();
-        let under = |x: f64, z: f64| g.face_under(x, z, (1.0, 0.0), 1e-2, 1e-9);
+        let under = |x: f64, z: f64| g.face_under(x, z, (1.0, 0.0), 1e-2, 1e-9).unwrap();
         assert_eq!(under(-6.0, 5.0), 0);
         assert_eq!(under(4.0, 5.0), 1);
         assert_eq!(under(4.0, -5.0), 2);
+    }
+
+    /// A ridge roof of two triangles over [0, 2] × [0, 1], the ridge along X = 1 at Y = 1.
+    fn roof() -> Ground {
+        Ground::surface(&[
+            [[0.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+            [[0.0, 0.0, 1.0], [1.0, 1.0, 0.0], [1.0, 1.0, 1.0]],
+            [[1.0, 1.0, 0.0], [2.0, 0.0, 0.0], [2.0, 0.0, 1.0]],
+            [[1.0, 1.0, 0.0], [2.0, 0.0, 1.0], [1.0, 1.0, 1.0]],
+        ])
+        .unwrap()
+    }
+
+    #[test]
+    fn a_surface_is_the_triangle_over_the_point_and_nothing_off_it() {
+        let g = roof();
+        let (k, h) = g.top(0.5, 0.2).unwrap();
+        assert!(k < 2 && (h - 0.5).abs() < 1e-15);
+        let (k, h) = g.top(1.5, 0.7).unwrap();
+        assert!(k >= 2 && (h - 0.5).abs() < 1e-15);
+        assert_eq!(g.top(2.5, 0.5), None);
+        assert_eq!(g.top(1.0, -0.1), None);
+        // Ridges are allowed: the two sides' planes cross above the ground there.
+        assert!(g.faces()[0].height(1.5, 0.5) > 0.5);
+    }
+
+    #[test]
+    fn bad_triangles_are_named() {
+        let flat = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]];
+        let line = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0]];
+        let wall = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+        let nan = [[0.0, f64::NAN, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]];
+        assert_eq!(
+            Ground::surface(&[flat, line]).unwrap_err(),
+            SurfaceError::Degenerate(1)
+        );
+        assert!(matches!(
+            Ground::surface(&[wall]).unwrap_err(),
+            SurfaceError::Vertical { index: 0, .. }
+        ));
+        assert_eq!(
+            Ground::surface(&[nan]).unwrap_err(),
+            SurfaceError::NonFinite(0)
+        );
+        assert_eq!(Ground::surface(&[]).unwrap_err(), SurfaceError::Empty);
+    }
+
+    #[test]
+    fn the_spatial_index_finds_the_same_face_as_a_scan() {
+        // A 40 × 40 grid of 3200 triangles on a rough surface.
+        let n = 40;
+        let height = |i: usize, j: usize| ((i * 7 + j * 13) % 11) as f64 * 0.05;
+        let mut tris = Vec::new();
+        for i in 0..n {
+            for j in 0..n {
+                let c = |a: usize, b: usize| [a as f64, height(a, b), b as f64];
+                tris.push([c(i, j), c(i + 1, j), c(i + 1, j + 1)]);
+                tris.push([c(i, j), c(i + 1, j + 1), c(i, j + 1)]);
+            }
+        }
+        let g = Ground::surface(&tris).unwrap();
+        let mut seed = 12345u64;
+        for _ in 0..500 {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            let x = (seed >> 11) as f64 / (1u64 << 53) as f64 * n as f64;
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            let z = (seed >> 11) as f64 / (1u64 << 53) as f64 * n as f64;
+            let (_, h) = g.top(x, z).unwrap();
+            let scan = (0..tris.len())
+                .filter(|&k| {
+                    let t = Triangle {
+                        index: k,
+                        corners: tris[k].map(|c| [c[0], c[2]]),
+                    };
+                    t.contains_point(&[x, z])
+                })
+                .map(|k| g.faces()[k].height(x, z))
+                .fold(f64::NEG_INFINITY, f64::max);
+            assert!((h - scan).abs() < 1e-12, "{h} vs {scan}");
+        }
     }
 }

@@ -36,6 +36,10 @@ pub enum Inadmissible {
     ContactUnderAnotherPlane(usize, usize),
     /// On a ground of faces: contact `.0` is under face `.1` (it reached a crease).
     ContactUnderAnotherFace(usize, usize),
+    /// On a surface: contact `.0` is above the ground, over face `.1` (it ran over a ridge).
+    ContactOverRidge(usize, usize),
+    /// On a surface: contact `.0` is off the surveyed surface.
+    ContactOffSurface(usize),
 }
 
 impl fmt::Display for Inadmissible {
@@ -46,6 +50,12 @@ impl fmt::Display for Inadmissible {
             }
             Inadmissible::ContactUnderAnotherFace(i, j) => {
                 return write!(f, "contact {i} reached face {j} (a crease)");
+            }
+            Inadmissible::ContactOverRidge(i, j) => {
+                return write!(f, "contact {i} ran over a ridge onto face {j}");
+            }
+            Inadmissible::ContactOffSurface(i) => {
+                return write!(f, "contact {i} ran off the surveyed surface");
             }
             Inadmissible::Spurious => "spurious root (wrong sign of sin h: the mirrored frame)",
             Inadmissible::NoRealFrame => "no real frame has these tilts",
@@ -119,12 +129,17 @@ fn check_general_pose(site: &Site, p: &Pose, region_tol: f64) -> Result<(), Inad
     for (i, v) in p.vertices.iter().enumerate() {
         let own = planes[i].height(v.x, v.z);
         match site.ground() {
-            Some((ground, _)) => {
-                let (top, h) = ground.top(v.x, v.z);
-                if h > own + tol {
+            Some((ground, _)) => match ground.top(v.x, v.z) {
+                None => return Err(Inadmissible::ContactOffSurface(i)),
+                Some((top, h)) if h > own + tol => {
                     return Err(Inadmissible::ContactUnderAnotherFace(i, top));
                 }
-            }
+                // Only a surface falls away below a face's plane.
+                Some((top, h)) if h < own - tol => {
+                    return Err(Inadmissible::ContactOverRidge(i, top));
+                }
+                Some(_) => {}
+            },
             None => {
                 let others: &[usize] = if i == 0 { &[1, 2] } else { &[0] };
                 if let Some(&j) = others

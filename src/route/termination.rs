@@ -24,6 +24,10 @@ pub enum Reason {
     TiltReachedDip,
     /// On a foundation of faces: a contact reached a face other than its own (a crease).
     ContactReachedAnotherFace,
+    /// On a surface: the ground fell away under a contact (a ridge): a three-point model ends.
+    ContactOverRidge,
+    /// On a surface: a contact left the surveyed surface.
+    ContactOffSurface,
     /// The pose equations have no admissible root to follow (the tracker's diagnosis).
     NoAdmissibleRoot,
     /// t reached t_end.
@@ -46,6 +50,8 @@ impl Reason {
             Reason::ContactLeftPlane => "a contact left its plane",
             Reason::TiltReachedDip => "a tilt reached its dip",
             Reason::ContactReachedAnotherFace => "a contact reached another face",
+            Reason::ContactOverRidge => "a contact ran over a ridge",
+            Reason::ContactOffSurface => "a contact ran off the surveyed surface",
             Reason::NoAdmissibleRoot => "no admissible root",
             Reason::TimeLimit => "time limit",
             Reason::ContactForcesUndetermined => "the contact forces are not determined",
@@ -89,6 +95,8 @@ pub fn from_track_error(e: &TrackError, alpha_at_dip: bool) -> Reason {
             Inadmissible::ContactUnderAnotherPlane(0, _) => Reason::Contact0ReachedInclinedPlane,
             Inadmissible::ContactUnderAnotherPlane(..) => Reason::ContactLeftPlane,
             Inadmissible::ContactUnderAnotherFace(..) => Reason::ContactReachedAnotherFace,
+            Inadmissible::ContactOverRidge(..) => Reason::ContactOverRidge,
+            Inadmissible::ContactOffSurface(..) => Reason::ContactOffSurface,
             Inadmissible::Spurious | Inadmissible::NoRealFrame => Reason::NoAdmissibleRoot,
         },
         TrackError::BranchEnded { .. } | TrackError::NonFinite(_) => Reason::NoAdmissibleRoot,

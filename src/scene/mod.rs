@@ -221,6 +221,8 @@ pub struct Scene {
     pub(crate) initial: Initial,
     /// The document as read, in the file's keys and units: what [`Scene::with`] edits.
     pub(crate) source: toml::Table,
+    /// The folder the files the scene names (a surface) are found from.
+    pub(crate) folder: std::path::PathBuf,
 }
 
 /// Two scenes are equal when their values are (the documents may differ in how they wrote
@@ -261,13 +263,16 @@ impl Scene {
         let origin = path.display().to_string();
         let text = input::read_bounded(path, input::MAX_SCENE_BYTES)
             .map_err(|e| SceneError::new(&origin, "", e))?;
-        Scene::from_toml(&text, &origin)
+        // Files the scene names (a surface) are found beside it.
+        let folder = path.parent().map(Path::to_path_buf).unwrap_or_default();
+        read::from_toml(&text, &origin, &folder)
     }
 
     /// Parses and validates scene text; `origin` names the source in errors, which give the
-    /// line and column of the key they name.
+    /// line and column of the key they name. Files the scene names are found from the current
+    /// folder.
     pub fn from_toml(text: &str, origin: &str) -> Result<Scene, SceneError> {
-        read::from_toml(text, origin)
+        read::from_toml(text, origin, Path::new(""))
     }
 
     /// The same scene with one key set, in the file's own key and units
@@ -312,7 +317,7 @@ impl Scene {
             };
             table.insert(name.to_string(), value.into());
         }
-        read::from_table(doc, &self.origin)
+        read::from_table(doc, &self.origin, &self.folder)
     }
 
     /// The same scene with the other dynamics model (when it has a `[solver]`). A change of
@@ -326,7 +331,8 @@ impl Scene {
                 if let Some(solver) = doc.get_mut("solver").and_then(|v| v.as_table_mut()) {
                     solver.remove("integrator");
                 }
-                read::from_table(doc, &self.origin)?.with("solver.dynamics", model.as_str())
+                read::from_table(doc, &self.origin, &self.folder)?
+                    .with("solver.dynamics", model.as_str())
             }
             _ => Ok(self.clone()),
         }

@@ -51,6 +51,9 @@ pub struct RawFoundation {
     pub zeta_deg: Option<f64>,
     pub kappa_deg: Option<f64>,
     pub plane: Option<Vec<RawPlane>>,
+    /// A triangulated surface: a Wavefront OBJ file (Y up, scene coordinates), relative to the
+    /// scene file's folder.
+    pub surface: Option<String>,
 }
 
 /// One `[[foundation.plane]]`.

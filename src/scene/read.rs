@@ -5,10 +5,11 @@ use super::error::SceneErrorKind;
 use super::raw::{self, ReadError};
 use super::validate::validate;
 use super::{Scene, SceneError};
+use std::path::Path;
 use toml::de::{DeTable, DeValue};
 
 /// Parses and validates scene text; `origin` names the source in errors.
-pub(super) fn from_toml(text: &str, origin: &str) -> Result<Scene, SceneError> {
+pub(super) fn from_toml(text: &str, origin: &str, folder: &Path) -> Result<Scene, SceneError> {
     let doc = DeTable::parse(text).map_err(|e| {
         let mut err = SceneError::of(
             SceneErrorKind::Unreadable,
@@ -37,15 +38,19 @@ pub(super) fn from_toml(text: &str, origin: &str) -> Result<Scene, SceneError> {
             })?;
     let raw = raw::read(toml::Deserializer::from(doc.clone()))
         .map_err(|e| located(read_error(e, origin, Some(text))))?;
-    validate(raw, origin, table).map_err(located)
+    validate(raw, origin, table, folder).map_err(located)
 }
 
 /// A document given as a table (a scene edited by key, [`Scene::with`]): errors name the key,
 /// without a position.
-pub(super) fn from_table(table: toml::Table, origin: &str) -> Result<Scene, SceneError> {
+pub(super) fn from_table(
+    table: toml::Table,
+    origin: &str,
+    folder: &Path,
+) -> Result<Scene, SceneError> {
     let raw =
         raw::read(toml::Value::Table(table.clone())).map_err(|e| read_error(e, origin, None))?;
-    validate(raw, origin, table)
+    validate(raw, origin, table, folder)
 }
 
 fn read_error(e: ReadError, origin: &str, text: Option<&str>) -> SceneError {

@@ -778,11 +778,95 @@ fn faces_are_checked_key_by_key() {
     assert_names(
         &with("[foundation]\n", "[foundation]\nplane = []\n"),
         "foundation.plane",
-        "not both",
+        "not more",
     );
     let empty = with(
         "[foundation]\nxi_deg = 20.0\nzeta_deg = 25.0\nkappa_deg = 30.0\n",
         "[foundation]\nplane = []\n",
     );
     assert_names(&empty, "foundation.plane", "at least one");
+}
+
+/// GOOD with the foundation replaced by `surface = "<name>"`, read from `folder`.
+fn with_surface(
+    folder: &std::path::Path,
+    name: &str,
+    obj: Option<&str>,
+) -> Result<Scene, SceneError> {
+    if let Some(obj) = obj {
+        std::fs::write(folder.join(name), obj).unwrap();
+    }
+    let text = with(
+        "[foundation]\nxi_deg = 20.0\nzeta_deg = 25.0\nkappa_deg = 30.0\n",
+        &format!("[foundation]\nsurface = \"{name}\"\n"),
+    );
+    let path = folder.join("scene.toml");
+    std::fs::write(&path, text).unwrap();
+    Scene::from_file(&path)
+}
+
+fn scratch(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("slideroute-scene-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// A level square of two triangles over [−10, 10]², Y = `y`.
+fn level_square(y: f64) -> String {
+    format!("v -10 {y} -10\nv 10 {y} -10\nv 10 {y} 10\nv -10 {y} 10\nf 1 2 3\nf 1 3 4\n")
+}
+
+#[test]
+fn a_surface_is_read_from_an_obj_file_beside_the_scene() {
+    let dir = scratch("surface");
+    let s = with_surface(&dir, "square.obj", Some(&level_square(0.0))).unwrap();
+    let (ground, faces) = s.site().ground().unwrap();
+    assert!(ground.is_surface());
+    assert_eq!(ground.faces().len(), 2);
+    assert!(faces.iter().all(|&f| f < 2));
+    // And the repository's valley.
+    let valley = Scene::from_file(std::path::Path::new(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/scenes/valley.toml"
+    )))
+    .unwrap();
+    assert_eq!(valley.site().ground().unwrap().0.faces().len(), 864);
+    // Changed by key, it still finds its file.
+    assert!(valley.with("friction.mu_k", 0.3).is_ok());
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn a_bad_surface_is_named_with_its_file_and_reason() {
+    let dir = scratch("bad-surface");
+    let reason = |name: &str, obj: Option<&str>| {
+        let e = with_surface(&dir, name, obj).unwrap_err();
+        assert_eq!(e.key, "foundation.surface", "{e}");
+        e.reason
+    };
+    let missing = reason("missing.obj", None);
+    assert!(
+        missing.contains("missing.obj") && missing.contains("cannot read"),
+        "{missing}"
+    );
+    assert!(reason("empty.obj", Some("# nothing\n")).contains("no triangles"));
+    let wall = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    assert!(reason("wall.obj", Some(wall)).contains("vertical"));
+    let line = "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n";
+    assert!(reason("line.obj", Some(line)).contains("no area"));
+    let dangling = "v 0 0 0\nv 1 0 0\nf 1 2 9\n";
+    let r = reason("dangling.obj", Some(dangling));
+    assert!(r.contains("OBJ") || r.contains("vertex"), "{r}");
+    // Under and above the ground, and off it.
+    assert!(reason("high.obj", Some(&level_square(0.5))).contains("under the ground"));
+    assert!(reason("low.obj", Some(&level_square(-0.5))).contains("above the ground"));
+    let small = "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nf 1 2 3\n";
+    assert!(reason("small.obj", Some(small)).contains("off the surveyed surface"));
+    // One form of foundation only.
+    let both = with(
+        "kappa_deg = 30.0\n",
+        "kappa_deg = 30.0\nsurface = \"square.obj\"\n",
+    );
+    assert_names(&both, "foundation.surface", "not more");
+    let _ = std::fs::remove_dir_all(dir);
 }

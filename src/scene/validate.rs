@@ -9,6 +9,7 @@ use super::{
     SceneError, Site, Solver,
 };
 use crate::geometry::{Ground, Plane};
+use std::path::Path;
 
 /// The most increments one run may take (t_end / dt).
 pub const MAX_INCREMENTS: f64 = 1e8;
@@ -369,10 +370,11 @@ pub(super) enum FrameIn {
     Contacts([[f64; 2]; 3]),
 }
 
-/// The foundation as given: the paper's three planes, or a list of faces.
+/// The foundation as given: the paper's three planes, a list of faces, or a surface.
 pub(super) enum FoundationIn {
     Paper(Foundation),
     Faces(Vec<Plane>),
+    Surface(Ground),
 }
 
 /// `[frame]`: either the paper's four lengths or `contacts_m`, not both.
@@ -475,36 +477,91 @@ fn paper_frame(o: &str, f: &raw::RawFrame) -> Result<Frame, SceneError> {
     Ok(frame)
 }
 
-/// `[foundation]`: either the paper's three angles or a list of faces, not both.
-fn foundation(o: &str, d: &raw::RawFoundation) -> Result<FoundationIn, SceneError> {
-    let paper_keys = [d.xi_deg, d.zeta_deg, d.kappa_deg];
-    match &d.plane {
-        Some(_) if paper_keys.iter().any(Option::is_some) => Err(SceneError::new(
-            o,
-            "foundation.plane",
-            "give either xi_deg, zeta_deg, kappa_deg (the paper's three planes) or \
-             [[foundation.plane]] faces, not both",
-        )),
-        Some(planes) if planes.is_empty() => Err(SceneError::new(
-            o,
-            "foundation.plane",
-            "a foundation of faces needs at least one [[foundation.plane]]",
-        )),
-        Some(planes) => planes
-            .iter()
-            .enumerate()
-            .map(|(k, p)| face(o, k, p))
-            .collect::<Result<Vec<_>, _>>()
-            .map(FoundationIn::Faces),
-        None if paper_keys.iter().all(Option::is_none) => Err(SceneError::of(
+/// `[foundation]`: exactly one of the paper's three angles, a list of faces, or a surface.
+fn foundation(o: &str, d: &raw::RawFoundation, folder: &Path) -> Result<FoundationIn, SceneError> {
+    let paper = [d.xi_deg, d.zeta_deg, d.kappa_deg]
+        .iter()
+        .any(Option::is_some);
+    let forms = [
+        (paper, "foundation.xi_deg"),
+        (d.plane.is_some(), "foundation.plane"),
+        (d.surface.is_some(), "foundation.surface"),
+    ];
+    let given: Vec<&str> = forms.iter().filter(|f| f.0).map(|f| f.1).collect();
+    const FORMS: &str = "xi_deg, zeta_deg, kappa_deg (the paper's three planes), \
+                         [[foundation.plane]] faces, or surface = \"rock.obj\" (a triangulated \
+                         surface)";
+    match given.as_slice() {
+        [] => Err(SceneError::of(
             SceneErrorKind::MissingKey,
             o,
             "foundation",
-            "give xi_deg, zeta_deg, kappa_deg (the paper's three planes) or [[foundation.plane]] \
-             faces",
+            format!("give one of {FORMS}"),
         )),
-        None => paper_foundation(o, d).map(FoundationIn::Paper),
+        [_, second, ..] => Err(SceneError::new(
+            o,
+            *second,
+            format!("give one of {FORMS}, not more"),
+        )),
+        ["foundation.plane"] => match d.plane.as_deref().unwrap_or_default() {
+            [] => Err(SceneError::new(
+                o,
+                "foundation.plane",
+                "a foundation of faces needs at least one [[foundation.plane]]",
+            )),
+            planes => planes
+                .iter()
+                .enumerate()
+                .map(|(k, p)| face(o, k, p))
+                .collect::<Result<Vec<_>, _>>()
+                .map(FoundationIn::Faces),
+        },
+        ["foundation.surface"] => {
+            surface(o, folder, d.surface.as_deref().unwrap_or_default()).map(FoundationIn::Surface)
+        }
+        _ => paper_foundation(o, d).map(FoundationIn::Paper),
     }
+}
+
+/// The largest surface file (bytes): some two hundred thousand triangles.
+pub const MAX_SURFACE_BYTES: u64 = 64 << 20;
+
+/// `surface = "rock.obj"`: a Wavefront OBJ file of triangles (faces of more corners are split
+/// into triangles), Y up, in scene coordinates, found from `folder`.
+fn surface(o: &str, folder: &Path, name: &str) -> Result<Ground, SceneError> {
+    let key = "foundation.surface";
+    let path = folder.join(name);
+    let bad = |why: String| SceneError::new(o, key, format!("{}: {why}", path.display()));
+    let mut reader =
+        std::io::BufReader::new(super::input::open_bounded(&path, MAX_SURFACE_BYTES).map_err(bad)?);
+    let options = tobj::LoadOptions {
+        triangulate: true,
+        single_index: true,
+        ..Default::default()
+    };
+    // A surface has no materials: a material library it names is not read.
+    let (models, _) = tobj::load_obj_buf(&mut reader, &options, |_| {
+        Err(tobj::LoadError::OpenFileFailed)
+    })
+    .map_err(|e| bad(format!("not a Wavefront OBJ surface: {e}")))?;
+    let mut triangles = Vec::new();
+    for m in &models {
+        let p = &m.mesh.positions;
+        for t in m.mesh.indices.chunks_exact(3) {
+            let corner = |k: u32| -> Result<[f64; 3], SceneError> {
+                let k = k as usize * 3;
+                p.get(k..k + 3).map(|c| [c[0], c[1], c[2]]).ok_or_else(|| {
+                    bad(format!(
+                        "a face names vertex {} of {}",
+                        k / 3 + 1,
+                        p.len() / 3
+                    ))
+                })
+            };
+            triangles.push([corner(t[0])?, corner(t[1])?, corner(t[2])?]);
+        }
+    }
+    Ground::surface(&triangles).map_err(|e| bad(e.to_string()))
 }
 
 /// The paper's three planes: dips strictly between 0° and 90°, κ strictly between −90° and 90°.
@@ -588,59 +645,74 @@ fn site(o: &str, frame: FrameIn, foundation: FoundationIn) -> Result<Site, Scene
             ];
             Ok(Site::general(c, planes))
         }
-        (_, FoundationIn::Faces(faces)) => {
-            let ground = Ground::new(faces);
-            let scale = Site::general(contacts, [ground.faces()[0]; 3]).l();
-            let tol = START_TOL * scale;
-            for (k, &[x, z]) in contacts.iter().enumerate() {
-                let (top, h) = ground.top(x, z);
-                let at = format!("contact {k} starts at (X, Z) = ({x}, {z}) m");
-                if h > tol {
-                    return Err(SceneError::new(
-                        o,
-                        "foundation.plane",
-                        format!(
-                            "{at}, under the ground: face {top} stands {h:.6} m above it (the \
-                             block starts flat at Y = 0 with every contact on the ground)"
-                        ),
-                    ));
-                }
-                if h < -tol {
-                    return Err(SceneError::new(
-                        o,
-                        "foundation.plane",
-                        format!(
-                            "{at}, above the ground: the highest face there, face {top}, is {:.6} \
-                             m below it (the block starts flat at Y = 0 with every contact on \
-                             the ground)",
-                            -h
-                        ),
-                    ));
-                }
-            }
-            // At a crease, the face that rises first along x' (the push of the water).
-            let faces = std::array::from_fn(|k| {
-                ground.face_under(
-                    contacts[k][0],
-                    contacts[k][1],
-                    (1.0, 0.0),
-                    1e-3 * scale,
-                    tol,
-                )
-            });
-            Ok(Site::on_ground(
-                contacts,
-                std::sync::Arc::new(ground),
-                faces,
-            ))
-        }
+        (_, FoundationIn::Faces(faces)) => on_ground(o, contacts, Ground::planes(faces)),
+        (_, FoundationIn::Surface(ground)) => on_ground(o, contacts, ground),
     }
 }
+
+/// Contacts starting flat at Y = 0 on a ground of faces: each must be on the ground there,
+/// neither under it nor above it, and takes the face under it.
+fn on_ground(o: &str, contacts: [[f64; 2]; 3], ground: Ground) -> Result<Site, SceneError> {
+    let key = if ground.is_surface() {
+        "foundation.surface"
+    } else {
+        "foundation.plane"
+    };
+    let scale = Site::general(contacts, [ground.faces()[0]; 3]).l();
+    let tol = START_TOL * scale;
+    let mut faces = [0; 3];
+    for (k, &[x, z]) in contacts.iter().enumerate() {
+        let at = format!("contact {k} starts at (X, Z) = ({x}, {z}) m");
+        let Some((top, h)) = ground.top(x, z) else {
+            return Err(SceneError::new(
+                o,
+                key,
+                format!("{at}, off the surveyed surface"),
+            ));
+        };
+        if h > tol {
+            return Err(SceneError::new(
+                o,
+                key,
+                format!(
+                    "{at}, under the ground: face {top} stands {h:.6} m above it (the block \
+                     starts flat at Y = 0 with every contact on the ground)"
+                ),
+            ));
+        }
+        if h < -tol {
+            return Err(SceneError::new(
+                o,
+                key,
+                format!(
+                    "{at}, above the ground: the highest face there, face {top}, is {:.6} m \
+                     below it (the block starts flat at Y = 0 with every contact on the ground)",
+                    -h
+                ),
+            ));
+        }
+        // At a crease, the face that rises first along x' (the push of the water).
+        faces[k] = ground
+            .face_under(x, z, (1.0, 0.0), 1e-3 * scale, tol)
+            .unwrap_or(top);
+    }
+    Ok(Site::on_ground(
+        contacts,
+        std::sync::Arc::new(ground),
+        faces,
+    ))
+}
+
 /// The typed scene of a document, or its first fault. `source` is kept as the scene's own
 /// file ([`Scene::with`] edits it).
-pub(super) fn validate(raw: RawScene, o: &str, source: toml::Table) -> Result<Scene, SceneError> {
+pub(super) fn validate(
+    raw: RawScene,
+    o: &str,
+    source: toml::Table,
+    folder: &Path,
+) -> Result<Scene, SceneError> {
     let frame = frame(o, section(o, "frame", &raw.frame)?)?;
-    let foundation = foundation(o, section(o, "foundation", &raw.foundation)?)?;
+    let foundation = foundation(o, section(o, "foundation", &raw.foundation)?, folder)?;
     let site = site(o, frame, foundation)?;
     let block = raw.block.as_ref().map(|b| block(o, b)).transpose()?;
     let loads = match &raw.loads {
@@ -690,5 +762,6 @@ pub(super) fn validate(raw: RawScene, o: &str, source: toml::Table) -> Result<Sc
         solver,
         initial,
         source,
+        folder: folder.to_path_buf(),
     })
 }

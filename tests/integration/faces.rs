@@ -95,3 +95,44 @@ fn on_the_papers_faces_contact_2_reaches_plane_1_at_once_under_the_rigid_body() 
     let (dp, dt) = worst(&a, &b);
     assert!(dp < 1e-9 && dt < 1e-7, "{dp:e} m, {dt:e}°");
 }
+
+#[test]
+fn on_a_rough_valley_surface_the_route_runs_to_a_stated_end_on_the_faces_under_its_contacts() {
+    // scenes/valley.toml: 864 triangles (scenes/valley.obj, from scenes/make_valley.py). The
+    // block slides up the 20° floor until contact 1 meets the first rough triangle's edge,
+    // where the ground falls away below its face: a ridge, the end of a three-point model.
+    let s = scene_file("valley");
+    let (ground, faces) = s.site().ground().unwrap();
+    assert!(ground.is_surface());
+    let r = run(&s, DynamicsModel::RigidBody);
+    assert!(
+        matches!(
+            r.termination.reason,
+            Reason::ContactOverRidge | Reason::ContactReachedAnotherFace | Reason::TimeLimit
+        ),
+        "{:?}",
+        r.termination
+    );
+    assert!(r.travel_m > 1.0, "{}", r.travel_m);
+    // Every row: each contact on its own face's plane (the direct solver on those planes).
+    common::assert_rows_match_direct(&s, &r.rows);
+    // And over that face's triangle, or on its edge, to the route's last accepted state.
+    let last = r.rows.last().unwrap();
+    let pose = slideroute::stages::geometry::direct::solve(
+        s.site(),
+        slideroute::stages::geometry::Displacement::new(
+            last.x_m,
+            last.z_m,
+            last.theta_deg.to_radians(),
+        ),
+    )
+    .unwrap();
+    for (k, v) in pose.vertices.iter().enumerate() {
+        let (_, top) = ground.top(v.x, v.z).expect("on the surface");
+        let own = ground.faces()[faces[k]].height(v.x, v.z);
+        assert!(
+            (top - own).abs() < 1e-6,
+            "contact {k}: ground {top}, own face {own}"
+        );
+    }
+}

@@ -209,6 +209,37 @@ fn foundation_regions(scene: &Scene, view: (f64, f64, f64, f64)) -> Vec<Region> 
             })
             .collect();
     }
+    if let Some((ground, _)) = site.ground().filter(|(g, _)| g.is_surface()) {
+        // A surface: each triangle in the view, shaded by its dip (darker: steeper); too many
+        // to name.
+        return ground
+            .faces_in(view)
+            .into_iter()
+            .filter_map(|k| {
+                let corners = ground.triangle(k)?;
+                let mut poly = corners.map(|c| (c[0], c[1])).to_vec();
+                for edge in [
+                    (1.0, 0.0, x0),
+                    (-1.0, 0.0, -x1),
+                    (0.0, 1.0, z0),
+                    (0.0, -1.0, -z1),
+                ] {
+                    poly = clip_half_plane(&poly, edge);
+                }
+                let steep = (ground.faces()[k].dip() / 60f64.to_radians()).min(1.0);
+                let shade = |light: u8, dark: u8| {
+                    (f64::from(light) + steep * (f64::from(dark) - f64::from(light))) as u8
+                };
+                Some(Region {
+                    label_poly: Vec::new(),
+                    poly,
+                    name: String::new(),
+                    color: RGBColor(shade(235, 110), shade(225, 80), shade(205, 50)),
+                    down: None,
+                })
+            })
+            .collect();
+    }
     let (planes, word): (Vec<_>, &str) = match site.ground() {
         Some((ground, _)) => (ground.faces().to_vec(), "face"),
         None => (site.planes().to_vec(), "plane"),
@@ -394,13 +425,16 @@ pub(super) fn plan_view(
     // creases between faces.
     let paper = scene.site().as_paper();
     let regions = foundation_regions(scene, view);
+    let surface = scene.site().ground().is_some_and(|(g, _)| g.is_surface());
     for r in &regions {
         if r.poly.len() >= 3 {
+            let fill = if surface {
+                r.color.filled()
+            } else {
+                r.color.mix(0.10).filled()
+            };
             chart
-                .draw_series(std::iter::once(Polygon::new(
-                    r.poly.clone(),
-                    r.color.mix(0.10).filled(),
-                )))
+                .draw_series(std::iter::once(Polygon::new(r.poly.clone(), fill)))
                 .map_err(err(path))?;
         }
     }
@@ -439,9 +473,15 @@ pub(super) fn plan_view(
             })
             .collect(),
     };
+    let width = if surface { 1 } else { 2 };
     for (line, color) in edges {
+        let color = if surface {
+            color.mix(0.35)
+        } else {
+            color.into()
+        };
         chart
-            .draw_series(LineSeries::new(line, color.stroke_width(2)))
+            .draw_series(LineSeries::new(line, color.stroke_width(width)))
             .map_err(err(path))?;
     }
 
@@ -595,7 +635,7 @@ pub(super) fn plan_view(
     }
     let label_room = 45.0 * scale;
     let view_area = (x1 - x0) * (z1 - z0);
-    for r in &regions {
+    for r in regions.iter().filter(|r| !r.name.is_empty()) {
         // Named where the region is its own (for the paper's, where it is the only inclined
         // plane), if there is room there.
         let poly = if r.label_poly.len() >= 3 && area_of(&r.label_poly) >= 0.02 * view_area {
@@ -686,6 +726,14 @@ pub(super) fn plan_view(
                 Entry::new(Mark::None, "arrows on the planes point down-dip"),
             ]
         }
+        None if surface => vec![Entry::new(
+            Mark::None,
+            format!(
+                "foundation: a surface of {} triangles, shaded by dip (darker: steeper, \
+                     60° and more darkest); grey lines: its edges",
+                scene.site().ground().map_or(0, |(g, _)| g.faces().len())
+            ),
+        )],
         None => {
             let mut e: Vec<Entry> = regions
                 .iter()
