@@ -16,6 +16,12 @@ at t = 0: the block's twist is those rates made consistent with the three contac
 their planes (the CM's vertical velocity and the roll and pitch rates solved from the three
 normal-velocity constraints, as slideroute's velocity projection does).
 
+A foundation of faces (`[[foundation.plane]]`, issue #15) is the union of the faces'
+half-spaces (the rock below the highest face), and every sphere collides with every face: a
+contact rides a crease or crosses onto another face as Drake's contact forces decide. The frame
+may be any triangle (`contacts_m`). --radius, --stiffness and --dissipation refine the contact
+(tiny spheres, stiff contact, near-plastic impacts) until the path no longer changes.
+
 Writes CSV: t_s,x_m,y_m,z_m,theta_deg,p0x_m,...,p2z_m (theta: yaw of x' from +X towards +Z; pK:
 contact K's position, so that a reader sees where each contact is, e.g. past a strike line).
 """
@@ -60,10 +66,27 @@ def load(path):
     if fi.get("model") != "coulomb":
         sys.exit(f"{path}: friction.model: the Drake cross-check supports coulomb only")
     iy = bl["inertia_kg_m2"]
+    if "contacts_m" in fr:
+        corners = [np.array([x, 0.0, z]) for x, z in fr["contacts_m"]]
+    else:
+        corners = [
+            np.array([-fr["l1x"], 0.0, fr["l1z"]]),
+            np.array([fr["l2x"], 0.0, fr["l1z"]]),
+            np.array([fr["l2x"], 0.0, -fr["l2z"]]),
+        ]
+    if "surface" in fo:
+        sys.exit(f"{path}: foundation.surface: the Drake cross-check takes planes only")
+    faces = None
+    if "plane" in fo:
+        faces = []
+        for f in fo["plane"]:
+            d, a = math.radians(f["dip_deg"]), math.radians(f["dip_direction_deg"])
+            n = np.array([math.sin(d) * math.cos(a), math.cos(d), math.sin(d) * math.sin(a)])
+            faces.append((n, np.array(f["point_m"], dtype=float)))
     return dict(
-        l1x=fr["l1x"], l2x=fr["l2x"], l1z=fr["l1z"], l2z=fr["l2z"],
-        xi=math.radians(fo["xi_deg"]), zeta=math.radians(fo["zeta_deg"]),
-        kappa=math.radians(fo["kappa_deg"]),
+        corners=corners, faces=faces,
+        xi=math.radians(fo.get("xi_deg", 0.0)), zeta=math.radians(fo.get("zeta_deg", 0.0)),
+        kappa=math.radians(fo.get("kappa_deg", 0.0)),
         mass=bl["mass_kg"], iy=iy,
         ix=bl.get("inertia_x_kg_m2", iy / 2), iz=bl.get("inertia_z_kg_m2", iy / 2),
         ixz=bl.get("inertia_xz_kg_m2", 0.0),
@@ -74,18 +97,33 @@ def load(path):
 
 
 def planes(p):
-    """Upward unit normal and a point of each foundation plane (conventions.md)."""
+    """Upward unit normal and a point of each foundation plane: the paper's three, each through
+    its contact's start (conventions.md), or the scene's faces."""
+    if p["faces"] is not None:
+        return p["faces"]
     xi, zeta, kappa = p["xi"], p["zeta"], p["kappa"]
-    r = p["l2x"] * math.cos(kappa) + p["l2z"] * math.sin(kappa)  # eq. (4)
+    c = p["corners"]
     return [
-        (np.array([0.0, 1.0, 0.0]), np.zeros(3)),
-        (np.array([-math.sin(xi), math.cos(xi), 0.0]), np.array([p["l2x"], 0.0, 0.0])),
+        (np.array([0.0, 1.0, 0.0]), c[0]),
+        (np.array([-math.sin(xi), math.cos(xi), 0.0]), c[1]),
         (
             np.array([-math.sin(zeta) * math.cos(kappa), math.cos(zeta),
                       math.sin(zeta) * math.sin(kappa)]),
-            np.array([r * math.cos(kappa), 0.0, -r * math.sin(kappa)]),
+            c[2],
         ),
     ]
+
+
+def start_normals(p):
+    """The normal of the plane each contact starts on: its own (the paper's), or the highest
+    face over it (the first of equal ones)."""
+    if p["faces"] is None:
+        return [n for n, _ in planes(p)]
+    out = []
+    for c in p["corners"]:
+        heights = [(pt @ n - n[0] * c[0] - n[2] * c[2]) / n[1] for n, pt in p["faces"]]
+        out.append(p["faces"][int(np.argmax(heights))][0])
+    return out
 
 
 def initial_twist(p, corners, normals):
@@ -111,6 +149,9 @@ def main():
     ap.add_argument("--t-end", type=float, default=3.0)
     ap.add_argument("--dt", type=float, default=1e-3)
     ap.add_argument("--out", required=True)
+    ap.add_argument("--radius", type=float, default=SPHERE_RADIUS, help="contact sphere, m")
+    ap.add_argument("--stiffness", type=float, default=STIFFNESS, help="per geometry, N/m")
+    ap.add_argument("--dissipation", type=float, default=DISSIPATION, help="Hunt-Crossley, s/m")
     a = ap.parse_args()
     p = load(a.scene)
 
@@ -129,36 +170,35 @@ def main():
 
     def props():
         pp = ProximityProperties()
-        AddContactMaterial(DISSIPATION, STIFFNESS, CoulombFriction(p["mu"], p["mu"]), pp)
+        AddContactMaterial(a.dissipation, a.stiffness, CoulombFriction(p["mu"], p["mu"]), pp)
         return pp
 
-    corners = [
-        np.array([-p["l1x"], 0.0, p["l1z"]]),
-        np.array([p["l2x"], 0.0, p["l1z"]]),
-        np.array([p["l2x"], 0.0, -p["l2z"]]),
-    ]
+    corners = p["corners"]
     spheres, halves = [], []
-    for i, ((n, point), corner) in enumerate(zip(planes(p), corners)):
-        # The sphere's centre is the contact point; its plane is lowered by the radius.
+    for i, corner in enumerate(corners):
+        # The sphere's centre is the contact point; each plane is lowered by the radius.
         spheres.append(plant.RegisterCollisionGeometry(
-            block, RigidTransform(corner), Sphere(SPHERE_RADIUS), f"contact{i}", props()))
+            block, RigidTransform(corner), Sphere(a.radius), f"contact{i}", props()))
+    for j, (n, point) in enumerate(planes(p)):
         halves.append(plant.RegisterCollisionGeometry(
-            plant.world_body(), RigidTransform(HalfSpace.MakePose(n, point - SPHERE_RADIUS * n)),
-            HalfSpace(), f"plane{i}", props()))
+            plant.world_body(), RigidTransform(HalfSpace.MakePose(n, point - a.radius * n)),
+            HalfSpace(), f"plane{j}", props()))
     plant.Finalize()
-    decl = CollisionFilterDeclaration()
-    for i, s in enumerate(spheres):
-        for j, h in enumerate(halves):
-            if i != j:
-                decl.ExcludeBetween(GeometrySet(s), GeometrySet(h))
-    scene_graph.collision_filter_manager().Apply(decl)
+    if p["faces"] is None:
+        # The paper's model: each contact sees only its own plane.
+        decl = CollisionFilterDeclaration()
+        for i, s in enumerate(spheres):
+            for j, h in enumerate(halves):
+                if i != j:
+                    decl.ExcludeBetween(GeometrySet(s), GeometrySet(h))
+        scene_graph.collision_filter_manager().Apply(decl)
 
     diagram = builder.Build()
     simulator = Simulator(diagram)
     context = simulator.get_mutable_context()
     plant_context = plant.GetMyMutableContextFromRoot(context)
     plant.SetFreeBodyPose(plant_context, block, RigidTransform(np.zeros(3)))
-    v0, w0 = initial_twist(p, corners, [n for n, _ in planes(p)])
+    v0, w0 = initial_twist(p, corners, start_normals(p))
     plant.SetFreeBodySpatialVelocity(plant_context, block, SpatialVelocity(w0, v0))
     port = plant.get_applied_spatial_force_input_port()
 
