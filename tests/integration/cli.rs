@@ -1272,3 +1272,67 @@ fn a_change_of_dynamics_that_changes_the_integrator_says_so() {
     assert!(o.status.success() && o.stderr.is_empty(), "{}", stderr(&o));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn general_scenes_run_from_the_command_line_and_coeffs_says_why_it_cannot() {
+    // A foundation of faces and a triangulated surface run like any scene; `coeffs`, which
+    // prints the paper's own coefficients, says in one line that they need the paper's site.
+    let root = env!("CARGO_MANIFEST_DIR");
+    for (scene, end) in [
+        (
+            "scenes/paper-like-faces.toml",
+            "a contact reached another face",
+        ),
+        ("scenes/valley.toml", "a contact ran over a ridge"),
+    ] {
+        let path = format!("{root}/{scene}");
+        let out = std::env::temp_dir().join(format!(
+            "slideroute-cli-general-{}-{}",
+            std::process::id(),
+            scene.len()
+        ));
+        let o = run(&[
+            "run",
+            "--scene",
+            &path,
+            "--no-plots",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{scene}: {}", stderr(&o));
+        let text = String::from_utf8_lossy(&o.stdout);
+        assert!(text.contains(end), "{scene}: {text}");
+        let o = run(&["scene", "--check", &path]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let _ = std::fs::remove_dir_all(out);
+    }
+    let o = run(&[
+        "coeffs",
+        "--scene",
+        &format!("{root}/scenes/valley.toml"),
+        "--x",
+        "0.5",
+        "--z",
+        "0",
+        "--theta-deg",
+        "0",
+    ]);
+    assert_bad_input(&o, &["valley.toml", "paper's frame", "general system"]);
+}
+
+#[test]
+fn a_surface_that_is_not_obj_is_bad_input_naming_the_file() {
+    let obj = temp_file("junk.obj", "v 0 0 0\nf 1 2 3 4 5\nthis is not obj\n");
+    let text = slideroute::stages::scene::DEFAULT_SCENE_TOML;
+    let start = text.find("[foundation]").unwrap();
+    let end = text.find("[block]").unwrap();
+    let scene = format!(
+        "{}[foundation]\nsurface = \"{}\"\n\n{}",
+        &text[..start],
+        obj.file_name().unwrap().to_str().unwrap(),
+        &text[end..]
+    );
+    let path = temp_file("junk-surface.toml", &scene);
+    let o = run(&["scene", "--check", path.to_str().unwrap()]);
+    assert_bad_input(&o, &["junk-surface.toml", "foundation.surface", "junk.obj"]);
+}
