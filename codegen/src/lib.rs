@@ -34,6 +34,36 @@ fn trig_exponents(m: &Monomial) -> [u32; 4] {
     system::EXACT_UNKNOWNS.map(|s| m.degree_in(s))
 }
 
+/// The body of a function from trig coefficients `g` (equation by equation, in the order of
+/// `bases`) to the tangent half-angle form: ta = tan(α/2), tp = tan(ψ/2), each equation
+/// multiplied by (1 + ta²)(1 + tp²), entry `9·eq + 3·i + j` the coefficient of ta^i tp^j.
+fn half_angle_body(bases: &[Vec<Monomial>]) -> TokenStream {
+    let mut half_outs: Vec<Poly> = Vec::new();
+    let mut offset = 0usize;
+    for basis in bases {
+        let mut sym_poly = Poly::zero();
+        for (k, m) in basis.iter().enumerate() {
+            let g = leak(format!("g{}", offset + k));
+            sym_poly = sym_poly + Poly::var(g) * Poly::term(rational::Rational::ONE, m.clone());
+        }
+        offset += basis.len();
+        let h = system::half_angle(&sym_poly, "sa", "ca", "ta");
+        let h = system::half_angle(&h, "sp", "cp", "tp");
+        let c = h.collect(&["ta", "tp"]);
+        for i in 0..3u32 {
+            for j in 0..3u32 {
+                let m = Monomial::from_pairs(&[("ta", i), ("tp", j)]);
+                half_outs.push(c.get(&m).cloned().unwrap_or_default());
+            }
+        }
+    }
+    emit::body(&half_outs, &|s: Sym| {
+        let k: usize = s[1..].parse().expect("g index");
+        let k = proc_macro2::Literal::usize_unsuffixed(k);
+        quote!(g[#k])
+    })
+}
+
 /// The general pose system (`general.rs`): its inputs, the exact form in the trig basis, its
 /// tangent half-angle form and its small-angle form.
 fn general_system() -> TokenStream {
@@ -52,29 +82,8 @@ fn general_system() -> TokenStream {
     let n_basis = proc_macro2::Literal::usize_unsuffixed(general::BASIS.len());
 
     // Tangent half-angle form, linear in the trig coefficients g.
-    let mut half_outs: Vec<Poly> = Vec::new();
-    for eq in 0..2 {
-        let mut sym_poly = Poly::zero();
-        for (k, e) in general::BASIS.iter().enumerate() {
-            let g = leak(format!("g{}", eq * general::BASIS.len() + k));
-            sym_poly =
-                sym_poly + Poly::var(g) * Poly::term(rational::Rational::ONE, general::monomial(e));
-        }
-        let h = system::half_angle(&sym_poly, "sa", "ca", "ta");
-        let h = system::half_angle(&h, "sp", "cp", "tp");
-        let c = h.collect(&["ta", "tp"]);
-        for i in 0..3u32 {
-            for j in 0..3u32 {
-                let m = Monomial::from_pairs(&[("ta", i), ("tp", j)]);
-                half_outs.push(c.get(&m).cloned().unwrap_or_default());
-            }
-        }
-    }
-    let half_body = emit::body(&half_outs, &|s: Sym| {
-        let k: usize = s[1..].parse().expect("g index");
-        let k = proc_macro2::Literal::usize_unsuffixed(k);
-        quote!(g[#k])
-    });
+    let trig: Vec<Monomial> = general::BASIS.iter().map(general::monomial).collect();
+    let half_body = half_angle_body(&[trig.clone(), trig]);
 
     let small: Vec<Poly> = general::small_angle_collected()
         .into_iter()
@@ -222,30 +231,11 @@ pub fn generate() -> String {
     };
 
     // Exact form, tangent half-angles: coefficients of ta^i tp^j, linear in the trig ones.
-    let mut half_outs: Vec<Poly> = Vec::new();
-    let mut offset = 0usize;
-    for eq in &collected {
-        let mut sym_poly = Poly::zero();
-        for (k, (m, _)) in eq.iter().enumerate() {
-            let g = leak(format!("g{}", offset + k));
-            sym_poly = sym_poly + Poly::var(g) * Poly::term(rational::Rational::ONE, m.clone());
-        }
-        offset += eq.len();
-        let h = system::half_angle(&sym_poly, "sa", "ca", "ta");
-        let h = system::half_angle(&h, "sp", "cp", "tp");
-        let c = h.collect(&["ta", "tp"]);
-        for i in 0..3u32 {
-            for j in 0..3u32 {
-                let m = Monomial::from_pairs(&[("ta", i), ("tp", j)]);
-                half_outs.push(c.get(&m).cloned().unwrap_or_default());
-            }
-        }
-    }
-    let half_body = emit::body(&half_outs, &|s: Sym| {
-        let k: usize = s[1..].parse().expect("g index");
-        let k = proc_macro2::Literal::usize_unsuffixed(k);
-        quote!(g[#k])
-    });
+    let bases: Vec<Vec<Monomial>> = collected
+        .iter()
+        .map(|eq| eq.iter().map(|(m, _)| m.clone()).collect())
+        .collect();
+    let half_body = half_angle_body(&bases);
     let half = quote! {
         /// Exact (13), (14) in tangent half-angles ta = tan(α/2), tp = tan(ψ/2), multiplied by
         /// (1 + ta²)(1 + tp²): entry `9·eq + 3·i + j` multiplies ta^i tp^j.

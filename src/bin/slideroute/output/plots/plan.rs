@@ -447,32 +447,24 @@ pub(super) fn plan_view(
                 .iter()
                 .any(|&(a, b, c)| (a - c).abs() < eps && (b - c).abs() < eps)
     };
-    let edges: Vec<(Vec<P>, RGBColor)> = match paper {
-        // Strike lines: the inclined regions' edges.
-        Some(_) => regions[1..]
-            .iter()
-            .flat_map(|r| {
-                let n = r.poly.len();
-                (0..n)
-                    .map(|k| (r.poly[k], r.poly[(k + 1) % n]))
-                    .filter(|&(p, q)| !on_border(p, q))
-                    .map(|(p, q)| (vec![p, q], r.color))
-                    .collect::<Vec<_>>()
-            })
-            .collect(),
-        // Creases: every region's edges inside the view, in grey.
-        None => regions
-            .iter()
-            .flat_map(|r| {
-                let n = r.poly.len();
-                (0..n)
-                    .map(|k| (r.poly[k], r.poly[(k + 1) % n]))
-                    .filter(|&(p, q)| !on_border(p, q))
-                    .map(|(p, q)| (vec![p, q], RGBColor(90, 90, 90)))
-                    .collect::<Vec<_>>()
-            })
-            .collect(),
+    // The paper's strike lines (the inclined regions' edges, in their colours), or the creases
+    // between faces (every region's edges inside the view, in grey).
+    let (edged, grey) = match paper {
+        Some(_) => (&regions[1..], false),
+        None => (&regions[..], true),
     };
+    let edges: Vec<(Vec<P>, RGBColor)> = edged
+        .iter()
+        .flat_map(|r| {
+            let n = r.poly.len();
+            let color = if grey { RGBColor(90, 90, 90) } else { r.color };
+            (0..n)
+                .map(|k| (r.poly[k], r.poly[(k + 1) % n]))
+                .filter(|&(p, q)| !on_border(p, q))
+                .map(move |(p, q)| (vec![p, q], color))
+                .collect::<Vec<_>>()
+        })
+        .collect();
     let width = if surface { 1 } else { 2 };
     for (line, color) in edges {
         let color = if surface {
