@@ -12,6 +12,21 @@ use slideroute::stages::route::{self, PoseMethod, rhs};
 use slideroute::stages::scene::{DynamicsModel, Mode, Scene};
 use std::hint::black_box;
 
+/// `s` with its frame written as `contacts_m` (the same contacts, the general pose system).
+fn as_contacts(s: &Scene) -> Scene {
+    let c = s.site().contacts();
+    let mut doc = s.document().clone();
+    let frame = toml::Value::Array(
+        c.iter()
+            .map(|p| toml::Value::Array(vec![p[0].into(), p[1].into()]))
+            .collect(),
+    );
+    let mut table = toml::Table::new();
+    table.insert("contacts_m".into(), frame);
+    doc.insert("frame".into(), toml::Value::Table(table));
+    Scene::from_toml(&toml::to_string(&doc).unwrap(), "contacts").unwrap()
+}
+
 fn whole_routes(c: &mut Criterion) {
     // The paper's dynamics (the default is the rigid body's).
     let base = Scene::default_scene()
@@ -30,6 +45,8 @@ fn whole_routes(c: &mut Criterion) {
     };
     let rigid = rigid_3s(&base);
     let rigid_frictionless = rigid_3s(&frictionless);
+    // The same scene as any triangle (`contacts_m`): the general pose system (issue #15).
+    let general = rigid_3s(&as_contacts(&base));
     for (name, s) in [
         ("paper-like route, exact, friction", &base),
         ("paper-like route, small-angle, friction", &small),
@@ -38,6 +55,10 @@ fn whole_routes(c: &mut Criterion) {
         (
             "rigid-body route 3 s, exact, frictionless",
             &rigid_frictionless,
+        ),
+        (
+            "rigid-body route 3 s, exact, friction, general system",
+            &general,
         ),
     ] {
         c.bench_function(name, |b| b.iter(|| route::run(black_box(s)).unwrap()));
