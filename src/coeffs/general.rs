@@ -39,6 +39,7 @@ impl Inputs {
     }
 
     /// As [`Inputs::new`], with `trig` computed before from the same site.
+    #[inline]
     pub fn with_trig(site: &Site, trig: &SiteTrig, d: Displacement) -> Inputs {
         match (site.as_paper(), trig) {
             (Some(p), SiteTrig::Paper(t)) => Inputs::Paper(CoeffInputs::with_trig(p, t, d)),
@@ -101,6 +102,7 @@ impl GeneralExact {
     }
 
     /// Residuals (m) at (α, ψ) and their Jacobian ∂r/∂(α, ψ).
+    #[inline]
     pub fn residual_jacobian(&self, alpha: f64, psi: f64) -> ([f64; 2], [[f64; 2]; 2]) {
         let n = GENERAL_BASIS.len();
         trig_residual_jacobian(

@@ -262,6 +262,7 @@ impl Exact {
     }
 
     /// Residuals of (13), (14) (m) at (α, ψ) and their Jacobian ∂(r13, r14)/∂(α, ψ).
+    #[inline]
     pub fn residual_jacobian(&self, alpha: f64, psi: f64) -> ([f64; 2], [[f64; 2]; 2]) {
         trig_residual_jacobian(
             [
@@ -282,6 +283,7 @@ impl Exact {
 
 /// Residuals and their Jacobian ∂r/∂(α, ψ) of two equations given in a trig basis (exponents
 /// of sin α, cos α, sin ψ, cos ψ, each pair of degree ≤ 1) with their coefficients.
+#[inline(always)]
 fn trig_residual_jacobian(
     parts: [(&[[u32; 4]], &[f64]); 2],
     alpha: f64,

@@ -104,6 +104,7 @@ pub fn check_pose(site: &Site, p: &Pose) -> Result<(), Inadmissible> {
 /// regions are not checked, only the tilts' upper bounds, as for the intermediate stages of an
 /// integrator, which are no states of the route: each contact's equations hold on its whole
 /// plane, and only the states the route accepts must lie in the regions).
+#[inline]
 pub fn check_pose_within(
     site: &Site,
     trig: &SiteTrig,
