@@ -44,6 +44,17 @@ pub enum RigidError {
          with its friction (the contact problem has no solution there)"
     )]
     SlipStart { contact: usize },
+    /// The contact riding a crease is pulled off its second face (that face's normal force is
+    /// not positive): it leaves the crease and goes on along its own face alone.
+    #[error("contact {contact} leaves the crease (its second face's reaction {normal_n:.6e} N)")]
+    CreaseLetsGo { contact: usize, normal_n: f64 },
+    /// The contact riding a crease is pulled off its own face while its second face holds it:
+    /// it goes on along the second face alone.
+    #[error(
+        "contact {contact} leaves its face for the crease's other face (its own face's reaction \
+         {normal_n:.6e} N)"
+    )]
+    CreaseTakesOver { contact: usize, normal_n: f64 },
     /// The equations of one contact sticking while the others slip are singular.
     #[error(
         "contact {contact}: the equations of it sticking while the others slip are singular \
@@ -144,6 +155,16 @@ pub fn twist(geom: &ContactGeometry, rates: [f64; 3]) -> Result<Twist, RigidErro
     })
 }
 
+/// A contact riding the crease between its own face and a second one
+/// (`derivations/10-faces.md` §4): a fourth constraint, the contact on the second face too.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Crease {
+    /// The contact in the crease.
+    pub contact: usize,
+    /// The second face's upward unit normal.
+    pub normal: Vector3<f64>,
+}
+
 /// Everything the rigid-body dynamics gives at one state.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Motion {
@@ -165,6 +186,8 @@ pub struct Motion {
     /// The contact that sticks while the block turns about it (its slip vanished and its shear
     /// lies inside its cone), if any.
     pub stuck: Option<usize>,
+    /// The second face's normal reaction (N) of a contact riding a crease.
+    pub crease_normal: Option<f64>,
 }
 
 /// A slip speed below this fraction of the block's speed scale counts as zero slip.
@@ -224,6 +247,8 @@ struct Ctx<'a> {
     centripetal: [Vector3<f64>; 3],
     /// Longest arm (m): scales θ̇ against Ẋ, Ż.
     arm: f64,
+    /// A contact riding a crease.
+    crease: Option<Crease>,
 }
 
 /// One solution of the contact problem: normals, CM and angular acceleration, shear vectors.
@@ -233,6 +258,8 @@ struct Solved {
     a: Vector3<f64>,
     e: Vector3<f64>,
     shear: [Vector3<f64>; 3],
+    /// The crease's second normal reaction (zero without a crease).
+    crease: f64,
 }
 
 fn unit(v: Vector3<f64>) -> Vector3<f64> {
@@ -261,6 +288,9 @@ impl Ctx<'_> {
 
     /// All contacts slip: shear −μ_j λ_j dir_j. K λ = b (3×3), then a and ω̇.
     fn solve(&self, dir: &[Vector3<f64>; 3], mu: &[f64; 3]) -> Result<Solved, RigidError> {
+        if let Some(c) = self.crease {
+            return self.solve_crease(dir, mu, c);
+        }
         let geom = self.geom;
         let g: [Vector3<f64>; 3] = [0, 1, 2].map(|j| geom.n[j] - dir[j] * mu[j]);
         let arm_n: [Vector3<f64>; 3] = [0, 1, 2].map(|i| geom.r[i].cross(&geom.n[i]));
@@ -294,6 +324,67 @@ impl Ctx<'_> {
             a: f / self.mass,
             e: self.inertia.inverse * t,
             shear: [0, 1, 2].map(|j| -dir[j] * (mu[j] * lambda[j])),
+            crease: 0.0,
+        })
+    }
+
+    /// All contacts slip, contact `c.contact` along its crease: the four constraint rows (the
+    /// three faces and the crease's second face) in the four normal reactions, K λ = b (4×4).
+    /// The crease contact's friction −μ (λ + λ_B) dir opposes its slip on both faces.
+    fn solve_crease(
+        &self,
+        dir: &[Vector3<f64>; 3],
+        mu: &[f64; 3],
+        c: Crease,
+    ) -> Result<Solved, RigidError> {
+        let geom = self.geom;
+        let i = c.contact;
+        // Constraint k: point r[k], normal n[k], force direction g[k] (normal and friction).
+        let point = |k: usize| geom.r[if k == 3 { i } else { k }];
+        let normal = |k: usize| if k == 3 { c.normal } else { geom.n[k] };
+        let slip_dir = |k: usize| dir[if k == 3 { i } else { k }];
+        let coef = |k: usize| mu[if k == 3 { i } else { k }];
+        let g: [Vector3<f64>; 4] = std::array::from_fn(|k| normal(k) - slip_dir(k) * coef(k));
+        let arm_n: [Vector3<f64>; 4] = std::array::from_fn(|k| point(k).cross(&normal(k)));
+        let arm_g: [Vector3<f64>; 4] =
+            std::array::from_fn(|k| self.inertia.inverse * point(k).cross(&g[k]));
+        let centripetal = |k: usize| self.centripetal[if k == 3 { i } else { k }];
+        let free_ang = self.inertia.inverse * self.torque;
+        let mut kk = nalgebra::Matrix4::zeros();
+        let mut b = nalgebra::Vector4::zeros();
+        for r in 0..4 {
+            for q in 0..4 {
+                kk[(r, q)] = normal(r).dot(&g[q]) / self.mass + arm_n[r].dot(&arm_g[q]);
+            }
+            b[r] = -normal(r).dot(&centripetal(r))
+                - normal(r).dot(&self.force) / self.mass
+                - arm_n[r].dot(&free_ang);
+        }
+        let lambda = kk
+            .lu()
+            .solve(&b)
+            .filter(|x| x.iter().all(|v| v.is_finite()))
+            .ok_or(RigidError::Singular("normal reactions in a crease"))?;
+        let mut f = self.force;
+        let mut t = self.torque;
+        for k in 0..4 {
+            f += g[k] * lambda[k];
+            t += point(k).cross(&g[k]) * lambda[k];
+        }
+        let shear = [0, 1, 2].map(|j| {
+            let carried = if j == i {
+                lambda[j] + lambda[3]
+            } else {
+                lambda[j]
+            };
+            -dir[j] * (mu[j] * carried)
+        });
+        Ok(Solved {
+            lambda: [lambda[0], lambda[1], lambda[2]],
+            a: f / self.mass,
+            e: self.inertia.inverse * t,
+            shear,
+            crease: lambda[3],
         })
     }
 
@@ -306,10 +397,32 @@ impl Ctx<'_> {
         mu: &[f64; 3],
         i: usize,
     ) -> Result<Solved, RigidError> {
+        match self.crease {
+            // A crease at another contact: one more constraint row and reaction.
+            Some(c) if c.contact != i => self.solve_stick_n::<12>(dir, mu, i, Some(c)),
+            // No crease, or the sticking contact is the one in the crease: held in place, it is
+            // on its second face too, and its reaction (normal and shear on its own face) carries
+            // both faces' forces.
+            _ => self.solve_stick_n::<11>(dir, mu, i, None),
+        }
+    }
+
+    /// [`Ctx::solve_stick`] with N = 11 unknowns (a, ω̇, three normals, two shear components),
+    /// or N = 12 with a crease's second normal at another contact.
+    fn solve_stick_n<const N: usize>(
+        &self,
+        dir: &[Vector3<f64>; 3],
+        mu: &[f64; 3],
+        i: usize,
+        crease: Option<Crease>,
+    ) -> Result<Solved, RigidError>
+    where
+        nalgebra::Const<N>: nalgebra::DimMin<nalgebra::Const<N>, Output = nalgebra::Const<N>>,
+    {
         let geom = self.geom;
         let (t1, t2) = geom.tangents(i);
-        let mut a = SMatrix::<f64, 11, 11>::zeros();
-        let mut b = SVector::<f64, 11>::zeros();
+        let mut a = SMatrix::<f64, N, N>::zeros();
+        let mut b = SVector::<f64, N>::zeros();
         let iw = self.inertia.world;
         for k in 0..3 {
             a[(k, k)] = self.mass;
@@ -319,6 +432,9 @@ impl Ctx<'_> {
                 a[(3 + k, 3 + c)] = iw[(k, c)];
             }
         }
+        // The crease contact carries its second face's friction too: μ (λ_j + λ_B) against its
+        // slip.
+        let crease_at = crease.map(|c| c.contact);
         for j in 0..3 {
             let g = if j == i {
                 geom.n[j]
@@ -351,15 +467,33 @@ impl Ctx<'_> {
             }
             b[9 + q] = -t.dot(&self.centripetal[i]);
         }
+        if let Some(c) = crease {
+            let j = c.contact;
+            let g = c.normal - dir[j] * mu[j];
+            let m = geom.r[j].cross(&g);
+            for k in 0..3 {
+                a[(k, 11)] = -g[k];
+                a[(3 + k, 11)] = -m[k];
+            }
+            let arm = geom.r[j].cross(&c.normal);
+            for k in 0..3 {
+                a[(11, k)] = c.normal[k];
+                a[(11, 3 + k)] = arm[k];
+            }
+            b[11] = -c.normal.dot(&self.centripetal[j]);
+        }
         let x = a
             .lu()
             .solve(&b)
             .filter(|x| x.iter().all(|v| v.is_finite()))
             .ok_or(RigidError::StickSingular { contact: i })?;
         let lambda = [x[6], x[7], x[8]];
+        let second = if crease.is_some() { x[11] } else { 0.0 };
         let shear = [0, 1, 2].map(|j| {
             if j == i {
                 t1 * x[9] + t2 * x[10]
+            } else if Some(j) == crease_at {
+                -dir[j] * (mu[j] * (lambda[j] + second))
             } else {
                 -dir[j] * (mu[j] * lambda[j])
             }
@@ -369,6 +503,7 @@ impl Ctx<'_> {
             a: Vector3::new(x[0], x[1], x[2]),
             e: Vector3::new(x[3], x[4], x[5]),
             shear,
+            crease: second,
         })
     }
 
@@ -500,6 +635,24 @@ pub fn accelerations_slaved(
     rates: [f64; 3],
     step: f64,
 ) -> Result<Motion, RigidError> {
+    accelerations_in_crease(geom, applied, block, friction, rates, step, None)
+}
+
+/// [`accelerations_slaved`] with a contact riding a crease (`derivations/10-faces.md` §4): the
+/// crease's second face is a fourth constraint, its reaction one more unknown, and both faces'
+/// friction opposes the contact's slip along the crease. `rates` must keep the contact on the
+/// second face (its velocity along that face's normal zero). The second face's reaction falling
+/// to zero is [`RigidError::CreaseLetsGo`]; the contact's own face's, while the second holds it,
+/// [`RigidError::CreaseTakesOver`].
+pub fn accelerations_in_crease(
+    geom: &ContactGeometry,
+    applied: &Applied,
+    block: &Block,
+    friction: &Friction,
+    rates: [f64; 3],
+    step: f64,
+    crease: Option<Crease>,
+) -> Result<Motion, RigidError> {
     let inertia = Inertia::new(block, geom)?;
     let tw = twist(geom, rates)?;
     let ctx = Ctx {
@@ -510,6 +663,7 @@ pub fn accelerations_slaved(
         torque: applied.moment - tw.w.cross(&(inertia.world * tw.w)),
         centripetal: geom.r.map(|r| tw.w.cross(&tw.w.cross(&r))),
         arm: longest_arm(geom),
+        crease,
     };
     let frictionless = friction.is_frictionless();
     let coefficients = |lambda: &[f64; 3]| -> [f64; 3] {
@@ -597,6 +751,20 @@ pub fn accelerations_slaved(
             }
         };
     }
+    if let Some(c) = crease.filter(|_| stuck_contact != crease.map(|c| c.contact)) {
+        if sol.crease <= 0.0 {
+            return Err(RigidError::CreaseLetsGo {
+                contact: c.contact,
+                normal_n: sol.crease,
+            });
+        }
+        if sol.lambda[c.contact] <= 0.0 {
+            return Err(RigidError::CreaseTakesOver {
+                contact: c.contact,
+                normal_n: sol.lambda[c.contact],
+            });
+        }
+    }
     for (i, &l) in sol.lambda.iter().enumerate() {
         if l <= 0.0 {
             return Err(RigidError::LiftOff {
@@ -628,6 +796,7 @@ pub fn accelerations_slaved(
         power_friction,
         inertia,
         stuck: stuck_contact,
+        crease_normal: crease.map(|_| sol.crease),
     })
 }
 
@@ -1052,6 +1221,7 @@ mod tests {
             torque: applied.moment,
             centripetal: [Vector3::zeros(); 3],
             arm: 10.0,
+            crease: None,
         };
         let rates = ctx.pivot_direction(1).unwrap();
         let t = twist(&geom, [rates.x, rates.y, rates.z / ctx.arm]).unwrap();
@@ -1074,5 +1244,162 @@ mod tests {
         }
         assert!((f - s.a * d.block().mass).norm() < 1e-6 * f.norm().max(1.0));
         assert!((m - inertia.world * s.e).norm() < 1e-6 * m.norm().max(1.0));
+    }
+
+    /// The default scene's block flat at the start with contacts 0 and 1 on a level face and
+    /// contact 2 at the bottom of a groove along X, its faces dipping `dip` to either side: the
+    /// contact geometry (contact 2 on face A, normal leaning to +Z) and the crease (face B).
+    fn groove(dip: f64) -> (Scene, ContactGeometry, Crease) {
+        let scene = Scene::default_scene();
+        let pose = Pose::from_tilt_roll(&scene.site, Displacement::default(), 0.0, 0.0).unwrap();
+        let (s, c) = dip.sin_cos();
+        let level = Vector3::y();
+        let geom = ContactGeometry::with_normals(&[level, level, Vector3::new(0.0, c, s)], &pose);
+        let crease = Crease {
+            contact: 2,
+            normal: Vector3::new(0.0, c, -s),
+        };
+        (scene, geom, crease)
+    }
+
+    #[test]
+    fn frictionless_in_a_groove_the_block_slides_along_it_and_turns_about_its_contact() {
+        // Contacts 0, 1 on Y = 0 and contact 2 on the groove's bottom line keep the block flat
+        // with contact 2 on the line Z = z2: two degrees of freedom, X and θ. At rest,
+        // frictionless, F along x' and the couple cF (θ up): m Ẍ = F, and the groove's lateral
+        // reaction R at contact 2 (x2 = 4 m ahead of the CM) gives m Z̈ = R with Z̈ = −x2 θ̈ and
+        // I θ̈ = cF + x2 R, so θ̈ = cF / (I + m x2²).
+        let (scene, geom, crease) = groove(30f64.to_radians());
+        let d = crate::scene::Simulation::new(&scene).unwrap();
+        let (block, loads) = (d.block(), d.loads());
+        let applied = Applied::new(loads, block, &geom.frame);
+        let frictionless = Friction::Coulomb { mu_k: 0.0 };
+        let m = accelerations_in_crease(
+            &geom,
+            &applied,
+            block,
+            &frictionless,
+            [0.0; 3],
+            0.0,
+            Some(crease),
+        )
+        .unwrap();
+        let (f, c, x2) = (loads.hydraulic_force, loads.eccentricity, 4.0);
+        let theta_ddot = c * f / (block.inertia + block.mass * x2 * x2);
+        let want = [f / block.mass, -x2 * theta_ddot, theta_ddot];
+        for k in 0..3 {
+            assert!(
+                (m.acc[k] - want[k]).abs() < 1e-12 * want[0],
+                "{:?} vs {want:?}",
+                m.acc
+            );
+        }
+        // Both groove faces push, and their lateral parts give R.
+        let second = m.crease_normal.unwrap();
+        assert!(m.normal[2] > 0.0 && second > 0.0);
+        let r = (m.normal[2] - second) * 30f64.to_radians().sin();
+        assert!((r + block.mass * x2 * theta_ddot).abs() < 1e-6 * f, "{r}");
+        // Without the crease the block is free to move sideways: another motion.
+        let free = accelerations(&geom, &applied, block, &frictionless, [0.0; 3]).unwrap();
+        assert!((free.acc[2] - theta_ddot).abs() > 1e-3 * theta_ddot);
+    }
+
+    #[test]
+    fn sliding_in_a_groove_both_faces_rub_and_every_constraint_holds() {
+        // Moving along the groove with friction: Newton–Euler from the returned forces, the
+        // four constraint accelerations zero, and contact 2's friction μ(λ_A + λ_B) against its
+        // slip — the wedge: per unit of vertical load, μ / cos δ instead of μ.
+        let dip = 35f64.to_radians();
+        let (scene, geom, crease) = groove(dip);
+        let d = crate::scene::Simulation::new(&scene).unwrap();
+        let (block, loads) = (d.block(), d.loads());
+        let applied = Applied::new(loads, block, &geom.frame);
+        let mu = 0.4;
+        let friction = Friction::Coulomb { mu_k: mu };
+        let m = accelerations_in_crease(
+            &geom,
+            &applied,
+            block,
+            &friction,
+            [1.0, 0.0, 0.0],
+            0.0,
+            Some(crease),
+        )
+        .unwrap();
+        let second = m.crease_normal.unwrap();
+        let normal_force = |j: usize| {
+            let mut f = geom.n[j] * m.normal[j];
+            if j == 2 {
+                f += crease.normal * second;
+            }
+            f
+        };
+        let mut force = applied.force + applied.weight;
+        let mut torque = applied.moment - m.twist.w.cross(&(m.inertia.world * m.twist.w));
+        for j in 0..3 {
+            let c = normal_force(j) + m.shear[j];
+            force += c;
+            torque += geom.r[j].cross(&c);
+        }
+        assert!((force - m.accel * block.mass).norm() < 1e-6 * loads.hydraulic_force);
+        assert!((torque - m.inertia.world * m.ang_accel).norm() < 1e-6 * loads.hydraulic_force);
+        let w = m.twist.w;
+        for (j, n) in [
+            (0, geom.n[0]),
+            (1, geom.n[1]),
+            (2, geom.n[2]),
+            (2, crease.normal),
+        ] {
+            let r = geom.r[j];
+            let acc = m.accel + m.ang_accel.cross(&r) + w.cross(&w.cross(&r));
+            assert!(
+                n.dot(&acc).abs() < 1e-9,
+                "constraint of contact {j} along {n}"
+            );
+        }
+        let slip = m.slip[2];
+        assert!(slip.norm() > 0.9 && slip.y.abs() < 1e-12 && slip.z.abs() < 1e-12);
+        let want = -slip.normalize() * (mu * (m.normal[2] + second));
+        assert!((m.shear[2] - want).norm() < 1e-9 * want.norm());
+        let vertical = m.normal[2] * geom.n[2].y + second * crease.normal.y;
+        assert!((m.shear[2].norm() - mu * vertical / dip.cos()).abs() < 1e-6 * vertical);
+    }
+
+    #[test]
+    fn a_crease_lets_go_of_the_face_that_pulls() {
+        // A shallow groove (2°) cannot hold the lateral push of a strong turn: one face's
+        // reaction would pull. Which one depends on which face is the crease's second.
+        let (scene, geom, crease) = groove(2f64.to_radians());
+        let d = crate::scene::Simulation::new(&scene).unwrap();
+        let (block, loads) = (d.block(), d.loads());
+        let applied = Applied::new(loads, block, &geom.frame);
+        let frictionless = Friction::Coulomb { mu_k: 0.0 };
+        let run = |geom: &ContactGeometry, crease: Crease| {
+            accelerations_in_crease(
+                geom,
+                &applied,
+                block,
+                &frictionless,
+                [0.0; 3],
+                0.0,
+                Some(crease),
+            )
+        };
+        let first = run(&geom, crease).unwrap_err();
+        let mut swapped = geom;
+        swapped.n[2] = crease.normal;
+        let other = Crease {
+            normal: geom.n[2],
+            ..crease
+        };
+        let second = run(&swapped, other).unwrap_err();
+        let kinds = [&first, &second].map(|e| match e {
+            RigidError::CreaseLetsGo { contact: 2, .. } => "lets go",
+            RigidError::CreaseTakesOver { contact: 2, .. } => "takes over",
+            _ => "other",
+        });
+        let mut sorted = kinds;
+        sorted.sort_unstable();
+        assert_eq!(sorted, ["lets go", "takes over"], "{first} / {second}");
     }
 }

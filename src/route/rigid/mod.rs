@@ -69,6 +69,11 @@ fn displacement(y: &Y) -> Displacement {
 fn stop_of(e: RigidError) -> Stop {
     let reason = match e {
         RigidError::LiftOff { .. } => Reason::ContactLiftedOff,
+        // A crease's faces letting go is an event of the route's ground, not an end; here
+        // (no crease is ridden yet) it cannot arise.
+        RigidError::CreaseLetsGo { .. } | RigidError::CreaseTakesOver { .. } => {
+            Reason::ContactReachedAnotherFace
+        }
         RigidError::Singular(_)
         | RigidError::SlipFromRest
         | RigidError::SlipStart { .. }
