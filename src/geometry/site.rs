@@ -117,6 +117,16 @@ impl Site {
         }
     }
 
+    /// The same site with contact `contact` on face `face` of its ground (`None` off a ground
+    /// or for a face it does not have).
+    pub fn with_face(&self, contact: usize, face: usize) -> Option<Site> {
+        let (ground, faces) = self.ground.as_ref()?;
+        ground.faces().get(face)?;
+        let mut faces = *faces;
+        *faces.get_mut(contact)? = face;
+        Some(Site::on_ground(self.contacts, ground.clone(), faces))
+    }
+
     /// The ground and the face each contact is on, for a site on a ground of faces.
     pub fn ground(&self) -> Option<(&Ground, [usize; 3])> {
         self.ground.as_ref().map(|(g, f)| (g.as_ref(), *f))

@@ -163,6 +163,9 @@ pub struct Crease {
     pub contact: usize,
     /// The second face's upward unit normal.
     pub normal: Vector3<f64>,
+    /// The second face's offset e (m·P = e) and its number in the ground (for the route).
+    pub offset: f64,
+    pub face: usize,
 }
 
 /// Everything the rigid-body dynamics gives at one state.
@@ -188,6 +191,8 @@ pub struct Motion {
     pub stuck: Option<usize>,
     /// The second face's normal reaction (N) of a contact riding a crease.
     pub crease_normal: Option<f64>,
+    /// The crease the motion was evaluated with.
+    pub crease: Option<Crease>,
 }
 
 /// A slip speed below this fraction of the block's speed scale counts as zero slip.
@@ -591,6 +596,39 @@ pub fn pivot_rates(
     Ok((projected, removed.min(0.0)))
 }
 
+/// The rates (Ẋ, Ż, θ̇) with contact `c.contact`'s velocity into the crease's second face
+/// removed, and the kinetic energy this takes away (J, ≤ 0): the projection a perfectly
+/// inelastic, frictionless impulse along that face's normal makes (in the kinetic-energy
+/// metric, as [`pivot_rates`]). Keeps a contact riding a crease on both faces against the
+/// integrator's drift, and takes the velocity into a face the contact meets.
+pub fn crease_rates(
+    geom: &ContactGeometry,
+    block: &Block,
+    rates: [f64; 3],
+    c: &Crease,
+) -> Result<([f64; 3], f64), RigidError> {
+    let inertia = Inertia::new(block, geom)?;
+    let unit_rates = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    let basis = unit_rates.map(|u| twist(geom, u));
+    let basis = [basis[0]?, basis[1]?, basis[2]?];
+    // Kinetic-energy metric of the rates, and the constraint row n_B · v_i.
+    let g = Matrix3::from_fn(|a, b| basis[a].energy_dot(&basis[b], block.mass, &inertia));
+    let row = Vector3::from_fn(|k, _| c.normal.dot(&basis[k].at(&geom.r[c.contact])));
+    let ginv_row = g
+        .lu()
+        .solve(&row)
+        .ok_or(RigidError::Singular("crease projection"))?;
+    let denom = row.dot(&ginv_row);
+    let r = Vector3::new(rates[0], rates[1], rates[2]);
+    let into = row.dot(&r);
+    if !(denom.is_finite() && denom > 0.0) {
+        return Err(RigidError::Singular("crease projection"));
+    }
+    let projected = r - ginv_row * (into / denom);
+    let removed = -0.5 * into * into / denom;
+    Ok(([projected.x, projected.y, projected.z], removed))
+}
+
 /// Coulomb's cone with a little room for round-off.
 fn in_cone(shear: &Vector3<f64>, mu: f64, lambda: f64) -> bool {
     shear.norm() <= mu * lambda * (1.0 + 1e-9)
@@ -797,6 +835,7 @@ pub fn accelerations_in_crease(
         inertia,
         stuck: stuck_contact,
         crease_normal: crease.map(|_| sol.crease),
+        crease,
     })
 }
 
@@ -1258,6 +1297,8 @@ mod tests {
         let crease = Crease {
             contact: 2,
             normal: Vector3::new(0.0, c, -s),
+            offset: Vector3::new(0.0, c, -s).dot(&pose.vertices[2]),
+            face: 1,
         };
         (scene, geom, crease)
     }

@@ -10,11 +10,14 @@ use crate::coeffs::{Inputs, SiteTrig};
 use crate::geometry::Site;
 use crate::geometry::{Displacement, Pose};
 use crate::scene::Mode;
+use std::borrow::Cow;
 
 /// Follows the physical pose by solving for all roots at every increment.
 #[derive(Debug, Clone)]
 pub struct EigenFollower<'s> {
-    site: &'s Site,
+    /// The site followed: the scene's, or one the route changed to (a contact onto another
+    /// face, [`EigenFollower::on_site`]).
+    site: Cow<'s, Site>,
     /// The foundation's trigonometric functions and the unknowns' scales, computed once.
     trig: SiteTrig,
     scales: (f64, f64),
@@ -28,7 +31,7 @@ impl<'s> EigenFollower<'s> {
     /// At the start of sliding (the flat frame).
     pub fn new(site: &'s Site, mode: Mode) -> Self {
         EigenFollower {
-            site,
+            site: Cow::Borrowed(site),
             trig: SiteTrig::new(site),
             scales: system::unknown_scales(site, mode),
             mode,
@@ -49,12 +52,27 @@ impl<'s> EigenFollower<'s> {
         }
     }
 
+    /// The same point followed on another site (see [`super::Tracker::on_site`]).
+    pub fn on_site(&self, site: Site) -> EigenFollower<'s> {
+        EigenFollower {
+            trig: SiteTrig::new(&site),
+            scales: system::unknown_scales(&site, self.mode),
+            site: Cow::Owned(site),
+            ..self.clone()
+        }
+    }
+
+    /// The site followed.
+    pub fn site(&self) -> &Site {
+        &self.site
+    }
+
     pub fn point(&self) -> BranchPoint {
         self.current
     }
 
     pub fn pose(&self) -> Option<Pose> {
-        classify::pose(self.site, self.current.d, self.mode, self.current.u)
+        classify::pose(&self.site, self.current.d, self.mode, self.current.u)
     }
 
     /// All roots at `target`; the admissible one nearest the current point becomes current.
@@ -72,9 +90,9 @@ impl<'s> EigenFollower<'s> {
             theta_deg: target.theta.to_degrees(),
             reason,
         };
-        let inputs = Inputs::with_trig(self.site, &self.trig, target);
+        let inputs = Inputs::with_trig(&self.site, &self.trig, target);
         let (sx, sy) = self.scales;
-        let (p, q) = system::biquadratic_from(self.site, &inputs, self.scales, target, self.mode);
+        let (p, q) = system::biquadratic_from(&self.site, &inputs, self.scales, target, self.mode);
         let raw = eigen::candidates(&p, &q);
         let mut best: Option<([f64; 2], f64)> = None;
         let mut nearest_reason = None;
@@ -97,17 +115,17 @@ impl<'s> EigenFollower<'s> {
             };
             // A root of A + B·Q is never spurious; in exact mode the mirrored frame is.
             let spurious =
-                classify::roll_is_unknown(self.site, self.mode) && classify::exact_mirrored(u[1]);
+                classify::roll_is_unknown(&self.site, self.mode) && classify::exact_mirrored(u[1]);
             let dist = (u[0] - self.current.u[0])
                 .abs()
                 .max((u[1] - self.current.u[1]).abs());
             let verdict = if spurious {
                 Err(Inadmissible::Spurious)
             } else {
-                classify::pose(self.site, target, self.mode, u)
+                classify::pose(&self.site, target, self.mode, u)
                     .ok_or(Inadmissible::NoRealFrame)
                     .and_then(|pose| {
-                        classify::check_pose_within(self.site, &self.trig, &pose, self.region_tol)
+                        classify::check_pose_within(&self.site, &self.trig, &pose, self.region_tol)
                     })
             };
             match verdict {

@@ -22,6 +22,7 @@ use crate::geometry::Site;
 use crate::geometry::{Displacement, Pose};
 use crate::numeric::fixed;
 use crate::scene::Mode;
+use std::borrow::Cow;
 
 /// A point on the followed branch: displacement and u = (α, β) (small-angle) or (α, ψ) (exact).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -71,7 +72,9 @@ pub struct TrackStats {
 /// Follows the physical branch of the chosen mode.
 #[derive(Debug, Clone)]
 pub struct Tracker<'s> {
-    site: &'s Site,
+    /// The site followed: the scene's, or one the route changed to (a contact onto another
+    /// face, [`Tracker::on_site`]).
+    site: Cow<'s, Site>,
     /// The foundation's trigonometric functions, computed once.
     trig: SiteTrig,
     mode: Mode,
@@ -178,7 +181,7 @@ impl<'s> Tracker<'s> {
     /// At the start of sliding: X = Z = θ = 0, the flat frame (α = β = ψ = 0).
     pub fn new(site: &'s Site, mode: Mode) -> Self {
         Tracker {
-            site,
+            site: Cow::Borrowed(site),
             trig: SiteTrig::new(site),
             mode,
             current: BranchPoint {
@@ -204,6 +207,27 @@ impl<'s> Tracker<'s> {
             region_tol: f64::INFINITY,
             ..self.clone()
         }
+    }
+
+    /// The same point of the branch followed on another site: where a contact goes onto
+    /// another face it is on both there, so the current (α, ψ) is a root of the new site's
+    /// system too (`derivations/10-faces.md` §5). The predictor starts afresh.
+    pub fn on_site(&self, site: Site) -> Tracker<'s> {
+        let trig = SiteTrig::new(&site);
+        let current_pose = pose(&site, self.current.d, self.mode, self.current.u);
+        Tracker {
+            site: Cow::Owned(site),
+            trig,
+            current_pose,
+            previous: None,
+            h: 1.0,
+            ..self.clone()
+        }
+    }
+
+    /// The site followed.
+    pub fn site(&self) -> &Site {
+        &self.site
     }
 
     /// The current point of the branch.
@@ -237,7 +261,7 @@ impl<'s> Tracker<'s> {
             let d = lerp(from, target, s_try);
             let u_pred = self.predict(d);
             let eqs =
-                Equations::from_inputs(&Inputs::with_trig(self.site, &self.trig, d), self.mode);
+                Equations::from_inputs(&Inputs::with_trig(&self.site, &self.trig, d), self.mode);
             let result = correct(&eqs, u_pred, &mut self.stats.newton_iterations).and_then(|u| {
                 // Jump guard: with a secant predictor the correction is second order in the step.
                 let step = norm([u[0] - self.current.u[0], u[1] - self.current.u[1]]);
@@ -271,7 +295,7 @@ impl<'s> Tracker<'s> {
             }
         }
         self.h = h;
-        self.current_pose = pose(self.site, self.current.d, self.mode, self.current.u);
+        self.current_pose = pose(&self.site, self.current.d, self.mode, self.current.u);
         self.check()?;
         Ok(self.current)
     }
@@ -280,11 +304,11 @@ impl<'s> Tracker<'s> {
         let cur = self.current;
         match self.previous {
             Some(prev) => {
-                let last = distance(self.site, cur.d, prev.d);
+                let last = distance(&self.site, cur.d, prev.d);
                 if last <= 0.0 {
                     return cur.u;
                 }
-                let f = (distance(self.site, d, cur.d) / last).min(4.0);
+                let f = (distance(&self.site, d, cur.d) / last).min(4.0);
                 [
                     cur.u[0] + f * (cur.u[0] - prev.u[0]),
                     cur.u[1] + f * (cur.u[1] - prev.u[1]),
@@ -297,7 +321,7 @@ impl<'s> Tracker<'s> {
     /// Condition number (2-norm) of the Jacobian of the tracked equations at the current point:
     /// large near a turning point or where roots merge.
     pub fn jacobian_condition(&self) -> Option<f64> {
-        let e = Equations::new(self.site, self.current.d, self.mode).eval(self.current.u)?;
+        let e = Equations::new(&self.site, self.current.d, self.mode).eval(self.current.u)?;
         let [[a, b], [c, d]] = e.j;
         // Singular values of a 2×2 matrix.
         let s = a * a + b * b + c * c + d * d;
@@ -322,13 +346,13 @@ impl<'s> Tracker<'s> {
             theta_deg: d.theta.to_degrees(),
             reason,
         };
-        if roll_is_unknown(self.site, self.mode) && exact_mirrored(self.current.u[1]) {
+        if roll_is_unknown(&self.site, self.mode) && exact_mirrored(self.current.u[1]) {
             return Err(fail(Inadmissible::Spurious));
         }
         let p = self
             .current_pose
             .ok_or_else(|| fail(Inadmissible::NoRealFrame))?;
-        check_pose_within(self.site, &self.trig, &p, self.region_tol).map_err(fail)
+        check_pose_within(&self.site, &self.trig, &p, self.region_tol).map_err(fail)
     }
 }
 

@@ -57,6 +57,22 @@ impl<'s> PoseFinder<'s> {
         }
     }
 
+    /// The same point on another site (a contact gone onto another face).
+    pub fn on_site(&self, site: crate::geometry::Site) -> Self {
+        match self {
+            PoseFinder::Continuation(t) => PoseFinder::Continuation(t.on_site(site)),
+            PoseFinder::AllRoots(f) => PoseFinder::AllRoots(f.on_site(site)),
+        }
+    }
+
+    /// The site followed: the scene's, or the one a contact's change of face made.
+    pub fn site(&self) -> &crate::geometry::Site {
+        match self {
+            PoseFinder::Continuation(t) => t.site(),
+            PoseFinder::AllRoots(f) => f.site(),
+        }
+    }
+
     /// Which method this finder is.
     pub fn method(&self) -> PoseMethod {
         match self {

@@ -28,6 +28,12 @@ pub enum Reason {
     ContactOverRidge,
     /// On a surface: a contact left the surveyed surface.
     ContactOffSurface,
+    /// A contact riding a crease is let go by the crease's second face (an event the rigid body
+    /// handles; an end only where it cannot).
+    CreaseLetsGo,
+    /// A contact riding a crease leaves its own face for the crease's other one (an end until
+    /// a contact can change its face).
+    CreaseTakesOver,
     /// The pose equations have no admissible root to follow (the tracker's diagnosis).
     NoAdmissibleRoot,
     /// t reached t_end.
@@ -52,6 +58,8 @@ impl Reason {
             Reason::ContactReachedAnotherFace => "a contact reached another face",
             Reason::ContactOverRidge => "a contact ran over a ridge",
             Reason::ContactOffSurface => "a contact ran off the surveyed surface",
+            Reason::CreaseLetsGo => "a crease let go of its contact",
+            Reason::CreaseTakesOver => "a contact left its face for a crease's other face",
             Reason::NoAdmissibleRoot => "no admissible root",
             Reason::TimeLimit => "time limit",
             Reason::ContactForcesUndetermined => "the contact forces are not determined",

@@ -2,7 +2,7 @@
 //! ([`Heading`]), located by bisection on the step length ([`bracket_event`]), and what a stop
 //! comes to ([`come_to_rest`]).
 
-use super::{Eval, Y, displacement, energy, evaluate, rest_row, rk4, static_check};
+use super::{Eval, Hold, Y, displacement, energy, evaluate, rest_row, rk4, static_check};
 use crate::mechanics::ContactGeometry;
 use crate::mechanics::rigid_body::Motion;
 use crate::route::outcome::Outcome;
@@ -77,11 +77,11 @@ pub(super) fn bracket_event(
     (h, end): (f64, Y),
     heading: &Heading<'_>,
 ) -> Bracket {
-    let stuck = heading.before.stuck;
+    let hold = Hold::of(heading.before);
     let reaches = |len: f64| -> Result<(Option<Event>, Y), Stop> {
         let (yh, crossed) = rk4(scene, sections, finder, y, k1, len, heading)?;
         let mut f = finder.clone();
-        let e = evaluate(scene, sections, &mut f, &yh, stuck)?;
+        let e = evaluate(scene, sections, &mut f, &yh, hold)?;
         Ok((heading.event(&e.motion).or(crossed), yh))
     };
     let mut b = Bracket {
@@ -140,7 +140,7 @@ pub(super) fn come_to_rest(
     };
     o.travel += (stop_pose.cm - from.pose.cm).norm();
     o.increments = k;
-    let geom = ContactGeometry::with_normals(sections.normals(), &stop_pose);
+    let geom = ContactGeometry::with_normals(&finder.site().normals(), &stop_pose);
     let check = match static_check(sections, &geom) {
         Ok(c) => c,
         Err(Stop { reason, detail }) => return Rest::Ended(reason, t, detail),
@@ -158,7 +158,13 @@ pub(super) fn come_to_rest(
             ),
         );
     }
-    match evaluate(scene, sections, finder, stopped, None) {
+    match evaluate(
+        scene,
+        sections,
+        finder,
+        stopped,
+        Hold::of(&from.motion).sticking(None),
+    ) {
         Ok(e) => Rest::Slips(Box::new(e)),
         Err(Stop { reason, detail }) => {
             o.energy = Some(energy(stopped, 0.0, stop_pose.cm.y, origin, mass, g));

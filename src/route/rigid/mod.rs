@@ -29,7 +29,7 @@ use super::termination::Reason;
 use crate::geometry::{Displacement, Pose};
 use crate::mechanics::ContactGeometry;
 use crate::mechanics::loads::Applied;
-use crate::mechanics::rigid_body::{self, Motion, RigidError};
+use crate::mechanics::rigid_body::{self, Crease, Motion, RigidError};
 use crate::mechanics::static_friction::{self, StaticCheck};
 use crate::scene::{Scene, Simulation};
 use nalgebra::Vector3;
@@ -69,11 +69,9 @@ fn displacement(y: &Y) -> Displacement {
 fn stop_of(e: RigidError) -> Stop {
     let reason = match e {
         RigidError::LiftOff { .. } => Reason::ContactLiftedOff,
-        // A crease's faces letting go is an event of the route's ground, not an end; here
-        // (no crease is ridden yet) it cannot arise.
-        RigidError::CreaseLetsGo { .. } | RigidError::CreaseTakesOver { .. } => {
-            Reason::ContactReachedAnotherFace
-        }
+        // Events of a crease (`substep.rs` handles them where it finds them).
+        RigidError::CreaseLetsGo { .. } => Reason::CreaseLetsGo,
+        RigidError::CreaseTakesOver { .. } => Reason::CreaseTakesOver,
         RigidError::Singular(_)
         | RigidError::SlipFromRest
         | RigidError::SlipStart { .. }
@@ -85,18 +83,43 @@ fn stop_of(e: RigidError) -> Stop {
     }
 }
 
-/// The right-hand side at state `y`. `stuck`: the contact that stuck at the start of the step;
-/// the integrator's drift of its slip is projected out (as an impulse would, the energy it
-/// takes in `Eval::removed`) so that it stays stuck while its cone allows.
+/// What the step holds a contact to: a contact that stuck at the start of the step, and a
+/// contact riding a crease (`derivations/10-faces.md` §4).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+struct Hold {
+    stuck: Option<usize>,
+    crease: Option<Crease>,
+}
+
+impl Hold {
+    /// What the motion `m` was evaluated holding.
+    fn of(m: &Motion) -> Hold {
+        Hold {
+            stuck: m.stuck,
+            crease: m.crease,
+        }
+    }
+
+    /// The same crease, with `stuck` sticking.
+    fn sticking(self, stuck: Option<usize>) -> Hold {
+        Hold { stuck, ..self }
+    }
+}
+
+/// The right-hand side at state `y`. `hold.stuck`: the contact that stuck at the start of the
+/// step; the integrator's drift of its slip is projected out (as an impulse would, the energy
+/// it takes in `Eval::removed`) so that it stays stuck while its cone allows. `hold.crease`: a
+/// contact riding a crease; its velocity into the second face is projected out likewise.
 fn evaluate(
     scene: &Scene,
     dynamics: &Simulation,
     finder: &mut PoseFinder<'_>,
     y: &Y,
-    stuck: Option<usize>,
+    hold: Hold,
 ) -> Result<Eval, Stop> {
+    let stuck = hold.stuck;
     let pose = pose_at(scene, finder, displacement(y))?;
-    let geom = ContactGeometry::with_normals(dynamics.normals(), &pose);
+    let geom = ContactGeometry::with_normals(&finder.site().normals(), &pose);
     let applied = Applied::new(dynamics.loads(), dynamics.block(), &geom.frame);
     let mut rates = [y[3], y[4], y[5]];
     let mut removed = 0.0;
@@ -107,13 +130,19 @@ fn evaluate(
         (rates, removed) =
             rigid_body::pivot_rates(&geom, dynamics.block(), rates, i).map_err(stop_of)?;
     }
-    let motion = rigid_body::accelerations_slaved(
+    if let Some(c) = hold.crease.filter(|c| stuck != Some(c.contact)) {
+        let (r, into) =
+            rigid_body::crease_rates(&geom, dynamics.block(), rates, &c).map_err(stop_of)?;
+        (rates, removed) = (r, removed + into);
+    }
+    let motion = rigid_body::accelerations_in_crease(
         &geom,
         &applied,
         dynamics.block(),
         dynamics.friction(),
         rates,
         dynamics.solver().dt,
+        hold.crease,
     )
     .map_err(stop_of)?;
     Ok(Eval {
@@ -148,7 +177,7 @@ fn hold(
         if r[0].hypot(r[1]) <= 1e-14 * l || ev.motion.stuck != Some(i) {
             break;
         }
-        let geom = ContactGeometry::with_normals(dynamics.normals(), &ev.pose);
+        let geom = ContactGeometry::with_normals(&finder.site().normals(), &ev.pose);
         // The contact's horizontal velocity for unit (Ẋ, Ż, L θ̇): rows X and Z.
         let v = rigid_body::contact_velocity_map(&geom, l, i).map_err(stop_of)?;
         let j = [v.map(|c| c.x), v.map(|c| c.z)];
@@ -163,7 +192,13 @@ fn hold(
         y[0] += delta[0];
         y[1] += delta[1];
         y[2] += delta[2] / l;
-        ev = evaluate(scene, dynamics, finder, &y, Some(i))?;
+        ev = evaluate(
+            scene,
+            dynamics,
+            finder,
+            &y,
+            Hold::of(&ev.motion).sticking(Some(i)),
+        )?;
         y = accept(&y, &ev);
     }
     Ok((y, ev))
@@ -203,10 +238,10 @@ fn rk4(
     heading: &Heading<'_>,
 ) -> Result<(Y, Option<Event>), Stop> {
     let mut crossed = None;
-    let stuck = heading.before.stuck;
+    let hold = Hold::of(heading.before);
     let mut stage = |y: &Y| {
         let mut f = finder.for_stages();
-        evaluate(scene, dynamics, &mut f, y, stuck).map(|e| {
+        evaluate(scene, dynamics, &mut f, y, hold).map(|e| {
             crossed = crossed.or(heading.event(&e.motion));
             derivative(&with_rates(y, e.rates), &e.motion)
         })
@@ -370,7 +405,7 @@ impl<'a> Dynamics<'a> for RigidBody<'a> {
             done.energy = Some(EnergyBalance::default());
             return Start::Ended(done);
         }
-        let ev = match evaluate(scene, sections, finder, &y, None) {
+        let ev = match evaluate(scene, sections, finder, &y, Hold::default()) {
             Ok(e) => e,
             Err(Stop { reason, detail }) => {
                 o.push(rest_row(0.0, &y, &start_pose));

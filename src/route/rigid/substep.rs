@@ -3,12 +3,19 @@
 //! event handled (`derivations/08-rigid-body.md` §3).
 
 use super::events::{Bracket, Event, Heading, Rest, bracket_event, come_to_rest};
-use super::{Eval, RigidBody, Y, accept, anchor_of, derivative, evaluate, hold, rk4, row};
+use super::{
+    Eval, Hold, RigidBody, Y, accept, anchor_of, derivative, displacement, evaluate, hold, rk4,
+    row, stop_of,
+};
+use crate::mechanics::ContactGeometry;
+use crate::mechanics::rigid_body::{self, Crease};
 use crate::route::dynamics::Flow;
 use crate::route::outcome::Outcome;
 use crate::route::pose_finder::PoseFinder;
 use crate::route::rhs::Stop;
+use crate::route::rhs::pose_at;
 use crate::route::termination::Reason;
+use crate::scene::{Scene, Simulation};
 
 /// The fraction of the largest kinetic energy of the route below which the block counts as at
 /// rest when a contact's slip passes through zero (see `RigidBody::cut_at_event`).
@@ -162,11 +169,11 @@ impl RigidBody<'_> {
         heading: &Heading<'_>,
     ) -> Trial<'f> {
         let (scene, sections) = (self.scene, self.sections);
-        let stuck = self.ev.motion.stuck;
+        let hold = Hold::of(&self.ev.motion);
         let k1 = derivative(&self.y, &self.ev.motion);
         let mut at_next = finder.clone();
         let step = rk4(scene, sections, finder, &self.y, &k1, h, heading).and_then(|(n, c)| {
-            let e = evaluate(scene, sections, &mut at_next, &n, stuck)?;
+            let e = evaluate(scene, sections, &mut at_next, &n, hold)?;
             Ok((n, c.filter(|_| resolve), e))
         });
         let (next, crossed, next_ev, failed) = match step {
@@ -229,6 +236,11 @@ impl RigidBody<'_> {
             }
             _ => (next, next_ev),
         };
+        let (next, next_ev) = match next_ev.motion.crease {
+            Some(c) => hold_on_crease(self.scene, self.sections, finder, &next, next_ev, &c)
+                .map_err(Ending::Failed)?,
+            None => (next, next_ev),
+        };
         self.go_to(o, next, next_ev);
         self.anchor = anchor_of(&self.ev, self.anchor);
         self.t += h;
@@ -260,7 +272,7 @@ impl RigidBody<'_> {
         o: &mut Outcome<'_>,
     ) -> Result<Substep, Ending> {
         let (scene, sections) = (self.scene, self.sections);
-        let stuck = self.ev.motion.stuck;
+        let hold = Hold::of(&self.ev.motion);
         let Bracket {
             lo,
             hi,
@@ -276,13 +288,19 @@ impl RigidBody<'_> {
             heading,
         );
         if let (Some(stop), None) = (trial.failed, found) {
+            // A failure that is the ground's event (a contact meeting a face, a crease letting
+            // go) changes what the contacts are held to and the route goes on; any other ends
+            // it.
+            if let Some(next) = self.crease_event(finder, (lo, y_lo, y_hi), &stop, o)? {
+                return Ok(next);
+            }
             return Err(self.end_at_failure(finder, k, (lo, y_lo), stop, o));
         }
         // The substep up to the event must itself be resolved: else approach it in shorter
         // substeps.
         if lo > 0.0 {
             let mut f = finder.clone();
-            let e = evaluate(scene, sections, &mut f, &y_lo, stuck).map_err(Ending::Failed)?;
+            let e = evaluate(scene, sections, &mut f, &y_lo, hold).map_err(Ending::Failed)?;
             if self.unresolved(resolve, lo, &accept(&y_lo, &e), &e) {
                 self.h = 0.5 * lo;
                 return Ok(Substep::Retry);
@@ -307,11 +325,72 @@ impl RigidBody<'_> {
             Event::Pivot(i) => (y_lo, lo, Some(i)),
             Event::Stop => return self.stop(finder, k, y_lo, self.t + hi, o),
         };
-        let at = evaluate(scene, sections, finder, &y_at, stick).map_err(Ending::Failed)?;
+        let at = evaluate(scene, sections, finder, &y_at, hold.sticking(stick))
+            .map_err(Ending::Failed)?;
         self.go_to(o, accept(&y_at, &at), at);
         self.anchor = anchor_of(&self.ev, None);
         self.t += len;
         Ok(Substep::Event)
+    }
+
+    /// A failure at `y_hi`, just past the last state that stands (`y_lo`, `lo` into the
+    /// substep), that is an event of the ground (`derivations/10-faces.md` §4–5):
+    ///
+    /// * a contact reached a face of a ground of planes: it rides the crease from `y_lo` on,
+    ///   its velocity into the face taken by a perfectly inelastic, frictionless impulse (the
+    ///   energy booked as friction work);
+    /// * the crease's second face let go: the contact goes on along its own face;
+    /// * its own face let go: the contact goes on along the crease's other face (the site
+    ///   changes: that face becomes the contact's own).
+    ///
+    /// `None` for any other failure (it ends the route).
+    fn crease_event(
+        &mut self,
+        finder: &mut PoseFinder<'_>,
+        (lo, y_lo, y_hi): (f64, Y, Y),
+        stop: &Stop,
+        o: &mut Outcome<'_>,
+    ) -> Result<Option<Substep>, Ending> {
+        let (scene, sections) = (self.scene, self.sections);
+        let held = Hold::of(&self.ev.motion);
+        let hold = match (stop.reason, held.crease) {
+            (Reason::ContactReachedAnotherFace, None) => {
+                let Some(crease) = met_face(scene, finder, &y_hi) else {
+                    return Ok(None);
+                };
+                Hold {
+                    crease: Some(crease),
+                    ..held
+                }
+            }
+            (Reason::CreaseLetsGo, Some(_)) => Hold {
+                crease: None,
+                ..held
+            },
+            // The contact leaves its own face for the crease's other one: the site changes,
+            // and the branch goes on from the same point on it.
+            (Reason::CreaseTakesOver, Some(c)) => {
+                let Some(site) = finder.site().with_face(c.contact, c.face) else {
+                    return Ok(None);
+                };
+                *finder = finder.on_site(site);
+                Hold {
+                    crease: None,
+                    ..held
+                }
+            }
+            _ => return Ok(None),
+        };
+        let at = evaluate(scene, sections, finder, &y_lo, hold).map_err(Ending::Failed)?;
+        let (y, at) = match hold.crease {
+            Some(c) => hold_on_crease(scene, sections, finder, &accept(&y_lo, &at), at, &c)
+                .map_err(Ending::Failed)?,
+            None => (accept(&y_lo, &at), at),
+        };
+        self.go_to(o, y, at);
+        self.anchor = anchor_of(&self.ev, self.anchor);
+        self.t += lo;
+        Ok(Some(Substep::Event))
     }
 
     /// No event before the failure: the route ends where it fails, after the last state that
@@ -330,7 +409,7 @@ impl RigidBody<'_> {
                 self.sections,
                 finder,
                 &y_lo,
-                self.ev.motion.stuck,
+                Hold::of(&self.ev.motion),
             ) {
                 Ok(e) => self.go_to(o, accept(&y_lo, &e), e),
                 Err(e) => return Ending::Failed(e),
@@ -376,4 +455,68 @@ impl RigidBody<'_> {
             }
         }
     }
+}
+
+/// The crease a contact meets at `y` (just past where it reached another face of a ground of
+/// planes): the contact and the face now above its own, found at the pose there without the
+/// regions' check. `None` on a surface (its creases are not ridden yet) or if no face is above.
+fn met_face(scene: &Scene, finder: &PoseFinder<'_>, y: &Y) -> Option<Crease> {
+    let site = finder.site();
+    let (ground, faces) = site.ground().filter(|(g, _)| !g.is_surface())?;
+    let mut f = finder.for_stages();
+    let pose = pose_at(scene, &mut f, displacement(y)).ok()?;
+    let planes = site.planes();
+    (0..3)
+        .filter_map(|k| {
+            let v = pose.vertices[k];
+            let (top, h) = ground.top(v.x, v.z)?;
+            let above = h - planes[k].height(v.x, v.z);
+            (top != faces[k] && above > 0.0).then_some((k, top, above))
+        })
+        .max_by(|a, b| a.2.total_cmp(&b.2))
+        .map(|(k, top, _)| {
+            let face = ground.faces()[top];
+            Crease {
+                contact: k,
+                normal: face.normal(),
+                offset: face.offset(),
+                face: top,
+            }
+        })
+}
+
+/// Puts the contact riding crease `c` back on the crease's second face: the least change of
+/// (X, Z, L θ) that removes its distance from that face (Gauss–Newton with the contact's
+/// velocity map, as `hold` does for a sticking contact), a move of the size of the integrator's
+/// error.
+fn hold_on_crease(
+    scene: &Scene,
+    dynamics: &Simulation,
+    finder: &mut PoseFinder<'_>,
+    y: &Y,
+    ev: Eval,
+    c: &Crease,
+) -> Result<(Y, Eval), Stop> {
+    let l = scene.l();
+    let (mut y, mut ev) = (*y, ev);
+    for _ in 0..4 {
+        let gap = c.normal.dot(&ev.pose.vertices[c.contact]) - c.offset;
+        if gap.abs() <= 1e-14 * l || ev.motion.crease.is_none() {
+            break;
+        }
+        let geom = ContactGeometry::with_normals(&finder.site().normals(), &ev.pose);
+        let v = rigid_body::contact_velocity_map(&geom, l, c.contact).map_err(stop_of)?;
+        let row = v.map(|col| c.normal.dot(&col));
+        let norm2 = row.iter().map(|r| r * r).sum::<f64>();
+        if !(norm2 > 0.0 && norm2.is_finite()) {
+            break;
+        }
+        let delta = row.map(|r| -gap * r / norm2);
+        y[0] += delta[0];
+        y[1] += delta[1];
+        y[2] += delta[2] / l;
+        ev = evaluate(scene, dynamics, finder, &y, Hold::of(&ev.motion))?;
+        y = accept(&y, &ev);
+    }
+    Ok((y, ev))
 }
