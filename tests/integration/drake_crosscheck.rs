@@ -30,6 +30,11 @@ fn python() -> PathBuf {
 /// Drake's rows for a scene file over the horizon: t, X, Y, Z, θ° and the three contacts'
 /// positions (X, Y, Z each).
 fn drake_path(scene: &Path) -> Vec<Vec<f64>> {
+    drake_path_with(scene, HORIZON_S, &[])
+}
+
+/// [`drake_path`] over `horizon` (s) with more arguments for the script (a finer contact).
+fn drake_path_with(scene: &Path, horizon: f64, extra: &[&str]) -> Vec<Vec<f64>> {
     let py = python();
     assert!(
         py.exists(),
@@ -39,15 +44,16 @@ fn drake_path(scene: &Path) -> Vec<Vec<f64>> {
     let out_dir = root().join("target/crosscheck");
     std::fs::create_dir_all(&out_dir).unwrap();
     let stem = scene.file_stem().unwrap().to_string_lossy().to_string();
-    let out = out_dir.join(format!("{stem}.drake.csv"));
+    let out = out_dir.join(format!("{stem}{}.drake.csv", extra.join("")));
     let status = Command::new(&py)
         .arg(root().join("crosscheck/drake_route.py"))
         .arg("--scene")
         .arg(scene)
         .arg("--t-end")
-        .arg(HORIZON_S.to_string())
+        .arg(horizon.to_string())
         .arg("--out")
         .arg(&out)
+        .args(extra)
         .status()
         .expect("runs the Drake script");
     assert!(
@@ -215,4 +221,57 @@ fn rigid_body_pivot_reaching_its_cone_starts_to_slip_as_in_drake() {
     // Issue #12's second scene: the stuck contact reaches its cone's edge at 1.482 s and slips
     // (it ended "the contact forces are not determined" there before).
     agrees_with_drake("pivot-released", End::Contact0ReachesPlane1 { l2x: 4.0 });
+}
+
+#[test]
+#[ignore = "needs pydrake (crosscheck/setup.sh); run by .ci/run"]
+fn rigid_body_on_the_papers_planes_as_faces_rides_the_crease_as_in_refined_drake() {
+    // Issue #15: the paper's planes as faces of one ground (every Drake sphere against every
+    // half-space). Contact 2 rides the crease of planes 1 and 2, goes onto plane 1 alone at
+    // 3.79 s, and the route ends where contact 0 meets plane 1 (Drake: the impact lifts contact
+    // 1). Drake refined until converged (dt 0.5 ms, 0.1 mm spheres, ten times the stiffness):
+    // within 1 % of travel and 0.5° of yaw all the way, and contact 0 reaches plane 1 within
+    // 10 ms of our end.
+    let file = root().join("scenes/paper-like-faces.toml");
+    let horizon = 4.5;
+    let drake = drake_path_with(
+        &file,
+        horizon,
+        &["--dt", "0.0005", "--radius", "1e-4", "--stiffness", "2e12"],
+    );
+    let scene = Scene::from_file(&file)
+        .unwrap()
+        .with("solver.t_end_s", horizon)
+        .unwrap();
+    let r = route::run(&scene).unwrap();
+    assert_eq!(r.termination.reason, Reason::ContactReachedAnotherFace);
+    assert!(r.termination.detail.contains("contact 0 reached face 1"));
+    let t_end = r.termination.t_s;
+    // Drake's rows every 0.5 ms; ours every 1 ms.
+    let at = |t: f64| &drake[((t / 0.0005).round() as usize).min(drake.len() - 1)];
+    let pairs: Vec<(&Row, &Vec<f64>)> = r.rows.iter().map(|w| (w, at(w.t_s))).collect();
+    let t_ours = travel(pairs.iter().map(|(w, _)| [w.x_m, w.y_m, w.z_m]));
+    let t_drake = travel(pairs.iter().map(|(_, d)| [d[1], d[2], d[3]]));
+    let (mut pos_err, mut yaw_err) = (0.0f64, 0.0f64);
+    for (w, d) in &pairs {
+        let e = ((w.x_m - d[1]).powi(2) + (w.y_m - d[2]).powi(2) + (w.z_m - d[3]).powi(2)).sqrt();
+        pos_err = pos_err.max(e);
+        yaw_err = yaw_err.max((w.theta_deg - d[4]).abs());
+    }
+    let crossing = drake
+        .iter()
+        .find(|d| d[5] > 4.0)
+        .map(|d| d[0])
+        .expect("Drake's contact 0 reaches plane 1");
+    println!(
+        "paper-like-faces: ends at {t_end:.4} s (Drake's contact 0 crosses plane 1's strike at \
+         {crossing:.4} s); travel {t_ours:.4} m (Drake {t_drake:.4} m, {:.3} %), largest CM gap \
+         {pos_err:.4} m ({:.3} % of travel), largest yaw gap {yaw_err:.4}°",
+        100.0 * (t_ours - t_drake).abs() / t_drake,
+        100.0 * pos_err / t_drake
+    );
+    assert!((t_ours - t_drake).abs() < 0.01 * t_drake);
+    assert!(pos_err < 0.01 * t_drake, "CM gap {pos_err} m");
+    assert!(yaw_err < 0.5, "yaw gap {yaw_err}°");
+    assert!((crossing - t_end).abs() < 0.01, "{crossing} vs {t_end}");
 }
