@@ -89,6 +89,33 @@ fn on_the_papers_faces_contact_2_rides_the_crease_then_plane_1_alone_until_conta
         "{}",
         r.termination.t_s
     );
+    // While it rides the crease (until plane 2 lets go, 3.79 s), contact 2 is on both planes:
+    // the direct solver on the scene's planes (contact 2 on plane 2) puts it on plane 1 too.
+    let (ground, _) = s.site().ground().unwrap();
+    let plane_1 = ground.faces()[1];
+    let mut near = None;
+    let mut checked = 0;
+    for row in r.rows.iter().filter(|w| w.t_s > 0.01 && w.t_s < 3.78) {
+        let d = slideroute::stages::geometry::Displacement::new(
+            row.x_m,
+            row.z_m,
+            row.theta_deg.to_radians(),
+        );
+        let p = match &near {
+            Some(q) => slideroute::stages::geometry::direct::solve_from(s.site(), d, q),
+            None => slideroute::stages::geometry::direct::solve(s.site(), d),
+        }
+        .unwrap();
+        let off = plane_1.signed_distance(&p.vertices[2]);
+        assert!(
+            off.abs() < 1e-9,
+            "contact 2 {off:e} m off plane 1 at {} s",
+            row.t_s
+        );
+        near = Some(p);
+        checked += 1;
+    }
+    assert!(checked > 3000, "{checked}");
     // The energy balance closes: the crease's projections book what they take as friction
     // work.
     let e = r.energy.unwrap();
