@@ -7,13 +7,14 @@ use super::integrator::{paper_step, rk4_step};
 use super::outcome::Outcome;
 use super::pose_finder::PoseFinder;
 use super::rhs::{Evaluation, Stop, evaluate, velocity};
+use super::state::faces_of;
 use super::state::{Row, State};
 use super::termination::Reason;
 use crate::mechanics::loads::Applied;
 use crate::mechanics::onset::factor_of_safety;
 use crate::scene::{Integrator, Scene, Simulation};
 
-fn row(s: &State, ev: Option<&Evaluation>, pose: &crate::geometry::Pose) -> Row {
+fn row(s: &State, ev: Option<&Evaluation>, pose: &crate::geometry::Pose, faces: [u32; 3]) -> Row {
     Row {
         t_s: s.t,
         x_m: s.x,
@@ -28,6 +29,8 @@ fn row(s: &State, ev: Option<&Evaluation>, pose: &crate::geometry::Pose) -> Row 
         omega_deg_s: s.omega.to_degrees(),
         n_n: ev.map(|e| e.reaction.normal.map(|v| v.norm())),
         s_n: ev.map(|e| e.reaction.shear.map(|v| v.norm())),
+        faces,
+        crease: None,
     }
 }
 
@@ -73,7 +76,7 @@ impl<'a> Dynamics<'a> for Paper<'a> {
         ) {
             Ok(ev) => ev,
             Err(Stop { reason, detail }) => {
-                o.push(row(&state, None, &start_pose));
+                o.push(row(&state, None, &start_pose, faces_of(&scene.site)));
                 return Start::Ended(o.end(reason, 0.0, detail));
             }
         };
@@ -81,7 +84,7 @@ impl<'a> Dynamics<'a> for Paper<'a> {
         let (fs, driving, resisting) =
             factor_of_safety(&ev.geom, &applied, &ev.statics, sections.friction());
         o.paper_ratio = fs.is_finite().then_some(fs);
-        o.push(row(&state, Some(&ev), &ev.pose));
+        o.push(row(&state, Some(&ev), &ev.pose, faces_of(&scene.site)));
         if scene.initial.at_rest() && (fs >= 1.0 || ev.reaction.accel <= 0.0) {
             let detail = if driving <= 0.0 {
                 format!("nothing drives the block: net driving force along x' is {driving:.6e} N")
@@ -200,7 +203,12 @@ impl<'a> Dynamics<'a> for Paper<'a> {
             );
             if fs_here >= 1.0 {
                 o.travel += (stop_ev.pose.cm - ev.pose.cm).norm();
-                o.push(row(&stop, Some(&stop_ev), &stop_ev.pose));
+                o.push(row(
+                    &stop,
+                    Some(&stop_ev),
+                    &stop_ev.pose,
+                    faces_of(&scene.site),
+                ));
                 let detail = format!(
                     "speed reached zero at t = {:.6} s; factor of safety there {fs_here:.4}",
                     stop.t
@@ -215,7 +223,12 @@ impl<'a> Dynamics<'a> for Paper<'a> {
     }
 
     fn row(&self) -> Row {
-        row(&self.state, Some(&self.ev), &self.ev.pose)
+        row(
+            &self.state,
+            Some(&self.ev),
+            &self.ev.pose,
+            faces_of(&self.scene.site),
+        )
     }
 }
 

@@ -46,4 +46,17 @@ pub struct Row {
     /// reactions could not be had (the last row of a route that ended for that reason).
     pub n_n: Option<[f64; 3]>,
     pub s_n: Option<[f64; 3]>,
+    /// The face each contact rests on: its plane's number (the paper's planes and any three
+    /// planes: 0, 1, 2 for contacts 0, 1, 2; a ground of faces: the face's number).
+    pub faces: [u32; 3],
+    /// A contact riding a crease and the crease's second face: [contact, face].
+    pub crease: Option<[u32; 2]>,
+}
+
+/// The face each contact of `site` rests on (see [`Row::faces`]).
+pub fn faces_of(site: &crate::geometry::Site) -> [u32; 3] {
+    match site.ground() {
+        Some((_, faces)) => faces.map(|f| f as u32),
+        None => [0, 1, 2],
+    }
 }

@@ -146,7 +146,7 @@ pub(super) fn come_to_rest(
         Err(Stop { reason, detail }) => return Rest::Ended(reason, t, detail),
     };
     if check.holds() {
-        o.push(rest_row(t_event, stopped, &stop_pose));
+        o.push(rest_row(t_event, stopped, &stop_pose, from.faces));
         o.energy = Some(energy(stopped, 0.0, stop_pose.cm.y, origin, mass, g));
         return Rest::Ended(
             Reason::Stopped,

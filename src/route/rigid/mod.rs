@@ -24,7 +24,7 @@ use super::dynamics::{Dynamics, Flow, Start};
 use super::outcome::{EnergyBalance, Outcome};
 use super::pose_finder::PoseFinder;
 use super::rhs::{Stop, pose_at};
-use super::state::Row;
+use super::state::{Row, faces_of};
 use super::termination::Reason;
 use crate::geometry::{Displacement, Pose};
 use crate::mechanics::ContactGeometry;
@@ -52,6 +52,8 @@ struct Eval {
     /// The kinetic energy that projection removed (J, ≤ 0): friction work, booked when the
     /// state is taken (`accept`).
     removed: f64,
+    /// The face each contact rests on (`Row::faces`).
+    faces: [u32; 3],
 }
 
 /// The state `y` as the route takes it at evaluation `e`: its rates those the motion was
@@ -150,6 +152,7 @@ fn evaluate(
         motion,
         rates,
         removed,
+        faces: faces_of(finder.site()),
     })
 }
 
@@ -265,11 +268,13 @@ fn row(t: f64, y: &Y, e: &Eval) -> Row {
         omega_deg_s: y[5].to_degrees(),
         n_n: Some(e.motion.normal),
         s_n: Some(e.motion.shear.map(|s| s.norm())),
+        faces: e.faces,
+        crease: e.motion.crease.map(|c| [c.contact as u32, c.face as u32]),
     }
 }
 
 /// A row at rest (velocities zero; reactions not computed: static friction is indeterminate).
-fn rest_row(t: f64, y: &Y, pose: &Pose) -> Row {
+fn rest_row(t: f64, y: &Y, pose: &Pose, faces: [u32; 3]) -> Row {
     Row {
         t_s: t,
         x_m: y[0],
@@ -284,6 +289,8 @@ fn rest_row(t: f64, y: &Y, pose: &Pose) -> Row {
         omega_deg_s: 0.0,
         n_n: None,
         s_n: None,
+        faces,
+        crease: None,
     }
 }
 
@@ -387,13 +394,13 @@ impl<'a> Dynamics<'a> for RigidBody<'a> {
         let check = match static_check(sections, &ContactGeometry::new(scene, &start_pose)) {
             Ok(c) => c,
             Err(Stop { reason, detail }) => {
-                o.push(rest_row(0.0, &y, &start_pose));
+                o.push(rest_row(0.0, &y, &start_pose, faces_of(&scene.site)));
                 return Start::Ended(o.end(reason, 0.0, detail));
             }
         };
         o.fs = Some(check.factor_of_safety());
         if init.at_rest() && check.holds() {
-            o.push(rest_row(0.0, &y, &start_pose));
+            o.push(rest_row(0.0, &y, &start_pose, faces_of(&scene.site)));
             let mut done = o.end(
                 Reason::DoesNotSlide,
                 0.0,
@@ -408,7 +415,7 @@ impl<'a> Dynamics<'a> for RigidBody<'a> {
         let ev = match evaluate(scene, sections, finder, &y, Hold::default()) {
             Ok(e) => e,
             Err(Stop { reason, detail }) => {
-                o.push(rest_row(0.0, &y, &start_pose));
+                o.push(rest_row(0.0, &y, &start_pose, faces_of(&scene.site)));
                 return Start::Ended(o.end(reason, 0.0, detail));
             }
         };

@@ -6,7 +6,7 @@ use std::io::Write;
 use std::path::PathBuf;
 
 /// The header of `route.csv`: the fields of a [`Row`], in its order, with their units.
-pub const ROUTE_HEADER: [&str; 17] = [
+pub const ROUTE_HEADER: [&str; 22] = [
     "t_s",
     "x_m",
     "y_m",
@@ -24,6 +24,11 @@ pub const ROUTE_HEADER: [&str; 17] = [
     "s0_n",
     "s1_n",
     "s2_n",
+    "face0",
+    "face1",
+    "face2",
+    "crease_contact",
+    "crease_face",
 ];
 
 /// route.csv written row by row as the route computes them (issue #13: memory does not grow
@@ -67,6 +72,12 @@ impl<W: Write> CsvRows<W> {
                 Some(v) => rec.extend(v.iter().map(|x| x.to_string())),
                 None => rec.extend(std::iter::repeat_n(String::new(), 3)),
             }
+        }
+        // The face under each contact, and a crease's contact and second face (empty without).
+        rec.extend(r.faces.iter().map(|f| f.to_string()));
+        match r.crease {
+            Some([c, f]) => rec.extend([c.to_string(), f.to_string()]),
+            None => rec.extend([String::new(), String::new()]),
         }
         if let Err(e) = self.w.write_record(&rec) {
             self.error = Some(e);

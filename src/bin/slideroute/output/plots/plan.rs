@@ -129,6 +129,42 @@ struct Region {
     down: Option<P>,
 }
 
+/// The marks of a contact's change of face.
+const FACE_CHANGE: RGBColor = RGBColor(200, 30, 30);
+
+/// Where a contact changed face, rode into a crease or left one, along `rows`: its plan
+/// position then and what happened, e.g. "contact 2 into the crease with face 1 at 0.003 s".
+fn face_changes(scene: &Scene, rows: &[Row]) -> Vec<(P, String)> {
+    let mut out = Vec::new();
+    for w in rows.windows(2) {
+        let (a, b) = (&w[0], &w[1]);
+        let mut said = Vec::new();
+        for k in 0..3 {
+            if a.faces[k] != b.faces[k] {
+                said.push((k, format!("contact {k} onto face {}", b.faces[k])));
+            }
+        }
+        match (a.crease, b.crease) {
+            (None, Some([c, f])) => said.push((
+                c as usize,
+                format!("contact {c} into the crease with face {f}"),
+            )),
+            // Out of the crease onto its other face is said as the change of face above.
+            (Some([c, f]), None) if a.faces[c as usize] == b.faces[c as usize] => said.push((
+                c as usize,
+                format!("contact {c} out of the crease with face {f}"),
+            )),
+            _ => {}
+        }
+        for (k, text) in said {
+            if let Some(v) = vertices(scene, b) {
+                out.push((v[k], format!("{text} at {} s", sheet::short(b.t_s))));
+            }
+        }
+    }
+    out
+}
+
 /// Colours of a general site's planes or faces, in order.
 const FACE_COLORS: [RGBColor; 8] = [
     HORIZONTAL,
@@ -519,6 +555,17 @@ pub(super) fn plan_view(
         }
     }
 
+    // Where a contact of the first route changed face or went into or out of a crease.
+    let changes = face_changes(scene, tracks.first().map_or(&[][..], |t| t.rows));
+    for (at, _) in &changes {
+        chart
+            .draw_series(std::iter::once(
+                EmptyElement::at(*at)
+                    + Rectangle::new([(-4, -4), (4, 4)], FACE_CHANGE.stroke_width(2)),
+            ))
+            .map_err(err(path))?;
+    }
+
     // The hydraulic force on its line of action at the start.
     let mut obstacles: Vec<P> = Vec::new();
     if let (Some((q, d, f, e)), Some(tail), Some(s)) = (force, force_tail, start) {
@@ -771,6 +818,13 @@ pub(super) fn plan_view(
         .any(|t| t.rows.len() > 1 && t.rows.first() != t.rows.last())
     {
         entries.push(Entry::new(Mark::Cross(BLACK), "contacts at the end"));
+        if !changes.is_empty() {
+            let said: Vec<&str> = changes.iter().map(|(_, s)| s.as_str()).collect();
+            entries.push(Entry::new(
+                Mark::Square(FACE_CHANGE),
+                format!("where a contact changed face: {}", said.join("; ")),
+            ));
+        }
         entries.push(Entry::new(
             Mark::Ring(BLACK),
             "CM at the end (filled dot: at the start)",

@@ -200,6 +200,26 @@ fn a_foundation_of_faces_is_drawn_face_by_face_with_its_creases() {
 }
 
 #[test]
+fn the_plan_view_marks_where_a_contact_rides_a_crease_and_changes_face() {
+    let path =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/paper-like-faces.toml");
+    let scene = Scene::from_file(&path).unwrap();
+    let (dir, route) = route_pictures("crease", &scene);
+    assert!(route.rows.iter().any(|r| r.crease == Some([2, 1])));
+    let svg = read(&dir, "plan.svg");
+    let words = texts(&svg)
+        .into_iter()
+        .map(|t| t.text)
+        .collect::<Vec<_>>()
+        .join(" ");
+    assert!(
+        words.contains("contact 2 into the crease with face 1"),
+        "{words}"
+    );
+    assert!(words.contains("contact 2 onto face 1"), "{words}");
+}
+
+#[test]
 fn the_plan_view_numbers_the_contacts_at_the_start_and_the_end() {
     // At 4 s the end contacts stand apart from the start's; at the route's end (t_end 20 s)
     // contact 0 ends beside contact 1's start, and is numbered all the same.
