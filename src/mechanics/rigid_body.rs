@@ -1288,7 +1288,7 @@ mod tests {
     /// The default scene's block flat at the start with contacts 0 and 1 on a level face and
     /// contact 2 at the bottom of a groove along X, its faces dipping `dip` to either side: the
     /// contact geometry (contact 2 on face A, normal leaning to +Z) and the crease (face B).
-    fn groove(dip: f64) -> (Scene, ContactGeometry, Crease) {
+    fn groove(dip: f64) -> (crate::scene::Simulation, ContactGeometry, Crease, Applied) {
         let scene = Scene::default_scene();
         let pose = Pose::from_tilt_roll(&scene.site, Displacement::default(), 0.0, 0.0).unwrap();
         let (s, c) = dip.sin_cos();
@@ -1300,7 +1300,9 @@ mod tests {
             offset: Vector3::new(0.0, c, -s).dot(&pose.vertices[2]),
             face: 1,
         };
-        (scene, geom, crease)
+        let sim = crate::scene::Simulation::new(&scene).unwrap();
+        let applied = Applied::new(sim.loads(), sim.block(), &geom.frame);
+        (sim, geom, crease, applied)
     }
 
     #[test]
@@ -1310,10 +1312,8 @@ mod tests {
         // frictionless, F along x' and the couple cF (θ up): m Ẍ = F, and the groove's lateral
         // reaction R at contact 2 (x2 = 4 m ahead of the CM) gives m Z̈ = R with Z̈ = −x2 θ̈ and
         // I θ̈ = cF + x2 R, so θ̈ = cF / (I + m x2²).
-        let (scene, geom, crease) = groove(30f64.to_radians());
-        let d = crate::scene::Simulation::new(&scene).unwrap();
+        let (d, geom, crease, applied) = groove(30f64.to_radians());
         let (block, loads) = (d.block(), d.loads());
-        let applied = Applied::new(loads, block, &geom.frame);
         let frictionless = Friction::Coulomb { mu_k: 0.0 };
         let m = accelerations_in_crease(
             &geom,
@@ -1351,10 +1351,8 @@ mod tests {
         // four constraint accelerations zero, and contact 2's friction μ(λ_A + λ_B) against its
         // slip — the wedge: per unit of vertical load, μ / cos δ instead of μ.
         let dip = 35f64.to_radians();
-        let (scene, geom, crease) = groove(dip);
-        let d = crate::scene::Simulation::new(&scene).unwrap();
+        let (d, geom, crease, applied) = groove(dip);
         let (block, loads) = (d.block(), d.loads());
-        let applied = Applied::new(loads, block, &geom.frame);
         let mu = 0.4;
         let friction = Friction::Coulomb { mu_k: mu };
         let m = accelerations_in_crease(
@@ -1410,10 +1408,8 @@ mod tests {
     fn a_crease_lets_go_of_the_face_that_pulls() {
         // A shallow groove (2°) cannot hold the lateral push of a strong turn: one face's
         // reaction would pull. Which one depends on which face is the crease's second.
-        let (scene, geom, crease) = groove(2f64.to_radians());
-        let d = crate::scene::Simulation::new(&scene).unwrap();
-        let (block, loads) = (d.block(), d.loads());
-        let applied = Applied::new(loads, block, &geom.frame);
+        let (d, geom, crease, applied) = groove(2f64.to_radians());
+        let block = d.block();
         let frictionless = Friction::Coulomb { mu_k: 0.0 };
         let run = |geom: &ContactGeometry, crease: Crease| {
             accelerations_in_crease(

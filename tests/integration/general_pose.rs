@@ -2,7 +2,7 @@
 //! `derivations/09-general-pose.md`): on the paper's site it has the paper's roots; on any site
 //! its selected root is the direct pose solver's pose.
 
-use crate::common::scene;
+use crate::common::{sample, scene};
 use proptest::prelude::*;
 use slideroute::stages::geometry::{Displacement, Plane, Pose, Site, direct};
 use slideroute::stages::roots::{self, Tracker};
@@ -104,15 +104,6 @@ fn any_site() -> impl Strategy<Value = (Site, Displacement)> {
                 Displacement::new(x * k, z * k, theta * k),
             )
         })
-}
-
-/// Draws `n` cases from `strategy` with a fixed seed.
-fn sample<S: Strategy>(strategy: S, n: usize) -> Vec<S::Value> {
-    use proptest::strategy::ValueTree;
-    let mut runner = proptest::test_runner::TestRunner::deterministic();
-    (0..n)
-        .map(|_| strategy.new_tree(&mut runner).expect("sample").current())
-        .collect()
 }
 
 #[test]

@@ -3,7 +3,7 @@
 //! κ from 0 to 80°, lopsided frames, and displacements from 1e-6·L to where a contact leaves
 //! its plane.
 
-use crate::common::scene;
+use crate::common::{sample, scene};
 use proptest::prelude::*;
 use slideroute::stages::geometry::{Displacement, Pose, direct};
 use slideroute::stages::roots::{self, classify};
@@ -46,15 +46,6 @@ fn oracle(s: &Scene, d: Displacement) -> Option<(f64, f64)> {
     let pose = Pose::from_tilts(s.site().as_paper().unwrap(), d, a, b).ok()?;
     classify::check_pose(s.site(), &pose).ok()?;
     Some((a, b))
-}
-
-/// Draws `n` cases from `strategy` with a fixed seed.
-fn sample<S: Strategy>(strategy: S, n: usize) -> Vec<S::Value> {
-    use proptest::strategy::ValueTree;
-    let mut runner = proptest::test_runner::TestRunner::deterministic();
-    (0..n)
-        .map(|_| strategy.new_tree(&mut runner).expect("sample").current())
-        .collect()
 }
 
 #[test]

@@ -203,3 +203,12 @@ pub fn with(s: &Scene, keys: &[(&str, f64)]) -> Scene {
     s.with_keys(keys.iter().copied())
         .unwrap_or_else(|e| panic!("test scene: {e}"))
 }
+
+/// Draws `n` cases from `strategy` with a fixed seed.
+pub fn sample<S: proptest::strategy::Strategy>(strategy: S, n: usize) -> Vec<S::Value> {
+    use proptest::strategy::ValueTree;
+    let mut runner = proptest::test_runner::TestRunner::deterministic();
+    (0..n)
+        .map(|_| strategy.new_tree(&mut runner).expect("sample").current())
+        .collect()
+}
