@@ -291,77 +291,51 @@ impl Ctx<'_> {
         self.tangential(i, s.a + s.e.cross(&self.geom.r[i]) + self.centripetal[i])
     }
 
-    /// All contacts slip: shear −μ_j λ_j dir_j. K λ = b (3×3), then a and ω̇.
+    /// All contacts slip: shear −μ_j λ_j dir_j. K λ = b (3×3), then a and ω̇. With a contact in
+    /// a crease, the crease's second face is a fourth row and reaction (4×4), and that
+    /// contact's friction −μ (λ + λ_B) dir opposes its slip on both faces.
     fn solve(&self, dir: &[Vector3<f64>; 3], mu: &[f64; 3]) -> Result<Solved, RigidError> {
-        if let Some(c) = self.crease {
-            return self.solve_crease(dir, mu, c);
+        match self.crease {
+            None => self.solve_n::<3>(dir, mu),
+            Some(_) => self.solve_n::<4>(dir, mu),
         }
-        let geom = self.geom;
-        let g: [Vector3<f64>; 3] = [0, 1, 2].map(|j| geom.n[j] - dir[j] * mu[j]);
-        let arm_n: [Vector3<f64>; 3] = [0, 1, 2].map(|i| geom.r[i].cross(&geom.n[i]));
-        let arm_g: [Vector3<f64>; 3] =
-            [0, 1, 2].map(|j| self.inertia.inverse * geom.r[j].cross(&g[j]));
-        let mut k = Matrix3::zeros();
-        let mut b = Vector3::zeros();
-        let free_ang = self.inertia.inverse * self.torque;
-        for i in 0..3 {
-            for j in 0..3 {
-                k[(i, j)] = geom.n[i].dot(&g[j]) / self.mass + arm_n[i].dot(&arm_g[j]);
-            }
-            b[i] = -geom.n[i].dot(&self.centripetal[i])
-                - geom.n[i].dot(&self.force) / self.mass
-                - arm_n[i].dot(&free_ang);
-        }
-        let lambda = k
-            .lu()
-            .solve(&b)
-            .filter(|x| x.iter().all(|v| v.is_finite()))
-            .ok_or(RigidError::Singular("normal reactions"))?;
-        let mut f = self.force;
-        let mut t = self.torque;
-        for j in 0..3 {
-            f += g[j] * lambda[j];
-            t += geom.r[j].cross(&g[j]) * lambda[j];
-        }
-        let lambda = [lambda[0], lambda[1], lambda[2]];
-        Ok(Solved {
-            lambda,
-            a: f / self.mass,
-            e: self.inertia.inverse * t,
-            shear: [0, 1, 2].map(|j| -dir[j] * (mu[j] * lambda[j])),
-            crease: 0.0,
-        })
     }
 
-    /// All contacts slip, contact `c.contact` along its crease: the four constraint rows (the
-    /// three faces and the crease's second face) in the four normal reactions, K λ = b (4×4).
-    /// The crease contact's friction −μ (λ + λ_B) dir opposes its slip on both faces.
-    fn solve_crease(
+    /// [`Ctx::solve`] with N constraint rows: the three contacts' faces, then (N = 4) the
+    /// crease's second face at its contact.
+    fn solve_n<const N: usize>(
         &self,
         dir: &[Vector3<f64>; 3],
         mu: &[f64; 3],
-        c: Crease,
-    ) -> Result<Solved, RigidError> {
+    ) -> Result<Solved, RigidError>
+    where
+        nalgebra::Const<N>: nalgebra::DimMin<nalgebra::Const<N>, Output = nalgebra::Const<N>>,
+    {
         let geom = self.geom;
-        let i = c.contact;
-        // Constraint k: point r[k], normal n[k], force direction g[k] (normal and friction).
-        let point = |k: usize| geom.r[if k == 3 { i } else { k }];
-        let normal = |k: usize| if k == 3 { c.normal } else { geom.n[k] };
-        let slip_dir = |k: usize| dir[if k == 3 { i } else { k }];
-        let coef = |k: usize| mu[if k == 3 { i } else { k }];
-        let g: [Vector3<f64>; 4] = std::array::from_fn(|k| normal(k) - slip_dir(k) * coef(k));
-        let arm_n: [Vector3<f64>; 4] = std::array::from_fn(|k| point(k).cross(&normal(k)));
-        let arm_g: [Vector3<f64>; 4] =
-            std::array::from_fn(|k| self.inertia.inverse * point(k).cross(&g[k]));
-        let centripetal = |k: usize| self.centripetal[if k == 3 { i } else { k }];
+        // Constraint k: its contact, normal and force direction g (normal and friction).
+        let crease = self.crease.filter(|_| N == 4);
+        let contact = |k: usize| match crease {
+            Some(c) if k == 3 => c.contact,
+            _ => k,
+        };
+        let normal = |k: usize| match crease {
+            Some(c) if k == 3 => c.normal,
+            _ => geom.n[k],
+        };
+        let g: [Vector3<f64>; N] =
+            std::array::from_fn(|k| normal(k) - dir[contact(k)] * mu[contact(k)]);
+        let arm_n: [Vector3<f64>; N] =
+            std::array::from_fn(|k| geom.r[contact(k)].cross(&normal(k)));
+        let arm_g: [Vector3<f64>; N] =
+            std::array::from_fn(|k| self.inertia.inverse * geom.r[contact(k)].cross(&g[k]));
+        let mut kk = SMatrix::<f64, N, N>::zeros();
+        let mut b = SVector::<f64, N>::zeros();
         let free_ang = self.inertia.inverse * self.torque;
-        let mut kk = nalgebra::Matrix4::zeros();
-        let mut b = nalgebra::Vector4::zeros();
-        for r in 0..4 {
-            for q in 0..4 {
+        for r in 0..N {
+            for q in 0..N {
                 kk[(r, q)] = normal(r).dot(&g[q]) / self.mass + arm_n[r].dot(&arm_g[q]);
             }
-            b[r] = -normal(r).dot(&centripetal(r))
+            b[r] = -normal(r).dot(&self.centripetal[contact(r)])
                 - normal(r).dot(&self.force) / self.mass
                 - arm_n[r].dot(&free_ang);
         }
@@ -369,18 +343,18 @@ impl Ctx<'_> {
             .lu()
             .solve(&b)
             .filter(|x| x.iter().all(|v| v.is_finite()))
-            .ok_or(RigidError::Singular("normal reactions in a crease"))?;
+            .ok_or(RigidError::Singular("normal reactions"))?;
         let mut f = self.force;
         let mut t = self.torque;
-        for k in 0..4 {
+        for k in 0..N {
             f += g[k] * lambda[k];
-            t += point(k).cross(&g[k]) * lambda[k];
+            t += geom.r[contact(k)].cross(&g[k]) * lambda[k];
         }
+        let second = if N == 4 { lambda[N - 1] } else { 0.0 };
         let shear = [0, 1, 2].map(|j| {
-            let carried = if j == i {
-                lambda[j] + lambda[3]
-            } else {
-                lambda[j]
+            let carried = match crease {
+                Some(c) if c.contact == j => lambda[j] + second,
+                _ => lambda[j],
             };
             -dir[j] * (mu[j] * carried)
         });
@@ -389,7 +363,7 @@ impl Ctx<'_> {
             a: f / self.mass,
             e: self.inertia.inverse * t,
             shear,
-            crease: lambda[3],
+            crease: second,
         })
     }
 
@@ -1438,5 +1412,34 @@ mod tests {
         let mut sorted = kinds;
         sorted.sort_unstable();
         assert_eq!(sorted, ["lets go", "takes over"], "{first} / {second}");
+    }
+
+    #[test]
+    fn the_crease_projection_stops_the_contact_at_the_second_face_and_takes_only_that_energy() {
+        // Rates that drive contact 2 into the groove's second face: after the projection its
+        // velocity along that face's normal is zero, and the kinetic energy lost is exactly what
+        // the projection says it removed (a projection in the kinetic-energy metric keeps the
+        // part of the motion that is free and drops the rest, ½|Δv|²_M).
+        let (d, geom, crease, _) = groove(30f64.to_radians());
+        let block = d.block();
+        let inertia = Inertia::new(block, &geom).unwrap();
+        for rates in [[1.0, 0.3, 0.0], [0.2, -0.5, 0.05], [0.0, 0.0, 0.1]] {
+            let before = twist(&geom, rates).unwrap();
+            let into = crease.normal.dot(&before.at(&geom.r[2]));
+            assert!(into.abs() > 1e-3, "the test rates must push into the face");
+            let (projected, removed) = crease_rates(&geom, block, rates, &crease).unwrap();
+            let after = twist(&geom, projected).unwrap();
+            assert!(crease.normal.dot(&after.at(&geom.r[2])).abs() < 1e-12);
+            let (k0, k1) = (
+                before.kinetic_energy(block.mass, &inertia),
+                after.kinetic_energy(block.mass, &inertia),
+            );
+            assert!(removed < 0.0);
+            assert!((k1 - k0 - removed).abs() < 1e-9 * k0, "{k0} {k1} {removed}");
+            // Rates already on the face are left as they are.
+            let (again, none) = crease_rates(&geom, block, projected, &crease).unwrap();
+            assert!((0..3).all(|k| (again[k] - projected[k]).abs() < 1e-12));
+            assert!(none.abs() < 1e-9 * k0);
+        }
     }
 }
