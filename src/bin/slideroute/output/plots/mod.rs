@@ -270,7 +270,7 @@ pub fn write_route_plots(dir: &Path, scene: &Scene, route: &Route) -> Res<Vec<Pa
             x: &t,
             series: vec![
                 Series {
-                    name: "α: tilt of side 01",
+                    name: "α: tilt of x′ (side 01 of the paper's frame)",
                     values: column(|r| r.alpha_deg),
                     color: COLORS[0],
                 },
