@@ -313,15 +313,13 @@ impl Ctx<'_> {
     {
         let geom = self.geom;
         // Constraint k: its contact, normal and force direction g (normal and friction).
-        let crease = self.crease.filter(|_| N == 4);
-        let contact = |k: usize| match crease {
-            Some(c) if k == 3 => c.contact,
-            _ => k,
+        // (N is a constant: with N = 3 the crease's branches compile away.)
+        let (ci, cn) = match self.crease {
+            Some(c) if N == 4 => (c.contact, c.normal),
+            _ => (usize::MAX, Vector3::zeros()),
         };
-        let normal = |k: usize| match crease {
-            Some(c) if k == 3 => c.normal,
-            _ => geom.n[k],
-        };
+        let contact = |k: usize| if N == 4 && k == 3 { ci } else { k };
+        let normal = |k: usize| if N == 4 && k == 3 { cn } else { geom.n[k] };
         let g: [Vector3<f64>; N] =
             std::array::from_fn(|k| normal(k) - dir[contact(k)] * mu[contact(k)]);
         let arm_n: [Vector3<f64>; N] =
@@ -352,9 +350,10 @@ impl Ctx<'_> {
         }
         let second = if N == 4 { lambda[N - 1] } else { 0.0 };
         let shear = [0, 1, 2].map(|j| {
-            let carried = match crease {
-                Some(c) if c.contact == j => lambda[j] + second,
-                _ => lambda[j],
+            let carried = if N == 4 && j == ci {
+                lambda[j] + second
+            } else {
+                lambda[j]
             };
             -dir[j] * (mu[j] * carried)
         });
