@@ -61,6 +61,14 @@ pub enum RigidError {
          (its tangential constraints depend on the normal ones at this pose)"
     )]
     StickSingular { contact: usize },
+    /// Every contact rides a crease: six constraints hold the block's six degrees of freedom
+    /// (`derivations/10-faces.md` §4), it is wedged.
+    #[error("every contact rides a crease: the block is wedged")]
+    Wedged,
+    /// At an impact, contact `contact`, on one face alone, would have to be pulled onto it (its
+    /// impulse negative, N·s): the impact lifts it off.
+    #[error("the impact lifts contact {contact} off its face (its impulse {impulse_n_s:.6e} N·s)")]
+    ImpactLifts { contact: usize, impulse_n_s: f64 },
 }
 
 /// The inertia tensor in global axes and its inverse, at one pose.
@@ -168,6 +176,63 @@ pub struct Crease {
     pub face: usize,
 }
 
+/// The creases the contacts ride, at most one second face per contact
+/// (`derivations/10-faces.md` §4): each a constraint more, so that with two the block keeps one
+/// degree of freedom and with three it is wedged.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Creases([Option<Crease>; 3]);
+
+impl Creases {
+    /// No contact in a crease.
+    pub const NONE: Creases = Creases([None; 3]);
+
+    /// The crease contact `contact` rides, if any.
+    pub fn at(&self, contact: usize) -> Option<&Crease> {
+        self.0.get(contact).and_then(Option::as_ref)
+    }
+
+    /// The creases in the order of their contacts.
+    pub fn iter(&self) -> impl Iterator<Item = &Crease> {
+        self.0.iter().flatten()
+    }
+
+    /// How many contacts ride a crease.
+    pub fn len(&self) -> usize {
+        self.iter().count()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// These creases and `c` (replacing any its contact rode).
+    #[must_use]
+    pub fn with(mut self, c: Crease) -> Creases {
+        self.0[c.contact] = Some(c);
+        self
+    }
+
+    /// These creases without contact `contact`'s (if `Some`).
+    #[must_use]
+    pub fn without(mut self, contact: Option<usize>) -> Creases {
+        if let Some(slot) = contact.and_then(|i| self.0.get_mut(i)) {
+            *slot = None;
+        }
+        self
+    }
+
+    /// The second face of each contact (for the route's rows).
+    pub fn faces(&self) -> [Option<u32>; 3] {
+        self.0.map(|c| c.map(|c| c.face as u32))
+    }
+}
+
+impl From<Crease> for Creases {
+    fn from(c: Crease) -> Creases {
+        Creases::NONE.with(c)
+    }
+}
+
 /// Everything the rigid-body dynamics gives at one state.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Motion {
@@ -189,10 +254,10 @@ pub struct Motion {
     /// The contact that sticks while the block turns about it (its slip vanished and its shear
     /// lies inside its cone), if any.
     pub stuck: Option<usize>,
-    /// The second face's normal reaction (N) of a contact riding a crease.
-    pub crease_normal: Option<f64>,
-    /// The crease the motion was evaluated with.
-    pub crease: Option<Crease>,
+    /// The second face's normal reaction (N) of each contact riding a crease.
+    pub crease_normal: [Option<f64>; 3],
+    /// The creases the motion was evaluated with.
+    pub creases: Creases,
 }
 
 /// A slip speed below this fraction of the block's speed scale counts as zero slip.
@@ -252,8 +317,8 @@ struct Ctx<'a> {
     centripetal: [Vector3<f64>; 3],
     /// Longest arm (m): scales θ̇ against Ẋ, Ż.
     arm: f64,
-    /// A contact riding a crease.
-    crease: Option<Crease>,
+    /// The contacts riding creases.
+    creases: Creases,
 }
 
 /// One solution of the contact problem: normals, CM and angular acceleration, shear vectors.
@@ -263,8 +328,8 @@ struct Solved {
     a: Vector3<f64>,
     e: Vector3<f64>,
     shear: [Vector3<f64>; 3],
-    /// The crease's second normal reaction (zero without a crease).
-    crease: f64,
+    /// Each contact's second normal reaction in its crease (zero without).
+    crease: [f64; 3],
 }
 
 fn unit(v: Vector3<f64>) -> Vector3<f64> {
@@ -291,18 +356,32 @@ impl Ctx<'_> {
         self.tangential(i, s.a + s.e.cross(&self.geom.r[i]) + self.centripetal[i])
     }
 
-    /// All contacts slip: shear −μ_j λ_j dir_j. K λ = b (3×3), then a and ω̇. With a contact in
-    /// a crease, the crease's second face is a fourth row and reaction (4×4), and that
-    /// contact's friction −μ (λ + λ_B) dir opposes its slip on both faces.
+    /// All contacts slip: shear −μ_j λ_j dir_j. K λ = b (3×3), then a and ω̇. Each contact in
+    /// a crease adds its second face as a row and a reaction (4×4, 5×5), and that contact's
+    /// friction −μ (λ + λ_B) dir opposes its slip on both faces.
     fn solve(&self, dir: &[Vector3<f64>; 3], mu: &[f64; 3]) -> Result<Solved, RigidError> {
-        match self.crease {
-            None => self.solve_n::<3>(dir, mu),
-            Some(_) => self.solve_n::<4>(dir, mu),
+        match self.creases.len() {
+            0 => self.solve_n::<3>(dir, mu),
+            1 => self.solve_n::<4>(dir, mu),
+            2 => self.solve_n::<5>(dir, mu),
+            _ => Err(RigidError::Wedged),
         }
     }
 
-    /// [`Ctx::solve`] with N constraint rows: the three contacts' faces, then (N = 4) the
-    /// crease's second face at its contact.
+    /// Constraint row k of N: its contact and normal — the three contacts' own faces, then the
+    /// creases' second faces in the order of their contacts.
+    fn rows<const N: usize>(&self, creases: &Creases) -> ([usize; N], [Vector3<f64>; N]) {
+        let mut contact = [0; N];
+        let mut normal = [Vector3::zeros(); N];
+        let own = (0..3).map(|k| (k, self.geom.n[k]));
+        let second = creases.iter().map(|c| (c.contact, c.normal));
+        for (k, (i, n)) in own.chain(second).take(N).enumerate() {
+            (contact[k], normal[k]) = (i, n);
+        }
+        (contact, normal)
+    }
+
+    /// [`Ctx::solve`] with N constraint rows ([`Ctx::rows`]).
     fn solve_n<const N: usize>(
         &self,
         dir: &[Vector3<f64>; 3],
@@ -313,28 +392,22 @@ impl Ctx<'_> {
     {
         let geom = self.geom;
         // Constraint k: its contact, normal and force direction g (normal and friction).
-        // (N is a constant: with N = 3 the crease's branches compile away.)
-        let (ci, cn) = match self.crease {
-            Some(c) if N == 4 => (c.contact, c.normal),
-            _ => (usize::MAX, Vector3::zeros()),
-        };
-        let contact = |k: usize| if N == 4 && k == 3 { ci } else { k };
-        let normal = |k: usize| if N == 4 && k == 3 { cn } else { geom.n[k] };
+        let (contact, normal) = self.rows::<N>(&self.creases);
         let g: [Vector3<f64>; N] =
-            std::array::from_fn(|k| normal(k) - dir[contact(k)] * mu[contact(k)]);
+            std::array::from_fn(|k| normal[k] - dir[contact[k]] * mu[contact[k]]);
         let arm_n: [Vector3<f64>; N] =
-            std::array::from_fn(|k| geom.r[contact(k)].cross(&normal(k)));
+            std::array::from_fn(|k| geom.r[contact[k]].cross(&normal[k]));
         let arm_g: [Vector3<f64>; N] =
-            std::array::from_fn(|k| self.inertia.inverse * geom.r[contact(k)].cross(&g[k]));
+            std::array::from_fn(|k| self.inertia.inverse * geom.r[contact[k]].cross(&g[k]));
         let mut kk = SMatrix::<f64, N, N>::zeros();
         let mut b = SVector::<f64, N>::zeros();
         let free_ang = self.inertia.inverse * self.torque;
         for r in 0..N {
             for q in 0..N {
-                kk[(r, q)] = normal(r).dot(&g[q]) / self.mass + arm_n[r].dot(&arm_g[q]);
+                kk[(r, q)] = normal[r].dot(&g[q]) / self.mass + arm_n[r].dot(&arm_g[q]);
             }
-            b[r] = -normal(r).dot(&self.centripetal[contact(r)])
-                - normal(r).dot(&self.force) / self.mass
+            b[r] = -normal[r].dot(&self.centripetal[contact[r]])
+                - normal[r].dot(&self.force) / self.mass
                 - arm_n[r].dot(&free_ang);
         }
         let lambda = kk
@@ -344,19 +417,15 @@ impl Ctx<'_> {
             .ok_or(RigidError::Singular("normal reactions"))?;
         let mut f = self.force;
         let mut t = self.torque;
+        let mut second = [0.0; 3];
         for k in 0..N {
             f += g[k] * lambda[k];
-            t += geom.r[contact(k)].cross(&g[k]) * lambda[k];
+            t += geom.r[contact[k]].cross(&g[k]) * lambda[k];
+            if k >= 3 {
+                second[contact[k]] = lambda[k];
+            }
         }
-        let second = if N == 4 { lambda[N - 1] } else { 0.0 };
-        let shear = [0, 1, 2].map(|j| {
-            let carried = if N == 4 && j == ci {
-                lambda[j] + second
-            } else {
-                lambda[j]
-            };
-            -dir[j] * (mu[j] * carried)
-        });
+        let shear = [0, 1, 2].map(|j| -dir[j] * (mu[j] * (lambda[j] + second[j])));
         Ok(Solved {
             lambda: [lambda[0], lambda[1], lambda[2]],
             a: f / self.mass,
@@ -375,24 +444,26 @@ impl Ctx<'_> {
         mu: &[f64; 3],
         i: usize,
     ) -> Result<Solved, RigidError> {
-        match self.crease {
-            // A crease at another contact: one more constraint row and reaction.
-            Some(c) if c.contact != i => self.solve_stick_n::<12>(dir, mu, i, Some(c)),
-            // No crease, or the sticking contact is the one in the crease: held in place, it is
-            // on its second face too, and its reaction (normal and shear on its own face) carries
-            // both faces' forces.
-            _ => self.solve_stick_n::<11>(dir, mu, i, None),
+        // The sticking contact, held in place, stays on its crease's second face too if it
+        // rides one, and its reaction (normal and shear on its own face) carries both faces'
+        // forces; each crease at another contact is one more constraint row and reaction.
+        let creases = self.creases.without(Some(i));
+        match creases.len() {
+            0 => self.solve_stick_n::<11>(dir, mu, i, &creases),
+            1 => self.solve_stick_n::<12>(dir, mu, i, &creases),
+            2 => self.solve_stick_n::<13>(dir, mu, i, &creases),
+            _ => Err(RigidError::Wedged),
         }
     }
 
-    /// [`Ctx::solve_stick`] with N = 11 unknowns (a, ω̇, three normals, two shear components),
-    /// or N = 12 with a crease's second normal at another contact.
+    /// [`Ctx::solve_stick`] with N = 11 unknowns (a, ω̇, three normals, two shear components)
+    /// and one more for the second normal of each crease in `creases`.
     fn solve_stick_n<const N: usize>(
         &self,
         dir: &[Vector3<f64>; 3],
         mu: &[f64; 3],
         i: usize,
-        crease: Option<Crease>,
+        creases: &Creases,
     ) -> Result<Solved, RigidError>
     where
         nalgebra::Const<N>: nalgebra::DimMin<nalgebra::Const<N>, Output = nalgebra::Const<N>>,
@@ -410,55 +481,34 @@ impl Ctx<'_> {
                 a[(3 + k, 3 + c)] = iw[(k, c)];
             }
         }
-        // The crease contact carries its second face's friction too: μ (λ_j + λ_B) against its
-        // slip.
-        let crease_at = crease.map(|c| c.contact);
+        // Unknown `col` is the reaction along n (normal n − μ dir, or n alone at the sticking
+        // contact) at contact j, and row `col` its constraint n·(contact acceleration) = 0.
+        let mut constraint = |col: usize, j: usize, n: Vector3<f64>, g: Vector3<f64>| {
+            let m = geom.r[j].cross(&g);
+            for k in 0..3 {
+                a[(k, col)] = -g[k];
+                a[(3 + k, col)] = -m[k];
+            }
+            let arm = geom.r[j].cross(&n);
+            for c in 0..3 {
+                a[(col, c)] = n[c];
+                a[(col, 3 + c)] = arm[c];
+            }
+            b[col] = -n.dot(&self.centripetal[j]);
+        };
         for j in 0..3 {
-            let g = if j == i {
-                geom.n[j]
-            } else {
-                geom.n[j] - dir[j] * mu[j]
-            };
-            let m = geom.r[j].cross(&g);
-            for k in 0..3 {
-                a[(k, 6 + j)] = -g[k];
-                a[(3 + k, 6 + j)] = -m[k];
-            }
-            // n_j·a + (r_j × n_j)·ω̇ = −n_j·centripetal_j
-            let arm = geom.r[j].cross(&geom.n[j]);
-            for c in 0..3 {
-                a[(6 + j, c)] = geom.n[j][c];
-                a[(6 + j, 3 + c)] = arm[c];
-            }
-            b[6 + j] = -geom.n[j].dot(&self.centripetal[j]);
+            let n = geom.n[j];
+            let g = if j == i { n } else { n - dir[j] * mu[j] };
+            constraint(6 + j, j, n, g);
         }
-        for (q, t) in [t1, t2].iter().enumerate() {
-            let m = geom.r[i].cross(t);
-            for k in 0..3 {
-                a[(k, 9 + q)] = -t[k];
-                a[(3 + k, 9 + q)] = -m[k];
-            }
-            let arm = geom.r[i].cross(t);
-            for c in 0..3 {
-                a[(9 + q, c)] = t[c];
-                a[(9 + q, 3 + c)] = arm[c];
-            }
-            b[9 + q] = -t.dot(&self.centripetal[i]);
+        for (q, t) in [t1, t2].into_iter().enumerate() {
+            constraint(9 + q, i, t, t);
         }
-        if let Some(c) = crease {
+        // A crease contact carries its second face's friction too: μ (λ_j + λ_B) against its
+        // slip.
+        for (q, c) in creases.iter().enumerate() {
             let j = c.contact;
-            let g = c.normal - dir[j] * mu[j];
-            let m = geom.r[j].cross(&g);
-            for k in 0..3 {
-                a[(k, 11)] = -g[k];
-                a[(3 + k, 11)] = -m[k];
-            }
-            let arm = geom.r[j].cross(&c.normal);
-            for k in 0..3 {
-                a[(11, k)] = c.normal[k];
-                a[(11, 3 + k)] = arm[k];
-            }
-            b[11] = -c.normal.dot(&self.centripetal[j]);
+            constraint(11 + q, j, c.normal, c.normal - dir[j] * mu[j]);
         }
         let x = a
             .lu()
@@ -466,14 +516,15 @@ impl Ctx<'_> {
             .filter(|x| x.iter().all(|v| v.is_finite()))
             .ok_or(RigidError::StickSingular { contact: i })?;
         let lambda = [x[6], x[7], x[8]];
-        let second = if crease.is_some() { x[11] } else { 0.0 };
+        let mut second = [0.0; 3];
+        for (q, c) in creases.iter().enumerate() {
+            second[c.contact] = x[11 + q];
+        }
         let shear = [0, 1, 2].map(|j| {
             if j == i {
                 t1 * x[9] + t2 * x[10]
-            } else if Some(j) == crease_at {
-                -dir[j] * (mu[j] * (lambda[j] + second))
             } else {
-                -dir[j] * (mu[j] * lambda[j])
+                -dir[j] * (mu[j] * (lambda[j] + second[j]))
             }
         });
         Ok(Solved {
@@ -569,37 +620,206 @@ pub fn pivot_rates(
     Ok((projected, removed.min(0.0)))
 }
 
-/// The rates (Ẋ, Ż, θ̇) with contact `c.contact`'s velocity into the crease's second face
+/// The rates (Ẋ, Ż, θ̇) with each crease contact's velocity into its crease's second face
 /// removed, and the kinetic energy this takes away (J, ≤ 0): the projection a perfectly
-/// inelastic, frictionless impulse along that face's normal makes (in the kinetic-energy
-/// metric, as [`pivot_rates`]). Keeps a contact riding a crease on both faces against the
-/// integrator's drift, and takes the velocity into a face the contact meets.
+/// inelastic, frictionless impulse along those faces' normals makes (in the kinetic-energy
+/// metric, as [`pivot_rates`]): r' = r − G⁻¹Rᵀ(RG⁻¹Rᵀ)⁻¹Rr, with G the metric of the rates and
+/// R the rows n_B · v_i. Keeps contacts riding creases on both faces against the integrator's
+/// drift, and takes the velocity into a face a contact meets.
 pub fn crease_rates(
     geom: &ContactGeometry,
     block: &Block,
     rates: [f64; 3],
-    c: &Crease,
+    creases: &Creases,
 ) -> Result<([f64; 3], f64), RigidError> {
+    let k = creases.len();
+    if k == 0 {
+        return Ok((rates, 0.0));
+    }
+    if k == 3 {
+        return Err(RigidError::Wedged);
+    }
     let inertia = Inertia::new(block, geom)?;
     let unit_rates = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
     let basis = unit_rates.map(|u| twist(geom, u));
     let basis = [basis[0]?, basis[1]?, basis[2]?];
-    // Kinetic-energy metric of the rates, and the constraint row n_B · v_i.
+    let singular = RigidError::Singular("crease projection");
+    // Kinetic-energy metric of the rates, and the constraint rows n_B · v_i.
     let g = Matrix3::from_fn(|a, b| basis[a].energy_dot(&basis[b], block.mass, &inertia));
-    let row = Vector3::from_fn(|k, _| c.normal.dot(&basis[k].at(&geom.r[c.contact])));
-    let ginv_row = g
-        .lu()
-        .solve(&row)
-        .ok_or(RigidError::Singular("crease projection"))?;
-    let denom = row.dot(&ginv_row);
+    let g_lu = g.lu();
+    let rows: Vec<Vector3<f64>> = creases
+        .iter()
+        .map(|c| Vector3::from_fn(|q, _| c.normal.dot(&basis[q].at(&geom.r[c.contact]))))
+        .collect();
+    let ginv_rows = rows
+        .iter()
+        .map(|r| g_lu.solve(r).ok_or(singular))
+        .collect::<Result<Vec<_>, _>>()?;
+    let s = nalgebra::DMatrix::from_fn(k, k, |a, b| rows[a].dot(&ginv_rows[b]));
     let r = Vector3::new(rates[0], rates[1], rates[2]);
-    let into = row.dot(&r);
-    if !(denom.is_finite() && denom > 0.0) {
-        return Err(RigidError::Singular("crease projection"));
+    let into = nalgebra::DVector::from_fn(k, |a, _| rows[a].dot(&r));
+    let m = s
+        .lu()
+        .solve(&into)
+        .filter(|m| m.iter().all(|v| v.is_finite()))
+        .ok_or(singular)?;
+    let projected = r - (0..k).map(|a| ginv_rows[a] * m[a]).sum::<Vector3<f64>>();
+    let removed = -0.5 * into.dot(&m);
+    if !(removed.is_finite() && removed <= 1e-12 * r.norm_squared().max(f64::MIN_POSITIVE)) {
+        return Err(singular);
     }
-    let projected = r - ginv_row * (into / denom);
-    let removed = -0.5 * into * into / denom;
-    Ok(([projected.x, projected.y, projected.z], removed))
+    Ok(([projected.x, projected.y, projected.z], removed.min(0.0)))
+}
+
+/// A face a contact is held to at an impact: its own (`second == false`) or its crease's
+/// second.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Held {
+    contact: usize,
+    second: bool,
+    normal: Vector3<f64>,
+}
+
+/// The faces of an impact: each contact's own, then the creases' second faces in the order of
+/// their contacts.
+fn held_rows(geom: &ContactGeometry, creases: &Creases) -> Vec<Held> {
+    (0..3)
+        .map(|i| Held {
+            contact: i,
+            second: false,
+            normal: geom.n[i],
+        })
+        .chain(creases.iter().map(|c| Held {
+            contact: c.contact,
+            second: true,
+            normal: c.normal,
+        }))
+        .collect()
+}
+
+/// The impulses (N·s) of the perfectly inelastic, frictionless impact that stops every held
+/// contact's velocity into its faces: with J the rows of `held` and M the mass matrix,
+/// p = −(J M⁻¹ Jᵀ)⁻¹ J u⁻, and the twist after it u⁻ + M⁻¹ Jᵀ p.
+fn impulses(
+    geom: &ContactGeometry,
+    mass: f64,
+    inertia: &Inertia,
+    u: &Twist,
+    held: &[Held],
+) -> Result<(Vec<f64>, Twist), RigidError> {
+    let k = held.len();
+    let arm = |h: &Held| geom.r[h.contact].cross(&h.normal);
+    let a = nalgebra::DMatrix::from_fn(k, k, |p, q| {
+        held[p].normal.dot(&held[q].normal) / mass
+            + arm(&held[p]).dot(&(inertia.inverse * arm(&held[q])))
+    });
+    let ju =
+        nalgebra::DVector::from_fn(k, |p, _| held[p].normal.dot(&u.v) + arm(&held[p]).dot(&u.w));
+    let p = a
+        .lu()
+        .solve(&(-ju))
+        .filter(|p| p.iter().all(|v| v.is_finite()))
+        .ok_or(RigidError::Singular("impact impulses"))?;
+    let mut after = *u;
+    for (h, p) in held.iter().zip(p.iter()) {
+        after.v += h.normal * (p / mass);
+        after.w += inertia.inverse * arm(h) * *p;
+    }
+    Ok((p.iter().copied().collect(), after))
+}
+
+/// The state just after an impact ([`impact`]): every contact still on a face.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Impact {
+    /// The rates (Ẋ, Ż, θ̇) after the impact.
+    pub rates: [f64; 3],
+    /// The kinetic energy the impact took (J, ≤ 0).
+    pub removed: f64,
+    /// The creases ridden after it.
+    pub creases: Creases,
+    /// The contacts that left their own face for their crease's second (the impact put them on
+    /// that face alone).
+    pub moved: [Option<Crease>; 3],
+}
+
+/// The perfectly inelastic, frictionless impact at the moment the contacts in `creases` are
+/// held to their second faces as well as their own (`derivations/10-faces.md` §4): the
+/// impulses that stop every contact's velocity into its faces ([`impact_impulses`]), with the
+/// faces that would have to pull let go one at a time, the most negative first — a crease's
+/// second face lets its contact go on along its own; a crease contact's own face lets it go on
+/// along the second alone; a contact on one face alone lifts off
+/// ([`RigidError::ImpactLifts`]).
+pub fn impact(
+    geom: &ContactGeometry,
+    block: &Block,
+    rates: [f64; 3],
+    creases: &Creases,
+) -> Result<Impact, RigidError> {
+    let inertia = Inertia::new(block, geom)?;
+    let u = twist(geom, rates)?;
+    let mut held = held_rows(geom, creases);
+    loop {
+        let (p, after) = impulses(geom, block.mass, &inertia, &u, &held)?;
+        // A pull below round-off of the impact's own size is none.
+        let scale = p.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        let pull = (0..held.len())
+            .filter(|&k| p[k] < -1e-9 * scale)
+            .min_by(|&a, &b| p[a].total_cmp(&p[b]));
+        let Some(k) = pull else {
+            let rates = [
+                after.v.x,
+                after.v.z,
+                theta_rate_row(&geom.frame.i).dot(&after.w),
+            ];
+            let removed =
+                after.kinetic_energy(block.mass, &inertia) - u.kinetic_energy(block.mass, &inertia);
+            let on =
+                |i: usize, second: bool| held.iter().any(|h| h.contact == i && h.second == second);
+            let mut left = Creases::NONE;
+            let mut moved = [None; 3];
+            for c in creases.iter() {
+                match (on(c.contact, false), on(c.contact, true)) {
+                    (true, true) => left = left.with(*c),
+                    (false, true) => moved[c.contact] = Some(*c),
+                    _ => {}
+                }
+            }
+            return Ok(Impact {
+                rates,
+                removed: removed.min(0.0),
+                creases: left,
+                moved,
+            });
+        };
+        let h = held[k];
+        let in_crease = held.iter().filter(|o| o.contact == h.contact).count() > 1;
+        if !in_crease {
+            return Err(RigidError::ImpactLifts {
+                contact: h.contact,
+                impulse_n_s: p[k],
+            });
+        }
+        held.remove(k);
+    }
+}
+
+/// The impulses (N·s) of the perfectly inelastic, frictionless impact that stops each crease
+/// contact's velocity into its second face while every contact stays on its own face
+/// (`derivations/10-faces.md` §4): with J the constraint rows (the own faces' normals at contacts
+/// 0, 1, 2, then the creases' second faces in the order of their contacts) and M the mass matrix,
+/// p = −(J M⁻¹ Jᵀ)⁻¹ J u⁻ for the twist u⁻ of `rates`. The twist after it, u⁻ + M⁻¹ Jᵀ p, is the
+/// one [`crease_rates`] gives; a negative impulse is a pull: that face would have to hold its
+/// contact down.
+pub fn impact_impulses(
+    geom: &ContactGeometry,
+    block: &Block,
+    rates: [f64; 3],
+    creases: &Creases,
+) -> Result<Vec<f64>, RigidError> {
+    let inertia = Inertia::new(block, geom)?;
+    let u = twist(geom, rates)?;
+    let held = held_rows(geom, creases);
+    impulses(geom, block.mass, &inertia, &u, &held).map(|(p, _)| p)
 }
 
 /// Coulomb's cone with a little room for round-off.
@@ -646,15 +866,16 @@ pub fn accelerations_slaved(
     rates: [f64; 3],
     step: f64,
 ) -> Result<Motion, RigidError> {
-    accelerations_in_crease(geom, applied, block, friction, rates, step, None)
+    accelerations_in_crease(geom, applied, block, friction, rates, step, Creases::NONE)
 }
 
-/// [`accelerations_slaved`] with a contact riding a crease (`derivations/10-faces.md` §4): the
-/// crease's second face is a fourth constraint, its reaction one more unknown, and both faces'
-/// friction opposes the contact's slip along the crease. `rates` must keep the contact on the
-/// second face (its velocity along that face's normal zero). The second face's reaction falling
-/// to zero is [`RigidError::CreaseLetsGo`]; the contact's own face's, while the second holds it,
-/// [`RigidError::CreaseTakesOver`].
+/// [`accelerations_slaved`] with contacts riding creases (`derivations/10-faces.md` §4): each
+/// crease's second face is one more constraint, its reaction one more unknown, and both faces'
+/// friction opposes the contact's slip along the crease. `rates` must keep each such contact on
+/// its second face (its velocity along that face's normal zero, [`crease_rates`]). A second
+/// face's reaction falling to zero is [`RigidError::CreaseLetsGo`]; the contact's own face's,
+/// while the second holds it, [`RigidError::CreaseTakesOver`]; three creases at once,
+/// [`RigidError::Wedged`].
 pub fn accelerations_in_crease(
     geom: &ContactGeometry,
     applied: &Applied,
@@ -662,8 +883,11 @@ pub fn accelerations_in_crease(
     friction: &Friction,
     rates: [f64; 3],
     step: f64,
-    crease: Option<Crease>,
+    creases: Creases,
 ) -> Result<Motion, RigidError> {
+    if creases.len() == 3 {
+        return Err(RigidError::Wedged);
+    }
     let inertia = Inertia::new(block, geom)?;
     let tw = twist(geom, rates)?;
     let ctx = Ctx {
@@ -674,7 +898,7 @@ pub fn accelerations_in_crease(
         torque: applied.moment - tw.w.cross(&(inertia.world * tw.w)),
         centripetal: geom.r.map(|r| tw.w.cross(&tw.w.cross(&r))),
         arm: longest_arm(geom),
-        crease,
+        creases,
     };
     let frictionless = friction.is_frictionless();
     let coefficients = |lambda: &[f64; 3]| -> [f64; 3] {
@@ -762,11 +986,11 @@ pub fn accelerations_in_crease(
             }
         };
     }
-    if let Some(c) = crease.filter(|_| stuck_contact != crease.map(|c| c.contact)) {
-        if sol.crease <= 0.0 {
+    for c in creases.without(stuck_contact).iter() {
+        if sol.crease[c.contact] <= 0.0 {
             return Err(RigidError::CreaseLetsGo {
                 contact: c.contact,
-                normal_n: sol.crease,
+                normal_n: sol.crease[c.contact],
             });
         }
         if sol.lambda[c.contact] <= 0.0 {
@@ -807,8 +1031,8 @@ pub fn accelerations_in_crease(
         power_friction,
         inertia,
         stuck: stuck_contact,
-        crease_normal: crease.map(|_| sol.crease),
-        crease,
+        crease_normal: [0, 1, 2].map(|i| creases.at(i).map(|_| sol.crease[i])),
+        creases,
     })
 }
 
@@ -1233,7 +1457,7 @@ mod tests {
             torque: applied.moment,
             centripetal: [Vector3::zeros(); 3],
             arm: 10.0,
-            crease: None,
+            creases: Creases::NONE,
         };
         let rates = ctx.pivot_direction(1).unwrap();
         let t = twist(&geom, [rates.x, rates.y, rates.z / ctx.arm]).unwrap();
@@ -1295,7 +1519,7 @@ mod tests {
             &frictionless,
             [0.0; 3],
             0.0,
-            Some(crease),
+            crease.into(),
         )
         .unwrap();
         let (f, c, x2) = (loads.hydraulic_force, loads.eccentricity, 4.0);
@@ -1309,7 +1533,7 @@ mod tests {
             );
         }
         // Both groove faces push, and their lateral parts give R.
-        let second = m.crease_normal.unwrap();
+        let second = m.crease_normal[2].unwrap();
         assert!(m.normal[2] > 0.0 && second > 0.0);
         let r = (m.normal[2] - second) * 30f64.to_radians().sin();
         assert!((r + block.mass * x2 * theta_ddot).abs() < 1e-6 * f, "{r}");
@@ -1335,10 +1559,10 @@ mod tests {
             &friction,
             [1.0, 0.0, 0.0],
             0.0,
-            Some(crease),
+            crease.into(),
         )
         .unwrap();
-        let second = m.crease_normal.unwrap();
+        let second = m.crease_normal[2].unwrap();
         let normal_force = |j: usize| {
             let mut f = geom.n[j] * m.normal[j];
             if j == 2 {
@@ -1392,7 +1616,7 @@ mod tests {
                 &frictionless,
                 [0.0; 3],
                 0.0,
-                Some(crease),
+                crease.into(),
             )
         };
         let first = run(&geom, crease).unwrap_err();
@@ -1414,6 +1638,45 @@ mod tests {
     }
 
     #[test]
+    fn the_impact_impulses_give_the_projected_motion_and_a_pull_means_a_lift() {
+        // The impulses' twist u⁻ + M⁻¹ Jᵀ p is the crease projection's (two routes to the same
+        // inelastic impact), and the sign of face B's impulse says whether it pushes or pulls.
+        let (d, geom, crease, _) = groove(30f64.to_radians());
+        let block = d.block();
+        let inertia = Inertia::new(block, &geom).unwrap();
+        let creases = Creases::from(crease);
+        for rates in [[1.0, 0.3, 0.0], [0.2, -0.5, 0.05], [0.0, 0.0, 0.1]] {
+            let p = impact_impulses(&geom, block, rates, &creases).unwrap();
+            assert_eq!(p.len(), 4);
+            let before = twist(&geom, rates).unwrap();
+            let mut dv = Vector3::zeros();
+            let mut dw = Vector3::zeros();
+            for (k, (i, n)) in [
+                (0, geom.n[0]),
+                (1, geom.n[1]),
+                (2, geom.n[2]),
+                (2, crease.normal),
+            ]
+            .into_iter()
+            .enumerate()
+            {
+                dv += n * p[k] / block.mass;
+                dw += inertia.inverse * geom.r[i].cross(&n) * p[k];
+            }
+            let (projected, _) = crease_rates(&geom, block, rates, &creases).unwrap();
+            let after = twist(&geom, projected).unwrap();
+            let scale = before.v.norm() + before.w.norm();
+            assert!((before.v + dv - after.v).norm() < 1e-9 * scale, "{p:?}");
+            assert!((before.w + dw - after.w).norm() < 1e-9 * scale, "{p:?}");
+        }
+        // Face B's normal (0, cos δ, −sin δ): moving +Z drives contact 2 into it, and B pushes
+        // (a positive impulse); moving −Z takes it away, and only a pull would stop that.
+        let into = impact_impulses(&geom, block, [0.0, 1.0, 0.0], &creases).unwrap();
+        let away = impact_impulses(&geom, block, [0.0, -1.0, 0.0], &creases).unwrap();
+        assert!(into[3] > 0.0 && away[3] < 0.0, "{into:?} {away:?}");
+    }
+
+    #[test]
     fn the_crease_projection_stops_the_contact_at_the_second_face_and_takes_only_that_energy() {
         // Rates that drive contact 2 into the groove's second face: after the projection its
         // velocity along that face's normal is zero, and the kinetic energy lost is exactly what
@@ -1426,7 +1689,7 @@ mod tests {
             let before = twist(&geom, rates).unwrap();
             let into = crease.normal.dot(&before.at(&geom.r[2]));
             assert!(into.abs() > 1e-3, "the test rates must push into the face");
-            let (projected, removed) = crease_rates(&geom, block, rates, &crease).unwrap();
+            let (projected, removed) = crease_rates(&geom, block, rates, &crease.into()).unwrap();
             let after = twist(&geom, projected).unwrap();
             assert!(crease.normal.dot(&after.at(&geom.r[2])).abs() < 1e-12);
             let (k0, k1) = (
@@ -1436,7 +1699,7 @@ mod tests {
             assert!(removed < 0.0);
             assert!((k1 - k0 - removed).abs() < 1e-9 * k0, "{k0} {k1} {removed}");
             // Rates already on the face are left as they are.
-            let (again, none) = crease_rates(&geom, block, projected, &crease).unwrap();
+            let (again, none) = crease_rates(&geom, block, projected, &crease.into()).unwrap();
             assert!((0..3).all(|k| (again[k] - projected[k]).abs() < 1e-12));
             assert!(none.abs() < 1e-9 * k0);
         }

@@ -30,7 +30,7 @@ fn row(s: &State, ev: Option<&Evaluation>, pose: &crate::geometry::Pose, faces: 
         n_n: ev.map(|e| e.reaction.normal.map(|v| v.norm())),
         s_n: ev.map(|e| e.reaction.shear.map(|v| v.norm())),
         faces,
-        crease: None,
+        crease: [None; 3],
     }
 }
 
@@ -75,7 +75,7 @@ impl<'a> Dynamics<'a> for Paper<'a> {
             velocity(&state),
         ) {
             Ok(ev) => ev,
-            Err(Stop { reason, detail }) => {
+            Err(Stop { reason, detail, .. }) => {
                 o.push(row(&state, None, &start_pose, faces_of(&scene.site)));
                 return Start::Ended(o.end(reason, 0.0, detail));
             }
@@ -144,7 +144,7 @@ impl<'a> Dynamics<'a> for Paper<'a> {
         let next = match next {
             // Time as k·dt (t_end at the last), not a running sum.
             Ok(n) => State { t: t_to, ..n },
-            Err(Stop { reason, detail }) => {
+            Err(Stop { reason, detail, .. }) => {
                 return Flow::Ended(o.finish(self.row(), reason, state.t, detail));
             }
         };
@@ -157,7 +157,7 @@ impl<'a> Dynamics<'a> for Paper<'a> {
             velocity(&next),
         ) {
             Ok(e) => e,
-            Err(Stop { reason, detail }) => {
+            Err(Stop { reason, detail, .. }) => {
                 return Flow::Ended(o.finish(self.row(), reason, state.t, detail));
             }
         };
@@ -190,7 +190,7 @@ impl<'a> Dynamics<'a> for Paper<'a> {
                 None,
             ) {
                 Ok(e) => e,
-                Err(Stop { reason, detail }) => {
+                Err(Stop { reason, detail, .. }) => {
                     return Flow::Ended(o.finish(self.row(), reason, state.t, detail));
                 }
             };

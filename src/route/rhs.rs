@@ -44,6 +44,8 @@ pub struct Evaluation {
 pub struct Stop {
     pub reason: Reason,
     pub detail: String,
+    /// The contact the reason is about, where it is about one (a crease letting go of it).
+    pub contact: Option<usize>,
 }
 
 /// Moves `tracker` to displacement `d` and returns the pose there, or the reason the route
@@ -57,11 +59,13 @@ pub fn pose_at(scene: &Scene, tracker: &mut PoseFinder<'_>, d: Displacement) -> 
             _ => false,
         };
         Stop {
+            contact: None,
             reason: from_track_error(&e, at_dip),
             detail: e.to_string(),
         }
     })?;
     tracker.pose().ok_or_else(|| Stop {
+        contact: None,
         reason: Reason::NoAdmissibleRoot,
         detail: "the tracked point has no real frame".into(),
     })
@@ -82,10 +86,12 @@ pub fn evaluate(
     let geom = ContactGeometry::with_normals(dynamics.normals(), &pose);
     let applied = Applied::new(dynamics.loads(), dynamics.block(), &geom.frame);
     let c = statics::frictionless_normals(&geom, &applied).ok_or_else(|| Stop {
+        contact: None,
         reason: Reason::NoAdmissibleRoot,
         detail: "the frictionless statics are singular".into(),
     })?;
     let lift = |e: ReactionsError| Stop {
+        contact: None,
         reason: Reason::ContactLiftedOff,
         detail: e.to_string(),
     };
@@ -114,6 +120,7 @@ pub fn evaluate(
             .map_err(lift)?;
             let k = reactions_paper::select(&geom, &all, previous.map(|p| &p.angles), velocity)
                 .ok_or_else(|| Stop {
+                    contact: None,
                     reason: Reason::NoFrictionSolution,
                     detail: format!(
                         "no solution with N0 > 0 at X = {} m, Z = {} m, θ = {}°",

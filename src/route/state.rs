@@ -49,8 +49,8 @@ pub struct Row {
     /// The face each contact rests on: its plane's number (the paper's planes and any three
     /// planes: 0, 1, 2 for contacts 0, 1, 2; a ground of faces: the face's number).
     pub faces: [u32; 3],
-    /// A contact riding a crease and the crease's second face: [contact, face].
-    pub crease: Option<[u32; 2]>,
+    /// The second face of each contact riding a crease (`None` for a contact on its face alone).
+    pub crease: [Option<u32>; 3],
 }
 
 /// The face each contact of `site` rests on (see [`Row::faces`]).

@@ -34,6 +34,8 @@ pub enum Reason {
     /// A contact riding a crease leaves its own face for the crease's other one (an end until
     /// a contact can change its face).
     CreaseTakesOver,
+    /// Every contact rides a crease: the block is held in all six degrees of freedom.
+    Wedged,
     /// The pose equations have no admissible root to follow (the tracker's diagnosis).
     NoAdmissibleRoot,
     /// t reached t_end.
@@ -60,6 +62,7 @@ impl Reason {
             Reason::ContactOffSurface => "a contact ran off the surveyed surface",
             Reason::CreaseLetsGo => "a crease let go of its contact",
             Reason::CreaseTakesOver => "a contact left its face for a crease's other face",
+            Reason::Wedged => "the block is wedged (every contact in a crease)",
             Reason::NoAdmissibleRoot => "no admissible root",
             Reason::TimeLimit => "time limit",
             Reason::ContactForcesUndetermined => "the contact forces are not determined",

@@ -228,10 +228,10 @@ fn rigid_body_pivot_reaching_its_cone_starts_to_slip_as_in_drake() {
 fn rigid_body_on_the_papers_planes_as_faces_rides_the_crease_as_in_refined_drake() {
     // Issue #15: the paper's planes as faces of one ground (every Drake sphere against every
     // half-space). Contact 2 rides the crease of planes 1 and 2, goes onto plane 1 alone at
-    // 3.79 s, and the route ends where contact 0 meets plane 1 (Drake: the impact lifts contact
-    // 1). Drake refined until converged (dt 0.5 ms, 0.1 mm spheres, ten times the stiffness):
-    // within 1 % of travel and 0.5° of yaw all the way, and contact 0 reaches plane 1 within
-    // 10 ms of our end.
+    // 3.79 s, and contact 0 meets plane 1 at 4.217 s, where the impact lifts contact 1 and the
+    // route ends. Drake refined until converged (dt 0.5 ms, 0.1 mm spheres, ten times the
+    // stiffness): within 1 % of travel and 0.5° of yaw all the way, contact 0 reaches plane 1
+    // within 10 ms of our end, and contact 1 rises off plane 1 (a millimetre) within 50 ms of it.
     let file = root().join("scenes/paper-like-faces.toml");
     let horizon = 4.5;
     let drake = drake_path_with(
@@ -244,8 +244,14 @@ fn rigid_body_on_the_papers_planes_as_faces_rides_the_crease_as_in_refined_drake
         .with("solver.t_end_s", horizon)
         .unwrap();
     let r = route::run(&scene).unwrap();
-    assert_eq!(r.termination.reason, Reason::ContactReachedAnotherFace);
-    assert!(r.termination.detail.contains("contact 0 reached face 1"));
+    assert_eq!(r.termination.reason, Reason::ContactLiftedOff);
+    assert!(
+        r.termination
+            .detail
+            .contains("the impact of contact 0 on face 1 lifts contact 1"),
+        "{}",
+        r.termination.detail
+    );
     let t_end = r.termination.t_s;
     // Drake's rows every 0.5 ms; ours every 1 ms.
     let at = |t: f64| &drake[((t / 0.0005).round() as usize).min(drake.len() - 1)];
@@ -274,4 +280,17 @@ fn rigid_body_on_the_papers_planes_as_faces_rides_the_crease_as_in_refined_drake
     assert!(pos_err < 0.01 * t_drake, "CM gap {pos_err} m");
     assert!(yaw_err < 0.5, "yaw gap {yaw_err}°");
     assert!((crossing - t_end).abs() < 0.01, "{crossing} vs {t_end}");
+    let (ground, _) = scene.site().ground().expect("a ground of faces");
+    let lifted = drake
+        .iter()
+        .filter(|d| d[0] >= crossing)
+        .find(|d| {
+            ground
+                .top(d[8], d[10])
+                .is_some_and(|(_, h)| d[9] - h > 1e-3)
+        })
+        .map(|d| d[0])
+        .expect("Drake's contact 1 lifts off plane 1");
+    println!("Drake's contact 1 is a millimetre off plane 1 at {lifted:.4} s");
+    assert!(lifted - crossing < 0.05, "{lifted} vs {crossing}");
 }

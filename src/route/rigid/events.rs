@@ -143,7 +143,7 @@ pub(super) fn come_to_rest(
     let geom = ContactGeometry::with_normals(&finder.site().normals(), &stop_pose);
     let check = match static_check(sections, &geom) {
         Ok(c) => c,
-        Err(Stop { reason, detail }) => return Rest::Ended(reason, t, detail),
+        Err(Stop { reason, detail, .. }) => return Rest::Ended(reason, t, detail),
     };
     if check.holds() {
         o.push(rest_row(t_event, stopped, &stop_pose, from.faces));
@@ -166,7 +166,7 @@ pub(super) fn come_to_rest(
         Hold::of(&from.motion).sticking(None),
     ) {
         Ok(e) => Rest::Slips(Box::new(e)),
-        Err(Stop { reason, detail }) => {
+        Err(Stop { reason, detail, .. }) => {
             o.energy = Some(energy(stopped, 0.0, stop_pose.cm.y, origin, mass, g));
             Rest::Ended(reason, t_event, detail)
         }

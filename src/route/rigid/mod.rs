@@ -29,7 +29,7 @@ use super::termination::Reason;
 use crate::geometry::{Displacement, Pose};
 use crate::mechanics::ContactGeometry;
 use crate::mechanics::loads::Applied;
-use crate::mechanics::rigid_body::{self, Crease, Motion, RigidError};
+use crate::mechanics::rigid_body::{self, Creases, Motion, RigidError};
 use crate::mechanics::static_friction::{self, StaticCheck};
 use crate::scene::{Scene, Simulation};
 use nalgebra::Vector3;
@@ -69,28 +69,32 @@ fn displacement(y: &Y) -> Displacement {
 }
 
 fn stop_of(e: RigidError) -> Stop {
-    let reason = match e {
-        RigidError::LiftOff { .. } => Reason::ContactLiftedOff,
+    let (reason, contact) = match e {
+        RigidError::LiftOff { contact, .. } | RigidError::ImpactLifts { contact, .. } => {
+            (Reason::ContactLiftedOff, Some(contact))
+        }
         // Events of a crease (`substep.rs` handles them where it finds them).
-        RigidError::CreaseLetsGo { .. } => Reason::CreaseLetsGo,
-        RigidError::CreaseTakesOver { .. } => Reason::CreaseTakesOver,
+        RigidError::CreaseLetsGo { contact, .. } => (Reason::CreaseLetsGo, Some(contact)),
+        RigidError::CreaseTakesOver { contact, .. } => (Reason::CreaseTakesOver, Some(contact)),
+        RigidError::Wedged => (Reason::Wedged, None),
         RigidError::Singular(_)
         | RigidError::SlipFromRest
         | RigidError::SlipStart { .. }
-        | RigidError::StickSingular { .. } => Reason::ContactForcesUndetermined,
+        | RigidError::StickSingular { .. } => (Reason::ContactForcesUndetermined, None),
     };
     Stop {
         reason,
         detail: e.to_string(),
+        contact,
     }
 }
 
-/// What the step holds a contact to: a contact that stuck at the start of the step, and a
-/// contact riding a crease (`derivations/10-faces.md` §4).
+/// What the step holds contacts to: a contact that stuck at the start of the step, and the
+/// contacts riding creases (`derivations/10-faces.md` §4).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 struct Hold {
     stuck: Option<usize>,
-    crease: Option<Crease>,
+    creases: Creases,
 }
 
 impl Hold {
@@ -98,11 +102,11 @@ impl Hold {
     fn of(m: &Motion) -> Hold {
         Hold {
             stuck: m.stuck,
-            crease: m.crease,
+            creases: m.creases,
         }
     }
 
-    /// The same crease, with `stuck` sticking.
+    /// The same creases, with `stuck` sticking.
     fn sticking(self, stuck: Option<usize>) -> Hold {
         Hold { stuck, ..self }
     }
@@ -110,8 +114,8 @@ impl Hold {
 
 /// The right-hand side at state `y`. `hold.stuck`: the contact that stuck at the start of the
 /// step; the integrator's drift of its slip is projected out (as an impulse would, the energy
-/// it takes in `Eval::removed`) so that it stays stuck while its cone allows. `hold.crease`: a
-/// contact riding a crease; its velocity into the second face is projected out likewise.
+/// it takes in `Eval::removed`) so that it stays stuck while its cone allows. `hold.creases`:
+/// contacts riding creases; their velocities into their second faces are projected out likewise.
 fn evaluate(
     scene: &Scene,
     dynamics: &Simulation,
@@ -132,9 +136,10 @@ fn evaluate(
         (rates, removed) =
             rigid_body::pivot_rates(&geom, dynamics.block(), rates, i).map_err(stop_of)?;
     }
-    if let Some(c) = hold.crease.filter(|c| stuck != Some(c.contact)) {
+    let riding = hold.creases.without(stuck);
+    if !riding.is_empty() {
         let (r, into) =
-            rigid_body::crease_rates(&geom, dynamics.block(), rates, &c).map_err(stop_of)?;
+            rigid_body::crease_rates(&geom, dynamics.block(), rates, &riding).map_err(stop_of)?;
         (rates, removed) = (r, removed + into);
     }
     let motion = rigid_body::accelerations_in_crease(
@@ -144,7 +149,7 @@ fn evaluate(
         dynamics.friction(),
         rates,
         dynamics.solver().dt,
-        hold.crease,
+        hold.creases,
     )
     .map_err(stop_of)?;
     Ok(Eval {
@@ -269,7 +274,7 @@ fn row(t: f64, y: &Y, e: &Eval) -> Row {
         n_n: Some(e.motion.normal),
         s_n: Some(e.motion.shear.map(|s| s.norm())),
         faces: e.faces,
-        crease: e.motion.crease.map(|c| [c.contact as u32, c.face as u32]),
+        crease: e.motion.creases.faces(),
     }
 }
 
@@ -290,7 +295,7 @@ fn rest_row(t: f64, y: &Y, pose: &Pose, faces: [u32; 3]) -> Row {
         n_n: None,
         s_n: None,
         faces,
-        crease: None,
+        crease: [None; 3],
     }
 }
 
@@ -298,6 +303,7 @@ fn rest_row(t: f64, y: &Y, pose: &Pose, faces: [u32; 3]) -> Row {
 fn static_check(dynamics: &Simulation, geom: &ContactGeometry) -> Result<StaticCheck, Stop> {
     let applied = Applied::new(dynamics.loads(), dynamics.block(), &geom.frame);
     static_friction::at_rest(geom, &applied, dynamics.friction()).map_err(|err| Stop {
+        contact: None,
         reason: Reason::ContactForcesUndetermined,
         detail: err.to_string(),
     })
@@ -393,7 +399,7 @@ impl<'a> Dynamics<'a> for RigidBody<'a> {
         };
         let check = match static_check(sections, &ContactGeometry::new(scene, &start_pose)) {
             Ok(c) => c,
-            Err(Stop { reason, detail }) => {
+            Err(Stop { reason, detail, .. }) => {
                 o.push(rest_row(0.0, &y, &start_pose, faces_of(&scene.site)));
                 return Start::Ended(o.end(reason, 0.0, detail));
             }
@@ -414,7 +420,7 @@ impl<'a> Dynamics<'a> for RigidBody<'a> {
         }
         let ev = match evaluate(scene, sections, finder, &y, Hold::default()) {
             Ok(e) => e,
-            Err(Stop { reason, detail }) => {
+            Err(Stop { reason, detail, .. }) => {
                 o.push(rest_row(0.0, &y, &start_pose, faces_of(&scene.site)));
                 return Start::Ended(o.end(reason, 0.0, detail));
             }

@@ -8,14 +8,16 @@ use super::{
     row, stop_of,
 };
 use crate::mechanics::ContactGeometry;
-use crate::mechanics::rigid_body::{self, Crease};
+use crate::mechanics::rigid_body::{self, Crease, Creases, Impact, RigidError};
 use crate::route::dynamics::Flow;
 use crate::route::outcome::Outcome;
 use crate::route::pose_finder::PoseFinder;
 use crate::route::rhs::Stop;
 use crate::route::rhs::pose_at;
+use crate::route::state::faces_of;
 use crate::route::termination::Reason;
 use crate::scene::{Scene, Simulation};
+use nalgebra::{DMatrix, DVector, Vector3};
 
 /// The fraction of the largest kinetic energy of the route below which the block counts as at
 /// rest when a contact's slip passes through zero (see `RigidBody::cut_at_event`).
@@ -236,11 +238,8 @@ impl RigidBody<'_> {
             }
             _ => (next, next_ev),
         };
-        let (next, next_ev) = match next_ev.motion.crease {
-            Some(c) => hold_on_crease(self.scene, self.sections, finder, &next, next_ev, &c)
-                .map_err(Ending::Failed)?,
-            None => (next, next_ev),
-        };
+        let (next, next_ev) = hold_on_creases(self.scene, self.sections, finder, &next, next_ev)
+            .map_err(Ending::Failed)?;
         self.go_to(o, next, next_ev);
         self.anchor = anchor_of(&self.ev, self.anchor);
         self.t += h;
@@ -291,7 +290,7 @@ impl RigidBody<'_> {
             // A failure that is the ground's event (a contact meeting a face, a crease letting
             // go) changes what the contacts are held to and the route goes on; any other ends
             // it.
-            if let Some(next) = self.crease_event(finder, (lo, y_lo, y_hi), &stop, o)? {
+            if let Some(next) = self.crease_event(finder, k, (lo, y_lo, y_hi), &stop, o)? {
                 return Ok(next);
             }
             return Err(self.end_at_failure(finder, k, (lo, y_lo), stop, o));
@@ -339,54 +338,51 @@ impl RigidBody<'_> {
     /// * a contact reached a face of a ground of planes: it rides the crease from `y_lo` on,
     ///   its velocity into the face taken by a perfectly inelastic, frictionless impulse (the
     ///   energy booked as friction work);
-    /// * the crease's second face let go: the contact goes on along its own face;
-    /// * its own face let go: the contact goes on along the crease's other face (the site
-    ///   changes: that face becomes the contact's own).
+    /// * a crease's second face let go of its contact: the contact goes on along its own face;
+    /// * a crease contact's own face let go: the contact goes on along the crease's other face
+    ///   (the site changes: that face becomes the contact's own).
     ///
-    /// `None` for any other failure (it ends the route).
+    /// Other contacts keep their creases. The contact forces just after the event may call for
+    /// the next at once (a contact that meets a steeper face is lifted off its own by the
+    /// impact): up to three such events are taken at the same moment. `None` for any other
+    /// failure (it ends the route).
     fn crease_event(
         &mut self,
         finder: &mut PoseFinder<'_>,
+        k: usize,
         (lo, y_lo, y_hi): (f64, Y, Y),
         stop: &Stop,
         o: &mut Outcome<'_>,
     ) -> Result<Option<Substep>, Ending> {
         let (scene, sections) = (self.scene, self.sections);
         let held = Hold::of(&self.ev.motion);
-        let hold = match (stop.reason, held.crease) {
-            (Reason::ContactReachedAnotherFace, None) => {
-                let Some(crease) = met_face(scene, finder, &y_hi) else {
-                    return Ok(None);
-                };
-                Hold {
-                    crease: Some(crease),
-                    ..held
+        let Some(hold) = ground_event(scene, finder, &y_hi, stop, held) else {
+            return Ok(None);
+        };
+        let (y_lo, hold) = match after_impact(scene, sections, finder, &y_lo, held, hold)? {
+            Ok(after) => after,
+            Err(lift) => return Err(self.end_at_failure(finder, k, (lo, y_lo), lift, o)),
+        };
+        let mut hold = hold;
+        let mut at = None;
+        for _ in 0..3 {
+            match evaluate(scene, sections, finder, &y_lo, hold) {
+                Ok(e) => {
+                    at = Some(e);
+                    break;
+                }
+                Err(next) => {
+                    hold = ground_event(scene, finder, &y_lo, &next, hold)
+                        .ok_or(Ending::Failed(next))?;
                 }
             }
-            (Reason::CreaseLetsGo, Some(_)) => Hold {
-                crease: None,
-                ..held
-            },
-            // The contact leaves its own face for the crease's other one: the site changes,
-            // and the branch goes on from the same point on it.
-            (Reason::CreaseTakesOver, Some(c)) => {
-                let Some(site) = finder.site().with_face(c.contact, c.face) else {
-                    return Ok(None);
-                };
-                *finder = finder.on_site(site);
-                Hold {
-                    crease: None,
-                    ..held
-                }
-            }
-            _ => return Ok(None),
+        }
+        let at = match at {
+            Some(e) => e,
+            None => evaluate(scene, sections, finder, &y_lo, hold).map_err(Ending::Failed)?,
         };
-        let at = evaluate(scene, sections, finder, &y_lo, hold).map_err(Ending::Failed)?;
-        let (y, at) = match hold.crease {
-            Some(c) => hold_on_crease(scene, sections, finder, &accept(&y_lo, &at), at, &c)
-                .map_err(Ending::Failed)?,
-            None => (accept(&y_lo, &at), at),
-        };
+        let (y, at) = hold_on_creases(scene, sections, finder, &accept(&y_lo, &at), at)
+            .map_err(Ending::Failed)?;
         self.go_to(o, y, at);
         self.anchor = anchor_of(&self.ev, self.anchor);
         self.t += lo;
@@ -457,61 +453,184 @@ impl RigidBody<'_> {
     }
 }
 
-/// The crease a contact meets at `y` (just past where it reached another face of a ground of
-/// planes): the contact and the face now above its own, found at the pose there without the
-/// regions' check. `None` on a surface (its creases are not ridden yet) or if no face is above.
-fn met_face(scene: &Scene, finder: &PoseFinder<'_>, y: &Y) -> Option<Crease> {
+/// The impact of a contact meeting a face at state `y` (`held` before, `hold` after: one crease
+/// more; `derivations/10-faces.md` §4): the state just after it — its rates those the
+/// frictionless, perfectly inelastic impulses leave ([`rigid_body::impact`]), the kinetic
+/// energy they take booked as friction work — and what the contacts are held to then; the
+/// finder moves to the new site where the impact put a contact on the new face alone. Or, where
+/// the impact would need a face to pull a contact on it, the stop that ends the route there
+/// ("contact lifted off").
+fn after_impact(
+    scene: &Scene,
+    dynamics: &Simulation,
+    finder: &mut PoseFinder<'_>,
+    y: &Y,
+    held: Hold,
+    hold: Hold,
+) -> Result<Result<(Y, Hold), Stop>, Ending> {
+    let Some(met) = (0..3)
+        .find(|&i| held.creases.at(i).is_none())
+        .and_then(|i| hold.creases.at(i).copied())
+    else {
+        return Ok(Ok((*y, hold)));
+    };
+    let mut f = finder.for_stages();
+    let pose = pose_at(scene, &mut f, displacement(y)).map_err(Ending::Failed)?;
+    let geom = ContactGeometry::with_normals(&finder.site().normals(), &pose);
+    let creases = hold.creases.without(hold.stuck);
+    let Impact {
+        rates,
+        removed,
+        creases,
+        moved,
+    } = match rigid_body::impact(&geom, dynamics.block(), [y[3], y[4], y[5]], &creases) {
+        Ok(after) => after,
+        Err(RigidError::ImpactLifts {
+            contact,
+            impulse_n_s,
+        }) => {
+            return Ok(Err(Stop {
+                reason: Reason::ContactLiftedOff,
+                detail: format!(
+                    "the impact of contact {} on face {} lifts contact {contact} off face {} (the \
+                     face's impulse would be {impulse_n_s:.6e} N·s)",
+                    met.contact,
+                    met.face,
+                    faces_of(finder.site())[contact]
+                ),
+                contact: Some(contact),
+            }));
+        }
+        Err(e) => return Err(Ending::Failed(stop_of(e))),
+    };
+    for c in moved.iter().flatten() {
+        let Some(site) = finder.site().with_face(c.contact, c.face) else {
+            return Err(Ending::Failed(Stop {
+                reason: Reason::ContactReachedAnotherFace,
+                detail: format!("contact {} cannot go on along face {}", c.contact, c.face),
+                contact: Some(c.contact),
+            }));
+        };
+        *finder = finder.on_site(site);
+    }
+    let mut z = *y;
+    z[3..6].copy_from_slice(&rates);
+    z[7] += removed;
+    // A contact stuck before the impact keeps sticking while its cone allows.
+    let creases = match hold.stuck.and_then(|i| hold.creases.at(i)) {
+        Some(c) => creases.with(*c),
+        None => creases,
+    };
+    Ok(Ok((z, Hold { creases, ..hold })))
+}
+
+/// What a failure `stop` at `y` changes in what the contacts are held to (`held`), if it is an
+/// event of the ground (see `RigidBody::crease_event`); the finder moves to the new site where a
+/// contact changes its face. `None` for any other failure.
+fn ground_event(
+    scene: &Scene,
+    finder: &mut PoseFinder<'_>,
+    y: &Y,
+    stop: &Stop,
+    held: Hold,
+) -> Option<Hold> {
+    let riding = stop.contact.and_then(|i| held.creases.at(i)).copied();
+    let creases = match (stop.reason, riding) {
+        (Reason::ContactReachedAnotherFace, _) => {
+            held.creases
+                .with(met_face(scene, finder, y, &held.creases)?)
+        }
+        (Reason::CreaseLetsGo, Some(c)) => held.creases.without(Some(c.contact)),
+        // The contact leaves its own face for the crease's other one: the site changes, and
+        // the branch goes on from the same point on it.
+        (Reason::CreaseTakesOver, Some(c)) => {
+            let site = finder.site().with_face(c.contact, c.face)?;
+            *finder = finder.on_site(site);
+            held.creases.without(Some(c.contact))
+        }
+        _ => return None,
+    };
+    Some(Hold { creases, ..held })
+}
+
+/// The crease a contact meets at `y` (about where it reached another face of a ground of
+/// planes — the failure may have been seen at a stage of the step just beyond): of the contacts
+/// not riding a crease already (`creases`), the one nearest to going under another face, and
+/// that face, found at the pose there without the regions' check. `None` on a surface (its
+/// creases are not ridden yet) or if no face is within `MEETS` of a contact.
+fn met_face(scene: &Scene, finder: &PoseFinder<'_>, y: &Y, creases: &Creases) -> Option<Crease> {
     let site = finder.site();
     let (ground, faces) = site.ground().filter(|(g, _)| !g.is_surface())?;
     let mut f = finder.for_stages();
     let pose = pose_at(scene, &mut f, displacement(y)).ok()?;
     let planes = site.planes();
+    let all = ground.faces();
     (0..3)
-        .filter_map(|k| {
+        .filter(|&k| creases.at(k).is_none())
+        .flat_map(|k| {
             let v = pose.vertices[k];
-            let (top, h) = ground.top(v.x, v.z)?;
-            let above = h - planes[k].height(v.x, v.z);
-            (top != faces[k] && above > 0.0).then_some((k, top, above))
+            let own = planes[k].height(v.x, v.z);
+            (0..all.len())
+                .filter(move |&j| j != faces[k])
+                .map(move |j| (k, j, all[j].height(v.x, v.z) - own))
         })
+        .filter(|&(_, _, above)| above > -MEETS * scene.l())
         .max_by(|a, b| a.2.total_cmp(&b.2))
-        .map(|(k, top, _)| {
-            let face = ground.faces()[top];
-            Crease {
-                contact: k,
-                normal: face.normal(),
-                offset: face.offset(),
-                face: top,
-            }
+        .map(|(k, j, _)| Crease {
+            contact: k,
+            normal: all[j].normal(),
+            offset: all[j].offset(),
+            face: j,
         })
 }
 
-/// Puts the contact riding crease `c` back on the crease's second face: the least change of
-/// (X, Z, L θ) that removes its distance from that face (Gauss–Newton with the contact's
-/// velocity map, as `hold` does for a sticking contact), a move of the size of the integrator's
-/// error.
-fn hold_on_crease(
+/// How close (as a fraction of L) a contact must be to going under another face for
+/// [`met_face`] to take that face as the one it met: a good deal more than a located event's
+/// distance (a step's stage beyond it), far less than any face's size.
+const MEETS: f64 = 1e-5;
+
+/// Puts each contact riding a crease back on its crease's second face: the least change of
+/// (X, Z, L θ) that removes their distances from those faces (Gauss–Newton with the contacts'
+/// velocity maps, the minimum-norm step, as `hold` does for a sticking contact), a move of the
+/// size of the integrator's error.
+fn hold_on_creases(
     scene: &Scene,
     dynamics: &Simulation,
     finder: &mut PoseFinder<'_>,
     y: &Y,
     ev: Eval,
-    c: &Crease,
 ) -> Result<(Y, Eval), Stop> {
     let l = scene.l();
     let (mut y, mut ev) = (*y, ev);
     for _ in 0..4 {
-        let gap = c.normal.dot(&ev.pose.vertices[c.contact]) - c.offset;
-        if gap.abs() <= 1e-14 * l || ev.motion.crease.is_none() {
+        let creases = ev.motion.creases.without(ev.motion.stuck);
+        let gaps: Vec<f64> = creases
+            .iter()
+            .map(|c| c.normal.dot(&ev.pose.vertices[c.contact]) - c.offset)
+            .collect();
+        if gaps.iter().all(|g| g.abs() <= 1e-14 * l) {
             break;
         }
         let geom = ContactGeometry::with_normals(&finder.site().normals(), &ev.pose);
-        let v = rigid_body::contact_velocity_map(&geom, l, c.contact).map_err(stop_of)?;
-        let row = v.map(|col| c.normal.dot(&col));
-        let norm2 = row.iter().map(|r| r * r).sum::<f64>();
-        if !(norm2 > 0.0 && norm2.is_finite()) {
+        // Row k: the distance's rate for unit (Ẋ, Ż, L θ̇).
+        let rows = creases
+            .iter()
+            .map(|c| {
+                rigid_body::contact_velocity_map(&geom, l, c.contact)
+                    .map(|v| Vector3::from(v.map(|col| c.normal.dot(&col))))
+            })
+            .collect::<Result<Vec<_>, _>>()
+            .map_err(stop_of)?;
+        let k = rows.len();
+        let jjt = DMatrix::from_fn(k, k, |a, b| rows[a].dot(&rows[b]));
+        let Some(m) = jjt
+            .lu()
+            .solve(&DVector::from_iterator(k, gaps.iter().map(|g| -g)))
+            .filter(|m| m.iter().all(|v| v.is_finite()))
+        else {
             break;
-        }
-        let delta = row.map(|r| -gap * r / norm2);
+        };
+        let delta: Vector3<f64> = (0..k).map(|a| rows[a] * m[a]).sum();
         y[0] += delta[0];
         y[1] += delta[1];
         y[2] += delta[2] / l;

@@ -6,7 +6,7 @@ use std::io::Write;
 use std::path::PathBuf;
 
 /// The header of `route.csv`: the fields of a [`Row`], in its order, with their units.
-pub const ROUTE_HEADER: [&str; 22] = [
+pub const ROUTE_HEADER: [&str; 23] = [
     "t_s",
     "x_m",
     "y_m",
@@ -27,8 +27,9 @@ pub const ROUTE_HEADER: [&str; 22] = [
     "face0",
     "face1",
     "face2",
-    "crease_contact",
-    "crease_face",
+    "crease_face0",
+    "crease_face1",
+    "crease_face2",
 ];
 
 /// route.csv written row by row as the route computes them (issue #13: memory does not grow
@@ -73,12 +74,14 @@ impl<W: Write> CsvRows<W> {
                 None => rec.extend(std::iter::repeat_n(String::new(), 3)),
             }
         }
-        // The face under each contact, and a crease's contact and second face (empty without).
+        // The face under each contact, and the second face of each contact riding a crease
+        // (empty without).
         rec.extend(r.faces.iter().map(|f| f.to_string()));
-        match r.crease {
-            Some([c, f]) => rec.extend([c.to_string(), f.to_string()]),
-            None => rec.extend([String::new(), String::new()]),
-        }
+        rec.extend(
+            r.crease
+                .iter()
+                .map(|f| f.map_or(String::new(), |f| f.to_string())),
+        );
         if let Err(e) = self.w.write_record(&rec) {
             self.error = Some(e);
         }

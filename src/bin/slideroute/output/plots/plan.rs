@@ -144,17 +144,17 @@ fn face_changes(scene: &Scene, rows: &[Row]) -> Vec<(P, String)> {
                 said.push((k, format!("contact {k} onto face {}", b.faces[k])));
             }
         }
-        match (a.crease, b.crease) {
-            (None, Some([c, f])) => said.push((
-                c as usize,
-                format!("contact {c} into the crease with face {f}"),
-            )),
-            // Out of the crease onto its other face is said as the change of face above.
-            (Some([c, f]), None) if a.faces[c as usize] == b.faces[c as usize] => said.push((
-                c as usize,
-                format!("contact {c} out of the crease with face {f}"),
-            )),
-            _ => {}
+        for c in 0..3 {
+            match (a.crease[c], b.crease[c]) {
+                (None, Some(f)) => {
+                    said.push((c, format!("contact {c} into the crease with face {f}")));
+                }
+                // Out of the crease onto its other face is said as the change of face above.
+                (Some(f), None) if a.faces[c] == b.faces[c] => {
+                    said.push((c, format!("contact {c} out of the crease with face {f}")));
+                }
+                _ => {}
+            }
         }
         for (k, text) in said {
             if let Some(v) = vertices(scene, b) {
