@@ -66,9 +66,16 @@ pub enum RigidError {
     #[error("every contact rides a crease: the block is wedged")]
     Wedged,
     /// At an impact, contact `contact`, on one face alone, would have to be pulled onto it (its
-    /// impulse negative, N·s): the impact lifts it off.
-    #[error("the impact lifts contact {contact} off its face (its impulse {impulse_n_s:.6e} N·s)")]
-    ImpactLifts { contact: usize, impulse_n_s: f64 },
+    /// impulse negative, N·s): the impact lifts it off, at `speed_m_s`.
+    #[error(
+        "the impact lifts contact {contact} off its face at {speed_m_s:.3e} m/s (held, its \
+         impulse would be {impulse_n_s:.6e} N·s)"
+    )]
+    ImpactLifts {
+        contact: usize,
+        impulse_n_s: f64,
+        speed_m_s: f64,
+    },
 }
 
 /// The inertia tensor in global axes and its inverse, at one pose.
@@ -672,34 +679,46 @@ pub fn crease_rates(
 }
 
 /// A face a contact is held to at an impact: its own (`second == false`) or its crease's
-/// second.
+/// second, and the direction of its impulse per unit of normal impulse, n − μ ŝ (ŝ the
+/// contact's slip on that face before the impact).
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct Held {
     contact: usize,
     second: bool,
     normal: Vector3<f64>,
+    slip: Vector3<f64>,
+    mu: f64,
 }
 
-/// The faces of an impact: each contact's own, then the creases' second faces in the order of
-/// their contacts.
-fn held_rows(geom: &ContactGeometry, creases: &Creases) -> Vec<Held> {
+impl Held {
+    fn push(&self) -> Vector3<f64> {
+        self.normal - self.slip * self.mu
+    }
+}
+
+/// The faces of an impact from twist `u`: each contact's own, then the creases' second faces in
+/// the order of their contacts, each with its friction coefficient `mu`.
+fn held_rows(geom: &ContactGeometry, u: &Twist, creases: &Creases, mu: &[f64; 3]) -> Vec<Held> {
+    let row = |contact: usize, second: bool, normal: Vector3<f64>| {
+        let v = u.at(&geom.r[contact]);
+        Held {
+            contact,
+            second,
+            normal,
+            slip: unit(v - normal * normal.dot(&v)),
+            mu: mu[contact],
+        }
+    };
     (0..3)
-        .map(|i| Held {
-            contact: i,
-            second: false,
-            normal: geom.n[i],
-        })
-        .chain(creases.iter().map(|c| Held {
-            contact: c.contact,
-            second: true,
-            normal: c.normal,
-        }))
+        .map(|i| row(i, false, geom.n[i]))
+        .chain(creases.iter().map(|c| row(c.contact, true, c.normal)))
         .collect()
 }
 
-/// The impulses (N·s) of the perfectly inelastic, frictionless impact that stops every held
-/// contact's velocity into its faces: with J the rows of `held` and M the mass matrix,
-/// p = −(J M⁻¹ Jᵀ)⁻¹ J u⁻, and the twist after it u⁻ + M⁻¹ Jᵀ p.
+/// The impulses (N·s) of the perfectly inelastic impact that stops every held contact's
+/// velocity into its faces, each impulse along its row's n − μ ŝ (Coulomb's friction against
+/// the slip): with J the rows' normals, G their impulse directions and M the mass matrix,
+/// p = −(J M⁻¹ Gᵀ)⁻¹ J u⁻, and the twist after it u⁻ + M⁻¹ Gᵀ p.
 fn impulses(
     geom: &ContactGeometry,
     mass: f64,
@@ -708,13 +727,15 @@ fn impulses(
     held: &[Held],
 ) -> Result<(Vec<f64>, Twist), RigidError> {
     let k = held.len();
-    let arm = |h: &Held| geom.r[h.contact].cross(&h.normal);
+    let arm = |h: &Held, v: Vector3<f64>| geom.r[h.contact].cross(&v);
     let a = nalgebra::DMatrix::from_fn(k, k, |p, q| {
-        held[p].normal.dot(&held[q].normal) / mass
-            + arm(&held[p]).dot(&(inertia.inverse * arm(&held[q])))
+        let (hp, hq) = (&held[p], &held[q]);
+        hp.normal.dot(&hq.push()) / mass
+            + arm(hp, hp.normal).dot(&(inertia.inverse * arm(hq, hq.push())))
     });
-    let ju =
-        nalgebra::DVector::from_fn(k, |p, _| held[p].normal.dot(&u.v) + arm(&held[p]).dot(&u.w));
+    let ju = nalgebra::DVector::from_fn(k, |p, _| {
+        held[p].normal.dot(&u.v) + arm(&held[p], held[p].normal).dot(&u.w)
+    });
     let p = a
         .lu()
         .solve(&(-ju))
@@ -722,10 +743,47 @@ fn impulses(
         .ok_or(RigidError::Singular("impact impulses"))?;
     let mut after = *u;
     for (h, p) in held.iter().zip(p.iter()) {
-        after.v += h.normal * (p / mass);
-        after.w += inertia.inverse * arm(h) * *p;
+        after.v += h.push() * (p / mass);
+        after.w += inertia.inverse * arm(h, h.push()) * *p;
     }
     Ok((p.iter().copied().collect(), after))
+}
+
+/// [`impulses`], with the friction of a row whose slip the impact would turn round (the slip
+/// after it against the slip before) cut back, by bisection on its coefficient, to the one that
+/// just stops it: Coulomb's friction cannot reverse a slip, and a slip stopped within the
+/// impact stays stopped to its end (the contact sticks; its cone is not checked).
+fn impulses_without_reversal(
+    geom: &ContactGeometry,
+    mass: f64,
+    inertia: &Inertia,
+    u: &Twist,
+    held: &mut [Held],
+) -> Result<(Vec<f64>, Twist), RigidError> {
+    let reversed = |held: &[Held], after: &Twist| {
+        held.iter().position(|h| {
+            let v = after.at(&geom.r[h.contact]);
+            h.mu > 0.0 && (v - h.normal * h.normal.dot(&v)).dot(&h.slip) < 0.0
+        })
+    };
+    for _ in 0..held.len() {
+        let (p, after) = impulses(geom, mass, inertia, u, held)?;
+        let Some(k) = reversed(held, &after) else {
+            return Ok((p, after));
+        };
+        let (mut lo, mut hi) = (0.0, held[k].mu);
+        for _ in 0..60 {
+            held[k].mu = 0.5 * (lo + hi);
+            let (_, after) = impulses(geom, mass, inertia, u, held)?;
+            if reversed(held, &after) == Some(k) {
+                hi = held[k].mu;
+            } else {
+                lo = held[k].mu;
+            }
+        }
+        held[k].mu = lo;
+    }
+    impulses(geom, mass, inertia, u, held)
 }
 
 /// The state just after an impact ([`impact`]): every contact still on a face.
@@ -742,27 +800,47 @@ pub struct Impact {
     pub moved: [Option<Crease>; 3],
 }
 
-/// The perfectly inelastic, frictionless impact at the moment the contacts in `creases` are
-/// held to their second faces as well as their own (`derivations/10-faces.md` §4): the
-/// impulses that stop every contact's velocity into its faces ([`impact_impulses`]), with the
-/// faces that would have to pull let go one at a time, the most negative first — a crease's
-/// second face lets its contact go on along its own; a crease contact's own face lets it go on
-/// along the second alone; a contact on one face alone lifts off
-/// ([`RigidError::ImpactLifts`]).
+/// The law of an impact ([`impact`]): each contact's friction coefficient, and the slowest
+/// release that lets a face go.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ImpactLaw {
+    pub mu: [f64; 3],
+    /// A face that would have to pull its contact at the impact lets it go only if the contact,
+    /// let go, would leave the face faster than this (m/s): a slower release is a hop of a few
+    /// micrometres that gravity ends within milliseconds, or a contact at the crease it is
+    /// pressed into, which the contact forces just after the impact decide; the face's pull is
+    /// kept.
+    pub release_speed: f64,
+}
+
+/// The perfectly inelastic, frictional impact at the moment a contact meets a face and rides
+/// its crease (`creases`; `derivations/10-faces.md` §6): the impulses that stop every contact's
+/// velocity into its faces, each with Coulomb's friction impulse μ p against its contact's slip
+/// on that face (a slip the impact would turn round is stopped instead). A face that would have
+/// to pull its contact, and that the contact would leave faster than `law.release_speed` were
+/// it let go, lets it go, the most negative first: a crease's second face lets its contact go on
+/// along its own (the face just met, where the impact only grazed it), a crease contact's own
+/// face lets it go on along the second alone (it climbs onto the face it met), and a contact on
+/// one face alone lifts off ([`RigidError::ImpactLifts`]). Frictionless, the twist after it is
+/// the one [`crease_rates`] gives.
 pub fn impact(
     geom: &ContactGeometry,
     block: &Block,
     rates: [f64; 3],
     creases: &Creases,
+    law: &ImpactLaw,
 ) -> Result<Impact, RigidError> {
     let inertia = Inertia::new(block, geom)?;
     let u = twist(geom, rates)?;
-    let mut held = held_rows(geom, creases);
+    let mut held = held_rows(geom, &u, creases, &law.mu);
+    // Rows whose pull is kept (their contact's release too slow to count).
+    let mut kept = vec![false; held.len()];
     loop {
-        let (p, after) = impulses(geom, block.mass, &inertia, &u, &held)?;
+        let (p, after) = impulses_without_reversal(geom, block.mass, &inertia, &u, &mut held)?;
         // A pull below round-off of the impact's own size is none.
         let scale = p.iter().fold(0.0f64, |a, v| a.max(v.abs()));
         let pull = (0..held.len())
+            .filter(|&k| !kept[k])
             .filter(|&k| p[k] < -1e-9 * scale)
             .min_by(|&a, &b| p[a].total_cmp(&p[b]));
         let Some(k) = pull else {
@@ -791,35 +869,28 @@ pub fn impact(
                 moved,
             });
         };
+        // How fast the contact would leave the face if it let go.
         let h = held[k];
+        let mut without = held.clone();
+        without.remove(k);
+        let (_, released) =
+            impulses_without_reversal(geom, block.mass, &inertia, &u, &mut without)?;
+        let speed = h.normal.dot(&released.at(&geom.r[h.contact]));
+        if speed <= law.release_speed {
+            kept[k] = true;
+            continue;
+        }
         let in_crease = held.iter().filter(|o| o.contact == h.contact).count() > 1;
         if !in_crease {
             return Err(RigidError::ImpactLifts {
                 contact: h.contact,
                 impulse_n_s: p[k],
+                speed_m_s: speed,
             });
         }
         held.remove(k);
+        kept.remove(k);
     }
-}
-
-/// The impulses (N·s) of the perfectly inelastic, frictionless impact that stops each crease
-/// contact's velocity into its second face while every contact stays on its own face
-/// (`derivations/10-faces.md` §4): with J the constraint rows (the own faces' normals at contacts
-/// 0, 1, 2, then the creases' second faces in the order of their contacts) and M the mass matrix,
-/// p = −(J M⁻¹ Jᵀ)⁻¹ J u⁻ for the twist u⁻ of `rates`. The twist after it, u⁻ + M⁻¹ Jᵀ p, is the
-/// one [`crease_rates`] gives; a negative impulse is a pull: that face would have to hold its
-/// contact down.
-pub fn impact_impulses(
-    geom: &ContactGeometry,
-    block: &Block,
-    rates: [f64; 3],
-    creases: &Creases,
-) -> Result<Vec<f64>, RigidError> {
-    let inertia = Inertia::new(block, geom)?;
-    let u = twist(geom, rates)?;
-    let held = held_rows(geom, creases);
-    impulses(geom, block.mass, &inertia, &u, &held).map(|(p, _)| p)
 }
 
 /// Coulomb's cone with a little room for round-off.
@@ -1638,42 +1709,67 @@ mod tests {
     }
 
     #[test]
-    fn the_impact_impulses_give_the_projected_motion_and_a_pull_means_a_lift() {
-        // The impulses' twist u⁻ + M⁻¹ Jᵀ p is the crease projection's (two routes to the same
-        // inelastic impact), and the sign of face B's impulse says whether it pushes or pulls.
+    fn a_frictionless_impact_is_the_crease_projection_and_friction_takes_more() {
+        // Contact 2 meets the groove's second face: frictionless, the impact leaves the motion
+        // the crease projection gives (two routes to the same inelastic impact: impulses and a
+        // projection in the kinetic-energy metric); with friction, every contact is still on
+        // its faces after it, and it takes more kinetic energy, never adding any.
         let (d, geom, crease, _) = groove(30f64.to_radians());
         let block = d.block();
         let inertia = Inertia::new(block, &geom).unwrap();
         let creases = Creases::from(crease);
-        for rates in [[1.0, 0.3, 0.0], [0.2, -0.5, 0.05], [0.0, 0.0, 0.1]] {
-            let p = impact_impulses(&geom, block, rates, &creases).unwrap();
-            assert_eq!(p.len(), 4);
+        let law = |mu: f64| ImpactLaw {
+            mu: [mu; 3],
+            release_speed: f64::INFINITY,
+        };
+        for rates in [[1.0, 0.3, 0.0], [0.2, 0.5, 0.05], [0.5, 0.1, 0.1]] {
             let before = twist(&geom, rates).unwrap();
-            let mut dv = Vector3::zeros();
-            let mut dw = Vector3::zeros();
-            for (k, (i, n)) in [
-                (0, geom.n[0]),
-                (1, geom.n[1]),
-                (2, geom.n[2]),
-                (2, crease.normal),
-            ]
-            .into_iter()
-            .enumerate()
-            {
-                dv += n * p[k] / block.mass;
-                dw += inertia.inverse * geom.r[i].cross(&n) * p[k];
+            let k0 = before.kinetic_energy(block.mass, &inertia);
+            let plain = impact(&geom, block, rates, &creases, &law(0.0)).unwrap();
+            let (projected, removed) = crease_rates(&geom, block, rates, &creases).unwrap();
+            for (a, b) in plain.rates.iter().zip(projected) {
+                assert!((a - b).abs() < 1e-9, "{plain:?}");
             }
-            let (projected, _) = crease_rates(&geom, block, rates, &creases).unwrap();
-            let after = twist(&geom, projected).unwrap();
-            let scale = before.v.norm() + before.w.norm();
-            assert!((before.v + dv - after.v).norm() < 1e-9 * scale, "{p:?}");
-            assert!((before.w + dw - after.w).norm() < 1e-9 * scale, "{p:?}");
+            assert!((plain.removed - removed).abs() < 1e-9 * k0);
+            assert_eq!(plain.creases, creases);
+            let rough = impact(&geom, block, rates, &creases, &law(0.4)).unwrap();
+            let after = twist(&geom, rough.rates).unwrap();
+            let v2 = after.at(&geom.r[2]);
+            let scale = before.at(&geom.r[2]).norm();
+            assert!(crease.normal.dot(&v2).abs() < 1e-9 * scale, "{v2}");
+            assert!(geom.n[2].dot(&v2).abs() < 1e-9 * scale, "{v2}");
+            let k1 = after.kinetic_energy(block.mass, &inertia);
+            assert!((k1 - k0 - rough.removed).abs() < 1e-9 * k0);
+            assert!(
+                rough.removed < plain.removed && rough.removed >= -k0,
+                "{rough:?}"
+            );
         }
-        // Face B's normal (0, cos δ, −sin δ): moving +Z drives contact 2 into it, and B pushes
-        // (a positive impulse); moving −Z takes it away, and only a pull would stop that.
-        let into = impact_impulses(&geom, block, [0.0, 1.0, 0.0], &creases).unwrap();
-        let away = impact_impulses(&geom, block, [0.0, -1.0, 0.0], &creases).unwrap();
-        assert!(into[3] > 0.0 && away[3] < 0.0, "{into:?} {away:?}");
+    }
+
+    #[test]
+    fn an_impact_lets_a_face_go_only_if_its_contact_would_leave_it_fast_enough() {
+        // A block moving along −Z meets the groove's face B at contact 2 from the side it
+        // leaves: the impulse that would hold contact 2 on B pulls. Let go if the release is
+        // faster than the law's speed; otherwise held (the forces just after decide).
+        let (d, geom, crease, _) = groove(30f64.to_radians());
+        let block = d.block();
+        let creases = Creases::from(crease);
+        let rates = [0.0, -1.0, 0.0];
+        let go = |release_speed: f64| {
+            let law = ImpactLaw {
+                mu: [0.0; 3],
+                release_speed,
+            };
+            impact(&geom, block, rates, &creases, &law).unwrap()
+        };
+        let let_go = go(1e-3);
+        assert_eq!(let_go.creases, Creases::NONE);
+        assert!(let_go.removed.abs() < 1e-9, "{let_go:?}");
+        assert!((0..3).all(|c| (let_go.rates[c] - rates[c]).abs() < 1e-12));
+        let held = go(f64::INFINITY);
+        assert_eq!(held.creases, creases);
+        assert!(held.removed < 0.0);
     }
 
     #[test]

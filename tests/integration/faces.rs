@@ -190,3 +190,65 @@ fn on_a_rough_valley_surface_the_route_runs_to_a_stated_end_on_the_faces_under_i
         );
     }
 }
+
+#[test]
+fn on_four_faces_contacts_climb_from_face_to_face_and_every_row_stands_on_the_ground() {
+    // scenes/four-faces.toml: contact 1 meets the 8° face (an impact), climbs onto it, leaves
+    // it for the 20° face; contact 0 meets the 8° face; the impact of contact 0 on the 20° face
+    // throws contact 1 off (Drake agrees: `drake_crosscheck.rs`). Every row: each contact on
+    // the face the row names (the direct pose solver on the site of those faces gives the row's
+    // CM height) and none under the ground; the energy balance closes with the impacts' losses
+    // booked.
+    let s = scene_file("four-faces");
+    let (ground, _) = s.site().ground().unwrap();
+    let r = run(&s, DynamicsModel::RigidBody);
+    assert_eq!(r.termination.reason, Reason::ContactLiftedOff);
+    assert!(
+        r.termination
+            .detail
+            .contains("the impact of contact 0 on face 2 lifts contact 1"),
+        "{}",
+        r.termination.detail
+    );
+    let mut seen = vec![r.rows[0].faces];
+    let l = s.l();
+    let mut near: Option<slideroute::stages::geometry::direct::DirectPose> = None;
+    for row in &r.rows {
+        if *seen.last().unwrap() != row.faces {
+            seen.push(row.faces);
+            near = None;
+        }
+        let mut site = s.site().clone();
+        for (k, &f) in row.faces.iter().enumerate() {
+            site = site.with_face(k, f as usize).unwrap();
+        }
+        let d = slideroute::stages::geometry::Displacement::new(
+            row.x_m,
+            row.z_m,
+            row.theta_deg.to_radians(),
+        );
+        let p = match &near {
+            Some(q) => slideroute::stages::geometry::direct::solve_from(&site, d, q),
+            None => slideroute::stages::geometry::direct::solve(&site, d),
+        }
+        .unwrap();
+        assert!(
+            (p.cm_y - row.y_m).abs() < 1e-9 * l,
+            "CM height at {} s",
+            row.t_s
+        );
+        for (k, v) in p.vertices.iter().enumerate() {
+            let (_, top) = ground.top(v.x, v.z).unwrap();
+            assert!(
+                top - v.y < 1e-6 * l,
+                "contact {k} under the ground at {} s",
+                row.t_s
+            );
+        }
+        near = Some(p);
+    }
+    assert_eq!(seen, [[0, 0, 3], [0, 1, 3], [0, 2, 3], [1, 2, 3]]);
+    let e = r.energy.unwrap();
+    assert!(e.residual_j.abs() < 1e-6 * e.work_hydraulic_j, "{e:?}");
+    assert!(e.work_friction_j < 0.0);
+}

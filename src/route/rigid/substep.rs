@@ -8,7 +8,7 @@ use super::{
     row, stop_of,
 };
 use crate::mechanics::ContactGeometry;
-use crate::mechanics::rigid_body::{self, Crease, Creases, Impact, RigidError};
+use crate::mechanics::rigid_body::{self, Crease, Creases, Impact, ImpactLaw, RigidError};
 use crate::route::dynamics::Flow;
 use crate::route::outcome::Outcome;
 use crate::route::pose_finder::PoseFinder;
@@ -359,10 +359,12 @@ impl RigidBody<'_> {
         let Some(hold) = ground_event(scene, finder, &y_hi, stop, held) else {
             return Ok(None);
         };
-        let (y_lo, hold) = match after_impact(scene, sections, finder, &y_lo, held, hold)? {
-            Ok(after) => after,
-            Err(lift) => return Err(self.end_at_failure(finder, k, (lo, y_lo), lift, o)),
-        };
+        let normals = self.ev.motion.normal;
+        let (y_lo, hold) =
+            match after_impact(scene, sections, finder, (&y_lo, normals), held, hold)? {
+                Ok(after) => after,
+                Err(lift) => return Err(self.end_at_failure(finder, k, (lo, y_lo), lift, o)),
+            };
         let mut hold = hold;
         let mut at = None;
         for _ in 0..3 {
@@ -454,9 +456,10 @@ impl RigidBody<'_> {
 }
 
 /// The impact of a contact meeting a face at state `y` (`held` before, `hold` after: one crease
-/// more; `derivations/10-faces.md` §4): the state just after it — its rates those the
-/// frictionless, perfectly inelastic impulses leave ([`rigid_body::impact`]), the kinetic
-/// energy they take booked as friction work — and what the contacts are held to then; the
+/// more; `derivations/10-faces.md` §6): the state just after it — its rates those the
+/// frictional, perfectly inelastic impulses leave ([`rigid_body::impact`]; the friction
+/// coefficients at the contacts' `normals` before it), the kinetic energy they take booked as
+/// friction work — and what the contacts are held to then; the
 /// finder moves to the new site where the impact put a contact on the new face alone. Or, where
 /// the impact would need a face to pull a contact on it, the stop that ends the route there
 /// ("contact lifted off").
@@ -464,13 +467,13 @@ fn after_impact(
     scene: &Scene,
     dynamics: &Simulation,
     finder: &mut PoseFinder<'_>,
-    y: &Y,
+    (y, normals): (&Y, [f64; 3]),
     held: Hold,
     hold: Hold,
 ) -> Result<Result<(Y, Hold), Stop>, Ending> {
     let Some(met) = (0..3)
-        .find(|&i| held.creases.at(i).is_none())
-        .and_then(|i| hold.creases.at(i).copied())
+        .filter(|&i| held.creases.at(i).is_none())
+        .find_map(|i| hold.creases.at(i).copied())
     else {
         return Ok(Ok((*y, hold)));
     };
@@ -478,22 +481,38 @@ fn after_impact(
     let pose = pose_at(scene, &mut f, displacement(y)).map_err(Ending::Failed)?;
     let geom = ContactGeometry::with_normals(&finder.site().normals(), &pose);
     let creases = hold.creases.without(hold.stuck);
+    // Each contact's friction coefficient at its normal force before the impact.
+    let friction = dynamics.friction();
+    let mu = normals.map(|n| {
+        if friction.is_frictionless() {
+            0.0
+        } else {
+            friction.coefficient(n.max(0.0))
+        }
+    });
+    // A release slower than a hop of HOP·L under gravity is not a lift.
+    let g = dynamics.loads().gravity;
+    let law = ImpactLaw {
+        mu,
+        release_speed: (2.0 * g * HOP * scene.l()).sqrt(),
+    };
     let Impact {
         rates,
         removed,
         creases,
         moved,
-    } = match rigid_body::impact(&geom, dynamics.block(), [y[3], y[4], y[5]], &creases) {
+    } = match rigid_body::impact(&geom, dynamics.block(), [y[3], y[4], y[5]], &creases, &law) {
         Ok(after) => after,
         Err(RigidError::ImpactLifts {
             contact,
             impulse_n_s,
+            speed_m_s,
         }) => {
             return Ok(Err(Stop {
                 reason: Reason::ContactLiftedOff,
                 detail: format!(
-                    "the impact of contact {} on face {} lifts contact {contact} off face {} (the \
-                     face's impulse would be {impulse_n_s:.6e} N·s)",
+                    "the impact of contact {} on face {} lifts contact {contact} off face {} at \
+                     {speed_m_s:.3e} m/s (held, its impulse would be {impulse_n_s:.6e} N·s)",
                     met.contact,
                     met.face,
                     faces_of(finder.site())[contact]
@@ -523,6 +542,14 @@ fn after_impact(
     };
     Ok(Ok((z, Hold { creases, ..hold })))
 }
+
+/// The highest hop, as a fraction of L, that an impact may give a contact without ending the
+/// route: a contact thrown off its face no faster than √(2 g HOP L) is kept on it — its flight
+/// would reach at most a millimetre on a 10 m block (less: the block's turn brings a corner
+/// down faster than g), within the roughness of a rock joint, and last some ten milliseconds;
+/// Drake's refined contact shows such hops of micrometres. A faster one lifts off: the
+/// three-point model ends there.
+const HOP: f64 = 1e-4;
 
 /// What a failure `stop` at `y` changes in what the contacts are held to (`held`), if it is an
 /// event of the ground (see `RigidBody::crease_event`); the finder moves to the new site where a
