@@ -75,8 +75,12 @@ impl PointDistance for Triangle {
             (q[0] - p[0]) * (point[1] - p[1]) - (q[1] - p[1]) * (point[0] - p[0])
         };
         let (d1, d2, d3) = (cross(a, b), cross(b, c), cross(c, a));
-        let neg = d1 < 0.0 || d2 < 0.0 || d3 < 0.0;
-        let pos = d1 > 0.0 || d2 > 0.0 || d3 > 0.0;
+        // A point on a shared edge or corner, within round-off, is in both triangles: the
+        // surface has no cracks of rounding (its corners' coordinates differ in the last bits).
+        let side2 = |p: [f64; 2], q: [f64; 2]| (q[0] - p[0]).powi(2) + (q[1] - p[1]).powi(2);
+        let eps = 1e-12 * side2(a, b).max(side2(b, c)).max(side2(c, a));
+        let neg = d1 < -eps || d2 < -eps || d3 < -eps;
+        let pos = d1 > eps || d2 > eps || d3 > eps;
         !(neg && pos)
     }
 }
@@ -186,18 +190,11 @@ impl Ground {
         tol: f64,
     ) -> Option<usize> {
         let (_, top) = self.top(x, z)?;
-        let tied: Vec<usize> = match &self.kind {
-            Kind::Planes => (0..self.faces.len()).collect::<Vec<_>>(),
-            Kind::Surface { tree, .. } => {
-                // Triangles within tol of the point in plan (an edge or a corner).
-                tree.locate_within_distance([x, z], tol * tol)
-                    .map(|t: &Triangle| t.index)
-                    .collect()
-            }
-        }
-        .into_iter()
-        .filter(|&k| (self.faces[k].height(x, z) - top).abs() <= tol)
-        .collect();
+        let tied: Vec<usize> = self
+            .faces_near(x, z, tol)
+            .into_iter()
+            .filter(|&k| (self.faces[k].height(x, z) - top).abs() <= tol)
+            .collect();
         let ahead = |k: usize, (a, b): (f64, f64)| self.faces[k].height(x + step * a, z + step * b);
         let mut best = *tied.first()?;
         for &k in &tied[1..] {
@@ -208,6 +205,23 @@ impl Ground {
             }
         }
         Some(best)
+    }
+
+    /// The faces that may be the ground within `tol` (m, in plan) of (X, Z): every plane, or
+    /// the triangles within `tol` of the point (more than one at an edge or a corner), in
+    /// ascending order.
+    pub fn faces_near(&self, x: f64, z: f64, tol: f64) -> Vec<usize> {
+        match &self.kind {
+            Kind::Planes => (0..self.faces.len()).collect(),
+            Kind::Surface { tree, .. } => {
+                let mut v: Vec<usize> = tree
+                    .locate_within_distance([x, z], tol * tol)
+                    .map(|t: &Triangle| t.index)
+                    .collect();
+                v.sort_unstable();
+                v
+            }
+        }
     }
 
     /// Every face in a plan rectangle (for drawing): all planes, or the triangles whose extent
@@ -274,6 +288,33 @@ mod tests {
         assert_eq!(under(-6.0, 5.0), 0);
         assert_eq!(under(4.0, 5.0), 1);
         assert_eq!(under(4.0, -5.0), 2);
+    }
+
+    #[test]
+    fn a_point_on_a_shared_edge_is_on_the_surface_despite_round_off() {
+        // Two triangles sharing the edge from (0.1, 0.3) to (0.7, 1.9) in plan: points along it,
+        // computed in floating point, fall a last bit to either side of it.
+        let (a, b) = ([0.1, 0.0, 0.3], [0.7, 0.0, 1.9]);
+        let g = Ground::surface(&[[a, b, [-1.0, 0.0, 1.0]], [a, [2.0, 0.0, 0.5], b]]).unwrap();
+        for k in 0..=1000 {
+            let t = k as f64 / 1000.0;
+            let (x, z) = (a[0] + t * (b[0] - a[0]), a[2] + t * (b[2] - a[2]));
+            assert!(g.top(x, z).is_some(), "t = {t}");
+            assert_eq!(g.faces_near(x, z, 1e-9).len(), 2, "t = {t}");
+        }
+        // Off the surface a little more than round-off is off it.
+        assert!(g.top(a[0] - 1e-6, a[2] - 1e-6).is_none());
+    }
+
+    #[test]
+    fn the_faces_near_a_point_are_every_plane_or_the_triangles_within_reach() {
+        assert_eq!(papers().faces_near(100.0, 100.0, 0.0), [0, 1, 2]);
+        let g = roof();
+        assert_eq!(g.faces_near(0.2, 0.5, 1e-9), [0]);
+        assert_eq!(g.faces_near(0.5, 0.5, 1e-9), [0, 1]);
+        assert_eq!(g.faces_near(1.0, 0.5, 1e-9), [1, 3]);
+        assert_eq!(g.faces_near(1.5, 0.2, 0.6), [0, 1, 2, 3]);
+        assert!(g.faces_near(5.0, 5.0, 1.0).is_empty());
     }
 
     /// A ridge roof of two triangles over [0, 2] × [0, 1], the ridge along X = 1 at Y = 1.

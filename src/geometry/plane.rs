@@ -52,6 +52,12 @@ impl Plane {
         self.normal.dot(p) - self.offset
     }
 
+    /// Whether `other` is parallel to this plane within `angle` (rad): coplanar faces of a
+    /// surface meet in no crease.
+    pub fn is_parallel(&self, other: &Plane, angle: f64) -> bool {
+        self.normal.cross(&other.normal).norm() <= angle.sin()
+    }
+
     /// The true dip (rad).
     pub fn dip(&self) -> f64 {
         self.normal.y.clamp(-1.0, 1.0).acos()
@@ -70,6 +76,14 @@ impl Plane {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn planes_are_parallel_within_the_angle_between_their_normals() {
+        let p = Plane::from_dip(0.3, 1.0, Vector3::zeros());
+        let q = Plane::from_dip(0.3 + 1e-6, 1.0, Vector3::new(0.0, 5.0, 0.0));
+        assert!(p.is_parallel(&q, 2e-6) && !p.is_parallel(&q, 0.5e-6));
+        assert!(p.is_parallel(&p, 0.0));
+    }
 
     #[test]
     fn a_plane_descends_along_its_dip_direction_at_its_dip() {

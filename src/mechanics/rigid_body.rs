@@ -830,8 +830,23 @@ pub fn impact(
     creases: &Creases,
     law: &ImpactLaw,
 ) -> Result<Impact, RigidError> {
+    impact_onto(geom, geom, block, rates, creases, law)
+}
+
+/// [`impact`] where a contact's own face changes at the impact (a contact running over a ridge
+/// onto the face beyond it): the block moves with rates (Ẋ, Ż, θ̇) on the faces of `before`
+/// (its twist, and the kinetic energy the impact takes, are those), and the impulses hold it
+/// to the faces of `after` (the same pose, other normals).
+pub fn impact_onto(
+    before: &ContactGeometry,
+    geom: &ContactGeometry,
+    block: &Block,
+    rates: [f64; 3],
+    creases: &Creases,
+    law: &ImpactLaw,
+) -> Result<Impact, RigidError> {
     let inertia = Inertia::new(block, geom)?;
-    let u = twist(geom, rates)?;
+    let u = twist(before, rates)?;
     let mut held = held_rows(geom, &u, creases, &law.mu);
     // Rows whose pull is kept (their contact's release too slow to count).
     let mut kept = vec![false; held.len()];
@@ -877,7 +892,9 @@ pub fn impact(
             impulses_without_reversal(geom, block.mass, &inertia, &u, &mut without)?;
         let speed = h.normal.dot(&released.at(&geom.r[h.contact]));
         if speed <= law.release_speed {
+            // A pull kept is a hop not followed, no contact force: it has no friction.
             kept[k] = true;
+            held[k].mu = 0.0;
             continue;
         }
         let in_crease = held.iter().filter(|o| o.contact == h.contact).count() > 1;
@@ -1770,6 +1787,67 @@ mod tests {
         let held = go(f64::INFINITY);
         assert_eq!(held.creases, creases);
         assert!(held.removed < 0.0);
+    }
+
+    #[test]
+    fn running_over_a_ridge_is_a_hop_kept_on_the_face_beyond_or_a_lift_at_the_speed_off_it() {
+        // The block slides flat along +X at v on level faces; contact 1's face becomes one that
+        // falls away ahead at δ (a convex edge): the contact leaves it at v sin δ. With a release
+        // speed above that, the impact keeps it on the face (every contact's velocity along its
+        // face's normal zero after it, the kinetic energy lost what the impact books); below,
+        // it lifts off at exactly v sin δ.
+        let scene = Scene::default_scene();
+        let pose = Pose::from_tilt_roll(&scene.site, Displacement::default(), 0.0, 0.0).unwrap();
+        let level = Vector3::y();
+        let delta = 5f64.to_radians();
+        let beyond = Vector3::new(delta.sin(), delta.cos(), 0.0);
+        let before = ContactGeometry::with_normals(&[level; 3], &pose);
+        let after = ContactGeometry::with_normals(&[level, beyond, level], &pose);
+        let sim = crate::scene::Simulation::new(&scene).unwrap();
+        let block = sim.block();
+        let v = 2.0;
+        let law = |release_speed| ImpactLaw {
+            mu: [0.0; 3],
+            release_speed,
+        };
+        let onto = |release_speed| {
+            impact_onto(
+                &before,
+                &after,
+                block,
+                [v, 0.0, 0.0],
+                &Creases::NONE,
+                &law(release_speed),
+            )
+        };
+        match onto(0.9 * v * delta.sin()) {
+            Err(RigidError::ImpactLifts {
+                contact, speed_m_s, ..
+            }) => {
+                assert_eq!(contact, 1);
+                assert!((speed_m_s - v * delta.sin()).abs() < 1e-12, "{speed_m_s}");
+            }
+            other => panic!("{other:?}"),
+        }
+        let kept = onto(1.1 * v * delta.sin()).unwrap();
+        let inertia = Inertia::new(block, &after).unwrap();
+        let u0 = twist(&before, [v, 0.0, 0.0]).unwrap();
+        let u1 = twist(&after, kept.rates).unwrap();
+        for k in 0..3 {
+            assert!(after.n[k].dot(&u1.at(&after.r[k])).abs() < 1e-12);
+        }
+        let (k0, k1) = (
+            u0.kinetic_energy(block.mass, &inertia),
+            u1.kinetic_energy(block.mass, &inertia),
+        );
+        assert!(kept.removed < 0.0);
+        assert!(
+            (k1 - k0 - kept.removed).abs() < 1e-9 * k0,
+            "{k0} {k1} {kept:?}"
+        );
+        // At most the energy of the velocity off the face, as if contact 1 were the whole mass.
+        let off = 0.5 * block.mass * (v * delta.sin()).powi(2);
+        assert!(-kept.removed < off, "{} {off}", kept.removed);
     }
 
     #[test]

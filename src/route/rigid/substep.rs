@@ -333,11 +333,13 @@ impl RigidBody<'_> {
     }
 
     /// A failure at `y_hi`, just past the last state that stands (`y_lo`, `lo` into the
-    /// substep), that is an event of the ground (`derivations/10-faces.md` §4–5):
+    /// substep), that is an event of the ground (`derivations/10-faces.md` §4–6):
     ///
-    /// * a contact reached a face of a ground of planes: it rides the crease from `y_lo` on,
-    ///   its velocity into the face taken by a perfectly inelastic, frictionless impulse (the
-    ///   energy booked as friction work);
+    /// * a contact reached a face: it rides the crease from `y_lo` on, its velocity into the
+    ///   face taken by perfectly inelastic, frictional impulses (the energy booked as friction
+    ///   work; [`after_impact`]);
+    /// * a contact ran over a surface's ridge: it goes on along the face beyond it, the
+    ///   velocity off that face taken by the same impulses if it is a hop, else the route ends;
     /// * a crease's second face let go of its contact: the contact goes on along its own face;
     /// * a crease contact's own face let go: the contact goes on along the crease's other face
     ///   (the site changes: that face becomes the contact's own).
@@ -356,15 +358,15 @@ impl RigidBody<'_> {
     ) -> Result<Option<Substep>, Ending> {
         let (scene, sections) = (self.scene, self.sections);
         let held = Hold::of(&self.ev.motion);
-        let Some(hold) = ground_event(scene, finder, &y_hi, stop, held) else {
+        let faces = finder.site().normals();
+        let Some((hold, met)) = ground_event(scene, finder, &y_hi, stop, held) else {
             return Ok(None);
         };
-        let normals = self.ev.motion.normal;
-        let (y_lo, hold) =
-            match after_impact(scene, sections, finder, (&y_lo, normals), held, hold)? {
-                Ok(after) => after,
-                Err(lift) => return Err(self.end_at_failure(finder, k, (lo, y_lo), lift, o)),
-            };
+        let before = (&y_lo, self.ev.motion.normal, faces);
+        let (y_lo, hold) = match after_impact(scene, sections, finder, before, met, hold)? {
+            Ok(after) => after,
+            Err(lift) => return Err(self.end_at_failure(finder, k, (lo, y_lo), lift, o)),
+        };
         let mut hold = hold;
         let mut at = None;
         for _ in 0..3 {
@@ -375,7 +377,8 @@ impl RigidBody<'_> {
                 }
                 Err(next) => {
                     hold = ground_event(scene, finder, &y_lo, &next, hold)
-                        .ok_or(Ending::Failed(next))?;
+                        .ok_or(Ending::Failed(next))?
+                        .0;
                 }
             }
         }
@@ -455,31 +458,40 @@ impl RigidBody<'_> {
     }
 }
 
-/// The impact of a contact meeting a face at state `y` (`held` before, `hold` after: one crease
-/// more; `derivations/10-faces.md` §6): the state just after it — its rates those the
-/// frictional, perfectly inelastic impulses leave ([`rigid_body::impact`]; the friction
-/// coefficients at the contacts' `normals` before it), the kinetic energy they take booked as
-/// friction work — and what the contacts are held to then; the
-/// finder moves to the new site where the impact put a contact on the new face alone. Or, where
-/// the impact would need a face to pull a contact on it, the stop that ends the route there
-/// ("contact lifted off").
+/// A contact's change of face at an event of the ground that makes an impact: it met face
+/// `face` (and rides the crease), or, at a surface's ridge, went on along it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Met {
+    contact: usize,
+    face: usize,
+    ridge: bool,
+}
+
+/// The impact of a contact meeting a face, or running over a ridge onto one, at state `y`
+/// (`met`; `hold` what the contacts are held to after it; `derivations/10-faces.md` §6): the
+/// state just after it — its rates those the frictional, perfectly inelastic impulses leave
+/// ([`rigid_body::impact_onto`]; the friction coefficients at the contacts' normal forces
+/// `normals` before it, the block moving on the faces with unit normals `faces` until then), the
+/// kinetic energy they take booked as friction work — and what the contacts are held to then;
+/// the finder moves to the new site where the impact put a contact on the new face alone. Or,
+/// where the impact would need a face to pull a contact on it faster than a hop, the stop that
+/// ends the route there ("contact lifted off", or "ran over a ridge" for the contact that
+/// crossed it).
 fn after_impact(
     scene: &Scene,
     dynamics: &Simulation,
     finder: &mut PoseFinder<'_>,
-    (y, normals): (&Y, [f64; 3]),
-    held: Hold,
+    (y, normals, faces): (&Y, [f64; 3], [Vector3<f64>; 3]),
+    met: Option<Met>,
     hold: Hold,
 ) -> Result<Result<(Y, Hold), Stop>, Ending> {
-    let Some(met) = (0..3)
-        .filter(|&i| held.creases.at(i).is_none())
-        .find_map(|i| hold.creases.at(i).copied())
-    else {
+    let Some(met) = met else {
         return Ok(Ok((*y, hold)));
     };
     let mut f = finder.for_stages();
     let pose = pose_at(scene, &mut f, displacement(y)).map_err(Ending::Failed)?;
     let geom = ContactGeometry::with_normals(&finder.site().normals(), &pose);
+    let before = ContactGeometry::with_normals(&faces, &pose);
     let creases = hold.creases.without(hold.stuck);
     // Each contact's friction coefficient at its normal force before the impact.
     let friction = dynamics.friction();
@@ -501,22 +513,50 @@ fn after_impact(
         removed,
         creases,
         moved,
-    } = match rigid_body::impact(&geom, dynamics.block(), [y[3], y[4], y[5]], &creases, &law) {
+    } = match rigid_body::impact_onto(
+        &before,
+        &geom,
+        dynamics.block(),
+        [y[3], y[4], y[5]],
+        &creases,
+        &law,
+    ) {
         Ok(after) => after,
         Err(RigidError::ImpactLifts {
             contact,
             impulse_n_s,
             speed_m_s,
         }) => {
-            return Ok(Err(Stop {
-                reason: Reason::ContactLiftedOff,
-                detail: format!(
-                    "the impact of contact {} on face {} lifts contact {contact} off face {} at \
-                     {speed_m_s:.3e} m/s (held, its impulse would be {impulse_n_s:.6e} N·s)",
-                    met.contact,
-                    met.face,
-                    faces_of(finder.site())[contact]
+            let off = faces_of(finder.site())[contact];
+            let held = format!("(held, its impulse would be {impulse_n_s:.6e} N·s)");
+            let (reason, detail) = match met {
+                Met { ridge: true, .. } if contact == met.contact => (
+                    Reason::ContactOverRidge,
+                    format!(
+                        "contact {contact} runs over a ridge onto face {off} and leaves it at \
+                         {speed_m_s:.3e} m/s {held}"
+                    ),
                 ),
+                Met { ridge: true, .. } => (
+                    Reason::ContactLiftedOff,
+                    format!(
+                        "contact {} running over a ridge onto face {} lifts contact {contact} \
+                         off face {off} at {speed_m_s:.3e} m/s {held}",
+                        met.contact, met.face
+                    ),
+                ),
+                Met { ridge: false, .. } => (
+                    Reason::ContactLiftedOff,
+                    format!(
+                        "the impact of contact {} on face {} lifts contact {contact} off face \
+                         {off} at {speed_m_s:.3e} m/s {held}",
+                        met.contact, met.face
+                    ),
+                ),
+            };
+            return Ok(Err(Stop {
+                reason,
+                detail,
                 contact: Some(contact),
             }));
         }
@@ -552,20 +592,44 @@ fn after_impact(
 const HOP: f64 = 1e-4;
 
 /// What a failure `stop` at `y` changes in what the contacts are held to (`held`), if it is an
-/// event of the ground (see `RigidBody::crease_event`); the finder moves to the new site where a
-/// contact changes its face. `None` for any other failure.
+/// event of the ground (see `RigidBody::crease_event`), and the contact whose change makes an
+/// impact; the finder moves to the new site where a contact changes its face. `None` for any
+/// other failure.
 fn ground_event(
     scene: &Scene,
     finder: &mut PoseFinder<'_>,
     y: &Y,
     stop: &Stop,
     held: Hold,
-) -> Option<Hold> {
+) -> Option<(Hold, Option<Met>)> {
     let riding = stop.contact.and_then(|i| held.creases.at(i)).copied();
     let creases = match (stop.reason, riding) {
         (Reason::ContactReachedAnotherFace, _) => {
-            held.creases
-                .with(met_face(scene, finder, y, &held.creases)?)
+            let c = met_face(scene, finder, y, &held.creases)?;
+            let met = Met {
+                contact: c.contact,
+                face: c.face,
+                ridge: false,
+            };
+            return Some((
+                Hold {
+                    creases: held.creases.with(c),
+                    ..held
+                },
+                Some(met),
+            ));
+        }
+        // Over a surface's ridge: the contact goes on along the face beyond it.
+        (Reason::ContactOverRidge, _) => {
+            let (contact, face) = ridge_face(scene, finder, y, &held.creases)?;
+            let site = finder.site().with_face(contact, face)?;
+            *finder = finder.on_site(site);
+            let met = Met {
+                contact,
+                face,
+                ridge: true,
+            };
+            return Some((held, Some(met)));
         }
         (Reason::CreaseLetsGo, Some(c)) => held.creases.without(Some(c.contact)),
         // The contact leaves its own face for the crease's other one: the site changes, and
@@ -577,31 +641,34 @@ fn ground_event(
         }
         _ => return None,
     };
-    Some(Hold { creases, ..held })
+    Some((Hold { creases, ..held }, None))
 }
 
 /// The crease a contact meets at `y` (about where it reached another face of a ground of
 /// planes — the failure may have been seen at a stage of the step just beyond): of the contacts
 /// not riding a crease already (`creases`), the one nearest to going under another face, and
-/// that face, found at the pose there without the regions' check. `None` on a surface (its
-/// creases are not ridden yet) or if no face is within `MEETS` of a contact.
+/// that face (a plane, or a surface's triangle within `MEETS` of the contact in plan), found at
+/// the pose there without the regions' check. `None` if no face is within `MEETS` of a contact.
 fn met_face(scene: &Scene, finder: &PoseFinder<'_>, y: &Y, creases: &Creases) -> Option<Crease> {
     let site = finder.site();
-    let (ground, faces) = site.ground().filter(|(g, _)| !g.is_surface())?;
+    let (ground, _) = site.ground()?;
     let mut f = finder.for_stages();
     let pose = pose_at(scene, &mut f, displacement(y)).ok()?;
     let planes = site.planes();
     let all = ground.faces();
+    let near = MEETS * scene.l();
     (0..3)
         .filter(|&k| creases.at(k).is_none())
         .flat_map(|k| {
             let v = pose.vertices[k];
-            let own = planes[k].height(v.x, v.z);
-            (0..all.len())
-                .filter(move |&j| j != faces[k])
-                .map(move |j| (k, j, all[j].height(v.x, v.z) - own))
+            let own = planes[k];
+            ground
+                .faces_near(v.x, v.z, near)
+                .into_iter()
+                .filter(move |&j| !all[j].is_parallel(&planes[k], PARALLEL))
+                .map(move |j| (k, j, all[j].height(v.x, v.z) - own.height(v.x, v.z)))
         })
-        .filter(|&(_, _, above)| above > -MEETS * scene.l())
+        .filter(|&(_, _, above)| above > -near)
         .max_by(|a, b| a.2.total_cmp(&b.2))
         .map(|(k, j, _)| Crease {
             contact: k,
@@ -610,6 +677,40 @@ fn met_face(scene: &Scene, finder: &PoseFinder<'_>, y: &Y, creases: &Creases) ->
             face: j,
         })
 }
+
+/// The contact that ran over a surface's ridge at `y` (about where it did: the failure may
+/// have been seen at a stage of the step just beyond) and the triangle beyond the ridge: of the
+/// contacts not riding a crease (`creases`) and over another triangle than their own, the one
+/// whose own face stands highest above the ground there, and that triangle. `None` where no
+/// contact is over a triangle lower than its own face, or within `MEETS` of it.
+fn ridge_face(
+    scene: &Scene,
+    finder: &PoseFinder<'_>,
+    y: &Y,
+    creases: &Creases,
+) -> Option<(usize, usize)> {
+    let site = finder.site();
+    let (ground, _) = site.ground().filter(|(g, _)| g.is_surface())?;
+    let mut f = finder.for_stages();
+    let pose = pose_at(scene, &mut f, displacement(y)).ok()?;
+    let planes = site.planes();
+    (0..3)
+        .filter(|&k| creases.at(k).is_none())
+        .filter_map(|k| {
+            let v = pose.vertices[k];
+            let (j, h) = ground.top(v.x, v.z)?;
+            let beyond = !ground.faces()[j].is_parallel(&planes[k], PARALLEL);
+            beyond.then(|| (k, j, planes[k].height(v.x, v.z) - h))
+        })
+        .filter(|&(_, _, below)| below > -MEETS * scene.l())
+        .max_by(|a, b| a.2.total_cmp(&b.2))
+        .map(|(k, j, _)| (k, j))
+}
+
+/// Faces whose normals are closer than this (rad) meet in no crease and make no ridge: a
+/// contact crossing from one to the other does not notice (the rounding of a surface file's
+/// corners tilts coplanar triangles by about 1e-9 rad).
+const PARALLEL: f64 = 1e-7;
 
 /// How close (as a fraction of L) a contact must be to going under another face for
 /// [`met_face`] to take that face as the one it met: a good deal more than a located event's
