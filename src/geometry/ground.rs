@@ -224,6 +224,20 @@ impl Ground {
         }
     }
 
+    /// The triangles of a surface within `tol` (m, in plan) of (X, Z), nearest first, each
+    /// with its distance (0 for one the point is in); every plane, at distance 0, for a ground
+    /// of planes.
+    pub fn faces_by_distance(&self, x: f64, z: f64, tol: f64) -> Vec<(usize, f64)> {
+        match &self.kind {
+            Kind::Planes => (0..self.faces.len()).map(|k| (k, 0.0)).collect(),
+            Kind::Surface { tree, .. } => tree
+                .nearest_neighbor_iter_with_distance_2(&[x, z])
+                .take_while(|(_, d2)| *d2 <= tol * tol)
+                .map(|(t, d2)| (t.index, d2.sqrt()))
+                .collect(),
+        }
+    }
+
     /// Every face in a plan rectangle (for drawing): all planes, or the triangles whose extent
     /// meets it.
     pub fn faces_in(&self, (x0, x1, z0, z1): (f64, f64, f64, f64)) -> Vec<usize> {
@@ -315,6 +329,13 @@ mod tests {
         assert_eq!(g.faces_near(1.0, 0.5, 1e-9), [1, 3]);
         assert_eq!(g.faces_near(1.5, 0.2, 0.6), [0, 1, 2, 3]);
         assert!(g.faces_near(5.0, 5.0, 1.0).is_empty());
+        // Nearest first: (1.2, 0.5) is in triangle 3 ((1, 0), (2, 1), (1, 1)), 0.2 from
+        // triangle 1 across the ridge, 0.3/√2 from triangle 2 across the diagonal.
+        let by = g.faces_by_distance(1.2, 0.5, 0.25);
+        let order: Vec<usize> = by.iter().map(|&(k, _)| k).collect();
+        assert_eq!(order, [3, 1, 2]);
+        assert_eq!(by[0].1, 0.0);
+        assert!((by[1].1 - 0.2).abs() < 1e-12 && (by[2].1 - 0.3 / 2f64.sqrt()).abs() < 1e-12);
     }
 
     /// A ridge roof of two triangles over [0, 2] × [0, 1], the ridge along X = 1 at Y = 1.

@@ -715,16 +715,17 @@ fn held_rows(geom: &ContactGeometry, u: &Twist, creases: &Creases, mu: &[f64; 3]
         .collect()
 }
 
-/// The impulses (N·s) of the perfectly inelastic impact that stops every held contact's
-/// velocity into its faces, each impulse along its row's n − μ ŝ (Coulomb's friction against
-/// the slip): with J the rows' normals, G their impulse directions and M the mass matrix,
-/// p = −(J M⁻¹ Gᵀ)⁻¹ J u⁻, and the twist after it u⁻ + M⁻¹ Gᵀ p.
+/// The impulses (N·s) that bring every held contact's velocity along its face's normal to
+/// `target` (m/s, one per row), each impulse along its row's n − μ ŝ (Coulomb's friction
+/// against the slip): with J the rows' normals, G their impulse directions and M the mass
+/// matrix, p = (J M⁻¹ Gᵀ)⁻¹ (target − J u⁻), and the twist after it u⁻ + M⁻¹ Gᵀ p.
 fn impulses(
     geom: &ContactGeometry,
     mass: f64,
     inertia: &Inertia,
     u: &Twist,
     held: &[Held],
+    target: &[f64],
 ) -> Result<(Vec<f64>, Twist), RigidError> {
     let k = held.len();
     let arm = |h: &Held, v: Vector3<f64>| geom.r[h.contact].cross(&v);
@@ -733,12 +734,12 @@ fn impulses(
         hp.normal.dot(&hq.push()) / mass
             + arm(hp, hp.normal).dot(&(inertia.inverse * arm(hq, hq.push())))
     });
-    let ju = nalgebra::DVector::from_fn(k, |p, _| {
-        held[p].normal.dot(&u.v) + arm(&held[p], held[p].normal).dot(&u.w)
+    let gap = nalgebra::DVector::from_fn(k, |p, _| {
+        target[p] - held[p].normal.dot(&u.v) - arm(&held[p], held[p].normal).dot(&u.w)
     });
     let p = a
         .lu()
-        .solve(&(-ju))
+        .solve(&gap)
         .filter(|p| p.iter().all(|v| v.is_finite()))
         .ok_or(RigidError::Singular("impact impulses"))?;
     let mut after = *u;
@@ -759,6 +760,7 @@ fn impulses_without_reversal(
     inertia: &Inertia,
     u: &Twist,
     held: &mut [Held],
+    target: &[f64],
 ) -> Result<(Vec<f64>, Twist), RigidError> {
     let reversed = |held: &[Held], after: &Twist| {
         held.iter().position(|h| {
@@ -767,14 +769,14 @@ fn impulses_without_reversal(
         })
     };
     for _ in 0..held.len() {
-        let (p, after) = impulses(geom, mass, inertia, u, held)?;
+        let (p, after) = impulses(geom, mass, inertia, u, held, target)?;
         let Some(k) = reversed(held, &after) else {
             return Ok((p, after));
         };
         let (mut lo, mut hi) = (0.0, held[k].mu);
         for _ in 0..60 {
             held[k].mu = 0.5 * (lo + hi);
-            let (_, after) = impulses(geom, mass, inertia, u, held)?;
+            let (_, after) = impulses(geom, mass, inertia, u, held, target)?;
             if reversed(held, &after) == Some(k) {
                 hi = held[k].mu;
             } else {
@@ -783,7 +785,56 @@ fn impulses_without_reversal(
         }
         held[k].mu = lo;
     }
-    impulses(geom, mass, inertia, u, held)
+    impulses(geom, mass, inertia, u, held, target)
+}
+
+/// How many stages the impact is taken in ([`impact_process`]).
+const IMPACT_STAGES: usize = 64;
+
+/// The perfectly inelastic impact as a process (Darboux and Keller's: the contacts' velocities
+/// change continuously along the impulse), in [`IMPACT_STAGES`] stages: at each, every held
+/// contact's velocity along its face's normal moves a stage's share of the way from its value
+/// before the impact to zero, by impulses whose friction opposes each contact's slip *at that
+/// stage* ([`impulses_without_reversal`]). A contact's slip may so turn, or stop and stick,
+/// within the impact, as a compliant contact's would; taken at once, the friction of the whole
+/// impact would keep the direction of the slip before it. Returns the total impulse of each
+/// row and the twist after the impact.
+fn impact_process(
+    geom: &ContactGeometry,
+    mass: f64,
+    inertia: &Inertia,
+    u0: &Twist,
+    held: &[Held],
+) -> Result<(Vec<f64>, Twist), RigidError> {
+    let speed = |u: &Twist, h: &Held| h.normal.dot(&u.at(&geom.r[h.contact]));
+    let v0: Vec<f64> = held.iter().map(|h| speed(u0, h)).collect();
+    // Slips slower than round-off of the motion's own speed have no direction.
+    let scale = (0..3).fold(0.0f64, |a, i| a.max(u0.at(&geom.r[i]).norm()));
+    let mut u = *u0;
+    let mut total = vec![0.0; held.len()];
+    for stage in 1..=IMPACT_STAGES {
+        let left = 1.0 - stage as f64 / IMPACT_STAGES as f64;
+        let target: Vec<f64> = v0.iter().map(|v| v * left).collect();
+        let mut rows: Vec<Held> = held
+            .iter()
+            .map(|h| {
+                let v = u.at(&geom.r[h.contact]);
+                let t = v - h.normal * h.normal.dot(&v);
+                let slip = if t.norm() > 1e-9 * scale {
+                    unit(t)
+                } else {
+                    Vector3::zeros()
+                };
+                Held { slip, ..*h }
+            })
+            .collect();
+        let (p, after) = impulses_without_reversal(geom, mass, inertia, &u, &mut rows, &target)?;
+        for (t, p) in total.iter_mut().zip(&p) {
+            *t += p;
+        }
+        u = after;
+    }
+    Ok((total, u))
 }
 
 /// The state just after an impact ([`impact`]): every contact still on a face.
@@ -811,18 +862,26 @@ pub struct ImpactLaw {
     /// pressed into, which the contact forces just after the impact decide; the face's pull is
     /// kept.
     pub release_speed: f64,
+    /// A face of a crease that would have to pull its contact at the impact lets it go (the
+    /// contact goes on along the crease's other face) only if the contact would leave the face
+    /// faster than this (m/s). Slower, the impact grazes the face: the crease holds and the
+    /// contact forces just after decide (letting go would start a chatter of impacts that only
+    /// approximates the ride along the crease). Faster, holding the crease would stop the
+    /// contact's whole motion across it.
+    pub crease_release_speed: f64,
 }
 
 /// The perfectly inelastic, frictional impact at the moment a contact meets a face and rides
 /// its crease (`creases`; `derivations/10-faces.md` §6): the impulses that stop every contact's
 /// velocity into its faces, each with Coulomb's friction impulse μ p against its contact's slip
-/// on that face (a slip the impact would turn round is stopped instead). A face that would have
-/// to pull its contact, and that the contact would leave faster than `law.release_speed` were
-/// it let go, lets it go, the most negative first: a crease's second face lets its contact go on
-/// along its own (the face just met, where the impact only grazed it), a crease contact's own
-/// face lets it go on along the second alone (it climbs onto the face it met), and a contact on
-/// one face alone lifts off ([`RigidError::ImpactLifts`]). Frictionless, the twist after it is
-/// the one [`crease_rates`] gives.
+/// on that face, turning with the slip within the impact ([`impact_process`]; a slip the impact
+/// would turn round is stopped instead). A face that would have to pull its contact lets it go,
+/// the most negative first, if the contact would leave it fast enough were it let go: a
+/// crease's face faster than `law.crease_release_speed` — its second face lets the contact go
+/// on along its own (the impact only grazed the face just met), its own face lets it go on along
+/// the second alone (it climbs onto the face it met) — and a contact on one face alone faster
+/// than `law.release_speed`: it lifts off ([`RigidError::ImpactLifts`]). Frictionless, the
+/// twist after it is the one [`crease_rates`] gives.
 pub fn impact(
     geom: &ContactGeometry,
     block: &Block,
@@ -851,7 +910,7 @@ pub fn impact_onto(
     // Rows whose pull is kept (their contact's release too slow to count).
     let mut kept = vec![false; held.len()];
     loop {
-        let (p, after) = impulses_without_reversal(geom, block.mass, &inertia, &u, &mut held)?;
+        let (p, after) = impact_process(geom, block.mass, &inertia, &u, &held)?;
         // A pull below round-off of the impact's own size is none.
         let scale = p.iter().fold(0.0f64, |a, v| a.max(v.abs()));
         let pull = (0..held.len())
@@ -884,29 +943,32 @@ pub fn impact_onto(
                 moved,
             });
         };
-        // How fast the contact would leave the face if it let go.
         let h = held[k];
+        // How fast the contact would leave the face if let go.
         let mut without = held.clone();
         without.remove(k);
-        let (_, released) =
-            impulses_without_reversal(geom, block.mass, &inertia, &u, &mut without)?;
+        let (_, released) = impact_process(geom, block.mass, &inertia, &u, &without)?;
         let speed = h.normal.dot(&released.at(&geom.r[h.contact]));
-        if speed <= law.release_speed {
-            // A pull kept is a hop not followed, no contact force: it has no friction.
+        let in_crease = held.iter().filter(|o| o.contact == h.contact).count() > 1;
+        // A crease's face lets go of a contact that would leave it faster than a graze: the
+        // contact goes on along its other face.
+        if in_crease && speed > law.crease_release_speed {
+            held.remove(k);
+            kept.remove(k);
+            continue;
+        }
+        // Slower, the face's pull is kept (a graze, or a hop not followed): no contact force,
+        // so no friction.
+        if in_crease || speed <= law.release_speed {
             kept[k] = true;
             held[k].mu = 0.0;
             continue;
         }
-        let in_crease = held.iter().filter(|o| o.contact == h.contact).count() > 1;
-        if !in_crease {
-            return Err(RigidError::ImpactLifts {
-                contact: h.contact,
-                impulse_n_s: p[k],
-                speed_m_s: speed,
-            });
-        }
-        held.remove(k);
-        kept.remove(k);
+        return Err(RigidError::ImpactLifts {
+            contact: h.contact,
+            impulse_n_s: p[k],
+            speed_m_s: speed,
+        });
     }
 }
 
@@ -1738,6 +1800,7 @@ mod tests {
         let law = |mu: f64| ImpactLaw {
             mu: [mu; 3],
             release_speed: f64::INFINITY,
+            crease_release_speed: f64::INFINITY,
         };
         for rates in [[1.0, 0.3, 0.0], [0.2, 0.5, 0.05], [0.5, 0.1, 0.1]] {
             let before = twist(&geom, rates).unwrap();
@@ -1765,18 +1828,62 @@ mod tests {
     }
 
     #[test]
+    fn an_impact_with_friction_takes_energy_and_stops_the_contacts_on_their_faces() {
+        // The impact as a process (friction turning with each slip within it): whatever the
+        // motion into the groove's face and however rough, every held contact ends with no
+        // velocity into its faces, and the kinetic energy taken is what it books, more than
+        // none and at most all there was.
+        let (d, geom, crease, _) = groove(30f64.to_radians());
+        let block = d.block();
+        let inertia = Inertia::new(block, &geom).unwrap();
+        let creases = Creases::from(crease);
+        for mu in [0.2, 0.8, 2.0] {
+            let law = ImpactLaw {
+                mu: [mu; 3],
+                release_speed: f64::INFINITY,
+                crease_release_speed: f64::INFINITY,
+            };
+            for rates in [
+                [1.0, 0.3, 0.0],
+                [0.2, 0.5, 0.05],
+                [0.5, 0.1, 0.1],
+                [0.0, 0.4, -0.2],
+            ] {
+                let before = twist(&geom, rates).unwrap();
+                let k0 = before.kinetic_energy(block.mass, &inertia);
+                let after = impact(&geom, block, rates, &creases, &law).unwrap();
+                let u = twist(&geom, after.rates).unwrap();
+                let k1 = u.kinetic_energy(block.mass, &inertia);
+                assert!(
+                    (k1 - k0 - after.removed).abs() < 1e-9 * k0,
+                    "{mu} {rates:?}"
+                );
+                assert!(after.removed < 0.0 && after.removed >= -k0 * (1.0 + 1e-9));
+                let v2 = u.at(&geom.r[2]);
+                let scale = before.at(&geom.r[2]).norm();
+                assert!(
+                    crease.normal.dot(&v2).abs() < 1e-9 * scale,
+                    "{mu} {rates:?}"
+                );
+            }
+        }
+    }
+
+    #[test]
     fn an_impact_lets_a_face_go_only_if_its_contact_would_leave_it_fast_enough() {
         // A block moving along −Z meets the groove's face B at contact 2 from the side it
         // leaves: the impulse that would hold contact 2 on B pulls. Let go if the release is
-        // faster than the law's speed; otherwise held (the forces just after decide).
+        // faster than the law's crease release speed; otherwise held (the forces just after
+        // decide).
         let (d, geom, crease, _) = groove(30f64.to_radians());
         let block = d.block();
         let creases = Creases::from(crease);
         let rates = [0.0, -1.0, 0.0];
-        let go = |release_speed: f64| {
+        let go = |crease_release_speed: f64| {
             let law = ImpactLaw {
                 mu: [0.0; 3],
-                release_speed,
+                release_speed: f64::INFINITY,
+                crease_release_speed,
             };
             impact(&geom, block, rates, &creases, &law).unwrap()
         };
@@ -1809,6 +1916,7 @@ mod tests {
         let law = |release_speed| ImpactLaw {
             mu: [0.0; 3],
             release_speed,
+            crease_release_speed: f64::INFINITY,
         };
         let onto = |release_speed| {
             impact_onto(

@@ -1288,7 +1288,7 @@ fn general_scenes_run_from_the_command_line_and_coeffs_says_why_it_cannot() {
         ),
         (
             "scenes/valley.toml",
-            "the impact of contact 2 on face 337 lifts contact 0",
+            "contact 1 runs over a ridge onto face 382 and leaves it",
         ),
     ] {
         let path = format!("{root}/{scene}");

@@ -290,7 +290,7 @@ impl RigidBody<'_> {
             // A failure that is the ground's event (a contact meeting a face, a crease letting
             // go) changes what the contacts are held to and the route goes on; any other ends
             // it.
-            if let Some(next) = self.crease_event(finder, k, (lo, y_lo, y_hi), &stop, o)? {
+            if let Some(next) = self.crease_event(finder, k, (lo, y_lo), &stop, o)? {
                 return Ok(next);
             }
             return Err(self.end_at_failure(finder, k, (lo, y_lo), stop, o));
@@ -352,20 +352,25 @@ impl RigidBody<'_> {
         &mut self,
         finder: &mut PoseFinder<'_>,
         k: usize,
-        (lo, y_lo, y_hi): (f64, Y, Y),
+        (lo, y_lo): (f64, Y),
         stop: &Stop,
         o: &mut Outcome<'_>,
     ) -> Result<Option<Substep>, Ending> {
         let (scene, sections) = (self.scene, self.sections);
         let held = Hold::of(&self.ev.motion);
         let faces = finder.site().normals();
-        let Some((hold, met)) = ground_event(scene, finder, &y_hi, stop, held) else {
+        // The route may end at the impact: on the site before it.
+        let unchanged = finder.clone();
+        let Some((hold, met)) = ground_event(scene, finder, &y_lo, stop, held) else {
             return Ok(None);
         };
         let before = (&y_lo, self.ev.motion.normal, faces);
         let (y_lo, hold) = match after_impact(scene, sections, finder, before, met, hold)? {
             Ok(after) => after,
-            Err(lift) => return Err(self.end_at_failure(finder, k, (lo, y_lo), lift, o)),
+            Err(lift) => {
+                *finder = unchanged;
+                return Err(self.end_at_failure(finder, k, (lo, y_lo), lift, o));
+            }
         };
         let mut hold = hold;
         let mut at = None;
@@ -502,11 +507,13 @@ fn after_impact(
             friction.coefficient(n.max(0.0))
         }
     });
-    // A release slower than a hop of HOP·L under gravity is not a lift.
+    // A release slower than a hop of HOP·L under gravity is not a lift; one from a crease
+    // slower than GRAZE·√(g L) is a graze.
     let g = dynamics.loads().gravity;
     let law = ImpactLaw {
         mu,
         release_speed: (2.0 * g * HOP * scene.l()).sqrt(),
+        crease_release_speed: GRAZE * (g * scene.l()).sqrt(),
     };
     let Impact {
         rates,
@@ -590,6 +597,13 @@ fn after_impact(
 /// Drake's refined contact shows such hops of micrometres. A faster one lifts off: the
 /// three-point model ends there.
 const HOP: f64 = 1e-4;
+
+/// The slowest release, as a fraction of √(g L), with which a crease's face lets its contact
+/// go at an impact (1 cm/s on a 10 m block): a contact meeting a face at a crease it is about to
+/// ride leaves the other face at some 10⁻⁴ m/s (a graze; letting go would start a chatter of
+/// impacts along the crease), one that climbs onto the face it met at a tenth of a metre per
+/// second or more (holding the crease would stop its whole motion across it).
+const GRAZE: f64 = 1e-3;
 
 /// What a failure `stop` at `y` changes in what the contacts are held to (`held`), if it is an
 /// event of the ground (see `RigidBody::crease_event`), and the contact whose change makes an
@@ -678,11 +692,10 @@ fn met_face(scene: &Scene, finder: &PoseFinder<'_>, y: &Y, creases: &Creases) ->
         })
 }
 
-/// The contact that ran over a surface's ridge at `y` (about where it did: the failure may
-/// have been seen at a stage of the step just beyond) and the triangle beyond the ridge: of the
-/// contacts not riding a crease (`creases`) and over another triangle than their own, the one
-/// whose own face stands highest above the ground there, and that triangle. `None` where no
-/// contact is over a triangle lower than its own face, or within `MEETS` of it.
+/// The contact that runs over a surface's ridge at `y` (the last state before it does) and
+/// the triangle beyond the ridge: of the contacts not riding a crease (`creases`), the one
+/// nearest in plan to a triangle not parallel to its own face (within `MEETS`·L), and that
+/// triangle. `None` where there is none.
 fn ridge_face(
     scene: &Scene,
     finder: &PoseFinder<'_>,
@@ -694,16 +707,18 @@ fn ridge_face(
     let mut f = finder.for_stages();
     let pose = pose_at(scene, &mut f, displacement(y)).ok()?;
     let planes = site.planes();
+    let all = ground.faces();
     (0..3)
         .filter(|&k| creases.at(k).is_none())
         .filter_map(|k| {
             let v = pose.vertices[k];
-            let (j, h) = ground.top(v.x, v.z)?;
-            let beyond = !ground.faces()[j].is_parallel(&planes[k], PARALLEL);
-            beyond.then(|| (k, j, planes[k].height(v.x, v.z) - h))
+            ground
+                .faces_by_distance(v.x, v.z, MEETS * scene.l())
+                .into_iter()
+                .find(|&(j, _)| !all[j].is_parallel(&planes[k], PARALLEL))
+                .map(|(j, d)| (k, j, d))
         })
-        .filter(|&(_, _, below)| below > -MEETS * scene.l())
-        .max_by(|a, b| a.2.total_cmp(&b.2))
+        .min_by(|a, b| a.2.total_cmp(&b.2))
         .map(|(k, j, _)| (k, j))
 }
 
