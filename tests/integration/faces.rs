@@ -155,8 +155,9 @@ fn at_time(r: &Route, t: f64) -> (f64, f64) {
 fn on_a_rough_valley_surface_contacts_cross_ridges_and_the_route_runs_to_a_stated_end() {
     // scenes/valley.toml: 864 triangles (scenes/valley.obj, from scenes/make_valley.py). The
     // block slides up the 20° floor; contact 1 runs over the first rough triangle's edge onto a
-    // gentler face (a ridge it crosses: the hop is far below a millimetre), then contact 2
-    // meets a steeper one, and that impact throws contact 0 off the level floor behind.
+    // gentler face (a ridge it crosses: the hop is far below a millimetre), contacts 1 and 2
+    // meet steeper triangles and climb onto them, and the route ends where a ridge would throw
+    // a contact off faster than a hop.
     let s = scene_file("valley");
     let (ground, _) = s.site().ground().unwrap();
     assert!(ground.is_surface());
