@@ -874,7 +874,7 @@ pub struct ImpactLaw {
 /// The perfectly inelastic, frictional impact at the moment a contact meets a face and rides
 /// its crease (`creases`; `derivations/10-faces.md` §6): the impulses that stop every contact's
 /// velocity into its faces, each with Coulomb's friction impulse μ p against its contact's slip
-/// on that face, turning with the slip within the impact ([`impact_process`]; a slip the impact
+/// on that face, turning with the slip within the impact (taken in stages; a slip the impact
 /// would turn round is stopped instead). A face that would have to pull its contact lets it go,
 /// the most negative first, if the contact would leave it fast enough were it let go: a
 /// crease's face faster than `law.crease_release_speed` — its second face lets the contact go
