@@ -38,6 +38,7 @@
 //! [`Dynamics`](stages::route) per model) → rows. [`stages`] opens them for the command line,
 //! the tests and the benchmarks; it is not the library's interface.
 
+mod check;
 mod coeffs;
 mod compare;
 mod geometry;
@@ -47,6 +48,7 @@ mod roots;
 mod route;
 mod scene;
 
+pub use check::{CaseResult, check_cases};
 pub use coeffs::{CoeffInputs, Exact, SmallAngle};
 pub use compare::{Comparison, compare_dynamics, compare_dynamics_observed};
 pub use geometry::direct::solve as direct_pose;
@@ -63,6 +65,9 @@ pub use scene::{DynamicsModel, Friction, Integrator, Mode, Scene, SceneError, Si
 /// report them and the tests and benchmarks can measure them one by one. Not the library's
 /// interface: use the items at the crate's root.
 pub mod stages {
+    pub mod check {
+        pub use crate::check::*;
+    }
     pub mod coeffs {
         pub use crate::coeffs::*;
     }

@@ -1,27 +1,64 @@
-//! The driving loads in global coordinates at one pose.
+//! The loads in global coordinates at one pose (`derivations/11-dam-loads.md`).
 
 use crate::geometry::LocalFrame;
 use crate::scene::{Block, Loads};
 use nalgebra::Vector3;
 
-/// Hydraulic force, hydraulic couple and weight (N, N·m).
+/// The loads on the block at one pose (N, N·m; moments about the base point under the CM, the
+/// frame's origin). The driving loads (`force`, `moment`) are those the factor of safety
+/// scales; the weight and the held loads stay.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Applied {
-    /// F·i' (eq. 40).
+    /// F·i' (eq. 40) and the horizontal pseudo-static force k_h m g X.
     pub force: Vector3<f64>,
-    /// −c·F·j' (eq. 41 with the sign of `docs/conventions.md`: c > 0 makes θ grow).
+    /// −c·F·j' (eq. 41 with the sign of `docs/conventions.md`: c > 0 makes θ grow), the
+    /// water's pitch about k' from the heights of its pushes, and the horizontal pseudo-static
+    /// force's moment at the CM's height.
     pub moment: Vector3<f64>,
     /// −m g Y.
     pub weight: Vector3<f64>,
+    /// Uplift less the tailwater's weight along j', and the vertical pseudo-static force
+    /// k_v m g Y.
+    pub held_force: Vector3<f64>,
+    /// Their moments, and the weight's at the CM's height.
+    pub held_moment: Vector3<f64>,
 }
 
 impl Applied {
     pub fn new(loads: &Loads, block: &Block, frame: &LocalFrame) -> Self {
         let f = loads.hydraulic_force;
+        let mg = block.mass * loads.gravity;
+        let weight = Vector3::new(0.0, -mg, 0.0);
+        let horizontal = Vector3::new(loads.kh * mg, 0.0, 0.0);
+        let vertical = Vector3::new(0.0, loads.kv * mg, 0.0);
+        // From the base point under the CM to the CM.
+        let arm = frame.j * loads.cm_height;
         Applied {
-            force: frame.i * f,
-            moment: frame.j * (-loads.eccentricity * f),
-            weight: Vector3::new(0.0, -block.mass * loads.gravity, 0.0),
+            force: frame.i * f + horizontal,
+            moment: frame.j * (-loads.eccentricity * f)
+                + frame.k * loads.hydraulic_pitch
+                + arm.cross(&horizontal),
+            weight,
+            held_force: frame.j * loads.held_normal + vertical,
+            held_moment: frame.k * loads.held_pitch + arm.cross(&(vertical + weight)),
         }
+    }
+
+    /// Every force: driving, weight and held (N).
+    pub fn total_force(&self) -> Vector3<f64> {
+        self.force + self.weight + self.held_force
+    }
+
+    /// Every moment: driving and held (N·m).
+    pub fn total_moment(&self) -> Vector3<f64> {
+        self.moment + self.held_moment
+    }
+
+    /// The power of the loads other than gravity's pull on the base point under the CM
+    /// (W) at velocity `v` of that point and angular velocity `w`: the water's, the
+    /// pseudo-static forces', and the weight's moment at the CM's height (whose work is the
+    /// change of m g times the CM's height above that point).
+    pub fn power(&self, v: &Vector3<f64>, w: &Vector3<f64>) -> f64 {
+        (self.force + self.held_force).dot(v) + self.total_moment().dot(w)
     }
 }

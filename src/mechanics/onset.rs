@@ -21,7 +21,7 @@ pub fn factor_of_safety(
     friction: &Friction,
 ) -> (f64, f64, f64) {
     let i = &geom.frame.i;
-    let mut driving = (applied.force + applied.weight).dot(i);
+    let mut driving = applied.total_force().dot(i);
     let mut resisting = 0.0;
     for (n, &ck) in geom.n.iter().zip(c) {
         driving += n.dot(i) * ck;

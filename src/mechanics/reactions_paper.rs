@@ -175,12 +175,12 @@ impl System {
             b[i] = g(geom, &geom.r[i], &t2) * (mu[i] * m[i]);
         }
         let f = &geom.frame;
-        let loads = applied.weight + applied.force;
+        let loads = applied.total_force();
         let w = Vector4::new(
             -loads.dot(&f.j),
             -loads.dot(&f.k),
-            -applied.moment.dot(&f.i),
-            -applied.moment.dot(&f.k),
+            -applied.total_moment().dot(&f.i),
+            -applied.total_moment().dot(&f.k),
         );
         System {
             reduced: Reduced::new(&g0, &a, &b, &w),
@@ -391,8 +391,8 @@ fn reaction(
 ) -> Reaction {
     let mut normal = [Vector3::zeros(); 3];
     let mut shear = [Vector3::zeros(); 3];
-    let mut force = applied.force + applied.weight;
-    let mut moment = applied.moment;
+    let mut force = applied.total_force();
+    let mut moment = applied.total_moment();
     for i in 0..3 {
         let (t1, t2) = tangents[i];
         normal[i] = geom.n[i] * (p.j * m[i]);

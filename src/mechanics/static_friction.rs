@@ -5,7 +5,10 @@
 //! With the block at rest the six equilibrium equations (force and moment) are linear in the
 //! nine unknowns λ_i (normal) and the two in-plane components of each shear f_i; the friction
 //! cones |f_i| ≤ μ_i λ_i are second-order cones. Scaling the driving loads (the hydraulic force
-//! F and its couple −cF j') by t, the set of t for which such a state exists is an interval
+//! F and its couples, the horizontal pseudo-static force) by t while the weight and the held
+//! loads (uplift, the tailwater's weight, the vertical pseudo-static force) stay — the guideline
+//! factor of safety, μ(W − U)/H on a level base (`derivations/11-dam-loads.md` §4) — the set of
+//! t for which such a state exists is an interval
 //! [t_lo, t_hi] (a convex set: the projection of a convex cone program). We compute both ends
 //! with the conic interior-point solver Clarabel:
 //!
@@ -160,12 +163,17 @@ fn extreme_t(
         a[7 + 3 * i][3 + 2 * i] = -1.0;
         a[8 + 3 * i][4 + 2 * i] = -1.0;
     }
+    // Driving loads scaled by t; the weight and the held loads (uplift, the tailwater's
+    // weight, the vertical pseudo-static force, and their moments) as they are.
     let force = applied.force / w;
     let moment = applied.moment / (w * l);
+    let fixed = (applied.weight + applied.held_force) / w;
+    let fixed_moment = applied.held_moment / (w * l);
     for k in 0..3 {
         a[k][9] = force[k];
         a[3 + k][9] = moment[k];
-        b[k] = -applied.weight[k] / w;
+        b[k] = -fixed[k];
+        b[3 + k] = -fixed_moment[k];
     }
     let p = CscMatrix::<f64>::zeros((N_VAR, N_VAR));
     let mut q = vec![0.0; N_VAR];

@@ -1,8 +1,9 @@
 //! Frictionless normal reactions, paper eqs. (25)–(27).
 //!
 //! N_i^S = c_i n̂_i with the three magnitudes fixed by (26): ΣF·j' = 0, ΣM·i' = 0, ΣM·k' = 0
-//! (the hydraulic force lies along i' and its couple along j', so only the weight and the
-//! reactions enter). A statically determinate 3×3 linear system.
+//! (the paper's hydraulic force lies along i' and its couple along j', so only the weight and
+//! the reactions enter; uplift, the water's pitch and pseudo-static forces enter too where a
+//! scene has them). A statically determinate 3×3 linear system.
 
 use super::ContactGeometry;
 use super::loads::Applied;
@@ -21,11 +22,8 @@ pub fn frictionless_normals(geom: &ContactGeometry, applied: &Applied) -> Option
         a[(2, i)] = m.dot(&f.k);
     }
     // Right-hand side: minus the loads' contributions (weight along j', couple about i', k').
-    let b = Vector3::new(
-        -applied.weight.dot(&f.j) - applied.force.dot(&f.j),
-        -applied.moment.dot(&f.i),
-        -applied.moment.dot(&f.k),
-    );
+    let (force, moment) = (applied.total_force(), applied.total_moment());
+    let b = Vector3::new(-force.dot(&f.j), -moment.dot(&f.i), -moment.dot(&f.k));
     // Cramer's rule on the 3×3 (the columns' cross products): a fraction of an LU's cost, and
     // as accurate at this size for the well-conditioned frames where the route runs.
     let (c0, c1, c2) = (a.column(0), a.column(1), a.column(2));

@@ -28,7 +28,9 @@ impl Scene {
                 t.insert(section.into(), v.clone());
             }
         }
-        if let Some(b) = &self.block {
+        if let Some(m) = self.source.get("monolith") {
+            t.insert("monolith".into(), m.clone());
+        } else if let Some(b) = &self.block {
             t.insert(
                 "block".into(),
                 table(&[
@@ -41,14 +43,31 @@ impl Scene {
             );
         }
         if let Some(l) = &self.loads {
-            t.insert(
-                "loads".into(),
-                table(&[
-                    ("hydraulic_force_n", f(l.hydraulic_force)),
-                    ("eccentricity_m", f(l.eccentricity)),
-                    ("gravity_m_s2", f(l.gravity)),
-                ]),
-            );
+            let mut loads = vec![
+                ("eccentricity_m", f(l.eccentricity)),
+                ("gravity_m_s2", f(l.gravity)),
+            ];
+            match &l.water {
+                // The water's force comes from its levels.
+                Some(w) => {
+                    let v = &w.levels;
+                    let mut water = vec![
+                        ("headwater_m", f(v.headwater)),
+                        ("tailwater_m", f(v.tailwater)),
+                        ("density_kg_m3", f(v.density)),
+                        ("drain_efficiency", f(v.drain_efficiency)),
+                    ];
+                    if v.drain_efficiency > 0.0 {
+                        water.push(("drain_position_m", f(v.drain_position)));
+                    }
+                    t.insert("water".into(), table(&water));
+                }
+                None => loads.insert(0, ("hydraulic_force_n", f(l.hydraulic_force))),
+            }
+            t.insert("loads".into(), table(&loads));
+            if self.source.contains_key("seismic") {
+                t.insert("seismic".into(), table(&[("kh", f(l.kh)), ("kv", f(l.kv))]));
+            }
         }
         if let Some(fr) = &self.friction {
             let v = match *fr {
@@ -84,6 +103,12 @@ impl Scene {
                 ]),
             );
         }
+        // The guideline and the load cases, as the file gave them.
+        for section in ["check", "case"] {
+            if let Some(v) = self.source.get(section) {
+                t.insert(section.into(), v.clone());
+            }
+        }
         let i = &self.initial;
         t.insert(
             "initial".into(),
@@ -94,6 +119,47 @@ impl Scene {
             ]),
         );
         t
+    }
+}
+
+/// The loads a scene's route uses, in the engineer's terms (N, m, from the heel along x' and
+/// above the base): what `summary.json` echoes (issue #16).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct LoadsUsed {
+    /// m g.
+    pub weight_n: f64,
+    /// The water's net push along x' (the reservoir's less the tailwater's).
+    pub hydraulic_force_n: f64,
+    /// The lateral offset of its line from the centre of mass.
+    pub eccentricity_m: f64,
+    /// Its moment about the base point under the centre of mass, along k' (N·m).
+    pub hydraulic_pitch_n_m: f64,
+    /// The uplift on the base (0 without `[water]`).
+    pub uplift_n: f64,
+    /// The centre of mass above the base.
+    pub cm_height_m: f64,
+    pub kh: f64,
+    pub kv: f64,
+    /// The water's loads from levels, each with where it acts.
+    pub water: Option<crate::scene::water::WaterLoads>,
+}
+
+impl Scene {
+    /// The loads the scene's route uses (`None` without `[block]` or `[monolith]` and
+    /// `[loads]`).
+    pub fn loads_used(&self) -> Option<LoadsUsed> {
+        let (b, l) = (self.block.as_ref()?, self.loads.as_ref()?);
+        Some(LoadsUsed {
+            weight_n: b.mass * l.gravity,
+            hydraulic_force_n: l.hydraulic_force,
+            eccentricity_m: l.eccentricity,
+            hydraulic_pitch_n_m: l.hydraulic_pitch,
+            uplift_n: l.water.map_or(0.0, |w| w.uplift.force_n),
+            cm_height_m: l.cm_height,
+            kh: l.kh,
+            kv: l.kv,
+            water: l.water,
+        })
     }
 }
 

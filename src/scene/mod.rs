@@ -5,6 +5,9 @@
 //! bad input is a [`SceneError`] naming the key and the reason. Angles are degrees in the file
 //! and radians in these types. Coordinates follow `docs/conventions.md` (README, "Coordinates").
 
+pub mod cases;
+mod checks;
+mod dam;
 mod echo;
 mod error;
 pub mod input;
@@ -12,7 +15,9 @@ mod raw;
 mod read;
 mod simulation;
 mod validate;
+pub mod water;
 
+pub use echo::LoadsUsed;
 pub use error::{SceneError, SceneErrorKind};
 pub use simulation::Simulation;
 pub use validate::MAX_INCREMENTS;
@@ -42,6 +47,10 @@ pub struct Block {
     /// Product of inertia ∫ x' z' dm (kg·m²; rigid-body mode), entering the tensor as −I_xz.
     /// Default 0.
     pub inertia_xz: f64,
+    /// Product of inertia ∫ x' y' dm (kg·m²; rigid-body mode), entering the tensor as −I_xy:
+    /// a monolith's section is not symmetric about its centre's height (`[monolith]`).
+    /// 0 for `[block]`.
+    pub inertia_xy: f64,
 }
 
 impl Block {
@@ -49,9 +58,9 @@ impl Block {
     pub fn tensor(&self) -> nalgebra::Matrix3<f64> {
         nalgebra::Matrix3::new(
             self.inertia_x,
-            0.0,
+            -self.inertia_xy,
             -self.inertia_xz,
-            0.0,
+            -self.inertia_xy,
             self.inertia,
             0.0,
             -self.inertia_xz,
@@ -89,16 +98,55 @@ impl DynamicsModel {
     }
 }
 
-/// The driving loads.
+/// The loads (`derivations/11-dam-loads.md`). The driving ones — the water's push and its
+/// couples, the horizontal pseudo-static force — are those the factor of safety scales; the
+/// weight, the uplift, the tailwater's weight and the vertical pseudo-static force stay.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[non_exhaustive]
 pub struct Loads {
-    /// |F| (N), acting along x'.
+    /// |F| (N), acting along x': `loads.hydraulic_force_n`, or from `[water]` the reservoir's
+    /// push less the tailwater's.
     pub hydraulic_force: f64,
     /// c (m): F's line misses the CM by c; c > 0 turns the block so that θ grows.
     pub eccentricity: f64,
     /// g (m/s²).
     pub gravity: f64,
+    /// The moment of the water's pushes about the base point under the CM, along k' (N·m):
+    /// −Σ H y over the pushes at heights y above the base. 0 for `loads.hydraulic_force_n`,
+    /// which acts in the base plane (the paper's).
+    pub hydraulic_pitch: f64,
+    /// The loads that stay, other than the weight, in the block's axes: the uplift less the
+    /// tailwater's weight on the downstream face, along y' (N), and their moment along k' about
+    /// the base point under the CM (N·m).
+    pub held_normal: f64,
+    pub held_pitch: f64,
+    /// Pseudo-static coefficients (fractions of g): horizontal along +X (downstream), vertical
+    /// up.
+    pub kh: f64,
+    pub kv: f64,
+    /// The CM's height above the base plane (m), where the weight and the pseudo-static forces
+    /// act: from `[monolith]`; 0 for `[block]` (the paper's frame, CM in the base plane).
+    pub cm_height: f64,
+    /// The water's loads from levels, where the scene gives `[water]`.
+    pub water: Option<crate::scene::water::WaterLoads>,
+}
+
+impl Loads {
+    /// Loads of `[loads]` alone: a force F in the base plane with its couple −cF, gravity g.
+    pub fn plain(hydraulic_force: f64, eccentricity: f64, gravity: f64) -> Loads {
+        Loads {
+            hydraulic_force,
+            eccentricity,
+            gravity,
+            hydraulic_pitch: 0.0,
+            held_normal: 0.0,
+            held_pitch: 0.0,
+            kh: 0.0,
+            kv: 0.0,
+            cm_height: 0.0,
+            water: None,
+        }
+    }
 }
 
 /// Friction criterion at the contacts (paper eqs. (24b) and (43)).
@@ -223,6 +271,10 @@ pub struct Scene {
     pub(crate) source: toml::Table,
     /// The folder the files the scene names (a surface) are found from.
     pub(crate) folder: std::path::PathBuf,
+    /// `[check]`: the guideline the load cases' requirements come from.
+    pub(crate) guideline: cases::Guideline,
+    /// `[[case]]`: the load combinations `check` runs.
+    pub(crate) cases: Vec<cases::LoadCase>,
 }
 
 /// Two scenes are equal when their values are (the documents may differ in how they wrote
@@ -357,6 +409,24 @@ impl Scene {
     /// The frame and the foundation.
     pub fn site(&self) -> &Site {
         &self.site
+    }
+
+    /// `[check]`'s guideline (the default when absent).
+    pub fn guideline(&self) -> &cases::Guideline {
+        &self.guideline
+    }
+
+    /// `[[case]]`: the load combinations, each with its requirement.
+    pub fn cases(&self) -> &[cases::LoadCase] {
+        &self.cases
+    }
+
+    /// The same scene with load case `case`'s levels and coefficients set (its origin names
+    /// the case).
+    pub fn for_case(&self, case: &cases::LoadCase) -> Result<Scene, SceneError> {
+        let mut s = self.with_keys(case.keys.iter().map(|(k, v)| (k.as_str(), *v)))?;
+        s.name = format!("{}: {}", self.name, case.name);
+        Ok(s)
     }
 
     /// `[block]`, when given.

@@ -18,6 +18,64 @@ pub struct RawScene {
     pub friction: Option<RawFriction>,
     pub solver: Option<RawSolver>,
     pub initial: Option<RawInitial>,
+    pub monolith: Option<RawMonolith>,
+    pub water: Option<RawWater>,
+    pub seismic: Option<RawSeismic>,
+    pub check: Option<RawCheck>,
+    pub case: Option<Vec<RawCase>>,
+}
+
+/// `[check]`: the guideline table the load cases' required factors of safety come from.
+#[derive(Debug, Default, Deserialize)]
+#[serde(expecting = "the table [check]")]
+pub struct RawCheck {
+    pub structure: Option<String>,
+    pub site_information: Option<String>,
+}
+
+/// One `[[case]]`: a load combination, its levels and seismic inputs, and its requirement.
+#[derive(Debug, Default, Deserialize)]
+#[serde(expecting = "a table [[case]]")]
+pub struct RawCase {
+    pub name: Option<String>,
+    pub category: Option<String>,
+    pub headwater_m: Option<f64>,
+    pub tailwater_m: Option<f64>,
+    pub kh: Option<f64>,
+    pub kv: Option<f64>,
+    pub required_fs: Option<f64>,
+}
+
+/// `[monolith]`: the block from its section (beside `[block]`, which gives mass and inertia
+/// directly).
+#[derive(Debug, Default, Deserialize)]
+#[serde(expecting = "the table [monolith]")]
+pub struct RawMonolith {
+    pub base_length_m: Option<f64>,
+    pub width_m: Option<f64>,
+    pub height_m: Option<f64>,
+    pub crest_length_m: Option<f64>,
+    pub density_kg_m3: Option<f64>,
+}
+
+/// `[water]`: the water's loads from levels (needs `[monolith]`).
+#[derive(Debug, Default, Deserialize)]
+#[serde(expecting = "the table [water]")]
+pub struct RawWater {
+    pub headwater_m: Option<f64>,
+    pub tailwater_m: Option<f64>,
+    pub density_kg_m3: Option<f64>,
+    pub drain_efficiency: Option<f64>,
+    pub drain_position_m: Option<f64>,
+}
+
+/// `[seismic]`: pseudo-static coefficients, and a ground-motion record.
+#[derive(Debug, Default, Deserialize)]
+#[serde(expecting = "the table [seismic]")]
+pub struct RawSeismic {
+    pub kh: Option<f64>,
+    pub kv: Option<f64>,
+    pub record: Option<String>,
 }
 
 /// The motion at t = 0 (default: at rest).
@@ -182,6 +240,11 @@ pub fn keys_of(section: &str) -> &'static [&'static str] {
         "friction" => fields::<RawFriction>(),
         "solver" => fields::<RawSolver>(),
         "initial" => fields::<RawInitial>(),
+        "monolith" => fields::<RawMonolith>(),
+        "water" => fields::<RawWater>(),
+        "seismic" => fields::<RawSeismic>(),
+        "check" => fields::<RawCheck>(),
+        "case" => fields::<RawCase>(),
         "foundation.plane" => fields::<RawPlane>(),
         _ => &[],
     }

@@ -2,6 +2,8 @@
 //! name one the option has, the sections consistent with each other. Each fault is one
 //! [`SceneError`] naming its key.
 
+use super::checks::{check, named, need, non_negative, positive, section};
+use super::dam;
 use super::error::SceneErrorKind;
 use super::raw::{self, RawScene};
 use super::{
@@ -17,82 +19,6 @@ pub const MAX_INCREMENTS: f64 = 1e8;
 /// Relative tolerance on L1X + L2X = L1Z + L2Z.
 const FRAME_TOLERANCE: f64 = 1e-9;
 
-/// The value of a key its section needs.
-fn need<T>(origin: &str, key: &str, v: Option<T>) -> Result<T, SceneError> {
-    v.ok_or_else(|| {
-        let name = key.rsplit('.').next().unwrap_or(key);
-        SceneError::of(
-            SceneErrorKind::MissingKey,
-            origin,
-            key,
-            format!("missing key `{name}`"),
-        )
-    })
-}
-
-/// A section the scene needs.
-fn section<'a, T>(origin: &str, name: &str, v: &'a Option<T>) -> Result<&'a T, SceneError> {
-    v.as_ref().ok_or_else(|| {
-        SceneError::of(
-            SceneErrorKind::MissingSection,
-            origin,
-            name,
-            format!("missing section [{name}]"),
-        )
-    })
-}
-
-/// The option named `word` among `all` (by their file names), or an error listing them.
-fn named<T: Copy>(
-    origin: &str,
-    key: &str,
-    what: &str,
-    word: &str,
-    all: &[T],
-    name: fn(T) -> &'static str,
-) -> Result<T, SceneError> {
-    all.iter()
-        .copied()
-        .find(|&t| name(t) == word)
-        .ok_or_else(|| {
-            let names: Vec<_> = all.iter().map(|&t| format!("\"{}\"", name(t))).collect();
-            SceneError::new(
-                origin,
-                key,
-                format!(
-                    "unknown {what} \"{word}\"; expected one of {}",
-                    names.join(", ")
-                ),
-            )
-        })
-}
-
-/// Checks one number: finite, and `ok(v)`; `what` says what was expected.
-fn check(origin: &str, key: &str, v: f64, ok: bool, what: &str) -> Result<f64, SceneError> {
-    if !v.is_finite() {
-        return Err(SceneError::new(
-            origin,
-            key,
-            format!("must be a finite number, got {v}"),
-        ));
-    }
-    if !ok {
-        return Err(SceneError::new(
-            origin,
-            key,
-            format!("must be {what}, got {v}"),
-        ));
-    }
-    Ok(v)
-}
-
-fn positive(origin: &str, key: &str, v: f64) -> Result<f64, SceneError> {
-    check(origin, key, v, v > 0.0, "positive")
-}
-
-fn non_negative(origin: &str, key: &str, v: f64) -> Result<f64, SceneError> {
-    check(origin, key, v, v >= 0.0, "zero or positive")
-}
 
 /// The block, with the rigid-body inertia defaults (a thin plate in the x'z' plane) and the
 /// checks a rigid body's inertia must pass (positive definite, triangle inequalities).
@@ -118,12 +44,18 @@ fn block(o: &str, b: &raw::RawBlock) -> Result<Block, SceneError> {
         inertia_x,
         inertia_z,
         inertia_xz,
+        inertia_xy: 0.0,
     };
     let key = if b.inertia_xz_kg_m2.is_some() {
         "block.inertia_xz_kg_m2"
     } else {
         "block"
     };
+    rigid(o, key, block)
+}
+
+/// The checks a rigid body's inertia must pass: positive definite, triangle inequalities.
+pub(super) fn rigid(o: &str, key: &str, block: Block) -> Result<Block, SceneError> {
     let p = block.tensor().symmetric_eigenvalues();
     let (lo, hi, sum) = (p.min(), p.max(), p.sum());
     if lo <= 0.0 {
@@ -714,28 +646,98 @@ pub(super) fn validate(
     let frame = frame(o, section(o, "frame", &raw.frame)?)?;
     let foundation = foundation(o, section(o, "foundation", &raw.foundation)?, folder)?;
     let site = site(o, frame, foundation)?;
-    let block = raw.block.as_ref().map(|b| block(o, b)).transpose()?;
-    let loads = match &raw.loads {
-        None => None,
-        Some(l) => Some(Loads {
-            hydraulic_force: non_negative(
+    let monolith = raw
+        .monolith
+        .as_ref()
+        .map(|m| dam::monolith(o, m))
+        .transpose()?;
+    let block = match (&raw.block, &monolith) {
+        (Some(_), Some(_)) => {
+            return Err(SceneError::new(
                 o,
-                "loads.hydraulic_force_n",
-                need(o, "loads.hydraulic_force_n", l.hydraulic_force_n)?,
-            )?,
-            eccentricity: check(
+                "monolith",
+                "give the block's mass and inertia ([block]) or its section ([monolith]), not \
+                 both"
+                    .to_string(),
+            ));
+        }
+        (Some(b), None) => Some(block(o, b)?),
+        (None, Some(m)) => {
+            dam::contacts_on_base(o, &site, m)?;
+            Some(rigid(o, "monolith", m.block())?)
+        }
+        (None, None) => None,
+    };
+    let (kh, kv) = match &raw.seismic {
+        Some(s) => dam::seismic(o, s)?,
+        None => (0.0, 0.0),
+    };
+    let loads = match &raw.loads {
+        None => {
+            for (present, name) in [
+                (raw.water.is_some(), "water"),
+                (raw.seismic.is_some(), "seismic"),
+            ] {
+                if present {
+                    return Err(SceneError::new(
+                        o,
+                        name,
+                        format!("[{name}] needs [loads] (gravity_m_s2, eccentricity_m)"),
+                    ));
+                }
+            }
+            None
+        }
+        Some(l) => {
+            let eccentricity = check(
                 o,
                 "loads.eccentricity_m",
                 need(o, "loads.eccentricity_m", l.eccentricity_m)?,
                 true,
                 "finite",
-            )?,
-            gravity: positive(
+            )?;
+            let gravity = positive(
                 o,
                 "loads.gravity_m_s2",
                 need(o, "loads.gravity_m_s2", l.gravity_m_s2)?,
-            )?,
-        }),
+            )?;
+            let mut loads = match &raw.water {
+                Some(w) => {
+                    if l.hydraulic_force_n.is_some() {
+                        return Err(SceneError::new(
+                            o,
+                            "loads.hydraulic_force_n",
+                            "[water] gives the water's force from its levels: remove \
+                             loads.hydraulic_force_n"
+                                .to_string(),
+                        ));
+                    }
+                    let m = monolith.as_ref().ok_or_else(|| {
+                        SceneError::new(
+                            o,
+                            "water",
+                            "[water] needs [monolith]: the faces and the base the water acts \
+                             on"
+                            .to_string(),
+                        )
+                    })?;
+                    dam::water(o, w, m, eccentricity, gravity)?
+                }
+                None => Loads::plain(
+                    non_negative(
+                        o,
+                        "loads.hydraulic_force_n",
+                        need(o, "loads.hydraulic_force_n", l.hydraulic_force_n)?,
+                    )?,
+                    eccentricity,
+                    gravity,
+                ),
+            };
+            loads.kh = kh;
+            loads.kv = kv;
+            loads.cm_height = monolith.as_ref().map_or(0.0, |m| m.props.cm_height);
+            Some(loads)
+        }
     };
     let friction = raw.friction.as_ref().map(|f| friction(o, f)).transpose()?;
     let solver = raw.solver.as_ref().map(|s| solver(o, s)).transpose()?;
@@ -752,6 +754,11 @@ pub(super) fn validate(
         }
     };
     derived(o, site.l(), block.as_ref(), loads.as_ref())?;
+    let guideline = match &raw.check {
+        Some(c) => super::cases::guideline(o, c)?,
+        None => Default::default(),
+    };
+    let cases = super::cases::cases(o, &guideline, raw.case.as_deref().unwrap_or(&[]))?;
     Ok(Scene {
         name: raw.name.unwrap_or_else(|| "unnamed".to_string()),
         origin: o.to_string(),
@@ -763,5 +770,7 @@ pub(super) fn validate(
         initial,
         source,
         folder: folder.to_path_buf(),
+        guideline,
+        cases,
     })
 }

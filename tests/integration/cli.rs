@@ -1342,3 +1342,49 @@ fn a_surface_that_is_not_obj_is_bad_input_naming_the_file() {
     let o = run(&["scene", "--check", path.to_str().unwrap()]);
     assert_bad_input(&o, &["junk-surface.toml", "foundation.surface", "junk.obj"]);
 }
+
+#[test]
+fn check_prints_the_load_case_table_and_routes_the_case_that_fails() {
+    // scenes/monolith.toml: three load cases under EM 1110-2-2100's normal structure, ordinary
+    // site information (usual 1.5, unusual 1.3, extreme 1.1); the earthquake case fails and
+    // slides, and its route is written beside the table.
+    let root = env!("CARGO_MANIFEST_DIR");
+    let out = std::env::temp_dir().join(format!("slideroute-cli-check-{}", std::process::id()));
+    let o = run(&[
+        "check",
+        "--scene",
+        &format!("{root}/scenes/monolith.toml"),
+        "--no-plots",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = String::from_utf8_lossy(&o.stdout);
+    for needle in [
+        "EM 1110-2-2100, normal structure, ordinary site information",
+        "normal pool",
+        "1.50    pass",
+        "1.30    pass",
+        "1.10    FAIL",
+        "earthquake at normal pool fails and slides",
+    ] {
+        assert!(text.contains(needle), "{needle:?} in {text}");
+    }
+    let csv = std::fs::read_to_string(out.join("check.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 4, "{csv}");
+    assert!(out.join("case-2/route.csv").exists());
+    assert!(!out.join("case-0").exists());
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("check.json")).unwrap()).unwrap();
+    assert_eq!(json["cases"][2]["passes"], false);
+    assert_eq!(json["guideline"]["structure"], "normal");
+    assert!(json["manifest"]["loads"]["uplift_n"].as_f64().unwrap() > 0.0);
+    let _ = std::fs::remove_dir_all(out);
+    // A case the guideline has no category for is refused, naming it.
+    let bad = std::fs::read_to_string(format!("{root}/scenes/monolith.toml"))
+        .unwrap()
+        .replace("category = \"unusual\"", "category = \"rare\"");
+    let p = temp_file("bad-case.toml", &bad);
+    let o = run(&["check", "--scene", p.to_str().unwrap()]);
+    assert_bad_input(&o, &["case[1].category", "unknown category \"rare\""]);
+}

@@ -11,6 +11,7 @@ mod common;
 mod architecture;
 mod cli;
 mod coefficients_match_derivation;
+mod dam_loads;
 mod docs;
 mod drake_crosscheck;
 mod exact_relations_at_direct_poses;

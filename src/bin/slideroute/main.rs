@@ -97,6 +97,23 @@ enum Command {
         #[arg(long)]
         quiet: bool,
     },
+    /// Check each load case of the scene (`[[case]]`; without any, the scene as written)
+    /// against the sliding factor of safety its guideline requires (`[check]`: EM 1110-2-2100,
+    /// Tables 3-2 and 3-3), print the table, write DIR/check.csv and DIR/check.json, and for
+    /// every case that fails its route in DIR/case-N/ (route.csv, summary.json, pictures).
+    Check {
+        #[command(flatten)]
+        scene: SceneArg,
+        /// Output folder (created if needed).
+        #[arg(long, value_name = "DIR", default_value = "check")]
+        out: PathBuf,
+        /// No table (errors are still reported).
+        #[arg(long)]
+        quiet: bool,
+        /// No pictures for the failing cases' routes.
+        #[arg(long)]
+        no_plots: bool,
+    },
     /// Measure error against run time: the paper-like and shallow scenes with each pose method
     /// (continuation, all roots at every increment), mode and integrator over a ladder of dt,
     /// against a fine reference; plus the stiff and extreme cases. Writes
@@ -576,6 +593,69 @@ fn sweep_cmd(
     Ok(())
 }
 
+fn check_cmd(
+    scene: &SceneArg,
+    out: &std::path::Path,
+    quiet: bool,
+    no_plots: bool,
+) -> Result<(), CliError> {
+    use crate::output::{check_files, route_files};
+    let scene = load(scene)?;
+    let mut folder = crate::output::folder::Folder::open(out).map_err(failed)?;
+    let results = slideroute::check_cases(&scene, |_| ()).map_err(|e| bad_input(e.to_string()))?;
+    let mut written = Vec::new();
+    for (k, r) in results.iter().enumerate().filter(|(_, r)| !r.passes) {
+        let case_scene = scene
+            .for_case(&r.case)
+            .map_err(|e| bad_input(e.to_string()))?;
+        let mut sub =
+            crate::output::folder::Folder::open(&out.join(format!("case-{k}"))).map_err(failed)?;
+        written.push(
+            route_files::write_route_csv(&mut sub, "route.csv", &r.route.rows).map_err(failed)?,
+        );
+        written.extend(write_route_folder(sub, &case_scene, &r.route, no_plots).map_err(failed)?);
+    }
+    written.push(
+        folder
+            .write_with("check.csv", |tmp| {
+                let file = std::fs::File::create(tmp)
+                    .map_err(|e| format!("{}: cannot write: {e}", tmp.display()))?;
+                check_files::write_csv(file, &results).map_err(|e| format!("check.csv: {e}"))
+            })
+            .map_err(failed)?,
+    );
+    #[derive(serde::Serialize)]
+    struct CheckJson<'a> {
+        guideline: &'a slideroute::stages::scene::cases::Guideline,
+        cases: &'a [slideroute::CaseResult],
+    }
+    let manifest = route_files::Manifest::new(&scene, &folder);
+    written.push(
+        route_files::write_json_with_manifest(
+            &mut folder,
+            "check.json",
+            &CheckJson {
+                guideline: scene.guideline(),
+                cases: &results,
+            },
+            &manifest,
+        )
+        .map_err(failed)?,
+    );
+    folder.finish().map_err(failed)?;
+    if !quiet {
+        let table = check_files::CheckTable {
+            scene: scene.name(),
+            guideline: scene.guideline().describe(),
+            results: &results,
+        };
+        out!("{table}");
+        let names: Vec<String> = written.iter().map(|p| p.display().to_string()).collect();
+        outln!("  wrote {}", names.join(", "));
+    }
+    Ok(())
+}
+
 fn report_cmd(quick: bool, out: &std::path::Path, quiet: bool) -> Result<(), CliError> {
     let bar = progress_bar(quiet, crate::report::point_count(quick) as u64, "report");
     let (points, references) = crate::report::work_precision(quick, || {
@@ -701,6 +781,12 @@ fn main() -> ExitCode {
             quiet,
         } => sweep_cmd(scene, vary, *dynamics, out, *quiet),
         Command::Report { quick, out, quiet } => report_cmd(*quick, out, *quiet),
+        Command::Check {
+            scene,
+            out,
+            quiet,
+            no_plots,
+        } => check_cmd(scene, out, *quiet, *no_plots),
         Command::Scene {
             print_default,
             check,

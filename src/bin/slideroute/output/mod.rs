@@ -1,6 +1,8 @@
 //! What the command line hands to people: typed reports that serialise to JSON and print as
 //! tables, summaries, the files of an output folder and the pictures.
 
+#[cfg(feature = "cli")]
+pub mod check_files;
 pub mod coeffs_report;
 #[cfg(feature = "cli")]
 pub mod compare_files;

@@ -116,6 +116,10 @@ pub struct Manifest {
     /// The scene exactly as used: every value, defaults filled in, in the file's keys and units
     /// (`Scene::as_used`).
     pub scene: toml::Table,
+    /// The loads the route used, in the engineer's terms (`Scene::loads_used`): weight, the
+    /// water's net push and its couples, the uplift, the pseudo-static coefficients, and from
+    /// `[water]` each water load with where it acts.
+    pub loads: Option<slideroute::stages::scene::LoadsUsed>,
     /// The other files this run wrote into the folder, with their sizes.
     pub files: Vec<FileEntry>,
 }
@@ -134,6 +138,7 @@ impl Manifest {
             slideroute_version: env!("CARGO_PKG_VERSION"),
             command_line: std::env::args().collect(),
             scene: scene.as_used(),
+            loads: scene.loads_used(),
             files: folder
                 .written()
                 .iter()

@@ -1,0 +1,226 @@
+//! Dam loads in the engineer's terms (issue #16): the monolith from its section, the water from
+//! its levels, pseudo-static coefficients, and the guideline factor of safety, each against its
+//! closed form on a level base (`derivations/11-dam-loads.md`).
+
+use slideroute::stages::route;
+use slideroute::stages::scene::Scene;
+
+fn monolith() -> String {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/monolith.toml");
+    std::fs::read_to_string(path).unwrap()
+}
+
+/// `text` with each (old, new) replaced, exactly once each.
+fn edit(text: &str, edits: &[(&str, &str)]) -> String {
+    edits.iter().fold(text.to_string(), |t, (a, b)| {
+        assert_eq!(t.matches(a).count(), 1, "{a}");
+        t.replace(a, b)
+    })
+}
+
+/// The factor of safety at the start, as a number.
+fn fs(text: &str) -> f64 {
+    let s = Scene::from_toml(text, "dam")
+        .unwrap()
+        .with("solver.t_end_s", 0.01)
+        .unwrap();
+    let r = route::run(&s).unwrap();
+    r.factor_of_safety.and_then(|f| f.value()).unwrap()
+}
+
+const LEVEL: &str = "[[foundation.plane]]
+dip_deg = 0.0
+dip_direction_deg = 0.0
+point_m = [0.0, 0.0, 0.0]";
+
+const PAPERS_FLAT: &str = "xi_deg = 0.01
+zeta_deg = 0.01
+kappa_deg = 0.0";
+
+/// The monolith of `scenes/monolith.toml` by hand: a 5 × 15 m rectangle and a 15 × 15 m right
+/// triangle, 10 m wide, of concrete at 2400 kg/m³.
+const W: f64 = 2400.0 * 9.81 * 10.0 * (75.0 + 112.5);
+
+#[test]
+fn on_a_level_base_the_factor_of_safety_is_mu_w_minus_u_over_h_with_and_without_drains() {
+    // EM 1110-2-2100's sliding factor (N tan φ)/T with N = W − U: the reservoir of H1 m
+    // pushes ½ γ H1² w; the uplift falls from γ H1 at the heel to 0 at the toe, or with drains
+    // of efficiency E at X to H3 = (1 − E) H1 (b − X)/b there. No tailwater, no couple.
+    let gamma = 1000.0 * 9.81;
+    let (b, w, mu) = (20.0, 10.0, 0.45);
+    for base in [LEVEL, PAPERS_FLAT] {
+        for (h1, e) in [(14.0, 0.0), (14.0, 0.5), (10.0, 0.25)] {
+            let text = edit(
+                &monolith(),
+                &[
+                    ("eccentricity_m = 1.0 ", "eccentricity_m = 0.0 "),
+                    ("tailwater_m = 2.0 ", "tailwater_m = 0.0 "),
+                    ("headwater_m = 14.0 ", &format!("headwater_m = {h1} ")),
+                    (
+                        "drain_efficiency = 0.5 ",
+                        &format!("drain_efficiency = {e} "),
+                    ),
+                    (
+                        "[[foundation.plane]]\ndip_deg = 0.0\ndip_direction_deg = 0.0\npoint_m = [0.0, 0.0, 0.0]",
+                        base,
+                    ),
+                ],
+            );
+            let h = 0.5 * gamma * h1 * h1 * w;
+            let x = 2.0;
+            let h3 = (1.0 - e) * h1 * (b - x) / b;
+            let u = if e == 0.0 {
+                0.5 * gamma * h1 * b * w
+            } else {
+                gamma * w * (x * (h1 + h3) / 2.0 + (b - x) * h3 / 2.0)
+            };
+            let want = mu * (W - u) / h;
+            let got = fs(&text);
+            assert!(
+                (got - want).abs() < 5e-3 * want,
+                "H1 {h1} m, E {e}: {got} against {want}"
+            );
+        }
+    }
+}
+
+#[test]
+fn pseudo_static_factor_of_safety_is_mu_one_minus_kv_over_kh() {
+    // No water: the horizontal inertial force k_h W drives, the vertical k_v W lightens the
+    // block; μ (1 − k_v) W / (k_h W) on 0.01° dips, with the block given by mass.
+    let paper = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/paper-like.toml"),
+    )
+    .unwrap();
+    for (kh, kv) in [(0.1, 0.0), (0.1, 0.05), (0.2, -0.1)] {
+        let text = edit(
+            &paper,
+            &[
+                ("xi_deg = 20.0", "xi_deg = 0.01"),
+                ("zeta_deg = 25.0", "zeta_deg = 0.01"),
+                ("kappa_deg = 30.0", "kappa_deg = 0.0"),
+                ("hydraulic_force_n = 8.0e6", "hydraulic_force_n = 0.0"),
+                ("eccentricity_m = 1.0", "eccentricity_m = 0.0"),
+            ],
+        ) + &format!("\n[seismic]\nkh = {kh}\nkv = {kv}\n");
+        let want = 0.4 * (1.0 - kv) / kh;
+        let got = fs(&text);
+        assert!(
+            (got - want).abs() < 5e-3 * want,
+            "kh {kh}, kv {kv}: {got} against {want}"
+        );
+    }
+}
+
+#[test]
+fn the_summary_echoes_the_loads_and_the_scene_as_used_reads_back() {
+    let s = Scene::from_toml(&monolith(), "monolith").unwrap();
+    let l = s.loads_used().unwrap();
+    assert!((l.weight_n - W).abs() < 1e-9 * W);
+    let water = l.water.unwrap();
+    // Reservoir 14 m: ½ γ 14² w at 14/3 m; tailwater 2 m: ½ γ 2² w at 2/3 m.
+    let gamma_w = 1000.0 * 9.81 * 10.0;
+    assert!((water.headwater.force_n - 0.5 * gamma_w * 196.0).abs() < 1e-6);
+    assert!((water.headwater.at_m - 14.0 / 3.0).abs() < 1e-12);
+    assert!((l.hydraulic_force_n - 0.5 * gamma_w * (196.0 - 4.0)).abs() < 1e-6);
+    // Drains: H3 = 2 + 0.5 · 12 · 18/20 = 7.4 m.
+    assert!((water.drain_head_m - 7.4).abs() < 1e-12);
+    let u = gamma_w * (2.0 * (14.0 + 7.4) / 2.0 + 18.0 * (7.4 + 2.0) / 2.0);
+    assert!((l.uplift_n - u).abs() < 1e-6 * u);
+    // The centre of mass: (75 · 7.5 + 112.5 · 5) / 187.5 = 6 m above the base.
+    assert!((l.cm_height_m - 6.0).abs() < 1e-12);
+    let text = toml::to_string(&s.as_used()).unwrap();
+    let back = Scene::from_toml(&text, "echo").unwrap();
+    assert_eq!(back.loads(), s.loads());
+    assert_eq!(back.block(), s.block());
+}
+
+#[test]
+fn dam_sections_that_do_not_fit_together_are_refused_naming_the_key() {
+    let m = monolith();
+    let cases: Vec<(String, &str, &str)> = vec![
+        (
+            m.replace(
+                "[monolith]",
+                "[block]\nmass_kg = 1e6\ninertia_kg_m2 = 1e7\n\n[monolith]",
+            ),
+            "monolith",
+            "not both",
+        ),
+        (
+            m.replace(
+                "eccentricity_m = 1.0",
+                "hydraulic_force_n = 8e6\neccentricity_m = 1.0",
+            ),
+            "loads.hydraulic_force_n",
+            "remove",
+        ),
+        (
+            m.replace("tailwater_m = 2.0", "tailwater_m = 15.0"),
+            "water.tailwater_m",
+            "at most the headwater",
+        ),
+        (
+            m.replace("l1x = 6.0", "l1x = 8.0")
+                .replace("l2x = 4.0", "l2x = 2.0"),
+            "frame",
+            "off the monolith's base",
+        ),
+        (
+            m.replace("crest_length_m = 5.0", "crest_length_m = 25.0"),
+            "monolith.crest_length_m",
+            "at most the base length",
+        ),
+        (
+            m.replace("drain_position_m = 2.0", "drain_position_m = 30.0"),
+            "water.drain_position_m",
+            "within the base",
+        ),
+        (
+            m + "\n[seismic]\nrecord = \"motion.csv\"\n",
+            "seismic.record",
+            "not supported yet",
+        ),
+    ];
+    for (text, key, why) in cases {
+        let e = Scene::from_toml(&text, "dam").unwrap_err();
+        assert_eq!(e.key, key, "{e}");
+        assert!(e.to_string().contains(why), "{e}");
+    }
+    // Water needs the monolith.
+    let paper = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/paper-like.toml"),
+    )
+    .unwrap()
+    .replace("hydraulic_force_n = 8.0e6", "")
+        + "\n[water]\nheadwater_m = 10.0\n";
+    let e = Scene::from_toml(&paper, "dam").unwrap_err();
+    assert_eq!(e.key, "water");
+}
+
+#[test]
+fn check_gives_each_case_its_guideline_requirement_and_routes_it() {
+    // scenes/monolith.toml's three cases: usual, unusual, extreme under a normal structure and
+    // ordinary site information (1.5, 1.3, 1.1). The flood raises the uplift more than the
+    // push and lowers the factor; the earthquake's kh W drives it under 1 and the block slides.
+    let s = Scene::from_toml(&monolith(), "monolith").unwrap();
+    let r = slideroute::check_cases(&s, |_| ()).unwrap();
+    assert_eq!(r.len(), 3);
+    let required: Vec<f64> = r.iter().map(|c| c.case.required_fs).collect();
+    assert_eq!(required, [1.5, 1.3, 1.1]);
+    let fs: Vec<f64> = r
+        .iter()
+        .map(|c| c.factor_of_safety.unwrap().value().unwrap())
+        .collect();
+    assert!(fs[0] > fs[1] && fs[1] > 1.0 && fs[2] < 1.0, "{fs:?}");
+    assert_eq!(
+        r.iter().map(|c| c.passes).collect::<Vec<_>>(),
+        [true, true, false]
+    );
+    assert!(r[2].route.increments > 0 && r[2].route.travel_m > 1.0);
+    assert_eq!(r[0].route.increments, 0);
+    // The case's own levels reach its loads.
+    let w = r[1].loads.unwrap().water.unwrap();
+    assert_eq!((w.levels.headwater, w.levels.tailwater), (15.0, 5.0));
+    assert_eq!(r[2].loads.unwrap().kh, 0.2);
+}
