@@ -22,6 +22,14 @@ contact rides a crease or crosses onto another face as Drake's contact forces de
 may be any triangle (`contacts_m`). --radius, --stiffness and --dissipation refine the contact
 (tiny spheres, stiff contact, near-plastic impacts) until the path no longer changes.
 
+A ground-motion record (`[seismic] record`, issue #16: CSV t_s, ax_g, ay_g, az_g, found beside
+the scene) moves the foundation itself: the half-spaces belong to a ground body on three
+prismatic joints (X, Y, Z), a million times the block's mass, driven by joint forces that give it
+the record's acceleration (each step's mean of the record, linear between samples; gravity on
+it balanced); the block's loads at the contacts move it by a millionth of that. Positions are
+written relative to the ground, as slideroute's route is. Pseudo-static kh, kv are forces
+kh m g along +X and kv m g along +Y at the CM.
+
 Writes CSV: t_s,x_m,y_m,z_m,theta_deg,p0x_m,...,p2z_m (theta: yaw of x' from +X towards +Z; pK:
 contact K's position, so that a reader sees where each contact is, e.g. past a strike line).
 """
@@ -57,6 +65,7 @@ from pydrake.systems.framework import DiagramBuilder
 SPHERE_RADIUS = 1e-3  # m: small against L, large against the penetration (~1e-4 m)
 STIFFNESS = 2e11  # N/m per geometry: 1e11 N/m combined in series
 DISSIPATION = 1.0  # s/m, Hunt-Crossley
+GROUND_MASS_RATIO = 1e6  # a shaken ground's mass over the block's
 
 
 def load(path):
@@ -83,8 +92,17 @@ def load(path):
             d, a = math.radians(f["dip_deg"]), math.radians(f["dip_direction_deg"])
             n = np.array([math.sin(d) * math.cos(a), math.cos(d), math.sin(d) * math.sin(a)])
             faces.append((n, np.array(f["point_m"], dtype=float)))
+    seismic = s.get("seismic", {})
+    record = None
+    if "record" in seismic:
+        import os
+        folder = os.path.dirname(os.path.abspath(path))
+        data = np.loadtxt(os.path.join(folder, seismic["record"]), delimiter=",", skiprows=1,
+                          ndmin=2)
+        record = (data[:, 0], data[:, 1:4])
     return dict(
-        corners=corners, faces=faces,
+        corners=corners, faces=faces, record=record,
+        kh=seismic.get("kh", 0.0), kv=seismic.get("kv", 0.0),
         xi=math.radians(fo.get("xi_deg", 0.0)), zeta=math.radians(fo.get("zeta_deg", 0.0)),
         kappa=math.radians(fo.get("kappa_deg", 0.0)),
         mass=bl["mass_kg"], iy=iy,
@@ -143,6 +161,25 @@ def initial_twist(p, corners, normals):
     return np.array([vx, vy, vz]), np.array([wx, wy, wz])
 
 
+def ground_velocity(record, g):
+    """V(t) = ∫ a dt of the record (m/s along X, Y, Z), linear between samples, zero outside."""
+    t, a = record
+    # Velocity at each sample: trapezoids.
+    v = np.vstack([np.zeros(3), np.cumsum(0.5 * (a[1:] + a[:-1]) * np.diff(t)[:, None], axis=0)])
+
+    def at(s):
+        if s <= t[0]:
+            return np.zeros(3)
+        if s >= t[-1]:
+            return v[-1] * g
+        k = int(np.searchsorted(t, s, side="right")) - 1
+        h = s - t[k]
+        slope = (a[k + 1] - a[k]) / (t[k + 1] - t[k])
+        return (v[k] + a[k] * h + 0.5 * slope * h * h) * g
+
+    return at
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--scene", required=True)
@@ -173,6 +210,23 @@ def main():
         AddContactMaterial(a.dissipation, a.stiffness, CoulombFriction(p["mu"], p["mu"]), pp)
         return pp
 
+    # The foundation: the world, or a ground body shaken by the record.
+    ground = plant.world_body()
+    joints = []
+    if p["record"] is not None:
+        from pydrake.multibody.tree import PrismaticJoint
+        big = GROUND_MASS_RATIO * p["mass"]
+        parent = plant.world_body()
+        for k, axis in enumerate(np.eye(3)):
+            body = plant.AddRigidBody(
+                f"ground{k}", SpatialInertia.MakeFromCentralInertia(
+                    big, np.zeros(3), RotationalInertia(big, big, big)))
+            joints.append(plant.AddJoint(PrismaticJoint(
+                f"ground_{'xyz'[k]}", plant.world_frame() if k == 0 else parent.body_frame(),
+                body.body_frame(), axis)))
+            parent = body
+        ground = parent
+
     corners = p["corners"]
     spheres, halves = [], []
     for i, corner in enumerate(corners):
@@ -181,7 +235,7 @@ def main():
             block, RigidTransform(corner), Sphere(a.radius), f"contact{i}", props()))
     for j, (n, point) in enumerate(planes(p)):
         halves.append(plant.RegisterCollisionGeometry(
-            plant.world_body(), RigidTransform(HalfSpace.MakePose(n, point - a.radius * n)),
+            ground, RigidTransform(HalfSpace.MakePose(n, point - a.radius * n)),
             HalfSpace(), f"plane{j}", props()))
     plant.Finalize()
     if p["faces"] is None:
@@ -201,6 +255,25 @@ def main():
     v0, w0 = initial_twist(p, corners, start_normals(p))
     plant.SetFreeBodySpatialVelocity(plant_context, block, SpatialVelocity(w0, v0))
     port = plant.get_applied_spatial_force_input_port()
+    if joints:
+        # The joint forces that give the ground the record's mean acceleration over each step
+        # (the X joint carries three bodies, Y two, Z one; Y's also holds them against gravity).
+        velocity = ground_velocity(p["record"], p["g"])
+        carried = np.array([3.0, 2.0, 1.0]) * GROUND_MASS_RATIO * p["mass"]
+        generalized = plant.get_applied_generalized_force_input_port()
+        starts = [j.velocity_start() for j in joints]
+
+        def shake(t0, t1):
+            tau = np.zeros(plant.num_velocities())
+            accel = (velocity(t1) - velocity(t0)) / (t1 - t0)
+            accel[1] += p["g"]
+            tau[starts] = carried * accel
+            generalized.FixValue(plant_context, tau)
+
+    def ground_at():
+        if not joints:
+            return np.zeros(3)
+        return np.array([j.get_translation(plant_context) for j in joints])
 
     rows = []
     steps = int(round(a.t_end / a.dt))
@@ -208,9 +281,10 @@ def main():
         pose = plant.EvalBodyPoseInWorld(plant_context, block)
         rot = pose.rotation().matrix()
         i_axis, j_axis = rot[:, 0], rot[:, 1]
-        cm = pose.translation()
+        shift = ground_at()
+        cm = pose.translation() - shift
         t = k * a.dt
-        contacts = [pose.multiply(c) for c in corners]
+        contacts = [pose.multiply(c) - shift for c in corners]
         rows.append((t, cm[0], cm[1], cm[2], math.degrees(math.atan2(i_axis[2], i_axis[0])),
                      *[x for c in contacts for x in c]))
         if k == steps:
@@ -218,8 +292,11 @@ def main():
         f = ExternallyAppliedSpatialForce()
         f.body_index = block.index()
         f.p_BoBq_B = np.zeros(3)
-        f.F_Bq_W = SpatialForce(-p["c"] * p["force"] * j_axis, p["force"] * i_axis)
+        seismic = np.array([p["kh"], p["kv"], 0.0]) * p["mass"] * p["g"]
+        f.F_Bq_W = SpatialForce(-p["c"] * p["force"] * j_axis, p["force"] * i_axis + seismic)
         port.FixValue(plant_context, [f])
+        if joints:
+            shake(t, t + a.dt)
         simulator.AdvanceTo((k + 1) * a.dt)
 
     with open(a.out, "w", newline="") as out:

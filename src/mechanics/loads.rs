@@ -26,11 +26,18 @@ pub struct Applied {
 
 impl Applied {
     pub fn new(loads: &Loads, block: &Block, frame: &LocalFrame) -> Self {
+        Applied::shaken(loads, block, frame, [0.0; 3])
+    }
+
+    /// With the foundation accelerating at `ground` (g, along X, Y, Z; a ground-motion
+    /// record): in the foundation's frame the block feels −m g `ground` more at its centre of
+    /// mass, the horizontal part driving (as k_h), the vertical held (as k_v).
+    pub fn shaken(loads: &Loads, block: &Block, frame: &LocalFrame, ground: [f64; 3]) -> Self {
         let f = loads.hydraulic_force;
         let mg = block.mass * loads.gravity;
         let weight = Vector3::new(0.0, -mg, 0.0);
-        let horizontal = Vector3::new(loads.kh * mg, 0.0, 0.0);
-        let vertical = Vector3::new(0.0, loads.kv * mg, 0.0);
+        let horizontal = Vector3::new((loads.kh - ground[0]) * mg, 0.0, -ground[2] * mg);
+        let vertical = Vector3::new(0.0, (loads.kv - ground[1]) * mg, 0.0);
         // From the base point under the CM to the CM.
         let arm = frame.j * loads.cm_height;
         Applied {

@@ -61,6 +61,15 @@ pub struct Route {
     /// Energy balance (rigid-body dynamics only).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub energy: Option<EnergyBalance>,
+    /// With a ground-motion record (`seismic.record`), Newmark's permanent displacement: the
+    /// horizontal distance of the CM at the route's end from its start, relative to the
+    /// foundation (m).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub permanent_displacement_m: Option<f64>,
+    /// With a ground-motion record, the permanent rotation: the yaw at the route's end
+    /// (degrees; the tilts are the foundation's).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub permanent_rotation_deg: Option<f64>,
     /// How the route was computed: written beside the results (summary.json keeps one flat
     /// object), never compared.
     #[serde(flatten)]
@@ -81,6 +90,8 @@ impl PartialEq for Route {
             && self.travel_m == other.travel_m
             && self.increments == other.increments
             && self.energy == other.energy
+            && self.permanent_displacement_m == other.permanent_displacement_m
+            && self.permanent_rotation_deg == other.permanent_rotation_deg
     }
 }
 

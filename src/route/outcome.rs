@@ -91,6 +91,11 @@ impl<'s> Outcome<'s> {
         self.last = Some(row);
     }
 
+    /// The last row pushed.
+    pub fn last_row(&self) -> Option<Row> {
+        self.last
+    }
+
     /// The kept rows, the last row always among them (taken out of the outcome).
     pub fn take_rows(&mut self) -> Vec<Row> {
         if let Some(last) = self.last {

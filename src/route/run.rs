@@ -104,6 +104,11 @@ fn drive(
     if solver.dynamics == DynamicsModel::Paper {
         paper::explain_end(&mut o);
     }
+    // Newmark's permanent displacement and rotation, when the foundation was shaken.
+    let permanent = o
+        .last_row()
+        .filter(|_| scene.record().is_some())
+        .map(|r| (r.x_m.hypot(r.z_m), r.theta_deg));
     Route {
         scene: scene.name.clone(),
         mode: solver.mode,
@@ -117,6 +122,8 @@ fn drive(
         travel_m: o.travel,
         increments: o.increments,
         energy: o.energy,
+        permanent_displacement_m: permanent.map(|p| p.0),
+        permanent_rotation_deg: permanent.map(|p| p.1),
         diagnostics: super::Diagnostics {
             friction_switches: o.switches,
             tracker: finder.stats(),

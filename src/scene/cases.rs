@@ -3,8 +3,8 @@
 //! safety it requires (by default the table's). `crate::check` runs them.
 
 use super::SceneError;
-use super::raw::{RawCase, RawCheck};
 use super::checks::{check, positive};
+use super::raw::{RawCase, RawCheck};
 
 /// A load combination's category (EM 1110-2-2100, §3-4: usual, unusual, extreme).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]

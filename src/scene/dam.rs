@@ -1,8 +1,9 @@
 //! `[monolith]`, `[water]` and `[seismic]` (issue #16, `derivations/11-dam-loads.md`): the
 //! block from its section, the water's loads from levels, pseudo-static coefficients.
 
-use super::raw::{RawMonolith, RawSeismic, RawWater};
 use super::checks::{check, need, non_negative, positive};
+use super::raw::{RawMonolith, RawSeismic, RawWater};
+use super::record::Record;
 use super::water::{Levels, MassProperties, Section, water_loads};
 use super::{Block, Loads, SceneError, Site};
 
@@ -84,16 +85,23 @@ pub(super) fn contacts_on_base(o: &str, site: &Site, m: &Monolith) -> Result<(),
     Ok(())
 }
 
-/// (k_h, k_v): fractions of g, each below 1 in size. A ground-motion record is not read yet.
-pub(super) fn seismic(o: &str, s: &RawSeismic) -> Result<(f64, f64), SceneError> {
-    if s.record.is_some() {
-        return Err(SceneError::new(
-            o,
-            "seismic.record",
-            "ground-motion records are not supported yet; give the pseudo-static kh and kv"
-                .to_string(),
-        ));
-    }
+/// (k_h, k_v): fractions of g, each below 1 in size; and the ground-motion record, read from
+/// `folder`.
+pub(super) fn seismic(
+    o: &str,
+    s: &RawSeismic,
+    folder: &std::path::Path,
+) -> Result<(f64, f64, Option<std::sync::Arc<Record>>), SceneError> {
+    let record = match &s.record {
+        Some(name) => {
+            let path = folder.join(name);
+            let r = Record::read(&path).map_err(|why| {
+                SceneError::new(o, "seismic.record", format!("{}: {why}", path.display()))
+            })?;
+            Some(std::sync::Arc::new(r))
+        }
+        None => None,
+    };
     let coefficient = |key: &str, v: Option<f64>| -> Result<f64, SceneError> {
         let v = v.unwrap_or(0.0);
         check(o, key, v, v.abs() < 1.0, "a fraction of g between −1 and 1")
@@ -101,6 +109,7 @@ pub(super) fn seismic(o: &str, s: &RawSeismic) -> Result<(f64, f64), SceneError>
     Ok((
         coefficient("seismic.kh", s.kh)?,
         coefficient("seismic.kv", s.kv)?,
+        record,
     ))
 }
 

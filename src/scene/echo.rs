@@ -66,7 +66,12 @@ impl Scene {
             }
             t.insert("loads".into(), table(&loads));
             if self.source.contains_key("seismic") {
-                t.insert("seismic".into(), table(&[("kh", f(l.kh)), ("kv", f(l.kv))]));
+                let mut seismic = vec![("kh", f(l.kh)), ("kv", f(l.kv))];
+                let record = self.source.get("seismic").and_then(|s| s.get("record"));
+                if let Some(r) = record {
+                    seismic.push(("record", r.clone()));
+                }
+                t.insert("seismic".into(), table(&seismic));
             }
         }
         if let Some(fr) = &self.friction {

@@ -13,6 +13,7 @@ mod error;
 pub mod input;
 mod raw;
 mod read;
+pub mod record;
 mod simulation;
 mod validate;
 pub mod water;
@@ -275,6 +276,8 @@ pub struct Scene {
     pub(crate) guideline: cases::Guideline,
     /// `[[case]]`: the load combinations `check` runs.
     pub(crate) cases: Vec<cases::LoadCase>,
+    /// `seismic.record`: the foundation's acceleration in time.
+    pub(crate) record: Option<std::sync::Arc<record::Record>>,
 }
 
 /// Two scenes are equal when their values are (the documents may differ in how they wrote
@@ -427,6 +430,16 @@ impl Scene {
         let mut s = self.with_keys(case.keys.iter().map(|(k, v)| (k.as_str(), *v)))?;
         s.name = format!("{}: {}", self.name, case.name);
         Ok(s)
+    }
+
+    /// `seismic.record`, when given.
+    pub fn record(&self) -> Option<&record::Record> {
+        self.record.as_deref()
+    }
+
+    /// The foundation's acceleration (g, along X, Y, Z) at time t: the record's, or none.
+    pub fn ground(&self, t: f64) -> [f64; 3] {
+        self.record.as_ref().map_or([0.0; 3], |r| r.at(t))
     }
 
     /// `[block]`, when given.

@@ -19,7 +19,6 @@ pub const MAX_INCREMENTS: f64 = 1e8;
 /// Relative tolerance on L1X + L2X = L1Z + L2Z.
 const FRAME_TOLERANCE: f64 = 1e-9;
 
-
 /// The block, with the rigid-body inertia defaults (a thin plate in the x'z' plane) and the
 /// checks a rigid body's inertia must pass (positive definite, triangle inequalities).
 fn block(o: &str, b: &raw::RawBlock) -> Result<Block, SceneError> {
@@ -668,9 +667,9 @@ pub(super) fn validate(
         }
         (None, None) => None,
     };
-    let (kh, kv) = match &raw.seismic {
-        Some(s) => dam::seismic(o, s)?,
-        None => (0.0, 0.0),
+    let (kh, kv, record) = match &raw.seismic {
+        Some(s) => dam::seismic(o, s, folder)?,
+        None => (0.0, 0.0, None),
     };
     let loads = match &raw.loads {
         None => {
@@ -753,6 +752,19 @@ pub(super) fn validate(
             }
         }
     };
+    if record.is_some()
+        && solver
+            .as_ref()
+            .is_some_and(|s| s.dynamics != super::DynamicsModel::RigidBody)
+    {
+        return Err(SceneError::new(
+            o,
+            "seismic.record",
+            "a ground-motion record moves the foundation under a rigid body: it needs \
+             solver.dynamics = \"rigid-body\""
+                .to_string(),
+        ));
+    }
     derived(o, site.l(), block.as_ref(), loads.as_ref())?;
     let guideline = match &raw.check {
         Some(c) => super::cases::guideline(o, c)?,
@@ -772,5 +784,6 @@ pub(super) fn validate(
         folder: folder.to_path_buf(),
         guideline,
         cases,
+        record,
     })
 }

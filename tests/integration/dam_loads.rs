@@ -179,7 +179,7 @@ fn dam_sections_that_do_not_fit_together_are_refused_naming_the_key() {
         (
             m + "\n[seismic]\nrecord = \"motion.csv\"\n",
             "seismic.record",
-            "not supported yet",
+            "motion.csv",
         ),
     ];
     for (text, key, why) in cases {

@@ -17,6 +17,7 @@ mod drake_crosscheck;
 mod exact_relations_at_direct_poses;
 mod faces;
 mod general_pose;
+mod ground_motion;
 mod memory;
 mod paper_misprints;
 mod reactions_paper;

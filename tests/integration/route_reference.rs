@@ -75,7 +75,11 @@ fn every_route_of_every_scene_matches_its_stored_reference() {
     for file in scenes() {
         let base = Scene::from_file(&file).unwrap();
         for model in [DynamicsModel::Paper, DynamicsModel::RigidBody] {
-            let scene = base.with_dynamics(model).unwrap();
+            // A ground-motion record moves the foundation under a rigid body only.
+            let Ok(scene) = base.with_dynamics(model) else {
+                assert!(base.record().is_some() && model == DynamicsModel::Paper);
+                continue;
+            };
             let name = format!(
                 "{}-{}.csv",
                 file.file_stem().unwrap().to_string_lossy(),

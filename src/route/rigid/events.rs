@@ -5,6 +5,7 @@
 use super::{Eval, Hold, Y, displacement, energy, evaluate, rest_row, rk4, static_check};
 use crate::mechanics::ContactGeometry;
 use crate::mechanics::rigid_body::Motion;
+use crate::mechanics::static_friction::StaticCheck;
 use crate::route::outcome::Outcome;
 use crate::route::pose_finder::PoseFinder;
 use crate::route::rhs::{Stop, pose_at};
@@ -112,6 +113,17 @@ pub(super) fn bracket_event(
     b
 }
 
+/// How far below 1 the factor of safety of a block at rest may be and the block still be
+/// taken as held when no consistent start of slip is found (`mechanics::rigid_body`'s search
+/// for it resolves accelerations down to about this fraction of g; below it the block would
+/// creep at a rate no route could show).
+pub(super) const BARELY: f64 = 1e-4;
+
+/// Whether the loads exceed the friction cones of `check` by less than [`BARELY`].
+pub(super) fn barely_exceeded(check: &StaticCheck) -> bool {
+    check.lowest <= 1.0 && check.factor_of_safety >= 1.0 - BARELY
+}
+
 /// What a stop comes to (see [`come_to_rest`]).
 pub(super) enum Rest {
     /// Not held: the block slips again from rest, from this evaluation.
@@ -141,7 +153,7 @@ pub(super) fn come_to_rest(
     o.travel += (stop_pose.cm - from.pose.cm).norm();
     o.increments = k;
     let geom = ContactGeometry::with_normals(&finder.site().normals(), &stop_pose);
-    let check = match static_check(sections, &geom) {
+    let check = match static_check(sections, &geom, t_event) {
         Ok(c) => c,
         Err(Stop { reason, detail, .. }) => return Rest::Ended(reason, t, detail),
     };
@@ -166,6 +178,23 @@ pub(super) fn come_to_rest(
         Hold::of(&from.motion).sticking(None),
     ) {
         Ok(e) => Rest::Slips(Box::new(e)),
+        Err(Stop { reason, .. })
+            if reason == Reason::ContactForcesUndetermined && barely_exceeded(&check) =>
+        {
+            o.push(rest_row(t_event, stopped, &stop_pose, from.faces));
+            o.energy = Some(energy(stopped, 0.0, stop_pose.cm.y, origin, mass, g));
+            Rest::Ended(
+                Reason::Stopped,
+                t_event,
+                format!(
+                    "the motion stopped at t = {t_event:.6} s; the loads exceed the friction \
+                     cones by {:.1e} of themselves there, too little for a consistent start of \
+                     slip, and the block is taken as held (factor of safety {})",
+                    1.0 - check.factor_of_safety,
+                    check.factor_of_safety()
+                ),
+            )
+        }
         Err(Stop { reason, detail, .. }) => {
             o.energy = Some(energy(stopped, 0.0, stop_pose.cm.y, origin, mass, g));
             Rest::Ended(reason, t_event, detail)

@@ -1,10 +1,11 @@
 //! The route under rigid-body dynamics (`[solver] dynamics = "rigid-body"`, issue #7;
 //! `derivations/08-rigid-body.md`).
 //!
-//! State y = (X, Z, θ, Ẋ, Ż, θ̇, W_h, W_f): the three degrees of freedom, their rates, and the
-//! work done so far by the hydraulic force and couple (W_h) and by friction (W_f), integrated
-//! with the motion by classic RK4 so that the energy balance can be checked to the
-//! integrator's order. Constraint drift stays at round-off by construction: the pose is
+//! State y = (X, Z, θ, Ẋ, Ż, θ̇, W_h, W_f, t): the three degrees of freedom, their rates, the
+//! work done so far by the applied loads (W_h: the water, the pseudo-static and the record's
+//! inertial forces) and by friction (W_f), integrated with the motion by classic RK4 so that the
+//! energy balance can be checked to the integrator's order, and the time, on which a
+//! ground-motion record's loads depend. Constraint drift stays at round-off by construction: the pose is
 //! recomputed from (X, Z, θ) by the tracker at every evaluation and the six-component twist is
 //! the projection of (Ẋ, Ż, θ̇) onto the constraints (`mechanics::rigid_body::twist`).
 //!
@@ -39,7 +40,7 @@ mod substep;
 
 use events::{Event, Heading};
 
-type Y = [f64; 8];
+type Y = [f64; 9];
 
 /// One evaluation of the rigid-body right-hand side.
 #[derive(Debug, Clone, Copy)]
@@ -126,7 +127,12 @@ fn evaluate(
     let stuck = hold.stuck;
     let pose = pose_at(scene, finder, displacement(y))?;
     let geom = ContactGeometry::with_normals(&finder.site().normals(), &pose);
-    let applied = Applied::new(dynamics.loads(), dynamics.block(), &geom.frame);
+    let applied = Applied::shaken(
+        dynamics.loads(),
+        dynamics.block(),
+        &geom.frame,
+        scene.ground(y[8]),
+    );
     let mut rates = [y[3], y[4], y[5]];
     let mut removed = 0.0;
     if let Some(i) = stuck {
@@ -222,6 +228,7 @@ fn derivative(y: &Y, m: &Motion) -> Y {
         m.acc[2],
         m.power_hydraulic,
         m.power_friction,
+        1.0,
     ]
 }
 
@@ -299,9 +306,52 @@ fn rest_row(t: f64, y: &Y, pose: &Pose, faces: [u32; 3]) -> Row {
     }
 }
 
-/// The static check at a pose.
-fn static_check(dynamics: &Simulation, geom: &ContactGeometry) -> Result<StaticCheck, Stop> {
-    let applied = Applied::new(dynamics.loads(), dynamics.block(), &geom.frame);
+/// The evaluation of the block held at rest at `pose` (no motion; the normal reactions of a
+/// holding state of `check`).
+fn rest_eval(
+    dynamics: &Simulation,
+    finder: &PoseFinder<'_>,
+    pose: Pose,
+    check: &StaticCheck,
+) -> Result<Eval, Stop> {
+    let geom = ContactGeometry::with_normals(&finder.site().normals(), &pose);
+    let inertia = rigid_body::Inertia::new(dynamics.block(), &geom).map_err(stop_of)?;
+    let zero = Vector3::zeros();
+    Ok(Eval {
+        pose,
+        motion: Motion {
+            twist: rigid_body::Twist::default(),
+            accel: zero,
+            ang_accel: zero,
+            normal: check.normal,
+            shear: [zero; 3],
+            slip: [zero; 3],
+            acc: [0.0; 3],
+            power_hydraulic: 0.0,
+            power_friction: 0.0,
+            inertia,
+            stuck: None,
+            crease_normal: [None; 3],
+            creases: Creases::NONE,
+        },
+        rates: [0.0; 3],
+        removed: 0.0,
+        faces: faces_of(finder.site()),
+    })
+}
+
+/// The static check at a pose at time t (the loads of a ground-motion record then).
+fn static_check(
+    dynamics: &Simulation,
+    geom: &ContactGeometry,
+    t: f64,
+) -> Result<StaticCheck, Stop> {
+    let applied = Applied::shaken(
+        dynamics.loads(),
+        dynamics.block(),
+        &geom.frame,
+        dynamics.scene().ground(t),
+    );
     static_friction::at_rest(geom, &applied, dynamics.friction()).map_err(|err| Stop {
         contact: None,
         reason: Reason::ContactForcesUndetermined,
@@ -361,6 +411,10 @@ pub(super) struct RigidBody<'a> {
     /// energies are tiny, the tolerance alone asked for it, and every increment was halved down
     /// to the shortest substep (36 000 halvings in the first 0.2 ms at dt = 10 µs).
     round_off: f64,
+    /// Held at rest by static friction while a ground-motion record's loads change: each
+    /// increment checks the friction cones again, and the block slips when they no longer hold
+    /// it (`rest`).
+    resting: bool,
 }
 
 impl RigidBody<'_> {
@@ -386,7 +440,7 @@ impl<'a> Dynamics<'a> for RigidBody<'a> {
     ) -> Start<'s, Self> {
         let mass = sections.block().mass;
         let init = scene.initial;
-        let y: Y = [0.0, 0.0, 0.0, init.vx, init.vz, init.omega, 0.0, 0.0];
+        let y: Y = [0.0, 0.0, 0.0, init.vx, init.vz, init.omega, 0.0, 0.0, 0.0];
         // The start: at rest, held or not by static friction (decided before any acceleration
         // is sought: a held block has no consistent way to slip); or moving as `[initial]`
         // says, when it goes on until it stops (the factor of safety is reported all the same).
@@ -397,7 +451,7 @@ impl<'a> Dynamics<'a> for RigidBody<'a> {
                 "the flat start pose has no root to follow".into(),
             ));
         };
-        let check = match static_check(sections, &ContactGeometry::new(scene, &start_pose)) {
+        let check = match static_check(sections, &ContactGeometry::new(scene, &start_pose), 0.0) {
             Ok(c) => c,
             Err(Stop { reason, detail, .. }) => {
                 o.push(rest_row(0.0, &y, &start_pose, faces_of(&scene.site)));
@@ -405,6 +459,33 @@ impl<'a> Dynamics<'a> for RigidBody<'a> {
             }
         };
         o.fs = Some(check.factor_of_safety());
+        let shaken = scene.record().is_some_and(|r| r.end() > 0.0);
+        if init.at_rest() && check.holds() && shaken {
+            // Held for now: it rests while the record's loads change.
+            o.push(rest_row(0.0, &y, &start_pose, faces_of(&scene.site)));
+            let ev = match rest_eval(sections, finder, start_pose, &check) {
+                Ok(e) => e,
+                Err(Stop { reason, detail, .. }) => {
+                    return Start::Ended(o.end(reason, 0.0, detail));
+                }
+            };
+            return Start::Moving(
+                RigidBody {
+                    scene,
+                    sections,
+                    y,
+                    t: 0.0,
+                    ev,
+                    anchor: None,
+                    ke_max: 0.0,
+                    h: sections.solver().dt,
+                    origin: (0.0, start_pose.cm.y),
+                    round_off: 64.0 * f64::EPSILON * mass * sections.loads().gravity * scene.l(),
+                    resting: true,
+                },
+                o,
+            );
+        }
         if init.at_rest() && check.holds() {
             o.push(rest_row(0.0, &y, &start_pose, faces_of(&scene.site)));
             let mut done = o.end(
@@ -443,6 +524,7 @@ impl<'a> Dynamics<'a> for RigidBody<'a> {
                 h: sections.solver().dt,
                 origin,
                 round_off: 64.0 * f64::EPSILON * mass * sections.loads().gravity * scene.l(),
+                resting: false,
             },
             o,
         )
@@ -459,7 +541,11 @@ impl<'a> Dynamics<'a> for RigidBody<'a> {
     }
 
     fn row(&self) -> Row {
-        row(self.t, &self.y, &self.ev)
+        if self.resting {
+            rest_row(self.t, &self.y, &self.ev.pose, self.ev.faces)
+        } else {
+            row(self.t, &self.y, &self.ev)
+        }
     }
 
     fn close(&self, o: &mut Outcome<'_>) {

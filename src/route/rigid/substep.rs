@@ -2,10 +2,10 @@
 //! where the energy balance says RK4 does not resolve the motion, or cut at an event and the
 //! event handled (`derivations/08-rigid-body.md` §3).
 
-use super::events::{Bracket, Event, Heading, Rest, bracket_event, come_to_rest};
+use super::events::{Bracket, Event, Heading, Rest, barely_exceeded, bracket_event, come_to_rest};
 use super::{
-    Eval, Hold, RigidBody, Y, accept, anchor_of, derivative, displacement, evaluate, hold, rk4,
-    row, stop_of,
+    Eval, Hold, RigidBody, Y, accept, anchor_of, derivative, displacement, evaluate, hold,
+    rest_eval, rest_row, rk4, row, static_check, stop_of,
 };
 use crate::mechanics::ContactGeometry;
 use crate::mechanics::rigid_body::{self, Crease, Creases, Impact, ImpactLaw, RigidError};
@@ -97,11 +97,24 @@ impl RigidBody<'_> {
     ) -> Flow<'s> {
         let mut events = 0usize;
         while self.t < t_target * (1.0 - 1e-15) {
+            if self.resting {
+                o = match self.rest(finder, t_target, o) {
+                    Flow::Go(o) if !self.resting => o,
+                    flow => return flow,
+                };
+                continue;
+            }
             // Past MAX_EVENTS in one increment (a contact's slip chattering about zero), the
             // rest of the increment is taken in plain substeps: its error shows in the energy
             // balance.
             let resolve = events < MAX_EVENTS;
-            match self.substep(finder, k, t_target - self.t, resolve, &mut o) {
+            // A ground-motion record's samples are where its loads may turn: substeps end on
+            // them (RK4 keeps its order between them).
+            let until = match self.scene.record().and_then(|r| r.next_sample(self.t)) {
+                Some(s) if s < t_target => s,
+                _ => t_target,
+            };
+            match self.substep(finder, k, until - self.t, resolve, &mut o) {
                 Ok(Substep::Event) => events += 1,
                 Ok(Substep::Retry | Substep::Moved) => {}
                 Err(Ending::Failed(stop)) => return Flow::Ended(self.fail(o, stop)),
@@ -111,6 +124,118 @@ impl RigidBody<'_> {
             }
         }
         self.t = t_target;
+        Flow::Go(o)
+    }
+
+    /// An increment at rest, to `t_target`, while a ground-motion record shakes the
+    /// foundation: the friction cones are checked with the loads then. Held, the block stays
+    /// (and the route ends "stopped" once the record is over); not held, it slips from rest at
+    /// the moment the cones stop holding it (found by bisection; `self.resting` is then false
+    /// and the increment goes on in substeps).
+    fn rest<'s>(
+        &mut self,
+        finder: &mut PoseFinder<'_>,
+        t_target: f64,
+        mut o: Outcome<'s>,
+    ) -> Flow<'s> {
+        let (scene, sections) = (self.scene, self.sections);
+        let geom = ContactGeometry::with_normals(&finder.site().normals(), &self.ev.pose);
+        let holds = |t: f64| static_check(sections, &geom, t).map(|c| c.holds());
+        // The record's samples within the increment, where its loads turn: the cones are
+        // checked at each (between them the loads are linear in time).
+        let mut at = self.t;
+        let mut slips = None;
+        while at < t_target {
+            let next = match scene.record().and_then(|r| r.next_sample(at)) {
+                Some(s) if s < t_target => s,
+                _ => t_target,
+            };
+            match holds(next) {
+                Ok(true) => at = next,
+                Ok(false) => {
+                    slips = Some((at, next));
+                    break;
+                }
+                Err(s) => return Flow::Ended(self.fail(o, s)),
+            }
+        }
+        if let Some((mut lo, mut hi)) = slips {
+            // Held at lo, not at hi: the onset of slip to a millionth of the interval.
+            for _ in 0..20 {
+                let mid = 0.5 * (lo + hi);
+                match holds(mid) {
+                    Ok(true) => lo = mid,
+                    Ok(false) => hi = mid,
+                    Err(s) => return Flow::Ended(self.fail(o, s)),
+                }
+            }
+            // Just past the onset the loads exceed the cones by the cone program's tolerance,
+            // too little for a consistent direction of slip: the start is sought a little later,
+            // at lengths doubling from the bisection's, within the increment.
+            let mut late = hi - lo;
+            let mut tried = hi;
+            loop {
+                let mut y = self.y;
+                y[8] = tried;
+                match evaluate(scene, sections, finder, &y, Hold::default()) {
+                    Ok(e) => {
+                        self.y = y;
+                        self.t = tried;
+                        self.ev = e;
+                        self.resting = false;
+                        self.anchor = anchor_of(&self.ev, None);
+                        self.h = sections.solver().dt;
+                        return Flow::Go(o);
+                    }
+                    Err(s) if tried >= t_target => {
+                        // Over the cones by too little for a consistent start of slip: held
+                        // for this increment, checked again at the next.
+                        let barely = static_check(sections, &geom, t_target)
+                            .is_ok_and(|c| barely_exceeded(&c));
+                        if s.reason == Reason::ContactForcesUndetermined && barely {
+                            self.t = t_target;
+                            self.y[8] = t_target;
+                            return Flow::Go(o);
+                        }
+                        return Flow::Ended(self.fail(o, s));
+                    }
+                    Err(_) => {
+                        tried = (hi + late).min(t_target);
+                        late *= 2.0;
+                    }
+                }
+            }
+        }
+        self.t = t_target;
+        self.y[8] = t_target;
+        let check = match static_check(sections, &geom, t_target) {
+            Ok(c) => c,
+            Err(s) => return Flow::Ended(self.fail(o, s)),
+        };
+        let over = scene.record().is_none_or(|r| t_target >= r.end());
+        if over {
+            let moved = o.travel > 0.0;
+            o.push(rest_row(self.t, &self.y, &self.ev.pose, self.ev.faces));
+            o.energy = Some(self.balance(&self.y, &self.ev));
+            let (reason, what) = if moved {
+                (Reason::Stopped, "the block came to rest")
+            } else {
+                (Reason::DoesNotSlide, "the block never slid")
+            };
+            return Flow::Ended(o.end(
+                reason,
+                self.t,
+                format!(
+                    "the ground-motion record ended at {:.6} s; {what} and static friction \
+                     holds it (factor of safety {})",
+                    scene.record().map_or(0.0, |r| r.end()),
+                    check.factor_of_safety()
+                ),
+            ));
+        }
+        if let Ok(e) = rest_eval(sections, finder, self.ev.pose, &check) {
+            self.ev = e;
+        }
         Flow::Go(o)
     }
 
@@ -451,6 +576,23 @@ impl RigidBody<'_> {
             o,
         ) {
             Rest::Failed(e) => Err(Ending::Failed(e)),
+            // Held while a record still shakes the foundation: it rests, checked again at each
+            // increment.
+            Rest::Ended(Reason::Stopped, at, _)
+                if self.scene.record().is_some_and(|r| at < r.end()) =>
+            {
+                let pose =
+                    pose_at(self.scene, finder, displacement(&stopped)).map_err(Ending::Failed)?;
+                let geom = ContactGeometry::with_normals(&finder.site().normals(), &pose);
+                let check = static_check(self.sections, &geom, at).map_err(Ending::Failed)?;
+                self.ev = rest_eval(self.sections, finder, pose, &check).map_err(Ending::Failed)?;
+                self.y = stopped;
+                self.y[8] = at;
+                self.t = at;
+                self.anchor = None;
+                self.resting = true;
+                Ok(Substep::Event)
+            }
             Rest::Ended(reason, at, detail) => Err(Ending::At(reason, at, detail)),
             Rest::Slips(e) => {
                 self.ev = *e;

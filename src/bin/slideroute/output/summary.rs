@@ -42,6 +42,14 @@ impl fmt::Display for RouteSummary<'_> {
                 fixed(last.gamma_deg, 3)
             )?;
         }
+        if let (Some(d), Some(rot)) = (r.permanent_displacement_m, r.permanent_rotation_deg) {
+            writeln!(
+                f,
+                "  permanent displacement {} m, rotation {}° (relative to the shaken foundation)",
+                fixed(d, 3),
+                fixed(rot, 3)
+            )?;
+        }
         if let Some(fs) = r.factor_of_safety {
             writeln!(f, "  factor of safety {fs} (friction cones at the start)")?;
         }

@@ -1,0 +1,229 @@
+//! A ground-motion record (`seismic.record`, issue #16): the foundation shaken, the route the
+//! block's motion relative to it — Newmark's sliding block in 3-D, against his closed forms
+//! (`derivations/11-dam-loads.md` §7).
+
+use slideroute::stages::route::{self, Reason, Route};
+use slideroute::stages::scene::Scene;
+
+const G: f64 = 9.81;
+
+/// The paper-like block on three planes of 0.01° dip (a level base), μ, no water, no turning
+/// couple: what Newmark's rigid block on a level plane is. The record is written beside it.
+fn shaken(name: &str, mu: f64, record: &[(f64, f64)], extra: &str) -> Scene {
+    let dir = std::env::temp_dir().join(format!("slideroute-record-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut csv = String::from("t_s,ax_g,ay_g,az_g\n");
+    for (t, ax) in record {
+        csv += &format!("{t},{ax},0,0\n");
+    }
+    std::fs::write(dir.join("motion.csv"), csv).unwrap();
+    let paper = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/paper-like.toml"),
+    )
+    .unwrap();
+    let text = paper
+        .replace("xi_deg = 20.0", "xi_deg = 0.01")
+        .replace("zeta_deg = 25.0", "zeta_deg = 0.01")
+        .replace("kappa_deg = 30.0", "kappa_deg = 0.0")
+        .replace("hydraulic_force_n = 8.0e6", "hydraulic_force_n = 0.0")
+        .replace("eccentricity_m = 1.0", "eccentricity_m = 0.0")
+        .replace("mu_k = 0.40", &format!("mu_k = {mu}"))
+        .replace("t_end_s = 20.0", "t_end_s = 5.0")
+        + "\n[seismic]\nrecord = \"motion.csv\"\n"
+        + extra;
+    let path = dir.join("scene.toml");
+    std::fs::write(&path, text).unwrap();
+    let s = Scene::from_file(&path).unwrap_or_else(|e| panic!("{e}"));
+    std::fs::remove_dir_all(&dir).ok();
+    s
+}
+
+/// A rectangular pulse of `a` g from `t0` for `len` s (linear over 1 µs at its ends).
+fn pulse(t0: f64, a: f64, len: f64) -> Vec<(f64, f64)> {
+    let mut r = vec![];
+    if t0 > 0.0 {
+        r.push((0.0, 0.0));
+        r.push((t0 - 1e-6, 0.0));
+    }
+    r.extend([(t0, a), (t0 + len, a), (t0 + len + 1e-6, 0.0)]);
+    r
+}
+
+/// Newmark's (1965) rectangular pulse of A g for t₀ on a block of yield acceleration N g:
+/// V² / (2 g N) · (1 − N / A), V = A g t₀.
+fn newmark(a: f64, n: f64, t0: f64) -> f64 {
+    let v = a * G * t0;
+    v * v / (2.0 * G * n) * (1.0 - n / a)
+}
+
+fn run(s: &Scene) -> Route {
+    route::run(s).unwrap_or_else(|e| panic!("{e}"))
+}
+
+#[test]
+fn a_rectangular_pulse_slides_the_block_newmarks_distance_and_it_stops() {
+    // The issue's case: −0.5 g along X for 0.2 s, μ = 0.1: 0.392 m forward relative to the
+    // foundation.
+    let want = newmark(0.5, 0.1, 0.2);
+    assert!((want - 0.392).abs() < 5e-4, "{want}");
+    let r = run(&shaken("newmark", 0.1, &pulse(0.0, -0.5, 0.2), ""));
+    assert_eq!(r.termination.reason, Reason::Stopped, "{:?}", r.termination);
+    let d = r.permanent_displacement_m.unwrap();
+    println!(
+        "Newmark's pulse: {d:.5} m against {want:.5} m, stopped at {} s",
+        r.termination.t_s
+    );
+    assert!((d - want).abs() < 0.02 * want, "{d} m against {want} m");
+    // Forward, along X. Friction through the centre of the normal forces, which is under the
+    // CM, turns a translating block not at all; what turns it is the planes' dips, which differ
+    // in direction: 0.0026° here, a tenth of it on 0.001° dips (measured), so in proportion.
+    let last = r.rows.last().unwrap();
+    assert!(last.x_m > 0.0 && last.z_m.abs() < 1e-3 * d, "{last:?}");
+    let rot = r.permanent_rotation_deg.unwrap();
+    assert!(rot.abs() < 0.5 * 0.01, "turned {rot}°");
+    // It stops at the end of the relative motion: t₀ A / N = 1 s after the pulse began.
+    let stop = r.termination.t_s;
+    assert!((stop - 1.0).abs() < 0.01, "stopped at {stop} s");
+    // The energy balance: the record's inertial force does the work friction takes.
+    let e = r.energy.unwrap();
+    assert!(e.residual_j.abs() < 1e-6 * e.work_friction_j.abs(), "{e:?}");
+}
+
+#[test]
+fn newmarks_distance_holds_for_other_pulses_and_frictions() {
+    for (a, n, t0) in [(0.3, 0.15, 0.3), (1.0, 0.4, 0.1)] {
+        let want = newmark(a, n, t0);
+        let r = run(&shaken(&format!("{a}-{n}"), n, &pulse(0.0, -a, t0), ""));
+        let d = r.permanent_displacement_m.unwrap();
+        assert!(
+            (d - want).abs() < 0.02 * want,
+            "A {a}, N {n}: {d} m against {want} m"
+        );
+    }
+}
+
+#[test]
+fn a_held_block_waits_for_the_record_and_slides_again_at_each_pulse() {
+    // Held from the start (nothing drives it), the block slips when the record's pulse comes
+    // at 0.5 s, stops, and slips again at the second pulse: twice Newmark's distance. A pulse
+    // under the friction (0.05 g < 0.1 g) moves it not at all.
+    let one = newmark(0.5, 0.1, 0.2);
+    let mut record = pulse(0.5, -0.5, 0.2);
+    record.extend([
+        (2.0, 0.0),
+        (2.0 + 1e-6, -0.05),
+        (2.2, -0.05),
+        (2.2 + 1e-6, 0.0),
+    ]);
+    record.extend([
+        (2.5, 0.0),
+        (2.5 + 1e-6, -0.5),
+        (2.7, -0.5),
+        (2.7 + 1e-6, 0.0),
+    ]);
+    record.push((4.0, 0.0));
+    let r = run(&shaken("twice", 0.1, &record, ""));
+    assert_eq!(r.termination.reason, Reason::Stopped, "{:?}", r.termination);
+    let d = r.permanent_displacement_m.unwrap();
+    assert!(
+        (d - 2.0 * one).abs() < 0.02 * 2.0 * one,
+        "{d} m against {}",
+        2.0 * one
+    );
+    // Still until the first pulse, still between the pulses.
+    let moving = |t0: f64, t1: f64| {
+        r.rows
+            .iter()
+            .filter(|row| row.t_s > t0 && row.t_s < t1)
+            .any(|row| row.vx_m_s.abs() > 1e-9)
+    };
+    assert!(!moving(0.0, 0.5 - 1e-6), "moved before the pulse");
+    assert!(moving(0.5, 1.5), "did not slide at the first pulse");
+    assert!(!moving(1.6, 2.5 - 1e-6), "moved between the pulses");
+    assert!(moving(2.5, 3.5), "did not slide again at the second pulse");
+    // It ends when the record does and the block is held.
+    assert!(
+        (r.termination.t_s - 4.0).abs() < 2e-3,
+        "{:?}",
+        r.termination
+    );
+}
+
+#[test]
+fn a_pulse_back_slides_the_block_back_to_its_start() {
+    // Two-way sliding on a level base: −A then, once it stopped, +A: back where it started.
+    let one = newmark(0.5, 0.1, 0.2);
+    let mut record = pulse(0.0, -0.5, 0.2);
+    record.extend([
+        (1.5, 0.0),
+        (1.5 + 1e-6, 0.5),
+        (1.7, 0.5),
+        (1.7 + 1e-6, 0.0),
+        (3.0, 0.0),
+    ]);
+    let r = run(&shaken("back", 0.1, &record, ""));
+    let d = r.permanent_displacement_m.unwrap();
+    assert!(d < 0.01 * one, "{d} m from the start");
+    assert!(
+        (r.travel_m - 2.0 * one).abs() < 0.02 * 2.0 * one,
+        "travel {} m",
+        r.travel_m
+    );
+}
+
+#[test]
+fn a_record_the_scene_cannot_use_is_refused_naming_the_key() {
+    let dir = std::env::temp_dir().join(format!("slideroute-bad-record-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let paper = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/paper-like.toml"),
+    )
+    .unwrap();
+    let cases = [
+        ("missing.csv", None, "missing.csv"),
+        (
+            "header.csv",
+            Some("t,ax,ay,az\n0,0,0,0\n1,0,0,0\n"),
+            "header",
+        ),
+        (
+            "order.csv",
+            Some("t_s,ax_g,ay_g,az_g\n0,0,0,0\n1,0,0,0\n0.5,0,0,0\n"),
+            "line 4",
+        ),
+        (
+            "text.csv",
+            Some("t_s,ax_g,ay_g,az_g\n0,0,0,0\n1,lots,0,0\n"),
+            "`lots` in ax_g",
+        ),
+        (
+            "huge.csv",
+            Some("t_s,ax_g,ay_g,az_g\n0,0,0,0\n1,20,0,0\n"),
+            "10 g",
+        ),
+        (
+            "one.csv",
+            Some("t_s,ax_g,ay_g,az_g\n0,0,0,0\n"),
+            "two samples",
+        ),
+    ];
+    for (name, body, why) in cases {
+        if let Some(b) = body {
+            std::fs::write(dir.join(name), b).unwrap();
+        }
+        let path = dir.join(format!("{name}.toml"));
+        std::fs::write(&path, format!("{paper}\n[seismic]\nrecord = \"{name}\"\n")).unwrap();
+        let e = Scene::from_file(&path).unwrap_err();
+        assert_eq!(e.key, "seismic.record", "{e}");
+        assert!(e.to_string().contains(why), "{name}: {e}");
+    }
+    // The paper's dynamics has no moving foundation.
+    std::fs::write(dir.join("ok.csv"), "t_s,ax_g,ay_g,az_g\n0,0,0,0\n1,0,0,0\n").unwrap();
+    let path = dir.join("paper.toml");
+    let text = paper.replace("# dynamics = \"rigid-body\"", "dynamics = \"paper\"");
+    std::fs::write(&path, format!("{text}\n[seismic]\nrecord = \"ok.csv\"\n")).unwrap();
+    let e = Scene::from_file(&path).unwrap_err();
+    assert_eq!(e.key, "seismic.record", "{e}");
+    assert!(e.to_string().contains("rigid-body"), "{e}");
+    std::fs::remove_dir_all(&dir).ok();
+}
