@@ -51,37 +51,6 @@ impl Friction {
         }
     }
 
-    /// Settles the coefficients μ of a stress-dependent criterion with the normal forces they
-    /// give (the one fixed point of §8 for every solve that needs it): solve at μ and take μ'
-    /// at the solution's normals, until μ' differs from μ by less than `tol` (at most `max`
-    /// solves). Returns the last solution — the one at the μ its own normals reproduce to
-    /// `tol` — and whether it settled; μ is left at μ'. `normals` answering `None` (a solution
-    /// without finite normals) stops the iteration unsettled.
-    pub fn settle<S, E>(
-        &self,
-        mu: &mut [f64; 3],
-        (tol, max): (f64, usize),
-        mut solve: impl FnMut(&[f64; 3]) -> Result<S, E>,
-        normals: impl Fn(&S) -> Option<[f64; 3]>,
-    ) -> Result<(S, bool), E> {
-        let mut sol = solve(mu)?;
-        for k in 0..max.max(1) {
-            if k > 0 {
-                sol = solve(mu)?;
-            }
-            let Some(n) = normals(&sol) else {
-                return Ok((sol, false));
-            };
-            let new = n.map(|l| self.coefficient(l.max(0.0)));
-            let change = (0..3).map(|j| (new[j] - mu[j]).abs()).fold(0.0, f64::max);
-            *mu = new;
-            if change < tol {
-                return Ok((sol, true));
-            }
-        }
-        Ok((sol, false))
-    }
-
     /// True when |S| / |N| depends on |N| (the coefficients must be settled with the normals).
     pub fn is_stress_dependent(&self) -> bool {
         match *self {
@@ -121,30 +90,5 @@ mod tests {
         assert!((f.coefficient(200e6) - 30f64.to_radians().tan()).abs() < 1e-12);
         assert!((f.coefficient(1.0) - 70f64.to_radians().tan()).abs() < 1e-12);
         assert!(f.is_stress_dependent() && !f.is_frictionless());
-    }
-
-    #[test]
-    fn settling_reaches_the_coefficients_its_normals_give() {
-        // A toy solve: the normal force falls as the coefficient grows, N = 1 MN / (1 + μ).
-        let f = Friction::BartonChoubey {
-            jrc: 10.0,
-            jcs_pa: 50e6,
-            phi_r: 30f64.to_radians(),
-            contact_area_m2: 2.0,
-        };
-        let solve = |mu: &[f64; 3]| -> Result<[f64; 3], ()> { Ok(mu.map(|m| 1e6 / (1.0 + m))) };
-        let mut mu = [0.5; 3];
-        let (n, settled) = f
-            .settle(&mut mu, (1e-13, 100), solve, |n| Some(*n))
-            .unwrap();
-        assert!(settled);
-        for j in 0..3 {
-            assert!((f.coefficient(n[j]) - mu[j]).abs() < 1e-12);
-            assert!((n[j] - 1e6 / (1.0 + mu[j])).abs() < 1e-6);
-        }
-        // Normals that cannot be had stop it, unsettled.
-        let mut mu = [0.5; 3];
-        let (_, settled) = f.settle(&mut mu, (1e-13, 100), solve, |_| None).unwrap();
-        assert!(!settled && mu == [0.5; 3]);
     }
 }

@@ -12,6 +12,7 @@ pub mod reactions_paper;
 pub mod rigid_body;
 pub mod static_friction;
 pub mod statics;
+pub mod strength;
 
 use crate::geometry::{LocalFrame, Pose};
 use crate::scene::Scene;

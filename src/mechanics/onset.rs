@@ -11,21 +11,21 @@
 
 use super::ContactGeometry;
 use super::loads::Applied;
-use crate::scene::Friction;
+use crate::scene::Strength;
 
 /// (FS, D, R); FS is `f64::INFINITY` when D ≤ 0.
 pub fn factor_of_safety(
     geom: &ContactGeometry,
     applied: &Applied,
     c: &[f64; 3],
-    friction: &Friction,
+    friction: &Strength,
 ) -> (f64, f64, f64) {
     let i = &geom.frame.i;
     let mut driving = applied.total_force().dot(i);
     let mut resisting = 0.0;
-    for (n, &ck) in geom.n.iter().zip(c) {
+    for (k, (n, &ck)) in geom.n.iter().zip(c).enumerate() {
         driving += n.dot(i) * ck;
-        resisting += friction.shear(ck.max(0.0));
+        resisting += friction.shear(k, ck.max(0.0));
     }
     let fs = if driving > 0.0 {
         resisting / driving
@@ -57,7 +57,7 @@ mod tests {
         let driving =
             d.loads().hydraulic_force - c[1] * g.xi.sin() - c[2] * g.zeta.sin() * g.kappa.cos();
         let want = 0.4 * (c[0] + c[1] + c[2]) / driving;
-        let (fs, dd, _) = factor_of_safety(&geom, &applied, &c, d.friction());
+        let (fs, dd, _) = factor_of_safety(&geom, &applied, &c, &d.strength([0, 1, 2], false));
         assert!((fs - want).abs() < 1e-12 * want, "{fs} vs {want}");
         assert!((dd - driving).abs() < 1e-6);
     }

@@ -22,7 +22,8 @@ use super::ContactGeometry;
 use super::loads::Applied;
 use super::statics::ratios;
 use crate::numeric::{poly_mul, poly_roots, wrap_angle as wrap};
-use crate::scene::{Block, Friction};
+use crate::scene::Block;
+use crate::scene::Strength;
 use nalgebra::{Matrix3, Matrix3x4, SMatrix, Vector3, Vector4};
 
 /// One solution of the frictional system, with the accelerations it implies.
@@ -418,7 +419,7 @@ fn prologue(
     applied: &Applied,
     block: &Block,
     c: &[f64; 3],
-    friction: &Friction,
+    friction: &Strength,
 ) -> Result<([f64; 3], Option<Reaction>), ReactionsError> {
     if let Some(k) = (0..3).find(|&k| c[k] <= 0.0) {
         return Err(ReactionsError::LiftOff(k));
@@ -444,8 +445,8 @@ fn prologue(
 }
 
 /// Per-contact friction coefficients at N0 = j.
-fn mu_at(friction: &Friction, m: &[f64; 3], j: f64) -> [f64; 3] {
-    [0, 1, 2].map(|i| friction.coefficient(j * m[i]))
+fn mu_at(friction: &Strength, m: &[f64; 3], j: f64) -> [f64; 3] {
+    [0, 1, 2].map(|i| friction.coefficient(i, j * m[i]))
 }
 
 /// For a stress-dependent criterion (Barton–Choubey) μ_i depends on j: iterate j to a fixed
@@ -454,7 +455,7 @@ fn settle(
     geom: &ContactGeometry,
     applied: &Applied,
     m: &[f64; 3],
-    friction: &Friction,
+    friction: &Strength,
     mut p: Point,
 ) -> Option<Point> {
     if !friction.is_stress_dependent() {
@@ -481,7 +482,7 @@ fn reaction_at(
     applied: &Applied,
     block: &Block,
     m: &[f64; 3],
-    friction: &Friction,
+    friction: &Strength,
     sys: &System,
     p: Point,
 ) -> Reaction {
@@ -497,7 +498,7 @@ pub fn all_solutions(
     applied: &Applied,
     block: &Block,
     c: &[f64; 3],
-    friction: &Friction,
+    friction: &Strength,
 ) -> Result<Vec<Reaction>, ReactionsError> {
     let (m, frictionless) = prologue(geom, applied, block, c, friction)?;
     if let Some(r) = frictionless {
@@ -522,7 +523,7 @@ pub fn follow(
     applied: &Applied,
     block: &Block,
     c: &[f64; 3],
-    friction: &Friction,
+    friction: &Strength,
     previous: &Reaction,
 ) -> Result<Option<Reaction>, ReactionsError> {
     let (m, frictionless) = prologue(geom, applied, block, c, friction)?;

@@ -18,7 +18,8 @@
 
 use super::ContactGeometry;
 use super::loads::Applied;
-use crate::scene::{Block, Friction};
+use crate::scene::Block;
+use crate::scene::Strength;
 use nalgebra::{Matrix3, Matrix6, SMatrix, SVector, Vector3, Vector6};
 
 /// Why the rigid-body accelerations cannot be had at a state.
@@ -982,7 +983,7 @@ pub fn accelerations(
     geom: &ContactGeometry,
     applied: &Applied,
     block: &Block,
-    friction: &Friction,
+    friction: &Strength,
     rates: [f64; 3],
 ) -> Result<Motion, RigidError> {
     accelerations_slaved(geom, applied, block, friction, rates, 0.0)
@@ -1012,7 +1013,7 @@ pub fn accelerations_slaved(
     geom: &ContactGeometry,
     applied: &Applied,
     block: &Block,
-    friction: &Friction,
+    friction: &Strength,
     rates: [f64; 3],
     step: f64,
 ) -> Result<Motion, RigidError> {
@@ -1030,7 +1031,7 @@ pub fn accelerations_in_crease(
     geom: &ContactGeometry,
     applied: &Applied,
     block: &Block,
-    friction: &Friction,
+    friction: &Strength,
     rates: [f64; 3],
     step: f64,
     creases: Creases,
@@ -1055,7 +1056,7 @@ pub fn accelerations_in_crease(
         if frictionless {
             [0.0; 3]
         } else {
-            lambda.map(|l| friction.coefficient(l.max(0.0)))
+            friction.coefficients(lambda)
         }
     };
     let stress_dependent = friction.is_stress_dependent();
@@ -1433,6 +1434,7 @@ fn from_rest(
 mod tests {
     use super::*;
     use crate::geometry::{Displacement, Pose, direct};
+    use crate::scene::Friction;
     use crate::scene::Scene;
 
     fn at(scene: &Scene, d: Displacement) -> ContactGeometry {
@@ -1499,7 +1501,14 @@ mod tests {
         let d = crate::scene::Simulation::new(&scene).unwrap();
         let geom = at(&scene, Displacement::new(0.7, 0.2, 0.1));
         let applied = Applied::new(d.loads(), d.block(), &geom.frame);
-        let m = accelerations(&geom, &applied, d.block(), d.friction(), [1.0, 0.1, 0.2]).unwrap();
+        let m = accelerations(
+            &geom,
+            &applied,
+            d.block(),
+            &d.strength([0, 1, 2], false),
+            [1.0, 0.1, 0.2],
+        )
+        .unwrap();
         for i in 0..3 {
             let r = geom.r[i];
             let acc = m.accel + m.ang_accel.cross(&r) + m.twist.w.cross(&m.twist.w.cross(&r));
@@ -1521,7 +1530,14 @@ mod tests {
         let d = crate::scene::Simulation::new(&scene).unwrap();
         let geom = at(&scene, Displacement::new(0.5, 0.0, -0.05));
         let applied = Applied::new(d.loads(), d.block(), &geom.frame);
-        let m = accelerations(&geom, &applied, d.block(), d.friction(), [1.0, 0.1, 0.2]).unwrap();
+        let m = accelerations(
+            &geom,
+            &applied,
+            d.block(),
+            &d.strength([0, 1, 2], false),
+            [1.0, 0.1, 0.2],
+        )
+        .unwrap();
         for i in 0..3 {
             let s = m.slip[i];
             assert!((m.shear[i].norm() - 0.4 * m.normal[i]).abs() < 1e-6);
@@ -1536,7 +1552,14 @@ mod tests {
         let d = crate::scene::Simulation::new(&scene).unwrap();
         let geom = at(&scene, Displacement::new(0.0, 0.0, 0.0));
         let applied = Applied::new(d.loads(), d.block(), &geom.frame);
-        let m = accelerations(&geom, &applied, d.block(), d.friction(), [0.0; 3]).unwrap();
+        let m = accelerations(
+            &geom,
+            &applied,
+            d.block(),
+            &d.strength([0, 1, 2], false),
+            [0.0; 3],
+        )
+        .unwrap();
         for i in 0..3 {
             let r = geom.r[i];
             let acc = m.accel + m.ang_accel.cross(&r);
@@ -1565,7 +1588,14 @@ mod tests {
         for i in 0..3 {
             let p = pivot_direction(&geom, arm, i).unwrap() * 2.0;
             let rates = [p.x, p.y, p.z / arm];
-            let m = accelerations(&geom, &applied, d.block(), d.friction(), rates).unwrap();
+            let m = accelerations(
+                &geom,
+                &applied,
+                d.block(),
+                &d.strength([0, 1, 2], false),
+                rates,
+            )
+            .unwrap();
             assert!(
                 m.slip[i].norm() < 1e-12,
                 "contact {i} does not slip at the start"
@@ -1661,7 +1691,7 @@ mod tests {
         // I θ̈ = cF + x2 R, so θ̈ = cF / (I + m x2²).
         let (d, geom, crease, applied) = groove(30f64.to_radians());
         let (block, loads) = (d.block(), d.loads());
-        let frictionless = Friction::Coulomb { mu_k: 0.0 };
+        let frictionless = Strength::from(Friction::Coulomb { mu_k: 0.0 });
         let m = accelerations_in_crease(
             &geom,
             &applied,
@@ -1701,7 +1731,7 @@ mod tests {
         let (d, geom, crease, applied) = groove(dip);
         let (block, loads) = (d.block(), d.loads());
         let mu = 0.4;
-        let friction = Friction::Coulomb { mu_k: mu };
+        let friction = Strength::from(Friction::Coulomb { mu_k: mu });
         let m = accelerations_in_crease(
             &geom,
             &applied,
@@ -1757,7 +1787,7 @@ mod tests {
         // reaction would pull. Which one depends on which face is the crease's second.
         let (d, geom, crease, applied) = groove(2f64.to_radians());
         let block = d.block();
-        let frictionless = Friction::Coulomb { mu_k: 0.0 };
+        let frictionless = Strength::from(Friction::Coulomb { mu_k: 0.0 });
         let run = |geom: &ContactGeometry, crease: Crease| {
             accelerations_in_crease(
                 geom,

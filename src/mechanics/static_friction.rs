@@ -18,15 +18,18 @@
 //!   weight alone pushes it back down the planes, and less than F would be needed to hold it).
 //!
 //! For stress-dependent criteria (Barton–Choubey) the cone of each contact uses the secant
-//! coefficient μ_i = S(λ_i)/λ_i at its own normal force, iterated to a fixed point.
+//! coefficient μ_i = S(λ_i)/λ_i at its own normal force, iterated to a fixed point. Each contact
+//! has its own face's criterion, and, while the joint is bonded, its share C_i of the cohesion:
+//! its cone is then |f_i| ≤ μ_i λ_i + C_i, with λ_i ≥ 0 stated apart
+//! (`derivations/11-dam-loads.md` §8).
 
 use super::ContactGeometry;
 use super::loads::Applied;
-use crate::scene::Friction;
+use crate::scene::Strength;
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::{
-    DefaultSettings, DefaultSolver, IPSolver, SolverStatus, SupportedConeT::SecondOrderConeT,
-    SupportedConeT::ZeroConeT,
+    DefaultSettings, DefaultSolver, IPSolver, SolverStatus, SupportedConeT::NonnegativeConeT,
+    SupportedConeT::SecondOrderConeT, SupportedConeT::ZeroConeT,
 };
 
 /// Why the static check has no answer.
@@ -132,14 +135,14 @@ impl StaticCheck {
 }
 
 const N_VAR: usize = 10;
-const N_ROW: usize = 15;
+const N_ROW: usize = 18;
 
 /// One cone program: optimise `sense`·t (sense = −1: maximise). Returns t (±∞ when
 /// unbounded, NaN when infeasible) and the normal forces (in units of the weight).
 fn extreme_t(
     geom: &ContactGeometry,
     applied: &Applied,
-    mu: &[f64; 3],
+    (mu, cohesion): (&[f64; 3], &[f64; 3]),
     sense: f64,
 ) -> Result<(f64, [f64; 3]), StaticError> {
     let w = applied.weight.norm();
@@ -158,10 +161,13 @@ fn extreme_t(
                 a[3 + k][c] = m[k];
             }
         }
-        // Cone i: (μ λ_i, f_ia, f_ib) with s = b − A x.
-        a[6 + 3 * i][i] = -mu[i];
-        a[7 + 3 * i][3 + 2 * i] = -1.0;
-        a[8 + 3 * i][4 + 2 * i] = -1.0;
+        // λ_i ≥ 0 (with cohesion the cone alone would let a contact pull).
+        a[6 + i][i] = -1.0;
+        // Cone i: (μ λ_i + C_i, f_ia, f_ib) with s = b − A x, C_i its cohesion (in weights).
+        a[9 + 3 * i][i] = -mu[i];
+        b[9 + 3 * i] = cohesion[i] / w;
+        a[10 + 3 * i][3 + 2 * i] = -1.0;
+        a[11 + 3 * i][4 + 2 * i] = -1.0;
     }
     // Driving loads scaled by t; the weight and the held loads (uplift, the tailwater's
     // weight, the vertical pseudo-static force, and their moments) as they are.
@@ -181,6 +187,7 @@ fn extreme_t(
     let a = CscMatrix::from(&a);
     let cones = [
         ZeroConeT(6),
+        NonnegativeConeT(3),
         SecondOrderConeT(3),
         SecondOrderConeT(3),
         SecondOrderConeT(3),
@@ -211,7 +218,7 @@ fn extreme_t(
 pub fn at_rest(
     geom: &ContactGeometry,
     applied: &Applied,
-    friction: &Friction,
+    friction: &Strength,
 ) -> Result<StaticCheck, StaticError> {
     let c = super::statics::frictionless_normals(geom, applied).unwrap_or([1.0; 3]);
     check(geom, applied, friction, &c)
@@ -220,11 +227,12 @@ pub fn at_rest(
 pub fn check(
     geom: &ContactGeometry,
     applied: &Applied,
-    friction: &Friction,
+    friction: &Strength,
     statics: &[f64; 3],
 ) -> Result<StaticCheck, StaticError> {
     let w = applied.weight.norm();
-    let mut mu = statics.map(|c| friction.coefficient(c.max(0.0)));
+    let mut mu = friction.coefficients(statics);
+    let cohesion = &friction.cohesion_n;
     let stress_dependent = friction.is_stress_dependent();
     let hi = if stress_dependent {
         // The normals are per unit weight: the coefficients are those at λ·W.
@@ -232,14 +240,14 @@ pub fn check(
             .settle(
                 &mut mu,
                 (1e-10, 50),
-                |mu| extreme_t(geom, applied, mu, -1.0),
+                |mu| extreme_t(geom, applied, (mu, cohesion), -1.0),
                 |hi| hi.1[0].is_finite().then(|| hi.1.map(|l| l * w)),
             )?
             .0
     } else {
-        extreme_t(geom, applied, &mu, -1.0)?
+        extreme_t(geom, applied, (&mu, cohesion), -1.0)?
     };
-    let lo = extreme_t(geom, applied, &mu, 1.0)?;
+    let lo = extreme_t(geom, applied, (&mu, cohesion), 1.0)?;
     if hi.0.is_nan() {
         // No multiple of the loads is held.
         return Ok(StaticCheck {
@@ -286,7 +294,7 @@ mod tests {
         let d = crate::scene::Simulation::new(&s).unwrap();
         let applied = Applied::new(d.loads(), d.block(), &g.frame);
         let c = frictionless_normals(&g, &applied).unwrap();
-        let st = check(&g, &applied, d.friction(), &c).unwrap();
+        let st = check(&g, &applied, &d.strength([0, 1, 2], false), &c).unwrap();
         let want = 0.4 * 9.81e6 / 8e6;
         assert!(
             (st.factor_of_safety - want).abs() < 1e-3 * want,
@@ -303,7 +311,7 @@ mod tests {
             let d = crate::scene::Simulation::new(&s).unwrap();
             let applied = Applied::new(d.loads(), d.block(), &g.frame);
             let c = frictionless_normals(&g, &applied).unwrap();
-            let st = check(&g, &applied, d.friction(), &c).unwrap();
+            let st = check(&g, &applied, &d.strength([0, 1, 2], false), &c).unwrap();
             assert_eq!(st.holds(), holds, "{st:?}");
         }
     }

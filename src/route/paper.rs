@@ -81,8 +81,12 @@ impl<'a> Dynamics<'a> for Paper<'a> {
             }
         };
         let applied = Applied::new(sections.loads(), sections.block(), &ev.geom.frame);
-        let (fs, driving, resisting) =
-            factor_of_safety(&ev.geom, &applied, &ev.statics, sections.friction());
+        let (fs, driving, resisting) = factor_of_safety(
+            &ev.geom,
+            &applied,
+            &ev.statics,
+            &sections.strength(faces_of(&scene.site), false),
+        );
         o.paper_ratio = fs.is_finite().then_some(fs);
         o.push(row(&state, Some(&ev), &ev.pose, faces_of(&scene.site)));
         if scene.initial.at_rest() && (fs >= 1.0 || ev.reaction.accel <= 0.0) {
@@ -199,7 +203,7 @@ impl<'a> Dynamics<'a> for Paper<'a> {
                 &stop_ev.geom,
                 &applied,
                 &stop_ev.statics,
-                sections.friction(),
+                &sections.strength(faces_of(&scene.site), false),
             );
             if fs_here >= 1.0 {
                 o.travel += (stop_ev.pose.cm - ev.pose.cm).norm();

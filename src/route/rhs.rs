@@ -85,6 +85,9 @@ pub fn evaluate(
     let pose = pose_at(scene, tracker, d)?;
     let geom = ContactGeometry::with_normals(dynamics.normals(), &pose);
     let applied = Applied::new(dynamics.loads(), dynamics.block(), &geom.frame);
+    // The paper's dynamics keeps the start's planes (their normals above), and their faces'
+    // criteria; it knows no cohesion (refused when the scene is read).
+    let friction = dynamics.strength(crate::route::state::faces_of(&scene.site), false);
     let c = statics::frictionless_normals(&geom, &applied).ok_or_else(|| Stop {
         contact: None,
         reason: Reason::NoAdmissibleRoot,
@@ -96,28 +99,18 @@ pub fn evaluate(
         detail: e.to_string(),
     };
     let followed = match previous {
-        Some(p) if tracker.method() == PoseMethod::Continuation => reactions_paper::follow(
-            &geom,
-            &applied,
-            dynamics.block(),
-            &c,
-            dynamics.friction(),
-            p,
-        )
-        .map_err(lift)?,
+        Some(p) if tracker.method() == PoseMethod::Continuation => {
+            reactions_paper::follow(&geom, &applied, dynamics.block(), &c, &friction, p)
+                .map_err(lift)?
+        }
         _ => None,
     };
     let (reaction, fresh) = match followed {
         Some(r) => (r, false),
         None => {
-            let all = reactions_paper::all_solutions(
-                &geom,
-                &applied,
-                dynamics.block(),
-                &c,
-                dynamics.friction(),
-            )
-            .map_err(lift)?;
+            let all =
+                reactions_paper::all_solutions(&geom, &applied, dynamics.block(), &c, &friction)
+                    .map_err(lift)?;
             let k = reactions_paper::select(&geom, &all, previous.map(|p| &p.angles), velocity)
                 .ok_or_else(|| Stop {
                     contact: None,

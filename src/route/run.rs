@@ -96,7 +96,8 @@ fn drive(
         o.fs = start_pose.and_then(|pose| {
             let geom = ContactGeometry::with_normals(dynamics.normals(), &pose);
             let applied = Applied::new(dynamics.loads(), dynamics.block(), &geom.frame);
-            static_friction::at_rest(&geom, &applied, dynamics.friction())
+            let strength = dynamics.strength(super::state::faces_of(&scene.site), true);
+            static_friction::at_rest(&geom, &applied, &strength)
                 .ok()
                 .map(|c| c.factor_of_safety())
         });

@@ -58,6 +58,11 @@ pub(super) fn monolith(o: &str, m: &RawMonolith) -> Result<Monolith, SceneError>
     })
 }
 
+/// The centre of the monolith's base (x′, z′) about the centre of mass.
+pub(super) fn base_centre(m: &Monolith) -> [f64; 2] {
+    [0.5 * m.section.base_length - m.props.cm_from_heel, 0.0]
+}
+
 /// Each contact must be on the monolith's base: x' from the heel (−x̄) to the toe (b − x̄) and
 /// z' across the width, about the centre of mass.
 pub(super) fn contacts_on_base(o: &str, site: &Site, m: &Monolith) -> Result<(), SceneError> {

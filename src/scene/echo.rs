@@ -93,6 +93,19 @@ impl Scene {
                     ("contact_area_m2", f(contact_area_m2)),
                 ]),
             };
+            let mut v = v;
+            if let Value::Table(table) = &mut v {
+                let st = &self.strengths;
+                if st.has_cohesion() {
+                    table.insert("cohesion_pa".into(), f(st.cohesion_pa));
+                    table.insert("cohesion_area_m2".into(), f(st.shares_m2.iter().sum()));
+                }
+                // The faces' own criteria, as the file gave them.
+                let given = self.source.get("friction").and_then(|f| f.get("face"));
+                if let Some(faces) = given {
+                    table.insert("face".into(), faces.clone());
+                }
+            }
             t.insert("friction".into(), v);
         }
         if let Some(s) = &self.solver {

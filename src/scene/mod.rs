@@ -15,12 +15,14 @@ mod raw;
 mod read;
 pub mod record;
 mod simulation;
+mod strengths;
 mod validate;
 pub mod water;
 
 pub use echo::LoadsUsed;
 pub use error::{SceneError, SceneErrorKind};
 pub use simulation::Simulation;
+pub use strengths::{FaceStrength, Strength, Strengths};
 pub use validate::MAX_INCREMENTS;
 
 use std::path::Path;
@@ -278,6 +280,8 @@ pub struct Scene {
     pub(crate) cases: Vec<cases::LoadCase>,
     /// `seismic.record`: the foundation's acceleration in time.
     pub(crate) record: Option<std::sync::Arc<record::Record>>,
+    /// `[friction]`'s cohesion and `[[friction.face]]`.
+    pub(crate) strengths: Strengths,
 }
 
 /// Two scenes are equal when their values are (the documents may differ in how they wrote
@@ -293,6 +297,8 @@ impl PartialEq for Scene {
             &self.friction,
             &self.solver,
             &self.initial,
+            &self.strengths,
+            self.record.as_deref(),
         ) == (
             &other.name,
             &other.origin,
@@ -302,6 +308,8 @@ impl PartialEq for Scene {
             &other.friction,
             &other.solver,
             &other.initial,
+            &other.strengths,
+            other.record.as_deref(),
         )
     }
 }

@@ -143,8 +143,9 @@ pub struct RawLoads {
     pub gravity_m_s2: Option<f64>,
 }
 
-/// `[friction]`: `model` says which of the other keys belong (`coulomb`: `mu_k`;
-/// `barton-choubey`: `jrc`, `jcs_pa`, `phi_r_deg`, `contact_area_m2`).
+/// `[friction]`: `model` says which of the criterion's keys belong (`coulomb`: `mu_k`;
+/// `barton-choubey`: `jrc`, `jcs_pa`, `phi_r_deg`, `contact_area_m2`); `cohesion_pa` and
+/// `cohesion_area_m2` the joint's cohesion; `[[friction.face]]` faces with their own.
 #[derive(Debug, Default, Deserialize)]
 #[serde(expecting = "the table [friction]")]
 pub struct RawFriction {
@@ -154,6 +155,24 @@ pub struct RawFriction {
     pub jcs_pa: Option<f64>,
     pub phi_r_deg: Option<f64>,
     pub contact_area_m2: Option<f64>,
+    pub cohesion_pa: Option<f64>,
+    pub cohesion_area_m2: Option<f64>,
+    pub face: Option<Vec<RawFaceFriction>>,
+}
+
+/// `[[friction.face]]`: the faces (numbers as in route.csv's `face` columns) and their own
+/// criterion and cohesion.
+#[derive(Debug, Default, Deserialize)]
+#[serde(expecting = "a table [[friction.face]]")]
+pub struct RawFaceFriction {
+    pub faces: Option<Vec<u32>>,
+    pub model: Option<String>,
+    pub mu_k: Option<f64>,
+    pub jrc: Option<f64>,
+    pub jcs_pa: Option<f64>,
+    pub phi_r_deg: Option<f64>,
+    pub contact_area_m2: Option<f64>,
+    pub cohesion_pa: Option<f64>,
 }
 
 #[derive(Debug, Default, Deserialize)]
@@ -246,6 +265,7 @@ pub fn keys_of(section: &str) -> &'static [&'static str] {
         "check" => fields::<RawCheck>(),
         "case" => fields::<RawCase>(),
         "foundation.plane" => fields::<RawPlane>(),
+        "friction.face" => fields::<RawFaceFriction>(),
         _ => &[],
     }
 }

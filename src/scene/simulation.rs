@@ -71,8 +71,15 @@ impl Simulation {
         &self.loads
     }
 
+    /// `[friction]`'s criterion (of every face without its own).
     pub fn friction(&self) -> &Friction {
         &self.friction
+    }
+
+    /// What the contacts on `faces` carry (each face's criterion; the cohesion when `bonded`:
+    /// at rest, never yet slid).
+    pub fn strength(&self, faces: [u32; 3], bonded: bool) -> super::Strength {
+        self.scene.strengths.at(&self.friction, faces, bonded)
     }
 
     /// The run settings: mode, dynamics, integrator, dt, t_end, stride.

@@ -6,6 +6,7 @@ use super::checks::{check, named, need, non_negative, positive, section};
 use super::dam;
 use super::error::SceneErrorKind;
 use super::raw::{self, RawScene};
+use super::strengths::{FaceStrength, Strengths, barycentric};
 use super::{
     Block, DynamicsModel, Foundation, Frame, Friction, Initial, Integrator, Loads, Mode, Scene,
     SceneError, Site, Solver,
@@ -150,14 +151,63 @@ fn derived(
     Ok(())
 }
 
-/// The friction criterion: `model` says which keys belong; a key of the other model is refused
-/// as unknown rather than ignored.
+/// A criterion's keys as a section or a `[[friction.face]]` gives them.
+struct CriterionKeys<'a> {
+    model: Option<&'a str>,
+    mu_k: Option<f64>,
+    jrc: Option<f64>,
+    jcs_pa: Option<f64>,
+    phi_r_deg: Option<f64>,
+    contact_area_m2: Option<f64>,
+}
+
+impl CriterionKeys<'_> {
+    fn of(f: &raw::RawFriction) -> CriterionKeys<'_> {
+        CriterionKeys {
+            model: f.model.as_deref(),
+            mu_k: f.mu_k,
+            jrc: f.jrc,
+            jcs_pa: f.jcs_pa,
+            phi_r_deg: f.phi_r_deg,
+            contact_area_m2: f.contact_area_m2,
+        }
+    }
+
+    fn of_face(f: &raw::RawFaceFriction) -> CriterionKeys<'_> {
+        CriterionKeys {
+            model: f.model.as_deref(),
+            mu_k: f.mu_k,
+            jrc: f.jrc,
+            jcs_pa: f.jcs_pa,
+            phi_r_deg: f.phi_r_deg,
+            contact_area_m2: f.contact_area_m2,
+        }
+    }
+
+    fn any(&self) -> bool {
+        self.model.is_some()
+            || self.mu_k.is_some()
+            || self.jrc.is_some()
+            || self.jcs_pa.is_some()
+            || self.phi_r_deg.is_some()
+            || self.contact_area_m2.is_some()
+    }
+}
+
+/// The friction criterion of `[friction]`.
 fn friction(o: &str, f: &raw::RawFriction) -> Result<Friction, SceneError> {
+    criterion(o, "friction", &CriterionKeys::of(f))
+}
+
+/// The friction criterion under `prefix`: `model` says which keys belong; a key of the other
+/// model is refused as unknown rather than ignored.
+fn criterion(o: &str, prefix: &str, f: &CriterionKeys<'_>) -> Result<Friction, SceneError> {
+    let key = |name: &str| format!("{prefix}.{name}");
     let [coulomb, barton] = Friction::MODELS;
-    let model = need(o, "friction.model", f.model.as_deref())?;
+    let model = need(o, &key("model"), f.model)?;
     let model = named(
         o,
-        "friction.model",
+        &key("model"),
         "friction model",
         model,
         &[coulomb, barton],
@@ -170,7 +220,7 @@ fn friction(o: &str, f: &raw::RawFriction) -> Result<Friction, SceneError> {
         ("phi_r_deg", f.phi_r_deg.is_some(), barton),
         ("contact_area_m2", f.contact_area_m2.is_some(), barton),
     ];
-    if let Some((key, _, _)) = given
+    if let Some((name, _, _)) = given
         .iter()
         .find(|(_, present, of)| *present && *of != model)
     {
@@ -178,7 +228,7 @@ fn friction(o: &str, f: &raw::RawFriction) -> Result<Friction, SceneError> {
         return Err(SceneError::of(
             SceneErrorKind::UnknownKey,
             o,
-            format!("friction.{key}"),
+            key(name),
             format!(
                 "unknown key for model = \"{model}\" (its keys: model, {})",
                 own.join(", ")
@@ -187,16 +237,16 @@ fn friction(o: &str, f: &raw::RawFriction) -> Result<Friction, SceneError> {
     }
     Ok(if model == coulomb {
         Friction::Coulomb {
-            mu_k: non_negative(o, "friction.mu_k", need(o, "friction.mu_k", f.mu_k)?)?,
+            mu_k: non_negative(o, &key("mu_k"), need(o, &key("mu_k"), f.mu_k)?)?,
         }
     } else {
-        let phi_r_deg = need(o, "friction.phi_r_deg", f.phi_r_deg)?;
+        let phi_r_deg = need(o, &key("phi_r_deg"), f.phi_r_deg)?;
         Friction::BartonChoubey {
-            jrc: non_negative(o, "friction.jrc", need(o, "friction.jrc", f.jrc)?)?,
-            jcs_pa: positive(o, "friction.jcs_pa", need(o, "friction.jcs_pa", f.jcs_pa)?)?,
+            jrc: non_negative(o, &key("jrc"), need(o, &key("jrc"), f.jrc)?)?,
+            jcs_pa: positive(o, &key("jcs_pa"), need(o, &key("jcs_pa"), f.jcs_pa)?)?,
             phi_r: check(
                 o,
-                "friction.phi_r_deg",
+                &key("phi_r_deg"),
                 phi_r_deg,
                 (0.0..90.0).contains(&phi_r_deg),
                 "an angle from 0° up to (not including) 90°",
@@ -204,11 +254,118 @@ fn friction(o: &str, f: &raw::RawFriction) -> Result<Friction, SceneError> {
             .to_radians(),
             contact_area_m2: positive(
                 o,
-                "friction.contact_area_m2",
-                need(o, "friction.contact_area_m2", f.contact_area_m2)?,
+                &key("contact_area_m2"),
+                need(o, &key("contact_area_m2"), f.contact_area_m2)?,
             )?,
         }
     })
+}
+
+/// `[friction]`'s cohesion and `[[friction.face]]`: each face's criterion and cohesion, and each
+/// contact's share of the bonded area (`derivations/11-dam-loads.md` §8).
+fn strengths(
+    o: &str,
+    f: &raw::RawFriction,
+    site: &Site,
+    monolith: Option<&dam::Monolith>,
+) -> Result<Strengths, SceneError> {
+    let cohesion = |key: &str, v: Option<f64>| non_negative(o, key, v.unwrap_or(0.0));
+    let cohesion_pa = cohesion("friction.cohesion_pa", f.cohesion_pa)?;
+    let count = site.ground().map_or(3, |(g, _)| g.faces().len());
+    let mut faces = Vec::new();
+    for (k, face) in f.face.as_deref().unwrap_or(&[]).iter().enumerate() {
+        let prefix = format!("friction.face[{k}]");
+        let listed = need(o, &format!("{prefix}.faces"), face.faces.clone())?;
+        if listed.is_empty() {
+            return Err(SceneError::new(
+                o,
+                format!("{prefix}.faces"),
+                "an empty list: name the faces (as route.csv's face columns) this entry is for"
+                    .to_string(),
+            ));
+        }
+        if let Some(bad) = listed.iter().find(|&&n| n as usize >= count) {
+            return Err(SceneError::new(
+                o,
+                format!("{prefix}.faces"),
+                format!(
+                    "face {bad} does not exist: the foundation's faces are 0 to {}",
+                    count - 1
+                ),
+            ));
+        }
+        let keys = CriterionKeys::of_face(face);
+        let friction = if keys.any() {
+            let model = keys.model.or(f.model.as_deref());
+            criterion(o, &prefix, &CriterionKeys { model, ..keys })?
+        } else {
+            friction(o, f)?
+        };
+        faces.push(FaceStrength {
+            faces: listed,
+            friction,
+            cohesion_pa: match face.cohesion_pa {
+                Some(c) => cohesion(&format!("{prefix}.cohesion_pa"), Some(c))?,
+                None => cohesion_pa,
+            },
+        });
+    }
+    let mut out = Strengths {
+        cohesion_pa,
+        shares_m2: [0.0; 3],
+        faces,
+    };
+    if !out.has_cohesion() {
+        if f.cohesion_area_m2.is_some() {
+            return Err(SceneError::new(
+                o,
+                "friction.cohesion_area_m2",
+                "an area without cohesion: give friction.cohesion_pa too".to_string(),
+            ));
+        }
+        return Ok(out);
+    }
+    // The bonded area: given, or the monolith's base; its centroid: the base's centre, or the
+    // contact triangle's.
+    let (area, centre) = match (f.cohesion_area_m2, monolith) {
+        (Some(a), m) => (
+            positive(o, "friction.cohesion_area_m2", a)?,
+            m.map(dam::base_centre),
+        ),
+        (None, Some(m)) => (
+            m.section.base_length * m.section.width,
+            Some(dam::base_centre(m)),
+        ),
+        (None, None) => {
+            return Err(SceneError::new(
+                o,
+                "friction.cohesion_area_m2",
+                "cohesion needs the bonded area of the joint (m²): give \
+                 friction.cohesion_area_m2, or [monolith] for its base"
+                    .to_string(),
+            ));
+        }
+    };
+    let c = site.contacts();
+    let centre = centre.unwrap_or([
+        (c[0][0] + c[1][0] + c[2][0]) / 3.0,
+        (c[0][1] + c[1][1] + c[2][1]) / 3.0,
+    ]);
+    let weights = barycentric(c, centre).filter(|w| w.iter().all(|&x| x >= -1e-12));
+    let Some(weights) = weights else {
+        return Err(SceneError::new(
+            o,
+            "friction.cohesion_pa",
+            format!(
+                "the base's centre (x', z') = ({:.6}, {:.6}) m is outside the contact triangle: \
+                 its cohesion cannot be shared among the three contacts with its resultant \
+                 there; place the contacts around it",
+                centre[0], centre[1]
+            ),
+        ));
+    };
+    out.shares_m2 = weights.map(|w| w.max(0.0) * area);
+    Ok(out)
 }
 
 /// The run settings, with each dynamics model's default integrator.
@@ -739,6 +896,10 @@ pub(super) fn validate(
         }
     };
     let friction = raw.friction.as_ref().map(|f| friction(o, f)).transpose()?;
+    let strengths = match &raw.friction {
+        Some(f) => strengths(o, f, &site, monolith.as_ref())?,
+        None => Strengths::default(),
+    };
     let solver = raw.solver.as_ref().map(|s| solver(o, s)).transpose()?;
     let initial = match &raw.initial {
         None => Initial::default(),
@@ -765,6 +926,19 @@ pub(super) fn validate(
                 .to_string(),
         ));
     }
+    if strengths.has_cohesion()
+        && solver
+            .as_ref()
+            .is_some_and(|s| s.dynamics != super::DynamicsModel::RigidBody)
+    {
+        return Err(SceneError::new(
+            o,
+            "friction.cohesion_pa",
+            "cohesion holds a block at rest and breaks when it slides, which the rigid body's \
+             static check follows: it needs solver.dynamics = \"rigid-body\""
+                .to_string(),
+        ));
+    }
     derived(o, site.l(), block.as_ref(), loads.as_ref())?;
     let guideline = match &raw.check {
         Some(c) => super::cases::guideline(o, c)?,
@@ -785,5 +959,6 @@ pub(super) fn validate(
         guideline,
         cases,
         record,
+        strengths,
     })
 }

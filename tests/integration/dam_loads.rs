@@ -3,7 +3,7 @@
 //! closed form on a level base (`derivations/11-dam-loads.md`).
 
 use slideroute::stages::route;
-use slideroute::stages::scene::Scene;
+use slideroute::stages::scene::{DynamicsModel, Scene};
 
 fn monolith() -> String {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/monolith.toml");
@@ -223,4 +223,205 @@ fn check_gives_each_case_its_guideline_requirement_and_routes_it() {
     let w = r[1].loads.unwrap().water.unwrap();
     assert_eq!((w.levels.headwater, w.levels.tailwater), (15.0, 5.0));
     assert_eq!(r[2].loads.unwrap().kh, 0.2);
+}
+
+#[test]
+fn with_cohesion_the_factor_of_safety_is_mu_n_plus_c_a_over_t() {
+    // EM 1110-2-2100's sliding factor with cohesion, (N tan φ + c A)/T: the base's 200 m² of
+    // bonded joint share their cohesion among the contacts so that its resultant acts at the
+    // base's centre, on the water's line (no eccentricity): no twist to hold.
+    let gamma = 1000.0 * 9.81;
+    let (b, w, mu, h1, h2) = (20.0, 10.0, 0.45, 14.0, 2.0);
+    let with = |c: f64| {
+        edit(
+            &monolith(),
+            &[
+                ("eccentricity_m = 1.0 ", "eccentricity_m = 0.0 "),
+                ("mu_k = 0.45", &format!("mu_k = 0.45\ncohesion_pa = {c}")),
+            ],
+        )
+    };
+    for c in [0.0, 25e3, 50e3] {
+        let text = with(c);
+        let h = 0.5 * gamma * (h1 * h1 - h2 * h2) * w;
+        let v = 0.5 * gamma * h2 * h2 * w;
+        let h3 = h2 + 0.5 * (h1 - h2) * (b - 2.0) / b;
+        let u = gamma * w * (2.0 * (h1 + h3) / 2.0 + (b - 2.0) * (h3 + h2) / 2.0);
+        let want = (mu * (W - u + v) + c * b * w) / h;
+        let got = fs(&text);
+        assert!(
+            (got - want).abs() < 5e-3 * want,
+            "c {c} Pa: {got} against {want}"
+        );
+    }
+    // Stronger still, the driving loads scaled up tip the block over its downstream contacts
+    // (the heel's normal force falls to zero) before they slide it: more cohesion adds nothing.
+    let (strong, stronger) = (fs(&with(200e3)), fs(&with(1e6)));
+    let sliding = (mu * 33.942e6 + 200e3 * b * w) / 9.418e6;
+    assert!(strong < 0.6 * sliding, "{strong} against {sliding}");
+    assert!(
+        (strong - stronger).abs() < 1e-3 * strong,
+        "{strong}, {stronger}"
+    );
+}
+
+#[test]
+fn each_face_carries_its_own_friction() {
+    // The paper's planes at 0.01°, the push through the centre of mass: the normals are
+    // (0.4, 0.1, 0.5) W (statics of the frame about its centre of mass). With μ = 0.3, 0.8,
+    // 0.4 on planes 0, 1, 2 the three friction forces along −X have no moment about the centre
+    // of mass (0.3·0.4·5 + 0.8·0.1·5 − 0.4·0.5·5 = 0), so every cone is used to its edge:
+    // FS = Σ μ_i N_i / H = 0.4 W / H.
+    let paper = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/paper-like.toml"),
+    )
+    .unwrap();
+    let flat = edit(
+        &paper,
+        &[
+            ("xi_deg = 20.0", "xi_deg = 0.01"),
+            ("zeta_deg = 25.0", "zeta_deg = 0.01"),
+            ("kappa_deg = 30.0", "kappa_deg = 0.0"),
+            ("eccentricity_m = 1.0", "eccentricity_m = 0.0"),
+            ("mu_k = 0.40", "mu_k = 0.3"),
+        ],
+    );
+    let faces = "\n[[friction.face]]\nfaces = [1]\nmu_k = 0.8\n\
+                 \n[[friction.face]]\nfaces = [2]\nmodel = \"coulomb\"\nmu_k = 0.4\n";
+    let got = fs(&(flat.clone() + faces));
+    let want = 0.4 * 9.81e6 / 8e6;
+    assert!((got - want).abs() < 5e-3 * want, "{got} against {want}");
+    // One entry for all three planes is [friction] itself.
+    let all = fs(&(flat.clone() + "\n[[friction.face]]\nfaces = [0, 1, 2]\nmu_k = 0.4\n"));
+    let plain = fs(&flat.replace("mu_k = 0.3", "mu_k = 0.4"));
+    assert!((all - plain).abs() < 1e-9 * plain, "{all} against {plain}");
+    // The route uses them too: on the paper's planes as given, a rougher plane 2 holds the
+    // block longer.
+    let run = |text: &str| {
+        let s = Scene::from_toml(text, "faces")
+            .unwrap()
+            .with("solver.t_end_s", 2.0)
+            .unwrap();
+        route::run(&s).unwrap().travel_m
+    };
+    let rough = run(&(paper.clone() + "\n[[friction.face]]\nfaces = [2]\nmu_k = 0.5\n"));
+    let smooth = run(&paper);
+    assert!(rough < smooth, "{rough} m against {smooth} m");
+}
+
+#[test]
+fn strengths_the_scene_cannot_use_are_refused_naming_the_key() {
+    let m = monolith();
+    let paper = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/paper-like.toml"),
+    )
+    .unwrap();
+    let cases: Vec<(String, &str, &str)> = vec![
+        (
+            m.clone() + "\n[[friction.face]]\nfaces = [1]\nmu_k = 0.5\n",
+            "friction.face[0].faces",
+            "face 1 does not exist",
+        ),
+        (
+            m.clone() + "\n[[friction.face]]\nfaces = []\nmu_k = 0.5\n",
+            "friction.face[0].faces",
+            "empty",
+        ),
+        (
+            m.clone() + "\n[[friction.face]]\nfaces = [0]\nmu_k = -0.5\n",
+            "friction.face[0].mu_k",
+            "zero or positive",
+        ),
+        (
+            m.clone() + "\n[[friction.face]]\nfaces = [0]\njrc = 5.0\n",
+            "friction.face[0].jrc",
+            "unknown key",
+        ),
+        (
+            m.replace("mu_k = 0.45", "mu_k = 0.45\ncohesion_pa = -1.0"),
+            "friction.cohesion_pa",
+            "zero or positive",
+        ),
+        (
+            m.replace("mu_k = 0.45", "mu_k = 0.45\ncohesion_area_m2 = 5.0"),
+            "friction.cohesion_area_m2",
+            "without cohesion",
+        ),
+        (
+            paper.replace("mu_k = 0.40", "mu_k = 0.40\ncohesion_pa = 1e5"),
+            "friction.cohesion_area_m2",
+            "bonded area",
+        ),
+        (
+            paper.replace(
+                "mu_k = 0.40",
+                "mu_k = 0.40\ncohesion_pa = 1e5\ncohesion_area_m2 = 50.0",
+            ) + "",
+            "",
+            "",
+        ),
+        (
+            m.replace("l1x = 6.0", "l1x = 3.0")
+                .replace("l2x = 4.0", "l2x = 7.0")
+                .replace("l1z = 5.0 ", "l1z = 9.0 ")
+                .replace("l2z = 5.0 ", "l2z = 1.0 ")
+                .replace("width_m = 10.0", "width_m = 20.0")
+                .replace("mu_k = 0.45", "mu_k = 0.45\ncohesion_pa = 1e5"),
+            "friction.cohesion_pa",
+            "outside the contact triangle",
+        ),
+    ];
+    for (text, key, why) in cases {
+        match Scene::from_toml(&text, "dam") {
+            Err(e) => {
+                assert_eq!(e.key, key, "{e}");
+                assert!(e.to_string().contains(why), "{e}");
+            }
+            Ok(s) => {
+                // Cohesion with an area reads; the paper's dynamics cannot use it.
+                assert!(key.is_empty(), "{key}: read");
+                let e = s.with_dynamics(DynamicsModel::Paper).unwrap_err();
+                assert_eq!(e.key, "friction.cohesion_pa", "{e}");
+            }
+        }
+    }
+}
+
+#[test]
+fn cohesion_holds_a_block_until_it_first_slides() {
+    // The monolith without water's uplift drains, cohesion enough to hold it: held at rest;
+    // the same block set sliding (an initial velocity) has broken its bond and slides as
+    // without cohesion.
+    let held = edit(
+        &monolith(),
+        &[("mu_k = 0.45", "mu_k = 0.2\ncohesion_pa = 100e3")],
+    );
+    let s = Scene::from_toml(&held, "c").unwrap();
+    let r = route::run(&s).unwrap();
+    assert_eq!(
+        r.termination.reason,
+        route::Reason::DoesNotSlide,
+        "{:?}",
+        r.termination
+    );
+    assert!(r.factor_of_safety.and_then(|f| f.value()).unwrap() > 1.0);
+    let kicked = |text: &str| {
+        let s = Scene::from_toml(&(text.to_string() + "\n[initial]\nvx_m_s = 1.0\n"), "k")
+            .unwrap()
+            .with("solver.t_end_s", 1.0)
+            .unwrap();
+        route::run(&s).unwrap()
+    };
+    let with = kicked(&held);
+    let without = kicked(&held.replace("cohesion_pa = 100e3", ""));
+    assert_eq!(with.rows.last(), without.rows.last());
+    // The scene as used reads back as the same scene, cohesion and faces' own entries too.
+    let faced = held.clone() + "\n[[friction.face]]\nfaces = [0]\ncohesion_pa = 5e4\n";
+    let s = Scene::from_toml(&faced, "faced").unwrap();
+    let echo = toml::to_string(&s.as_used()).unwrap();
+    assert!(
+        echo.contains("cohesion_area_m2") && echo.contains("[[friction.face]]"),
+        "{echo}"
+    );
+    assert_eq!(Scene::from_toml(&echo, "faced").unwrap(), s);
 }

@@ -7,9 +7,10 @@ use slideroute::stages::scene::Scene;
 
 const G: f64 = 9.81;
 
-/// The paper-like block on three planes of 0.01° dip (a level base), μ, no water, no turning
-/// couple: what Newmark's rigid block on a level plane is. The record is written beside it.
-fn shaken(name: &str, mu: f64, record: &[(f64, f64)], extra: &str) -> Scene {
+/// The paper-like block on three planes of 0.01° dip (a level base), μ (and `friction`, more
+/// keys of `[friction]`), no water, no turning couple: what Newmark's rigid block on a level
+/// plane is. The record is written beside it.
+fn shaken(name: &str, mu: f64, record: &[(f64, f64)], friction: &str) -> Scene {
     let dir = std::env::temp_dir().join(format!("slideroute-record-{name}-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let mut csv = String::from("t_s,ax_g,ay_g,az_g\n");
@@ -27,10 +28,9 @@ fn shaken(name: &str, mu: f64, record: &[(f64, f64)], extra: &str) -> Scene {
         .replace("kappa_deg = 30.0", "kappa_deg = 0.0")
         .replace("hydraulic_force_n = 8.0e6", "hydraulic_force_n = 0.0")
         .replace("eccentricity_m = 1.0", "eccentricity_m = 0.0")
-        .replace("mu_k = 0.40", &format!("mu_k = {mu}"))
+        .replace("mu_k = 0.40", &format!("mu_k = {mu}\n{friction}"))
         .replace("t_end_s = 20.0", "t_end_s = 5.0")
-        + "\n[seismic]\nrecord = \"motion.csv\"\n"
-        + extra;
+        + "\n[seismic]\nrecord = \"motion.csv\"\n";
     let path = dir.join("scene.toml");
     std::fs::write(&path, text).unwrap();
     let s = Scene::from_file(&path).unwrap_or_else(|e| panic!("{e}"));
@@ -226,4 +226,19 @@ fn a_record_the_scene_cannot_use_is_refused_naming_the_key() {
     assert_eq!(e.key, "seismic.record", "{e}");
     assert!(e.to_string().contains("rigid-body"), "{e}");
     std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn cohesion_holds_against_a_small_pulse_and_once_broken_newmark_holds_without_it() {
+    // Cohesion 0.2 W over the three contacts (65.4 kPa on 30 m², a third each), μ = 0.1: a
+    // pulse of 0.25 g moves the block not at all (0.1 + 0.2 > 0.25); one of 0.5 g breaks the
+    // bond at once, and the block slides Newmark's distance for μ alone.
+    let cohesion = "cohesion_pa = 65400.0\ncohesion_area_m2 = 30.0";
+    let with = |name: &str, a: f64| shaken(name, 0.1, &pulse(0.0, -a, 0.2), cohesion);
+    let small = run(&with("bonded-small", 0.25));
+    assert_eq!(small.travel_m, 0.0, "{:?}", small.termination);
+    let large = run(&with("bonded-large", 0.5));
+    let d = large.permanent_displacement_m.unwrap();
+    let want = newmark(0.5, 0.1, 0.2);
+    assert!((d - want).abs() < 0.02 * want, "{d} m against {want} m");
 }

@@ -29,8 +29,14 @@ fn paper_like(mu: f64) -> Scene {
 fn solutions(scene: &Scene, d: Displacement) -> (ContactGeometry, Applied, Vec<Reaction>) {
     let (geom, applied, c) = at(scene, d);
     let dy = slideroute::stages::scene::Simulation::new(scene).unwrap();
-    let sols =
-        reactions_paper::all_solutions(&geom, &applied, dy.block(), &c, dy.friction()).unwrap();
+    let sols = reactions_paper::all_solutions(
+        &geom,
+        &applied,
+        dy.block(),
+        &c,
+        &dy.strength([0, 1, 2], false),
+    )
+    .unwrap();
     (geom, applied, sols)
 }
 

@@ -153,7 +153,7 @@ pub(super) fn come_to_rest(
     o.travel += (stop_pose.cm - from.pose.cm).norm();
     o.increments = k;
     let geom = ContactGeometry::with_normals(&finder.site().normals(), &stop_pose);
-    let check = match static_check(sections, &geom, t_event) {
+    let check = match static_check(sections, &geom, (t_event, from.faces, false)) {
         Ok(c) => c,
         Err(Stop { reason, detail, .. }) => return Rest::Ended(reason, t, detail),
     };

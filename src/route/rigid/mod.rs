@@ -152,7 +152,7 @@ fn evaluate(
         &geom,
         &applied,
         dynamics.block(),
-        dynamics.friction(),
+        &dynamics.strength(faces_of(finder.site()), false),
         rates,
         dynamics.solver().dt,
         hold.creases,
@@ -340,11 +340,12 @@ fn rest_eval(
     })
 }
 
-/// The static check at a pose at time t (the loads of a ground-motion record then).
+/// The static check at a pose at time t (the loads of a ground-motion record then), the
+/// contacts on `faces`, with the joint's cohesion when `bonded` (never yet slid).
 fn static_check(
     dynamics: &Simulation,
     geom: &ContactGeometry,
-    t: f64,
+    (t, faces, bonded): (f64, [u32; 3], bool),
 ) -> Result<StaticCheck, Stop> {
     let applied = Applied::shaken(
         dynamics.loads(),
@@ -352,7 +353,8 @@ fn static_check(
         &geom.frame,
         dynamics.scene().ground(t),
     );
-    static_friction::at_rest(geom, &applied, dynamics.friction()).map_err(|err| Stop {
+    let strength = dynamics.strength(faces, bonded);
+    static_friction::at_rest(geom, &applied, &strength).map_err(|err| Stop {
         contact: None,
         reason: Reason::ContactForcesUndetermined,
         detail: err.to_string(),
@@ -451,7 +453,8 @@ impl<'a> Dynamics<'a> for RigidBody<'a> {
                 "the flat start pose has no root to follow".into(),
             ));
         };
-        let check = match static_check(sections, &ContactGeometry::new(scene, &start_pose), 0.0) {
+        let start = (0.0, faces_of(&scene.site), true);
+        let check = match static_check(sections, &ContactGeometry::new(scene, &start_pose), start) {
             Ok(c) => c,
             Err(Stop { reason, detail, .. }) => {
                 o.push(rest_row(0.0, &y, &start_pose, faces_of(&scene.site)));

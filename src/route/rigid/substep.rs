@@ -140,7 +140,9 @@ impl RigidBody<'_> {
     ) -> Flow<'s> {
         let (scene, sections) = (self.scene, self.sections);
         let geom = ContactGeometry::with_normals(&finder.site().normals(), &self.ev.pose);
-        let holds = |t: f64| static_check(sections, &geom, t).map(|c| c.holds());
+        // The joint's cohesion holds until the block first slides.
+        let (faces, bonded) = (self.ev.faces, o.travel == 0.0);
+        let holds = |t: f64| static_check(sections, &geom, (t, faces, bonded)).map(|c| c.holds());
         // The record's samples within the increment, where its loads turn: the cones are
         // checked at each (between them the loads are linear in time).
         let mut at = self.t;
@@ -190,7 +192,7 @@ impl RigidBody<'_> {
                     Err(s) if tried >= t_target => {
                         // Over the cones by too little for a consistent start of slip: held
                         // for this increment, checked again at the next.
-                        let barely = static_check(sections, &geom, t_target)
+                        let barely = static_check(sections, &geom, (t_target, faces, bonded))
                             .is_ok_and(|c| barely_exceeded(&c));
                         if s.reason == Reason::ContactForcesUndetermined && barely {
                             self.t = t_target;
@@ -208,7 +210,7 @@ impl RigidBody<'_> {
         }
         self.t = t_target;
         self.y[8] = t_target;
-        let check = match static_check(sections, &geom, t_target) {
+        let check = match static_check(sections, &geom, (t_target, faces, bonded)) {
             Ok(c) => c,
             Err(s) => return Flow::Ended(self.fail(o, s)),
         };
@@ -584,7 +586,8 @@ impl RigidBody<'_> {
                 let pose =
                     pose_at(self.scene, finder, displacement(&stopped)).map_err(Ending::Failed)?;
                 let geom = ContactGeometry::with_normals(&finder.site().normals(), &pose);
-                let check = static_check(self.sections, &geom, at).map_err(Ending::Failed)?;
+                let check = static_check(self.sections, &geom, (at, self.ev.faces, false))
+                    .map_err(Ending::Failed)?;
                 self.ev = rest_eval(self.sections, finder, pose, &check).map_err(Ending::Failed)?;
                 self.y = stopped;
                 self.y[8] = at;
@@ -641,14 +644,12 @@ fn after_impact(
     let before = ContactGeometry::with_normals(&faces, &pose);
     let creases = hold.creases.without(hold.stuck);
     // Each contact's friction coefficient at its normal force before the impact.
-    let friction = dynamics.friction();
-    let mu = normals.map(|n| {
-        if friction.is_frictionless() {
-            0.0
-        } else {
-            friction.coefficient(n.max(0.0))
-        }
-    });
+    let friction = dynamics.strength(faces_of(finder.site()), false);
+    let mu = if friction.is_frictionless() {
+        [0.0; 3]
+    } else {
+        friction.coefficients(&normals)
+    };
     // A release slower than a hop of HOP·L under gravity is not a lift; one from a crease
     // slower than GRAZE·√(g L) is a graze.
     let g = dynamics.loads().gravity;
