@@ -30,6 +30,14 @@ it balanced); the block's loads at the contacts move it by a millionth of that. 
 written relative to the ground, as slideroute's route is. Pseudo-static kh, kv are forces
 kh m g along +X and kv m g along +Y at the CM.
 
+A monolith (`[monolith]`, `[water]`, issue #16) is computed here from the file on its own: the
+section's mass, centre of mass (ȳ above the base) and inertia tensor (Green's theorem on the
+polygon heel, top of the upstream face, crest, toe), and the water's loads as body-fixed forces
+at their points: the reservoir's push on the upstream face, the tailwater's push and weight on the
+downstream face, the uplift (linear, or EM 1110-2-2100's bilinear head with drains) on the base,
+and the lateral eccentricity's couple. The contact spheres sit ȳ below the centre of mass. The
+written path is then of the base point under the centre of mass, as slideroute's is.
+
 Writes CSV: t_s,x_m,y_m,z_m,theta_deg,p0x_m,...,p2z_m (theta: yaw of x' from +X towards +Z; pK:
 contact K's position, so that a reader sees where each contact is, e.g. past a strike line).
 """
@@ -68,12 +76,83 @@ DISSIPATION = 1.0  # s/m, Hunt-Crossley
 GROUND_MASS_RATIO = 1e6  # a shaken ground's mass over the block's
 
 
+def section(m):
+    """Mass, centre of mass (x̄ from the heel, ȳ above the base) and the inertia (I_x', I_y',
+    I_z', I_x'y') about it of a [monolith]: vertical upstream face, crest, straight downstream
+    face; z' across the width."""
+    b, w, h, c, rho = (m["base_length_m"], m["width_m"], m["height_m"], m["crest_length_m"],
+                       m["density_kg_m3"])
+    pts = [(0.0, 0.0), (b, 0.0), (c, h), (0.0, h)]  # counter-clockwise
+    a = sx = sy = sxx = syy = sxy = 0.0
+    for (x0, y0), (x1, y1) in zip(pts, pts[1:] + pts[:1]):
+        d = x0 * y1 - x1 * y0
+        a += d / 2
+        sx += (x0 + x1) * d / 6
+        sy += (y0 + y1) * d / 6
+        sxx += (x0 * x0 + x0 * x1 + x1 * x1) * d / 12
+        syy += (y0 * y0 + y0 * y1 + y1 * y1) * d / 12
+        sxy += (x0 * y1 + 2 * x0 * y0 + 2 * x1 * y1 + x1 * y0) * d / 24
+    mass = rho * w * a
+    xb, yb = sx / a, sy / a
+    jx = rho * w * (sxx - a * xb * xb)
+    jy = rho * w * (syy - a * yb * yb)
+    ixy = rho * w * (sxy - a * xb * yb)
+    return mass, xb, yb, (jy + mass * w * w / 12, jx + mass * w * w / 12, jx + jy, ixy)
+
+
+def water_forces(s, xb, yb, g):
+    """The water's loads as (point, force) in the block axes (x', y', z') about the centre of
+    mass, and the net push along x' (for the eccentricity's couple)."""
+    m, wa = s["monolith"], s["water"]
+    b, w, h, c = m["base_length_m"], m["width_m"], m["height_m"], m["crest_length_m"]
+    h1, h2 = wa["headwater_m"], wa.get("tailwater_m", 0.0)
+    gamma = wa.get("density_kg_m3", 1000.0) * g
+    e, xd = wa.get("drain_efficiency", 0.0), wa.get("drain_position_m", 0.0)
+    out = []
+    # Reservoir on the vertical upstream face, wetted to min(H1, h).
+    top = min(h1, h)
+    push = gamma * w * (h1 * top - top * top / 2)
+    at = (h1 * top ** 2 / 2 - top ** 3 / 3) / (h1 * top - top * top / 2)
+    out.append(((0.0 - xb, at - yb), (push, 0.0)))
+    # Tailwater on the downstream face (slope s horizontal per vertical).
+    slope = (b - c) / h
+    if h2 > 0:
+        out.append(((b - slope * h2 / 3 - xb, h2 / 3 - yb), (-0.5 * gamma * h2 * h2 * w, 0.0)))
+        out.append(((b - slope * h2 / 3 - xb, 0.0 - yb),
+                    (0.0, -0.5 * gamma * h2 * h2 * slope * w)))
+    # Uplift: the head diagram from heel to toe, with drains EM 1110-2-2100's bilinear one.
+    if e > 0:
+        h3 = h2 + (1 - e) * (h1 - h2) * (b - xd) / b
+        diagram = [(0.0, h1), (xd, h3), (b, h2)]
+    else:
+        diagram = [(0.0, h1), (b, h2)]
+    for (x0, p0), (x1, p1) in zip(diagram, diagram[1:]):
+        force = gamma * w * (x1 - x0) * (p0 + p1) / 2
+        if force > 0:
+            x = (x1 - x0) * (p0 * (2 * x0 + x1) + p1 * (x0 + 2 * x1)) / 6 / ((x1 - x0) * (p0 + p1) / 2)
+            out.append(((x - xb, 0.0 - yb), (0.0, force)))
+    net = push - (0.5 * gamma * h2 * h2 * w if h2 > 0 else 0.0)
+    return [(np.array([x, y, 0.0]), np.array([fx, fy, 0.0])) for (x, y), (fx, fy) in out], net
+
+
 def load(path):
     with open(path, "rb") as f:
         s = tomllib.load(f)
-    fr, fo, bl, lo, fi = s["frame"], s["foundation"], s["block"], s["loads"], s["friction"]
+    fr, fo, lo, fi = s["frame"], s["foundation"], s["loads"], s["friction"]
     if fi.get("model") != "coulomb":
         sys.exit(f"{path}: friction.model: the Drake cross-check supports coulomb only")
+    if "cohesion_pa" in fi or "face" in fi:
+        sys.exit(f"{path}: friction: the Drake cross-check has one Coulomb friction, no cohesion")
+    height, water, net = 0.0, [], lo.get("hydraulic_force_n", 0.0)
+    if "monolith" in s:
+        mass, xb, height, (ix, iy, iz, ixy) = section(s["monolith"])
+        bl = {"mass_kg": mass, "inertia_kg_m2": iy, "inertia_x_kg_m2": ix,
+              "inertia_z_kg_m2": iz}
+        if "water" in s:
+            water, net = water_forces(s, xb, height, lo["gravity_m_s2"])
+    else:
+        bl = s["block"]
+        ixy = 0.0
     iy = bl["inertia_kg_m2"]
     if "contacts_m" in fr:
         corners = [np.array([x, 0.0, z]) for x, z in fr["contacts_m"]]
@@ -108,7 +187,8 @@ def load(path):
         mass=bl["mass_kg"], iy=iy,
         ix=bl.get("inertia_x_kg_m2", iy / 2), iz=bl.get("inertia_z_kg_m2", iy / 2),
         ixz=bl.get("inertia_xz_kg_m2", 0.0),
-        force=lo["hydraulic_force_n"], c=lo["eccentricity_m"], g=lo["gravity_m_s2"],
+        force=net, c=lo["eccentricity_m"], g=lo["gravity_m_s2"],
+        height=height, water=water, ixy=ixy, plain="monolith" not in s or "water" not in s,
         mu=fi["mu_k"],
         init=s.get("initial", {}),
     )
@@ -199,7 +279,7 @@ def main():
         builder,
     )
     # Product of inertia I_xz = ∫x'z' dm enters the tensor as -I_xz.
-    inertia = RotationalInertia(p["ix"], p["iy"], p["iz"], 0.0, -p["ixz"], 0.0)
+    inertia = RotationalInertia(p["ix"], p["iy"], p["iz"], -p["ixy"], -p["ixz"], 0.0)
     block = plant.AddRigidBody(
         "block", SpatialInertia.MakeFromCentralInertia(p["mass"], np.zeros(3), inertia)
     )
@@ -228,11 +308,13 @@ def main():
         ground = parent
 
     corners = p["corners"]
+    # The base plane lies ȳ below the centre of mass (a monolith's; zero for [block]).
+    below = np.array([0.0, -p["height"], 0.0])
     spheres, halves = [], []
     for i, corner in enumerate(corners):
         # The sphere's centre is the contact point; each plane is lowered by the radius.
         spheres.append(plant.RegisterCollisionGeometry(
-            block, RigidTransform(corner), Sphere(a.radius), f"contact{i}", props()))
+            block, RigidTransform(corner + below), Sphere(a.radius), f"contact{i}", props()))
     for j, (n, point) in enumerate(planes(p)):
         halves.append(plant.RegisterCollisionGeometry(
             ground, RigidTransform(HalfSpace.MakePose(n, point - a.radius * n)),
@@ -251,7 +333,9 @@ def main():
     simulator = Simulator(diagram)
     context = simulator.get_mutable_context()
     plant_context = plant.GetMyMutableContextFromRoot(context)
-    plant.SetFreeBodyPose(plant_context, block, RigidTransform(np.zeros(3)))
+    plant.SetFreeBodyPose(plant_context, block, RigidTransform(-below))
+    if p["height"] > 0 and p["init"]:
+        sys.exit(f"{a.scene}: initial: the Drake cross-check starts a monolith at rest only")
     v0, w0 = initial_twist(p, corners, start_normals(p))
     plant.SetFreeBodySpatialVelocity(plant_context, block, SpatialVelocity(w0, v0))
     port = plant.get_applied_spatial_force_input_port()
@@ -282,19 +366,30 @@ def main():
         rot = pose.rotation().matrix()
         i_axis, j_axis = rot[:, 0], rot[:, 1]
         shift = ground_at()
-        cm = pose.translation() - shift
+        # The base point under the centre of mass.
+        cm = pose.multiply(below) - shift
         t = k * a.dt
-        contacts = [pose.multiply(c) - shift for c in corners]
+        contacts = [pose.multiply(c + below) - shift for c in corners]
         rows.append((t, cm[0], cm[1], cm[2], math.degrees(math.atan2(i_axis[2], i_axis[0])),
                      *[x for c in contacts for x in c]))
         if k == steps:
             break
-        f = ExternallyAppliedSpatialForce()
-        f.body_index = block.index()
-        f.p_BoBq_B = np.zeros(3)
+        def applied(point, torque, force):
+            f = ExternallyAppliedSpatialForce()
+            f.body_index = block.index()
+            f.p_BoBq_B = point
+            f.F_Bq_W = SpatialForce(torque, force)
+            return f
+
         seismic = np.array([p["kh"], p["kv"], 0.0]) * p["mass"] * p["g"]
-        f.F_Bq_W = SpatialForce(-p["c"] * p["force"] * j_axis, p["force"] * i_axis + seismic)
-        port.FixValue(plant_context, [f])
+        # The eccentricity's couple and the pseudo-static forces at the centre of mass; the
+        # push F along x' at the base point under it, or the water's loads where they act.
+        forces = [applied(np.zeros(3), -p["c"] * p["force"] * j_axis, seismic)]
+        if p["plain"]:
+            forces.append(applied(below, np.zeros(3), p["force"] * i_axis))
+        for point, force in p["water"]:
+            forces.append(applied(point, np.zeros(3), rot @ force))
+        port.FixValue(plant_context, forces)
         if joints:
             shake(t, t + a.dt)
         simulator.AdvanceTo((k + 1) * a.dt)

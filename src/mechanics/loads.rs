@@ -51,6 +51,17 @@ impl Applied {
         }
     }
 
+    /// The same loads with their moments about the point `offset` from the frame's origin
+    /// (the centre of mass above the base, [`crate::mechanics::ContactGeometry::centred`]):
+    /// M' = M − offset × F, for the driving and the held loads each.
+    pub fn about(&self, offset: &Vector3<f64>) -> Applied {
+        Applied {
+            moment: self.moment - offset.cross(&self.force),
+            held_moment: self.held_moment - offset.cross(&(self.held_force + self.weight)),
+            ..*self
+        }
+    }
+
     /// Every force: driving, weight and held (N).
     pub fn total_force(&self) -> Vector3<f64> {
         self.force + self.weight + self.held_force
@@ -61,10 +72,11 @@ impl Applied {
         self.moment + self.held_moment
     }
 
-    /// The power of the loads other than gravity's pull on the base point under the CM
-    /// (W) at velocity `v` of that point and angular velocity `w`: the water's, the
-    /// pseudo-static forces', and the weight's moment at the CM's height (whose work is the
-    /// change of m g times the CM's height above that point).
+    /// The power of the loads other than gravity's pull (W) at velocity `v` of the point their
+    /// moments are about and angular velocity `w`: the water's, the pseudo-static forces', and,
+    /// about the base point under the CM, the weight's moment at the CM's height (whose work is
+    /// the change of m g times the CM's height above that point; about the CM itself, after
+    /// [`Applied::about`], it has none).
     pub fn power(&self, v: &Vector3<f64>, w: &Vector3<f64>) -> f64 {
         (self.force + self.held_force).dot(v) + self.total_moment().dot(w)
     }

@@ -27,6 +27,10 @@ pub struct ContactGeometry {
     pub r: [Vector3<f64>; 3],
     /// Upward unit normal of the plane carrying vertex i.
     pub n: [Vector3<f64>; 3],
+    /// From the frame's origin (the base point under the centre of mass, where the pose puts
+    /// it) to the point the arms `r` are from: zero, or the centre of mass itself
+    /// ([`ContactGeometry::centred`]).
+    pub cm_offset: Vector3<f64>,
 }
 
 impl ContactGeometry {
@@ -40,6 +44,19 @@ impl ContactGeometry {
             frame: pose.frame,
             r: pose.vertices.map(|v| v - pose.cm),
             n: *normals,
+            cm_offset: Vector3::zeros(),
+        }
+    }
+
+    /// The same contacts with their arms from the centre of mass at `height` above the frame's
+    /// origin along j′ (a monolith's, `derivations/11-dam-loads.md` §1): what Newton–Euler
+    /// about the centre of mass needs.
+    pub fn centred(&self, height: f64) -> Self {
+        let offset = self.frame.j * height;
+        ContactGeometry {
+            r: self.r.map(|r| r - offset),
+            cm_offset: self.cm_offset + offset,
+            ..*self
         }
     }
 

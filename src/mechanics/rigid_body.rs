@@ -143,9 +143,16 @@ fn theta_rate_row(u: &Vector3<f64>) -> Vector3<f64> {
 pub fn twist(geom: &ContactGeometry, rates: [f64; 3]) -> Result<Twist, RigidError> {
     let mut a = Matrix6::zeros();
     let mut b = Vector6::zeros();
+    // (Ẋ, Ż) are the rates of the frame's origin O, at −c from the point the twist is of
+    // (c = `geom.cm_offset`): v_O = v + c × ω.
+    let c = geom.cm_offset;
     a[(0, 0)] = 1.0;
+    a[(0, 4)] = -c.z;
+    a[(0, 5)] = c.y;
     b[0] = rates[0];
     a[(1, 2)] = 1.0;
+    a[(1, 3)] = -c.y;
+    a[(1, 4)] = c.x;
     b[1] = rates[1];
     for i in 0..3 {
         let n = geom.n[i];
@@ -919,9 +926,10 @@ pub fn impact_onto(
             .filter(|&k| p[k] < -1e-9 * scale)
             .min_by(|&a, &b| p[a].total_cmp(&p[b]));
         let Some(k) = pull else {
+            let origin = after.v + geom.cm_offset.cross(&after.w);
             let rates = [
-                after.v.x,
-                after.v.z,
+                origin.x,
+                origin.z,
                 theta_rate_row(&geom.frame.i).dot(&after.w),
             ];
             let removed =

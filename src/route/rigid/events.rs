@@ -2,7 +2,7 @@
 //! ([`Heading`]), located by bisection on the step length ([`bracket_event`]), and what a stop
 //! comes to ([`come_to_rest`]).
 
-use super::{Eval, Hold, Y, displacement, energy, evaluate, rest_row, rk4, static_check};
+use super::{Eval, Hold, Y, cm_y, displacement, energy, evaluate, rest_row, rk4, static_check};
 use crate::mechanics::ContactGeometry;
 use crate::mechanics::rigid_body::Motion;
 use crate::mechanics::static_friction::StaticCheck;
@@ -159,7 +159,14 @@ pub(super) fn come_to_rest(
     };
     if check.holds() {
         o.push(rest_row(t_event, stopped, &stop_pose, from.faces));
-        o.energy = Some(energy(stopped, 0.0, stop_pose.cm.y, origin, mass, g));
+        o.energy = Some(energy(
+            stopped,
+            0.0,
+            cm_y(sections, &stop_pose),
+            origin,
+            mass,
+            g,
+        ));
         return Rest::Ended(
             Reason::Stopped,
             t_event,
@@ -182,7 +189,14 @@ pub(super) fn come_to_rest(
             if reason == Reason::ContactForcesUndetermined && barely_exceeded(&check) =>
         {
             o.push(rest_row(t_event, stopped, &stop_pose, from.faces));
-            o.energy = Some(energy(stopped, 0.0, stop_pose.cm.y, origin, mass, g));
+            o.energy = Some(energy(
+                stopped,
+                0.0,
+                cm_y(sections, &stop_pose),
+                origin,
+                mass,
+                g,
+            ));
             Rest::Ended(
                 Reason::Stopped,
                 t_event,
@@ -196,7 +210,14 @@ pub(super) fn come_to_rest(
             )
         }
         Err(Stop { reason, detail, .. }) => {
-            o.energy = Some(energy(stopped, 0.0, stop_pose.cm.y, origin, mass, g));
+            o.energy = Some(energy(
+                stopped,
+                0.0,
+                cm_y(sections, &stop_pose),
+                origin,
+                mass,
+                g,
+            ));
             Rest::Ended(reason, t_event, detail)
         }
     }

@@ -126,13 +126,14 @@ fn evaluate(
 ) -> Result<Eval, Stop> {
     let stuck = hold.stuck;
     let pose = pose_at(scene, finder, displacement(y))?;
-    let geom = ContactGeometry::with_normals(&finder.site().normals(), &pose);
+    let geom = body_geometry(dynamics, &finder.site().normals(), &pose);
     let applied = Applied::shaken(
         dynamics.loads(),
         dynamics.block(),
         &geom.frame,
         scene.ground(y[8]),
-    );
+    )
+    .about(&geom.cm_offset);
     let mut rates = [y[3], y[4], y[5]];
     let mut removed = 0.0;
     if let Some(i) = stuck {
@@ -191,7 +192,7 @@ fn hold(
         if r[0].hypot(r[1]) <= 1e-14 * l || ev.motion.stuck != Some(i) {
             break;
         }
-        let geom = ContactGeometry::with_normals(&finder.site().normals(), &ev.pose);
+        let geom = body_geometry(dynamics, &finder.site().normals(), &ev.pose);
         // The contact's horizontal velocity for unit (Ẋ, Ż, L θ̇): rows X and Z.
         let v = rigid_body::contact_velocity_map(&geom, l, i).map_err(stop_of)?;
         let j = [v.map(|c| c.x), v.map(|c| c.z)];
@@ -216,6 +217,23 @@ fn hold(
         y = accept(&y, &ev);
     }
     Ok((y, ev))
+}
+
+/// The contacts with their arms from the centre of mass, which a monolith has above the base
+/// point the pose is of (`derivations/11-dam-loads.md` §1): Newton–Euler about the centre of
+/// mass. The static checks keep the arms from the base point, with the loads' moments about it.
+fn body_geometry(
+    dynamics: &Simulation,
+    normals: &[Vector3<f64>; 3],
+    pose: &Pose,
+) -> ContactGeometry {
+    ContactGeometry::with_normals(normals, pose).centred(dynamics.loads().cm_height)
+}
+
+/// The height of the centre of mass (m) at `pose`: the base point's and the monolith's ȳ along
+/// j′. Gravity's work is m g times its fall.
+fn cm_y(dynamics: &Simulation, pose: &Pose) -> f64 {
+    pose.cm.y + dynamics.loads().cm_height * pose.frame.j.y
 }
 
 fn derivative(y: &Y, m: &Motion) -> Y {
@@ -314,7 +332,7 @@ fn rest_eval(
     pose: Pose,
     check: &StaticCheck,
 ) -> Result<Eval, Stop> {
-    let geom = ContactGeometry::with_normals(&finder.site().normals(), &pose);
+    let geom = body_geometry(dynamics, &finder.site().normals(), &pose);
     let inertia = rigid_body::Inertia::new(dynamics.block(), &geom).map_err(stop_of)?;
     let zero = Vector3::zeros();
     Ok(Eval {
@@ -425,7 +443,7 @@ impl RigidBody<'_> {
         energy(
             y,
             e.motion.twist.kinetic_energy(mass, &e.motion.inertia),
-            e.pose.cm.y,
+            cm_y(self.sections, &e.pose),
             self.origin,
             mass,
             g,
@@ -482,7 +500,7 @@ impl<'a> Dynamics<'a> for RigidBody<'a> {
                     anchor: None,
                     ke_max: 0.0,
                     h: sections.solver().dt,
-                    origin: (0.0, start_pose.cm.y),
+                    origin: (0.0, cm_y(sections, &start_pose)),
                     round_off: 64.0 * f64::EPSILON * mass * sections.loads().gravity * scene.l(),
                     resting: true,
                 },
@@ -512,7 +530,7 @@ impl<'a> Dynamics<'a> for RigidBody<'a> {
         o.push(row(0.0, &y, &ev));
         let origin = (
             ev.motion.twist.kinetic_energy(mass, &ev.motion.inertia),
-            start_pose.cm.y,
+            cm_y(sections, &start_pose),
         );
         let anchor = anchor_of(&ev, None);
         Start::Moving(

@@ -4,8 +4,8 @@
 
 use super::events::{Bracket, Event, Heading, Rest, barely_exceeded, bracket_event, come_to_rest};
 use super::{
-    Eval, Hold, RigidBody, Y, accept, anchor_of, derivative, displacement, evaluate, hold,
-    rest_eval, rest_row, rk4, row, static_check, stop_of,
+    Eval, Hold, RigidBody, Y, accept, anchor_of, body_geometry, derivative, displacement, evaluate,
+    hold, rest_eval, rest_row, rk4, row, static_check, stop_of,
 };
 use crate::mechanics::ContactGeometry;
 use crate::mechanics::rigid_body::{self, Crease, Creases, Impact, ImpactLaw, RigidError};
@@ -640,8 +640,8 @@ fn after_impact(
     };
     let mut f = finder.for_stages();
     let pose = pose_at(scene, &mut f, displacement(y)).map_err(Ending::Failed)?;
-    let geom = ContactGeometry::with_normals(&finder.site().normals(), &pose);
-    let before = ContactGeometry::with_normals(&faces, &pose);
+    let geom = body_geometry(dynamics, &finder.site().normals(), &pose);
+    let before = body_geometry(dynamics, &faces, &pose);
     let creases = hold.creases.without(hold.stuck);
     // Each contact's friction coefficient at its normal force before the impact.
     let friction = dynamics.strength(faces_of(finder.site()), false);
