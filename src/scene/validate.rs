@@ -913,30 +913,28 @@ pub(super) fn validate(
             }
         }
     };
-    if record.is_some()
-        && solver
-            .as_ref()
-            .is_some_and(|s| s.dynamics != super::DynamicsModel::RigidBody)
-    {
-        return Err(SceneError::new(
-            o,
+    // What only the rigid body's dynamics follows.
+    let rigid_only = [
+        (
+            record.is_some(),
             "seismic.record",
-            "a ground-motion record moves the foundation under a rigid body: it needs \
-             solver.dynamics = \"rigid-body\""
-                .to_string(),
-        ));
-    }
-    if strengths.has_cohesion()
-        && solver
-            .as_ref()
-            .is_some_and(|s| s.dynamics != super::DynamicsModel::RigidBody)
-    {
-        return Err(SceneError::new(
-            o,
+            "a ground-motion record moves the foundation under a rigid body",
+        ),
+        (
+            strengths.has_cohesion(),
             "friction.cohesion_pa",
             "cohesion holds a block at rest and breaks when it slides, which the rigid body's \
-             static check follows: it needs solver.dynamics = \"rigid-body\""
-                .to_string(),
+             static check follows",
+        ),
+    ];
+    let dynamics = solver.as_ref().map(|s| s.dynamics);
+    if let Some((_, key, what)) = rigid_only.iter().find(|(given, _, _)| {
+        *given && dynamics.is_some_and(|d| d != super::DynamicsModel::RigidBody)
+    }) {
+        return Err(SceneError::new(
+            o,
+            *key,
+            format!("{what}: it needs solver.dynamics = \"rigid-body\""),
         ));
     }
     derived(o, site.l(), block.as_ref(), loads.as_ref())?;

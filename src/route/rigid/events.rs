@@ -157,7 +157,8 @@ pub(super) fn come_to_rest(
         Ok(c) => c,
         Err(Stop { reason, detail, .. }) => return Rest::Ended(reason, t, detail),
     };
-    if check.holds() {
+    // At rest there: its row and energy balance.
+    let rest = |o: &mut Outcome<'_>| {
         o.push(rest_row(t_event, stopped, &stop_pose, from.faces));
         o.energy = Some(energy(
             stopped,
@@ -167,6 +168,9 @@ pub(super) fn come_to_rest(
             mass,
             g,
         ));
+    };
+    if check.holds() {
+        rest(o);
         return Rest::Ended(
             Reason::Stopped,
             t_event,
@@ -188,15 +192,7 @@ pub(super) fn come_to_rest(
         Err(Stop { reason, .. })
             if reason == Reason::ContactForcesUndetermined && barely_exceeded(&check) =>
         {
-            o.push(rest_row(t_event, stopped, &stop_pose, from.faces));
-            o.energy = Some(energy(
-                stopped,
-                0.0,
-                cm_y(sections, &stop_pose),
-                origin,
-                mass,
-                g,
-            ));
+            rest(o);
             Rest::Ended(
                 Reason::Stopped,
                 t_event,
