@@ -1388,3 +1388,42 @@ fn check_prints_the_load_case_table_and_routes_the_case_that_fails() {
     let o = run(&["check", "--scene", p.to_str().unwrap()]);
     assert_bad_input(&o, &["case[1].category", "unknown category \"rare\""]);
 }
+
+#[test]
+fn a_shaken_scene_reports_newmarks_permanent_displacement_and_rotation() {
+    let dir = temp_dir("shaken");
+    let scene = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/shaken.toml");
+    let o = run(&[
+        "run",
+        "--scene",
+        scene.to_str().unwrap(),
+        "--out",
+        dir.to_str().unwrap(),
+        "--no-plots",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(out.contains("permanent displacement 0.806 m"), "{out}");
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
+    let d = v["permanent_displacement_m"].as_f64().unwrap();
+    let rot = v["permanent_rotation_deg"].as_f64().unwrap();
+    // The last row's CM offset and yaw, relative to the foundation.
+    let csv = std::fs::read_to_string(dir.join("route.csv")).unwrap();
+    let last: Vec<f64> = csv
+        .lines()
+        .last()
+        .unwrap()
+        .split(',')
+        .take(5)
+        .map(|x| x.parse().unwrap())
+        .collect();
+    assert!((d - last[1].hypot(last[3])).abs() < 1e-9, "{d} {last:?}");
+    assert!((rot - last[4]).abs() < 1e-9, "{rot} {last:?}");
+    // The record is echoed with the scene.
+    assert_eq!(
+        v["manifest"]["scene"]["seismic"]["record"],
+        "shaken-motion.csv"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
