@@ -47,6 +47,7 @@ mod numeric;
 mod roots;
 mod route;
 mod scene;
+mod uncertainty;
 
 pub use check::{CaseResult, check_cases};
 pub use coeffs::{CoeffInputs, Exact, SmallAngle};
@@ -91,6 +92,9 @@ pub mod stages {
     }
     pub mod scene {
         pub use crate::scene::*;
+    }
+    pub mod uncertainty {
+        pub use crate::uncertainty::*;
     }
 }
 

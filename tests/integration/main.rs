@@ -28,3 +28,4 @@ mod roots_traps;
 mod route;
 mod route_reference;
 mod scene_fuzz;
+mod uncertainty;
