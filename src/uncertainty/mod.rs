@@ -8,6 +8,7 @@ mod sampling;
 pub use distribution::{Distribution, FORMS, Uncertain};
 pub use sampling::{Sampling, design};
 
+use crate::mechanics::static_friction::FactorOfSafety;
 use crate::route::{Reason, run};
 use crate::scene::{Scene, SceneError};
 
@@ -18,7 +19,8 @@ pub struct SampleResult {
     pub index: usize,
     /// The sampled values, in the order of the uncertain keys.
     pub values: Vec<f64>,
-    /// The factor of safety at the start (absent where the cone program failed, or infinite).
+    /// The factor of safety at the start: +∞ where no multiple of the driving loads starts the
+    /// block, −∞ where the weight alone does; absent only where its cone program failed.
     pub factor_of_safety: Option<f64>,
     /// How the route ended, and when (s).
     pub reason: Reason,
@@ -76,7 +78,11 @@ pub fn run_sample(
     Ok(SampleResult {
         index,
         values: values.to_vec(),
-        factor_of_safety: r.factor_of_safety.and_then(|f| f.value()),
+        factor_of_safety: r.factor_of_safety.map(|f| match f {
+            FactorOfSafety::Finite { value } => value,
+            FactorOfSafety::Unbounded => f64::INFINITY,
+            FactorOfSafety::NotHoldable => f64::NEG_INFINITY,
+        }),
         reason: r.termination.reason,
         t_s: r.termination.t_s,
         travel_m: r.travel_m,

@@ -1427,3 +1427,121 @@ fn a_shaken_scene_reports_newmarks_permanent_displacement_and_rotation() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn probabilistic_samples_are_the_same_for_a_seed_whatever_the_threads() {
+    let scene = temp_file(
+        "prob.toml",
+        &std::fs::read_to_string(
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/paper-like.toml"),
+        )
+        .unwrap()
+        .replace("t_end_s = 20.0", "t_end_s = 0.5"),
+    );
+    let go = |dir: &std::path::Path, threads: &str, seed: &str| {
+        let o = Command::new(env!("CARGO_BIN_EXE_slideroute"))
+            .env("RAYON_NUM_THREADS", threads)
+            .args([
+                "probabilistic",
+                "--scene",
+                scene.to_str().unwrap(),
+                "--samples",
+                "24",
+                "--seed",
+                seed,
+                "--dist",
+                "friction.mu_k=normal:0.40:0.05",
+                "--dist",
+                "loads.eccentricity_m=truncnormal:0:0.5:-1:1",
+                "--travel-limit-m",
+                "0.5",
+                "--out",
+                dir.to_str().unwrap(),
+                "--quiet",
+            ])
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", stderr(&o));
+        std::fs::read_to_string(dir.join("samples.csv")).unwrap()
+    };
+    let (a, b, c) = (temp_dir("prob-a"), temp_dir("prob-b"), temp_dir("prob-c"));
+    let one = go(&a, "1", "7");
+    assert_eq!(one, go(&b, "2", "7"));
+    assert_ne!(one, go(&c, "2", "8"));
+    assert_eq!(one.lines().count(), 25);
+    assert!(one.starts_with("sample,friction.mu_k,loads.eccentricity_m,factor_of_safety,"));
+    // The summary: its probability inside its interval, counts that add up, the manifest.
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(a.join("probabilistic.json")).unwrap())
+            .unwrap();
+    let p = &v["probability_of_sliding"];
+    let (x, lo, hi) = (
+        p["value"].as_f64().unwrap(),
+        p["ci95"][0].as_f64().unwrap(),
+        p["ci95"][1].as_f64().unwrap(),
+    );
+    assert!(lo <= x && x <= hi, "{p}");
+    assert_eq!(v["routes"], 24);
+    assert!(v["probability_travel_exceeds_limit"]["value"].is_number());
+    assert_eq!(v["sampling"], "lhs");
+    assert!(v["manifest"]["scene"].is_object());
+    // The fraction of rows below a factor of safety of 1 is the probability.
+    let below = one
+        .lines()
+        .skip(1)
+        .filter(|l| l.split(',').nth(3).unwrap().parse::<f64>().unwrap() < 1.0)
+        .count();
+    assert_eq!(below as f64 / 24.0, x);
+}
+
+#[test]
+fn probabilistic_inputs_it_cannot_use_are_named() {
+    let out = temp_dir("prob-bad");
+    let o = out.to_str().unwrap();
+    for (args, needles) in [
+        (
+            vec!["--dist", "friction.mu_k=gauss:0:1"],
+            vec!["--dist", "unknown distribution"],
+        ),
+        (
+            vec!["--dist", "friction.mu_q=normal:0.4:0.05"],
+            vec!["--dist friction.mu_q", "no key `mu_q`"],
+        ),
+        (
+            vec!["--dist", "friction.mu_k=normal:0.4:0"],
+            vec!["sd must be positive"],
+        ),
+        (
+            vec!["--dist", "friction.mu_k=normal:0.4:0.05", "--samples", "0"],
+            vec!["--samples 0"],
+        ),
+        (
+            vec![
+                "--dist",
+                "friction.mu_k=normal:0.4:0.05",
+                "--travel-limit-m",
+                "-1",
+            ],
+            vec!["--travel-limit-m"],
+        ),
+    ] {
+        let mut all = vec!["probabilistic", "--out", o, "--quiet"];
+        all.extend(args);
+        assert_bad_input(&run(&all), &needles);
+    }
+    // A sample whose values make no valid scene is a row that says why, not an abort.
+    let o = run(&[
+        "probabilistic",
+        "--out",
+        out.to_str().unwrap(),
+        "--samples",
+        "8",
+        "--dist",
+        "friction.mu_k=uniform:-0.2:0.1",
+        "--quiet",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let csv = std::fs::read_to_string(out.join("samples.csv")).unwrap();
+    assert!(csv.contains("invalid scene"), "{csv}");
+    assert!(csv.contains("friction.mu_k"), "{csv}");
+}

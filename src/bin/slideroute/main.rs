@@ -1,6 +1,7 @@
 //! The `slideroute` command line: parses, calls the library, prints.
 
 mod output;
+mod probabilistic;
 mod report;
 mod sweep;
 
@@ -92,6 +93,46 @@ enum Command {
         dynamics: Option<DynamicsModel>,
         /// Output folder (created if needed).
         #[arg(long, value_name = "DIR", default_value = "out")]
+        out: PathBuf,
+        /// No progress bar and no summary.
+        #[arg(long)]
+        quiet: bool,
+    },
+    /// Uncertain scene values: sample them from their distributions (plain Monte Carlo or a
+    /// Latin hypercube, reproducible for a seed whatever the number of threads), run every
+    /// sample's route in parallel, and write DIR/samples.csv (one row per sample: the sampled
+    /// values, factor of safety, how the route ended, travel, final yaw and position) and
+    /// DIR/probabilistic.json (the probability of sliding, factor of safety below 1, with its
+    /// 95 % interval; the probabilities of exceeding the limits given; percentiles).
+    Probabilistic {
+        #[command(flatten)]
+        scene: SceneArg,
+        /// How many samples.
+        #[arg(long, default_value_t = 1000)]
+        samples: usize,
+        /// The seed the samples are drawn from.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// An uncertain key and its distribution, `KEY=normal:MEAN:SD`,
+        /// `KEY=truncnormal:MEAN:SD:LO:HI`, `KEY=lognormal:MEAN:SD`, `KEY=uniform:LO:HI` or
+        /// `KEY=triangular:LO:MODE:HI`, in the key's own units (e.g.
+        /// `friction.mu_k=normal:0.40:0.05`, `foundation.xi_deg=uniform:18:22`). Repeat for more.
+        #[arg(long = "dist", value_name = "KEY=DISTRIBUTION", required = true)]
+        dist: Vec<String>,
+        /// `lhs` (a Latin hypercube) or `mc` (plain Monte Carlo).
+        #[arg(long, default_value = "lhs", value_parser = ["lhs", "mc"])]
+        sampling: String,
+        /// Report the probability that the travel exceeds this (m).
+        #[arg(long, value_name = "M", allow_negative_numbers = true)]
+        travel_limit_m: Option<f64>,
+        /// Report the probability that the final yaw exceeds this in size (degrees).
+        #[arg(long, value_name = "DEGREES", allow_negative_numbers = true)]
+        rotation_limit_deg: Option<f64>,
+        /// Dynamics model for every sample, overriding the scene's `[solver] dynamics`.
+        #[arg(long, value_enum)]
+        dynamics: Option<DynamicsModel>,
+        /// Output folder (created if needed).
+        #[arg(long, value_name = "DIR", default_value = "probabilistic")]
         out: PathBuf,
         /// No progress bar and no summary.
         #[arg(long)]
@@ -522,6 +563,141 @@ fn compare_cmd(
     Ok(())
 }
 
+/// The most samples one probabilistic analysis may run.
+const MAX_SAMPLES: usize = 10_000_000;
+
+fn probabilistic_cmd(
+    scene: &SceneArg,
+    (samples, seed, sampling): (usize, u64, &str),
+    dist: &[String],
+    (travel_limit, rotation_limit): (Option<f64>, Option<f64>),
+    dynamics: Option<DynamicsModel>,
+    (out, quiet): (&std::path::Path, bool),
+) -> Result<(), CliError> {
+    use slideroute::stages::uncertainty::{Sampling, Uncertain};
+    let mut base = load(scene)?;
+    if let Some(model) = dynamics {
+        base = base
+            .with_dynamics(model)
+            .map_err(|e| bad_input(e.to_string()))?;
+    }
+    if samples == 0 || samples > MAX_SAMPLES {
+        return Err(bad_input(format!(
+            "--samples {samples}: from 1 to {MAX_SAMPLES}"
+        )));
+    }
+    for (flag, limit) in [
+        ("--travel-limit-m", travel_limit),
+        ("--rotation-limit-deg", rotation_limit),
+    ] {
+        if let Some(l) = limit.filter(|l| !(l.is_finite() && *l >= 0.0)) {
+            return Err(bad_input(format!(
+                "{flag} {l}: a finite number, zero or more"
+            )));
+        }
+    }
+    let uncertain = dist
+        .iter()
+        .map(|d| d.parse::<Uncertain>().map_err(|e| format!("--dist {e}")))
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(bad_input)?;
+    // Every key must be a number of the scene, and given once.
+    let as_vary: Vec<crate::sweep::Vary> = uncertain
+        .iter()
+        .map(|u| crate::sweep::Vary {
+            key: u.key.clone(),
+            values: vec![],
+            words: None,
+        })
+        .collect();
+    crate::sweep::check_keys(&base, &as_vary)
+        .map_err(|e| bad_input(e.replacen("--vary", "--dist", 1)))?;
+    let sampling = if sampling == "mc" {
+        Sampling::MonteCarlo
+    } else {
+        Sampling::LatinHypercube
+    };
+    let mut folder = crate::output::folder::Folder::open(out).map_err(failed)?;
+    let bar = progress_bar(quiet, samples as u64, "samples");
+    let rows = crate::probabilistic::run(
+        &base,
+        &uncertain,
+        (samples, seed, sampling),
+        || bar.inc(1),
+        interrupted,
+    );
+    bar.finish_and_clear();
+    let csv_path = folder
+        .write_with("samples.csv", |tmp| {
+            let file = std::fs::File::create(tmp)
+                .map_err(|e| format!("{}: cannot write: {e}", tmp.display()))?;
+            crate::probabilistic::write_csv(std::io::BufWriter::new(file), &uncertain, &rows)
+                .map_err(|e| format!("samples.csv: {e}"))
+        })
+        .map_err(failed)?;
+    let summary = crate::probabilistic::summarise(
+        &base,
+        (&uncertain, dist),
+        (samples, seed, sampling),
+        (travel_limit, rotation_limit),
+        &rows,
+    );
+    let manifest = crate::output::route_files::Manifest::new(&base, &folder);
+    let json_path = crate::output::route_files::write_json_with_manifest(
+        &mut folder,
+        "probabilistic.json",
+        &summary,
+        &manifest,
+    )
+    .map_err(failed)?;
+    folder.finish().map_err(failed)?;
+    let written = format!("{}, {}", csv_path.display(), json_path.display());
+    if interrupted() {
+        return Err(failed(format!(
+            "interrupted: samples under way stopped, those not started are rows \"{}\"; wrote {written}",
+            crate::probabilistic::NOT_RUN
+        )));
+    }
+    if !quiet {
+        let p = summary.probability_of_sliding;
+        println!(
+            "probabilistic {}: {} samples ({}), {} routes, {} invalid",
+            summary.scene,
+            samples,
+            if sampling == Sampling::MonteCarlo {
+                "Monte Carlo"
+            } else {
+                "Latin hypercube"
+            },
+            summary.routes,
+            summary.invalid_samples
+        );
+        println!(
+            "  probability of sliding (factor of safety below 1) {:.4}, 95 % interval [{:.4}, {:.4}]",
+            p.value, p.ci95[0], p.ci95[1]
+        );
+        for (what, prob) in [
+            (
+                "travel over the limit",
+                summary.probability_travel_exceeds_limit,
+            ),
+            (
+                "rotation over the limit",
+                summary.probability_rotation_exceeds_limit,
+            ),
+        ] {
+            if let Some(q) = prob {
+                println!(
+                    "  probability of {what} {:.4}, 95 % interval [{:.4}, {:.4}]",
+                    q.value, q.ci95[0], q.ci95[1]
+                );
+            }
+        }
+        println!("  wrote {written}");
+    }
+    Ok(())
+}
+
 fn sweep_cmd(
     scene: &SceneArg,
     vary: &[String],
@@ -780,6 +956,25 @@ fn main() -> ExitCode {
             out,
             quiet,
         } => sweep_cmd(scene, vary, *dynamics, out, *quiet),
+        Command::Probabilistic {
+            scene,
+            samples,
+            seed,
+            dist,
+            sampling,
+            travel_limit_m,
+            rotation_limit_deg,
+            dynamics,
+            out,
+            quiet,
+        } => probabilistic_cmd(
+            scene,
+            (*samples, *seed, sampling),
+            dist,
+            (*travel_limit_m, *rotation_limit_deg),
+            *dynamics,
+            (out, *quiet),
+        ),
         Command::Report { quick, out, quiet } => report_cmd(*quick, out, *quiet),
         Command::Check {
             scene,
