@@ -18,16 +18,8 @@ fn shaken(name: &str, mu: f64, record: &[(f64, f64)], friction: &str) -> Scene {
         csv += &format!("{t},{ax},0,0\n");
     }
     std::fs::write(dir.join("motion.csv"), csv).unwrap();
-    let paper = std::fs::read_to_string(
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/paper-like.toml"),
-    )
-    .unwrap();
-    let text = paper
-        .replace("xi_deg = 20.0", "xi_deg = 0.01")
-        .replace("zeta_deg = 25.0", "zeta_deg = 0.01")
-        .replace("kappa_deg = 30.0", "kappa_deg = 0.0")
+    let text = crate::common::paper_like_on_level_planes()
         .replace("hydraulic_force_n = 8.0e6", "hydraulic_force_n = 0.0")
-        .replace("eccentricity_m = 1.0", "eccentricity_m = 0.0")
         .replace("mu_k = 0.40", &format!("mu_k = {mu}\n{friction}"))
         .replace("t_end_s = 20.0", "t_end_s = 5.0")
         + "\n[seismic]\nrecord = \"motion.csv\"\n";

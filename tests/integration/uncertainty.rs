@@ -6,16 +6,8 @@ use slideroute::stages::uncertainty::{Sampling, Uncertain, run_sample, sample_va
 /// The paper-like block on 0.01° dips with the push through its centre of mass: it slides
 /// when μ W < H, so with μ ~ normal(m, s) the probability of sliding is Φ((H/W − m)/s).
 fn flat() -> Scene {
-    let paper = std::fs::read_to_string(
-        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/paper-like.toml"),
-    )
-    .unwrap();
-    let text = paper
-        .replace("xi_deg = 20.0", "xi_deg = 0.01")
-        .replace("zeta_deg = 25.0", "zeta_deg = 0.01")
-        .replace("kappa_deg = 30.0", "kappa_deg = 0.0")
-        .replace("eccentricity_m = 1.0", "eccentricity_m = 0.0")
-        .replace("t_end_s = 20.0", "t_end_s = 0.001");
+    let text =
+        crate::common::paper_like_on_level_planes().replace("t_end_s = 20.0", "t_end_s = 0.001");
     Scene::from_toml(&text, "flat").unwrap()
 }
 

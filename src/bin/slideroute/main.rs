@@ -276,6 +276,17 @@ fn fail(e: CliError) -> ExitCode {
     }
 }
 
+/// The scene, with its dynamics model overridden when `dynamics` says.
+fn load_with(arg: &SceneArg, dynamics: Option<DynamicsModel>) -> Result<Scene, CliError> {
+    let base = load(arg)?;
+    match dynamics {
+        Some(model) => base
+            .with_dynamics(model)
+            .map_err(|e| bad_input(e.to_string())),
+        None => Ok(base),
+    }
+}
+
 fn load(arg: &SceneArg) -> Result<Scene, CliError> {
     let scene = match &arg.scene {
         Some(p) => Scene::from_file(p).map_err(|e| bad_input(e.to_string()))?,
@@ -575,12 +586,7 @@ fn probabilistic_cmd(
     (out, quiet): (&std::path::Path, bool),
 ) -> Result<(), CliError> {
     use slideroute::stages::uncertainty::{Sampling, Uncertain};
-    let mut base = load(scene)?;
-    if let Some(model) = dynamics {
-        base = base
-            .with_dynamics(model)
-            .map_err(|e| bad_input(e.to_string()))?;
-    }
+    let base = load_with(scene, dynamics)?;
     if samples == 0 || samples > MAX_SAMPLES {
         return Err(bad_input(format!(
             "--samples {samples}: from 1 to {MAX_SAMPLES}"
@@ -706,12 +712,7 @@ fn sweep_cmd(
     quiet: bool,
 ) -> Result<(), CliError> {
     // The base scene must itself be valid.
-    let mut base = load(scene)?;
-    if let Some(model) = dynamics {
-        base = base
-            .with_dynamics(model)
-            .map_err(|e| bad_input(e.to_string()))?;
-    }
+    let base = load_with(scene, dynamics)?;
     let varies = vary
         .iter()
         .map(|v| crate::sweep::parse_vary(v))

@@ -157,17 +157,11 @@ pub(super) fn come_to_rest(
         Ok(c) => c,
         Err(Stop { reason, detail, .. }) => return Rest::Ended(reason, t, detail),
     };
-    // At rest there: its row and energy balance.
+    // At rest there: its energy balance, and its row.
+    let balance = energy(stopped, 0.0, cm_y(sections, &stop_pose), origin, mass, g);
     let rest = |o: &mut Outcome<'_>| {
         o.push(rest_row(t_event, stopped, &stop_pose, from.faces));
-        o.energy = Some(energy(
-            stopped,
-            0.0,
-            cm_y(sections, &stop_pose),
-            origin,
-            mass,
-            g,
-        ));
+        o.energy = Some(balance);
     };
     if check.holds() {
         rest(o);
@@ -206,14 +200,7 @@ pub(super) fn come_to_rest(
             )
         }
         Err(Stop { reason, detail, .. }) => {
-            o.energy = Some(energy(
-                stopped,
-                0.0,
-                cm_y(sections, &stop_pose),
-                origin,
-                mass,
-                g,
-            ));
+            o.energy = Some(balance);
             Rest::Ended(reason, t_event, detail)
         }
     }

@@ -212,3 +212,16 @@ pub fn sample<S: proptest::strategy::Strategy>(strategy: S, n: usize) -> Vec<S::
         .map(|_| strategy.new_tree(&mut runner).expect("sample").current())
         .collect()
 }
+
+/// `scenes/paper-like.toml` on its planes tilted to 0.01° (κ = 0) with the push through the
+/// centre of mass (no eccentricity): a level base in all but name, where closed forms hold.
+pub fn paper_like_on_level_planes() -> String {
+    std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/paper-like.toml"),
+    )
+    .unwrap()
+    .replace("xi_deg = 20.0", "xi_deg = 0.01")
+    .replace("zeta_deg = 25.0", "zeta_deg = 0.01")
+    .replace("kappa_deg = 30.0", "kappa_deg = 0.0")
+    .replace("eccentricity_m = 1.0", "eccentricity_m = 0.0")
+}
