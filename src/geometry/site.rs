@@ -127,6 +127,12 @@ impl Site {
         Some(Site::on_ground(self.contacts, ground.clone(), faces))
     }
 
+    /// The shared ground itself (a scene edited by key keeps it rather than reading its
+    /// surface again).
+    pub fn shared_ground(&self) -> Option<&Arc<Ground>> {
+        self.ground.as_ref().map(|(g, _)| g)
+    }
+
     /// The ground and the face each contact is on, for a site on a ground of faces.
     pub fn ground(&self) -> Option<(&Ground, [usize; 3])> {
         self.ground.as_ref().map(|(g, f)| (g.as_ref(), *f))

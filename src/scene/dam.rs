@@ -6,6 +6,7 @@ use super::raw::{RawMonolith, RawSeismic, RawWater};
 use super::record::Record;
 use super::water::{Levels, MassProperties, Section, water_loads};
 use super::{Block, Loads, SceneError, Site};
+use std::sync::Arc;
 
 /// A monolith from its section.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -91,19 +92,22 @@ pub(super) fn contacts_on_base(o: &str, site: &Site, m: &Monolith) -> Result<(),
 }
 
 /// (k_h, k_v): fractions of g, each below 1 in size; and the ground-motion record, read from
-/// `folder`.
+/// `folder` (or the one `read` already holds under that name).
 pub(super) fn seismic(
     o: &str,
     s: &RawSeismic,
-    folder: &std::path::Path,
-) -> Result<(f64, f64, Option<std::sync::Arc<Record>>), SceneError> {
+    (folder, read): (&std::path::Path, &Option<(String, Arc<Record>)>),
+) -> Result<(f64, f64, Option<Arc<Record>>), SceneError> {
     let record = match &s.record {
+        Some(name) if read.as_ref().is_some_and(|(n, _)| n == name) => {
+            read.as_ref().map(|(_, r)| r.clone())
+        }
         Some(name) => {
             let path = folder.join(name);
             let r = Record::read(&path).map_err(|why| {
                 SceneError::new(o, "seismic.record", format!("{}: {why}", path.display()))
             })?;
-            Some(std::sync::Arc::new(r))
+            Some(Arc::new(r))
         }
         None => None,
     };

@@ -380,7 +380,7 @@ impl Scene {
             };
             table.insert(name.to_string(), value.into());
         }
-        read::from_table(doc, &self.origin, &self.folder)
+        read::from_table(doc, &self.origin, (&self.folder, &read::Files::of(self)))
     }
 
     /// The same scene with the other dynamics model (when it has a `[solver]`). A change of
@@ -394,7 +394,7 @@ impl Scene {
                 if let Some(solver) = doc.get_mut("solver").and_then(|v| v.as_table_mut()) {
                     solver.remove("integrator");
                 }
-                read::from_table(doc, &self.origin, &self.folder)?
+                read::from_table(doc, &self.origin, (&self.folder, &read::Files::of(self)))?
                     .with("solver.dynamics", model.as_str())
             }
             _ => Ok(self.clone()),

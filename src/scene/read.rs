@@ -3,9 +3,12 @@
 
 use super::error::SceneErrorKind;
 use super::raw::{self, ReadError};
+use super::record::Record;
 use super::validate::validate;
 use super::{Scene, SceneError};
+use crate::geometry::Ground;
 use std::path::Path;
+use std::sync::Arc;
 use toml::de::{DeTable, DeValue};
 
 /// Parses and validates scene text; `origin` names the source in errors.
@@ -38,19 +41,45 @@ pub(super) fn from_toml(text: &str, origin: &str, folder: &Path) -> Result<Scene
             })?;
     let raw = raw::read(toml::Deserializer::from(doc.clone()))
         .map_err(|e| located(read_error(e, origin, Some(text))))?;
-    validate(raw, origin, table, folder).map_err(located)
+    validate(raw, origin, table, (folder, &Files::default())).map_err(located)
 }
 
 /// A document given as a table (a scene edited by key, [`Scene::with`]): errors name the key,
 /// without a position.
+/// `files` are the files the scene named when it was read: one it still names is not read again.
 pub(super) fn from_table(
     table: toml::Table,
     origin: &str,
-    folder: &Path,
+    (folder, files): (&Path, &Files),
 ) -> Result<Scene, SceneError> {
     let raw =
         raw::read(toml::Value::Table(table.clone())).map_err(|e| read_error(e, origin, None))?;
-    validate(raw, origin, table, folder)
+    validate(raw, origin, table, (folder, files))
+}
+
+/// The files a scene named and what was read from them, by the name the scene gave.
+#[derive(Default)]
+pub(super) struct Files {
+    pub surface: Option<(String, Arc<Ground>)>,
+    pub record: Option<(String, Arc<Record>)>,
+}
+
+impl Files {
+    /// What `scene` read.
+    pub fn of(scene: &Scene) -> Files {
+        let named = |section: &str, key: &str| {
+            scene
+                .source
+                .get(section)
+                .and_then(|s| s.get(key))
+                .and_then(|v| v.as_str())
+                .map(str::to_string)
+        };
+        Files {
+            surface: named("foundation", "surface").zip(scene.site.shared_ground().cloned()),
+            record: named("seismic", "record").zip(scene.record.clone()),
+        }
+    }
 }
 
 fn read_error(e: ReadError, origin: &str, text: Option<&str>) -> SceneError {

@@ -833,6 +833,14 @@ fn a_surface_is_read_from_an_obj_file_beside_the_scene() {
     assert_eq!(valley.site().ground().unwrap().0.faces().len(), 864);
     // Changed by key, it still finds its file.
     assert!(valley.with("friction.mu_k", 0.3).is_ok());
+    // And keeps the surface it read, without reading it again: a scene whose file is gone is
+    // still edited; one that names another surface reads that.
+    std::fs::remove_file(dir.join("square.obj")).unwrap();
+    let edited = s.with("friction.mu_k", 0.3).unwrap();
+    let shared = |s: &Scene| s.site.shared_ground().unwrap().clone();
+    assert!(std::sync::Arc::ptr_eq(&shared(&s), &shared(&edited)));
+    let e = s.with("foundation.surface", "other.obj").unwrap_err();
+    assert!(e.to_string().contains("other.obj"), "{e}");
     let _ = std::fs::remove_dir_all(dir);
 }
 

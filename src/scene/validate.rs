@@ -6,6 +6,7 @@ use super::checks::{check, named, need, non_negative, positive, section};
 use super::dam;
 use super::error::SceneErrorKind;
 use super::raw::{self, RawScene};
+use super::read::Files;
 use super::strengths::{FaceStrength, Strengths, barycentric};
 use super::{
     Block, DynamicsModel, Foundation, Frame, Friction, Initial, Integrator, Loads, Mode, Scene,
@@ -13,6 +14,7 @@ use super::{
 };
 use crate::geometry::{Ground, Plane};
 use std::path::Path;
+use std::sync::Arc;
 
 /// The most increments one run may take (t_end / dt).
 pub const MAX_INCREMENTS: f64 = 1e8;
@@ -462,7 +464,7 @@ pub(super) enum FrameIn {
 pub(super) enum FoundationIn {
     Paper(Foundation),
     Faces(Vec<Plane>),
-    Surface(Ground),
+    Surface(Arc<Ground>),
 }
 
 /// `[frame]`: either the paper's four lengths or `contacts_m`, not both.
@@ -565,8 +567,13 @@ fn paper_frame(o: &str, f: &raw::RawFrame) -> Result<Frame, SceneError> {
     Ok(frame)
 }
 
-/// `[foundation]`: exactly one of the paper's three angles, a list of faces, or a surface.
-fn foundation(o: &str, d: &raw::RawFoundation, folder: &Path) -> Result<FoundationIn, SceneError> {
+/// `[foundation]`: exactly one of the paper's three angles, a list of faces, or a surface (not
+/// read again when `files` already holds it under its name).
+fn foundation(
+    o: &str,
+    d: &raw::RawFoundation,
+    (folder, files): (&Path, &Files),
+) -> Result<FoundationIn, SceneError> {
     let paper = [d.xi_deg, d.zeta_deg, d.kappa_deg]
         .iter()
         .any(Option::is_some);
@@ -605,7 +612,11 @@ fn foundation(o: &str, d: &raw::RawFoundation, folder: &Path) -> Result<Foundati
                 .map(FoundationIn::Faces),
         },
         ["foundation.surface"] => {
-            surface(o, folder, d.surface.as_deref().unwrap_or_default()).map(FoundationIn::Surface)
+            let name = d.surface.as_deref().unwrap_or_default();
+            match &files.surface {
+                Some((read, ground)) if read == name => Ok(FoundationIn::Surface(ground.clone())),
+                _ => surface(o, folder, name).map(|g| FoundationIn::Surface(Arc::new(g))),
+            }
         }
         _ => paper_foundation(o, d).map(FoundationIn::Paper),
     }
@@ -733,14 +744,14 @@ fn site(o: &str, frame: FrameIn, foundation: FoundationIn) -> Result<Site, Scene
             ];
             Ok(Site::general(c, planes))
         }
-        (_, FoundationIn::Faces(faces)) => on_ground(o, contacts, Ground::planes(faces)),
+        (_, FoundationIn::Faces(faces)) => on_ground(o, contacts, Arc::new(Ground::planes(faces))),
         (_, FoundationIn::Surface(ground)) => on_ground(o, contacts, ground),
     }
 }
 
 /// Contacts starting flat at Y = 0 on a ground of faces: each must be on the ground there,
 /// neither under it nor above it, and takes the face under it.
-fn on_ground(o: &str, contacts: [[f64; 2]; 3], ground: Ground) -> Result<Site, SceneError> {
+fn on_ground(o: &str, contacts: [[f64; 2]; 3], ground: Arc<Ground>) -> Result<Site, SceneError> {
     let key = if ground.is_surface() {
         "foundation.surface"
     } else {
@@ -784,11 +795,7 @@ fn on_ground(o: &str, contacts: [[f64; 2]; 3], ground: Ground) -> Result<Site, S
             .face_under(x, z, (1.0, 0.0), 1e-3 * scale, tol)
             .unwrap_or(top);
     }
-    Ok(Site::on_ground(
-        contacts,
-        std::sync::Arc::new(ground),
-        faces,
-    ))
+    Ok(Site::on_ground(contacts, ground, faces))
 }
 
 /// The typed scene of a document, or its first fault. `source` is kept as the scene's own
@@ -797,10 +804,14 @@ pub(super) fn validate(
     raw: RawScene,
     o: &str,
     source: toml::Table,
-    folder: &Path,
+    (folder, files): (&Path, &Files),
 ) -> Result<Scene, SceneError> {
     let frame = frame(o, section(o, "frame", &raw.frame)?)?;
-    let foundation = foundation(o, section(o, "foundation", &raw.foundation)?, folder)?;
+    let foundation = foundation(
+        o,
+        section(o, "foundation", &raw.foundation)?,
+        (folder, files),
+    )?;
     let site = site(o, frame, foundation)?;
     let monolith = raw
         .monolith
@@ -825,7 +836,7 @@ pub(super) fn validate(
         (None, None) => None,
     };
     let (kh, kv, record) = match &raw.seismic {
-        Some(s) => dam::seismic(o, s, folder)?,
+        Some(s) => dam::seismic(o, s, (folder, &files.record))?,
         None => (0.0, 0.0, None),
     };
     let loads = match &raw.loads {

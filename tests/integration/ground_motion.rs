@@ -164,6 +164,21 @@ fn a_pulse_back_slides_the_block_back_to_its_start() {
 }
 
 #[test]
+fn a_shaken_scene_edited_by_key_keeps_the_record_it_read() {
+    // `shaken` deletes the record's folder once the scene is read: an edit by key (a sweep's,
+    // a probabilistic sample's) keeps the record rather than reading it again, and gives the
+    // route the same record would.
+    let s = shaken("kept", 0.1, &pulse(0.0, -0.5, 0.2), "");
+    let edited = s.with("friction.mu_k", 0.1).unwrap();
+    assert_eq!(edited.record(), s.record());
+    assert_eq!(run(&edited), run(&s));
+    // Naming another record reads it (here: gone, and said so).
+    let e = s.with("seismic.record", "other.csv").unwrap_err();
+    assert_eq!(e.key, "seismic.record");
+    assert!(e.to_string().contains("other.csv"), "{e}");
+}
+
+#[test]
 fn a_record_the_scene_cannot_use_is_refused_naming_the_key() {
     let dir = std::env::temp_dir().join(format!("slideroute-bad-record-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
