@@ -10,6 +10,7 @@ mod checks;
 mod dam;
 mod echo;
 mod error;
+mod files;
 pub mod input;
 mod raw;
 mod read;
@@ -380,7 +381,7 @@ impl Scene {
             };
             table.insert(name.to_string(), value.into());
         }
-        read::from_table(doc, &self.origin, (&self.folder, &read::Files::of(self)))
+        read::from_table(doc, &self.origin, (&self.folder, &files::Files::of(self)))
     }
 
     /// The same scene with the other dynamics model (when it has a `[solver]`). A change of
@@ -394,7 +395,7 @@ impl Scene {
                 if let Some(solver) = doc.get_mut("solver").and_then(|v| v.as_table_mut()) {
                     solver.remove("integrator");
                 }
-                read::from_table(doc, &self.origin, (&self.folder, &read::Files::of(self)))?
+                read::from_table(doc, &self.origin, (&self.folder, &files::Files::of(self)))?
                     .with("solver.dynamics", model.as_str())
             }
             _ => Ok(self.clone()),

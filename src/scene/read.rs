@@ -2,13 +2,11 @@
 //! and column of the key it names (or of the nearest enclosing key the file has).
 
 use super::error::SceneErrorKind;
+use super::files::Files;
 use super::raw::{self, ReadError};
-use super::record::Record;
 use super::validate::validate;
 use super::{Scene, SceneError};
-use crate::geometry::Ground;
 use std::path::Path;
-use std::sync::Arc;
 use toml::de::{DeTable, DeValue};
 
 /// Parses and validates scene text; `origin` names the source in errors.
@@ -55,31 +53,6 @@ pub(super) fn from_table(
     let raw =
         raw::read(toml::Value::Table(table.clone())).map_err(|e| read_error(e, origin, None))?;
     validate(raw, origin, table, (folder, files))
-}
-
-/// The files a scene named and what was read from them, by the name the scene gave.
-#[derive(Default)]
-pub(super) struct Files {
-    pub surface: Option<(String, Arc<Ground>)>,
-    pub record: Option<(String, Arc<Record>)>,
-}
-
-impl Files {
-    /// What `scene` read.
-    pub fn of(scene: &Scene) -> Files {
-        let named = |section: &str, key: &str| {
-            scene
-                .source
-                .get(section)
-                .and_then(|s| s.get(key))
-                .and_then(|v| v.as_str())
-                .map(str::to_string)
-        };
-        Files {
-            surface: named("foundation", "surface").zip(scene.site.shared_ground().cloned()),
-            record: named("seismic", "record").zip(scene.record.clone()),
-        }
-    }
 }
 
 fn read_error(e: ReadError, origin: &str, text: Option<&str>) -> SceneError {

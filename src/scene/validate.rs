@@ -5,8 +5,8 @@
 use super::checks::{check, named, need, non_negative, positive, section};
 use super::dam;
 use super::error::SceneErrorKind;
+use super::files::Files;
 use super::raw::{self, RawScene};
-use super::read::Files;
 use super::strengths::{FaceStrength, Strengths, barycentric};
 use super::{
     Block, DynamicsModel, Foundation, Frame, Friction, Initial, Integrator, Loads, Mode, Scene,
