@@ -2,7 +2,9 @@
 //! ([`Heading`]), located by bisection on the step length ([`bracket_event`]), and what a stop
 //! comes to ([`come_to_rest`]).
 
-use super::{Eval, Hold, Y, cm_y, displacement, energy, evaluate, rest_row, rk4, static_check};
+use super::{
+    Eval, Hold, Y, cm_y, displacement, energy, evaluate, rest_eval, rest_row, rk4, static_check,
+};
 use crate::mechanics::ContactGeometry;
 use crate::mechanics::rigid_body::Motion;
 use crate::mechanics::static_friction::StaticCheck;
@@ -128,6 +130,9 @@ pub(super) fn barely_exceeded(check: &StaticCheck) -> bool {
 pub(super) enum Rest {
     /// Not held: the block slips again from rest, from this evaluation.
     Slips(Box<Eval>),
+    /// Held where it stopped while a ground-motion record still shakes the foundation: it
+    /// rests from this evaluation at this time, checked again as the record's loads change.
+    Rests(Box<Eval>, f64),
     /// The route ends: held where it stopped, or the slip from rest cannot be had.
     Ended(Reason, f64, String),
     /// The state at rest is off the model (as a failed step).
@@ -157,17 +162,25 @@ pub(super) fn come_to_rest(
         Ok(c) => c,
         Err(Stop { reason, detail, .. }) => return Rest::Ended(reason, t, detail),
     };
-    // At rest there: its energy balance, and its row.
+    // At rest there: its energy balance and its row; while a record shakes the foundation it
+    // rests, else the route ends "stopped" for `why`.
     let balance = energy(stopped, 0.0, cm_y(sections, &stop_pose), origin, mass, g);
-    let rest = |o: &mut Outcome<'_>| {
+    let held = |o: &mut Outcome<'_>, finder: &PoseFinder<'_>, why: String| {
         o.push(rest_row(t_event, stopped, &stop_pose, from.faces));
         o.energy = Some(balance);
+        if scene.record().is_some_and(|r| t_event < r.end()) {
+            match rest_eval(sections, finder, stop_pose, &check) {
+                Ok(e) => Rest::Rests(Box::new(e), t_event),
+                Err(stop) => Rest::Failed(stop),
+            }
+        } else {
+            Rest::Ended(Reason::Stopped, t_event, why)
+        }
     };
     if check.holds() {
-        rest(o);
-        return Rest::Ended(
-            Reason::Stopped,
-            t_event,
+        return held(
+            o,
+            finder,
             format!(
                 "the motion stopped at t = {t_event:.6} s and static friction holds the block \
                  there (factor of safety {})",
@@ -186,10 +199,9 @@ pub(super) fn come_to_rest(
         Err(Stop { reason, .. })
             if reason == Reason::ContactForcesUndetermined && barely_exceeded(&check) =>
         {
-            rest(o);
-            Rest::Ended(
-                Reason::Stopped,
-                t_event,
+            held(
+                o,
+                finder,
                 format!(
                     "the motion stopped at t = {t_event:.6} s; the loads exceed the friction \
                      cones by {:.1e} of themselves there, too little for a consistent start of \

@@ -149,11 +149,12 @@ fn evaluate(
             rigid_body::crease_rates(&geom, dynamics.block(), rates, &riding).map_err(stop_of)?;
         (rates, removed) = (r, removed + into);
     }
+    let faces = faces_of(finder.site());
     let motion = rigid_body::accelerations_in_crease(
         &geom,
         &applied,
         dynamics.block(),
-        &dynamics.strength(faces_of(finder.site()), false),
+        &dynamics.strength(faces, false),
         rates,
         dynamics.solver().dt,
         hold.creases,
@@ -164,7 +165,7 @@ fn evaluate(
         motion,
         rates,
         removed,
-        faces: faces_of(finder.site()),
+        faces,
     })
 }
 
@@ -437,7 +438,32 @@ pub(super) struct RigidBody<'a> {
     resting: bool,
 }
 
-impl RigidBody<'_> {
+impl<'a> RigidBody<'a> {
+    /// At the start, in state `y` evaluated as `ev`, with the kinetic energy and the CM height
+    /// of the start (`origin`); resting while a record's loads change, or moving.
+    fn new(
+        scene: &'a Scene,
+        sections: &'a Simulation,
+        (y, ev): (Y, Eval),
+        origin: (f64, f64),
+        resting: bool,
+    ) -> Self {
+        let mass = sections.block().mass;
+        RigidBody {
+            scene,
+            sections,
+            y,
+            t: 0.0,
+            anchor: anchor_of(&ev, None),
+            ev,
+            ke_max: 0.0,
+            h: sections.solver().dt,
+            origin,
+            round_off: 64.0 * f64::EPSILON * mass * sections.loads().gravity * scene.l(),
+            resting,
+        }
+    }
+
     fn balance(&self, y: &Y, e: &Eval) -> EnergyBalance {
         let (mass, g) = (self.sections.block().mass, self.sections.loads().gravity);
         energy(
@@ -490,22 +516,8 @@ impl<'a> Dynamics<'a> for RigidBody<'a> {
                     return Start::Ended(o.end(reason, 0.0, detail));
                 }
             };
-            return Start::Moving(
-                RigidBody {
-                    scene,
-                    sections,
-                    y,
-                    t: 0.0,
-                    ev,
-                    anchor: None,
-                    ke_max: 0.0,
-                    h: sections.solver().dt,
-                    origin: (0.0, cm_y(sections, &start_pose)),
-                    round_off: 64.0 * f64::EPSILON * mass * sections.loads().gravity * scene.l(),
-                    resting: true,
-                },
-                o,
-            );
+            let origin = (0.0, cm_y(sections, &start_pose));
+            return Start::Moving(RigidBody::new(scene, sections, (y, ev), origin, true), o);
         }
         if init.at_rest() && check.holds() {
             o.push(rest_row(0.0, &y, &start_pose, faces_of(&scene.site)));
@@ -532,23 +544,7 @@ impl<'a> Dynamics<'a> for RigidBody<'a> {
             ev.motion.twist.kinetic_energy(mass, &ev.motion.inertia),
             cm_y(sections, &start_pose),
         );
-        let anchor = anchor_of(&ev, None);
-        Start::Moving(
-            RigidBody {
-                scene,
-                sections,
-                y,
-                t: 0.0,
-                ev,
-                anchor,
-                ke_max: 0.0,
-                h: sections.solver().dt,
-                origin,
-                round_off: 64.0 * f64::EPSILON * mass * sections.loads().gravity * scene.l(),
-                resting: false,
-            },
-            o,
-        )
+        Start::Moving(RigidBody::new(scene, sections, (y, ev), origin, false), o)
     }
 
     fn advance<'s>(

@@ -142,19 +142,24 @@ impl RigidBody<'_> {
         let geom = ContactGeometry::with_normals(&finder.site().normals(), &self.ev.pose);
         // The joint's cohesion holds until the block first slides.
         let (faces, bonded) = (self.ev.faces, o.travel == 0.0);
-        let holds = |t: f64| static_check(sections, &geom, (t, faces, bonded)).map(|c| c.holds());
+        let check_at = |t: f64| static_check(sections, &geom, (t, faces, bonded));
+        let holds = |t: f64| check_at(t).map(|c| c.holds());
         // The record's samples within the increment, where its loads turn: the cones are
-        // checked at each (between them the loads are linear in time).
+        // checked at each (between them the loads are linear in time), the last at t_target.
         let mut at = self.t;
         let mut slips = None;
+        let mut last = None;
         while at < t_target {
             let next = match scene.record().and_then(|r| r.next_sample(at)) {
                 Some(s) if s < t_target => s,
                 _ => t_target,
             };
-            match holds(next) {
-                Ok(true) => at = next,
-                Ok(false) => {
+            match check_at(next) {
+                Ok(c) if c.holds() => {
+                    at = next;
+                    last = Some(c);
+                }
+                Ok(_) => {
                     slips = Some((at, next));
                     break;
                 }
@@ -192,8 +197,7 @@ impl RigidBody<'_> {
                     Err(s) if tried >= t_target => {
                         // Over the cones by too little for a consistent start of slip: held
                         // for this increment, checked again at the next.
-                        let barely = static_check(sections, &geom, (t_target, faces, bonded))
-                            .is_ok_and(|c| barely_exceeded(&c));
+                        let barely = check_at(t_target).is_ok_and(|c| barely_exceeded(&c));
                         if s.reason == Reason::ContactForcesUndetermined && barely {
                             self.t = t_target;
                             self.y[8] = t_target;
@@ -210,7 +214,9 @@ impl RigidBody<'_> {
         }
         self.t = t_target;
         self.y[8] = t_target;
-        let check = match static_check(sections, &geom, (t_target, faces, bonded)) {
+        // Held through the increment: the check at its end (made above unless the increment
+        // was empty).
+        let check = match last.map_or_else(|| check_at(t_target), Ok) {
             Ok(c) => c,
             Err(s) => return Flow::Ended(self.fail(o, s)),
         };
@@ -235,10 +241,13 @@ impl RigidBody<'_> {
                 ),
             ));
         }
-        if let Ok(e) = rest_eval(sections, finder, self.ev.pose, &check) {
-            self.ev = e;
+        match rest_eval(sections, finder, self.ev.pose, &check) {
+            Ok(e) => {
+                self.ev = e;
+                Flow::Go(o)
+            }
+            Err(s) => Flow::Ended(self.fail(o, s)),
         }
-        Flow::Go(o)
     }
 
     /// The route ended by a failure at the current state.
@@ -580,15 +589,8 @@ impl RigidBody<'_> {
             Rest::Failed(e) => Err(Ending::Failed(e)),
             // Held while a record still shakes the foundation: it rests, checked again at each
             // increment.
-            Rest::Ended(Reason::Stopped, at, _)
-                if self.scene.record().is_some_and(|r| at < r.end()) =>
-            {
-                let pose =
-                    pose_at(self.scene, finder, displacement(&stopped)).map_err(Ending::Failed)?;
-                let geom = ContactGeometry::with_normals(&finder.site().normals(), &pose);
-                let check = static_check(self.sections, &geom, (at, self.ev.faces, false))
-                    .map_err(Ending::Failed)?;
-                self.ev = rest_eval(self.sections, finder, pose, &check).map_err(Ending::Failed)?;
+            Rest::Rests(e, at) => {
+                self.ev = *e;
                 self.y = stopped;
                 self.y[8] = at;
                 self.t = at;
