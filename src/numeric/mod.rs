@@ -1,9 +1,11 @@
 //! Small numerical kernels shared by the stages: eigenvalues of small Hessenberg matrices,
 //! dense polynomial products and the resultant of two quadratics.
 
+mod distribution;
 pub mod hessenberg;
 mod shown;
 
+pub use distribution::{Distribution, FORMS, Uncertain};
 pub use shown::{Shown, fixed, seconds};
 
 /// An angle folded into (−π, π] by arithmetic (no trigonometric calls).

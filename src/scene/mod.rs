@@ -283,6 +283,8 @@ pub struct Scene {
     pub(crate) record: Option<std::sync::Arc<record::Record>>,
     /// `[friction]`'s cohesion and `[[friction.face]]`.
     pub(crate) strengths: Strengths,
+    /// `[uncertain]`: the distributions of a probabilistic analysis, by key name.
+    pub(crate) uncertain: Vec<crate::numeric::Uncertain>,
 }
 
 /// Two scenes are equal when their values are (the documents may differ in how they wrote
@@ -300,6 +302,7 @@ impl PartialEq for Scene {
             &self.initial,
             &self.strengths,
             self.record.as_deref(),
+            &self.uncertain,
         ) == (
             &other.name,
             &other.origin,
@@ -311,6 +314,7 @@ impl PartialEq for Scene {
             &other.initial,
             &other.strengths,
             other.record.as_deref(),
+            &other.uncertain,
         )
     }
 }
@@ -400,6 +404,12 @@ impl Scene {
             }
             _ => Ok(self.clone()),
         }
+    }
+
+    /// `[uncertain]`: the distributions a probabilistic analysis samples, by key name (none if
+    /// the scene has no such table).
+    pub fn uncertain(&self) -> &[crate::numeric::Uncertain] {
+        &self.uncertain
     }
 
     /// The document as read, in the file's own keys and units (defaults not filled in; see

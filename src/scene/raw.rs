@@ -23,6 +23,9 @@ pub struct RawScene {
     pub seismic: Option<RawSeismic>,
     pub check: Option<RawCheck>,
     pub case: Option<Vec<RawCase>>,
+    /// `[uncertain]`: `"section.key" = "name:p1:p2…"`, the distributions of a probabilistic
+    /// analysis (issue #17).
+    pub uncertain: Option<std::collections::BTreeMap<String, String>>,
 }
 
 /// `[check]`: the guideline table the load cases' required factors of safety come from.

@@ -954,6 +954,7 @@ pub(super) fn validate(
         None => Default::default(),
     };
     let cases = super::cases::cases(o, &guideline, raw.case.as_deref().unwrap_or(&[]))?;
+    let uncertain = uncertain(o, raw.uncertain.as_ref())?;
     Ok(Scene {
         name: raw.name.unwrap_or_else(|| "unnamed".to_string()),
         origin: o.to_string(),
@@ -969,5 +970,37 @@ pub(super) fn validate(
         cases,
         record,
         strengths,
+        uncertain,
     })
+}
+
+/// `[uncertain]`: each `"section.key" = "name:p1:p2…"` read as a distribution, in the order of
+/// the keys' names (so that a design's columns do not depend on how the file was written).
+/// Whether each key is a number of the scene is asked where the samples are run.
+fn uncertain(
+    o: &str,
+    table: Option<&std::collections::BTreeMap<String, String>>,
+) -> Result<Vec<crate::numeric::Uncertain>, SceneError> {
+    let Some(table) = table else {
+        return Ok(vec![]);
+    };
+    table
+        .iter()
+        .map(|(key, spec)| {
+            let at = format!("uncertain.\"{key}\"");
+            if !key.contains('.') || key.starts_with("uncertain.") {
+                return Err(SceneError::new(
+                    o,
+                    at,
+                    "name a number of the scene as \"section.key\", e.g. \"friction.mu_k\"",
+                ));
+            }
+            crate::numeric::Distribution::parse(spec)
+                .map(|distribution| crate::numeric::Uncertain {
+                    key: key.clone(),
+                    distribution,
+                })
+                .map_err(|e| SceneError::new(o, at, e))
+        })
+        .collect()
 }

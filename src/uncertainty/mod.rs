@@ -1,12 +1,23 @@
-//! Uncertain scene values (issue #17, in progress): distributions on any numeric scene key
-//! (`distribution.rs`), designs of samples drawn whole from a seed (`sampling.rs`), and each
-//! sample's scene and route (here).
+//! Uncertain scene values (issue #17): distributions on any numeric scene key
+//! (`numeric/distribution.rs`, so that a scene can name them), designs of samples drawn whole from a seed (`sampling.rs`), each
+//! sample's scene and route (here), every sample of a design run in order (`analysis.rs`), the
+//! rank correlations of inputs with results (`sensitivity.rs`), and what the samples come to
+//! (`summary.rs`).
 
-mod distribution;
+mod analysis;
 mod sampling;
+mod sensitivity;
+mod summary;
 
-pub use distribution::{Distribution, FORMS, Uncertain};
+pub use crate::numeric::{Distribution, FORMS, Uncertain};
+pub use analysis::{Design, NOT_RUN, Outcome, Sample, run_values};
 pub use sampling::{Sampling, design};
+pub use sensitivity::{Sensitivity, sensitivities, spearman};
+pub use summary::{Given, Limits, Percentiles, Probability, Summary, percentiles, summarise};
+
+/// The most points of a sample's CM path kept ([`SampleResult::cm_path_m`]): enough to draw it
+/// in a route fan, little enough that ten thousand samples keep ten megabytes.
+pub const PATH_POINTS: usize = 64;
 
 use crate::mechanics::static_friction::FactorOfSafety;
 use crate::route::{Reason, run};
@@ -30,6 +41,20 @@ pub struct SampleResult {
     pub x_m: f64,
     pub z_m: f64,
     pub yaw_deg: f64,
+    /// The CM path in plan, (X, Z) in m, thinned evenly to at most [`PATH_POINTS`] points (the
+    /// first and last kept).
+    #[serde(skip)]
+    pub cm_path_m: Vec<[f64; 2]>,
+}
+
+/// At most `n` of `k` items, evenly spread, the first and last kept.
+fn thin<T: Copy>(items: &[T], n: usize) -> Vec<T> {
+    if items.len() <= n || n < 2 {
+        return items.to_vec();
+    }
+    (0..n)
+        .map(|i| items[(i * (items.len() - 1)).div_ceil(n - 1).min(items.len() - 1)])
+        .collect()
 }
 
 /// The values of each sample: the design's uniforms through each key's quantile function.
@@ -89,6 +114,10 @@ pub fn run_sample(
         x_m: last.map_or(0.0, |l| l.x_m),
         z_m: last.map_or(0.0, |l| l.z_m),
         yaw_deg: last.map_or(0.0, |l| l.theta_deg),
+        cm_path_m: thin(
+            &r.rows.iter().map(|r| [r.x_m, r.z_m]).collect::<Vec<_>>(),
+            PATH_POINTS,
+        ),
     })
 }
 
@@ -109,6 +138,16 @@ pub fn proportion(k: usize, n: usize) -> (f64, (f64, f64)) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_thinned_path_keeps_its_ends_and_at_most_its_count() {
+        let v: Vec<usize> = (0..1000).collect();
+        let t = thin(&v, PATH_POINTS);
+        assert_eq!(t.len(), PATH_POINTS);
+        assert_eq!((t[0], *t.last().unwrap()), (0, 999));
+        assert!(t.windows(2).all(|w| w[0] < w[1]));
+        assert_eq!(thin(&v[..10], PATH_POINTS), v[..10].to_vec());
+    }
 
     #[test]
     fn the_wilson_interval_holds_its_proportion_and_stays_in_zero_one() {

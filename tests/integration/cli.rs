@@ -1515,6 +1515,7 @@ fn probabilistic_inputs_it_cannot_use_are_named() {
             vec!["--dist", "friction.mu_k=normal:0.4:0.05", "--samples", "0"],
             vec!["--samples 0"],
         ),
+        (vec![], vec!["nothing is uncertain", "[uncertain]"]),
         (
             vec![
                 "--dist",
@@ -1544,4 +1545,73 @@ fn probabilistic_inputs_it_cannot_use_are_named() {
     let csv = std::fs::read_to_string(out.join("samples.csv")).unwrap();
     assert!(csv.contains("invalid scene"), "{csv}");
     assert!(csv.contains("friction.mu_k"), "{csv}");
+}
+
+#[test]
+fn probabilistic_takes_the_scenes_uncertain_table_and_the_command_line_replaces_a_key() {
+    let scene = temp_file(
+        "prob-table.toml",
+        &std::fs::read_to_string(
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+                .join("scenes/paper-like-uncertain.toml"),
+        )
+        .unwrap()
+        .replace("t_end_s = 20.0", "t_end_s = 0.2"),
+    );
+    let go = |dir: &std::path::Path, extra: &[&str]| {
+        let mut args = vec![
+            "probabilistic",
+            "--scene",
+            scene.to_str().unwrap(),
+            "--samples",
+            "12",
+            "--out",
+            dir.to_str().unwrap(),
+            "--quiet",
+        ];
+        args.extend(extra);
+        let o = run(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let v: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(dir.join("probabilistic.json")).unwrap())
+                .unwrap();
+        (std::fs::read_to_string(dir.join("samples.csv")).unwrap(), v)
+    };
+    let (a, b) = (temp_dir("prob-table-a"), temp_dir("prob-table-b"));
+    let (csv, v) = go(&a, &[]);
+    assert!(
+        csv.starts_with("sample,foundation.zeta_deg,friction.mu_k,loads.eccentricity_m,"),
+        "{csv}"
+    );
+    assert_eq!(v["distributions"][1]["distribution"], "normal:0.4:0.05");
+    // The pictures are written beside the tables.
+    for f in ["route-fan.svg", "factor-of-safety.svg", "sensitivity.svg"] {
+        let svg = std::fs::read_to_string(a.join(f)).unwrap();
+        assert!(svg.starts_with("<svg"), "{f}");
+    }
+    assert!(
+        std::fs::read_to_string(a.join("route-fan.svg"))
+            .unwrap()
+            .contains("CM paths of the 12 sampled routes")
+    );
+    assert_eq!(v["rank_correlations"].as_array().unwrap().len(), 3);
+    // --dist replaces the table's friction (its column moves to the end).
+    let (_, v) = go(
+        &b,
+        &["--dist", "friction.mu_k=uniform:0.3:0.5", "--no-plots"],
+    );
+    let given: Vec<(String, String)> = v["distributions"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|d| {
+            (
+                d["key"].as_str().unwrap().to_string(),
+                d["distribution"].as_str().unwrap().to_string(),
+            )
+        })
+        .collect();
+    assert_eq!(given.len(), 3);
+    assert!(given.contains(&("friction.mu_k".into(), "uniform:0.3:0.5".into())));
+    assert!(!b.join("route-fan.svg").exists());
 }

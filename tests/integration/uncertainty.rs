@@ -83,3 +83,123 @@ fn an_uncertain_key_the_scene_cannot_take_is_named() {
         assert!(e.to_string().contains(why), "{e}");
     }
 }
+
+/// The scene shipped with an `[uncertain]` table.
+fn uncertain_scene() -> Scene {
+    Scene::from_file(
+        &std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/paper-like-uncertain.toml"),
+    )
+    .unwrap()
+}
+
+#[test]
+fn a_scene_names_its_distributions_in_an_uncertain_table_read_in_key_order() {
+    let s = uncertain_scene();
+    let keys: Vec<&str> = s.uncertain().iter().map(|u| u.key.as_str()).collect();
+    assert_eq!(
+        keys,
+        [
+            "foundation.zeta_deg",
+            "friction.mu_k",
+            "loads.eccentricity_m"
+        ]
+    );
+    assert_eq!(s.uncertain()[1].distribution.to_string(), "normal:0.4:0.05");
+    // Without the table, nothing is uncertain.
+    assert!(Scene::default_scene().uncertain().is_empty());
+}
+
+#[test]
+fn a_wrong_distribution_in_the_scene_names_its_key() {
+    let base = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/paper-like-uncertain.toml"),
+    )
+    .unwrap();
+    for (from, to, key) in [
+        (
+            "\"normal:0.40:0.05\"",
+            "\"normal:0.40:-1\"",
+            "uncertain.\"friction.mu_k\"",
+        ),
+        (
+            "\"uniform:22:28\"",
+            "\"gauss:22:28\"",
+            "uncertain.\"foundation.zeta_deg\"",
+        ),
+        ("\"friction.mu_k\" =", "\"mu_k\" =", "uncertain.\"mu_k\""),
+    ] {
+        let text = base.replace(from, to);
+        let e = Scene::from_toml(&text, "u.toml").unwrap_err();
+        assert_eq!(e.key, key, "{e}");
+    }
+    let text = base.replace("\"uniform:22:28\"", "25.0");
+    let e = Scene::from_toml(&text, "u.toml").unwrap_err();
+    assert!(e.key.starts_with("uncertain"), "{e}");
+}
+
+#[test]
+fn a_range_of_the_design_run_apart_gives_the_rows_of_the_whole_run() {
+    use slideroute::stages::uncertainty::{Design, run_values};
+    let scene = flat();
+    let uncertain: Vec<Uncertain> = vec![
+        "friction.mu_k=normal:0.8:0.05".parse().unwrap(),
+        "loads.eccentricity_m=uniform:-0.5:0.5".parse().unwrap(),
+    ];
+    let design = Design {
+        scene: &scene,
+        uncertain: &uncertain,
+        samples: 40,
+        seed: 3,
+        sampling: Sampling::LatinHypercube,
+    };
+    let whole = design.run(|| {}, || false);
+    let values = design.values();
+    let mut parts = Vec::new();
+    for (k, chunk) in values.chunks(7).enumerate() {
+        parts.extend(run_values(
+            &scene,
+            &uncertain,
+            7 * k,
+            chunk.to_vec(),
+            || {},
+            || false,
+        ));
+    }
+    assert_eq!(whole, parts);
+    assert_eq!(
+        whole.iter().map(|s| s.index).collect::<Vec<_>>(),
+        (0..40).collect::<Vec<_>>()
+    );
+}
+
+#[test]
+fn the_summary_counts_sliding_samples_and_ranks_the_friction_first() {
+    use slideroute::stages::uncertainty::{Design, Limits, summarise};
+    let scene = flat();
+    let uncertain: Vec<Uncertain> = vec![
+        "friction.mu_k=normal:0.8:0.05".parse().unwrap(),
+        "block.mass_kg=uniform:0.99e6:1.01e6".parse().unwrap(),
+    ];
+    let design = Design {
+        scene: &scene,
+        uncertain: &uncertain,
+        samples: 200,
+        seed: 11,
+        sampling: Sampling::LatinHypercube,
+    };
+    let rows = design.run(|| {}, || false);
+    let s = summarise(&design, Limits::default(), &rows);
+    let slid = rows
+        .iter()
+        .filter(|r| match &r.outcome {
+            slideroute::stages::uncertainty::Outcome::Route(x) => x.factor_of_safety.unwrap() < 1.0,
+            _ => false,
+        })
+        .count();
+    assert_eq!(s.routes, 200);
+    assert_eq!(s.probability_of_sliding.value, slid as f64 / 200.0);
+    // The factor of safety is μ W / H: ranked by μ alone, whatever the mass's ±1 % does.
+    let rho = s.rank_correlations[0].with_factor_of_safety.unwrap();
+    let rho_mass = s.rank_correlations[1].with_factor_of_safety.unwrap();
+    assert!(rho > 0.95 && rho_mass.abs() < rho, "{rho} {rho_mass}");
+}

@@ -7,6 +7,7 @@ mod sweep;
 
 use crate::output::{CoeffReport, RootsReport, grid_csv};
 use clap::{Args, Parser, Subcommand};
+use rayon::prelude::*;
 use slideroute::stages::geometry::Displacement;
 use slideroute::stages::roots;
 use slideroute::stages::scene::{DynamicsModel, Mode, Scene, SceneErrorKind};
@@ -117,7 +118,8 @@ enum Command {
         /// `KEY=truncnormal:MEAN:SD:LO:HI`, `KEY=lognormal:MEAN:SD`, `KEY=uniform:LO:HI` or
         /// `KEY=triangular:LO:MODE:HI`, in the key's own units (e.g.
         /// `friction.mu_k=normal:0.40:0.05`, `foundation.xi_deg=uniform:18:22`). Repeat for more.
-        #[arg(long = "dist", value_name = "KEY=DISTRIBUTION", required = true)]
+        /// The scene's own `[uncertain]` table gives more; a key given both ways takes this one.
+        #[arg(long = "dist", value_name = "KEY=DISTRIBUTION")]
         dist: Vec<String>,
         /// `lhs` (a Latin hypercube) or `mc` (plain Monte Carlo).
         #[arg(long, default_value = "lhs", value_parser = ["lhs", "mc"])]
@@ -137,6 +139,9 @@ enum Command {
         /// No progress bar and no summary.
         #[arg(long)]
         quiet: bool,
+        /// No pictures (route-fan.svg, factor-of-safety.svg, sensitivity.svg).
+        #[arg(long)]
+        no_plots: bool,
     },
     /// Check each load case of the scene (`[[case]]`; without any, the scene as written)
     /// against the sliding factor of safety its guideline requires (`[check]`: EM 1110-2-2100,
@@ -365,8 +370,9 @@ fn roots_cmd(
             )
             .map_err(|e| bad_input(format!("{name}: {e}")))?;
             let poses = grid_csv::read_poses(file, &name).map_err(|e| bad_input(e.to_string()))?;
+            // Every core, in the file's order (issue #17).
             let reports = poses
-                .iter()
+                .par_iter()
                 .map(|p| report(p.displacement()))
                 .collect::<Result<Vec<_>, _>>()
                 .map_err(bad_input)?;
@@ -583,9 +589,9 @@ fn probabilistic_cmd(
     dist: &[String],
     (travel_limit, rotation_limit): (Option<f64>, Option<f64>),
     dynamics: Option<DynamicsModel>,
-    (out, quiet): (&std::path::Path, bool),
+    (out, quiet, no_plots): (&std::path::Path, bool, bool),
 ) -> Result<(), CliError> {
-    use slideroute::stages::uncertainty::{Sampling, Uncertain};
+    use slideroute::stages::uncertainty::{Design, Limits, Sampling, Uncertain, summarise};
     let base = load_with(scene, dynamics)?;
     if samples == 0 || samples > MAX_SAMPLES {
         return Err(bad_input(format!(
@@ -602,11 +608,26 @@ fn probabilistic_cmd(
             )));
         }
     }
-    let uncertain = dist
+    let given = dist
         .iter()
         .map(|d| d.parse::<Uncertain>().map_err(|e| format!("--dist {e}")))
         .collect::<Result<Vec<_>, _>>()
         .map_err(bad_input)?;
+    // The scene's [uncertain] table, then --dist: a key of both takes the command line's.
+    let mut uncertain: Vec<Uncertain> = base
+        .uncertain()
+        .iter()
+        .filter(|u| !given.iter().any(|g| g.key == u.key))
+        .cloned()
+        .collect();
+    uncertain.extend(given);
+    if uncertain.is_empty() {
+        return Err(bad_input(format!(
+            "{}: nothing is uncertain: give --dist KEY=DISTRIBUTION or an [uncertain] table in \
+             the scene",
+            base.origin()
+        )));
+    }
     // Every key must be a number of the scene, and given once.
     let as_vary: Vec<crate::sweep::Vary> = uncertain
         .iter()
@@ -616,8 +637,24 @@ fn probabilistic_cmd(
             words: None,
         })
         .collect();
-    crate::sweep::check_keys(&base, &as_vary)
-        .map_err(|e| bad_input(e.replacen("--vary", "--dist", 1)))?;
+    crate::sweep::check_keys(&base, &as_vary).map_err(|e| {
+        // Named as it was given: on the command line, or in the scene's [uncertain] table.
+        let named = uncertain
+            .iter()
+            .find(|u| e.starts_with(&format!("--vary {}:", u.key)))
+            .filter(|u| {
+                base.uncertain().contains(u)
+                    && !dist.iter().any(|d| d.starts_with(&format!("{}=", u.key)))
+            });
+        match named {
+            Some(u) => bad_input(e.replacen(
+                &format!("--vary {}", u.key),
+                &format!("{}: uncertain.\"{}\"", base.origin(), u.key),
+                1,
+            )),
+            None => bad_input(e.replacen("--vary", "--dist", 1)),
+        }
+    })?;
     let sampling = if sampling == "mc" {
         Sampling::MonteCarlo
     } else {
@@ -625,13 +662,14 @@ fn probabilistic_cmd(
     };
     let mut folder = crate::output::folder::Folder::open(out).map_err(failed)?;
     let bar = progress_bar(quiet, samples as u64, "samples");
-    let rows = crate::probabilistic::run(
-        &base,
-        &uncertain,
-        (samples, seed, sampling),
-        || bar.inc(1),
-        interrupted,
-    );
+    let design = Design {
+        scene: &base,
+        uncertain: &uncertain,
+        samples,
+        seed,
+        sampling,
+    };
+    let rows = design.run(|| bar.inc(1), interrupted);
     bar.finish_and_clear();
     let csv_path = folder
         .write_with("samples.csv", |tmp| {
@@ -641,13 +679,38 @@ fn probabilistic_cmd(
                 .map_err(|e| format!("samples.csv: {e}"))
         })
         .map_err(failed)?;
-    let summary = crate::probabilistic::summarise(
-        &base,
-        (&uncertain, dist),
-        (samples, seed, sampling),
-        (travel_limit, rotation_limit),
+    let summary = summarise(
+        &design,
+        Limits {
+            travel_m: travel_limit,
+            rotation_deg: rotation_limit,
+        },
         &rows,
     );
+    let mut written = vec![csv_path];
+    #[cfg(feature = "plots")]
+    if !no_plots && !interrupted() {
+        // The scene as written, drawn in black on the fan.
+        let nominal = slideroute::stages::route::run(&base).ok();
+        let staging = folder.staging().map_err(failed)?;
+        for staged in crate::output::plots::write_probabilistic_plots(
+            &staging,
+            &base,
+            nominal.as_ref(),
+            &rows,
+            &summary,
+        )
+        .map_err(failed)?
+        {
+            let name = staged
+                .file_name()
+                .map(|n| n.to_string_lossy().into_owned())
+                .unwrap_or_default();
+            written.push(folder.adopt(&name, &staged).map_err(failed)?);
+        }
+    }
+    #[cfg(not(feature = "plots"))]
+    let _ = no_plots;
     let manifest = crate::output::route_files::Manifest::new(&base, &folder);
     let json_path = crate::output::route_files::write_json_with_manifest(
         &mut folder,
@@ -657,11 +720,16 @@ fn probabilistic_cmd(
     )
     .map_err(failed)?;
     folder.finish().map_err(failed)?;
-    let written = format!("{}, {}", csv_path.display(), json_path.display());
+    written.push(json_path);
+    let written = written
+        .iter()
+        .map(|p| p.display().to_string())
+        .collect::<Vec<_>>()
+        .join(", ");
     if interrupted() {
         return Err(failed(format!(
             "interrupted: samples under way stopped, those not started are rows \"{}\"; wrote {written}",
-            crate::probabilistic::NOT_RUN
+            slideroute::stages::uncertainty::NOT_RUN
         )));
     }
     if !quiet {
@@ -968,13 +1036,14 @@ fn main() -> ExitCode {
             dynamics,
             out,
             quiet,
+            no_plots,
         } => probabilistic_cmd(
             scene,
             (*samples, *seed, sampling),
             dist,
             (*travel_limit_m, *rotation_limit_deg),
             *dynamics,
-            (out, *quiet),
+            (out, *quiet, *no_plots),
         ),
         Command::Report { quick, out, quiet } => report_cmd(*quick, out, *quiet),
         Command::Check {

@@ -5,6 +5,8 @@
 //! picture grows with the route's length ([`MAX_POINTS`]).
 
 mod plan;
+#[cfg(feature = "cli")]
+mod probabilistic;
 mod series;
 mod sheet;
 #[cfg(feature = "cli")]
@@ -12,6 +14,8 @@ mod sweep;
 #[cfg(feature = "cli")]
 mod work_precision;
 
+#[cfg(feature = "cli")]
+pub use probabilistic::write_probabilistic_plots;
 #[cfg(feature = "cli")]
 pub use sweep::sweep;
 #[cfg(feature = "cli")]
@@ -155,11 +159,14 @@ pub fn plan(path: &Path, scene: &Scene, route: &Route) -> Res<()> {
         path,
         scene,
         &title,
-        &[Track {
-            name: "path of the centre of mass (CM)".into(),
-            rows: &rows,
-            color: COLORS[0],
-        }],
+        (
+            &[Track {
+                name: "path of the centre of mass (CM)".into(),
+                rows: &rows,
+                color: COLORS[0],
+            }],
+            None,
+        ),
         &route_notes(route),
     )
 }
@@ -183,18 +190,21 @@ pub fn compare_plan(
         path,
         scene,
         &format!("{}: plan view of both dynamics", scene.name()),
-        &[
-            Track {
-                name: name("rigid body", &c.rigid_body),
-                rows: &rigid,
-                color: COLORS[0],
-            },
-            Track {
-                name: name("paper's dynamics", &c.paper),
-                rows: &paper,
-                color: COLORS[3],
-            },
-        ],
+        (
+            &[
+                Track {
+                    name: name("rigid body", &c.rigid_body),
+                    rows: &rigid,
+                    color: COLORS[0],
+                },
+                Track {
+                    name: name("paper's dynamics", &c.paper),
+                    rows: &paper,
+                    color: COLORS[3],
+                },
+            ],
+            None,
+        ),
         &[Entry::new(
             Mark::None,
             fs_words(c.rigid_body.factor_of_safety),

@@ -398,14 +398,29 @@ fn line_of_action(scene: &Scene, start: &Row) -> Option<(P, P, f64, f64)> {
     Some((q, x_dir, loads.hydraulic_force, e))
 }
 
-/// Draws the plan view of `tracks` (the first one's frame in black) with `notes` in the panel.
+/// Many CM paths drawn thin under the tracks (a probabilistic analysis's route fan): each a
+/// polyline in plan (X, Z in m), with what the legend says of them.
+pub(super) struct Fan<'f> {
+    pub paths: &'f [Vec<[f64; 2]>],
+    pub name: String,
+}
+
+/// The colour of a route fan.
+const FAN: RGBColor = RGBColor(200, 30, 30);
+
+/// Draws the plan view of `tracks` (the first one's frame in black), and of `fan` if any,
+/// with `notes` in the panel.
 pub(super) fn plan_view(
     path: &Path,
     scene: &Scene,
     title: &str,
-    tracks: &[Track],
+    (tracks, fan): (&[Track], Option<&Fan>),
     notes: &[Entry],
 ) -> Res<()> {
+    let fan_points = || {
+        fan.into_iter()
+            .flat_map(|f| f.paths.iter().flatten().map(|p| (p[0], p[1])))
+    };
     let sheet = Sheet::new(path, SIZE, title)?;
     let outlines: Vec<Vec<[P; 3]>> = tracks.iter().map(|t| outlines_of(scene, t.rows)).collect();
     let l = scene.l();
@@ -421,6 +436,7 @@ pub(super) fn plan_view(
         .chain(outlines.iter().flatten().flatten().copied())
         .chain(force_tail)
         .chain(force.map(|f| f.0))
+        .chain(fan_points())
         .collect();
     // Room round the frame for the regions' names.
     let pad = 0.15 * l;
@@ -510,6 +526,27 @@ pub(super) fn plan_view(
         };
         chart
             .draw_series(LineSeries::new(line, color.stroke_width(width)))
+            .map_err(err(path))?;
+    }
+
+    // The fan, thin and pale enough that where many paths run together reads darker.
+    if let Some(f) = fan {
+        let alpha = (3.0 / (f.paths.len().max(1) as f64).sqrt()).clamp(0.05, 0.6);
+        for p in f.paths.iter().filter(|p| p.len() > 1) {
+            chart
+                .draw_series(LineSeries::new(
+                    p.iter().map(|q| (q[0], q[1])),
+                    FAN.mix(alpha).stroke_width(1),
+                ))
+                .map_err(err(path))?;
+        }
+        chart
+            .draw_series(
+                f.paths
+                    .iter()
+                    .filter_map(|p| p.last())
+                    .map(|q| Circle::new((q[0], q[1]), 2, FAN.mix(alpha.max(0.25)).filled())),
+            )
             .map_err(err(path))?;
     }
 
@@ -667,6 +704,7 @@ pub(super) fn plan_view(
         let every = (t.rows.len() / 400).max(1);
         obstacles.extend(t.rows.iter().step_by(every).map(|r| (r.x_m, r.z_m)));
     }
+    obstacles.extend(fan_points().step_by(7));
     for o in outlines.iter().flatten() {
         for k in 0..3 {
             obstacles.extend(along(o[k], o[(k + 1) % 3], 12));
@@ -730,7 +768,7 @@ pub(super) fn plan_view(
             - cm.iter().map(f).fold(f64::INFINITY, f64::min)
     };
     let cm_span = span(|p| p.0).max(span(|p| p.1));
-    let inset = cm_span > 0.0 && cm_span < 0.12 * (x1 - x0).min(z1 - z0);
+    let inset = fan.is_none() && cm_span > 0.0 && cm_span < 0.12 * (x1 - x0).min(z1 - z0);
     if inset {
         let (ix0, ix1) = sheet::ranges(cm.iter().map(|p| p.0));
         let (iz0, iz1) = sheet::ranges(cm.iter().map(|p| p.1));
@@ -808,6 +846,10 @@ pub(super) fn plan_view(
     }
     for t in tracks {
         entries.push(Entry::new(Mark::Line(t.color), t.name.clone()));
+    }
+    if let Some(f) = fan {
+        entries.push(Entry::new(Mark::Line(FAN), f.name.clone()));
+        entries.push(Entry::new(Mark::Dot(FAN), "where each sampled route ended"));
     }
     entries.push(Entry::new(
         Mark::Dot(BLACK),

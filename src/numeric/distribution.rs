@@ -1,6 +1,7 @@
 //! Distributions of an uncertain scene value (issue #17): written `name:p1:p2…` on the command
-//! line and in a scene, sampled by their quantile function so that any design of uniforms —
-//! plain Monte Carlo or a Latin hypercube (`super::sampling`) — maps onto them.
+//! line and in a scene's `[uncertain]` table, sampled by their quantile function so that any
+//! design of uniforms — plain Monte Carlo or a Latin hypercube (`uncertainty/sampling.rs`) — maps
+//! onto them.
 
 use statrs::distribution::{ContinuousCDF, LogNormal, Normal, Triangular, Uniform};
 
@@ -35,7 +36,45 @@ pub const FORMS: [&str; 5] = [
     "triangular:lo:mode:hi",
 ];
 
+impl std::fmt::Display for Distribution {
+    /// As it is written: `normal:0.4:0.05`.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match *self {
+            Distribution::Normal { mean, sd } => write!(f, "normal:{mean}:{sd}"),
+            Distribution::TruncNormal { mean, sd, lo, hi } => {
+                write!(f, "truncnormal:{mean}:{sd}:{lo}:{hi}")
+            }
+            Distribution::LogNormal { mean, sd } => write!(f, "lognormal:{mean}:{sd}"),
+            Distribution::Uniform { lo, hi } => write!(f, "uniform:{lo}:{hi}"),
+            Distribution::Triangular { lo, mode, hi } => write!(f, "triangular:{lo}:{mode}:{hi}"),
+        }
+    }
+}
+
+impl std::str::FromStr for Distribution {
+    type Err = String;
+
+    fn from_str(text: &str) -> Result<Distribution, String> {
+        Distribution::parse(text)
+    }
+}
+
 impl Distribution {
+    /// In words, for a legend: `normal, mean 0.4, sd 0.05`.
+    pub fn words(&self) -> String {
+        match *self {
+            Distribution::Normal { mean, sd } => format!("normal, mean {mean}, sd {sd}"),
+            Distribution::TruncNormal { mean, sd, lo, hi } => {
+                format!("normal, mean {mean}, sd {sd}, truncated to [{lo}, {hi}]")
+            }
+            Distribution::LogNormal { mean, sd } => format!("lognormal, mean {mean}, sd {sd}"),
+            Distribution::Uniform { lo, hi } => format!("uniform on [{lo}, {hi}]"),
+            Distribution::Triangular { lo, mode, hi } => {
+                format!("triangular on [{lo}, {hi}], mode {mode}")
+            }
+        }
+    }
+
     /// Parses `name:p1:p2…`; the error says what is wrong and the forms that are right.
     pub fn parse(text: &str) -> Result<Distribution, String> {
         let mut parts = text.split(':');
@@ -215,6 +254,21 @@ impl std::str::FromStr for Uncertain {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_distribution_is_written_as_it_is_read() {
+        for text in [
+            "normal:0.4:0.05",
+            "truncnormal:0:0.5:-1:1",
+            "lognormal:2:0.3",
+            "uniform:18:22",
+            "triangular:1:2:4",
+        ] {
+            let d = Distribution::parse(text).unwrap();
+            assert_eq!(d.to_string(), text);
+            assert_eq!(Distribution::parse(&d.to_string()).unwrap(), d);
+        }
+    }
 
     fn close(a: f64, b: f64, tol: f64) -> bool {
         (a - b).abs() <= tol * b.abs().max(1.0)
