@@ -53,6 +53,65 @@ pub struct Row {
     pub crease: [Option<u32>; 3],
 }
 
+impl Row {
+    /// The names of a row's values, with their units, in the order of [`Row::values`]: the
+    /// header of `route.csv`.
+    pub const COLUMNS: [&'static str; 23] = [
+        "t_s",
+        "x_m",
+        "y_m",
+        "z_m",
+        "theta_deg",
+        "alpha_deg",
+        "beta_deg",
+        "gamma_deg",
+        "vx_m_s",
+        "vz_m_s",
+        "omega_deg_s",
+        "n0_n",
+        "n1_n",
+        "n2_n",
+        "s0_n",
+        "s1_n",
+        "s2_n",
+        "face0",
+        "face1",
+        "face2",
+        "crease_face0",
+        "crease_face1",
+        "crease_face2",
+    ];
+
+    /// The row's values in the order of [`Row::COLUMNS`]; `None` for reactions that could not
+    /// be had and for a contact on no crease.
+    pub fn values(&self) -> [Option<f64>; 23] {
+        let mut v = [None; 23];
+        let scalars = [
+            self.t_s,
+            self.x_m,
+            self.y_m,
+            self.z_m,
+            self.theta_deg,
+            self.alpha_deg,
+            self.beta_deg,
+            self.gamma_deg,
+            self.vx_m_s,
+            self.vz_m_s,
+            self.omega_deg_s,
+        ];
+        for (k, x) in scalars.into_iter().enumerate() {
+            v[k] = Some(x);
+        }
+        for k in 0..3 {
+            v[11 + k] = self.n_n.map(|n| n[k]);
+            v[14 + k] = self.s_n.map(|s| s[k]);
+            v[17 + k] = Some(f64::from(self.faces[k]));
+            v[20 + k] = self.crease[k].map(f64::from);
+        }
+        v
+    }
+}
+
 /// The face each contact of `site` rests on (see [`Row::faces`]).
 pub fn faces_of(site: &crate::geometry::Site) -> [u32; 3] {
     match site.ground() {

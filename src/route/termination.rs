@@ -48,6 +48,32 @@ pub enum Reason {
 }
 
 impl Reason {
+    /// Every reason, in the order declared.
+    pub const ALL: [Reason; 17] = [
+        Reason::DoesNotSlide,
+        Reason::NoFrictionSolution,
+        Reason::Stopped,
+        Reason::ContactLiftedOff,
+        Reason::Contact0ReachedInclinedPlane,
+        Reason::ContactLeftPlane,
+        Reason::TiltReachedDip,
+        Reason::ContactReachedAnotherFace,
+        Reason::ContactOverRidge,
+        Reason::ContactOffSurface,
+        Reason::CreaseLetsGo,
+        Reason::CreaseTakesOver,
+        Reason::Wedged,
+        Reason::NoAdmissibleRoot,
+        Reason::TimeLimit,
+        Reason::ContactForcesUndetermined,
+        Reason::Interrupted,
+    ];
+
+    /// The reason written `text` ([`Reason::as_str`]), if any.
+    pub fn parse(text: &str) -> Option<Reason> {
+        Reason::ALL.into_iter().find(|r| r.as_str() == text)
+    }
+
     pub const fn as_str(self) -> &'static str {
         match self {
             Reason::DoesNotSlide => "does not slide",
@@ -111,5 +137,40 @@ pub fn from_track_error(e: &TrackError, alpha_at_dip: bool) -> Reason {
             Inadmissible::Spurious | Inadmissible::NoRealFrame => Reason::NoAdmissibleRoot,
         },
         TrackError::BranchEnded { .. } | TrackError::NonFinite(_) => Reason::NoAdmissibleRoot,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_reason_is_listed_once_and_read_back_from_its_words() {
+        for (k, r) in Reason::ALL.into_iter().enumerate() {
+            // Exhaustive: a new reason fails to compile here until it is listed.
+            let listed = match r {
+                Reason::DoesNotSlide
+                | Reason::NoFrictionSolution
+                | Reason::Stopped
+                | Reason::ContactLiftedOff
+                | Reason::Contact0ReachedInclinedPlane
+                | Reason::ContactLeftPlane
+                | Reason::TiltReachedDip
+                | Reason::ContactReachedAnotherFace
+                | Reason::ContactOverRidge
+                | Reason::ContactOffSurface
+                | Reason::CreaseLetsGo
+                | Reason::CreaseTakesOver
+                | Reason::Wedged
+                | Reason::NoAdmissibleRoot
+                | Reason::TimeLimit
+                | Reason::ContactForcesUndetermined
+                | Reason::Interrupted => true,
+            };
+            assert!(listed);
+            assert_eq!(Reason::parse(r.as_str()), Some(r));
+            assert!(!Reason::ALL[..k].contains(&r), "{r:?} twice");
+        }
+        assert_eq!(Reason::parse("flew away"), None);
     }
 }

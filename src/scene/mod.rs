@@ -343,6 +343,17 @@ impl Scene {
         read::from_toml(text, origin, Path::new(""))
     }
 
+    /// A scene from a document already parsed (the tables and keys of a scene file: a Python
+    /// dict, say), validated as a file is; files it names (a surface, a record) are found from
+    /// `folder`.
+    pub fn from_document(
+        table: toml::Table,
+        origin: &str,
+        folder: &Path,
+    ) -> Result<Scene, SceneError> {
+        read::from_table(table, origin, (folder, &files::Files::default()))
+    }
+
     /// The same scene with one key set, in the file's own key and units
     /// (`with("friction.mu_k", 0.3)`, `with("foundation.xi_deg", 18.0)`,
     /// `with("solver.dynamics", "paper")`): the scene a file with that line would give, validated
@@ -404,6 +415,11 @@ impl Scene {
             }
             _ => Ok(self.clone()),
         }
+    }
+
+    /// The folder the files the scene names (a surface, a record) are found from.
+    pub fn folder(&self) -> &Path {
+        &self.folder
     }
 
     /// `[uncertain]`: the distributions a probabilistic analysis samples, by key name (none if

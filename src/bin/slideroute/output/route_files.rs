@@ -6,31 +6,7 @@ use std::io::Write;
 use std::path::PathBuf;
 
 /// The header of `route.csv`: the fields of a [`Row`], in its order, with their units.
-pub const ROUTE_HEADER: [&str; 23] = [
-    "t_s",
-    "x_m",
-    "y_m",
-    "z_m",
-    "theta_deg",
-    "alpha_deg",
-    "beta_deg",
-    "gamma_deg",
-    "vx_m_s",
-    "vz_m_s",
-    "omega_deg_s",
-    "n0_n",
-    "n1_n",
-    "n2_n",
-    "s0_n",
-    "s1_n",
-    "s2_n",
-    "face0",
-    "face1",
-    "face2",
-    "crease_face0",
-    "crease_face1",
-    "crease_face2",
-];
+pub const ROUTE_HEADER: [&str; 23] = Row::COLUMNS;
 
 /// route.csv written row by row as the route computes them (issue #13: memory does not grow
 /// with the route's length): the header [`ROUTE_HEADER`], then one record per [`CsvRows::push`];
@@ -52,36 +28,11 @@ impl<W: Write> CsvRows<W> {
         if self.error.is_some() {
             return;
         }
-        let mut rec: Vec<String> = [
-            r.t_s,
-            r.x_m,
-            r.y_m,
-            r.z_m,
-            r.theta_deg,
-            r.alpha_deg,
-            r.beta_deg,
-            r.gamma_deg,
-            r.vx_m_s,
-            r.vz_m_s,
-            r.omega_deg_s,
-        ]
-        .iter()
-        .map(|v| v.to_string())
-        .collect();
-        for group in [r.n_n, r.s_n] {
-            match group {
-                Some(v) => rec.extend(v.iter().map(|x| x.to_string())),
-                None => rec.extend(std::iter::repeat_n(String::new(), 3)),
-            }
-        }
-        // The face under each contact, and the second face of each contact riding a crease
-        // (empty without).
-        rec.extend(r.faces.iter().map(|f| f.to_string()));
-        rec.extend(
-            r.crease
-                .iter()
-                .map(|f| f.map_or(String::new(), |f| f.to_string())),
-        );
+        // Reactions that could not be had, and the second face of a contact on no crease, are
+        // empty.
+        let rec = r
+            .values()
+            .map(|v| v.map_or(String::new(), |x| x.to_string()));
         if let Err(e) = self.w.write_record(&rec) {
             self.error = Some(e);
         }

@@ -1,0 +1,14 @@
+#!/usr/bin/env bash
+# Creates python/.venv and installs the Python package from this checkout into it — one
+# `pip install`, which builds the Rust extension with maturin (fetched from PyPI) — with what its
+# tests need. Idempotent: a second run rebuilds the extension only if the sources changed.
+set -euo pipefail
+here="$(cd "$(dirname "$0")" && pwd)"
+python="${PYTHON:-python3}"
+if [ ! -x "$here/.venv/bin/python" ]; then
+    "$python" -m venv "$here/.venv"
+fi
+pip=("$here/.venv/bin/python" -m pip --disable-pip-version-check)
+"${pip[@]}" install --quiet -r "$here/requirements-test.txt"
+"${pip[@]}" install --quiet "$here"
+"$here/.venv/bin/python" -c "import slideroute; print('slideroute', slideroute.__version__, 'ready:', slideroute.__file__)"
