@@ -256,3 +256,13 @@ def test_every_function_of_the_extension_has_a_stub():
         assert f"def {name}(" in stub or f"class {name}" in stub, name
     for name in [n for n in dir(native.Scene) if not n.startswith("_")]:
         assert f"def {name}(" in stub, f"Scene.{name}"
+
+
+def test_the_notebook_example_runs():
+    import runpy
+
+    os.environ["SLIDEROUTE_SAMPLES"] = "12"
+    try:
+        runpy.run_path(str(ROOT / "examples" / "probabilistic.py"), run_name="__main__")
+    finally:
+        del os.environ["SLIDEROUTE_SAMPLES"]
