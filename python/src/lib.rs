@@ -669,6 +669,9 @@ fn samples_from<'py>(
         .collect()
 }
 
+/// The most samples one design may have (as the command line's).
+const MAX_SAMPLES: usize = 10_000_000;
+
 /// The values of each sample (rows) of each uncertain key (columns), from the seed.
 #[pyfunction]
 fn sample_values<'py>(
@@ -679,7 +682,17 @@ fn sample_values<'py>(
     seed: u64,
     sampling: &str,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+    if samples == 0 || samples > MAX_SAMPLES {
+        return Err(input_error(
+            py,
+            "samples",
+            format!("samples {samples}: from 1 to {MAX_SAMPLES}"),
+        ));
+    }
     let u = uncertain_of(py, &uncertain)?;
+    if u.is_empty() {
+        return Err(input_error(py, "dists", "nothing is uncertain"));
+    }
     scene.check_keys(py, &u)?;
     let design = Design {
         scene: &scene.inner,

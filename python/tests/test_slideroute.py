@@ -266,3 +266,34 @@ def test_the_notebook_example_runs():
         runpy.run_path(str(ROOT / "examples" / "probabilistic.py"), run_name="__main__")
     finally:
         del os.environ["SLIDEROUTE_SAMPLES"]
+
+
+@pytest.mark.parametrize(
+    "call, name",
+    [
+        (lambda s: slideroute.probabilistic(s, {"friction.mu_k": "normal:0.4:0.05"}, samples=0), "samples"),
+        (lambda s: slideroute.probabilistic(s, {"friction.mu_k": "normal:0.4:0.05"}, sampling="sobol"), "sampling"),
+        (lambda s: slideroute.probabilistic(s, {"friction.mu_k": "normal:0.4:0.05"}, samples=4, travel_limit_m=-1.0), "travel_limit_m"),
+        (lambda s: slideroute.run_samples(s, {"friction.mu_k": "normal:0.4:0.05"}, [[0.4, 1.0]]), "values"),
+        (lambda s: slideroute.run_samples(s, {"friction.mu_k": "normal:0.4:0.05"}, [0.4]), "values"),
+        (lambda s: s.with_keys({"friction.mu_k": [0.3]}), "friction.mu_k"),
+        (lambda s: s.roots(0.1, 0.0, 1.0, mode="approximate"), "mode"),
+        (lambda s: s.sweep({"friction.mu_k": []}), "friction.mu_k"),
+        (lambda s: s.with_keys("friction.mu_k=0.3"), "keys"),
+    ],
+)
+def test_arguments_it_cannot_use_raise_an_input_error_naming_them(call, name):
+    with pytest.raises(slideroute.InputError) as e:
+        call(slideroute.Scene.default())
+    assert e.value.name == name, str(e.value)
+
+
+def test_a_sample_whose_values_make_no_scene_is_a_row_that_says_why():
+    s = slideroute.Scene.default().with_keys({"solver.t_end_s": 0.01})
+    rows = slideroute.run_samples(s, {"friction.mu_k": "uniform:-1:1"}, [[-0.5], [0.4], [math.nan]])
+    assert list(rows["reason"][:1]) == ["invalid scene"]
+    assert "friction.mu_k" in rows["detail"][0]
+    assert rows["reason"][1] != "invalid scene"
+    assert rows["reason"][2] == "invalid scene"
+    summary = slideroute.summarise(s, {"friction.mu_k": "uniform:-1:1"}, 3, 1, "mc", rows)
+    assert summary["invalid_samples"] == 2 and summary["routes"] == 1
