@@ -672,6 +672,30 @@ fn samples_from<'py>(
 /// The most samples one design may have (as the command line's).
 const MAX_SAMPLES: usize = 10_000_000;
 
+/// A design's uncertain keys and sampling, checked: from 1 to [`MAX_SAMPLES`] samples, at
+/// least one key, each a number of the scene.
+fn design_of(
+    py: Python<'_>,
+    scene: &PyScene,
+    uncertain: &[(String, String)],
+    samples: usize,
+    sampling: &str,
+) -> PyResult<(Vec<Uncertain>, Sampling)> {
+    if samples == 0 || samples > MAX_SAMPLES {
+        return Err(input_error(
+            py,
+            "samples",
+            format!("samples {samples}: from 1 to {MAX_SAMPLES}"),
+        ));
+    }
+    let u = uncertain_of(py, uncertain)?;
+    if u.is_empty() {
+        return Err(input_error(py, "dists", "nothing is uncertain"));
+    }
+    scene.check_keys(py, &u)?;
+    Ok((u, sampling_of(py, sampling)?))
+}
+
 /// The values of each sample (rows) of each uncertain key (columns), from the seed.
 #[pyfunction]
 fn sample_values<'py>(
@@ -682,24 +706,13 @@ fn sample_values<'py>(
     seed: u64,
     sampling: &str,
 ) -> PyResult<Bound<'py, PyArray2<f64>>> {
-    if samples == 0 || samples > MAX_SAMPLES {
-        return Err(input_error(
-            py,
-            "samples",
-            format!("samples {samples}: from 1 to {MAX_SAMPLES}"),
-        ));
-    }
-    let u = uncertain_of(py, &uncertain)?;
-    if u.is_empty() {
-        return Err(input_error(py, "dists", "nothing is uncertain"));
-    }
-    scene.check_keys(py, &u)?;
+    let (u, sampling) = design_of(py, scene, &uncertain, samples, sampling)?;
     let design = Design {
         scene: &scene.inner,
         uncertain: &u,
         samples,
         seed,
-        sampling: sampling_of(py, sampling)?,
+        sampling,
     };
     PyArray2::from_vec2(py, &design.values()).map_err(|e| input_error(py, "samples", e.to_string()))
 }
@@ -753,7 +766,7 @@ fn summarise_samples<'py>(
     travel_limit_m: Option<f64>,
     rotation_limit_deg: Option<f64>,
 ) -> PyResult<Bound<'py, PyAny>> {
-    let u = uncertain_of(py, &uncertain)?;
+    let (u, sampling) = design_of(py, scene, &uncertain, samples, sampling)?;
     let keys: Vec<String> = u.iter().map(|x| x.key.clone()).collect();
     let rows = samples_from(py, &keys, columns)?;
     let design = Design {
@@ -761,31 +774,16 @@ fn summarise_samples<'py>(
         uncertain: &u,
         samples,
         seed,
-        sampling: sampling_of(py, sampling)?,
+        sampling,
     };
-    for (name, l) in [
-        ("travel_limit_m", travel_limit_m),
-        ("rotation_limit_deg", rotation_limit_deg),
-    ] {
-        if let Some(l) = l.filter(|l| !(l.is_finite() && *l >= 0.0)) {
-            return Err(input_error(
-                py,
-                name,
-                format!("{name} {l}: a finite number, zero or more"),
-            ));
-        }
-    }
-    json(
-        py,
-        &summarise(
-            &design,
-            Limits {
-                travel_m: travel_limit_m,
-                rotation_deg: rotation_limit_deg,
-            },
-            &rows,
-        ),
-    )
+    let limits = Limits::new(travel_limit_m, rotation_limit_deg).map_err(|(name, l)| {
+        input_error(
+            py,
+            name,
+            format!("{name} {l}: a finite number, zero or more"),
+        )
+    })?;
+    json(py, &summarise(&design, limits, &rows))
 }
 
 /// The crate's version.

@@ -73,6 +73,28 @@ pub struct Limits {
     pub rotation_deg: Option<f64>,
 }
 
+impl Limits {
+    /// Limits each finite and zero or more; else the name of the first that is not
+    /// (`travel_limit_m`, `rotation_limit_deg`) and its value.
+    pub fn new(
+        travel_m: Option<f64>,
+        rotation_deg: Option<f64>,
+    ) -> Result<Limits, (&'static str, f64)> {
+        for (name, l) in [
+            ("travel_limit_m", travel_m),
+            ("rotation_limit_deg", rotation_deg),
+        ] {
+            if let Some(l) = l.filter(|l| !(l.is_finite() && *l >= 0.0)) {
+                return Err((name, l));
+            }
+        }
+        Ok(Limits {
+            travel_m,
+            rotation_deg,
+        })
+    }
+}
+
 /// `probabilistic.json`.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct Summary {
@@ -159,6 +181,17 @@ pub fn summarise(design: &Design, limits: Limits, samples: &[Sample]) -> Summary
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_limit_must_be_finite_and_zero_or_more() {
+        assert!(Limits::new(Some(0.0), None).is_ok());
+        assert_eq!(Limits::new(Some(-1.0), None), Err(("travel_limit_m", -1.0)));
+        assert_eq!(
+            Limits::new(Some(1.0), Some(f64::INFINITY)),
+            Err(("rotation_limit_deg", f64::INFINITY))
+        );
+        assert!(Limits::new(None, Some(f64::NAN)).is_err());
+    }
 
     #[test]
     fn percentiles_interpolate_between_order_statistics() {

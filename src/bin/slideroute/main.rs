@@ -598,16 +598,12 @@ fn probabilistic_cmd(
             "--samples {samples}: from 1 to {MAX_SAMPLES}"
         )));
     }
-    for (flag, limit) in [
-        ("--travel-limit-m", travel_limit),
-        ("--rotation-limit-deg", rotation_limit),
-    ] {
-        if let Some(l) = limit.filter(|l| !(l.is_finite() && *l >= 0.0)) {
-            return Err(bad_input(format!(
-                "{flag} {l}: a finite number, zero or more"
-            )));
-        }
-    }
+    let limits = Limits::new(travel_limit, rotation_limit).map_err(|(name, l)| {
+        bad_input(format!(
+            "--{} {l}: a finite number, zero or more",
+            name.replace('_', "-")
+        ))
+    })?;
     let given = dist
         .iter()
         .map(|d| d.parse::<Uncertain>().map_err(|e| format!("--dist {e}")))
@@ -679,14 +675,7 @@ fn probabilistic_cmd(
                 .map_err(|e| format!("samples.csv: {e}"))
         })
         .map_err(failed)?;
-    let summary = summarise(
-        &design,
-        Limits {
-            travel_m: travel_limit,
-            rotation_deg: rotation_limit,
-        },
-        &rows,
-    );
+    let summary = summarise(&design, limits, &rows);
     let mut written = vec![csv_path];
     #[cfg(feature = "plots")]
     if !no_plots && !interrupted() {
