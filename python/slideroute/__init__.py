@@ -361,7 +361,8 @@ def probabilistic(
     """The probabilistic analysis, as ``slideroute probabilistic`` runs it: each uncertain
     key's distribution (``{"friction.mu_k": "normal:0.40:0.05"}``; the scene's
     ``[uncertain]`` table too), ``samples`` samples from ``seed`` by ``sampling`` (``"lhs"``
-    or ``"mc"``), every route on every core; the same numbers as the command line's."""
+    or ``"mc"``), every route on every core; the same numbers as the command line's. Ctrl-C
+    stops it at its next route with ``KeyboardInterrupt``."""
     dist = distributions(scene, dists)
     values = sample_values(scene, dist, samples, seed, sampling)
     rows = run_samples(scene, dist, values)

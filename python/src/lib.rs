@@ -16,6 +16,8 @@ use slideroute::stages::uncertainty::{
     summarise,
 };
 use std::path::Path;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Duration;
 
 /// A Python exception of `slideroute._errors`: `class(message, name)`.
 fn raise(py: Python<'_>, class: &str, (message, name): (String, String)) -> PyErr {
@@ -27,6 +29,43 @@ fn raise(py: Python<'_>, class: &str, (message, name): (String, String)) -> PyEr
         Ok(e) => PyErr::from_value(e),
         Err(e) => e,
     }
+}
+
+/// Runs `work` on a thread of its own while this one watches for Ctrl-C, holding the
+/// interpreter only for a moment now and then: a `KeyboardInterrupt` raises `stop`, the work
+/// ends at its next sample or combination, and the interrupt is raised here (what was computed
+/// is dropped, as Python drops a loop's work when it is interrupted).
+fn interruptible<T: Send>(
+    py: Python<'_>,
+    work: impl FnOnce(&AtomicBool) -> T + Send,
+) -> PyResult<T> {
+    let stop = AtomicBool::new(false);
+    let mut signal = None;
+    let done = std::thread::scope(|s| {
+        let handle = s.spawn(|| work(&stop));
+        let mut nap = Duration::from_micros(200);
+        while !handle.is_finished() {
+            py.detach(|| std::thread::sleep(nap));
+            nap = (nap * 2).min(Duration::from_millis(25));
+            if signal.is_none() {
+                if let Err(e) = py.check_signals() {
+                    signal = Some(e);
+                    stop.store(true, Ordering::Relaxed);
+                }
+            }
+        }
+        handle.join()
+    });
+    if let Some(e) = signal {
+        return Err(e);
+    }
+    done.map_err(|_| {
+        raise(
+            py,
+            "RouteError",
+            ("the computation failed unexpectedly".into(), String::new()),
+        )
+    })
 }
 
 /// A scene error as `SceneError(message, key, origin)`: the key it names is `e.key`.
@@ -498,11 +537,14 @@ impl PyScene {
             base.with_keys(keys.iter().copied().zip(first.iter().copied()))
                 .map_err(|e| scene_error(py, &e))?;
         }
-        let results: Vec<Result<SampleResult, String>> = py.detach(|| {
+        let results: Vec<Result<SampleResult, String>> = interruptible(py, |stop| {
             combos
                 .par_iter()
                 .enumerate()
                 .map(|(k, c)| {
+                    if stop.load(Ordering::Relaxed) {
+                        return Err(slideroute::stages::uncertainty::NOT_RUN.to_string());
+                    }
                     let u: Vec<Uncertain> = keys
                         .iter()
                         .map(|key| Uncertain {
@@ -514,7 +556,7 @@ impl PyScene {
                         .map_err(|e| e.to_string())
                 })
                 .collect()
-        });
+        })?;
         let samples: Vec<Sample> = results
             .into_iter()
             .zip(combos)
@@ -745,7 +787,16 @@ fn run_samples<'py>(
     let a = values.as_array();
     let rows: Vec<Vec<f64>> = a.rows().into_iter().map(|r| r.to_vec()).collect();
     let base = &scene.inner;
-    let samples = py.detach(|| run_values(base, &u, first, rows, || {}, || false));
+    let samples = interruptible(py, |stop| {
+        run_values(
+            base,
+            &u,
+            first,
+            rows,
+            || {},
+            || stop.load(Ordering::Relaxed),
+        )
+    })?;
     let keys: Vec<&str> = u.iter().map(|x| x.key.as_str()).collect();
     columns_of(py, &keys, &samples)
 }

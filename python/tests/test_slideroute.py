@@ -297,3 +297,28 @@ def test_a_sample_whose_values_make_no_scene_is_a_row_that_says_why():
     assert rows["reason"][2] == "invalid scene"
     summary = slideroute.summarise(s, {"friction.mu_k": "uniform:-1:1"}, 3, 1, "mc", rows)
     assert summary["invalid_samples"] == 2 and summary["routes"] == 1
+
+
+def test_ctrl_c_stops_a_long_analysis_with_keyboard_interrupt():
+    import signal
+    import sys
+    import time
+
+    # 20 000 rigid-body routes: minutes of work; the interrupt must end it long before.
+    script = (
+        "import slideroute\n"
+        "s = slideroute.Scene.default()\n"
+        "print('started', flush=True)\n"
+        "try:\n"
+        "    slideroute.probabilistic(s, {'friction.mu_k': 'normal:0.4:0.05'}, samples=20000)\n"
+        "    print('finished')\n"
+        "except KeyboardInterrupt:\n"
+        "    print('interrupted')\n"
+    )
+    p = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, text=True)
+    assert p.stdout.readline().strip() == "started"
+    time.sleep(1.0)
+    p.send_signal(signal.SIGINT)
+    out, _ = p.communicate(timeout=60)
+    assert out.strip() == "interrupted"
+    assert p.returncode == 0
