@@ -13,6 +13,20 @@ pub struct Probability {
     pub ci95: [f64; 2],
 }
 
+/// `0.9400 (95 % interval 0.9235 to 0.9531)`, or `none (no route ran)`.
+impl std::fmt::Display for Probability {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        if self.value.is_nan() {
+            return f.write_str("none (no route ran)");
+        }
+        write!(
+            f,
+            "{:.4} (95 % interval {:.4} to {:.4})",
+            self.value, self.ci95[0], self.ci95[1]
+        )
+    }
+}
+
 fn probability(k: usize, n: usize) -> Probability {
     let (value, (lo, hi)) = proportion(k, n);
     Probability {
@@ -181,6 +195,15 @@ pub fn summarise(design: &Design, limits: Limits, samples: &[Sample]) -> Summary
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_probability_says_its_interval_or_that_no_route_ran() {
+        assert_eq!(
+            probability(30, 100).to_string(),
+            "0.3000 (95 % interval 0.2189 to 0.3958)"
+        );
+        assert_eq!(probability(0, 0).to_string(), "none (no route ran)");
+    }
 
     #[test]
     fn a_limit_must_be_finite_and_zero_or_more() {

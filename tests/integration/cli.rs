@@ -1615,3 +1615,29 @@ fn probabilistic_takes_the_scenes_uncertain_table_and_the_command_line_replaces_
     assert!(given.contains(&("friction.mu_k".into(), "uniform:0.3:0.5".into())));
     assert!(!b.join("route-fan.svg").exists());
 }
+
+#[test]
+fn probabilistic_with_no_valid_sample_says_there_is_no_probability() {
+    let out = temp_dir("prob-none");
+    let o = run(&[
+        "probabilistic",
+        "--out",
+        out.to_str().unwrap(),
+        "--samples",
+        "4",
+        "--dist",
+        "friction.mu_k=uniform:-2:-1",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let said = String::from_utf8_lossy(&o.stdout);
+    assert!(said.contains("none (no route ran)"), "{said}");
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("probabilistic.json")).unwrap())
+            .unwrap();
+    assert!(v["probability_of_sliding"]["value"].is_null(), "{v}");
+    assert_eq!(v["invalid_samples"], 4);
+    let fan = std::fs::read_to_string(out.join("route-fan.svg")).unwrap();
+    assert!(fan.contains("4 samples made no valid scene"));
+    let fs = std::fs::read_to_string(out.join("factor-of-safety.svg")).unwrap();
+    assert!(fs.contains("No sample has a finite factor of safety"));
+}

@@ -735,10 +735,7 @@ fn probabilistic_cmd(
             summary.routes,
             summary.invalid_samples
         );
-        println!(
-            "  probability of sliding (factor of safety below 1) {:.4}, 95 % interval [{:.4}, {:.4}]",
-            p.value, p.ci95[0], p.ci95[1]
-        );
+        println!("  probability of sliding (factor of safety below 1) {p}");
         for (what, prob) in [
             (
                 "travel over the limit",
@@ -750,10 +747,7 @@ fn probabilistic_cmd(
             ),
         ] {
             if let Some(q) = prob {
-                println!(
-                    "  probability of {what} {:.4}, 95 % interval [{:.4}, {:.4}]",
-                    q.value, q.ci95[0], q.ci95[1]
-                );
+                println!("  probability of {what} {q}");
             }
         }
         println!("  wrote {written}");

@@ -22,15 +22,6 @@ const BELOW: RGBColor = RGBColor(200, 30, 30);
 const ABOVE: RGBColor = RGBColor(30, 90, 200);
 const TRAVEL: RGBColor = RGBColor(230, 140, 0);
 
-fn interval(p: slideroute::stages::uncertainty::Probability) -> String {
-    format!(
-        "{} (95 % interval {} to {})",
-        fixed(p.value, 4),
-        fixed(p.ci95[0], 4),
-        fixed(p.ci95[1], 4)
-    )
-}
-
 /// The route fan: the sampled CM paths under the route of the scene as written (`nominal`).
 pub fn route_fan(
     path: &Path,
@@ -80,12 +71,18 @@ pub fn route_fan(
         Mark::None,
         "the foundation and the force are drawn as the scene writes them",
     ));
+    if summary.invalid_samples > 0 {
+        notes.push(Entry::new(
+            Mark::None,
+            format!(
+                "{} samples made no valid scene, not drawn: their rows in samples.csv say why",
+                summary.invalid_samples
+            ),
+        ));
+    }
     notes.push(Entry::new(
         Mark::None,
-        format!(
-            "probability of sliding {}",
-            interval(summary.probability_of_sliding)
-        ),
+        format!("probability of sliding {}", summary.probability_of_sliding),
     ));
     if let Some(t) = summary.travel_m {
         notes.push(Entry::new(
@@ -205,10 +202,7 @@ pub fn factor_of_safety(path: &Path, samples: &[Sample], summary: &Summary) -> R
         Entry::new(Mark::Dashed(BLACK), "factor of safety 1"),
         Entry::new(
             Mark::None,
-            format!(
-                "probability of sliding {}",
-                interval(summary.probability_of_sliding)
-            ),
+            format!("probability of sliding {}", summary.probability_of_sliding),
         ),
         Entry::new(
             Mark::None,
@@ -332,14 +326,17 @@ pub fn tornado(path: &Path, summary: &Summary) -> Res<()> {
                     color.mix(0.7).filled(),
                 )))
                 .map_err(err(path))?;
-            let (anchor, at) = if rho >= 0.0 {
-                (HPos::Left, rho + 0.02)
-            } else {
-                (HPos::Right, rho - 0.02)
+            // Beyond the bar's end, or inside it (in white) where the end is near the edge.
+            let inside = rho.abs() > 0.8;
+            let (anchor, at) = match (rho >= 0.0, inside) {
+                (true, false) => (HPos::Left, rho + 0.02),
+                (true, true) => (HPos::Right, rho - 0.02),
+                (false, false) => (HPos::Right, rho - 0.02),
+                (false, true) => (HPos::Left, rho + 0.02),
             };
             let style = ("sans-serif", 13)
                 .into_font()
-                .color(&BLACK)
+                .color(if inside { &WHITE } else { &BLACK })
                 .pos(Pos::new(anchor, VPos::Center));
             chart
                 .draw_series(std::iter::once(Text::new(
