@@ -21,7 +21,7 @@ from __future__ import annotations
 import json
 import os
 from dataclasses import dataclass, field
-from typing import Any, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -49,6 +49,9 @@ __version__: str = _native.version()
 
 Value = Union[float, int, bool, str]
 Distributions = Union[Mapping[str, str], Sequence[Tuple[str, str]], None]
+#: Called with (done, total) as a sweep or an analysis goes on (about four times a second, and
+#: once at the end); an exception it raises stops the work and is raised to the caller.
+Progress = Optional[Callable[[int, int], Any]]
 
 
 def _frame(columns: Mapping[str, Any]) -> Any:
@@ -183,13 +186,17 @@ class Scene:
         return self._s.pose(float(x_m), float(z_m), float(theta_deg))
 
     def sweep(
-        self, values: Mapping[str, Iterable[float]], dynamics: Optional[str] = None
+        self,
+        values: Mapping[str, Iterable[float]],
+        dynamics: Optional[str] = None,
+        progress: Progress = None,
     ) -> "Samples":
         """Every combination of the values given (``{"friction.mu_k": [0.3, 0.35, 0.4]}``),
         each route on its own core: one row per combination, in order (the last key varies
-        fastest)."""
+        fastest). ``progress(done, total)`` is told how far it is; Ctrl-C stops it with
+        ``KeyboardInterrupt``."""
         given = [(k, [float(v) for v in vs]) for k, vs in values.items()]
-        return Samples(self._s.sweep(given, dynamics))
+        return Samples(self._s.sweep(given, dynamics, progress))
 
 
 def _from_state(document: Dict[str, Any], origin: str, folder: str) -> Scene:
@@ -301,6 +308,7 @@ def run_samples(
     dists: Distributions,
     values: "np.typing.ArrayLike",
     first: int = 0,
+    progress: Progress = None,
 ) -> Samples:
     """The samples numbered ``first``, ``first + 1``, … with ``values`` (rows of
     :func:`sample_values`), on every core. A chunk run anywhere gives the rows the whole run
@@ -308,7 +316,9 @@ def run_samples(
     v = np.ascontiguousarray(np.asarray(values, dtype=np.float64))
     if v.ndim != 2:
         raise InputError("values: a 2-D array, one row per sample", "values")
-    return Samples(_native.run_samples(scene._s, distributions(scene, dists), v, int(first)))
+    return Samples(
+        _native.run_samples(scene._s, distributions(scene, dists), v, int(first), progress)
+    )
 
 
 def summarise(
@@ -357,15 +367,17 @@ def probabilistic(
     sampling: str = "lhs",
     travel_limit_m: Optional[float] = None,
     rotation_limit_deg: Optional[float] = None,
+    progress: Progress = None,
 ) -> Probabilistic:
     """The probabilistic analysis, as ``slideroute probabilistic`` runs it: each uncertain
     key's distribution (``{"friction.mu_k": "normal:0.40:0.05"}``; the scene's
     ``[uncertain]`` table too), ``samples`` samples from ``seed`` by ``sampling`` (``"lhs"``
-    or ``"mc"``), every route on every core; the same numbers as the command line's. Ctrl-C
-    stops it at its next route with ``KeyboardInterrupt``."""
+    or ``"mc"``), every route on every core; the same numbers as the command line's.
+    ``progress(done, total)`` is told how many samples are done (``tqdm``'s ``update`` fits);
+    Ctrl-C stops it at its next route with ``KeyboardInterrupt``."""
     dist = distributions(scene, dists)
     values = sample_values(scene, dist, samples, seed, sampling)
-    rows = run_samples(scene, dist, values)
+    rows = run_samples(scene, dist, values, progress=progress)
     summary = summarise(
         scene, dist, samples, seed, sampling, rows, travel_limit_m, rotation_limit_deg
     )

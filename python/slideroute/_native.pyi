@@ -1,6 +1,6 @@
 """Type stubs of the Rust extension (python/src/lib.rs)."""
 
-from typing import Any, Dict, List, Optional, Sequence, Tuple
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
@@ -38,7 +38,10 @@ class Scene:
     ) -> Dict[str, np.ndarray]: ...
     def pose(self, x_m: float, z_m: float, theta_deg: float) -> Dict[str, Any]: ...
     def sweep(
-        self, values: Sequence[Tuple[str, Sequence[float]]], dynamics: Optional[str] = ...
+        self,
+        values: Sequence[Tuple[str, Sequence[float]]],
+        dynamics: Optional[str] = ...,
+        progress: Optional[Callable[[int, int], Any]] = ...,
     ) -> Dict[str, Any]: ...
 
 def sample_values(
@@ -53,6 +56,7 @@ def run_samples(
     uncertain: Sequence[Tuple[str, str]],
     values: np.ndarray,
     first: int = ...,
+    progress: Optional[Callable[[int, int], Any]] = ...,
 ) -> Dict[str, Any]: ...
 def summarise_samples(
     scene: Scene,

@@ -16,7 +16,7 @@ use slideroute::stages::uncertainty::{
     summarise,
 };
 use std::path::Path;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::time::Duration;
 
 /// A Python exception of `slideroute._errors`: `class(message, name)`.
@@ -31,35 +31,75 @@ fn raise(py: Python<'_>, class: &str, (message, name): (String, String)) -> PyEr
     }
 }
 
-/// Runs `work` on a thread of its own while this one watches for Ctrl-C, holding the
-/// interpreter only for a moment now and then: a `KeyboardInterrupt` raises `stop`, the work
-/// ends at its next sample or combination, and the interrupt is raised here (what was computed
-/// is dropped, as Python drops a loop's work when it is interrupted).
+/// What a long computation and the thread watching it share: whether to stop, and how many
+/// samples or combinations are done.
+struct Watch {
+    stop: AtomicBool,
+    done: AtomicUsize,
+}
+
+impl Watch {
+    fn stopped(&self) -> bool {
+        self.stop.load(Ordering::Relaxed)
+    }
+
+    fn tick(&self) {
+        self.done.fetch_add(1, Ordering::Relaxed);
+    }
+}
+
+/// Runs `work` on a thread of its own while this one watches it, holding the interpreter only
+/// for a moment now and then: a `KeyboardInterrupt` (or an exception of `progress`) raises
+/// `stop`, the work ends at its next sample or combination, and the exception is raised here
+/// (what was computed is dropped, as Python drops a loop's work when it is interrupted).
+/// `progress`, a callable and the total, is called with (done, total) as the count moves (at
+/// most about four times a second) and once at the end.
 fn interruptible<T: Send>(
     py: Python<'_>,
-    work: impl FnOnce(&AtomicBool) -> T + Send,
+    progress: Option<(&Bound<'_, PyAny>, usize)>,
+    work: impl FnOnce(&Watch) -> T + Send,
 ) -> PyResult<T> {
-    let stop = AtomicBool::new(false);
-    let mut signal = None;
-    let done = std::thread::scope(|s| {
-        let handle = s.spawn(|| work(&stop));
+    let watch = Watch {
+        stop: AtomicBool::new(false),
+        done: AtomicUsize::new(0),
+    };
+    let mut failed: Option<PyErr> = None;
+    let mut told = (usize::MAX, std::time::Instant::now());
+    let mut tell = |failed: &mut Option<PyErr>, last: bool| {
+        let Some((f, total)) = progress else {
+            return;
+        };
+        let done = watch.done.load(Ordering::Relaxed);
+        let due = told.1.elapsed() >= Duration::from_millis(250);
+        if failed.is_none() && done != told.0 && (due || last) {
+            told = (done, std::time::Instant::now());
+            if let Err(e) = f.call1((done, total)) {
+                *failed = Some(e);
+                watch.stop.store(true, Ordering::Relaxed);
+            }
+        }
+    };
+    let result = std::thread::scope(|s| {
+        let handle = s.spawn(|| work(&watch));
         let mut nap = Duration::from_micros(200);
         while !handle.is_finished() {
             py.detach(|| std::thread::sleep(nap));
             nap = (nap * 2).min(Duration::from_millis(25));
-            if signal.is_none() {
+            if failed.is_none() {
                 if let Err(e) = py.check_signals() {
-                    signal = Some(e);
-                    stop.store(true, Ordering::Relaxed);
+                    failed = Some(e);
+                    watch.stop.store(true, Ordering::Relaxed);
                 }
             }
+            tell(&mut failed, false);
         }
         handle.join()
     });
-    if let Some(e) = signal {
+    tell(&mut failed, true);
+    if let Some(e) = failed {
         return Err(e);
     }
-    done.map_err(|_| {
+    result.map_err(|_| {
         raise(
             py,
             "RouteError",
@@ -501,12 +541,13 @@ impl PyScene {
 
     /// Every combination of the values given (`{"friction.mu_k": [0.3, 0.4]}`), each route on
     /// its own core: columns of the keys' values and of what each route came to.
-    #[pyo3(signature = (values, dynamics = None))]
+    #[pyo3(signature = (values, dynamics = None, progress = None))]
     fn sweep<'py>(
         &self,
         py: Python<'py>,
         values: Vec<(String, Vec<f64>)>,
         dynamics: Option<&str>,
+        progress: Option<Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let base = match dynamics_of(py, dynamics)? {
             Some(d) => self
@@ -537,12 +578,14 @@ impl PyScene {
             base.with_keys(keys.iter().copied().zip(first.iter().copied()))
                 .map_err(|e| scene_error(py, &e))?;
         }
-        let results: Vec<Result<SampleResult, String>> = interruptible(py, |stop| {
+        let total = combos.len();
+        let progress = progress.as_ref().map(|f| (f, total));
+        let results: Vec<Result<SampleResult, String>> = interruptible(py, progress, |watch| {
             combos
                 .par_iter()
                 .enumerate()
                 .map(|(k, c)| {
-                    if stop.load(Ordering::Relaxed) {
+                    if watch.stopped() {
                         return Err(slideroute::stages::uncertainty::NOT_RUN.to_string());
                     }
                     let u: Vec<Uncertain> = keys
@@ -552,8 +595,10 @@ impl PyScene {
                             distribution: Distribution::Uniform { lo: 0.0, hi: 1.0 },
                         })
                         .collect();
-                    slideroute::stages::uncertainty::run_sample(&base, &u, k, c)
-                        .map_err(|e| e.to_string())
+                    let r = slideroute::stages::uncertainty::run_sample(&base, &u, k, c)
+                        .map_err(|e| e.to_string());
+                    watch.tick();
+                    r
                 })
                 .collect()
         })?;
@@ -762,13 +807,14 @@ fn sample_values<'py>(
 /// The samples numbered `first`, `first + 1`, … with `values` (rows of a design's values),
 /// every route on every core: columns.
 #[pyfunction]
-#[pyo3(signature = (scene, uncertain, values, first = 0))]
+#[pyo3(signature = (scene, uncertain, values, first = 0, progress = None))]
 fn run_samples<'py>(
     py: Python<'py>,
     scene: &PyScene,
     uncertain: Vec<(String, String)>,
     values: PyReadonlyArray2<'py, f64>,
     first: usize,
+    progress: Option<Bound<'py, PyAny>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let u = uncertain_of(py, &uncertain)?;
     scene.check_keys(py, &u)?;
@@ -787,15 +833,9 @@ fn run_samples<'py>(
     let a = values.as_array();
     let rows: Vec<Vec<f64>> = a.rows().into_iter().map(|r| r.to_vec()).collect();
     let base = &scene.inner;
-    let samples = interruptible(py, |stop| {
-        run_values(
-            base,
-            &u,
-            first,
-            rows,
-            || {},
-            || stop.load(Ordering::Relaxed),
-        )
+    let progress = progress.as_ref().map(|f| (f, rows.len()));
+    let samples = interruptible(py, progress, |watch| {
+        run_values(base, &u, first, rows, || watch.tick(), || watch.stopped())
     })?;
     let keys: Vec<&str> = u.iter().map(|x| x.key.as_str()).collect();
     columns_of(py, &keys, &samples)

@@ -322,3 +322,27 @@ def test_ctrl_c_stops_a_long_analysis_with_keyboard_interrupt():
     out, _ = p.communicate(timeout=60)
     assert out.strip() == "interrupted"
     assert p.returncode == 0
+
+
+def test_progress_is_told_how_far_the_work_is_and_may_stop_it():
+    s = slideroute.Scene.default().with_keys({"solver.t_end_s": 0.5})
+    seen = []
+    p = slideroute.probabilistic(
+        s, {"friction.mu_k": "normal:0.4:0.05"}, samples=24, progress=lambda d, t: seen.append((d, t))
+    )
+    assert seen and seen[-1] == (24, 24)
+    assert all(t == 24 for _, t in seen) and [d for d, _ in seen] == sorted(d for d, _ in seen)
+    assert p.summary["routes"] == 24
+    swept = []
+    s.sweep({"friction.mu_k": [0.3, 0.4, 0.5]}, progress=lambda d, t: swept.append((d, t)))
+    assert swept[-1] == (3, 3)
+
+    class Enough(Exception):
+        pass
+
+    def give_up(done, total):
+        raise Enough(done)
+
+    slow = slideroute.Scene.default()
+    with pytest.raises(Enough):
+        slideroute.probabilistic(slow, {"friction.mu_k": "normal:0.4:0.05"}, samples=2000, progress=give_up)
