@@ -225,6 +225,15 @@ fn rigid_body_pivot_reaching_its_cone_starts_to_slip_as_in_drake() {
 
 #[test]
 #[ignore = "needs pydrake (crosscheck/setup.sh); run by .ci/run"]
+fn rigid_body_creeping_contact_pivots_until_contact_0_reaches_plane_1_as_in_drake() {
+    // Issue #17's sample: contact 2's slip of a few µm/s, stopped by friction within a step, is a
+    // pivot; followed as a slip it crept across plane 2's strike and the route ended "contact 2
+    // left plane 2" at 2.350 s, where Drake's contact 2 stays put until contact 0 crosses at 2.499 s.
+    agrees_with_drake("creeping-pivot", End::Contact0ReachesPlane1 { l2x: 4.0 });
+}
+
+#[test]
+#[ignore = "needs pydrake (crosscheck/setup.sh); run by .ci/run"]
 fn rigid_body_shaken_by_a_record_slips_turns_and_stops_as_on_drakes_moving_ground() {
     // Issue #16: scenes/shaken.toml, held at the start (factor of safety 1.29) and shaken by
     // scenes/shaken-motion.csv. Ours takes the record as the inertial force −m a(t) on the
