@@ -280,8 +280,7 @@ def distributions(scene: Scene, dists: Distributions) -> List[Tuple[str, str]]:
         given = [(str(k), str(v)) for k, v in dists.items()]
     else:
         given = [(str(k), str(v)) for k, v in dists]
-    keys = {k for k, _ in given}
-    merged = [(k, v) for k, v in scene.uncertain if k not in keys] + given
+    merged = _native.distributions(scene._s, given)
     if not merged:
         raise InputError(
             f"{scene.origin}: nothing is uncertain: give dists={{key: distribution}} or an "

@@ -12,8 +12,8 @@ use slideroute::stages::roots::{self, classify};
 use slideroute::stages::route::{self, Reason, Route, Row};
 use slideroute::stages::scene::{DynamicsModel, Mode, SceneError};
 use slideroute::stages::uncertainty::{
-    Design, Distribution, Limits, Outcome, Sample, SampleResult, Sampling, Uncertain, run_values,
-    summarise,
+    Design, Distribution, Limits, Outcome, Sample, SampleResult, Sampling, Uncertain, merged,
+    route_result, run_values, summarise,
 };
 use std::path::Path;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
@@ -583,19 +583,13 @@ impl PyScene {
         let results: Vec<Result<SampleResult, String>> = interruptible(py, progress, |watch| {
             combos
                 .par_iter()
-                .enumerate()
-                .map(|(k, c)| {
+                .map(|c| {
                     if watch.stopped() {
                         return Err(slideroute::stages::uncertainty::NOT_RUN.to_string());
                     }
-                    let u: Vec<Uncertain> = keys
-                        .iter()
-                        .map(|key| Uncertain {
-                            key: key.to_string(),
-                            distribution: Distribution::Uniform { lo: 0.0, hi: 1.0 },
-                        })
-                        .collect();
-                    let r = slideroute::stages::uncertainty::run_sample(&base, &u, k, c)
+                    let r = base
+                        .with_keys(keys.iter().copied().zip(c.iter().copied()))
+                        .and_then(|s| route_result(&s))
                         .map_err(|e| e.to_string());
                     watch.tick();
                     r
@@ -733,8 +727,6 @@ fn samples_from<'py>(
                 },
                 r if r == slideroute::stages::uncertainty::NOT_RUN => Outcome::NotRun,
                 r => Outcome::Route(SampleResult {
-                    index: index[k] as usize,
-                    values: values.iter().map(|v| v[k]).collect(),
                     factor_of_safety: (!fs[k].is_nan()).then_some(fs[k]),
                     reason: Reason::parse(r).ok_or_else(|| {
                         input_error(py, "reason", format!("`{r}` is no route's end"))
@@ -877,6 +869,21 @@ fn summarise_samples<'py>(
     json(py, &summarise(&design, limits, &rows))
 }
 
+/// The uncertain values of an analysis: the scene's `[uncertain]` table, then `given` (a key
+/// of both takes `given`'s), as (key, distribution) pairs.
+#[pyfunction]
+fn distributions(
+    py: Python<'_>,
+    scene: &PyScene,
+    given: Vec<(String, String)>,
+) -> PyResult<Vec<(String, String)>> {
+    let given = uncertain_of(py, &given)?;
+    Ok(merged(scene.inner.uncertain(), given)
+        .into_iter()
+        .map(|u| (u.key, u.distribution.to_string()))
+        .collect())
+}
+
 /// The crate's version.
 #[pyfunction]
 fn version() -> &'static str {
@@ -888,6 +895,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<PyScene>()?;
     m.add_function(wrap_pyfunction!(sample_values, m)?)?;
     m.add_function(wrap_pyfunction!(run_samples, m)?)?;
+    m.add_function(wrap_pyfunction!(distributions, m)?)?;
     m.add_function(wrap_pyfunction!(summarise_samples, m)?)?;
     m.add_function(wrap_pyfunction!(version, m)?)?;
     Ok(())

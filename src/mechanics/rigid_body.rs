@@ -1266,8 +1266,8 @@ fn consistent_directions(
 /// The slaved direction of contact `j`'s young slip (see [`accelerations_slaved`]): the
 /// consistent direction ((d × a_t)·n = 0, every normal force positive) nearest `current`,
 /// found from `current` outwards — a bracket widened from 2° by half again each time, then the
-/// Illinois method — with the size of the contact's tangential acceleration there; `None` if
-/// there is none. About twenty solves where a scan of the circle takes some three hundred.
+/// Illinois method — with the contact's tangential acceleration along it there, a_t·d (below
+/// zero where friction slows the slip); `None` if there is none. About twenty solves where a scan of the circle takes some three hundred.
 fn slaved_direction(
     ctx: &Ctx<'_>,
     dir: &[Vector3<f64>; 3],

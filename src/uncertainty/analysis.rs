@@ -70,7 +70,7 @@ pub fn run_values(
         let outcome = if stop() {
             Outcome::NotRun
         } else {
-            match run_sample(scene, uncertain, index, &values) {
+            match run_sample(scene, uncertain, &values) {
                 Ok(r) => Outcome::Route(r),
                 Err(e) => Outcome::Invalid {
                     reason: e.to_string(),

@@ -15,6 +15,18 @@ pub use sampling::{Sampling, design};
 pub use sensitivity::{Sensitivity, sensitivities, spearman};
 pub use summary::{Given, Limits, Percentiles, Probability, Summary, percentiles, summarise};
 
+/// The uncertain values of an analysis: a scene's `[uncertain]` table, then `given` (the
+/// command line's, a caller's); a key of both takes `given`'s distribution.
+pub fn merged(table: &[Uncertain], given: Vec<Uncertain>) -> Vec<Uncertain> {
+    let mut all: Vec<Uncertain> = table
+        .iter()
+        .filter(|u| !given.iter().any(|g| g.key == u.key))
+        .cloned()
+        .collect();
+    all.extend(given);
+    all
+}
+
 /// The most points of a sample's CM path kept ([`SampleResult::cm_path_m`]): enough to draw it
 /// in a route fan, little enough that ten thousand samples keep ten megabytes.
 pub const PATH_POINTS: usize = 64;
@@ -23,13 +35,9 @@ use crate::mechanics::static_friction::FactorOfSafety;
 use crate::route::{Reason, run};
 use crate::scene::{Scene, SceneError};
 
-/// What one sample's route came to.
+/// What one sample's route came to (its number and values are its [`Sample`]'s).
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct SampleResult {
-    /// The sample's number in the design.
-    pub index: usize,
-    /// The sampled values, in the order of the uncertain keys.
-    pub values: Vec<f64>,
     /// The factor of safety at the start: +∞ where no multiple of the driving loads starts the
     /// block, −∞ where the weight alone does; absent only where its cone program failed.
     pub factor_of_safety: Option<f64>,
@@ -90,19 +98,20 @@ pub fn sample_scene(
     )
 }
 
-/// The route of sample `index` with `values`.
+/// The route of the sample with `values`.
 pub fn run_sample(
     scene: &Scene,
     uncertain: &[Uncertain],
-    index: usize,
     values: &[f64],
 ) -> Result<SampleResult, SceneError> {
-    let s = sample_scene(scene, uncertain, values)?;
-    let r = run(&s)?;
+    route_result(&sample_scene(scene, uncertain, values)?)
+}
+
+/// What the route of `scene` comes to, as a sample's row has it (a sweep's combination too).
+pub fn route_result(scene: &Scene) -> Result<SampleResult, SceneError> {
+    let r = run(scene)?;
     let last = r.rows.last();
     Ok(SampleResult {
-        index,
-        values: values.to_vec(),
         factor_of_safety: r.factor_of_safety.map(|f| match f {
             FactorOfSafety::Finite { value } => value,
             FactorOfSafety::Unbounded => f64::INFINITY,
@@ -138,6 +147,26 @@ pub fn proportion(k: usize, n: usize) -> (f64, (f64, f64)) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_given_distribution_replaces_the_tables_and_the_others_follow_it() {
+        let u = |t: &str| t.parse::<Uncertain>().unwrap();
+        let table = [u("a.x=uniform:0:1"), u("b.y=uniform:0:1")];
+        let all = merged(&table, vec![u("a.x=normal:0:1"), u("c.z=uniform:1:2")]);
+        let keys: Vec<(&str, String)> = all
+            .iter()
+            .map(|v| (v.key.as_str(), v.distribution.to_string()))
+            .collect();
+        assert_eq!(
+            keys,
+            [
+                ("b.y", "uniform:0:1".to_string()),
+                ("a.x", "normal:0:1".to_string()),
+                ("c.z", "uniform:1:2".to_string())
+            ]
+        );
+        assert_eq!(merged(&table, vec![]), table.to_vec());
+    }
 
     #[test]
     fn a_thinned_path_keeps_its_ends_and_at_most_its_count() {

@@ -67,10 +67,10 @@ pub struct Sensitivity {
 
 /// The rank correlations of each of `keys` with the factor of safety and the travel.
 pub fn sensitivities(keys: &[String], samples: &[Sample]) -> Vec<Sensitivity> {
-    let routes: Vec<_> = samples
+    let routes: Vec<(&[f64], &super::SampleResult)> = samples
         .iter()
         .filter_map(|s| match &s.outcome {
-            Outcome::Route(r) => Some(r),
+            Outcome::Route(r) => Some((s.values.as_slice(), r)),
             _ => None,
         })
         .collect();
@@ -78,7 +78,7 @@ pub fn sensitivities(keys: &[String], samples: &[Sample]) -> Vec<Sensitivity> {
         .enumerate()
         .map(|(k, key)| {
             let with = |f: &dyn Fn(&super::SampleResult) -> f64| {
-                let pairs: Vec<(f64, f64)> = routes.iter().map(|r| (r.values[k], f(r))).collect();
+                let pairs: Vec<(f64, f64)> = routes.iter().map(|(v, r)| (v[k], f(r))).collect();
                 spearman(&pairs)
             };
             Sensitivity {

@@ -1614,6 +1614,12 @@ fn probabilistic_takes_the_scenes_uncertain_table_and_the_command_line_replaces_
     assert_eq!(given.len(), 3);
     assert!(given.contains(&("friction.mu_k".into(), "uniform:0.3:0.5".into())));
     assert!(!b.join("route-fan.svg").exists());
+    // Again into the first folder without pictures: the earlier run's pictures go.
+    go(&a, &["--no-plots"]);
+    for f in ["route-fan.svg", "factor-of-safety.svg", "sensitivity.svg"] {
+        assert!(!a.join(f).exists(), "{f} left from the earlier run");
+    }
+    assert!(a.join("samples.csv").exists() && a.join("probabilistic.json").exists());
 }
 
 #[test]

@@ -28,9 +28,8 @@ fn p_sliding(scene: &Scene, mu: &Uncertain, n: usize, seed: u64, sampling: Sampl
     let values = sample_values(keys, n, seed, sampling);
     let slid = values
         .iter()
-        .enumerate()
-        .filter(|(k, v)| {
-            let r = run_sample(scene, keys, *k, v).unwrap();
+        .filter(|v| {
+            let r = run_sample(scene, keys, v).unwrap();
             r.factor_of_safety.unwrap() < 1.0
         })
         .count();
@@ -78,7 +77,7 @@ fn an_uncertain_key_the_scene_cannot_take_is_named() {
     ] {
         let u: Uncertain = format!("{key}=normal:-5:0.1").parse().unwrap();
         let values = sample_values(std::slice::from_ref(&u), 1, 1, Sampling::MonteCarlo);
-        let e = run_sample(&scene, std::slice::from_ref(&u), 0, &values[0]).unwrap_err();
+        let e = run_sample(&scene, std::slice::from_ref(&u), &values[0]).unwrap_err();
         assert!(e.key.contains(key), "{e}");
         assert!(e.to_string().contains(why), "{e}");
     }

@@ -424,13 +424,8 @@ fn write_route_folder(
     #[cfg(feature = "plots")]
     if !no_plots {
         let staging = folder.staging()?;
-        for staged in crate::output::plots::write_route_plots(&staging, scene, route)? {
-            let name = staged
-                .file_name()
-                .map(|n| n.to_string_lossy().into_owned())
-                .unwrap_or_default();
-            files.push(folder.adopt(&name, &staged)?);
-        }
+        let staged = crate::output::plots::write_route_plots(&staging, scene, route)?;
+        files.extend(folder.adopt_all(staged)?);
     }
     #[cfg(not(feature = "plots"))]
     let _ = no_plots;
@@ -591,7 +586,7 @@ fn probabilistic_cmd(
     dynamics: Option<DynamicsModel>,
     (out, quiet, no_plots): (&std::path::Path, bool, bool),
 ) -> Result<(), CliError> {
-    use slideroute::stages::uncertainty::{Design, Limits, Sampling, Uncertain, summarise};
+    use slideroute::stages::uncertainty::{Design, Limits, Sampling, Uncertain, merged, summarise};
     let base = load_with(scene, dynamics)?;
     if samples == 0 || samples > MAX_SAMPLES {
         return Err(bad_input(format!(
@@ -610,13 +605,7 @@ fn probabilistic_cmd(
         .collect::<Result<Vec<_>, _>>()
         .map_err(bad_input)?;
     // The scene's [uncertain] table, then --dist: a key of both takes the command line's.
-    let mut uncertain: Vec<Uncertain> = base
-        .uncertain()
-        .iter()
-        .filter(|u| !given.iter().any(|g| g.key == u.key))
-        .cloned()
-        .collect();
-    uncertain.extend(given);
+    let uncertain = merged(base.uncertain(), given);
     if uncertain.is_empty() {
         return Err(bad_input(format!(
             "{}: nothing is uncertain: give --dist KEY=DISTRIBUTION or an [uncertain] table in \
@@ -682,21 +671,15 @@ fn probabilistic_cmd(
         // The scene as written, drawn in black on the fan.
         let nominal = slideroute::stages::route::run(&base).ok();
         let staging = folder.staging().map_err(failed)?;
-        for staged in crate::output::plots::write_probabilistic_plots(
+        let staged = crate::output::plots::write_probabilistic_plots(
             &staging,
             &base,
             nominal.as_ref(),
             &rows,
             &summary,
         )
-        .map_err(failed)?
-        {
-            let name = staged
-                .file_name()
-                .map(|n| n.to_string_lossy().into_owned())
-                .unwrap_or_default();
-            written.push(folder.adopt(&name, &staged).map_err(failed)?);
-        }
+        .map_err(failed)?;
+        written.extend(folder.adopt_all(staged).map_err(failed)?);
     }
     #[cfg(not(feature = "plots"))]
     let _ = no_plots;

@@ -11,7 +11,7 @@
 use std::path::{Path, PathBuf};
 
 /// Every file a slideroute command writes into an output folder (relative paths).
-pub const KNOWN: [&str; 17] = [
+pub const KNOWN: [&str; 22] = [
     "route.csv",
     "summary.json",
     "plan.svg",
@@ -29,6 +29,11 @@ pub const KNOWN: [&str; 17] = [
     "work-precision.csv",
     "work-precision.svg",
     "work-precision.md",
+    "samples.csv",
+    "probabilistic.json",
+    "route-fan.svg",
+    "factor-of-safety.svg",
+    "sensitivity.svg",
 ];
 
 const LOCK: &str = ".slideroute.lock";
@@ -139,10 +144,24 @@ impl Folder {
     }
 
     /// Moves a finished file `from` (in [`Folder::staging`]) into place as `name`.
-    pub fn adopt(&mut self, name: &str, from: &Path) -> Result<PathBuf, String> {
+    fn adopt(&mut self, name: &str, from: &Path) -> Result<PathBuf, String> {
         self.write_with(name, |tmp| {
             std::fs::rename(from, tmp).map_err(|e| format!("{}: cannot move: {e}", from.display()))
         })
+    }
+
+    /// [`Folder::adopt`] for each of `staged`, under its own file name.
+    pub fn adopt_all(&mut self, staged: Vec<PathBuf>) -> Result<Vec<PathBuf>, String> {
+        staged
+            .iter()
+            .map(|from| {
+                let name = from
+                    .file_name()
+                    .map(|n| n.to_string_lossy().into_owned())
+                    .unwrap_or_default();
+                self.adopt(&name, from)
+            })
+            .collect()
     }
 
     /// The files written so far: relative name and size in bytes.
