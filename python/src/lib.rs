@@ -359,12 +359,14 @@ impl PyScene {
             .detach(|| route::run(&scene))
             .map_err(|e| scene_error(py, &e))?;
         let columns = PyDict::new(py);
-        for (k, name) in Row::COLUMNS.iter().enumerate() {
-            let v: Vec<f64> = r
-                .rows
-                .iter()
-                .map(|row| row.values()[k].unwrap_or(f64::NAN))
-                .collect();
+        // Each row's values once, then column by column.
+        let mut cols = vec![Vec::with_capacity(r.rows.len()); Row::COLUMNS.len()];
+        for row in &r.rows {
+            for (col, v) in cols.iter_mut().zip(row.values()) {
+                col.push(v.unwrap_or(f64::NAN));
+            }
+        }
+        for (name, v) in Row::COLUMNS.iter().zip(cols) {
             columns.set_item(*name, PyArray1::from_vec(py, v))?;
         }
         Ok((columns, json(py, &r)?))

@@ -119,3 +119,46 @@ pub fn faces_of(site: &crate::geometry::Site) -> [u32; 3] {
         None => [0, 1, 2],
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn each_value_of_a_row_stands_under_its_own_column_name() {
+        let r = Row {
+            t_s: 1.0,
+            x_m: 2.0,
+            y_m: 3.0,
+            z_m: 4.0,
+            theta_deg: 5.0,
+            alpha_deg: 6.0,
+            beta_deg: 7.0,
+            gamma_deg: 8.0,
+            vx_m_s: 9.0,
+            vz_m_s: 10.0,
+            omega_deg_s: 11.0,
+            n_n: Some([12.0, 13.0, 14.0]),
+            s_n: Some([15.0, 16.0, 17.0]),
+            faces: [18, 19, 20],
+            crease: [None, Some(21), None],
+        };
+        let at = |name: &str| r.values()[Row::COLUMNS.iter().position(|c| *c == name).unwrap()];
+        assert_eq!(at("t_s"), Some(r.t_s));
+        assert_eq!(at("theta_deg"), Some(r.theta_deg));
+        assert_eq!(at("omega_deg_s"), Some(r.omega_deg_s));
+        assert_eq!(at("n1_n"), Some(13.0));
+        assert_eq!(at("s2_n"), Some(17.0));
+        assert_eq!(at("face0"), Some(18.0));
+        assert_eq!(at("crease_face1"), Some(21.0));
+        assert_eq!(at("crease_face0"), None);
+        let lost = Row {
+            n_n: None,
+            s_n: None,
+            ..r
+        };
+        let v = lost.values();
+        assert!(v[11..17].iter().all(Option::is_none));
+        assert_eq!(v.iter().filter(|x| x.is_some()).count(), 11 + 3 + 1);
+    }
+}
