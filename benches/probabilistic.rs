@@ -8,11 +8,11 @@
 //!   that the figure is the overhead and not the parallel speed-up.
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
-use slideroute::stages::route;
-use slideroute::stages::scene::{DynamicsModel, Scene};
-use slideroute::stages::uncertainty::{
+use slideroute::internals::analysis::probabilistic::{
     Design, Limits, Sampling, Uncertain, sample_scene, summarise,
 };
+use slideroute::internals::route;
+use slideroute::internals::{model::DynamicsModel, scene::Scene};
 use std::hint::black_box;
 
 /// Samples in one measured batch.
@@ -57,7 +57,7 @@ fn throughput(c: &mut Criterion) {
         g.bench_function(BenchmarkId::new("bare routes", model.as_str()), |b| {
             b.iter(|| {
                 for s in &scenes {
-                    black_box(route::run(s).unwrap());
+                    black_box(slideroute::run(s).unwrap());
                 }
             })
         });

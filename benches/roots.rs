@@ -7,9 +7,9 @@
 //!   predictor, Newton corrector, admissibility check).
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use slideroute::stages::geometry::Displacement;
-use slideroute::stages::roots::{self, Tracker, eigen, system};
-use slideroute::stages::scene::{Mode, Scene};
+use slideroute::internals::geometry::Displacement;
+use slideroute::internals::roots::{self, Tracker, eigen, system};
+use slideroute::internals::{model::Mode, scene::Scene};
 use std::hint::black_box;
 
 fn all_roots(c: &mut Criterion) {

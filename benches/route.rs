@@ -6,10 +6,13 @@
 //!   reactions, accelerations — and the same with the pose by all roots.
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use slideroute::stages::geometry::Displacement;
-use slideroute::stages::route::pose_finder::PoseFinder;
-use slideroute::stages::route::{self, PoseMethod, rhs};
-use slideroute::stages::scene::{DynamicsModel, Mode, Scene};
+use slideroute::internals::geometry::Displacement;
+use slideroute::internals::route::pose_finder::PoseFinder;
+use slideroute::internals::route::{self, PoseMethod, paper};
+use slideroute::internals::{
+    model::{DynamicsModel, Mode},
+    scene::Scene,
+};
 use std::hint::black_box;
 
 /// `s` with its frame written as `contacts_m` (the same contacts, the general pose system).
@@ -61,7 +64,7 @@ fn whole_routes(c: &mut Criterion) {
             &general,
         ),
     ] {
-        c.bench_function(name, |b| b.iter(|| route::run(black_box(s)).unwrap()));
+        c.bench_function(name, |b| b.iter(|| slideroute::run(black_box(s)).unwrap()));
     }
 }
 
@@ -69,7 +72,7 @@ fn one_increment(c: &mut Criterion) {
     let scene = Scene::default_scene()
         .with_dynamics(DynamicsModel::Paper)
         .unwrap();
-    let dynamics = slideroute::stages::scene::Simulation::new(&scene).unwrap();
+    let dynamics = &scene.simulation().unwrap();
     for method in [PoseMethod::Continuation, PoseMethod::AllRoots] {
         // Position the finder and the chosen reaction at X = 0.5 m, then time the next 1 mm.
         let mut finder = PoseFinder::new(&scene, Mode::Exact, method);

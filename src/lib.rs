@@ -1,12 +1,14 @@
 //! # slideroute
 //!
 //! The three-dimensional failure route of a rigid block — a concrete gravity-dam monolith —
-//! sliding on a foundation of one horizontal and two inclined planes with three-point contact,
-//! after Galic & Glaser, "Outline of a Method for Determining the Three Dimensional Failure
-//! Route of a Sliding Block". Equation numbers in the docs are the paper's.
+//! sliding on its rock foundation, pushed by water whose line misses its centre of mass so that
+//! it turns as it slides: after Galic & Glaser, "Outline of a Method for Determining the Three
+//! Dimensional Failure Route of a Sliding Block". Equation numbers in the docs are the paper's.
 //!
-//! A route from a scene file (`run` checks the scene first; [`Simulation::new`] then
-//! [`simulate`] does it in two steps, and a `Simulation` runs without failing):
+//! **From a scene file.** A [`Scene`] is read and checked, every fault a [`SceneError`] naming
+//! its key and line; [`run`] gives its [`Route`]: the recorded [`Row`]s, how it ended
+//! ([`Termination`], [`Reason`]), the factor of safety at the start ([`FactorOfSafety`]), the
+//! travel and the energy balance.
 //!
 //! ```
 //! let scene = slideroute::Scene::from_file("scenes/turning.toml".as_ref())?;
@@ -16,8 +18,22 @@
 //! # Ok::<(), slideroute::SceneError>(())
 //! ```
 //!
-//! The poses behind it — the coefficients of the pose system, all its roots, the physical one
-//! followed by continuation, and the independent direct solver every test measures against:
+//! **From typed parts.** A [`Simulation`] is the model — the [`Site`] (the contacts and the
+//! ground under them), the [`Block`], its [`Loads`], the [`Friction`] and the joint's
+//! [`Strengths`], the [`Initial`] motion, a ground-motion [`Record`] — and its [`RunSettings`],
+//! built by [`Simulation::builder`] (or [`Scene::simulation`]) and checked once, every fault a
+//! [`ModelError`]. [`simulate`] runs it and cannot fail; a [`Runner`] also reports progress, may
+//! be stopped, streams the rows and says how the computation went ([`Diagnostics`]).
+//!
+//! **Many routes.** A sweep of scene keys ([`sweep`]), a probabilistic analysis
+//! ([`probabilistic`]), the load cases of a guideline ([`check_cases`]) and the paper's dynamics
+//! beside the rigid body's ([`compare_dynamics`]) run through one runner, the command line and
+//! Python alike.
+//!
+//! **The poses behind it.** The coefficients of the pose system ([`SmallAngle`]'s f1–f12 of
+//! (15), [`Exact`]), all its roots by eigenvalues ([`solve_all`]), the physical one followed by
+//! continuation ([`Tracker`]), and the independent direct solver every test measures against
+//! ([`direct_pose`]):
 //!
 //! ```
 //! use slideroute::{CoeffInputs, Displacement, Mode, Scene, SmallAngle, Tracker};
@@ -33,53 +49,83 @@
 //! ```
 //!
 //! Data flows one way, one private module per stage (`ARCHITECTURE.md` says where each lives):
-//! scene → geometry (the model's frame and planes) → coefficients (generated at build time by
-//! `codegen/`) → roots → pose → mechanics (loads, friction, reactions) → route (one driver, a
-//! [`Dynamics`](stages::route) per model) → rows. [`stages`] opens them for the command line,
-//! the tests and the benchmarks; it is not the library's interface.
+//! scene → model → geometry → coefficients (generated at build time by `codegen/`) → roots →
+//! pose → mechanics (loads, friction, reactions) → route (one driver, a dynamics model each) →
+//! analysis (many routes). Units are SI; angles are radians in these types and degrees in every
+//! file a person reads or writes.
 
-mod check;
+#![forbid(unsafe_code)]
+#![warn(missing_docs)]
+
+mod analysis;
 mod coeffs;
-mod compare;
 mod geometry;
 mod mechanics;
+mod model;
 mod numeric;
 mod roots;
 mod route;
 mod scene;
-mod uncertainty;
 
-pub use check::{CaseResult, check_cases};
+pub use analysis::check::{CaseResult, check_cases};
+pub use analysis::compare::{Comparison, Parting, compare_dynamics, compare_dynamics_observed};
+pub use analysis::runner::{NOT_RUN, Outcome, RouteResult};
+pub use analysis::{run, run_observed};
 pub use coeffs::{CoeffInputs, Exact, SmallAngle};
-pub use compare::{Comparison, compare_dynamics, compare_dynamics_observed};
-pub use geometry::direct::solve as direct_pose;
-pub use geometry::{Displacement, Pose, Site};
+pub use geometry::direct::{DirectPose, solve as direct_pose};
+pub use geometry::{Displacement, Foundation, Frame, Ground, Plane, Pose, Site};
 pub use mechanics::static_friction::FactorOfSafety;
-pub use roots::{AllRoots, Root, Tracker, solve_all};
-pub use route::{
-    Diagnostics, EnergyBalance, PoseMethod, Reason, Route, Row, Termination, run, run_observed,
-    run_streamed, run_with, simulate,
+pub use model::{
+    Block, Category, DynamicsModel, FaceStrength, Friction, Guideline, Initial, Integrator,
+    LoadCase, Loads, Mode, ModelError, Monolith, Record, RunSettings, Section, Simulation,
+    SimulationBuilder, SiteInformation, Strengths, Structure, UnknownName, WaterLoads,
 };
-pub use scene::{DynamicsModel, Friction, Integrator, Mode, Scene, SceneError, Simulation};
+pub use roots::{
+    AllRoots, BranchPoint, Inadmissible, Root, TrackError, TrackStats, Tracker, solve_all,
+};
+pub use route::{
+    Computed, Diagnostics, EnergyBalance, PoseMethod, Reason, Route, Row, Runner, Termination,
+    simulate,
+};
+pub use scene::{LoadsUsed, Scene, SceneError, SceneErrorKind};
 
-/// The stages themselves, each with everything in it public, so that the command line can
-/// report them and the tests and benchmarks can measure them one by one. Not the library's
-/// interface: use the items at the crate's root.
-pub mod stages {
-    pub mod check {
-        pub use crate::check::*;
+/// Sweeps: every combination of values of some scene keys, each combination's route.
+pub mod sweep {
+    pub use crate::analysis::sweep::{
+        KeyError, MAX_COMBINATIONS, MAX_VALUES, Sweep, SweepRow, Vary, check_key,
+    };
+}
+
+/// The probabilistic analysis: uncertain scene keys with their distributions, a design of
+/// samples drawn from a seed, every sample's route, and what they come to.
+pub mod probabilistic {
+    pub use crate::analysis::probabilistic::{
+        Design, Distribution, FORMS, Given, Limits, MAX_SAMPLES, Percentiles, Probability, Sample,
+        Sampling, Sensitivity, Summary, Uncertain, check_uncertain, merged, proportion, run_values,
+        sample_scene, sample_values, summarise,
+    };
+}
+
+/// Every stage with everything in it, so that the command line can report the stages and the
+/// tests and benchmarks can measure them one by one: not an interface to build on, and behind
+/// the `internals` feature (which the command line's `cli` feature turns on).
+#[cfg(feature = "internals")]
+#[doc(hidden)]
+pub mod internals {
+    pub mod analysis {
+        pub use crate::analysis::*;
     }
     pub mod coeffs {
         pub use crate::coeffs::*;
-    }
-    pub mod compare {
-        pub use crate::compare::*;
     }
     pub mod geometry {
         pub use crate::geometry::*;
     }
     pub mod mechanics {
         pub use crate::mechanics::*;
+    }
+    pub mod model {
+        pub use crate::model::*;
     }
     pub mod numeric {
         pub use crate::numeric::*;
@@ -92,9 +138,6 @@ pub mod stages {
     }
     pub mod scene {
         pub use crate::scene::*;
-    }
-    pub mod uncertainty {
-        pub use crate::uncertainty::*;
     }
 }
 

@@ -7,14 +7,11 @@ use numpy::{PyArray1, PyArray2, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArr
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use rayon::prelude::*;
-use slideroute::stages::geometry::Displacement;
-use slideroute::stages::roots::{self, classify};
-use slideroute::stages::route::{self, Reason, Route, Row};
-use slideroute::stages::scene::{DynamicsModel, Mode, SceneError};
-use slideroute::stages::uncertainty::{
-    Design, Distribution, Limits, Outcome, Sample, SampleResult, Sampling, Uncertain, merged,
-    route_result, run_values, summarise,
-};
+use slideroute::internals::geometry::Displacement;
+use slideroute::internals::roots::{self, classify};
+use slideroute::internals::route::{self, Reason, Route, Row};
+use slideroute::internals::{model::{DynamicsModel, Mode}, scene::{SceneError}};
+use slideroute::internals::analysis::probabilistic::{Design, Distribution, Limits, Outcome, Sample, SampleResult, Sampling, Uncertain, merged, route_result, run_values, summarise};
 use std::path::Path;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::time::Duration;
@@ -587,7 +584,7 @@ impl PyScene {
                 .par_iter()
                 .map(|c| {
                     if watch.stopped() {
-                        return Err(slideroute::stages::uncertainty::NOT_RUN.to_string());
+                        return Err(slideroute::internals::analysis::probabilistic::NOT_RUN.to_string());
                     }
                     let r = base
                         .with_keys(keys.iter().copied().zip(c.iter().copied()))
@@ -662,7 +659,7 @@ fn columns_of<'py>(
         .map(|s| match &s.outcome {
             Outcome::Route(r) => r.reason.as_str().to_string(),
             Outcome::Invalid { .. } => "invalid scene".to_string(),
-            Outcome::NotRun => slideroute::stages::uncertainty::NOT_RUN.to_string(),
+            Outcome::NotRun => slideroute::internals::analysis::probabilistic::NOT_RUN.to_string(),
         })
         .collect();
     let details: Vec<String> = samples
@@ -727,7 +724,7 @@ fn samples_from<'py>(
                 "invalid scene" => Outcome::Invalid {
                     reason: detail[k].clone(),
                 },
-                r if r == slideroute::stages::uncertainty::NOT_RUN => Outcome::NotRun,
+                r if r == slideroute::internals::analysis::probabilistic::NOT_RUN => Outcome::NotRun,
                 r => Outcome::Route(SampleResult {
                     factor_of_safety: (!fs[k].is_nan()).then_some(fs[k]),
                     reason: Reason::parse(r).ok_or_else(|| {

@@ -1,7 +1,7 @@
 //! The loads in global coordinates at one pose (`derivations/11-dam-loads.md`).
 
 use crate::geometry::LocalFrame;
-use crate::scene::{Block, Loads};
+use crate::model::{Block, Loads};
 use nalgebra::Vector3;
 
 /// The loads on the block at one pose (N, N·m; moments about the base point under the CM, the

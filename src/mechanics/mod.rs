@@ -5,17 +5,14 @@
 //! j' (c > 0 turns the block so that θ grows); weight −m g along Y; each normal reaction lies
 //! along the upward unit normal of its contact's plane and each shear reaction in that plane.
 
-pub mod friction;
 pub mod loads;
 pub mod onset;
 pub mod reactions_paper;
 pub mod rigid_body;
 pub mod static_friction;
 pub mod statics;
-pub mod strength;
 
 use crate::geometry::{LocalFrame, Pose};
-use crate::scene::Scene;
 use nalgebra::Vector3;
 
 /// What the mechanics needs to know about a placed frame.
@@ -34,12 +31,9 @@ pub struct ContactGeometry {
 }
 
 impl ContactGeometry {
-    pub fn new(scene: &Scene, pose: &Pose) -> Self {
-        Self::with_normals(&scene.site.normals(), pose)
-    }
-
-    /// With the planes' normals computed before (as [`crate::scene::Simulation::normals`]).
-    pub fn with_normals(normals: &[Vector3<f64>; 3], pose: &Pose) -> Self {
+    /// The contacts of `pose` on the planes with upward unit normals `normals` (as
+    /// [`crate::model::Simulation::normals`], computed once).
+    pub fn new(normals: &[Vector3<f64>; 3], pose: &Pose) -> Self {
         ContactGeometry {
             frame: pose.frame,
             r: pose.vertices.map(|v| v - pose.cm),

@@ -11,7 +11,7 @@
 
 use super::ContactGeometry;
 use super::loads::Applied;
-use crate::scene::Strength;
+use crate::model::Strength;
 
 /// (FS, D, R); FS is `f64::INFINITY` when D ≤ 0.
 pub fn factor_of_safety(
@@ -47,10 +47,10 @@ mod tests {
         // Flat frame: i' = X, so N0·i' = 0, N1·i' = −c1 sin ξ, N2·i' = −c2 sin ζ cos κ, W·i' = 0:
         // FS = μ (c0 + c1 + c2) / (F − c1 sin ξ − c2 sin ζ cos κ).
         let s = Scene::default_scene();
-        let d = crate::scene::Simulation::new(&s).unwrap();
+        let d = s.simulation().unwrap();
         let pose =
             Pose::from_tilts(s.site.as_paper().unwrap(), Default::default(), 0.0, 0.0).unwrap();
-        let geom = ContactGeometry::new(&s, &pose);
+        let geom = ContactGeometry::new(&s.site().normals(), &pose);
         let applied = Applied::new(d.loads(), d.block(), &geom.frame);
         let c = frictionless_normals(&geom, &applied).unwrap();
         let g = &s.site.as_paper().unwrap().foundation;

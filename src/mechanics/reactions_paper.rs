@@ -21,9 +21,9 @@
 use super::ContactGeometry;
 use super::loads::Applied;
 use super::statics::ratios;
+use crate::model::Block;
+use crate::model::Strength;
 use crate::numeric::{poly_mul, poly_roots, wrap_angle as wrap};
-use crate::scene::Block;
-use crate::scene::Strength;
 use nalgebra::{Matrix3, Matrix3x4, SMatrix, Vector3, Vector4};
 
 /// One solution of the frictional system, with the accelerations it implies.

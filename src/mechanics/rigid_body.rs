@@ -18,8 +18,8 @@
 
 use super::ContactGeometry;
 use super::loads::Applied;
-use crate::scene::Block;
-use crate::scene::Strength;
+use crate::model::Block;
+use crate::model::Strength;
 use nalgebra::{Matrix3, Matrix6, SMatrix, SVector, Vector3, Vector6};
 
 /// Why the rigid-body accelerations cannot be had at a state.
@@ -1460,7 +1460,7 @@ fn from_rest(
 mod tests {
     use super::*;
     use crate::geometry::{Displacement, Pose, direct};
-    use crate::scene::Friction;
+    use crate::model::Friction;
     use crate::scene::Scene;
 
     fn at(scene: &Scene, d: Displacement) -> ContactGeometry {
@@ -1468,7 +1468,7 @@ mod tests {
         let l = scene.l();
         let pose =
             Pose::from_tilts(scene.site.as_paper().unwrap(), d, p.alpha(l), p.beta(l)).unwrap();
-        ContactGeometry::new(scene, &pose)
+        ContactGeometry::new(&scene.site().normals(), &pose)
     }
 
     #[test]
@@ -1524,7 +1524,7 @@ mod tests {
     #[test]
     fn frictionless_accelerations_keep_contact_accelerations_on_the_planes() {
         let scene = Scene::default_scene().with("friction.mu_k", 0.0).unwrap();
-        let d = crate::scene::Simulation::new(&scene).unwrap();
+        let d = scene.simulation().unwrap();
         let geom = at(&scene, Displacement::new(0.7, 0.2, 0.1));
         let applied = Applied::new(d.loads(), d.block(), &geom.frame);
         let m = accelerations(
@@ -1553,7 +1553,7 @@ mod tests {
     #[test]
     fn shear_opposes_slip_with_the_criterion_magnitude() {
         let scene = Scene::default_scene();
-        let d = crate::scene::Simulation::new(&scene).unwrap();
+        let d = scene.simulation().unwrap();
         let geom = at(&scene, Displacement::new(0.5, 0.0, -0.05));
         let applied = Applied::new(d.loads(), d.block(), &geom.frame);
         let m = accelerations(
@@ -1575,7 +1575,7 @@ mod tests {
     #[test]
     fn from_rest_each_shear_opposes_its_contacts_tangential_acceleration() {
         let scene = Scene::default_scene();
-        let d = crate::scene::Simulation::new(&scene).unwrap();
+        let d = scene.simulation().unwrap();
         let geom = at(&scene, Displacement::new(0.0, 0.0, 0.0));
         let applied = Applied::new(d.loads(), d.block(), &geom.frame);
         let m = accelerations(
@@ -1606,7 +1606,7 @@ mod tests {
         // acceleration this gives points along d itself (a_t ∥ d, a_t·d ≥ 0). Checked by
         // recomputing a_t from the returned accelerations.
         let scene = Scene::default_scene().with("friction.mu_k", 0.05).unwrap();
-        let d = crate::scene::Simulation::new(&scene).unwrap();
+        let d = scene.simulation().unwrap();
         let geom = at(&scene, Displacement::new(0.5, 0.1, 0.05));
         let applied = Applied::new(d.loads(), d.block(), &geom.frame);
         let arm = longest_arm(&geom);
@@ -1651,7 +1651,7 @@ mod tests {
     fn one_contact_stick_satisfies_newton_euler_and_its_constraints() {
         // The 11-equation stick mode, checked by recomputing the forces it returns.
         let scene = Scene::default_scene();
-        let d = crate::scene::Simulation::new(&scene).unwrap();
+        let d = scene.simulation().unwrap();
         let geom = at(&scene, Displacement::new(0.5, 0.1, 0.05));
         let applied = Applied::new(d.loads(), d.block(), &geom.frame);
         let inertia = Inertia::new(d.block(), &geom).unwrap();
@@ -1691,19 +1691,19 @@ mod tests {
     /// The default scene's block flat at the start with contacts 0 and 1 on a level face and
     /// contact 2 at the bottom of a groove along X, its faces dipping `dip` to either side: the
     /// contact geometry (contact 2 on face A, normal leaning to +Z) and the crease (face B).
-    fn groove(dip: f64) -> (crate::scene::Simulation, ContactGeometry, Crease, Applied) {
+    fn groove(dip: f64) -> (crate::model::Simulation, ContactGeometry, Crease, Applied) {
         let scene = Scene::default_scene();
         let pose = Pose::from_tilt_roll(&scene.site, Displacement::default(), 0.0, 0.0).unwrap();
         let (s, c) = dip.sin_cos();
         let level = Vector3::y();
-        let geom = ContactGeometry::with_normals(&[level, level, Vector3::new(0.0, c, s)], &pose);
+        let geom = ContactGeometry::new(&[level, level, Vector3::new(0.0, c, s)], &pose);
         let crease = Crease {
             contact: 2,
             normal: Vector3::new(0.0, c, -s),
             offset: Vector3::new(0.0, c, -s).dot(&pose.vertices[2]),
             face: 1,
         };
-        let sim = crate::scene::Simulation::new(&scene).unwrap();
+        let sim = scene.simulation().unwrap();
         let applied = Applied::new(sim.loads(), sim.block(), &geom.frame);
         (sim, geom, crease, applied)
     }
@@ -1964,9 +1964,9 @@ mod tests {
         let level = Vector3::y();
         let delta = 5f64.to_radians();
         let beyond = Vector3::new(delta.sin(), delta.cos(), 0.0);
-        let before = ContactGeometry::with_normals(&[level; 3], &pose);
-        let after = ContactGeometry::with_normals(&[level, beyond, level], &pose);
-        let sim = crate::scene::Simulation::new(&scene).unwrap();
+        let before = ContactGeometry::new(&[level; 3], &pose);
+        let after = ContactGeometry::new(&[level, beyond, level], &pose);
+        let sim = scene.simulation().unwrap();
         let block = sim.block();
         let v = 2.0;
         let law = |release_speed| ImpactLaw {

@@ -25,7 +25,7 @@
 
 use super::ContactGeometry;
 use super::loads::Applied;
-use crate::scene::Strength;
+use crate::model::Strength;
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::{
     DefaultSettings, DefaultSolver, IPSolver, SolverStatus, SupportedConeT::NonnegativeConeT,
@@ -278,7 +278,7 @@ mod tests {
             .unwrap();
         let pose =
             Pose::from_tilts(s.site.as_paper().unwrap(), Default::default(), 0.0, 0.0).unwrap();
-        let g = ContactGeometry::new(&s, &pose);
+        let g = ContactGeometry::new(&s.site().normals(), &pose);
         (s, g)
     }
 
@@ -291,7 +291,7 @@ mod tests {
             ("foundation.zeta_deg", 0.01),
             ("loads.eccentricity_m", 0.0),
         ]);
-        let d = crate::scene::Simulation::new(&s).unwrap();
+        let d = s.simulation().unwrap();
         let applied = Applied::new(d.loads(), d.block(), &g.frame);
         let c = frictionless_normals(&g, &applied).unwrap();
         let st = check(&g, &applied, &d.strength([0, 1, 2], false), &c).unwrap();
@@ -308,7 +308,7 @@ mod tests {
     fn high_friction_holds_and_zero_friction_does_not() {
         for (mu_k, holds) in [(2.0, true), (0.0, false)] {
             let (s, g) = start(&[("friction.mu_k", mu_k)]);
-            let d = crate::scene::Simulation::new(&s).unwrap();
+            let d = s.simulation().unwrap();
             let applied = Applied::new(d.loads(), d.block(), &g.frame);
             let c = frictionless_normals(&g, &applied).unwrap();
             let st = check(&g, &applied, &d.strength([0, 1, 2], false), &c).unwrap();

@@ -23,6 +23,16 @@ pub fn fixed(value: f64, decimals: usize) -> Shown {
     }
 }
 
+/// An angle in degrees for a message: to 1e-9°, trailing zeros dropped (`90`, not
+/// `90.00000000000001` from a round trip through radians).
+pub fn degrees(value: f64) -> Shown {
+    Shown {
+        value,
+        decimals: 9,
+        trim: true,
+    }
+}
+
 /// A time or a duration: to the microsecond, trailing zeros dropped.
 pub fn seconds(value: f64) -> Shown {
     Shown {

@@ -10,7 +10,7 @@ use crate::coeffs::{FoundationTrig, SiteTrig, SmallAngleUnsquared};
 use crate::geometry::planes::{along_dip_2, r};
 use crate::geometry::{Displacement, Pose};
 use crate::geometry::{PaperSite, Site};
-use crate::scene::Mode;
+use crate::model::Mode;
 use std::fmt;
 
 /// Why a real pose is not admissible.

@@ -9,7 +9,7 @@ use super::{eigen, system};
 use crate::coeffs::{Inputs, SiteTrig};
 use crate::geometry::Site;
 use crate::geometry::{Displacement, Pose};
-use crate::scene::Mode;
+use crate::model::Mode;
 use std::borrow::Cow;
 
 /// Follows the physical pose by solving for all roots at every increment.

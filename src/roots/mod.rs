@@ -37,7 +37,7 @@ pub use tracker::{BranchPoint, TrackError, TrackStats, Tracker};
 use crate::coeffs::{CoeffInputs, SmallAngleUnsquared};
 use crate::geometry::Displacement;
 use crate::geometry::Site;
-use crate::scene::Mode;
+use crate::model::Mode;
 use num_complex::Complex64;
 use std::f64::consts::SQRT_2;
 

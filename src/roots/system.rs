@@ -15,7 +15,7 @@ use crate::coeffs::{
 };
 use crate::geometry::Displacement;
 use crate::geometry::Site;
-use crate::scene::Mode;
+use crate::model::Mode;
 
 /// The unsquared equations of one mode at one displacement: the paper's on the paper's site,
 /// the general system's (in u = (α, ψ) for both modes) on any other.

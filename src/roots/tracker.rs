@@ -20,8 +20,8 @@ use super::system::Equations;
 use crate::coeffs::{Inputs, SiteTrig};
 use crate::geometry::Site;
 use crate::geometry::{Displacement, Pose};
+use crate::model::Mode;
 use crate::numeric::fixed;
-use crate::scene::Mode;
 use std::borrow::Cow;
 
 /// A point on the followed branch: displacement and u = (α, β) (small-angle) or (α, ψ) (exact).

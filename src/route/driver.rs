@@ -1,16 +1,20 @@
-//! The one route loop (issue #14): the increments of dt up to t_end (the last one shorter, so
-//! that the route ends exactly there), the stride of the recorded rows, progress and
-//! interruption, and the time limit, for any [`Dynamics`].
+//! The one route loop: the increments of dt up to t_end (the last one shorter, so that the route
+//! ends exactly there), the stride of the recorded rows, progress and interruption, the time
+//! limit, and the factor of safety at the start, for any [`Dynamics`].
 
 use super::dynamics::{Dynamics, Flow, Start};
 use super::outcome::Outcome;
 use super::pose_finder::PoseFinder;
+use super::row::faces_of;
 use super::termination::Reason;
-use crate::scene::{Scene, Simulation};
+use crate::mechanics::ContactGeometry;
+use crate::mechanics::loads::Applied;
+use crate::mechanics::static_friction;
+use crate::model::Simulation;
 use std::ops::ControlFlow;
 
 /// The number of increments of dt that reach `t_end`: the last may be shorter, so that the route
-/// ends exactly at `t_end` (issue #13); a remainder below 1e-9·dt is dropped as round-off.
+/// ends exactly at `t_end`; a remainder below 1e-9·dt is dropped as round-off.
 pub(super) fn increments(t_end: f64, dt: f64) -> usize {
     ((t_end / dt - 1e-9).ceil()).max(1.0) as usize
 }
@@ -24,24 +28,48 @@ pub(super) fn increment_end(t_end: f64, dt: f64, k: usize) -> f64 {
     }
 }
 
-/// Drives model `M` from its start to the end of its route.
+/// Drives model `M` from its start to the end of its route, then adds the factor of safety at
+/// the start (if the model has not) and the model's word on how it ended.
 pub(super) fn drive<'a, 's, M: Dynamics<'a>>(
-    scene: &'a Scene,
-    sections: &'a Simulation,
+    sim: &'a Simulation,
+    finder: &mut PoseFinder<'_>,
+    progress: impl FnMut(f64) -> ControlFlow<()>,
+    outcome: Outcome<'s>,
+) -> Outcome<'s> {
+    let start_pose = finder.pose();
+    let mut o = increments_of::<M>(sim, finder, progress, outcome);
+    if o.fs.is_none() {
+        // One factor of safety whatever the dynamics: the friction cones' at the start.
+        o.fs = start_pose.and_then(|pose| {
+            let geom = ContactGeometry::new(sim.normals(), &pose);
+            let applied = Applied::new(sim.loads(), sim.block(), &geom.frame);
+            let strength = sim.strength(faces_of(sim.site()), true);
+            static_friction::at_rest(&geom, &applied, &strength)
+                .ok()
+                .map(|c| c.factor_of_safety())
+        });
+    }
+    M::explain_end(&mut o);
+    o
+}
+
+/// The loop: model `M` from its start, increment by increment, to the end of its route.
+fn increments_of<'a, 's, M: Dynamics<'a>>(
+    sim: &'a Simulation,
     finder: &mut PoseFinder<'_>,
     mut progress: impl FnMut(f64) -> ControlFlow<()>,
     outcome: Outcome<'s>,
 ) -> Outcome<'s> {
-    let solver = *sections.solver();
-    let (mut model, mut o) = match M::start(scene, sections, finder, outcome) {
+    let settings = *sim.settings();
+    let (mut model, mut o) = match M::start(sim, finder, outcome) {
         Start::Moving(model, o) => (model, o),
         Start::Ended(o) => return o,
     };
-    let stride = solver.stride.max(1);
-    let n = increments(solver.t_end, solver.dt);
+    let stride = settings.stride.max(1);
+    let n = increments(settings.t_end, settings.dt);
     let mut t = 0.0;
     for k in 1..=n {
-        t = increment_end(solver.t_end, solver.dt, k);
+        t = increment_end(settings.t_end, settings.dt, k);
         o = match model.advance(finder, k, t, o) {
             Flow::Go(o) => o,
             Flow::Ended(o) => return o,
@@ -50,7 +78,7 @@ pub(super) fn drive<'a, 's, M: Dynamics<'a>>(
         if k % stride == 0 || k == n {
             o.push(model.row());
         }
-        if progress((t / solver.t_end).min(1.0)).is_break() {
+        if progress((t / settings.t_end).min(1.0)).is_break() {
             model.close(&mut o);
             return o.finish(
                 model.row(),
@@ -64,6 +92,6 @@ pub(super) fn drive<'a, 's, M: Dynamics<'a>>(
     o.end(
         Reason::TimeLimit,
         t,
-        format!("t reached t_end = {} s", solver.t_end),
+        format!("t reached t_end = {} s", settings.t_end),
     )
 }

@@ -1,13 +1,14 @@
-//! What a dynamics model is to the route (issue #14): how the block starts, how it advances by
-//! one increment, and the row of its state. The driver (`driver.rs`) owns everything else —
-//! the increments and the exact end at t_end, the stride, progress and interruption, the time
-//! limit. The paper's dynamics (`paper.rs`) and the rigid body's (`rigid/`) implement it; a
-//! third model is one new file and one arm in `run.rs`.
+//! What a dynamics model is to the route: how the block starts, how it advances by one
+//! increment, the row of its state, and what it adds to the route's end. The driver
+//! (`driver.rs`) owns everything else — the increments and the exact end at t_end, the stride,
+//! progress and interruption, the time limit, the factor of safety. The paper's dynamics
+//! (`paper/`) and the rigid body's (`rigid/`) implement it; a third model is one new module and
+//! one arm in `simulate.rs`.
 
 use super::outcome::Outcome;
 use super::pose_finder::PoseFinder;
-use super::state::Row;
-use crate::scene::{Scene, Simulation};
+use super::row::Row;
+use crate::model::Simulation;
 
 /// How a start came out: the block moves (the model, ready to advance), or the route ended at
 /// t = 0 (it does not slide, or cannot be started), its row and reason in the outcome.
@@ -25,10 +26,9 @@ pub(super) enum Flow<'s> {
 
 /// One dynamics model.
 pub(super) trait Dynamics<'a>: Sized {
-    /// The start at t = 0 from the scene's `[initial]` state, its first row pushed.
+    /// The start at t = 0 from the simulation's initial motion, its first row pushed.
     fn start<'s>(
-        scene: &'a Scene,
-        sections: &'a Simulation,
+        sim: &'a Simulation,
         finder: &mut PoseFinder<'_>,
         o: Outcome<'s>,
     ) -> Start<'s, Self>;
@@ -47,4 +47,8 @@ pub(super) trait Dynamics<'a>: Sized {
 
     /// What the model adds when the driver ends the route (the time limit, an interruption).
     fn close(&self, _o: &mut Outcome<'_>) {}
+
+    /// What the model adds to the way the route ended, however it ended (the factor of safety
+    /// known): where the model itself, not the physics, ends the route, the detail says so.
+    fn explain_end(_o: &mut Outcome<'_>) {}
 }

@@ -1,55 +1,56 @@
-//! The failure route (paper §7): one driver loop (`driver.rs`) runs a [`Dynamics`] model — the
-//! paper's (`paper.rs`) or the rigid body's (`rigid/`) — from its start, increment by
-//! increment, until the route ends for a stated reason; `run.rs` adds what the route is
-//! computed with and how (the factor of safety at the start, the diagnostics).
-//!
-//! ```no_run
-//! let scene = slideroute::Scene::default_scene();
-//! let route = slideroute::run(&scene).unwrap();
-//! println!("{} after {} s, {:.2} m", route.termination.reason, route.termination.t_s, route.travel_m);
-//! ```
+//! The failure route (paper §7) of a [`Simulation`](crate::model::Simulation): one driver loop
+//! (`driver.rs`) runs a dynamics model (`dynamics.rs`) — the paper's (`paper/`) or the rigid
+//! body's (`rigid/`) — from its start, increment by increment, until the route ends for a
+//! stated reason (`termination.rs`), recording rows (`row.rs`, `outcome.rs`); `simulate.rs` picks
+//! the model and says how the computation went.
 
 mod driver;
-pub(crate) mod dynamics;
+mod dynamics;
 pub mod integrator;
 mod outcome;
-mod paper;
+pub mod paper;
 pub mod pose_finder;
-pub mod rhs;
 mod rigid;
-mod run;
-pub mod state;
+mod row;
+mod simulate;
 pub mod termination;
 
 pub use outcome::EnergyBalance;
 pub use pose_finder::PoseMethod;
-pub use run::{run, run_observed, run_streamed, run_with, simulate};
-pub use state::{Row, State};
-pub use termination::{Reason, Termination};
+pub use row::{Row, faces_of};
+pub use simulate::{Runner, simulate};
+pub use termination::{Reason, Stop, Termination};
 
-use crate::scene::{DynamicsModel, Integrator, Mode};
+use crate::mechanics::static_friction::FactorOfSafety;
+use crate::model::{DynamicsModel, Integrator, Mode};
 use serde::Serialize;
 
-/// A computed route: the recorded rows, how it ended and what it came to. Two routes are
-/// equal when these are: the [`Diagnostics`] (run time, the tracker's counts) are not
-/// compared, so that two runs of one scene compare equal.
-#[derive(Debug, Clone, Serialize)]
+/// A computed route: the recorded rows, how it ended and what it came to. Two routes of one
+/// simulation are equal, whatever the computation cost: how it went is kept apart
+/// ([`Diagnostics`], beside the route in a [`Computed`]).
+#[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Route {
+    /// The scene's name.
     pub scene: String,
+    /// The pose system.
     pub mode: Mode,
+    /// How each increment was taken.
     pub integrator: Integrator,
     /// The paper's dynamics or the rigid body's.
     pub dynamics: DynamicsModel,
     /// How the pose was found at each increment.
     pub pose_method: PoseMethod,
+    /// The recorded rows (every row, or those a streamed run keeps), the last always among
+    /// them.
     #[serde(skip)]
     pub rows: Vec<Row>,
+    /// How and when it ended.
     pub termination: Termination,
     /// The factor of safety at the start, whatever the dynamics: the largest multiple of the
-    /// driving loads static friction within the three cones can hold
-    /// (`mechanics::static_friction::FactorOfSafety`); absent only if its cone program failed.
+    /// driving loads static friction within the three cones can hold; absent only if its cone
+    /// program failed.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub factor_of_safety: Option<crate::mechanics::static_friction::FactorOfSafety>,
+    pub factor_of_safety: Option<FactorOfSafety>,
     /// The paper's dynamics only: its resisting capacity over driving force along x' at the start
     /// (`mechanics::onset`), a different quantity (absent where nothing drives the block along x').
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -61,38 +62,26 @@ pub struct Route {
     /// Energy balance (rigid-body dynamics only).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub energy: Option<EnergyBalance>,
-    /// With a ground-motion record (`seismic.record`), Newmark's permanent displacement: the
-    /// horizontal distance of the CM at the route's end from its start, relative to the
-    /// foundation (m).
+    /// With a ground-motion record, Newmark's permanent displacement: the horizontal distance
+    /// of the CM at the route's end from its start, relative to the foundation (m).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub permanent_displacement_m: Option<f64>,
     /// With a ground-motion record, the permanent rotation: the yaw at the route's end
     /// (degrees; the tilts are the foundation's).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub permanent_rotation_deg: Option<f64>,
-    /// How the route was computed: written beside the results (summary.json keeps one flat
-    /// object), never compared.
-    #[serde(flatten)]
-    pub diagnostics: Diagnostics,
 }
 
-impl PartialEq for Route {
-    fn eq(&self, other: &Route) -> bool {
-        self.scene == other.scene
-            && self.mode == other.mode
-            && self.integrator == other.integrator
-            && self.dynamics == other.dynamics
-            && self.pose_method == other.pose_method
-            && self.rows == other.rows
-            && self.termination == other.termination
-            && self.factor_of_safety == other.factor_of_safety
-            && self.paper_ratio == other.paper_ratio
-            && self.travel_m == other.travel_m
-            && self.increments == other.increments
-            && self.energy == other.energy
-            && self.permanent_displacement_m == other.permanent_displacement_m
-            && self.permanent_rotation_deg == other.permanent_rotation_deg
-    }
+/// A route and how its computation went ([`Runner::run`]): written side by side (summary.json
+/// keeps one flat object), compared apart.
+#[derive(Debug, Clone, Serialize)]
+pub struct Computed {
+    /// The route.
+    #[serde(flatten)]
+    pub route: Route,
+    /// How it was computed.
+    #[serde(flatten)]
+    pub diagnostics: Diagnostics,
 }
 
 /// How one computation of a route went: its cost and the pose method's statistics. They vary
@@ -118,56 +107,13 @@ mod tests {
 
     #[test]
     fn two_runs_of_one_scene_compare_equal_whatever_their_time() {
-        let scene = crate::scene::Scene::default_scene();
-        let a = run(&scene).unwrap();
-        let mut b = run(&scene).unwrap();
-        b.diagnostics.wall_s = a.diagnostics.wall_s + 1.0;
-        assert_eq!(a, b);
-        b.travel_m += 1e-9;
-        assert_ne!(a, b, "a result that differs makes them differ");
-    }
-
-    #[test]
-    fn a_simulation_is_checked_once_and_then_runs_without_failing() {
-        // A geometry-only scene has no simulation: the missing section is named.
-        let geometry_only = crate::scene::Scene::from_toml(
-            "[frame]\nl1x = 6.0\nl2x = 4.0\nl1z = 5.0\nl2z = 5.0\n\
-             [foundation]\nxi_deg = 20.0\nzeta_deg = 25.0\nkappa_deg = 30.0\n",
-            "test",
-        )
-        .unwrap();
-        let e = crate::scene::Simulation::new(&geometry_only).unwrap_err();
-        assert_eq!(e.key, "block", "{e}");
-        // A scene changed by key is checked as a file would be.
-        let default = crate::scene::Scene::default_scene();
-        let e = default.with("block.mass_kg", -1.0).unwrap_err();
-        assert_eq!(e.key, "block.mass_kg", "{e}");
-        let e = default.with("foundation.xi_deg", 100.0).unwrap_err();
-        assert_eq!(e.key, "foundation.xi_deg", "{e}");
-        // A stress-dependent friction criterion and an initial motion come through.
-        let mut doc = toml::Table::new();
-        for (k, v) in [
-            ("model", toml::Value::from("barton-choubey")),
-            ("jrc", 10.0.into()),
-            ("jcs_pa", 50e6.into()),
-            ("phi_r_deg", 30.0.into()),
-            ("contact_area_m2", 2.0.into()),
-        ] {
-            doc.insert(k.into(), v);
-        }
-        let other = default
-            .with("friction", doc)
-            .and_then(|s| s.with("initial.vx_m_s", 0.5))
-            .unwrap();
-        let sim = crate::scene::Simulation::new(&other).unwrap();
-        assert!(matches!(
-            sim.friction(),
-            crate::scene::Friction::BartonChoubey { jrc: 10.0, .. }
-        ));
-        assert_eq!(sim.scene().initial.vx, 0.5);
-        // A full one runs, infallibly, to the same route as `run`.
-        let scene = crate::scene::Scene::default_scene();
-        let sim = crate::scene::Simulation::new(&scene).unwrap();
-        assert_eq!(simulate(&sim), run(&scene).unwrap());
+        let sim = crate::scene::Scene::default_scene().simulation().unwrap();
+        let a = Runner::new(&sim).run();
+        let b = Runner::new(&sim).run();
+        assert_eq!(a.route, b.route);
+        let mut c = b.route.clone();
+        c.travel_m += 1e-9;
+        assert_ne!(a.route, c, "a result that differs makes them differ");
+        assert_eq!(simulate(&sim), a.route);
     }
 }

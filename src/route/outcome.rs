@@ -1,7 +1,7 @@
 //! What a route's loop produces, whatever the dynamics: the rows (streamed to a sink, a bounded
 //! number kept), how the route ended, and the quantities gathered along it.
 
-use super::state::Row;
+use super::row::Row;
 use super::termination::{Reason, Termination};
 use crate::mechanics::static_friction::FactorOfSafety;
 use serde::Serialize;

@@ -1,11 +1,12 @@
 //! How the route solves an increment's polynomial systems: continuation (the default) or all
 //! roots by eigenvalues with the one continuing the previous chosen (for comparison in the
-//! report). The method covers both systems: the pose here, and the frictional reactions in
-//! [`super::rhs::evaluate`].
+//! report). The method covers both systems: the pose here, and the paper's frictional reactions
+//! in its right-hand side (`paper/rhs.rs`).
 
-use crate::geometry::{Displacement, Pose};
+use super::termination::{Reason, Stop, from_track_error};
+use crate::geometry::{Displacement, Pose, Site};
+use crate::model::Mode;
 use crate::roots::{BranchPoint, EigenFollower, TrackError, Tracker};
-use crate::scene::{Mode, Scene};
 use serde::Serialize;
 
 /// The method that gives the pose at each increment.
@@ -41,10 +42,11 @@ pub enum PoseFinder<'s> {
 }
 
 impl<'s> PoseFinder<'s> {
-    pub fn new(scene: &'s Scene, mode: Mode, method: PoseMethod) -> Self {
+    /// A finder of the poses of `site` by `mode`'s system, at the start of sliding.
+    pub fn new(site: &'s Site, mode: Mode, method: PoseMethod) -> Self {
         match method {
-            PoseMethod::Continuation => PoseFinder::Continuation(Tracker::new(&scene.site, mode)),
-            PoseMethod::AllRoots => PoseFinder::AllRoots(EigenFollower::new(&scene.site, mode)),
+            PoseMethod::Continuation => PoseFinder::Continuation(Tracker::new(site, mode)),
+            PoseMethod::AllRoots => PoseFinder::AllRoots(EigenFollower::new(site, mode)),
         }
     }
 
@@ -81,6 +83,30 @@ impl<'s> PoseFinder<'s> {
         }
     }
 
+    /// Moves to displacement `d` and returns the pose there, or the reason the route ends (the
+    /// tracker's diagnosis as a termination reason).
+    pub fn pose_at(&mut self, d: Displacement) -> Result<Pose, Stop> {
+        self.advance(d).map_err(|e| {
+            let at_dip = match (self.pose(), self.site().as_paper()) {
+                (Some(p), Some(paper)) => {
+                    p.alpha >= paper.foundation.xi || p.beta >= paper.foundation.zeta
+                }
+                _ => false,
+            };
+            Stop {
+                contact: None,
+                reason: from_track_error(&e, at_dip),
+                detail: e.to_string(),
+            }
+        })?;
+        self.pose().ok_or_else(|| Stop {
+            contact: None,
+            reason: Reason::NoAdmissibleRoot,
+            detail: "the tracked point has no real frame".into(),
+        })
+    }
+
+    /// Moves to displacement `d` along the branch.
     pub fn advance(&mut self, d: Displacement) -> Result<BranchPoint, TrackError> {
         match self {
             PoseFinder::Continuation(t) => t.advance(d),

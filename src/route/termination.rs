@@ -113,6 +113,18 @@ pub struct Termination {
     pub detail: String,
 }
 
+/// Why a step of a route cannot go on, with the detail, before the route decides what it comes
+/// to (an end, or an event it handles: a crease letting go of a contact, …).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Stop {
+    /// The reason the route would end for.
+    pub reason: Reason,
+    /// What exactly happened, for people.
+    pub detail: String,
+    /// The contact the reason is about, where it is about one (a crease letting go of it).
+    pub contact: Option<usize>,
+}
+
 /// The reason for a failure of the tracker at the next increment.
 pub fn from_track_error(e: &TrackError, alpha_at_dip: bool) -> Reason {
     match e {

@@ -2,7 +2,8 @@
 //! what `summary.json` echoes so that anyone holding an output folder can tell what produced it
 //! (issue #13).
 
-use super::{Friction, Scene};
+use super::Scene;
+use crate::model::Friction;
 use toml::{Table, Value};
 
 fn table(entries: &[(&str, Value)]) -> Value {
@@ -108,7 +109,7 @@ impl Scene {
             }
             t.insert("friction".into(), v);
         }
-        if let Some(s) = &self.solver {
+        if let Some(s) = &self.settings {
             t.insert(
                 "solver".into(),
                 table(&[
@@ -159,7 +160,7 @@ pub struct LoadsUsed {
     pub kh: f64,
     pub kv: f64,
     /// The water's loads from levels, each with where it acts.
-    pub water: Option<crate::scene::water::WaterLoads>,
+    pub water: Option<crate::model::WaterLoads>,
 }
 
 impl Scene {
@@ -195,7 +196,7 @@ mod tests {
         assert_eq!(back.site, s.site);
         assert_eq!(back.block, s.block);
         assert_eq!(back.loads, s.loads);
-        assert_eq!(back.solver, s.solver);
+        assert_eq!(back.settings, s.settings);
         let used = s.as_used();
         assert_eq!(used["solver"]["dynamics"].as_str(), Some("rigid-body"));
         assert_eq!(used["block"]["inertia_x_kg_m2"].as_float(), Some(5.5e6));

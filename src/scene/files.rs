@@ -1,16 +1,30 @@
-//! The files a scene names (a surface, a ground-motion record) and what was read from them:
-//! a scene edited by key (`Scene::with`) keeps them rather than reading them again.
+//! The files a scene names — a triangulated surface (`foundation.surface`, Wavefront OBJ) and a
+//! ground-motion record (`seismic.record`, CSV) — read with bounds, and what was read from
+//! them kept by name: a scene edited by key ([`Scene::with`]) keeps them rather than reading
+//! them again.
 
 use super::Scene;
-use super::record::Record;
+use super::input::open_bounded;
 use crate::geometry::Ground;
+use crate::model::Record;
+use std::path::Path;
 use std::sync::Arc;
+
+/// The largest surface file (bytes): some two hundred thousand triangles.
+pub const MAX_SURFACE_BYTES: u64 = 64 << 20;
+
+/// The largest record file (bytes): some million samples.
+pub const MAX_RECORD_BYTES: u64 = 64 << 20;
+
+/// The columns a record file has, in this order: seconds, then fractions of g along the scene's
+/// X, Y, Z.
+pub const RECORD_COLUMNS: [&str; 4] = ["t_s", "ax_g", "ay_g", "az_g"];
 
 /// The files a scene named and what was read from them, by the name the scene gave.
 #[derive(Default)]
 pub(super) struct Files {
-    pub surface: Option<(String, Arc<Ground>)>,
-    pub record: Option<(String, Arc<Record>)>,
+    surface: Option<(String, Arc<Ground>)>,
+    record: Option<(String, Arc<Record>)>,
 }
 
 impl Files {
@@ -29,4 +43,95 @@ impl Files {
             record: named("seismic", "record").zip(scene.record.clone()),
         }
     }
+
+    /// The surface named `name`, found from `folder`: the one read before under that name, or
+    /// read now. The error, for people, names the file.
+    pub fn surface(&self, folder: &Path, name: &str) -> Result<Arc<Ground>, String> {
+        match &self.surface {
+            Some((read, ground)) if read == name => Ok(ground.clone()),
+            _ => {
+                let path = folder.join(name);
+                read_surface(&path)
+                    .map(Arc::new)
+                    .map_err(|why| format!("{}: {why}", path.display()))
+            }
+        }
+    }
+
+    /// The record named `name`, found from `folder`: the one read before under that name, or
+    /// read now. The error, for people, names the file.
+    pub fn record(&self, folder: &Path, name: &str) -> Result<Arc<Record>, String> {
+        match &self.record {
+            Some((read, record)) if read == name => Ok(record.clone()),
+            _ => {
+                let path = folder.join(name);
+                read_record(&path)
+                    .map(Arc::new)
+                    .map_err(|why| format!("{}: {why}", path.display()))
+            }
+        }
+    }
+}
+
+/// A Wavefront OBJ file of triangles (faces of more corners are split into triangles), Y up,
+/// in scene coordinates.
+fn read_surface(path: &Path) -> Result<Ground, String> {
+    let mut reader = std::io::BufReader::new(open_bounded(path, MAX_SURFACE_BYTES)?);
+    let options = tobj::LoadOptions {
+        triangulate: true,
+        single_index: true,
+        ..Default::default()
+    };
+    // A surface has no materials: a material library it names is not read.
+    let (models, _) = tobj::load_obj_buf(&mut reader, &options, |_| {
+        Err(tobj::LoadError::OpenFileFailed)
+    })
+    .map_err(|e| format!("not a Wavefront OBJ surface: {e}"))?;
+    let mut triangles = Vec::new();
+    for m in &models {
+        let p = &m.mesh.positions;
+        for t in m.mesh.indices.chunks_exact(3) {
+            let corner = |k: u32| -> Result<[f64; 3], String> {
+                let k = k as usize * 3;
+                p.get(k..k + 3)
+                    .map(|c| [c[0], c[1], c[2]])
+                    .ok_or_else(|| format!("a face names vertex {} of {}", k / 3 + 1, p.len() / 3))
+            };
+            triangles.push([corner(t[0])?, corner(t[1])?, corner(t[2])?]);
+        }
+    }
+    Ground::surface(&triangles).map_err(|e| e.to_string())
+}
+
+/// A record file: CSV with the header `t_s,ax_g,ay_g,az_g`.
+fn read_record(path: &Path) -> Result<Record, String> {
+    let file = open_bounded(path, MAX_RECORD_BYTES)?;
+    let mut r = csv::ReaderBuilder::new()
+        .trim(csv::Trim::All)
+        .from_reader(file);
+    let header = r.headers().map_err(|e| e.to_string())?.clone();
+    if header.iter().collect::<Vec<_>>() != RECORD_COLUMNS {
+        return Err(format!(
+            "the header must be `{}`, got `{}`",
+            RECORD_COLUMNS.join(","),
+            header.iter().collect::<Vec<_>>().join(",")
+        ));
+    }
+    let mut samples = Vec::new();
+    for (k, row) in r.records().enumerate() {
+        let row = row.map_err(|e| e.to_string())?;
+        let mut v = [0.0; 4];
+        for (c, cell) in v.iter_mut().enumerate() {
+            let text = row.get(c).unwrap_or("");
+            *cell = text.parse().map_err(|_| {
+                format!(
+                    "line {}: `{text}` in {} is not a number",
+                    k + 2,
+                    RECORD_COLUMNS[c]
+                )
+            })?;
+        }
+        samples.push((v[0], [v[1], v[2], v[3]]));
+    }
+    Record::new(samples).map_err(|e| e.reason)
 }

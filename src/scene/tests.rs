@@ -1,6 +1,7 @@
 //! Every bad input gets one error naming the key and the reason; good inputs load.
 
 use super::*;
+use crate::model::{DynamicsModel, Friction, Integrator, Mode};
 
 const GOOD: &str = r#"
 name = "t"
@@ -56,8 +57,8 @@ fn good_scene_loads_in_radians() {
     assert_eq!(s.name, "t");
     assert!((s.site.as_paper().unwrap().foundation.xi - 20f64.to_radians()).abs() < 1e-15);
     assert_eq!(s.l(), 10.0);
-    assert!(crate::scene::Simulation::new(&s).is_ok());
-    assert_eq!(s.solver.unwrap().mode, Mode::Exact);
+    assert!(s.simulation().is_ok());
+    assert_eq!(s.settings.unwrap().mode, Mode::Exact);
 }
 
 #[test]
@@ -82,7 +83,7 @@ fn integers_are_accepted_for_numbers() {
 fn geometry_only_scene_loads_but_cannot_simulate() {
     let text = GOOD.split("[block]").next().unwrap();
     let s = Scene::from_toml(text, "geo.toml").unwrap();
-    let e = crate::scene::Simulation::new(&s).unwrap_err();
+    let e = s.simulation().unwrap_err();
     assert_eq!(e.key, "block");
     assert!(e.to_string().contains("missing section [block]"));
 }
@@ -264,7 +265,7 @@ fn unknown_friction_model_and_solver_mode_are_named() {
         "unknown solver mode",
     );
     let s = Scene::from_toml(&with("mode = \"exact\"", "mode = \"small-angle\""), "d").unwrap();
-    assert_eq!(s.solver.unwrap().mode, Mode::SmallAngle);
+    assert_eq!(s.settings.unwrap().mode, Mode::SmallAngle);
 }
 
 #[test]
@@ -272,18 +273,18 @@ fn integrator_and_stride_are_optional_and_checked() {
     // The default dynamics is the rigid body's, which integrates with RK4; the paper's takes
     // its own update by default.
     let s = Scene::from_toml(GOOD, "d").unwrap();
-    assert_eq!(s.solver.unwrap().integrator, Integrator::Rk4);
-    assert_eq!(s.solver.unwrap().stride, 1);
+    assert_eq!(s.settings.unwrap().integrator, Integrator::Rk4);
+    assert_eq!(s.settings.unwrap().stride, 1);
     let paper = with("t_end_s = 20.0", "t_end_s = 20.0\ndynamics = \"paper\"");
     let s = Scene::from_toml(&paper, "d").unwrap();
-    assert_eq!(s.solver.unwrap().integrator, Integrator::Paper);
+    assert_eq!(s.settings.unwrap().integrator, Integrator::Paper);
     let t = with(
         "t_end_s = 20.0",
         "t_end_s = 20.0\nintegrator = \"rk4\"\nstride = 10",
     );
     let s = Scene::from_toml(&t, "d").unwrap();
-    assert_eq!(s.solver.unwrap().integrator, Integrator::Rk4);
-    assert_eq!(s.solver.unwrap().stride, 10);
+    assert_eq!(s.settings.unwrap().integrator, Integrator::Rk4);
+    assert_eq!(s.settings.unwrap().stride, 10);
     assert_names(
         &with("t_end_s = 20.0", "t_end_s = 20.0\nintegrator = \"euler\""),
         "solver.integrator",
@@ -385,13 +386,13 @@ fn rigid_body_keys_default_to_a_thin_plate_and_are_checked() {
         (b.inertia_x, b.inertia_z, b.inertia_xz),
         (5.5e6, 5.5e6, 0.0)
     );
-    assert_eq!(s.solver.unwrap().dynamics, DynamicsModel::RigidBody);
+    assert_eq!(s.settings.unwrap().dynamics, DynamicsModel::RigidBody);
     let rb = with(
         "t_end_s = 20.0",
         "t_end_s = 20.0\ndynamics = \"rigid-body\"",
     );
     let s = Scene::from_toml(&rb, "s.toml").unwrap();
-    let solver = s.solver.unwrap();
+    let solver = s.settings.unwrap();
     assert_eq!(solver.dynamics, DynamicsModel::RigidBody);
     assert_eq!(solver.integrator, Integrator::Rk4);
     let bad = [
@@ -462,11 +463,11 @@ fn rigid_body_with_small_angle_geometry_is_refused_naming_the_mode() {
     // refused with the reason, and the paper's dynamics keep the small-angle system.
     let small = with("mode = \"exact\"", "mode = \"small-angle\"");
     let s = Scene::from_toml(&small, "s.toml").unwrap();
-    let e = crate::scene::Simulation::new(&s).unwrap_err();
+    let e = s.simulation().unwrap_err();
     assert_eq!(e.key, "solver.mode");
     assert!(e.to_string().contains("needs mode = \"exact\""), "{e}");
     let paper = s.with_dynamics(DynamicsModel::Paper).unwrap();
-    assert!(crate::scene::Simulation::new(&paper).is_ok());
+    assert!(paper.simulation().is_ok());
 }
 
 #[test]
@@ -571,7 +572,7 @@ fn each_error_says_its_kind() {
     );
     let geometry = GOOD.split("[block]").next().unwrap();
     let s = Scene::from_toml(geometry, "g").unwrap();
-    let e = Simulation::new(&s).unwrap_err();
+    let e = s.simulation().unwrap_err();
     assert_eq!(e.kind, SceneErrorKind::MissingSection);
 }
 
@@ -631,14 +632,14 @@ fn a_change_of_dynamics_brings_that_models_own_integrator() {
     );
     let s = Scene::from_toml(&paper, "d").unwrap();
     let rigid = s.with_dynamics(DynamicsModel::RigidBody).unwrap();
-    assert_eq!(rigid.solver().unwrap().integrator, Integrator::Rk4);
+    assert_eq!(rigid.settings().unwrap().integrator, Integrator::Rk4);
     let back = rigid.with_dynamics(DynamicsModel::Paper).unwrap();
-    assert_eq!(back.solver().unwrap().integrator, Integrator::Paper);
+    assert_eq!(back.settings().unwrap().integrator, Integrator::Paper);
     // The same model keeps the scene's own choice.
     let rk4 = paper.replace("integrator = \"paper\"", "integrator = \"rk4\"");
     let s = Scene::from_toml(&rk4, "d").unwrap();
     let same = s.with_dynamics(DynamicsModel::Paper).unwrap();
-    assert_eq!(same.solver().unwrap().integrator, Integrator::Rk4);
+    assert_eq!(same.settings().unwrap().integrator, Integrator::Rk4);
 }
 
 /// GOOD with the paper's foundation replaced by faces (each `(dip, dip direction, point)`).
@@ -679,7 +680,7 @@ fn any_contact_triangle_is_read_from_contacts_m() {
     for (k, c) in s.site().contacts().iter().enumerate() {
         assert!(s.site().planes()[k].height(c[0], c[1]).abs() < 1e-12);
     }
-    assert!(Simulation::new(&s).is_ok());
+    assert!(s.simulation().is_ok());
     // Both forms, neither, a line, or the wrong shape: named.
     assert_names(
         &with(

@@ -7,8 +7,10 @@
 
 use crate::common::{hand_exact, hand_small_angle, scene};
 use proptest::prelude::*;
-use slideroute::stages::coeffs::{CoeffInputs, EXACT_NAMES_13, EXACT_NAMES_14, Exact, SmallAngle};
-use slideroute::stages::geometry::Displacement;
+use slideroute::internals::coeffs::{
+    CoeffInputs, EXACT_NAMES_13, EXACT_NAMES_14, Exact, SmallAngle,
+};
+use slideroute::internals::geometry::Displacement;
 
 fn close(generated: f64, hand: f64, scale: f64) -> bool {
     (generated - hand).abs() <= 1e-12 * hand.abs() + 1e-14 * scale
@@ -25,7 +27,7 @@ prop_compose! {
         x in -0.5..1.0f64,
         z in -0.5..0.5f64,
         theta in -60.0..60.0f64,
-    ) -> (slideroute::stages::scene::Scene, Displacement) {
+    ) -> (slideroute::internals::scene::Scene, Displacement) {
         (scene(l, l2x, l1z, xi, zeta, kappa), Displacement::new(x * l, z * l, theta.to_radians()))
     }
 }

@@ -2,8 +2,8 @@
 //! its levels, pseudo-static coefficients, and the guideline factor of safety, each against its
 //! closed form on a level base (`derivations/11-dam-loads.md`).
 
-use slideroute::stages::route;
-use slideroute::stages::scene::{DynamicsModel, Scene};
+use slideroute::internals::route;
+use slideroute::internals::{model::DynamicsModel, scene::Scene};
 
 fn monolith() -> String {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/monolith.toml");
@@ -24,7 +24,7 @@ fn fs(text: &str) -> f64 {
         .unwrap()
         .with("solver.t_end_s", 0.01)
         .unwrap();
-    let r = route::run(&s).unwrap();
+    let r = slideroute::run(&s).unwrap();
     r.factor_of_safety.and_then(|f| f.value()).unwrap()
 }
 
@@ -217,8 +217,8 @@ fn check_gives_each_case_its_guideline_requirement_and_routes_it() {
         r.iter().map(|c| c.passes).collect::<Vec<_>>(),
         [true, true, false]
     );
-    assert!(r[2].route.increments > 0 && r[2].route.travel_m > 1.0);
-    assert_eq!(r[0].route.increments, 0);
+    assert!(r[2].run.route.increments > 0 && r[2].run.route.travel_m > 1.0);
+    assert_eq!(r[0].run.route.increments, 0);
     // The case's own levels reach its loads.
     let w = r[1].loads.unwrap().water.unwrap();
     assert_eq!((w.levels.headwater, w.levels.tailwater), (15.0, 5.0));
@@ -302,7 +302,7 @@ fn each_face_carries_its_own_friction() {
             .unwrap()
             .with("solver.t_end_s", 2.0)
             .unwrap();
-        route::run(&s).unwrap().travel_m
+        slideroute::run(&s).unwrap().travel_m
     };
     let rough = run(&(paper.clone() + "\n[[friction.face]]\nfaces = [2]\nmu_k = 0.5\n"));
     let smooth = run(&paper);
@@ -397,7 +397,7 @@ fn cohesion_holds_a_block_until_it_first_slides() {
         &[("mu_k = 0.45", "mu_k = 0.2\ncohesion_pa = 100e3")],
     );
     let s = Scene::from_toml(&held, "c").unwrap();
-    let r = route::run(&s).unwrap();
+    let r = slideroute::run(&s).unwrap();
     assert_eq!(
         r.termination.reason,
         route::Reason::DoesNotSlide,
@@ -410,7 +410,7 @@ fn cohesion_holds_a_block_until_it_first_slides() {
             .unwrap()
             .with("solver.t_end_s", 1.0)
             .unwrap();
-        route::run(&s).unwrap()
+        slideroute::run(&s).unwrap()
     };
     let with = kicked(&held);
     let without = kicked(&held.replace("cohesion_pa = 100e3", ""));
@@ -437,7 +437,7 @@ fn a_monolith_turning_about_its_raised_centre_of_mass_keeps_its_energy_balance()
         .unwrap()
         .with("solver.t_end_s", 3.0)
         .unwrap();
-    let r = route::run(&s).unwrap();
+    let r = slideroute::run(&s).unwrap();
     let e = r.energy.unwrap();
     assert!(r.travel_m > 3.0, "{}", r.travel_m);
     assert!(

@@ -9,8 +9,8 @@
 //! must show the same end (a stop, or contact 0 crossing onto plane 1 — Drake's contacts each see
 //! only their own infinite plane, so its route goes on where ours ends).
 
-use slideroute::stages::route::{self, Reason, Row};
-use slideroute::stages::scene::{DynamicsModel, Scene};
+use slideroute::internals::route::{self, Reason, Row};
+use slideroute::internals::{model::DynamicsModel, scene::Scene};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -74,7 +74,7 @@ fn ours(scene_file: &Path) -> (Vec<Row>, Reason, f64) {
         .with_dynamics(DynamicsModel::RigidBody)
         .and_then(|s| s.with("solver.t_end_s", HORIZON_S))
         .unwrap();
-    let r = route::run(&scene).unwrap();
+    let r = slideroute::run(&scene).unwrap();
     (r.rows, r.termination.reason, r.termination.t_s)
 }
 
@@ -289,7 +289,7 @@ fn faceted_agrees_with_refined_drake(
         .unwrap()
         .with("solver.t_end_s", horizon)
         .unwrap();
-    let r = route::run(&scene).unwrap();
+    let r = slideroute::run(&scene).unwrap();
     let t_end = r.termination.t_s;
     assert_eq!(r.termination.reason, Reason::ContactLiftedOff, "{name}");
     assert!(

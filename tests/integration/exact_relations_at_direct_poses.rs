@@ -4,9 +4,9 @@
 
 use crate::common::scene;
 use proptest::prelude::*;
-use slideroute::stages::coeffs::{CoeffInputs, Exact};
-use slideroute::stages::geometry::{Displacement, Pose, direct, relations};
-use slideroute::stages::scene::Scene;
+use slideroute::internals::coeffs::{CoeffInputs, Exact};
+use slideroute::internals::geometry::{Displacement, Pose, direct, relations};
+use slideroute::internals::scene::Scene;
 
 prop_compose! {
     fn scene_and_reachable_pose()(
@@ -98,7 +98,7 @@ fn small_angle_residual_falls_at_second_order_in_the_dips() {
         let s = scene(10.0, 0.4, 0.5, 20.0 * eps, 25.0 * eps, 30.0);
         let p = direct::solve(s.site(), d).unwrap();
         let l = s.l();
-        let f = slideroute::stages::coeffs::SmallAngle::new(&CoeffInputs::new(
+        let f = slideroute::internals::coeffs::SmallAngle::new(&CoeffInputs::new(
             s.site().as_paper().unwrap(),
             d,
         ));
@@ -128,7 +128,8 @@ fn exact_system_vanishes_where_the_small_angle_one_does_not() {
         pose.psi.sin(),
         pose.psi.cos(),
     );
-    let sa = slideroute::stages::coeffs::SmallAngle::new(&inputs).residual(p.alpha(l), p.beta(l));
+    let sa =
+        slideroute::internals::coeffs::SmallAngle::new(&inputs).residual(p.alpha(l), p.beta(l));
     assert!(e[0].abs().max(e[1].abs()) < 1e-13 * l);
     assert!(sa[0].abs().max(sa[1].abs()) > 1e-4 * l * l);
 }

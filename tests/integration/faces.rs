@@ -3,9 +3,9 @@
 //! there, naming both; every row agrees with the direct pose solver.
 
 use crate::common;
-use slideroute::stages::geometry::Plane;
-use slideroute::stages::route::{self, Reason, Route};
-use slideroute::stages::scene::{DynamicsModel, Scene};
+use slideroute::internals::geometry::Plane;
+use slideroute::internals::route::{self, Reason, Route};
+use slideroute::internals::{model::DynamicsModel, scene::Scene};
 
 fn scene_file(name: &str) -> Scene {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -16,7 +16,7 @@ fn scene_file(name: &str) -> Scene {
 
 /// The default scene with its frame written as `contacts_m` (the general system's site).
 fn default_as_contacts() -> Scene {
-    let text = slideroute::stages::scene::DEFAULT_SCENE_TOML;
+    let text = slideroute::internals::scene::DEFAULT_SCENE_TOML;
     let start = text.find("l1x =").unwrap();
     let end = text[start..].find("[foundation]").unwrap() + start;
     let text = format!(
@@ -28,7 +28,7 @@ fn default_as_contacts() -> Scene {
 }
 
 fn run(s: &Scene, model: DynamicsModel) -> Route {
-    route::run(&s.with_dynamics(model).unwrap()).unwrap()
+    slideroute::run(&s.with_dynamics(model).unwrap()).unwrap()
 }
 
 /// The largest difference of position (m) and yaw (°) between two routes' rows.
@@ -100,14 +100,14 @@ fn on_the_papers_faces_contact_2_rides_the_crease_then_plane_1_alone_until_conta
     let mut near = None;
     let mut checked = 0;
     for row in r.rows.iter().filter(|w| w.t_s > 0.01 && w.t_s < 3.78) {
-        let d = slideroute::stages::geometry::Displacement::new(
+        let d = slideroute::internals::geometry::Displacement::new(
             row.x_m,
             row.z_m,
             row.theta_deg.to_radians(),
         );
         let p = match &near {
-            Some(q) => slideroute::stages::geometry::direct::solve_from(s.site(), d, q),
-            None => slideroute::stages::geometry::direct::solve(s.site(), d),
+            Some(q) => slideroute::internals::geometry::direct::solve_from(s.site(), d, q),
+            None => slideroute::internals::geometry::direct::solve(s.site(), d),
         }
         .unwrap();
         let off = plane_1.signed_distance(&p.vertices[2]);
@@ -187,7 +187,7 @@ fn assert_rows_on_their_faces(s: &Scene, r: &Route) -> Vec<[u32; 3]> {
     let (ground, _) = s.site().ground().unwrap();
     let mut seen = vec![r.rows[0].faces];
     let l = s.l();
-    let mut near: Option<slideroute::stages::geometry::direct::DirectPose> = None;
+    let mut near: Option<slideroute::internals::geometry::direct::DirectPose> = None;
     for row in &r.rows {
         if *seen.last().unwrap() != row.faces {
             seen.push(row.faces);
@@ -197,14 +197,14 @@ fn assert_rows_on_their_faces(s: &Scene, r: &Route) -> Vec<[u32; 3]> {
         for (k, &f) in row.faces.iter().enumerate() {
             site = site.with_face(k, f as usize).unwrap();
         }
-        let d = slideroute::stages::geometry::Displacement::new(
+        let d = slideroute::internals::geometry::Displacement::new(
             row.x_m,
             row.z_m,
             row.theta_deg.to_radians(),
         );
         let p = match &near {
-            Some(q) => slideroute::stages::geometry::direct::solve_from(&site, d, q),
-            None => slideroute::stages::geometry::direct::solve(&site, d),
+            Some(q) => slideroute::internals::geometry::direct::solve_from(&site, d, q),
+            None => slideroute::internals::geometry::direct::solve(&site, d),
         }
         .unwrap();
         assert!(

@@ -4,9 +4,9 @@
 
 use crate::common::{sample, scene};
 use proptest::prelude::*;
-use slideroute::stages::geometry::{Displacement, Plane, Pose, Site, direct};
-use slideroute::stages::roots::{self, Tracker};
-use slideroute::stages::scene::Mode;
+use slideroute::internals::geometry::{Displacement, Plane, Pose, Site, direct};
+use slideroute::internals::model::Mode;
+use slideroute::internals::roots::{self, Tracker};
 
 /// The paper's site as a general one: the same contacts on the same planes.
 fn twin(site: &Site) -> Site {

@@ -2,8 +2,8 @@
 //! block's motion relative to it — Newmark's sliding block in 3-D, against his closed forms
 //! (`derivations/11-dam-loads.md` §7).
 
-use slideroute::stages::route::{self, Reason, Route};
-use slideroute::stages::scene::Scene;
+use slideroute::internals::route::{self, Reason, Route};
+use slideroute::internals::scene::Scene;
 
 const G: f64 = 9.81;
 
@@ -49,7 +49,7 @@ fn newmark(a: f64, n: f64, t0: f64) -> f64 {
 }
 
 fn run(s: &Scene) -> Route {
-    route::run(s).unwrap_or_else(|e| panic!("{e}"))
+    slideroute::run(s).unwrap_or_else(|e| panic!("{e}"))
 }
 
 #[test]

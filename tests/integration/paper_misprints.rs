@@ -4,9 +4,9 @@
 //! See `derivations/05-paper-differences.md`.
 
 use crate::common::{printed_f1_f2_f7_f11, scene};
-use slideroute::stages::coeffs::{CoeffInputs, SmallAngle};
-use slideroute::stages::geometry::{Displacement, direct};
-use slideroute::stages::scene::Scene;
+use slideroute::internals::coeffs::{CoeffInputs, SmallAngle};
+use slideroute::internals::geometry::{Displacement, direct};
+use slideroute::internals::scene::Scene;
 
 /// (15) residuals with our coefficients, and with one printed coefficient swapped in.
 fn residuals_with_printed(index: usize, s: &Scene, d: Displacement) -> (f64, f64) {

@@ -5,18 +5,21 @@
 // The three contacts are indexed in parallel arrays (normals, arms, forces).
 #![allow(clippy::needless_range_loop)]
 
-use slideroute::stages::geometry::Displacement;
-use slideroute::stages::mechanics::reactions_paper::{self, Reaction};
-use slideroute::stages::mechanics::{ContactGeometry, loads::Applied, statics};
-use slideroute::stages::roots;
-use slideroute::stages::scene::{Friction, Mode, Scene};
+use slideroute::internals::geometry::Displacement;
+use slideroute::internals::mechanics::reactions_paper::{self, Reaction};
+use slideroute::internals::mechanics::{ContactGeometry, loads::Applied, statics};
+use slideroute::internals::roots;
+use slideroute::internals::{
+    model::{Friction, Mode},
+    scene::Scene,
+};
 
 /// Geometry, loads and frictionless normals of `scene` at `d` (exact pose).
 fn at(scene: &Scene, d: Displacement) -> (ContactGeometry, Applied, [f64; 3]) {
     let p = roots::select(scene.site(), d, Mode::Exact).expect("pose");
     let pose = roots::classify::pose(scene.site(), d, Mode::Exact, p.u).unwrap();
-    let geom = ContactGeometry::new(scene, &pose);
-    let dy = slideroute::stages::scene::Simulation::new(scene).unwrap();
+    let geom = ContactGeometry::new(&scene.site().normals(), &pose);
+    let dy = scene.simulation().unwrap();
     let applied = Applied::new(dy.loads(), dy.block(), &geom.frame);
     let c = statics::frictionless_normals(&geom, &applied).expect("statics");
     (geom, applied, c)
@@ -28,7 +31,7 @@ fn paper_like(mu: f64) -> Scene {
 
 fn solutions(scene: &Scene, d: Displacement) -> (ContactGeometry, Applied, Vec<Reaction>) {
     let (geom, applied, c) = at(scene, d);
-    let dy = slideroute::stages::scene::Simulation::new(scene).unwrap();
+    let dy = scene.simulation().unwrap();
     let sols = reactions_paper::all_solutions(
         &geom,
         &applied,

@@ -3,8 +3,8 @@
 
 use crate::common;
 
-use slideroute::stages::route::{self, Reason, Route};
-use slideroute::stages::scene::{DynamicsModel, Scene};
+use slideroute::internals::route::{self, Reason, Route};
+use slideroute::internals::{model::DynamicsModel, scene::Scene};
 
 /// The default scene under the rigid body, with `keys` set.
 fn rigid(keys: &[(&str, f64)]) -> Scene {
@@ -15,7 +15,7 @@ fn rigid(keys: &[(&str, f64)]) -> Scene {
 }
 
 fn run(s: &Scene) -> Route {
-    route::run(s).expect("scene has the dynamics sections")
+    slideroute::run(s).expect("scene has the dynamics sections")
 }
 
 const DT: &str = "solver.dt_s";
@@ -371,7 +371,7 @@ fn ends_where_a_contact_slips_off_its_plane_do_not_depend_on_dt() {
 
 #[test]
 fn the_factor_of_safety_is_the_cones_whatever_the_dynamics_and_typed_where_it_has_no_number() {
-    use slideroute::stages::mechanics::static_friction::FactorOfSafety;
+    use slideroute::internals::mechanics::static_friction::FactorOfSafety;
     // One definition for both dynamics (the paper's ratio, 0.7333, has its own name).
     let paper = run(&rigid(&[(DT, 1e-3), (T_END, 0.05)])
         .with_dynamics(DynamicsModel::Paper)
@@ -461,7 +461,8 @@ fn a_slip_friction_stops_within_a_step_beside_a_sliding_block_pivots_instead_of_
         (ECCENTRICITY, 0.095_099_929_900_811_95),
         ("foundation.zeta_deg", 26.996_923_031_255_09),
     ]);
-    let r = run(&s);
+    let computed = slideroute::Runner::new(&s.simulation().unwrap()).run();
+    let r = &computed.route;
     assert_eq!(r.termination.reason, Reason::Contact0ReachedInclinedPlane);
     assert!(
         (r.travel_m - 4.993_583_661).abs() < 5e-5 * 4.993_583_661,
@@ -481,7 +482,7 @@ fn a_slip_friction_stops_within_a_step_beside_a_sliding_block_pivots_instead_of_
         e.work_hydraulic_j
     );
     // A few poses an increment, not hundreds.
-    let tracker = r
+    let tracker = computed
         .diagnostics
         .tracker
         .expect("the rigid body follows its pose");

@@ -5,9 +5,9 @@
 
 use crate::common::{sample, scene};
 use proptest::prelude::*;
-use slideroute::stages::geometry::{Displacement, Pose, direct};
-use slideroute::stages::roots::{self, classify};
-use slideroute::stages::scene::{Mode, Scene};
+use slideroute::internals::geometry::{Displacement, Pose, direct};
+use slideroute::internals::roots::{self, classify};
+use slideroute::internals::{model::Mode, scene::Scene};
 
 fn dip() -> impl Strategy<Value = f64> {
     prop_oneof![1.0..3.0f64, 3.0..55.0f64, 55.0..70.0f64]

@@ -3,9 +3,9 @@
 
 use crate::common::scene;
 use num_complex::Complex64 as C;
-use slideroute::stages::geometry::Displacement;
-use slideroute::stages::roots::{self, eigen, system};
-use slideroute::stages::scene::Mode;
+use slideroute::internals::geometry::Displacement;
+use slideroute::internals::model::Mode;
+use slideroute::internals::roots::{self, eigen, system};
 
 fn ev(c: &eigen::Coeffs, x: C, y: C) -> (C, C, C) {
     let (mut v, mut dx, mut dy) = (C::new(0.0, 0.0), C::new(0.0, 0.0), C::new(0.0, 0.0));

@@ -1,9 +1,9 @@
 //! The traps measured in the roots issue, each a test named after the behaviour it protects.
 
 use crate::common::scene;
-use slideroute::stages::geometry::{Displacement, Pose, direct};
-use slideroute::stages::roots::{self, Tracker};
-use slideroute::stages::scene::{Mode, Scene};
+use slideroute::internals::geometry::{Displacement, Pose, direct};
+use slideroute::internals::roots::{self, Tracker};
+use slideroute::internals::{model::Mode, scene::Scene};
 
 fn oracle_ab(s: &Scene, d: Displacement) -> (f64, f64) {
     let p = direct::solve(s.site(), d).expect("direct pose");
@@ -122,8 +122,8 @@ fn unsquared_tracking_never_lands_on_a_spurious_root() {
             let Ok(p) = roots::select(s.site(), d, Mode::SmallAngle) else {
                 continue;
             };
-            let u = slideroute::stages::coeffs::SmallAngleUnsquared::new(
-                &slideroute::stages::coeffs::CoeffInputs::new(s.site().as_paper().unwrap(), d),
+            let u = slideroute::internals::coeffs::SmallAngleUnsquared::new(
+                &slideroute::internals::coeffs::CoeffInputs::new(s.site().as_paper().unwrap(), d),
             );
             assert!(
                 !roots::classify::small_angle_spurious(&u, p.u[0], p.u[1]),

@@ -3,9 +3,12 @@
 
 use crate::common;
 
-use slideroute::stages::mechanics::static_friction::FactorOfSafety;
-use slideroute::stages::route::{self, Reason, Route};
-use slideroute::stages::scene::{DynamicsModel, Integrator, Scene};
+use slideroute::internals::mechanics::static_friction::FactorOfSafety;
+use slideroute::internals::route::{self, Reason, Route};
+use slideroute::internals::{
+    model::{DynamicsModel, Integrator},
+    scene::Scene,
+};
 
 /// The embedded scene under the paper's dynamics (this file's subject; the default is the
 /// rigid body's).
@@ -24,7 +27,7 @@ const FORCE: &str = "loads.hydraulic_force_n";
 const T_END: &str = "solver.t_end_s";
 
 fn run(s: &Scene) -> Route {
-    route::run(s).expect("scene has the dynamics sections")
+    slideroute::run(s).expect("scene has the dynamics sections")
 }
 
 #[test]
@@ -133,7 +136,7 @@ fn large_eccentricity_gives_a_visibly_curved_route() {
         (FORCE, 1.2e7),
         ("loads.eccentricity_m", 1.5),
     ]));
-    let heading = |r: &slideroute::stages::route::Row| r.vz_m_s.atan2(r.vx_m_s).to_degrees();
+    let heading = |r: &slideroute::internals::route::Row| r.vz_m_s.atan2(r.vx_m_s).to_degrees();
     let rows = &curved.rows;
     let turn = heading(&rows[rows.len() - 1]) - heading(&rows[rows.len() / 10]);
     assert!(turn.abs() > 10.0, "heading turned by {turn}°");
@@ -327,22 +330,23 @@ fn every_example_scene_runs_to_a_stated_end() {
 
 #[test]
 fn all_roots_method_gives_the_same_route_as_continuation() {
-    use slideroute::stages::route::PoseMethod;
+    use slideroute::internals::route::PoseMethod;
     for mode in [
-        slideroute::stages::scene::Mode::Exact,
-        slideroute::stages::scene::Mode::SmallAngle,
+        slideroute::internals::model::Mode::Exact,
+        slideroute::internals::model::Mode::SmallAngle,
     ] {
         let s = with(&[(T_END, 1.0)])
             .with("solver.mode", mode.as_str())
             .unwrap();
-        let a = route::run_with(&s, PoseMethod::Continuation, |_| {
-            std::ops::ControlFlow::Continue(())
-        })
-        .unwrap();
-        let b = route::run_with(&s, PoseMethod::AllRoots, |_| {
-            std::ops::ControlFlow::Continue(())
-        })
-        .unwrap();
+        let sim = s.simulation().unwrap();
+        let a = slideroute::Runner::new(&sim)
+            .pose_method(PoseMethod::Continuation)
+            .run()
+            .route;
+        let b = slideroute::Runner::new(&sim)
+            .pose_method(PoseMethod::AllRoots)
+            .run()
+            .route;
         assert_eq!(a.rows.len(), b.rows.len());
         let worst = a
             .rows

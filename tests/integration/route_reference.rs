@@ -7,8 +7,8 @@
 //! reshaped. To record them again, deliberately, after a change that is meant to move routes:
 //! `SLIDEROUTE_BLESS=1 cargo test --test integration route_reference`.
 
-use slideroute::stages::route::{self, Row};
-use slideroute::stages::scene::{DynamicsModel, Scene};
+use slideroute::internals::route::{self, Row};
+use slideroute::internals::{model::DynamicsModel, scene::Scene};
 use std::path::{Path, PathBuf};
 
 const EVERY: usize = 25;
@@ -85,7 +85,7 @@ fn every_route_of_every_scene_matches_its_stored_reference() {
                 file.file_stem().unwrap().to_string_lossy(),
                 model.as_str()
             );
-            let route = route::run(&scene).unwrap();
+            let route = slideroute::run(&scene).unwrap();
             let got = reference_text(&route);
             let path = dir.join(&name);
             if bless {

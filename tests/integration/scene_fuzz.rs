@@ -3,8 +3,8 @@
 //! (Arbitrary text and single-value replacements are fuzzed in `src/scene/tests.rs` too.)
 
 use proptest::prelude::*;
-use slideroute::stages::geometry::Displacement;
-use slideroute::stages::scene::{Mode, Scene};
+use slideroute::internals::geometry::Displacement;
+use slideroute::internals::{model::Mode, scene::Scene};
 
 fn assert_one_line(text: &str, origin: &str) {
     if let Err(e) = Scene::from_toml(text, origin) {
@@ -144,7 +144,7 @@ fn faceted_scene() -> impl Strategy<Value = String> {
                     [r * at.cos(), 0.0, r * at.sin()],
                 );
             }
-            let rest = slideroute::stages::scene::DEFAULT_SCENE_TOML;
+            let rest = slideroute::internals::scene::DEFAULT_SCENE_TOML;
             let rest = &rest[rest.find("[block]").unwrap()..];
             let rest = rest.replace("t_end_s = 20.0", "t_end_s = 0.3").replace(
                 "dt_s = 1.0e-3",
@@ -171,11 +171,11 @@ proptest! {
                 // the bound.
                 for mode in [Mode::Exact, Mode::SmallAngle] {
                     let d = Displacement::new(0.3, -0.1, 0.05);
-                    if let Ok(all) = slideroute::stages::roots::solve_all(scene.site(), d, mode) {
+                    if let Ok(all) = slideroute::internals::roots::solve_all(scene.site(), d, mode) {
                         prop_assert!(all.finite_roots <= 8);
                     }
                 }
-                if let Ok(route) = slideroute::stages::route::run(&scene) {
+                if let Ok(route) = slideroute::internals::analysis::run(&scene) {
                     prop_assert!(!route.rows.is_empty());
                     prop_assert!(route.rows.iter().all(|r| r.x_m.is_finite()
                         && r.z_m.is_finite()

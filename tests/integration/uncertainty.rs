@@ -1,7 +1,7 @@
 //! Uncertain scene values (issue #17): the probability of sliding against its closed form.
 
-use slideroute::stages::scene::Scene;
-use slideroute::stages::uncertainty::{Sampling, Uncertain, run_sample, sample_values};
+use slideroute::internals::scene::Scene;
+use slideroute::probabilistic::{Sampling, Uncertain, sample_scene, sample_values};
 
 /// The paper-like block on 0.01° dips with the push through its centre of mass: it slides
 /// when μ W < H, so with μ ~ normal(m, s) the probability of sliding is Φ((H/W − m)/s).
@@ -29,8 +29,8 @@ fn p_sliding(scene: &Scene, mu: &Uncertain, n: usize, seed: u64, sampling: Sampl
     let slid = values
         .iter()
         .filter(|v| {
-            let r = run_sample(scene, keys, v).unwrap();
-            r.factor_of_safety.unwrap() < 1.0
+            let r = slideroute::run(&sample_scene(scene, keys, v).unwrap()).unwrap();
+            !r.factor_of_safety.unwrap().at_least_one()
         })
         .count();
     slid as f64 / n as f64
@@ -77,7 +77,7 @@ fn an_uncertain_key_the_scene_cannot_take_is_named() {
     ] {
         let u: Uncertain = format!("{key}=normal:-5:0.1").parse().unwrap();
         let values = sample_values(std::slice::from_ref(&u), 1, 1, Sampling::MonteCarlo);
-        let e = run_sample(&scene, std::slice::from_ref(&u), &values[0]).unwrap_err();
+        let e = sample_scene(&scene, std::slice::from_ref(&u), &values[0]).unwrap_err();
         assert!(e.key.contains(key), "{e}");
         assert!(e.to_string().contains(why), "{e}");
     }
@@ -138,7 +138,7 @@ fn a_wrong_distribution_in_the_scene_names_its_key() {
 
 #[test]
 fn a_range_of_the_design_run_apart_gives_the_rows_of_the_whole_run() {
-    use slideroute::stages::uncertainty::{Design, run_values};
+    use slideroute::internals::analysis::probabilistic::{Design, run_values};
     let scene = flat();
     let uncertain: Vec<Uncertain> = vec![
         "friction.mu_k=normal:0.8:0.05".parse().unwrap(),
@@ -173,7 +173,7 @@ fn a_range_of_the_design_run_apart_gives_the_rows_of_the_whole_run() {
 
 #[test]
 fn the_summary_counts_sliding_samples_and_ranks_the_friction_first() {
-    use slideroute::stages::uncertainty::{Design, Limits, summarise};
+    use slideroute::internals::analysis::probabilistic::{Design, Limits, summarise};
     let scene = flat();
     let uncertain: Vec<Uncertain> = vec![
         "friction.mu_k=normal:0.8:0.05".parse().unwrap(),
@@ -191,7 +191,7 @@ fn the_summary_counts_sliding_samples_and_ranks_the_friction_first() {
     let slid = rows
         .iter()
         .filter(|r| match &r.outcome {
-            slideroute::stages::uncertainty::Outcome::Route(x) => x.factor_of_safety.unwrap() < 1.0,
+            slideroute::Outcome::Route(x) => x.factor_of_safety_value().unwrap() < 1.0,
             _ => false,
         })
         .count();

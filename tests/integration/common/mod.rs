@@ -1,8 +1,8 @@
 //! Shared test helpers: scenes built from numbers, and the hand-derived formulas typed from
 //! `derivations/03-small-angle.md` and `derivations/04-exact.md`.
 
-use slideroute::stages::geometry::Displacement;
-use slideroute::stages::scene::Scene;
+use slideroute::internals::geometry::Displacement;
+use slideroute::internals::scene::Scene;
 use std::f64::consts::SQRT_2;
 
 /// A geometry-only scene. `l2x_frac`, `l1z_frac` are fractions of L.
@@ -156,8 +156,8 @@ pub fn hand_exact(s: &Scene, d: Displacement) -> [Vec<(&'static str, f64)>; 2] {
 
 /// Every route row agrees with the direct pose solver at its (X, Z, θ): α, β to 1e-10 rad and
 /// the CM height to 1e-9·L (each solve starts from the previous row's pose).
-pub fn assert_rows_match_direct(s: &Scene, rows: &[slideroute::stages::route::Row]) {
-    use slideroute::stages::geometry::direct;
+pub fn assert_rows_match_direct(s: &Scene, rows: &[slideroute::internals::route::Row]) {
+    use slideroute::internals::geometry::direct;
     let l = s.l();
     let mut near = None;
     for row in rows {

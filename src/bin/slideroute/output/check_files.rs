@@ -3,11 +3,11 @@
 //! file it; and the same as CSV.
 
 use slideroute::CaseResult;
-use slideroute::stages::numeric::{fixed, seconds};
+use slideroute::internals::numeric::{fixed, seconds};
 use std::fmt;
 
 /// A case's value of a scene key it or the scene sets (the levels, the coefficients).
-fn level(r: &CaseResult, f: impl Fn(&slideroute::stages::scene::LoadsUsed) -> f64) -> String {
+fn level(r: &CaseResult, f: impl Fn(&slideroute::internals::scene::LoadsUsed) -> f64) -> String {
     r.loads
         .as_ref()
         .map_or("—".into(), |l| fixed(f(l), 2).to_string())
@@ -45,7 +45,7 @@ const COLUMNS: [&str; 11] = [
 
 impl CheckTable<'_> {
     fn cells(r: &CaseResult) -> [String; 11] {
-        let water = |f: fn(&slideroute::stages::scene::water::WaterLoads) -> f64| {
+        let water = |f: fn(&slideroute::internals::model::WaterLoads) -> f64| {
             r.loads
                 .as_ref()
                 .and_then(|l| l.water.as_ref())
@@ -105,9 +105,9 @@ impl fmt::Display for CheckTable<'_> {
              U and kv W as they are"
         )?;
         for r in self.results.iter().filter(|r| !r.passes) {
-            let t = &r.route.termination;
-            let last = r.route.rows.last();
-            if r.route.increments == 0 {
+            let t = &r.run.route.termination;
+            let last = r.run.route.rows.last();
+            if r.run.route.increments == 0 {
                 writeln!(
                     f,
                     "  {} fails its requirement, but static friction holds the block: {}",
@@ -121,7 +121,7 @@ impl fmt::Display for CheckTable<'_> {
                 r.case.name,
                 t.reason,
                 seconds(t.t_s),
-                fixed(r.route.travel_m, 3),
+                fixed(r.run.route.travel_m, 3),
                 fixed(last.map_or(0.0, |l| l.theta_deg), 3)
             )?;
         }
@@ -165,8 +165,8 @@ pub fn write_csv(out: impl std::io::Write, results: &[CaseResult]) -> Result<(),
             r.factor_of_safety.map_or(String::new(), |f| f.cell()),
             r.case.required_fs.to_string(),
             r.passes.to_string(),
-            r.route.termination.reason.to_string(),
-            r.route.travel_m.to_string(),
+            r.run.route.termination.reason.to_string(),
+            r.run.route.travel_m.to_string(),
         ])?;
     }
     w.flush()?;

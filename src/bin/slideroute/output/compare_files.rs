@@ -5,27 +5,26 @@
 
 use super::folder::Folder;
 use super::route_files::{self, Manifest};
-use slideroute::stages::compare::Comparison;
-use slideroute::stages::scene::Scene;
+use slideroute::{Comparison, Scene};
 use std::path::PathBuf;
 
 /// Writes both routes and `comparison.json` into `folder`; returns the paths written.
 pub fn write(folder: &mut Folder, scene: &Scene, c: &Comparison) -> Result<Vec<PathBuf>, String> {
     let mut files = Vec::new();
-    for (sub, route) in [("paper", &c.paper), ("rigid-body", &c.rigid_body)] {
+    for (sub, computed) in [("paper", &c.paper), ("rigid-body", &c.rigid_body)] {
         files.push(route_files::write_route_csv(
             folder,
             &format!("{sub}/route.csv"),
-            &route.rows,
+            &computed.route.rows,
         )?);
         let scene = scene
-            .with_dynamics(route.dynamics)
+            .with_dynamics(computed.route.dynamics)
             .map_err(|e| e.to_string())?;
         let manifest = Manifest::new(&scene, folder);
         files.push(route_files::write_json_with_manifest(
             folder,
             &format!("{sub}/summary.json"),
-            route,
+            computed,
             &manifest,
         )?);
     }

@@ -18,6 +18,8 @@ pub mod roots_report;
 #[cfg(feature = "cli")]
 pub mod route_files;
 #[cfg(feature = "cli")]
+pub mod samples_files;
+#[cfg(feature = "cli")]
 pub mod summary;
 #[cfg(feature = "cli")]
 pub mod sweep_files;

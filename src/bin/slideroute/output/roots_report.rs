@@ -1,9 +1,9 @@
 //! The `roots` report: every root at one displacement, and the selected one.
 
 use serde::Serialize;
-use slideroute::stages::geometry::Displacement;
-use slideroute::stages::roots::{AllRoots, Inadmissible, Root, classify};
-use slideroute::stages::scene::{Mode, Scene};
+use slideroute::internals::geometry::Displacement;
+use slideroute::internals::roots::{AllRoots, Inadmissible, Root, classify};
+use slideroute::internals::{model::Mode, scene::Scene};
 use std::fmt;
 
 /// The physical pose chosen by continuation.
@@ -115,9 +115,9 @@ impl fmt::Display for RootsReport {
             "scene {} ({} mode): X = {} m, Z = {} m, θ = {}°",
             self.scene,
             self.mode.as_str(),
-            slideroute::stages::numeric::fixed(self.x_m, 6),
-            slideroute::stages::numeric::fixed(self.z_m, 6),
-            slideroute::stages::numeric::fixed(self.theta_deg, 6)
+            slideroute::internals::numeric::fixed(self.x_m, 6),
+            slideroute::internals::numeric::fixed(self.z_m, 6),
+            slideroute::internals::numeric::fixed(self.theta_deg, 6)
         )?;
         match (&self.selected, &self.selection_error) {
             (Some(s), _) => writeln!(

@@ -2,8 +2,8 @@
 //! what factor of safety, at what cost, and what was written. Numbers at a precision for people
 //! (the files keep every digit).
 
-use slideroute::stages::numeric::{fixed, seconds};
-use slideroute::{Comparison, Route};
+use slideroute::internals::numeric::{fixed, seconds};
+use slideroute::{Comparison, Computed};
 use std::fmt;
 use std::path::PathBuf;
 
@@ -13,15 +13,15 @@ fn written(files: &[PathBuf]) -> String {
     names.join(", ")
 }
 
-/// The summary of one route and the files written for it.
+/// The summary of one route, how long it took, and the files written for it.
 pub struct RouteSummary<'a> {
-    pub route: &'a Route,
+    pub computed: &'a Computed,
     pub files: &'a [PathBuf],
 }
 
 impl fmt::Display for RouteSummary<'_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let r = self.route;
+        let r = &self.computed.route;
         let t = &r.termination;
         writeln!(
             f,
@@ -66,7 +66,7 @@ impl fmt::Display for RouteSummary<'_> {
             r.dynamics.as_str(),
             r.mode.as_str(),
             r.integrator.as_str(),
-            fixed(r.diagnostics.wall_s, 3),
+            fixed(self.computed.diagnostics.wall_s, 3),
         )?;
         // A block that never moved has no energy to account for.
         if let Some(e) = r.energy.filter(|_| r.increments > 0) {
@@ -99,8 +99,8 @@ impl fmt::Display for CompareSummary<'_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let c = self.comparison;
         for (name, r) in [
-            ("paper's dynamics", &c.paper),
-            ("rigid body", &c.rigid_body),
+            ("paper's dynamics", &c.paper.route),
+            ("rigid body", &c.rigid_body.route),
         ] {
             writeln!(
                 f,
@@ -147,11 +147,11 @@ mod tests {
 
     #[test]
     fn a_still_block_has_no_energy_line_and_numbers_are_short() {
-        let scene = slideroute::Scene::default_scene();
-        let mut route = slideroute::run(&scene).unwrap();
-        route.diagnostics.wall_s = 0.123456789;
+        let sim = slideroute::Scene::default_scene().simulation().unwrap();
+        let mut computed = slideroute::Runner::new(&sim).run();
+        computed.diagnostics.wall_s = 0.123456789;
         let s = RouteSummary {
-            route: &route,
+            computed: &computed,
             files: &[PathBuf::from("out/route.csv")],
         }
         .to_string();
@@ -161,9 +161,9 @@ mod tests {
             "a moving rigid body has its balance: {s}"
         );
         assert!(s.ends_with("wrote out/route.csv\n"), "{s}");
-        route.increments = 0;
+        computed.route.increments = 0;
         let still = RouteSummary {
-            route: &route,
+            computed: &computed,
             files: &[],
         }
         .to_string();

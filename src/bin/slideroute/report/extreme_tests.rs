@@ -3,8 +3,8 @@
 //! And the work–precision report's own claims.
 
 use crate::report;
-use slideroute::stages::route::{self, PoseMethod, Reason};
-use slideroute::stages::scene::{Integrator, Mode};
+use slideroute::{Integrator, Mode};
+use slideroute::{PoseMethod, Reason};
 
 #[test]
 fn every_extreme_case_agrees_with_the_direct_solver_or_ends_with_its_reason() {
@@ -39,7 +39,7 @@ fn extreme_cases_that_slide_converge_as_dt_halves() {
                 ("solver.integrator", "rk4".into()),
             ];
             let s = case.scene.with_keys(keys).unwrap();
-            route::run(&s).unwrap()
+            slideroute::run(&s).unwrap()
         };
         let (a, b) = (run(2e-3), run(1e-3));
         if a.termination.reason != Reason::TimeLimit || b.termination.reason != Reason::TimeLimit {

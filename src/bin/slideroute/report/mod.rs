@@ -8,8 +8,7 @@
 //! be below 1e-9·L (reported as `reference_change_m`).
 
 use serde::Serialize;
-use slideroute::stages::route::{self, PoseMethod, Route};
-use slideroute::stages::scene::{DynamicsModel, Integrator, Mode, Scene};
+use slideroute::{Computed, DynamicsModel, Integrator, Mode, PoseMethod, Route, Runner, Scene};
 use std::time::Instant;
 
 /// The shallow example scene, compiled in for the report.
@@ -60,9 +59,15 @@ fn with_solver(scene: &Scene, mode: Mode, integrator: Integrator, dt: f64, t_end
         .unwrap_or_else(|e| panic!("report ladder scene: {e}"))
 }
 
+/// The route of `scene` by `method`, and how its computation went.
+fn computed(scene: &Scene, method: PoseMethod) -> Result<Computed, String> {
+    let sim = scene.simulation().map_err(|e| e.to_string())?;
+    Ok(Runner::new(&sim).pose_method(method).run())
+}
+
+/// The route of `scene` by `method`.
 fn run(scene: &Scene, method: PoseMethod) -> Result<Route, String> {
-    route::run_with(scene, method, |_| std::ops::ControlFlow::Continue(()))
-        .map_err(|e| e.to_string())
+    computed(scene, method).map(|c| c.route)
 }
 
 /// Largest CM distance between `coarse` and `fine` at the coarse times (fine dt divides coarse).
@@ -319,7 +324,10 @@ pub fn extreme(sample: usize) -> Vec<ExtremeRow> {
     extreme_cases()
         .into_iter()
         .map(|c| {
-            let r = match route::run(&c.scene) {
+            let Computed {
+                route: r,
+                diagnostics,
+            } = match computed(&c.scene, PoseMethod::Continuation) {
                 Ok(r) => r,
                 Err(e) => {
                     return ExtremeRow {
@@ -332,11 +340,11 @@ pub fn extreme(sample: usize) -> Vec<ExtremeRow> {
                         newton_per_step: 0.0,
                         end_jacobian_condition: None,
                         max_tilt_error_rad: None,
-                        detail: e.to_string(),
+                        detail: e,
                     };
                 }
             };
-            let exact = c.scene.solver().is_some_and(|s| s.mode == Mode::Exact);
+            let exact = c.scene.settings().is_some_and(|s| s.mode == Mode::Exact);
             let tilt_error = exact.then(|| {
                 let l = c.scene.l();
                 let every = (r.rows.len() / sample.max(1)).max(1);
@@ -344,13 +352,13 @@ pub fn extreme(sample: usize) -> Vec<ExtremeRow> {
                     .iter()
                     .step_by(every)
                     .filter_map(|row| {
-                        let d = slideroute::stages::geometry::Displacement::new(
+                        let d = slideroute::internals::geometry::Displacement::new(
                             row.x_m,
                             row.z_m,
                             row.theta_deg.to_radians(),
                         );
-                        let p =
-                            slideroute::stages::geometry::direct::solve(c.scene.site(), d).ok()?;
+                        let p = slideroute::internals::geometry::direct::solve(c.scene.site(), d)
+                            .ok()?;
                         Some(
                             (p.alpha(l) - row.alpha_deg.to_radians())
                                 .abs()
@@ -359,7 +367,7 @@ pub fn extreme(sample: usize) -> Vec<ExtremeRow> {
                     })
                     .fold(0.0, f64::max)
             });
-            let stats = r.diagnostics.tracker.unwrap_or_default();
+            let stats = diagnostics.tracker.unwrap_or_default();
             ExtremeRow {
                 case: c.name.into(),
                 reason: r.termination.reason.as_str().into(),
@@ -368,7 +376,7 @@ pub fn extreme(sample: usize) -> Vec<ExtremeRow> {
                 increments: r.increments,
                 rejected_steps: stats.rejected,
                 newton_per_step: stats.newton_iterations as f64 / stats.steps.max(1) as f64,
-                end_jacobian_condition: r.diagnostics.end_jacobian_condition,
+                end_jacobian_condition: diagnostics.end_jacobian_condition,
                 max_tilt_error_rad: tilt_error,
                 detail: r.termination.detail.clone(),
             }
@@ -400,10 +408,10 @@ mod tests {
         }
         let kicked = cases.last().unwrap();
         assert_eq!(
-            kicked.scene.solver().unwrap().dynamics,
+            kicked.scene.settings().unwrap().dynamics,
             DynamicsModel::RigidBody
         );
-        assert_eq!(kicked.scene.solver().unwrap().integrator, Integrator::Rk4);
+        assert_eq!(kicked.scene.settings().unwrap().integrator, Integrator::Rk4);
     }
 
     fn point(method: PoseMethod, dt_s: f64, wall_s: f64, error_m: f64) -> Point {

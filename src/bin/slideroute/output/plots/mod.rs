@@ -25,10 +25,10 @@ use plan::Track;
 use plotters::style::RGBColor;
 use series::Series;
 use sheet::{Entry, Mark, Res};
-use slideroute::stages::mechanics::static_friction::FactorOfSafety;
-use slideroute::stages::numeric::{fixed, seconds};
-use slideroute::stages::route::{Reason, Route, Row};
-use slideroute::stages::scene::Scene;
+use slideroute::internals::mechanics::static_friction::FactorOfSafety;
+use slideroute::internals::numeric::{fixed, seconds};
+use slideroute::internals::route::{Reason, Route, Row};
+use slideroute::internals::scene::Scene;
 use std::path::{Path, PathBuf};
 
 /// The most points a picture draws of a route (issue #13): past this, rows are thinned evenly
@@ -175,9 +175,12 @@ pub fn plan(path: &Path, scene: &Scene, route: &Route) -> Res<()> {
 pub fn compare_plan(
     path: &Path,
     scene: &Scene,
-    c: &slideroute::stages::compare::Comparison,
+    c: &slideroute::internals::analysis::compare::Comparison,
 ) -> Res<()> {
-    let (rigid, paper) = (thinned(&c.rigid_body.rows), thinned(&c.paper.rows));
+    let (rigid, paper) = (
+        thinned(&c.rigid_body.route.rows),
+        thinned(&c.paper.route.rows),
+    );
     let name = |what: &str, r: &Route| {
         format!(
             "{what}: CM path ({} at t = {} s, travel {} m)",
@@ -193,12 +196,12 @@ pub fn compare_plan(
         (
             &[
                 Track {
-                    name: name("rigid body", &c.rigid_body),
+                    name: name("rigid body", &c.rigid_body.route),
                     rows: &rigid,
                     color: COLORS[0],
                 },
                 Track {
-                    name: name("paper's dynamics", &c.paper),
+                    name: name("paper's dynamics", &c.paper.route),
                     rows: &paper,
                     color: COLORS[3],
                 },
@@ -207,7 +210,7 @@ pub fn compare_plan(
         ),
         &[Entry::new(
             Mark::None,
-            fs_words(c.rigid_body.factor_of_safety),
+            fs_words(c.rigid_body.route.factor_of_safety),
         )],
     )
 }

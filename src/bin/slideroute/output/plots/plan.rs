@@ -7,11 +7,11 @@
 use super::sheet::{self, Area, Entry, Mark, Res, Sheet, err};
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
-use slideroute::stages::geometry::planes::{PaperPlane as Plane, r as strike_2_distance};
-use slideroute::stages::geometry::{Displacement, Pose};
-use slideroute::stages::geometry::{PaperSite, direct};
-use slideroute::stages::route::Row;
-use slideroute::stages::scene::Scene;
+use slideroute::internals::geometry::planes::{PaperPlane as Plane, r as strike_2_distance};
+use slideroute::internals::geometry::{Displacement, Pose};
+use slideroute::internals::geometry::{PaperSite, direct};
+use slideroute::internals::route::Row;
+use slideroute::internals::scene::Scene;
 use std::path::Path;
 
 pub(super) const PLANE_1: RGBColor = RGBColor(30, 90, 200);
@@ -178,7 +178,7 @@ const FACE_COLORS: [RGBColor; 8] = [
 ];
 
 /// The down-dip direction of a plane in plan (unit), none for a level one.
-fn down_dip(plane: &slideroute::stages::geometry::Plane) -> Option<P> {
+fn down_dip(plane: &slideroute::internals::geometry::Plane) -> Option<P> {
     let dip = plane.dip();
     (dip > 1e-9).then(|| {
         let a = plane.dip_direction();
@@ -188,8 +188,8 @@ fn down_dip(plane: &slideroute::stages::geometry::Plane) -> Option<P> {
 
 /// a·X + b·Z ≥ c where plane `p` stands at least as high as plane `q`.
 fn above(
-    p: &slideroute::stages::geometry::Plane,
-    q: &slideroute::stages::geometry::Plane,
+    p: &slideroute::internals::geometry::Plane,
+    q: &slideroute::internals::geometry::Plane,
 ) -> (f64, f64, f64) {
     // height = (e − m_x X − m_z Z) / m_y
     let (mp, mq) = (p.normal(), q.normal());

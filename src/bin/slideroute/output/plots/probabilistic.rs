@@ -8,10 +8,11 @@ use super::sheet::{self, Entry, Mark, Res, Sheet, err};
 use super::thinned;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
-use slideroute::stages::numeric::fixed;
-use slideroute::stages::route::Route;
-use slideroute::stages::scene::Scene;
-use slideroute::stages::uncertainty::{Distribution, Outcome, Sample, Summary};
+use slideroute::Outcome;
+use slideroute::internals::numeric::fixed;
+use slideroute::internals::route::Route;
+use slideroute::internals::scene::Scene;
+use slideroute::probabilistic::{Distribution, Sample, Summary};
 use std::path::Path;
 
 /// The most sampled paths a route fan draws (the first in sample order, a random subset of a
@@ -54,8 +55,10 @@ pub fn route_fan(
             "{} samples ({}), seed {}",
             summary.samples,
             match summary.sampling {
-                slideroute::stages::uncertainty::Sampling::MonteCarlo => "Monte Carlo",
-                slideroute::stages::uncertainty::Sampling::LatinHypercube => "Latin hypercube",
+                slideroute::internals::analysis::probabilistic::Sampling::MonteCarlo =>
+                    "Monte Carlo",
+                slideroute::internals::analysis::probabilistic::Sampling::LatinHypercube =>
+                    "Latin hypercube",
             },
             summary.seed
         ),
@@ -121,7 +124,7 @@ pub fn factor_of_safety(path: &Path, samples: &[Sample], summary: &Summary) -> R
     let fs: Vec<Option<f64>> = samples
         .iter()
         .filter_map(|s| match &s.outcome {
-            Outcome::Route(r) => Some(r.factor_of_safety),
+            Outcome::Route(r) => Some(r.factor_of_safety_value()),
             _ => None,
         })
         .collect();
@@ -252,7 +255,7 @@ pub fn factor_of_safety(path: &Path, samples: &[Sample], summary: &Summary) -> R
 /// and with the travel, the values ordered by their largest |ρ|.
 pub fn tornado(path: &Path, summary: &Summary) -> Res<()> {
     let mut rows: Vec<_> = summary.rank_correlations.iter().collect();
-    let size = |s: &&slideroute::stages::uncertainty::Sensitivity| {
+    let size = |s: &&slideroute::internals::analysis::probabilistic::Sensitivity| {
         s.with_factor_of_safety
             .unwrap_or(0.0)
             .abs()

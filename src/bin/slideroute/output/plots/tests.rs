@@ -1,7 +1,7 @@
 //! The pictures read back as SVG: where their legends and data lie, what they name and mark.
 
 use super::*;
-use slideroute::stages::scene::SceneError;
+use slideroute::internals::scene::SceneError;
 
 /// A text element of an SVG: its position and content.
 #[derive(Debug)]
@@ -95,7 +95,7 @@ fn with_keys(scene: &Scene, keys: &[(&str, f64)]) -> Result<Scene, SceneError> {
 }
 
 fn route_pictures(name: &str, scene: &Scene) -> (TempDir, Route) {
-    let route = slideroute::stages::route::run(scene).unwrap();
+    let route = slideroute::internals::analysis::run(scene).unwrap();
     let dir = temp_dir(name);
     write_route_plots(&dir, scene, &route).unwrap();
     (dir, route)
@@ -174,13 +174,13 @@ fn a_foundation_of_faces_is_drawn_face_by_face_with_its_creases() {
         [[foundation.plane]]\ndip_deg = 20.0\ndip_direction_deg = 180.0\npoint_m = [4.0, 0.0, 0.0]\n\
         [[foundation.plane]]\ndip_deg = 25.0\ndip_direction_deg = 150.0\npoint_m = [4.0, 0.0, -5.0]\n\
         [[foundation.plane]]\ndip_deg = 60.0\ndip_direction_deg = 180.0\npoint_m = [14.0, 3.64, 0.0]\n";
-    let text = slideroute::stages::scene::DEFAULT_SCENE_TOML;
+    let text = slideroute::internals::scene::DEFAULT_SCENE_TOML;
     let start = text.find("[foundation]").unwrap();
     let end = text.find("[block]").unwrap();
     let text = format!("{}{faces}\n{}", &text[..start], &text[end..]);
     let scene = Scene::from_toml(&text, "four faces")
         .unwrap()
-        .with_dynamics(slideroute::stages::scene::DynamicsModel::Paper)
+        .with_dynamics(slideroute::internals::model::DynamicsModel::Paper)
         .unwrap();
     let (dir, route) = route_pictures("faces", &scene);
     assert!(route.rows.len() > 100);

@@ -1,0 +1,225 @@
+//! What the samples come to: the probability of sliding (factor of safety below 1)
+//! with its 95 % interval, the probabilities that travel and rotation exceed the limits given,
+//! percentiles, and each input's rank correlations — `probabilistic.json`.
+
+use super::{Design, Sample, Sampling, Sensitivity, proportion, sensitivities};
+use crate::analysis::runner::{Outcome, RouteResult};
+
+/// A probability with its 95 % Wilson interval, over the samples whose route ran.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct Probability {
+    pub value: f64,
+    pub ci95: [f64; 2],
+}
+
+/// `0.9400 (95 % interval 0.9235 to 0.9531)`, or `none (no route ran)`.
+impl std::fmt::Display for Probability {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        if self.value.is_nan() {
+            return f.write_str("none (no route ran)");
+        }
+        write!(
+            f,
+            "{:.4} (95 % interval {:.4} to {:.4})",
+            self.value, self.ci95[0], self.ci95[1]
+        )
+    }
+}
+
+fn probability(k: usize, n: usize) -> Probability {
+    let (value, (lo, hi)) = proportion(k, n);
+    Probability {
+        value,
+        ci95: [lo, hi],
+    }
+}
+
+/// Percentiles 5, 50, 95 of some values (linear between order statistics; infinite values
+/// count, as the largest or smallest).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct Percentiles {
+    pub p5: f64,
+    pub p50: f64,
+    pub p95: f64,
+}
+
+/// The percentiles of `v`, NaN left out; `None` if nothing is left.
+pub fn percentiles(mut v: Vec<f64>) -> Option<Percentiles> {
+    v.retain(|x| !x.is_nan());
+    if v.is_empty() {
+        return None;
+    }
+    v.sort_by(f64::total_cmp);
+    let at = |q: f64| {
+        let pos = q * (v.len() - 1) as f64;
+        let (i, f) = (pos.floor() as usize, pos.fract());
+        let j = (i + 1).min(v.len() - 1);
+        if f == 0.0 || v[i] == v[j] {
+            v[i]
+        } else if v[i].is_infinite() || v[j].is_infinite() {
+            // No line between them: the nearer order statistic.
+            if f < 0.5 { v[i] } else { v[j] }
+        } else {
+            v[i] + f * (v[j] - v[i])
+        }
+    };
+    Some(Percentiles {
+        p5: at(0.05),
+        p50: at(0.5),
+        p95: at(0.95),
+    })
+}
+
+/// One uncertain key as it was given.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct Given {
+    pub key: String,
+    pub distribution: String,
+}
+
+/// Travel and rotation limits whose exceedance is asked for.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Limits {
+    /// Travel (m).
+    pub travel_m: Option<f64>,
+    /// Size of the final yaw (degrees).
+    pub rotation_deg: Option<f64>,
+}
+
+impl Limits {
+    /// Limits each finite and zero or more; else the name of the first that is not
+    /// (`travel_limit_m`, `rotation_limit_deg`) and its value.
+    pub fn new(
+        travel_m: Option<f64>,
+        rotation_deg: Option<f64>,
+    ) -> Result<Limits, (&'static str, f64)> {
+        for (name, l) in [
+            ("travel_limit_m", travel_m),
+            ("rotation_limit_deg", rotation_deg),
+        ] {
+            if let Some(l) = l.filter(|l| !(l.is_finite() && *l >= 0.0)) {
+                return Err((name, l));
+            }
+        }
+        Ok(Limits {
+            travel_m,
+            rotation_deg,
+        })
+    }
+}
+
+/// `probabilistic.json`.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct Summary {
+    pub scene: String,
+    pub samples: usize,
+    pub seed: u64,
+    pub sampling: Sampling,
+    pub distributions: Vec<Given>,
+    /// Samples whose route ran, whose values made no valid scene, and that were not run.
+    pub routes: usize,
+    pub invalid_samples: usize,
+    pub not_run: usize,
+    /// Factor of safety below 1, over the samples whose route ran.
+    pub probability_of_sliding: Probability,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub travel_limit_m: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub probability_travel_exceeds_limit: Option<Probability>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rotation_limit_deg: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub probability_rotation_exceeds_limit: Option<Probability>,
+    pub factor_of_safety: Option<Percentiles>,
+    pub travel_m: Option<Percentiles>,
+    /// Of the final yaw's size.
+    pub rotation_deg: Option<Percentiles>,
+    /// Spearman's rank correlation of each uncertain value with the factor of safety and with
+    /// the travel.
+    pub rank_correlations: Vec<Sensitivity>,
+}
+
+/// What `samples` of `design` came to.
+pub fn summarise(design: &Design, limits: Limits, samples: &[Sample]) -> Summary {
+    let routes: Vec<&RouteResult> = samples.iter().filter_map(|s| s.outcome.route()).collect();
+    let n = routes.len();
+    let count = |f: &dyn Fn(&RouteResult) -> bool| routes.iter().filter(|r| f(r)).count();
+    // A failed cone program counts as not sliding (its row says so).
+    let fs = |r: &RouteResult| r.factor_of_safety_value().unwrap_or(f64::NAN);
+    let keys: Vec<String> = design.uncertain.iter().map(|u| u.key.clone()).collect();
+    Summary {
+        scene: design.scene.name().to_string(),
+        samples: design.samples,
+        seed: design.seed,
+        sampling: design.sampling,
+        distributions: design
+            .uncertain
+            .iter()
+            .map(|u| Given {
+                key: u.key.clone(),
+                distribution: u.distribution.to_string(),
+            })
+            .collect(),
+        routes: n,
+        invalid_samples: samples
+            .iter()
+            .filter(|s| matches!(s.outcome, Outcome::Invalid { .. }))
+            .count(),
+        not_run: samples
+            .iter()
+            .filter(|s| matches!(s.outcome, Outcome::NotRun))
+            .count(),
+        probability_of_sliding: probability(count(&|r| fs(r) < 1.0), n),
+        travel_limit_m: limits.travel_m,
+        probability_travel_exceeds_limit: limits
+            .travel_m
+            .map(|l| probability(count(&|r| r.travel_m > l), n)),
+        rotation_limit_deg: limits.rotation_deg,
+        probability_rotation_exceeds_limit: limits
+            .rotation_deg
+            .map(|l| probability(count(&|r| r.yaw_deg.abs() > l), n)),
+        factor_of_safety: percentiles(routes.iter().map(|r| fs(r)).collect()),
+        travel_m: percentiles(routes.iter().map(|r| r.travel_m).collect()),
+        rotation_deg: percentiles(routes.iter().map(|r| r.yaw_deg.abs()).collect()),
+        rank_correlations: sensitivities(&keys, samples),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_probability_says_its_interval_or_that_no_route_ran() {
+        assert_eq!(
+            probability(30, 100).to_string(),
+            "0.3000 (95 % interval 0.2189 to 0.3958)"
+        );
+        assert_eq!(probability(0, 0).to_string(), "none (no route ran)");
+    }
+
+    #[test]
+    fn a_limit_must_be_finite_and_zero_or_more() {
+        assert!(Limits::new(Some(0.0), None).is_ok());
+        assert_eq!(Limits::new(Some(-1.0), None), Err(("travel_limit_m", -1.0)));
+        assert_eq!(
+            Limits::new(Some(1.0), Some(f64::INFINITY)),
+            Err(("rotation_limit_deg", f64::INFINITY))
+        );
+        assert!(Limits::new(None, Some(f64::NAN)).is_err());
+    }
+
+    #[test]
+    fn percentiles_interpolate_between_order_statistics() {
+        let p = percentiles((0..=100).map(f64::from).rev().collect()).unwrap();
+        assert_eq!((p.p5, p.p50, p.p95), (5.0, 50.0, 95.0));
+        let p = percentiles(vec![1.0, 3.0]).unwrap();
+        assert_eq!(p.p50, 2.0);
+        assert!(percentiles(vec![f64::NAN]).is_none());
+        // An infinite factor of safety is the largest, not a hole.
+        let p = percentiles(vec![1.0, 2.0, f64::INFINITY]).unwrap();
+        assert_eq!((p.p50, p.p95), (2.0, f64::INFINITY));
+        let p = percentiles(vec![f64::NEG_INFINITY, 1.0, 2.0]).unwrap();
+        assert_eq!((p.p5, p.p50), (f64::NEG_INFINITY, 1.0));
+    }
+}

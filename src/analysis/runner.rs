@@ -1,0 +1,204 @@
+//! The one runner of many routes: each from its own scene, on every core (with the `parallel`
+//! feature), in order, every item a row whatever its fate — a route, values that make no valid
+//! scene, or not run because the caller stopped. Sweeps (`sweep.rs`) and probabilistic analyses
+//! (`probabilistic/`) run through it, from the command line and from Python alike.
+
+use super::run::run_observed;
+use crate::mechanics::static_friction::FactorOfSafety;
+use crate::route::{Reason, Route};
+use crate::scene::{Scene, SceneError};
+use std::ops::ControlFlow;
+
+/// The most points of a route's CM path a row keeps ([`RouteResult::cm_path_m`]): enough to
+/// draw it in a route fan, little enough that ten thousand rows keep ten megabytes.
+pub const PATH_POINTS: usize = 64;
+
+/// The reason written for an item a stopped run did not start.
+pub const NOT_RUN: &str = "not run (interrupted)";
+
+/// What one route came to, as a row of many has it.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct RouteResult {
+    /// The factor of safety at the start (absent only where its cone program failed).
+    pub factor_of_safety: Option<FactorOfSafety>,
+    /// How the route ended, when (s), and what exactly happened.
+    pub reason: Reason,
+    pub t_s: f64,
+    pub detail: String,
+    /// Travel (m), and the final position (m) and yaw (degrees).
+    pub travel_m: f64,
+    pub x_m: f64,
+    pub z_m: f64,
+    pub yaw_deg: f64,
+    /// The largest tilts along the route (degrees).
+    pub max_alpha_deg: f64,
+    pub max_beta_deg: f64,
+    /// The CM path in plan, (X, Z) in m, thinned evenly to at most [`PATH_POINTS`] points (the
+    /// first and last kept).
+    #[serde(skip)]
+    pub cm_path_m: Vec<[f64; 2]>,
+}
+
+impl RouteResult {
+    /// What `route` came to.
+    pub fn of(route: &Route) -> RouteResult {
+        let last = route.rows.last();
+        let max = |f: fn(&crate::route::Row) -> f64| {
+            route.rows.iter().map(f).fold(f64::NEG_INFINITY, f64::max)
+        };
+        RouteResult {
+            factor_of_safety: route.factor_of_safety,
+            reason: route.termination.reason,
+            t_s: route.termination.t_s,
+            detail: route.termination.detail.clone(),
+            travel_m: route.travel_m,
+            x_m: last.map_or(0.0, |l| l.x_m),
+            z_m: last.map_or(0.0, |l| l.z_m),
+            yaw_deg: last.map_or(0.0, |l| l.theta_deg),
+            max_alpha_deg: max(|r| r.alpha_deg),
+            max_beta_deg: max(|r| r.beta_deg),
+            cm_path_m: thin(
+                &route
+                    .rows
+                    .iter()
+                    .map(|r| [r.x_m, r.z_m])
+                    .collect::<Vec<_>>(),
+                PATH_POINTS,
+            ),
+        }
+    }
+
+    /// The factor of safety as a number: +∞ where no multiple of the driving loads starts the
+    /// block, −∞ where the weight alone does.
+    pub fn factor_of_safety_value(&self) -> Option<f64> {
+        self.factor_of_safety.map(|f| match f {
+            FactorOfSafety::Finite { value } => value,
+            FactorOfSafety::Unbounded => f64::INFINITY,
+            FactorOfSafety::NotHoldable => f64::NEG_INFINITY,
+        })
+    }
+}
+
+/// What one item of many came to: its route, or why it has none.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+#[serde(tag = "outcome", rename_all = "kebab-case")]
+pub enum Outcome {
+    /// Its route ran.
+    Route(RouteResult),
+    /// Its values make no valid scene (the reason names the key).
+    Invalid {
+        /// Why, naming the key.
+        reason: String,
+    },
+    /// Not run: the caller stopped the run first.
+    NotRun,
+}
+
+impl Outcome {
+    /// The route's result, where a route ran.
+    pub fn route(&self) -> Option<&RouteResult> {
+        match self {
+            Outcome::Route(r) => Some(r),
+            _ => None,
+        }
+    }
+
+    /// How it ended, as a table writes it: the route's reason, `invalid scene` or [`NOT_RUN`].
+    pub fn reason(&self) -> &'static str {
+        match self {
+            Outcome::Route(r) => r.reason.as_str(),
+            Outcome::Invalid { .. } => "invalid scene",
+            Outcome::NotRun => NOT_RUN,
+        }
+    }
+}
+
+/// The route of each item of `items`, its scene `scene_of(item)`, in the items' order: on every
+/// core where the `parallel` feature is on. `tick` is called after each item; `stop` is asked
+/// before each (those it stops are [`Outcome::NotRun`]) and by routes under way, which end at
+/// their next increment as interrupted.
+pub fn run_many<T: Sync>(
+    items: &[T],
+    scene_of: impl Fn(&T) -> Result<Scene, SceneError> + Sync,
+    tick: impl Fn() + Sync,
+    stop: impl Fn() -> bool + Sync,
+) -> Vec<Outcome> {
+    let one = |item: &T| {
+        let outcome = if stop() {
+            Outcome::NotRun
+        } else {
+            let observe = |_: f64| {
+                if stop() {
+                    ControlFlow::Break(())
+                } else {
+                    ControlFlow::Continue(())
+                }
+            };
+            match scene_of(item).and_then(|scene| run_observed(&scene, observe)) {
+                Ok(route) => Outcome::Route(RouteResult::of(&route)),
+                Err(e) => Outcome::Invalid {
+                    reason: e.to_string(),
+                },
+            }
+        };
+        tick();
+        outcome
+    };
+    #[cfg(feature = "parallel")]
+    {
+        use rayon::prelude::*;
+        items.par_iter().map(one).collect()
+    }
+    #[cfg(not(feature = "parallel"))]
+    {
+        items.iter().map(one).collect()
+    }
+}
+
+/// At most `n` of `k` items, evenly spread, the first and last kept.
+fn thin<T: Copy>(items: &[T], n: usize) -> Vec<T> {
+    if items.len() <= n || n < 2 {
+        return items.to_vec();
+    }
+    (0..n)
+        .map(|i| items[(i * (items.len() - 1)).div_ceil(n - 1).min(items.len() - 1)])
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_thinned_path_keeps_its_ends_and_at_most_its_count() {
+        let v: Vec<usize> = (0..1000).collect();
+        let t = thin(&v, PATH_POINTS);
+        assert_eq!(t.len(), PATH_POINTS);
+        assert_eq!((t[0], *t.last().unwrap()), (0, 999));
+        assert!(t.windows(2).all(|w| w[0] < w[1]));
+        assert_eq!(thin(&v[..10], PATH_POINTS), v[..10].to_vec());
+    }
+
+    #[test]
+    fn every_item_has_its_row_in_order_whatever_its_fate() {
+        let base = Scene::default_scene().with("solver.t_end_s", 0.05).unwrap();
+        let items = [0.3, -1.0, 0.5];
+        let rows = run_many(
+            &items,
+            |mu| base.with("friction.mu_k", *mu),
+            || (),
+            || false,
+        );
+        assert_eq!(rows.len(), 3);
+        let route = |mu: f64| {
+            RouteResult::of(&crate::run(&base.with("friction.mu_k", mu).unwrap()).unwrap())
+        };
+        assert_eq!(rows[0], Outcome::Route(route(0.3)));
+        assert_eq!(rows[2], Outcome::Route(route(0.5)));
+        assert!(
+            matches!(&rows[1], Outcome::Invalid { reason } if reason.contains("friction.mu_k"))
+        );
+        let stopped = run_many(&items, |mu| base.with("friction.mu_k", *mu), || (), || true);
+        assert!(stopped.iter().all(|o| *o == Outcome::NotRun));
+    }
+}

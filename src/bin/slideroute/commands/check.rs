@@ -1,0 +1,75 @@
+//! `slideroute check`: each load case against the factor of safety its guideline requires —
+//! the table, `check.csv`, `check.json`, and the route of every case that fails in `case-N/`.
+
+use super::{load, write_route_folder};
+use crate::cli::CheckArgs;
+use crate::exit::{CliError, bad_input, failed, out, outln};
+use crate::output::folder::Folder;
+use crate::output::{check_files, route_files};
+use slideroute::{CaseResult, Guideline, Scene, check_cases};
+use std::path::PathBuf;
+
+/// `check.json`: the guideline and every case.
+#[derive(serde::Serialize)]
+struct CheckJson<'a> {
+    guideline: &'a Guideline,
+    cases: &'a [CaseResult],
+}
+
+/// Runs `slideroute check`.
+pub fn check(args: &CheckArgs) -> Result<(), CliError> {
+    let scene = load(&args.scene)?;
+    let mut folder = Folder::open(&args.out).map_err(failed)?;
+    let results = check_cases(&scene, |_| ()).map_err(bad_input)?;
+    let mut written = failing_routes(&scene, &results, args)?;
+    written.push(
+        folder
+            .write_with("check.csv", |tmp| {
+                let file = std::fs::File::create(tmp)
+                    .map_err(|e| format!("{}: cannot write: {e}", tmp.display()))?;
+                check_files::write_csv(file, &results).map_err(|e| format!("check.csv: {e}"))
+            })
+            .map_err(failed)?,
+    );
+    let manifest = route_files::Manifest::new(&scene, &folder);
+    let json = CheckJson {
+        guideline: scene.guideline(),
+        cases: &results,
+    };
+    written.push(
+        route_files::write_json_with_manifest(&mut folder, "check.json", &json, &manifest)
+            .map_err(failed)?,
+    );
+    folder.finish().map_err(failed)?;
+    if !args.quiet {
+        let table = check_files::CheckTable {
+            scene: scene.name(),
+            guideline: scene.guideline().describe(),
+            results: &results,
+        };
+        out!("{table}");
+        let names: Vec<String> = written.iter().map(|p| p.display().to_string()).collect();
+        outln!("  wrote {}", names.join(", "));
+    }
+    Ok(())
+}
+
+/// The route of each case that fails, in `case-N/` (N its number among the cases).
+fn failing_routes(
+    scene: &Scene,
+    results: &[CaseResult],
+    args: &CheckArgs,
+) -> Result<Vec<PathBuf>, CliError> {
+    let mut written = Vec::new();
+    for (k, r) in results.iter().enumerate().filter(|(_, r)| !r.passes) {
+        let case_scene = scene.for_case(&r.case).map_err(bad_input)?;
+        let mut sub = Folder::open(&args.out.join(format!("case-{k}"))).map_err(failed)?;
+        written.push(
+            route_files::write_route_csv(&mut sub, "route.csv", &r.run.route.rows)
+                .map_err(failed)?,
+        );
+        written
+            .extend(write_route_folder(sub, &case_scene, &r.run, args.no_plots).map_err(failed)?);
+    }
+    Ok(written)
+}

@@ -1,0 +1,43 @@
+//! `slideroute run --compare-dynamics`: the paper's route beside the rigid body's, each in its
+//! own folder, where they part, and both CM paths on one plan view.
+
+use super::load;
+use crate::cli::RunArgs;
+use crate::exit::{CliError, bad_input, failed, interrupted, interrupted_after, out};
+use crate::output::folder::Folder;
+use crate::output::summary::CompareSummary;
+
+/// Runs `slideroute run --compare-dynamics`.
+pub fn compare(args: &RunArgs) -> Result<(), CliError> {
+    let scene = load(&args.scene)?;
+    let mut folder = Folder::open(&args.out).map_err(failed)?;
+    let c = slideroute::compare_dynamics_observed(&scene, interrupted).map_err(bad_input)?;
+    #[allow(unused_mut)]
+    let mut files = crate::output::compare_files::write(&mut folder, &scene, &c).map_err(failed)?;
+    #[cfg(feature = "plots")]
+    if !args.no_plots {
+        let path = folder
+            .write_with("compare-plan.svg", |tmp| {
+                crate::output::plots::compare_plan(tmp, &scene, &c)
+            })
+            .map_err(failed)?;
+        files.push(path);
+    }
+    folder.finish().map_err(failed)?;
+    if interrupted() {
+        return Err(interrupted_after(
+            "interrupted: the routes stopped at their next increment",
+            &files,
+        ));
+    }
+    if !args.quiet {
+        out!(
+            "{}",
+            CompareSummary {
+                comparison: &c,
+                files: &files
+            }
+        );
+    }
+    Ok(())
+}

@@ -1,0 +1,110 @@
+//! One file per command: each reads its arguments, calls the library, writes its files and
+//! prints its summary. What they share is here: the scene a command reads, the progress bar,
+//! a displacement from flags, and a route's folder of files.
+
+pub mod check;
+pub mod coeffs;
+pub mod compare;
+pub mod probabilistic;
+pub mod report;
+pub mod roots;
+pub mod run;
+pub mod scene;
+pub mod sweep;
+
+use crate::cli::{PoseArgs, SceneArg};
+use crate::exit::{CliError, bad_input, failed, outln};
+use crate::output::folder::Folder;
+use slideroute::{Computed, Displacement, DynamicsModel, Scene};
+use std::path::PathBuf;
+
+/// The scene of `arg` (the embedded default without a file), its likely mistakes warned of on
+/// standard error.
+pub fn load(arg: &SceneArg) -> Result<Scene, CliError> {
+    let scene = match &arg.scene {
+        Some(p) => Scene::from_file(p).map_err(bad_input)?,
+        None => Scene::default_scene(),
+    };
+    for w in scene.warnings() {
+        eprintln!("slideroute: warning: {w}");
+    }
+    Ok(scene)
+}
+
+/// [`load`], with its dynamics model overridden when `dynamics` says.
+pub fn load_with(arg: &SceneArg, dynamics: Option<DynamicsModel>) -> Result<Scene, CliError> {
+    let base = load(arg)?;
+    match dynamics {
+        Some(model) => base.with_dynamics(model).map_err(bad_input),
+        None => Ok(base),
+    }
+}
+
+/// A progress bar of `len` steps labelled `what`, drawn on standard error only when it is a
+/// terminal; none when `quiet`.
+pub fn progress_bar(quiet: bool, len: u64, what: &str) -> indicatif::ProgressBar {
+    if quiet {
+        return indicatif::ProgressBar::hidden();
+    }
+    let bar = indicatif::ProgressBar::new(len);
+    let style = indicatif::ProgressStyle::with_template(&format!(
+        "{what} [{{bar:40}}] {{pos}}/{{len}} {{elapsed_precise}}"
+    ))
+    .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar());
+    bar.set_style(style.progress_chars("=> "));
+    bar
+}
+
+/// The displacement the flags give, each of X, Z and θ required and finite.
+pub fn displacement(p: &PoseArgs) -> Result<Displacement, CliError> {
+    let get = |name: &str, v: Option<f64>| match v {
+        None => Err(bad_input(format!("--{name} is required"))),
+        Some(v) if !v.is_finite() => Err(bad_input(format!(
+            "--{name}: must be a finite number, got {v}"
+        ))),
+        Some(v) => Ok(v),
+    };
+    Ok(Displacement::new(
+        get("x", p.x)?,
+        get("z", p.z)?,
+        get("theta-deg", p.theta_deg)?.to_radians(),
+    ))
+}
+
+/// `value` as pretty JSON on standard output.
+pub fn print_json(value: &impl serde::Serialize) -> Result<(), CliError> {
+    let s = serde_json::to_string_pretty(value)
+        .map_err(|e| failed(format!("cannot write JSON: {e}")))?;
+    outln!("{s}");
+    Ok(())
+}
+
+/// The pictures of `computed`'s route (unless `no_plots`) and summary.json (with the manifest,
+/// last) into the locked output folder, beside route.csv, each whole or absent, replacing an
+/// earlier run's outputs there.
+pub fn write_route_folder(
+    mut folder: Folder,
+    scene: &Scene,
+    computed: &Computed,
+    no_plots: bool,
+) -> Result<Vec<PathBuf>, String> {
+    use crate::output::route_files;
+    let mut files = Vec::new();
+    #[cfg(feature = "plots")]
+    if !no_plots {
+        let staging = folder.staging()?;
+        let staged = crate::output::plots::write_route_plots(&staging, scene, &computed.route)?;
+        files.extend(folder.adopt_all(staged)?);
+    }
+    #[cfg(not(feature = "plots"))]
+    let _ = no_plots;
+    let manifest = route_files::Manifest::new(scene, &folder);
+    files.push(route_files::write_json_with_manifest(
+        &mut folder,
+        "summary.json",
+        computed,
+        &manifest,
+    )?);
+    folder.finish()?;
+    Ok(files)
+}

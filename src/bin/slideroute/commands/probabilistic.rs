@@ -1,0 +1,163 @@
+//! `slideroute probabilistic`: uncertain scene keys sampled from their distributions, every
+//! sample's route in parallel (the library's `slideroute::probabilistic`), `samples.csv`,
+//! `probabilistic.json` and the pictures.
+
+use super::{load_with, progress_bar};
+use crate::cli::ProbabilisticArgs;
+use crate::exit::{CliError, bad_input, failed, interrupted, interrupted_after, outln};
+use crate::output::folder::Folder;
+use crate::output::route_files::{Manifest, write_json_with_manifest};
+use slideroute::probabilistic::{
+    Design, Limits, MAX_SAMPLES, Sampling, Summary, Uncertain, check_uncertain, merged, summarise,
+};
+use slideroute::{NOT_RUN, Scene};
+
+/// Runs `slideroute probabilistic`.
+pub fn probabilistic(args: &ProbabilisticArgs) -> Result<(), CliError> {
+    let base = load_with(&args.scene, args.dynamics)?;
+    if args.samples == 0 || args.samples > MAX_SAMPLES {
+        return Err(bad_input(format!(
+            "--samples {}: from 1 to {MAX_SAMPLES}",
+            args.samples
+        )));
+    }
+    let limits =
+        Limits::new(args.travel_limit_m, args.rotation_limit_deg).map_err(|(name, l)| {
+            bad_input(format!(
+                "--{} {l}: a finite number, zero or more",
+                name.replace('_', "-")
+            ))
+        })?;
+    let uncertain = uncertain(&base, &args.dist)?;
+    let mut folder = Folder::open(&args.out).map_err(failed)?;
+    let bar = progress_bar(args.quiet, args.samples as u64, "samples");
+    let design = Design {
+        scene: &base,
+        uncertain: &uncertain,
+        samples: args.samples,
+        seed: args.seed,
+        sampling: args.sampling,
+    };
+    let rows = design.run(|| bar.inc(1), interrupted);
+    bar.finish_and_clear();
+    let csv_path = folder
+        .write_with("samples.csv", |tmp| {
+            let file = std::fs::File::create(tmp)
+                .map_err(|e| format!("{}: cannot write: {e}", tmp.display()))?;
+            crate::output::samples_files::write_csv(
+                std::io::BufWriter::new(file),
+                &uncertain,
+                &rows,
+            )
+            .map_err(|e| format!("samples.csv: {e}"))
+        })
+        .map_err(failed)?;
+    let summary = summarise(&design, limits, &rows);
+    let mut written = vec![csv_path];
+    #[cfg(feature = "plots")]
+    if !args.no_plots && !interrupted() {
+        // The scene as written, drawn in black on the fan.
+        let nominal = slideroute::run(&base).ok();
+        let staging = folder.staging().map_err(failed)?;
+        let staged = crate::output::plots::write_probabilistic_plots(
+            &staging,
+            &base,
+            nominal.as_ref(),
+            &rows,
+            &summary,
+        )
+        .map_err(failed)?;
+        written.extend(folder.adopt_all(staged).map_err(failed)?);
+    }
+    let manifest = Manifest::new(&base, &folder);
+    let json = write_json_with_manifest(&mut folder, "probabilistic.json", &summary, &manifest)
+        .map_err(failed)?;
+    folder.finish().map_err(failed)?;
+    written.push(json);
+    if interrupted() {
+        return Err(interrupted_after(
+            &format!(
+                "interrupted: samples under way stopped, those not started are rows \
+                 \"{NOT_RUN}\""
+            ),
+            &written,
+        ));
+    }
+    if !args.quiet {
+        print_summary(&summary, args.sampling, &written)?;
+    }
+    Ok(())
+}
+
+/// The uncertain keys: the scene's `[uncertain]` table, then `--dist` (a key of both takes the
+/// command line's), each a number of the scene, given once; the error names each as it was
+/// given.
+fn uncertain(base: &Scene, dist: &[String]) -> Result<Vec<Uncertain>, CliError> {
+    let given = dist
+        .iter()
+        .map(|d| d.parse::<Uncertain>().map_err(|e| format!("--dist {e}")))
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(bad_input)?;
+    let uncertain = merged(base.uncertain(), given);
+    if uncertain.is_empty() {
+        return Err(bad_input(format!(
+            "{}: nothing is uncertain: give --dist KEY=DISTRIBUTION or an [uncertain] table in \
+             the scene",
+            base.origin()
+        )));
+    }
+    check_uncertain(base, &uncertain).map_err(|e| {
+        let on_command_line = dist.iter().any(|d| d.starts_with(&format!("{}=", e.key)));
+        if on_command_line || !base.uncertain().iter().any(|u| u.key == e.key) {
+            bad_input(format!("--dist {e}"))
+        } else {
+            bad_input(format!(
+                "{}: uncertain.\"{}\": {}",
+                base.origin(),
+                e.key,
+                e.reason
+            ))
+        }
+    })?;
+    Ok(uncertain)
+}
+
+/// What the samples came to, and the files written.
+fn print_summary(
+    summary: &Summary,
+    sampling: Sampling,
+    written: &[std::path::PathBuf],
+) -> Result<(), CliError> {
+    let how = match sampling {
+        Sampling::MonteCarlo => "Monte Carlo",
+        Sampling::LatinHypercube => "Latin hypercube",
+    };
+    outln!(
+        "probabilistic {}: {} samples ({how}), {} routes, {} invalid",
+        summary.scene,
+        summary.samples,
+        summary.routes,
+        summary.invalid_samples
+    );
+    outln!(
+        "  probability of sliding (factor of safety below 1) {}",
+        summary.probability_of_sliding
+    );
+    for (what, prob) in [
+        (
+            "travel over the limit",
+            summary.probability_travel_exceeds_limit,
+        ),
+        (
+            "rotation over the limit",
+            summary.probability_rotation_exceeds_limit,
+        ),
+    ] {
+        if let Some(q) = prob {
+            outln!("  probability of {what} {q}");
+        }
+    }
+    let names: Vec<String> = written.iter().map(|p| p.display().to_string()).collect();
+    outln!("  wrote {}", names.join(", "));
+    Ok(())
+}

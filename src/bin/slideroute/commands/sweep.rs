@@ -1,0 +1,74 @@
+//! `slideroute sweep`: every combination of the varied keys, in parallel (the library's
+//! `slideroute::sweep`), written as `sweep.csv` and drawn as `sweep.svg`.
+
+use super::{load_with, progress_bar};
+use crate::cli::SweepArgs;
+use crate::exit::{CliError, bad_input, failed, interrupted, interrupted_after, outln};
+use crate::output::folder::Folder;
+use crate::sweep::SweepRow;
+use slideroute::NOT_RUN;
+use slideroute::sweep::{Sweep, Vary};
+use std::collections::BTreeMap;
+
+/// Runs `slideroute sweep`.
+pub fn sweep(args: &SweepArgs) -> Result<(), CliError> {
+    // The base scene must itself be valid.
+    let base = load_with(&args.scene, args.dynamics)?;
+    let varies = args
+        .vary
+        .iter()
+        .map(|v| v.parse::<Vary>())
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(|e| bad_input(format!("--vary {e}")))?;
+    let sweep = Sweep::new(&base, varies).map_err(|e| bad_input(format!("--vary {e}")))?;
+    let n = sweep.count();
+    let mut folder = Folder::open(&args.out).map_err(failed)?;
+    let bar = progress_bar(args.quiet, n as u64, "sweep");
+    let rows: Vec<SweepRow> = sweep
+        .run(|| bar.inc(1), interrupted)
+        .iter()
+        .map(SweepRow::from)
+        .collect();
+    bar.finish_and_clear();
+    let varies = sweep.varies();
+    let csv_path = folder
+        .write_with("sweep.csv", |tmp| {
+            let file = std::fs::File::create(tmp)
+                .map_err(|e| format!("{}: cannot write: {e}", tmp.display()))?;
+            crate::output::sweep_files::write_csv(file, varies, &rows)
+                .map_err(|e| format!("sweep.csv: {e}"))
+        })
+        .map_err(failed)?;
+    #[allow(unused_mut)]
+    let mut written = vec![csv_path];
+    #[cfg(feature = "plots")]
+    written.push(
+        folder
+            .write_with("sweep.svg", |tmp| {
+                crate::output::plots::sweep(tmp, varies, &rows)
+            })
+            .map_err(failed)?,
+    );
+    folder.finish().map_err(failed)?;
+    if interrupted() {
+        return Err(interrupted_after(
+            &format!(
+                "interrupted: combinations under way stopped, those not started are rows \
+                 \"{NOT_RUN}\""
+            ),
+            &written,
+        ));
+    }
+    if !args.quiet {
+        let mut counts: BTreeMap<&str, usize> = BTreeMap::new();
+        for r in &rows {
+            *counts.entry(r.reason.as_str()).or_default() += 1;
+        }
+        let summary: Vec<String> = counts.iter().map(|(k, v)| format!("{v} × {k}")).collect();
+        let plural = if n == 1 { "" } else { "s" };
+        outln!("{n} combination{plural}: {}", summary.join(", "));
+        let names: Vec<String> = written.iter().map(|p| p.display().to_string()).collect();
+        outln!("wrote {}", names.join(", "));
+    }
+    Ok(())
+}

@@ -1,0 +1,104 @@
+//! How a command ends: a typed failure that decides the exit code (README, "Exit codes") — 2 for
+//! bad input (a scene, flag or input file that is wrong), 1 for any other failure (an output that
+//! cannot be written, a full disk), and a quiet 0 when whoever reads standard output has closed
+//! it (as `head` does), like other Unix tools; standard output written without panicking; and
+//! the interruption by Ctrl-C or SIGTERM.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+/// How a command failed.
+#[derive(Debug)]
+pub enum CliError {
+    /// A scene, flag or input file that is wrong: exit 2.
+    BadInput(String),
+    /// Anything else (an output that cannot be written): exit 1.
+    Failed(String),
+    /// Standard output was closed: a quiet 0.
+    ClosedPipe,
+}
+
+/// A scene, flag or input file that is wrong: exit 2.
+pub fn bad_input(msg: impl ToString) -> CliError {
+    CliError::BadInput(msg.to_string())
+}
+
+/// An output that could not be written: exit 1.
+pub fn failed(msg: impl ToString) -> CliError {
+    CliError::Failed(msg.to_string())
+}
+
+/// Writing to standard output failed: a closed pipe ends the command quietly, any other error
+/// (a full disk) is a one-line failure.
+pub fn stdout_error(e: std::io::Error) -> CliError {
+    if e.kind() == std::io::ErrorKind::BrokenPipe {
+        CliError::ClosedPipe
+    } else {
+        CliError::Failed(format!("standard output: {e}"))
+    }
+}
+
+/// Prints to standard output (flushed) without panicking, returning a [`CliError`] from the
+/// function it is used in.
+macro_rules! out {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let mut o = std::io::stdout().lock();
+        write!(o, $($arg)*).and_then(|_| o.flush()).map_err($crate::exit::stdout_error)?
+    }};
+}
+
+/// [`out!`] with a newline.
+macro_rules! outln {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let mut o = std::io::stdout().lock();
+        writeln!(o, $($arg)*).and_then(|_| o.flush()).map_err($crate::exit::stdout_error)?
+    }};
+}
+
+pub(crate) use {out, outln};
+
+/// The exit code of a result, its failure said in one line on standard error.
+pub fn exit_code(result: Result<(), CliError>) -> ExitCode {
+    match result {
+        Ok(()) | Err(CliError::ClosedPipe) => ExitCode::SUCCESS,
+        Err(CliError::BadInput(msg)) => {
+            eprintln!("slideroute: {msg}");
+            ExitCode::from(2)
+        }
+        Err(CliError::Failed(msg)) => {
+            eprintln!("slideroute: {msg}");
+            ExitCode::from(1)
+        }
+    }
+}
+
+/// Set by Ctrl-C (SIGINT) and SIGTERM: a route stops at its next increment and writes what it
+/// computed, with termination "interrupted"; a second signal ends the process.
+static INTERRUPTED: AtomicBool = AtomicBool::new(false);
+
+/// Listens for Ctrl-C and SIGTERM.
+pub fn catch_interruptions() {
+    let _ = ctrlc::set_handler(|| {
+        if INTERRUPTED.swap(true, Ordering::Relaxed) {
+            std::process::exit(130);
+        }
+    });
+}
+
+/// Whether Ctrl-C or SIGTERM has come.
+pub fn interrupted() -> bool {
+    INTERRUPTED.load(Ordering::Relaxed)
+}
+
+/// The failure of a command that was interrupted after writing `files` whole: `what` stopped,
+/// and what was computed was written.
+pub fn interrupted_after(what: &str, files: &[PathBuf]) -> CliError {
+    let names: Vec<String> = files.iter().map(|f| f.display().to_string()).collect();
+    failed(format!(
+        "{what}; wrote what was computed: {}",
+        names.join(", ")
+    ))
+}

@@ -1,0 +1,36 @@
+//! The physical model, at the bottom of the house: the block and its loads, what the
+//! foundation's faces carry in shear, the monolith's section and the water on it, the
+//! foundation's shaking, the motion at the start, how a route is run, and the load cases a
+//! guideline checks. Plain typed values and their physics, each checked against its range
+//! (the errors name each value as a scene file does), and put together in a [`Simulation`].
+//! No file format lives here: the scene reader (`scene/`) builds these from a scene file.
+
+mod block;
+mod error;
+mod friction;
+mod guideline;
+mod initial;
+mod loads;
+mod monolith;
+pub(crate) mod names;
+mod record;
+mod settings;
+mod simulation;
+mod water;
+
+pub use block::Block;
+pub use error::ModelError;
+pub(crate) use error::{check, finite, non_negative, positive};
+pub use friction::{
+    BARTON_MAX_ANGLE_DEG, FaceStrength, Friction, Strength, Strengths, barycentric,
+};
+pub use guideline::{Category, Guideline, LoadCase, SiteInformation, Structure};
+pub use initial::Initial;
+pub use loads::Loads;
+pub use monolith::{MassProperties, Monolith, Section};
+pub use names::UnknownName;
+pub use record::Record;
+pub use settings::{DynamicsModel, Integrator, MAX_INCREMENTS, Mode, RunSettings};
+pub use simulation::{Simulation, SimulationBuilder};
+pub(crate) use simulation::{check_ratios, check_rigid_only, face_count};
+pub use water::{Levels, Resultant, WaterLoads, water_loads};

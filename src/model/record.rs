@@ -1,0 +1,115 @@
+//! A ground-motion record: the foundation's acceleration in time (fractions of g along the
+//! scene's X, Y, Z). The route is then the block's motion relative to the foundation: the
+//! record enters as the inertial force −m g a(t) on the block (`derivations/11-dam-loads.md`
+//! §3). A scene reads it from a CSV file (`scene/files.rs`).
+
+use super::error::ModelError;
+
+/// A fault of the record's samples (line numbers as in its file: the header, then a sample a
+/// line).
+fn fault(reason: String) -> ModelError {
+    ModelError::new("seismic.record", reason)
+}
+
+/// Times (s, strictly increasing) and the ground's accelerations (g) at them.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Record {
+    t: Vec<f64>,
+    a: Vec<[f64; 3]>,
+}
+
+impl Record {
+    /// From samples: at least two, times finite and strictly increasing, accelerations finite
+    /// and below 10 g.
+    pub fn new(samples: Vec<(f64, [f64; 3])>) -> Result<Record, ModelError> {
+        if samples.len() < 2 {
+            return Err(fault("a record needs at least two samples".into()));
+        }
+        for (k, (t, a)) in samples.iter().enumerate() {
+            if !t.is_finite() || a.iter().any(|v| !v.is_finite()) {
+                return Err(fault(format!(
+                    "sample {k} (line {}): not a finite number",
+                    k + 2
+                )));
+            }
+            if a.iter().any(|v| v.abs() > 10.0) {
+                return Err(fault(format!(
+                    "sample {k} (line {}): an acceleration over 10 g",
+                    k + 2
+                )));
+            }
+            if k > 0 && *t <= samples[k - 1].0 {
+                return Err(fault(format!(
+                    "sample {k} (line {}): time {t} s does not come after {} s",
+                    k + 2,
+                    samples[k - 1].0
+                )));
+            }
+        }
+        let (t, a) = samples.into_iter().unzip();
+        Ok(Record { t, a })
+    }
+
+    /// The ground's acceleration (g) at time t, linear between samples; none before the first
+    /// sample or after the last (the ground at rest).
+    pub fn at(&self, t: f64) -> [f64; 3] {
+        let (first, last) = (self.t[0], self.t[self.t.len() - 1]);
+        if !(first..=last).contains(&t) {
+            return [0.0; 3];
+        }
+        let k = self
+            .t
+            .partition_point(|&s| s <= t)
+            .clamp(1, self.t.len() - 1);
+        let (t0, t1) = (self.t[k - 1], self.t[k]);
+        let f = (t - t0) / (t1 - t0);
+        std::array::from_fn(|c| self.a[k - 1][c] + f * (self.a[k][c] - self.a[k - 1][c]))
+    }
+
+    /// The first sample's time after t (s), beyond round-off of t: where the record's slope
+    /// may change, so that an integrator steps to it rather than over it.
+    pub fn next_sample(&self, t: f64) -> Option<f64> {
+        let past = t + 1e-12 * t.abs().max(1.0);
+        let k = self.t.partition_point(|&s| s <= past);
+        self.t.get(k).copied()
+    }
+
+    /// The last sample's time (s): after it the ground is still.
+    pub fn end(&self) -> f64 {
+        self.t[self.t.len() - 1]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_record_is_linear_between_samples_and_still_outside_them() {
+        let r = Record::new(vec![
+            (0.0, [0.0, 0.0, 0.0]),
+            (1.0, [1.0, -0.5, 0.2]),
+            (3.0, [-1.0, 0.5, 0.2]),
+        ])
+        .unwrap();
+        assert_eq!(r.at(0.5), [0.5, -0.25, 0.1]);
+        assert_eq!(r.at(2.0), [0.0, 0.0, 0.2]);
+        assert_eq!(r.at(3.0), [-1.0, 0.5, 0.2]);
+        assert_eq!(r.at(3.5), [0.0; 3]);
+        assert_eq!(r.at(-1.0), [0.0; 3]);
+        assert_eq!(r.end(), 3.0);
+        assert_eq!(r.next_sample(-1.0), Some(0.0));
+        assert_eq!(r.next_sample(0.0), Some(1.0));
+        assert_eq!(r.next_sample(1.0 - 1e-15), Some(3.0));
+        assert_eq!(r.next_sample(3.0), None);
+    }
+
+    #[test]
+    fn a_record_out_of_order_or_not_finite_is_refused_naming_the_line() {
+        let e = Record::new(vec![(0.0, [0.0; 3]), (0.0, [0.0; 3])]).unwrap_err();
+        assert!(e.reason.contains("line 3"), "{e}");
+        let e = Record::new(vec![(0.0, [0.0; 3]), (1.0, [f64::NAN, 0.0, 0.0])]).unwrap_err();
+        assert!(e.reason.contains("not a finite number"), "{e}");
+        assert!(Record::new(vec![(0.0, [0.0; 3])]).is_err());
+    }
+}

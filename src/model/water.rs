@@ -1,0 +1,244 @@
+//! The water on a monolith from its levels (`derivations/11-dam-loads.md` §2): the reservoir's
+//! and the tailwater's pushes, the tailwater's weight on the sloping downstream face, and the
+//! uplift on the base with or without drains. Positions are from the heel along x′ and from the
+//! base along y′.
+
+use super::error::{ModelError, check, non_negative, positive};
+use super::monolith::Section;
+
+/// Reservoir and tailwater levels, and the drains (`[water]`).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct Levels {
+    /// H1: the reservoir's surface above the base at the heel (m).
+    pub headwater: f64,
+    /// H2: the tailwater's surface above the base at the toe (m).
+    pub tailwater: f64,
+    /// ρ_w (kg/m³).
+    pub density: f64,
+    /// E: the drains' efficiency, 0 (none) … 1.
+    pub drain_efficiency: f64,
+    /// X: the line of drains from the heel along x′ (m).
+    pub drain_position: f64,
+}
+
+impl Levels {
+    /// Levels on `section`: none negative, the tailwater at most the headwater (the water
+    /// pushes the monolith downstream) and the monolith's height, a positive density, drains'
+    /// efficiency from 0 to 1 and their line within the base.
+    pub fn check(&self, section: &Section) -> Result<(), ModelError> {
+        let headwater = non_negative("water.headwater_m", self.headwater)?;
+        let tailwater = non_negative("water.tailwater_m", self.tailwater)?;
+        if tailwater > headwater {
+            return Err(ModelError::new(
+                "water.tailwater_m",
+                format!(
+                    "must be at most the headwater ({headwater} m), got {tailwater} m (the water \
+                     pushes the monolith downstream)"
+                ),
+            ));
+        }
+        if tailwater > section.height {
+            return Err(ModelError::new(
+                "water.tailwater_m",
+                format!(
+                    "must be at most the monolith's height ({} m), got {tailwater} m",
+                    section.height
+                ),
+            ));
+        }
+        positive("water.density_kg_m3", self.density)?;
+        let e = self.drain_efficiency;
+        check(
+            "water.drain_efficiency",
+            e,
+            (0.0..=1.0).contains(&e),
+            "between 0 and 1",
+        )?;
+        let (x, b) = (self.drain_position, section.base_length);
+        if e > 0.0 || x != 0.0 {
+            check(
+                "water.drain_position_m",
+                x,
+                x > 0.0 && x < b,
+                &format!("within the base, between 0 and {b} m from the heel"),
+            )?;
+        }
+        Ok(())
+    }
+}
+
+/// A force in the section's plane and where its line meets the base or the height.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct Resultant {
+    /// Its size (N).
+    pub force_n: f64,
+    /// Where it acts: the height above the base of a horizontal force, the distance from the
+    /// heel of a vertical one (m).
+    pub at_m: f64,
+}
+
+/// The water's loads on a monolith ([`water_loads`]).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct WaterLoads {
+    /// The reservoir's push on the upstream face, along +x′, at its height above the base.
+    pub headwater: Resultant,
+    /// The tailwater's push on the downstream face, along −x′, at its height above the base.
+    pub tailwater: Resultant,
+    /// The tailwater's weight on the sloping downstream face, along −y′, at its distance from
+    /// the heel.
+    pub tailwater_weight: Resultant,
+    /// Uplift on the base, along +y′, at its distance from the heel.
+    pub uplift: Resultant,
+    /// The uplift head at the line of drains (m; the linear head there without drains).
+    pub drain_head_m: f64,
+    /// The levels these come from.
+    #[serde(skip)]
+    pub levels: Levels,
+}
+
+/// The water's loads from levels, g the gravity (m/s²):
+///
+/// * the reservoir on the vertical upstream face: the pressure ρ g (H1 − y) over 0 ≤ y ≤
+///   min(H1, h) — ½ ρ g H1² w at H1/3 for a reservoir below the crest;
+/// * the tailwater on the downstream face of slope s = (b − c)/h horizontal per vertical:
+///   ½ ρ g H2² w along −x′ at H2/3, and the water above the face, ½ ρ g H2² s w, along −y′ at
+///   b − s H2/3 from the heel (H2 ≤ h);
+/// * uplift on the base: the head falls linearly from H1 at the heel to H2 at the toe; with
+///   drains of efficiency E at X from the heel it falls linearly from H1 to
+///   H3 = H2 + (1 − E)(H1 − H2)(b − X)/b at the drains, then linearly to H2 at the toe — the
+///   US Army Corps of Engineers' rule for drains near the heel, EM 1110-2-2100 (Stability
+///   Analysis of Concrete Structures, 2005), chapter 3. E = 0 gives the linear distribution.
+pub fn water_loads(section: &Section, levels: &Levels, g: f64) -> WaterLoads {
+    let (b, w, h) = (section.base_length, section.width, section.height);
+    let gamma = levels.density * g;
+    // The reservoir: ∫_0^a (H1 − y) dy and ∫_0^a y (H1 − y) dy with a = min(H1, h).
+    let h1 = levels.headwater;
+    let a = h1.min(h);
+    let push = h1 * a - a * a / 2.0;
+    let moment = h1 * a * a / 2.0 - a * a * a / 3.0;
+    let headwater = Resultant {
+        force_n: gamma * w * push,
+        at_m: if push > 0.0 { moment / push } else { 0.0 },
+    };
+    let h2 = levels.tailwater.min(h);
+    let slope = (b - section.crest_length) / h;
+    let tailwater = Resultant {
+        force_n: gamma * w * h2 * h2 / 2.0,
+        at_m: h2 / 3.0,
+    };
+    let tailwater_weight = Resultant {
+        force_n: gamma * w * h2 * h2 * slope / 2.0,
+        at_m: b - slope * h2 / 3.0,
+    };
+    // Uplift: the head along the base as a polyline of (x, head), integrated piece by piece.
+    let h2 = levels.tailwater;
+    let linear = |x: f64| h1 + (h2 - h1) * x / b;
+    let x_d = levels.drain_position;
+    let drained = levels.drain_efficiency > 0.0;
+    let h3 = if drained {
+        h2 + (1.0 - levels.drain_efficiency) * (h1 - h2) * (b - x_d) / b
+    } else {
+        linear(x_d)
+    };
+    let points: Vec<[f64; 2]> = if drained {
+        vec![[0.0, h1], [x_d, h3], [b, h2]]
+    } else {
+        vec![[0.0, h1], [b, h2]]
+    };
+    let (mut area, mut first) = (0.0, 0.0);
+    for pair in points.windows(2) {
+        let ([x0, p0], [x1, p1]) = (pair[0], pair[1]);
+        let dx = x1 - x0;
+        area += dx * (p0 + p1) / 2.0;
+        // ∫ x p dx over a trapezoid.
+        first += dx * (p0 * (2.0 * x0 + x1) + p1 * (x0 + 2.0 * x1)) / 6.0;
+    }
+    let uplift = Resultant {
+        force_n: gamma * w * area,
+        at_m: if area > 0.0 { first / area } else { b / 2.0 },
+    };
+    WaterLoads {
+        headwater,
+        tailwater,
+        tailwater_weight,
+        uplift,
+        drain_head_m: h3,
+        levels: *levels,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn section() -> Section {
+        Section {
+            base_length: 20.0,
+            width: 10.0,
+            height: 15.0,
+            crest_length: 5.0,
+            density: 2400.0,
+        }
+    }
+
+    fn levels(head: f64, tail: f64, e: f64) -> Levels {
+        Levels {
+            headwater: head,
+            tailwater: tail,
+            density: 1000.0,
+            drain_efficiency: e,
+            drain_position: 2.0,
+        }
+    }
+
+    #[test]
+    fn the_reservoir_pushes_half_rho_g_h_squared_at_a_third_of_its_depth() {
+        let s = section();
+        let l = water_loads(&s, &levels(12.0, 0.0, 0.0), 9.81);
+        let want = 0.5 * 1000.0 * 9.81 * 144.0 * 10.0;
+        assert!((l.headwater.force_n - want).abs() < 1e-9 * want);
+        assert!((l.headwater.at_m - 4.0).abs() < 1e-12);
+        // Over the crest the face is wetted to its top only: ρ g w (H h − h²/2), its centre
+        // of pressure ∫ y p / ∫ p.
+        let over = water_loads(&s, &levels(18.0, 0.0, 0.0), 9.81);
+        let want = 1000.0 * 9.81 * 10.0 * (18.0 * 15.0 - 112.5);
+        assert!((over.headwater.force_n - want).abs() < 1e-9 * want);
+        let at = (18.0 * 112.5 - 1125.0) / (18.0 * 15.0 - 112.5);
+        assert!((over.headwater.at_m - at).abs() < 1e-12);
+    }
+
+    #[test]
+    fn uplift_is_the_area_of_the_head_diagram_with_or_without_drains() {
+        let s = section();
+        let g = 9.81;
+        // Linear from 12 m at the heel to 3 m at the toe: a trapezoid.
+        let l = water_loads(&s, &levels(12.0, 3.0, 0.0), g);
+        let want = 1000.0 * g * 10.0 * 20.0 * (12.0 + 3.0) / 2.0;
+        assert!((l.uplift.force_n - want).abs() < 1e-9 * want);
+        let at = 20.0 * (12.0 + 2.0 * 3.0) / (3.0 * (12.0 + 3.0));
+        assert!((l.uplift.at_m - at).abs() < 1e-12);
+        // Drains at 2 m, 50 % efficient: H3 = 3 + 0.5 · 9 · 18/20 = 7.05 m.
+        let d = water_loads(&s, &levels(12.0, 3.0, 0.5), g);
+        assert!((d.drain_head_m - 7.05).abs() < 1e-12);
+        let area = 2.0 * (12.0 + 7.05) / 2.0 + 18.0 * (7.05 + 3.0) / 2.0;
+        let want = 1000.0 * g * 10.0 * area;
+        assert!((d.uplift.force_n - want).abs() < 1e-9 * want);
+        // Fully efficient drains leave the tailwater's head from the drains on.
+        let full = water_loads(&s, &levels(12.0, 3.0, 1.0), g);
+        assert!((full.drain_head_m - 3.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn the_tailwater_pushes_back_and_weighs_on_the_sloping_face() {
+        let s = section();
+        let l = water_loads(&s, &levels(12.0, 3.0, 0.0), 9.81);
+        let push = 0.5 * 1000.0 * 9.81 * 9.0 * 10.0;
+        assert!((l.tailwater.force_n - push).abs() < 1e-9 * push);
+        assert!((l.tailwater.at_m - 1.0).abs() < 1e-12);
+        // Slope 15/15 = 1 horizontal per vertical: the water above the face is a right
+        // triangle of legs 3 m and 3 m, its centroid 1 m in from the toe.
+        let weight = 1000.0 * 9.81 * 10.0 * 4.5;
+        assert!((l.tailwater_weight.force_n - weight).abs() < 1e-9 * weight);
+        assert!((l.tailwater_weight.at_m - 19.0).abs() < 1e-12);
+    }
+}

@@ -1,0 +1,243 @@
+//! The paper's dynamics (§5–7; `[solver] dynamics = "paper"`): translation along x' and
+//! turning about y', with the paper's frictional reactions (`mechanics::reactions_paper`), the
+//! paper's update (33)–(38) or RK4. A [`Dynamics`] the driver (`driver.rs`) runs.
+
+mod rhs;
+mod state;
+mod step;
+
+pub use rhs::{Evaluation, evaluate, velocity};
+pub use state::State;
+pub use step::{paper_step, rk4_step};
+
+use super::dynamics::{Dynamics, Flow, Start};
+use super::outcome::Outcome;
+use super::pose_finder::PoseFinder;
+use super::row::{Row, faces_of};
+use super::termination::{Reason, Stop};
+use crate::mechanics::loads::Applied;
+use crate::mechanics::onset::factor_of_safety;
+use crate::model::{Integrator, Simulation};
+
+fn row(s: &State, ev: Option<&Evaluation>, pose: &crate::geometry::Pose, faces: [u32; 3]) -> Row {
+    Row {
+        t_s: s.t,
+        x_m: s.x,
+        y_m: pose.cm.y,
+        z_m: s.z,
+        theta_deg: s.theta.to_degrees(),
+        alpha_deg: pose.alpha.to_degrees(),
+        beta_deg: pose.beta.to_degrees(),
+        gamma_deg: pose.gamma.to_degrees(),
+        vx_m_s: s.vx,
+        vz_m_s: s.vz,
+        omega_deg_s: s.omega.to_degrees(),
+        n_n: ev.map(|e| e.reaction.normal.map(|v| v.norm())),
+        s_n: ev.map(|e| e.reaction.shear.map(|v| v.norm())),
+        faces,
+        crease: [None; 3],
+    }
+}
+
+/// The paper's dynamics under way: the state and the evaluation (pose, reactions,
+/// accelerations) at it.
+pub(super) struct Paper<'a> {
+    sim: &'a Simulation,
+    state: State,
+    ev: Evaluation,
+}
+
+impl<'a> Dynamics<'a> for Paper<'a> {
+    fn start<'s>(
+        sim: &'a Simulation,
+        finder: &mut PoseFinder<'_>,
+        mut o: Outcome<'s>,
+    ) -> Start<'s, Self> {
+        // At rest, or moving as the scene's [initial] says.
+        let state = State {
+            vx: sim.initial().vx,
+            vz: sim.initial().vz,
+            omega: sim.initial().omega,
+            ..State::default()
+        };
+        // The start: pose, statics and whether the block slides at all (a block that starts
+        // moving goes on until it stops, whatever the factor of safety).
+        let Some(start_pose) = finder.pose() else {
+            return Start::Ended(o.end(
+                Reason::NoAdmissibleRoot,
+                0.0,
+                "the flat start pose has no root to follow".into(),
+            ));
+        };
+        let ev = match evaluate(sim, finder, state.displacement(), None, velocity(&state)) {
+            Ok(ev) => ev,
+            Err(Stop { reason, detail, .. }) => {
+                o.push(row(&state, None, &start_pose, faces_of(sim.site())));
+                return Start::Ended(o.end(reason, 0.0, detail));
+            }
+        };
+        let applied = Applied::new(sim.loads(), sim.block(), &ev.geom.frame);
+        let (fs, driving, resisting) = factor_of_safety(
+            &ev.geom,
+            &applied,
+            &ev.statics,
+            &sim.strength(faces_of(sim.site()), false),
+        );
+        o.paper_ratio = fs.is_finite().then_some(fs);
+        o.push(row(&state, Some(&ev), &ev.pose, faces_of(sim.site())));
+        if sim.initial().at_rest() && (fs >= 1.0 || ev.reaction.accel <= 0.0) {
+            let detail = if driving <= 0.0 {
+                format!("nothing drives the block: net driving force along x' is {driving:.6e} N")
+            } else if fs >= 1.0 {
+                format!(
+                    "factor of safety {fs:.4} ≥ 1: resisting capacity {resisting:.6e} N against driving {driving:.6e} N"
+                )
+            } else {
+                format!(
+                    "the paper's reactions give no forward acceleration ({:.6e} m/s²)",
+                    ev.reaction.accel
+                )
+            };
+            return Start::Ended(o.end(Reason::DoesNotSlide, 0.0, detail));
+        }
+        Start::Moving(Paper { sim, state, ev }, o)
+    }
+
+    fn advance<'s>(
+        &mut self,
+        finder: &mut PoseFinder<'_>,
+        k: usize,
+        t_to: f64,
+        mut o: Outcome<'s>,
+    ) -> Flow<'s> {
+        let sim = self.sim;
+        let (state, ev) = (&self.state, &self.ev);
+        // The increment ends at t_to (exactly t_end for the last one).
+        let dt = t_to - (k - 1) as f64 * sim.settings().dt;
+        let next = match sim.settings().integrator {
+            Integrator::Paper => Ok(paper_step(state, &ev.acc, dt)),
+            Integrator::Rk4 => {
+                let base = finder.clone();
+                let prev = ev.reaction;
+                rk4_step(state, &ev.acc, dt, |s: &State| {
+                    let mut f = base.clone();
+                    evaluate(sim, &mut f, s.displacement(), Some(&prev), velocity(s)).map(|e| e.acc)
+                })
+            }
+        };
+        let next = match next {
+            // Time as k·dt (t_end at the last), not a running sum.
+            Ok(n) => State { t: t_to, ..n },
+            Err(Stop { reason, detail, .. }) => {
+                return Flow::Ended(o.finish(self.row(), reason, state.t, detail));
+            }
+        };
+        let new_ev = match evaluate(
+            sim,
+            finder,
+            next.displacement(),
+            Some(&ev.reaction),
+            velocity(&next),
+        ) {
+            Ok(e) => e,
+            Err(Stop { reason, detail, .. }) => {
+                return Flow::Ended(o.finish(self.row(), reason, state.t, detail));
+            }
+        };
+        if new_ev.fresh {
+            o.switches += 1;
+        }
+        o.increments = k;
+        // Stopped: the CM velocity along the acceleration — along i', the direction the paper's
+        // dynamics drive (eqs. 30–35) — passes through zero in the increment, and friction
+        // holds there. The paper's model has no friction against the velocity across i' (a
+        // drift of a fraction of a per cent of the speed where we measured it), so the speed
+        // itself only passes through a minimum; the stop sets it to zero.
+        let (v, a) = ([state.vx, state.vz], [ev.acc[0], ev.acc[1]]);
+        let along = |w: [f64; 2]| w[0] * a[0] + w[1] * a[1];
+        if along(v) < 0.0 && along([next.vx, next.vz]) >= 0.0 {
+            // Where the paper's update (accelerations frozen over the increment) brings it to
+            // zero: (v + a τ)·a = 0 (with RK4, to first order in τ).
+            let tau = (-along(v) / along(a)).clamp(0.0, dt);
+            let mut stop = paper_step(state, &ev.acc, tau);
+            stop.vx = 0.0;
+            stop.vz = 0.0;
+            stop.omega = 0.0;
+            let mut at_stop = finder.clone();
+            let stop_ev = match evaluate(
+                sim,
+                &mut at_stop,
+                stop.displacement(),
+                Some(&ev.reaction),
+                None,
+            ) {
+                Ok(e) => e,
+                Err(Stop { reason, detail, .. }) => {
+                    return Flow::Ended(o.finish(self.row(), reason, state.t, detail));
+                }
+            };
+            let applied = Applied::new(sim.loads(), sim.block(), &stop_ev.geom.frame);
+            let (fs_here, _, _) = factor_of_safety(
+                &stop_ev.geom,
+                &applied,
+                &stop_ev.statics,
+                &sim.strength(faces_of(sim.site()), false),
+            );
+            if fs_here >= 1.0 {
+                o.travel += (stop_ev.pose.cm - ev.pose.cm).norm();
+                o.push(row(
+                    &stop,
+                    Some(&stop_ev),
+                    &stop_ev.pose,
+                    faces_of(sim.site()),
+                ));
+                let detail = format!(
+                    "speed reached zero at t = {:.6} s; factor of safety there {fs_here:.4}",
+                    stop.t
+                );
+                return Flow::Ended(o.end(Reason::Stopped, stop.t, detail));
+            }
+        }
+        o.travel += (new_ev.pose.cm - ev.pose.cm).norm();
+        self.state = next;
+        self.ev = new_ev;
+        Flow::Go(o)
+    }
+
+    fn row(&self) -> Row {
+        row(
+            &self.state,
+            Some(&self.ev),
+            &self.ev.pose,
+            faces_of(self.sim.site()),
+        )
+    }
+
+    /// Where the paper's dynamics cannot start or continue the block, the detail says so and names
+    /// the rigid body's: its kinematics hold only where its frictional system has a
+    /// solution and its contacts stay on their planes, which is not physics ending the route.
+    fn explain_end(o: &mut Outcome<'_>) {
+        let t = &mut o.termination;
+        let hint = match t.reason {
+            Reason::DoesNotSlide if o.fs.is_some_and(|f| !f.at_least_one()) => Some(format!(
+                "the paper's dynamics cannot start this block, yet the friction cones cannot hold \
+                 it (factor of safety {}): run it with --dynamics rigid-body",
+                o.fs.map(|f| f.to_string()).unwrap_or_default()
+            )),
+            Reason::NoFrictionSolution
+            | Reason::NoAdmissibleRoot
+            | Reason::ContactLeftPlane
+            | Reason::ContactLiftedOff => Some(
+                "the paper's dynamics cannot continue here (its kinematics, translation along x' and \
+                 turning about y', hold only where its frictional system has a solution that keeps \
+                 the contacts on their planes); --dynamics rigid-body follows the block by Newton's \
+                 laws"
+                    .to_string(),
+            ),
+            _ => None,
+        };
+        if let Some(h) = hint {
+            t.detail = format!("{}; {h}", t.detail);
+        }
+    }
+}

@@ -1,0 +1,173 @@
+//! The rigid body's right-hand side at a state: the pose, the contacts held to what the step
+//! holds them to, the loads, and the accelerations with the contact forces
+//! (`mechanics::rigid_body`); and the RK4 step through it.
+
+use super::state::RigidState;
+use crate::geometry::Pose;
+use crate::mechanics::ContactGeometry;
+use crate::mechanics::loads::Applied;
+use crate::mechanics::rigid_body::{self, Creases, Motion, RigidError};
+use crate::model::Simulation;
+use crate::route::pose_finder::PoseFinder;
+use crate::route::row::{Row, faces_of};
+use crate::route::termination::{Reason, Stop};
+use nalgebra::Vector3;
+
+/// One evaluation of the rigid-body right-hand side.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Eval {
+    pub pose: Pose,
+    pub motion: Motion,
+    /// The rates the motion was evaluated with (those of the state, with a sticking contact's
+    /// slip projected out).
+    pub rates: [f64; 3],
+    /// The kinetic energy that projection removed (J, ≤ 0): friction work, booked when the
+    /// state is taken ([`Eval::accept`]).
+    pub removed: f64,
+    /// The face each contact rests on (`Row::faces`).
+    pub faces: [u32; 3],
+}
+
+impl Eval {
+    /// The state `y` as the route takes it at this evaluation: its rates those the motion was
+    /// evaluated with, and the kinetic energy their projection removed booked as friction work.
+    pub fn accept(&self, y: &RigidState) -> RigidState {
+        RigidState {
+            work_friction: y.work_friction + self.removed,
+            ..y.with_rates(self.rates)
+        }
+    }
+
+    /// The row of state `y` evaluated here, at `t`.
+    pub fn row(&self, t: f64, y: &RigidState) -> Row {
+        Row {
+            t_s: t,
+            x_m: y.x,
+            y_m: self.pose.cm.y,
+            z_m: y.z,
+            theta_deg: y.theta.to_degrees(),
+            alpha_deg: self.pose.alpha.to_degrees(),
+            beta_deg: self.pose.beta.to_degrees(),
+            gamma_deg: self.pose.gamma.to_degrees(),
+            vx_m_s: y.vx,
+            vz_m_s: y.vz,
+            omega_deg_s: y.omega.to_degrees(),
+            n_n: Some(self.motion.normal),
+            s_n: Some(self.motion.shear.map(|s| s.norm())),
+            faces: self.faces,
+            crease: self.motion.creases.faces(),
+        }
+    }
+}
+
+/// The reason a state is off the model, from the mechanics' own.
+pub(super) fn stop_of(e: RigidError) -> Stop {
+    let (reason, contact) = match e {
+        RigidError::LiftOff { contact, .. } | RigidError::ImpactLifts { contact, .. } => {
+            (Reason::ContactLiftedOff, Some(contact))
+        }
+        // Events of a crease (`substep.rs` handles them where it finds them).
+        RigidError::CreaseLetsGo { contact, .. } => (Reason::CreaseLetsGo, Some(contact)),
+        RigidError::CreaseTakesOver { contact, .. } => (Reason::CreaseTakesOver, Some(contact)),
+        RigidError::Wedged => (Reason::Wedged, None),
+        RigidError::Singular(_)
+        | RigidError::SlipFromRest
+        | RigidError::SlipStart { .. }
+        | RigidError::StickSingular { .. } => (Reason::ContactForcesUndetermined, None),
+    };
+    Stop {
+        reason,
+        detail: e.to_string(),
+        contact,
+    }
+}
+
+/// What the step holds contacts to: a contact that stuck at the start of the step, and the
+/// contacts riding creases (`derivations/10-faces.md` §4).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub(super) struct Hold {
+    pub stuck: Option<usize>,
+    pub creases: Creases,
+}
+
+impl Hold {
+    /// What the motion `m` was evaluated holding.
+    pub fn of(m: &Motion) -> Hold {
+        Hold {
+            stuck: m.stuck,
+            creases: m.creases,
+        }
+    }
+
+    /// The same creases, with `stuck` sticking.
+    pub fn sticking(self, stuck: Option<usize>) -> Hold {
+        Hold { stuck, ..self }
+    }
+}
+
+/// The right-hand side at state `y`. `hold.stuck`: the contact that stuck at the start of the
+/// step; the integrator's drift of its slip is projected out (as an impulse would, the energy
+/// it takes in `Eval::removed`) so that it stays stuck while its cone allows. `hold.creases`:
+/// contacts riding creases; their velocities into their second faces are projected out likewise.
+pub(super) fn evaluate(
+    sim: &Simulation,
+    finder: &mut PoseFinder<'_>,
+    y: &RigidState,
+    hold: Hold,
+) -> Result<Eval, Stop> {
+    let stuck = hold.stuck;
+    let pose = finder.pose_at(y.displacement())?;
+    let geom = body_geometry(sim, &finder.site().normals(), &pose);
+    let applied = Applied::shaken(sim.loads(), sim.block(), &geom.frame, sim.ground(y.t))
+        .about(&geom.cm_offset);
+    let mut rates = y.rates();
+    let mut removed = 0.0;
+    if let Some(i) = stuck {
+        // Always: a contact that stuck at the start of the step can only start to slip by its
+        // cone no longer holding it (the release, which `accelerations` sees after this
+        // projection), never by the integrator's drift, however long the step.
+        (rates, removed) =
+            rigid_body::pivot_rates(&geom, sim.block(), rates, i).map_err(stop_of)?;
+    }
+    let riding = hold.creases.without(stuck);
+    if !riding.is_empty() {
+        let (r, into) =
+            rigid_body::crease_rates(&geom, sim.block(), rates, &riding).map_err(stop_of)?;
+        (rates, removed) = (r, removed + into);
+    }
+    let faces = faces_of(finder.site());
+    let motion = rigid_body::accelerations_in_crease(
+        &geom,
+        &applied,
+        sim.block(),
+        &sim.strength(faces, false),
+        rates,
+        sim.settings().dt,
+        hold.creases,
+    )
+    .map_err(stop_of)?;
+    Ok(Eval {
+        pose,
+        motion,
+        rates,
+        removed,
+        faces,
+    })
+}
+
+/// The contacts with their arms from the centre of mass, which a monolith has above the base
+/// point the pose is of (`derivations/11-dam-loads.md` §1): Newton–Euler about the centre of
+/// mass. The static checks keep the arms from the base point, with the loads' moments about it.
+pub(super) fn body_geometry(
+    sim: &Simulation,
+    normals: &[Vector3<f64>; 3],
+    pose: &Pose,
+) -> ContactGeometry {
+    ContactGeometry::new(normals, pose).centred(sim.loads().cm_height)
+}
+
+/// The height of the centre of mass (m) at `pose`: the base point's and the monolith's ȳ along
+/// j′. Gravity's work is m g times its fall.
+pub(super) fn cm_y(sim: &Simulation, pose: &Pose) -> f64 {
+    pose.cm.y + sim.loads().cm_height * pose.frame.j.y
+}

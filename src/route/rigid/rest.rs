@@ -1,0 +1,316 @@
+//! The block at rest: the static check of the friction cones (`mechanics::static_friction`),
+//! what a stop comes to ([`RigidBody::come_to_rest`]), and an increment held at rest while a
+//! ground-motion record shakes the foundation ([`RigidBody::rest`]).
+
+use super::RigidBody;
+use super::evaluate::{Eval, Hold, body_geometry, cm_y, evaluate, stop_of};
+use super::hold::Anchor;
+use super::state::RigidState;
+use crate::geometry::Pose;
+use crate::mechanics::ContactGeometry;
+use crate::mechanics::loads::Applied;
+use crate::mechanics::rigid_body::{self, Creases, Motion};
+use crate::mechanics::static_friction::{self, StaticCheck};
+use crate::model::Simulation;
+use crate::route::dynamics::Flow;
+use crate::route::outcome::Outcome;
+use crate::route::pose_finder::PoseFinder;
+use crate::route::row::{Row, faces_of};
+use crate::route::termination::{Reason, Stop};
+use nalgebra::Vector3;
+
+/// How far below 1 the factor of safety of a block at rest may be and the block still be
+/// taken as held when no consistent start of slip is found (`mechanics::rigid_body`'s search
+/// for it resolves accelerations down to about this fraction of g; below it the block would
+/// creep at a rate no route could show).
+pub(super) const BARELY: f64 = 1e-4;
+
+/// Whether the loads exceed the friction cones of `check` by less than [`BARELY`].
+pub(super) fn barely_exceeded(check: &StaticCheck) -> bool {
+    check.lowest <= 1.0 && check.factor_of_safety >= 1.0 - BARELY
+}
+
+/// The static check at a pose at time t (the loads of a ground-motion record then), the
+/// contacts on `faces`, with the joint's cohesion when `bonded` (never yet slid).
+pub(super) fn static_check(
+    sim: &Simulation,
+    geom: &ContactGeometry,
+    t: f64,
+    faces: [u32; 3],
+    bonded: bool,
+) -> Result<StaticCheck, Stop> {
+    let applied = Applied::shaken(sim.loads(), sim.block(), &geom.frame, sim.ground(t));
+    let strength = sim.strength(faces, bonded);
+    static_friction::at_rest(geom, &applied, &strength).map_err(|err| Stop {
+        contact: None,
+        reason: Reason::ContactForcesUndetermined,
+        detail: err.to_string(),
+    })
+}
+
+/// A row at rest (velocities zero; reactions not computed: static friction is indeterminate).
+pub(super) fn rest_row(t: f64, y: &RigidState, pose: &Pose, faces: [u32; 3]) -> Row {
+    Row {
+        t_s: t,
+        x_m: y.x,
+        y_m: pose.cm.y,
+        z_m: y.z,
+        theta_deg: y.theta.to_degrees(),
+        alpha_deg: pose.alpha.to_degrees(),
+        beta_deg: pose.beta.to_degrees(),
+        gamma_deg: pose.gamma.to_degrees(),
+        vx_m_s: 0.0,
+        vz_m_s: 0.0,
+        omega_deg_s: 0.0,
+        n_n: None,
+        s_n: None,
+        faces,
+        crease: [None; 3],
+    }
+}
+
+/// The evaluation of the block held at rest at `pose` (no motion; the normal reactions of a
+/// holding state of `check`).
+pub(super) fn rest_eval(
+    sim: &Simulation,
+    finder: &PoseFinder<'_>,
+    pose: Pose,
+    check: &StaticCheck,
+) -> Result<Eval, Stop> {
+    let geom = body_geometry(sim, &finder.site().normals(), &pose);
+    let inertia = rigid_body::Inertia::new(sim.block(), &geom).map_err(stop_of)?;
+    let zero = Vector3::zeros();
+    Ok(Eval {
+        pose,
+        motion: Motion {
+            twist: rigid_body::Twist::default(),
+            accel: zero,
+            ang_accel: zero,
+            normal: check.normal,
+            shear: [zero; 3],
+            slip: [zero; 3],
+            acc: [0.0; 3],
+            power_hydraulic: 0.0,
+            power_friction: 0.0,
+            inertia,
+            stuck: None,
+            crease_normal: [None; 3],
+            creases: Creases::NONE,
+        },
+        rates: [0.0; 3],
+        removed: 0.0,
+        faces: faces_of(finder.site()),
+    })
+}
+
+/// What a stop comes to (see [`RigidBody::come_to_rest`]).
+pub(super) enum Rest {
+    /// Not held: the block slips again from rest, from this evaluation.
+    Slips(Box<Eval>),
+    /// Held where it stopped while a ground-motion record still shakes the foundation: it
+    /// rests from this evaluation at this time, checked again as the record's loads change.
+    Rests(Box<Eval>, f64),
+    /// The route ends: held where it stopped, or the slip from rest cannot be had.
+    Ended(Reason, f64, String),
+    /// The state at rest is off the model (as a failed step).
+    Failed(Stop),
+}
+
+impl RigidBody<'_> {
+    /// Where the motion stops, at `t_event` of increment `k`: the block at rest at `stopped`
+    /// (the state just before the stop, its rates zeroed; the step started from the present
+    /// evaluation). Held there by static friction, the route ends "stopped"; not held, it slips
+    /// again from rest. The travel to the rest point, the increment, the rest row and the
+    /// energy balance go into `o`.
+    pub(super) fn come_to_rest(
+        &self,
+        finder: &mut PoseFinder<'_>,
+        stopped: &RigidState,
+        k: usize,
+        t_event: f64,
+        o: &mut Outcome<'_>,
+    ) -> Rest {
+        let (sim, from) = (self.sim, &self.ev);
+        let stop_pose = match finder.pose_at(stopped.displacement()) {
+            Ok(p) => p,
+            Err(e) => return Rest::Failed(e),
+        };
+        o.travel += (stop_pose.cm - from.pose.cm).norm();
+        o.increments = k;
+        let geom = ContactGeometry::new(&finder.site().normals(), &stop_pose);
+        let check = match static_check(sim, &geom, t_event, from.faces, false) {
+            Ok(c) => c,
+            Err(Stop { reason, detail, .. }) => return Rest::Ended(reason, self.t, detail),
+        };
+        // At rest there: its energy balance and its row; while a record shakes the foundation it
+        // rests, else the route ends "stopped" for `why`.
+        let balance = self.energy.balance(stopped, 0.0, cm_y(sim, &stop_pose));
+        let held = |o: &mut Outcome<'_>, finder: &PoseFinder<'_>, why: String| {
+            o.push(rest_row(t_event, stopped, &stop_pose, from.faces));
+            o.energy = Some(balance);
+            if sim.record().is_some_and(|r| t_event < r.end()) {
+                match rest_eval(sim, finder, stop_pose, &check) {
+                    Ok(e) => Rest::Rests(Box::new(e), t_event),
+                    Err(stop) => Rest::Failed(stop),
+                }
+            } else {
+                Rest::Ended(Reason::Stopped, t_event, why)
+            }
+        };
+        if check.holds() {
+            return held(
+                o,
+                finder,
+                format!(
+                    "the motion stopped at t = {t_event:.6} s and static friction holds the \
+                     block there (factor of safety {})",
+                    check.factor_of_safety()
+                ),
+            );
+        }
+        match evaluate(sim, finder, stopped, Hold::of(&from.motion).sticking(None)) {
+            Ok(e) => Rest::Slips(Box::new(e)),
+            Err(Stop { reason, .. })
+                if reason == Reason::ContactForcesUndetermined && barely_exceeded(&check) =>
+            {
+                held(
+                    o,
+                    finder,
+                    format!(
+                        "the motion stopped at t = {t_event:.6} s; the loads exceed the friction \
+                         cones by {:.1e} of themselves there, too little for a consistent start \
+                         of slip, and the block is taken as held (factor of safety {})",
+                        1.0 - check.factor_of_safety,
+                        check.factor_of_safety()
+                    ),
+                )
+            }
+            Err(Stop { reason, detail, .. }) => {
+                o.energy = Some(balance);
+                Rest::Ended(reason, t_event, detail)
+            }
+        }
+    }
+
+    /// An increment at rest, to `t_target`, while a ground-motion record shakes the
+    /// foundation: the friction cones are checked with the loads then. Held, the block stays
+    /// (and the route ends "stopped" once the record is over); not held, it slips from rest at
+    /// the moment the cones stop holding it (found by bisection; `self.resting` is then false
+    /// and the increment goes on in substeps).
+    pub(super) fn rest<'s>(
+        &mut self,
+        finder: &mut PoseFinder<'_>,
+        t_target: f64,
+        mut o: Outcome<'s>,
+    ) -> Flow<'s> {
+        let sim = self.sim;
+        let geom = ContactGeometry::new(&finder.site().normals(), &self.ev.pose);
+        // The joint's cohesion holds until the block first slides.
+        let (faces, bonded) = (self.ev.faces, o.travel == 0.0);
+        let check_at = |t: f64| static_check(sim, &geom, t, faces, bonded);
+        let holds = |t: f64| check_at(t).map(|c| c.holds());
+        // The record's samples within the increment, where its loads turn: the cones are
+        // checked at each (between them the loads are linear in time), the last at t_target.
+        let mut at = self.t;
+        let mut slips = None;
+        let mut last = None;
+        while at < t_target {
+            let next = match sim.record().and_then(|r| r.next_sample(at)) {
+                Some(s) if s < t_target => s,
+                _ => t_target,
+            };
+            match check_at(next) {
+                Ok(c) if c.holds() => {
+                    at = next;
+                    last = Some(c);
+                }
+                Ok(_) => {
+                    slips = Some((at, next));
+                    break;
+                }
+                Err(s) => return Flow::Ended(self.fail(o, s)),
+            }
+        }
+        if let Some((mut lo, mut hi)) = slips {
+            // Held at lo, not at hi: the onset of slip to a millionth of the interval.
+            for _ in 0..20 {
+                let mid = 0.5 * (lo + hi);
+                match holds(mid) {
+                    Ok(true) => lo = mid,
+                    Ok(false) => hi = mid,
+                    Err(s) => return Flow::Ended(self.fail(o, s)),
+                }
+            }
+            // Just past the onset the loads exceed the cones by the cone program's tolerance,
+            // too little for a consistent direction of slip: the start is sought a little later,
+            // at lengths doubling from the bisection's, within the increment.
+            let mut late = hi - lo;
+            let mut tried = hi;
+            loop {
+                let y = self.y.at(tried);
+                match evaluate(sim, finder, &y, Hold::default()) {
+                    Ok(e) => {
+                        self.y = y;
+                        self.t = tried;
+                        self.ev = e;
+                        self.resting = false;
+                        self.anchor = Anchor::after(&self.ev, None);
+                        self.h = sim.settings().dt;
+                        return Flow::Go(o);
+                    }
+                    Err(s) if tried >= t_target => {
+                        // Over the cones by too little for a consistent start of slip: held
+                        // for this increment, checked again at the next.
+                        let barely = check_at(t_target).is_ok_and(|c| barely_exceeded(&c));
+                        if s.reason == Reason::ContactForcesUndetermined && barely {
+                            self.t = t_target;
+                            self.y.t = t_target;
+                            return Flow::Go(o);
+                        }
+                        return Flow::Ended(self.fail(o, s));
+                    }
+                    Err(_) => {
+                        tried = (hi + late).min(t_target);
+                        late *= 2.0;
+                    }
+                }
+            }
+        }
+        self.t = t_target;
+        self.y.t = t_target;
+        // Held through the increment: the check at its end (made above unless the increment
+        // was empty).
+        let check = match last.map_or_else(|| check_at(t_target), Ok) {
+            Ok(c) => c,
+            Err(s) => return Flow::Ended(self.fail(o, s)),
+        };
+        let over = sim.record().is_none_or(|r| t_target >= r.end());
+        if over {
+            let moved = o.travel > 0.0;
+            o.push(rest_row(self.t, &self.y, &self.ev.pose, self.ev.faces));
+            o.energy = Some(self.balance(&self.y, &self.ev));
+            let (reason, what) = if moved {
+                (Reason::Stopped, "the block came to rest")
+            } else {
+                (Reason::DoesNotSlide, "the block never slid")
+            };
+            return Flow::Ended(o.end(
+                reason,
+                self.t,
+                format!(
+                    "the ground-motion record ended at {:.6} s; {what} and static friction \
+                     holds it (factor of safety {})",
+                    sim.record().map_or(0.0, |r| r.end()),
+                    check.factor_of_safety()
+                ),
+            ));
+        }
+        match rest_eval(sim, finder, self.ev.pose, &check) {
+            Ok(e) => {
+                self.ev = e;
+                Flow::Go(o)
+            }
+            Err(s) => Flow::Ended(self.fail(o, s)),
+        }
+    }
+}

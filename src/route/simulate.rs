@@ -1,0 +1,127 @@
+//! Running a simulation: [`simulate`] for the route alone, or a [`Runner`] that also picks the
+//! pose method, reports progress (and may be told to stop), streams the rows as they are
+//! computed, and says how the computation went ([`Diagnostics`]).
+
+use super::driver::drive;
+use super::outcome::Outcome;
+use super::paper::Paper;
+use super::pose_finder::{PoseFinder, PoseMethod};
+use super::rigid::RigidBody;
+use super::row::Row;
+use super::{Computed, Diagnostics, Route};
+use crate::model::{DynamicsModel, Simulation};
+use std::ops::ControlFlow;
+use std::time::Instant;
+
+/// The route of a simulation, checked when it was built: nothing here can fail, every end is a
+/// [`Reason`](super::Reason).
+pub fn simulate(sim: &Simulation) -> Route {
+    Runner::new(sim).run().route
+}
+
+/// How a simulation is run, apart from what is simulated: the pose method, who is told of the
+/// progress (and may stop the route), and where rows go as they are computed.
+///
+/// ```
+/// # let sim = slideroute::Scene::default_scene().simulation()?;
+/// let mut rows = 0;
+/// let run = slideroute::Runner::new(&sim)
+///     .progress(|done| if done < 0.01 { std::ops::ControlFlow::Continue(()) } else { std::ops::ControlFlow::Break(()) })
+///     .stream(100, |_row| rows += 1)
+///     .run();
+/// assert_eq!(run.route.termination.reason, slideroute::Reason::Interrupted);
+/// # assert!(rows > 0 && run.route.rows.len() < rows);
+/// # Ok::<(), slideroute::SceneError>(())
+/// ```
+#[must_use]
+pub struct Runner<'a> {
+    sim: &'a Simulation,
+    method: PoseMethod,
+    progress: Box<dyn FnMut(f64) -> ControlFlow<()> + 'a>,
+    sink: Option<Box<dyn FnMut(&Row) + 'a>>,
+    keep_every: usize,
+}
+
+impl<'a> Runner<'a> {
+    /// `sim` by continuation, keeping every row, told of nothing.
+    pub fn new(sim: &'a Simulation) -> Self {
+        Runner {
+            sim,
+            method: PoseMethod::Continuation,
+            progress: Box::new(|_| ControlFlow::Continue(())),
+            sink: None,
+            keep_every: 1,
+        }
+    }
+
+    /// The method that gives the pose at each increment.
+    pub fn pose_method(mut self, method: PoseMethod) -> Self {
+        self.method = method;
+        self
+    }
+
+    /// `progress(t / t_end)` after every increment (for progress bars); when it answers
+    /// `ControlFlow::Break`, the route stops there with
+    /// [`Reason::Interrupted`](super::Reason::Interrupted), its last state the last row, so that
+    /// an interrupted run keeps what it computed.
+    pub fn progress(mut self, progress: impl FnMut(f64) -> ControlFlow<()> + 'a) -> Self {
+        self.progress = Box::new(progress);
+        self
+    }
+
+    /// Every row to `sink` as it is computed (to be written out), the route keeping only every
+    /// `keep_every`-th row and the last (for pictures and summaries): a route of any length in
+    /// bounded memory.
+    pub fn stream(mut self, keep_every: usize, sink: impl FnMut(&Row) + 'a) -> Self {
+        self.sink = Some(Box::new(sink));
+        self.keep_every = keep_every.max(1);
+        self
+    }
+
+    /// The route and how its computation went.
+    pub fn run(mut self) -> Computed {
+        let started = Instant::now();
+        let sim = self.sim;
+        let settings = *sim.settings();
+        let mut finder = PoseFinder::new(sim.site(), settings.mode, self.method);
+        let sink = self.sink.as_deref_mut().map(|s| s as &mut dyn FnMut(&Row));
+        let outcome = Outcome::new(sink, self.keep_every);
+        // One driver; the model is the only difference.
+        let mut o = match settings.dynamics {
+            DynamicsModel::Paper => drive::<Paper>(sim, &mut finder, &mut self.progress, outcome),
+            DynamicsModel::RigidBody => {
+                drive::<RigidBody>(sim, &mut finder, &mut self.progress, outcome)
+            }
+        };
+        // Newmark's permanent displacement and rotation, when the foundation was shaken.
+        let permanent = o
+            .last_row()
+            .filter(|_| sim.record().is_some())
+            .map(|r| (r.x_m.hypot(r.z_m), r.theta_deg));
+        let route = Route {
+            scene: sim.name().to_string(),
+            mode: settings.mode,
+            integrator: settings.integrator,
+            dynamics: settings.dynamics,
+            pose_method: self.method,
+            rows: o.take_rows(),
+            termination: o.termination,
+            factor_of_safety: o.fs,
+            paper_ratio: o.paper_ratio,
+            travel_m: o.travel,
+            increments: o.increments,
+            energy: o.energy,
+            permanent_displacement_m: permanent.map(|p| p.0),
+            permanent_rotation_deg: permanent.map(|p| p.1),
+        };
+        Computed {
+            route,
+            diagnostics: Diagnostics {
+                friction_switches: o.switches,
+                tracker: finder.stats(),
+                end_jacobian_condition: finder.jacobian_condition(),
+                wall_s: started.elapsed().as_secs_f64(),
+            },
+        }
+    }
+}

@@ -1,0 +1,171 @@
+//! From the file's keys to the typed, checked scene: every value finite and in its range, every
+//! name one the option has, the sections consistent with each other. Each fault is one
+//! [`SceneError`] naming its key. A [`Reader`] holds what every check needs — where the scene
+//! came from, the folder its files are found from, the files already read — and reads one
+//! group of sections per file: the site (`site.rs`), the block (`body.rs`), the loads
+//! (`loads.rs`), the friction (`friction.rs`), the run settings and the start (`solver.rs`),
+//! the load cases and the uncertain values (`cases.rs`).
+
+mod body;
+mod cases;
+mod friction;
+mod loads;
+mod site;
+mod solver;
+
+use super::error::SceneErrorKind;
+use super::files::Files;
+use super::raw::RawScene;
+use super::{Scene, SceneError};
+use crate::model::{self, ModelError, UnknownName};
+use std::path::Path;
+
+/// What reading one document needs: where it came from (named in every error), the folder the
+/// files it names are found from, and the files read before under their names.
+pub(super) struct Reader<'a> {
+    origin: &'a str,
+    folder: &'a Path,
+    files: &'a Files,
+}
+
+/// The typed scene of a document, or its first fault. `source` is kept as the scene's own
+/// file ([`Scene::with`] edits it).
+pub(super) fn validate(
+    raw: RawScene,
+    origin: &str,
+    source: toml::Table,
+    (folder, files): (&Path, &Files),
+) -> Result<Scene, SceneError> {
+    Reader {
+        origin,
+        folder,
+        files,
+    }
+    .scene(raw, source)
+}
+
+impl Reader<'_> {
+    /// Every section in turn, then what they must agree on.
+    fn scene(&self, raw: RawScene, source: toml::Table) -> Result<Scene, SceneError> {
+        let site = self.site(
+            self.section("frame", &raw.frame)?,
+            self.section("foundation", &raw.foundation)?,
+        )?;
+        let (block, monolith) = self.body(&raw, &site)?;
+        let (loads, record) = self.loads(&raw, monolith.as_ref())?;
+        let friction = raw
+            .friction
+            .as_ref()
+            .map(|f| self.friction(f))
+            .transpose()?;
+        let strengths = match &raw.friction {
+            Some(f) => self.strengths(f, &site, monolith.as_ref())?,
+            None => Default::default(),
+        };
+        let settings = raw.solver.as_ref().map(|s| self.solver(s)).transpose()?;
+        let initial = self.initial(raw.initial.as_ref())?;
+        if let Some(s) = &settings {
+            model::check_rigid_only(s.dynamics, record.is_some(), strengths.has_cohesion())
+                .map_err(|e| self.model(e))?;
+        }
+        if let (Some(b), Some(l)) = (&block, &loads) {
+            model::check_ratios(site.l(), b, l).map_err(|e| self.model(e))?;
+        }
+        let guideline = match &raw.check {
+            Some(c) => self.guideline(c)?,
+            None => Default::default(),
+        };
+        let cases = self.cases(&guideline, raw.case.as_deref().unwrap_or(&[]))?;
+        let uncertain = self.uncertain(raw.uncertain.as_ref())?;
+        Ok(Scene {
+            name: raw.name.unwrap_or_else(|| "unnamed".to_string()),
+            origin: self.origin.to_string(),
+            site,
+            block,
+            loads,
+            friction,
+            settings,
+            initial,
+            source,
+            folder: self.folder.to_path_buf(),
+            guideline,
+            cases,
+            record,
+            strengths,
+            uncertain,
+        })
+    }
+
+    /// An invalid value of `key`.
+    fn invalid(&self, key: impl Into<String>, reason: impl Into<String>) -> SceneError {
+        SceneError::new(self.origin, key, reason)
+    }
+
+    /// A fault of `kind` at `key`.
+    fn fault(
+        &self,
+        kind: SceneErrorKind,
+        key: impl Into<String>,
+        reason: impl Into<String>,
+    ) -> SceneError {
+        SceneError::of(kind, self.origin, key, reason)
+    }
+
+    /// A part of the model the values make that cannot be used, at the key it names.
+    fn model(&self, e: ModelError) -> SceneError {
+        self.invalid(e.key, e.reason)
+    }
+
+    /// The value of a key its section needs.
+    fn need<T>(&self, key: &str, v: Option<T>) -> Result<T, SceneError> {
+        v.ok_or_else(|| {
+            let name = key.rsplit('.').next().unwrap_or(key);
+            self.fault(
+                SceneErrorKind::MissingKey,
+                key,
+                format!("missing key `{name}`"),
+            )
+        })
+    }
+
+    /// A section the scene needs.
+    fn section<'s, T>(&self, name: &str, v: &'s Option<T>) -> Result<&'s T, SceneError> {
+        v.as_ref().ok_or_else(|| {
+            self.fault(
+                SceneErrorKind::MissingSection,
+                name,
+                format!("missing section [{name}]"),
+            )
+        })
+    }
+
+    /// The option `word` names.
+    fn named<T: std::str::FromStr<Err = UnknownName>>(
+        &self,
+        key: &str,
+        word: &str,
+    ) -> Result<T, SceneError> {
+        word.parse()
+            .map_err(|e: UnknownName| self.invalid(key, e.to_string()))
+    }
+
+    /// One number: finite, and `ok`; `what` says what was expected.
+    fn check(&self, key: &str, v: f64, ok: bool, what: &str) -> Result<f64, SceneError> {
+        model::check(key, v, ok, what).map_err(|e| self.model(e))
+    }
+
+    /// A finite number.
+    fn finite(&self, key: &str, v: f64) -> Result<f64, SceneError> {
+        model::finite(key, v).map_err(|e| self.model(e))
+    }
+
+    /// A positive number.
+    fn positive(&self, key: &str, v: f64) -> Result<f64, SceneError> {
+        model::positive(key, v).map_err(|e| self.model(e))
+    }
+
+    /// A number zero or more.
+    fn non_negative(&self, key: &str, v: f64) -> Result<f64, SceneError> {
+        model::non_negative(key, v).map_err(|e| self.model(e))
+    }
+}
