@@ -6,9 +6,9 @@
 //!   planes as a general site (the generated general system).
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use slideroute::internals::geometry::{Displacement, Ground, Site};
-use slideroute::internals::roots::Tracker;
+use slideroute::Tracker;
 use slideroute::internals::{model::Mode, scene::Scene};
+use slideroute::{Displacement, Ground, Site};
 use std::hint::black_box;
 
 /// A rough surface of 2·n² triangles over [0, n]².

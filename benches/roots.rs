@@ -7,7 +7,7 @@
 //!   predictor, Newton corrector, admissibility check).
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use slideroute::internals::geometry::Displacement;
+use slideroute::Displacement;
 use slideroute::internals::roots::{self, Tracker, eigen, system};
 use slideroute::internals::{model::Mode, scene::Scene};
 use std::hint::black_box;

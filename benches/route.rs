@@ -6,7 +6,7 @@
 //!   reactions, accelerations — and the same with the pose by all roots.
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use slideroute::internals::geometry::Displacement;
+use slideroute::Displacement;
 use slideroute::internals::route::pose_finder::PoseFinder;
 use slideroute::internals::route::{self, PoseMethod, paper};
 use slideroute::internals::{

@@ -9,15 +9,15 @@
 //!   along the straight segment to (X, Z, θ) ([`Tracker`]).
 //!
 //! ```
-//! use slideroute::stages::{geometry::Displacement, roots, scene::{Mode, Scene}};
+//! use slideroute::{Displacement, Mode, Scene, Tracker, solve_all};
 //! let site = Scene::default_scene().site().clone();
 //! let d = Displacement::new(0.5, 0.1, 2f64.to_radians());
-//! let all = roots::solve_all(&site, d, Mode::Exact).unwrap();
+//! let all = solve_all(&site, d, Mode::Exact).unwrap();
 //! let chosen = all.selected.map(|k| &all.roots[k]).unwrap();
 //! assert!(chosen.admissible && chosen.alpha.im.abs() < 1e-12);
 //!
 //! // Following the branch over increments:
-//! let mut tracker = roots::Tracker::new(&site, Mode::Exact);
+//! let mut tracker = Tracker::new(&site, Mode::Exact);
 //! for k in 1..=10 {
 //!     tracker.advance(d.scaled(k as f64 / 10.0)).unwrap();
 //! }

@@ -202,7 +202,7 @@ fn roots_json_has_selected_pose_roots_and_counts() {
     // Agrees with the independent direct pose solver.
     let scene = slideroute::internals::scene::Scene::default_scene();
     let d = slideroute::internals::geometry::Displacement::new(0.5, 0.1, 2f64.to_radians());
-    let p = slideroute::internals::geometry::direct::solve(scene.site(), d).unwrap();
+    let p = slideroute::direct_pose(scene.site(), d).unwrap();
     let a = v["selected"]["alpha_deg"].as_f64().unwrap();
     assert!((a - p.alpha(scene.l()).to_degrees()).abs() < 1e-8);
 

@@ -7,10 +7,10 @@
 
 use crate::common::{hand_exact, hand_small_angle, scene};
 use proptest::prelude::*;
+use slideroute::Displacement;
 use slideroute::internals::coeffs::{
     CoeffInputs, EXACT_NAMES_13, EXACT_NAMES_14, Exact, SmallAngle,
 };
-use slideroute::internals::geometry::Displacement;
 
 fn close(generated: f64, hand: f64, scale: f64) -> bool {
     (generated - hand).abs() <= 1e-12 * hand.abs() + 1e-14 * scale
@@ -27,7 +27,7 @@ prop_compose! {
         x in -0.5..1.0f64,
         z in -0.5..0.5f64,
         theta in -60.0..60.0f64,
-    ) -> (slideroute::internals::scene::Scene, Displacement) {
+    ) -> (slideroute::Scene, Displacement) {
         (scene(l, l2x, l1z, xi, zeta, kappa), Displacement::new(x * l, z * l, theta.to_radians()))
     }
 }

@@ -9,8 +9,8 @@
 //! must show the same end (a stop, or contact 0 crossing onto plane 1 — Drake's contacts each see
 //! only their own infinite plane, so its route goes on where ours ends).
 
-use slideroute::internals::route::{self, Reason, Row};
 use slideroute::internals::{model::DynamicsModel, scene::Scene};
+use slideroute::{Reason, Row};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 

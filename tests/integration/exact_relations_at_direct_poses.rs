@@ -4,9 +4,9 @@
 
 use crate::common::scene;
 use proptest::prelude::*;
-use slideroute::internals::coeffs::{CoeffInputs, Exact};
+use slideroute::Scene;
 use slideroute::internals::geometry::{Displacement, Pose, direct, relations};
-use slideroute::internals::scene::Scene;
+use slideroute::{CoeffInputs, Exact};
 
 prop_compose! {
     fn scene_and_reachable_pose()(

@@ -3,9 +3,9 @@
 //! there, naming both; every row agrees with the direct pose solver.
 
 use crate::common;
-use slideroute::internals::geometry::Plane;
-use slideroute::internals::route::{self, Reason, Route};
+use slideroute::Plane;
 use slideroute::internals::{model::DynamicsModel, scene::Scene};
+use slideroute::{Reason, Route};
 
 fn scene_file(name: &str) -> Scene {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -107,7 +107,7 @@ fn on_the_papers_faces_contact_2_rides_the_crease_then_plane_1_alone_until_conta
         );
         let p = match &near {
             Some(q) => slideroute::internals::geometry::direct::solve_from(s.site(), d, q),
-            None => slideroute::internals::geometry::direct::solve(s.site(), d),
+            None => slideroute::direct_pose(s.site(), d),
         }
         .unwrap();
         let off = plane_1.signed_distance(&p.vertices[2]);
@@ -187,7 +187,7 @@ fn assert_rows_on_their_faces(s: &Scene, r: &Route) -> Vec<[u32; 3]> {
     let (ground, _) = s.site().ground().unwrap();
     let mut seen = vec![r.rows[0].faces];
     let l = s.l();
-    let mut near: Option<slideroute::internals::geometry::direct::DirectPose> = None;
+    let mut near: Option<slideroute::DirectPose> = None;
     for row in &r.rows {
         if *seen.last().unwrap() != row.faces {
             seen.push(row.faces);
@@ -204,7 +204,7 @@ fn assert_rows_on_their_faces(s: &Scene, r: &Route) -> Vec<[u32; 3]> {
         );
         let p = match &near {
             Some(q) => slideroute::internals::geometry::direct::solve_from(&site, d, q),
-            None => slideroute::internals::geometry::direct::solve(&site, d),
+            None => slideroute::direct_pose(&site, d),
         }
         .unwrap();
         assert!(

@@ -4,8 +4,8 @@
 
 use crate::common::{sample, scene};
 use proptest::prelude::*;
+use slideroute::Mode;
 use slideroute::internals::geometry::{Displacement, Plane, Pose, Site, direct};
-use slideroute::internals::model::Mode;
 use slideroute::internals::roots::{self, Tracker};
 
 /// The paper's site as a general one: the same contacts on the same planes.

@@ -2,8 +2,8 @@
 //! block's motion relative to it — Newmark's sliding block in 3-D, against his closed forms
 //! (`derivations/11-dam-loads.md` §7).
 
-use slideroute::internals::route::{self, Reason, Route};
-use slideroute::internals::scene::Scene;
+use slideroute::Scene;
+use slideroute::{Reason, Route};
 
 const G: f64 = 9.81;
 

@@ -4,9 +4,9 @@
 //! See `derivations/05-paper-differences.md`.
 
 use crate::common::{printed_f1_f2_f7_f11, scene};
-use slideroute::internals::coeffs::{CoeffInputs, SmallAngle};
+use slideroute::Scene;
 use slideroute::internals::geometry::{Displacement, direct};
-use slideroute::internals::scene::Scene;
+use slideroute::{CoeffInputs, SmallAngle};
 
 /// (15) residuals with our coefficients, and with one printed coefficient swapped in.
 fn residuals_with_printed(index: usize, s: &Scene, d: Displacement) -> (f64, f64) {

@@ -5,7 +5,7 @@
 // The three contacts are indexed in parallel arrays (normals, arms, forces).
 #![allow(clippy::needless_range_loop)]
 
-use slideroute::internals::geometry::Displacement;
+use slideroute::Displacement;
 use slideroute::internals::mechanics::reactions_paper::{self, Reaction};
 use slideroute::internals::mechanics::{ContactGeometry, loads::Applied, statics};
 use slideroute::internals::roots;

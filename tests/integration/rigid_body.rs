@@ -3,8 +3,8 @@
 
 use crate::common;
 
-use slideroute::internals::route::{self, Reason, Route};
 use slideroute::internals::{model::DynamicsModel, scene::Scene};
+use slideroute::{Reason, Route};
 
 /// The default scene under the rigid body, with `keys` set.
 fn rigid(keys: &[(&str, f64)]) -> Scene {
@@ -371,7 +371,7 @@ fn ends_where_a_contact_slips_off_its_plane_do_not_depend_on_dt() {
 
 #[test]
 fn the_factor_of_safety_is_the_cones_whatever_the_dynamics_and_typed_where_it_has_no_number() {
-    use slideroute::internals::mechanics::static_friction::FactorOfSafety;
+    use slideroute::FactorOfSafety;
     // One definition for both dynamics (the paper's ratio, 0.7333, has its own name).
     let paper = run(&rigid(&[(DT, 1e-3), (T_END, 0.05)])
         .with_dynamics(DynamicsModel::Paper)

@@ -3,8 +3,8 @@
 
 use crate::common::scene;
 use num_complex::Complex64 as C;
-use slideroute::internals::geometry::Displacement;
-use slideroute::internals::model::Mode;
+use slideroute::Displacement;
+use slideroute::Mode;
 use slideroute::internals::roots::{self, eigen, system};
 
 fn ev(c: &eigen::Coeffs, x: C, y: C) -> (C, C, C) {

@@ -3,12 +3,12 @@
 
 use crate::common;
 
-use slideroute::internals::mechanics::static_friction::FactorOfSafety;
-use slideroute::internals::route::{self, Reason, Route};
+use slideroute::FactorOfSafety;
 use slideroute::internals::{
     model::{DynamicsModel, Integrator},
     scene::Scene,
 };
+use slideroute::{Reason, Route};
 
 /// The embedded scene under the paper's dynamics (this file's subject; the default is the
 /// rigid body's).
@@ -136,7 +136,7 @@ fn large_eccentricity_gives_a_visibly_curved_route() {
         (FORCE, 1.2e7),
         ("loads.eccentricity_m", 1.5),
     ]));
-    let heading = |r: &slideroute::internals::route::Row| r.vz_m_s.atan2(r.vx_m_s).to_degrees();
+    let heading = |r: &slideroute::Row| r.vz_m_s.atan2(r.vx_m_s).to_degrees();
     let rows = &curved.rows;
     let turn = heading(&rows[rows.len() - 1]) - heading(&rows[rows.len() / 10]);
     assert!(turn.abs() > 10.0, "heading turned by {turn}°");
@@ -330,11 +330,8 @@ fn every_example_scene_runs_to_a_stated_end() {
 
 #[test]
 fn all_roots_method_gives_the_same_route_as_continuation() {
-    use slideroute::internals::route::PoseMethod;
-    for mode in [
-        slideroute::internals::model::Mode::Exact,
-        slideroute::internals::model::Mode::SmallAngle,
-    ] {
+    use slideroute::PoseMethod;
+    for mode in [slideroute::Mode::Exact, slideroute::Mode::SmallAngle] {
         let s = with(&[(T_END, 1.0)])
             .with("solver.mode", mode.as_str())
             .unwrap();

@@ -3,7 +3,7 @@
 //! (Arbitrary text and single-value replacements are fuzzed in `src/scene/tests.rs` too.)
 
 use proptest::prelude::*;
-use slideroute::internals::geometry::Displacement;
+use slideroute::Displacement;
 use slideroute::internals::{model::Mode, scene::Scene};
 
 fn assert_one_line(text: &str, origin: &str) {
@@ -171,7 +171,7 @@ proptest! {
                 // the bound.
                 for mode in [Mode::Exact, Mode::SmallAngle] {
                     let d = Displacement::new(0.3, -0.1, 0.05);
-                    if let Ok(all) = slideroute::internals::roots::solve_all(scene.site(), d, mode) {
+                    if let Ok(all) = slideroute::solve_all(scene.site(), d, mode) {
                         prop_assert!(all.finite_roots <= 8);
                     }
                 }

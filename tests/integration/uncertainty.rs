@@ -1,6 +1,6 @@
 //! Uncertain scene values (issue #17): the probability of sliding against its closed form.
 
-use slideroute::internals::scene::Scene;
+use slideroute::Scene;
 use slideroute::probabilistic::{Sampling, Uncertain, sample_scene, sample_values};
 
 /// The paper-like block on 0.01° dips with the push through its centre of mass: it slides

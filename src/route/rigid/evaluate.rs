@@ -136,16 +136,14 @@ pub(super) fn evaluate(
         (rates, removed) = (r, removed + into);
     }
     let faces = faces_of(finder.site());
-    let motion = rigid_body::accelerations_in_crease(
-        &geom,
-        &applied,
-        sim.block(),
-        &sim.strength(faces, false),
-        rates,
-        sim.settings().dt,
-        hold.creases,
-    )
-    .map_err(stop_of)?;
+    let at = rigid_body::State {
+        geom: &geom,
+        applied: &applied,
+        block: sim.block(),
+        strength: &sim.strength(faces, false),
+    };
+    let motion =
+        rigid_body::accelerations(&at, rates, sim.settings().dt, hold.creases).map_err(stop_of)?;
     Ok(Eval {
         pose,
         motion,

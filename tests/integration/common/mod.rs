@@ -1,8 +1,8 @@
 //! Shared test helpers: scenes built from numbers, and the hand-derived formulas typed from
 //! `derivations/03-small-angle.md` and `derivations/04-exact.md`.
 
-use slideroute::internals::geometry::Displacement;
-use slideroute::internals::scene::Scene;
+use slideroute::Displacement;
+use slideroute::Scene;
 use std::f64::consts::SQRT_2;
 
 /// A geometry-only scene. `l2x_frac`, `l1z_frac` are fractions of L.
@@ -156,7 +156,7 @@ pub fn hand_exact(s: &Scene, d: Displacement) -> [Vec<(&'static str, f64)>; 2] {
 
 /// Every route row agrees with the direct pose solver at its (X, Z, θ): α, β to 1e-10 rad and
 /// the CM height to 1e-9·L (each solve starts from the previous row's pose).
-pub fn assert_rows_match_direct(s: &Scene, rows: &[slideroute::internals::route::Row]) {
+pub fn assert_rows_match_direct(s: &Scene, rows: &[slideroute::Row]) {
     use slideroute::internals::geometry::direct;
     let l = s.l();
     let mut near = None;

@@ -7,7 +7,7 @@ use slideroute::internals::numeric::{fixed, seconds};
 use std::fmt;
 
 /// A case's value of a scene key it or the scene sets (the levels, the coefficients).
-fn level(r: &CaseResult, f: impl Fn(&slideroute::internals::scene::LoadsUsed) -> f64) -> String {
+fn level(r: &CaseResult, f: impl Fn(&slideroute::LoadsUsed) -> f64) -> String {
     r.loads
         .as_ref()
         .map_or("—".into(), |l| fixed(f(l), 2).to_string())
@@ -45,7 +45,7 @@ const COLUMNS: [&str; 11] = [
 
 impl CheckTable<'_> {
     fn cells(r: &CaseResult) -> [String; 11] {
-        let water = |f: fn(&slideroute::internals::model::WaterLoads) -> f64| {
+        let water = |f: fn(&slideroute::WaterLoads) -> f64| {
             r.loads
                 .as_ref()
                 .and_then(|l| l.water.as_ref())

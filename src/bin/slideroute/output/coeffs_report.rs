@@ -2,11 +2,11 @@
 
 use super::Ordered;
 use serde::Serialize;
+use slideroute::Displacement;
+use slideroute::Scene;
 use slideroute::internals::coeffs::{
     CoeffInputs, EXACT_NAMES_13, EXACT_NAMES_14, Exact, SMALL_ANGLE_NAMES, SmallAngle,
 };
-use slideroute::internals::geometry::Displacement;
-use slideroute::internals::scene::Scene;
 use std::fmt;
 
 /// The exact form's coefficients, by basis monomial, plus its tangent half-angle matrices.

@@ -2,7 +2,7 @@
 //! row per pose, in order.
 
 use crate::output::roots_report::RootsReport;
-use slideroute::internals::geometry::Displacement;
+use slideroute::Displacement;
 use std::io::{Read, Write};
 
 /// A grid file that cannot be used: names the file, the line and the reason.

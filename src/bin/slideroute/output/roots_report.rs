@@ -1,7 +1,7 @@
 //! The `roots` report: every root at one displacement, and the selected one.
 
 use serde::Serialize;
-use slideroute::internals::geometry::Displacement;
+use slideroute::Displacement;
 use slideroute::internals::roots::{AllRoots, Inadmissible, Root, classify};
 use slideroute::internals::{model::Mode, scene::Scene};
 use std::fmt;

@@ -70,7 +70,7 @@ pub struct Manifest {
     /// The loads the route used, in the engineer's terms (`Scene::loads_used`): weight, the
     /// water's net push and its couples, the uplift, the pseudo-static coefficients, and from
     /// `[water]` each water load with where it acts.
-    pub loads: Option<slideroute::internals::scene::LoadsUsed>,
+    pub loads: Option<slideroute::LoadsUsed>,
     /// The other files this run wrote into the folder, with their sizes.
     pub files: Vec<FileEntry>,
 }
@@ -84,7 +84,7 @@ pub struct FileEntry {
 
 impl Manifest {
     /// For this process's command line, `scene`, and the files `folder` holds so far.
-    pub fn new(scene: &slideroute::internals::scene::Scene, folder: &Folder) -> Manifest {
+    pub fn new(scene: &slideroute::Scene, folder: &Folder) -> Manifest {
         Manifest {
             slideroute_version: env!("CARGO_PKG_VERSION"),
             command_line: std::env::args().collect(),

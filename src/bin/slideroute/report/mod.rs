@@ -357,8 +357,7 @@ pub fn extreme(sample: usize) -> Vec<ExtremeRow> {
                             row.z_m,
                             row.theta_deg.to_radians(),
                         );
-                        let p = slideroute::internals::geometry::direct::solve(c.scene.site(), d)
-                            .ok()?;
+                        let p = slideroute::direct_pose(c.scene.site(), d).ok()?;
                         Some(
                             (p.alpha(l) - row.alpha_deg.to_radians())
                                 .abs()

@@ -25,10 +25,10 @@ use plan::Track;
 use plotters::style::RGBColor;
 use series::Series;
 use sheet::{Entry, Mark, Res};
-use slideroute::internals::mechanics::static_friction::FactorOfSafety;
+use slideroute::FactorOfSafety;
+use slideroute::Scene;
 use slideroute::internals::numeric::{fixed, seconds};
-use slideroute::internals::route::{Reason, Route, Row};
-use slideroute::internals::scene::Scene;
+use slideroute::{Reason, Route, Row};
 use std::path::{Path, PathBuf};
 
 /// The most points a picture draws of a route (issue #13): past this, rows are thinned evenly
@@ -172,11 +172,7 @@ pub fn plan(path: &Path, scene: &Scene, route: &Route) -> Res<()> {
 }
 
 /// Both dynamics' routes of one scene on one plan view (`run --compare-dynamics`).
-pub fn compare_plan(
-    path: &Path,
-    scene: &Scene,
-    c: &slideroute::internals::analysis::compare::Comparison,
-) -> Res<()> {
+pub fn compare_plan(path: &Path, scene: &Scene, c: &slideroute::Comparison) -> Res<()> {
     let (rigid, paper) = (
         thinned(&c.rigid_body.route.rows),
         thinned(&c.paper.route.rows),

@@ -7,11 +7,11 @@
 use super::sheet::{self, Area, Entry, Mark, Res, Sheet, err};
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
+use slideroute::Row;
+use slideroute::Scene;
 use slideroute::internals::geometry::planes::{PaperPlane as Plane, r as strike_2_distance};
-use slideroute::internals::geometry::{Displacement, Pose};
 use slideroute::internals::geometry::{PaperSite, direct};
-use slideroute::internals::route::Row;
-use slideroute::internals::scene::Scene;
+use slideroute::{Displacement, Pose};
 use std::path::Path;
 
 pub(super) const PLANE_1: RGBColor = RGBColor(30, 90, 200);
@@ -178,7 +178,7 @@ const FACE_COLORS: [RGBColor; 8] = [
 ];
 
 /// The down-dip direction of a plane in plan (unit), none for a level one.
-fn down_dip(plane: &slideroute::internals::geometry::Plane) -> Option<P> {
+fn down_dip(plane: &slideroute::Plane) -> Option<P> {
     let dip = plane.dip();
     (dip > 1e-9).then(|| {
         let a = plane.dip_direction();
@@ -187,10 +187,7 @@ fn down_dip(plane: &slideroute::internals::geometry::Plane) -> Option<P> {
 }
 
 /// a·X + b·Z ≥ c where plane `p` stands at least as high as plane `q`.
-fn above(
-    p: &slideroute::internals::geometry::Plane,
-    q: &slideroute::internals::geometry::Plane,
-) -> (f64, f64, f64) {
+fn above(p: &slideroute::Plane, q: &slideroute::Plane) -> (f64, f64, f64) {
     // height = (e − m_x X − m_z Z) / m_y
     let (mp, mq) = (p.normal(), q.normal());
     (

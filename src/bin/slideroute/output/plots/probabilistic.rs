@@ -9,9 +9,9 @@ use super::thinned;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 use slideroute::Outcome;
+use slideroute::Route;
+use slideroute::Scene;
 use slideroute::internals::numeric::fixed;
-use slideroute::internals::route::Route;
-use slideroute::internals::scene::Scene;
 use slideroute::probabilistic::{Distribution, Sample, Summary};
 use std::path::Path;
 

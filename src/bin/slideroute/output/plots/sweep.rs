@@ -10,7 +10,7 @@ use crate::sweep::{SweepRow, Vary};
 use plotters::prelude::*;
 use plotters::style::colors::colormaps::{ColorMap, ViridisRGB};
 use plotters::style::text_anchor::{HPos, Pos, VPos};
-use slideroute::internals::mechanics::static_friction::FactorOfSafety;
+use slideroute::FactorOfSafety;
 use std::path::Path;
 
 const SIZE: (u32, u32) = (1200, 820);

@@ -1,7 +1,7 @@
 //! The pictures read back as SVG: where their legends and data lie, what they name and mark.
 
 use super::*;
-use slideroute::internals::scene::SceneError;
+use slideroute::SceneError;
 
 /// A text element of an SVG: its position and content.
 #[derive(Debug)]
@@ -180,7 +180,7 @@ fn a_foundation_of_faces_is_drawn_face_by_face_with_its_creases() {
     let text = format!("{}{faces}\n{}", &text[..start], &text[end..]);
     let scene = Scene::from_toml(&text, "four faces")
         .unwrap()
-        .with_dynamics(slideroute::internals::model::DynamicsModel::Paper)
+        .with_dynamics(slideroute::DynamicsModel::Paper)
         .unwrap();
     let (dir, route) = route_pictures("faces", &scene);
     assert!(route.rows.len() > 100);

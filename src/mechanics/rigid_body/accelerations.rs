@@ -1,0 +1,304 @@
+//! The accelerations at a state, with the contact forces: frictionless, every contact slipping
+//! against its slip, a young slip's direction slaved to its quasi-static value, a pivot that
+//! sticks or starts to slip, a block at rest that starts to slip (`slip_start.rs`), contacts in
+//! creases; and the checks that every contact stays on its faces.
+
+use super::RigidError;
+use super::contact::{Ctx, MAX_FIXED_POINT, Solved, ZERO_SLIP, in_cone};
+use super::creases::Creases;
+use super::kinematics::{Inertia, Twist, longest_arm, twist, unit};
+use super::slip_start::{from_rest, slaved_direction, slip_start};
+use crate::mechanics::ContactGeometry;
+use crate::mechanics::loads::Applied;
+use crate::model::{Block, Strength};
+use nalgebra::Vector3;
+
+/// Everything the rigid-body dynamics gives at one state.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Motion {
+    pub twist: Twist,
+    /// CM acceleration and angular acceleration (global).
+    pub accel: Vector3<f64>,
+    pub ang_accel: Vector3<f64>,
+    /// Normal reaction magnitudes (N) and shear force vectors (N).
+    pub normal: [f64; 3],
+    pub shear: [Vector3<f64>; 3],
+    /// Slip velocity of each contact (m/s).
+    pub slip: [Vector3<f64>; 3],
+    /// (Ẍ, Z̈, θ̈).
+    pub acc: [f64; 3],
+    /// Power of the hydraulic force and couple, and of friction (W; friction's is ≤ 0).
+    pub power_hydraulic: f64,
+    pub power_friction: f64,
+    pub inertia: Inertia,
+    /// The contact that sticks while the block turns about it (its slip vanished and its shear
+    /// lies inside its cone), if any.
+    pub stuck: Option<usize>,
+    /// The second face's normal reaction (N) of each contact riding a crease.
+    pub crease_normal: [Option<f64>; 3],
+    /// The creases the motion was evaluated with.
+    pub creases: Creases,
+}
+
+/// The block at one pose: its contacts and the faces under them, the loads on it (moments
+/// about the point the contacts' arms are from), its mass properties, and what its contacts
+/// carry in shear.
+#[derive(Debug, Clone, Copy)]
+pub struct State<'a> {
+    /// Where the contacts are, and the faces' normals.
+    pub geom: &'a ContactGeometry,
+    /// The loads.
+    pub applied: &'a Applied,
+    /// Mass and inertia.
+    pub block: &'a Block,
+    /// Each contact's friction criterion and cohesion.
+    pub strength: &'a Strength,
+}
+
+/// The accelerations at a pose with rates (Ẋ, Ż, θ̇), with contacts riding `creases`, for an
+/// integrator of step `step` (s; 0 for the accelerations alone).
+///
+/// Each crease's second face is one more constraint, its reaction one more unknown, and both
+/// faces' friction opposes the contact's slip along the crease (`derivations/10-faces.md` §4);
+/// `rates` must keep each such contact on its second face (its velocity along that face's
+/// normal zero, [`crease_rates`](super::crease_rates)). A second face's reaction falling to zero
+/// is [`RigidError::CreaseLetsGo`]; the contact's own face's, while the second holds it,
+/// [`RigidError::CreaseTakesOver`]; three creases at once, [`RigidError::Wedged`].
+///
+/// The direction of a *young, slow* slip — slower than 4 μ λ / m × `step` (the speed friction
+/// takes away in four steps) while its tangential acceleration is under a tenth of μ λ / m — is
+/// slaved to its quasi-static value instead of being read off the slip velocity.
+///
+/// Why: a slip s of a contact turns towards the direction its friction allows at a rate of
+/// order μ λ (e·A e) / |s| (A the contact's tangential inverse mass), which grows without bound
+/// as |s| → 0, while its magnitude changes at the rate |a_t| / |s|. Where |a_t| ≪ μ λ / m — a
+/// slip just started at the edge of the cone (a release), or dying away towards a pivot — the
+/// first rate is far beyond any step's reach for many steps, and an explicit integrator makes
+/// the direction swing about and the slip turn round again and again (chatter: hundreds of
+/// events, an energy error of a joule that does not converge). A slip from rest, whose
+/// acceleration is of the order of μ λ / m, leaves that band within a few steps, and RK4
+/// follows it (the band would cost it its order).
+///
+/// The slaved direction d is the one the slip settles to within that time: the tangential
+/// acceleration it gives is parallel to it, (d × a_t)·n = 0, the root nearest the slip's own
+/// direction; the slip then grows or shrinks along d, and a slip that shrinks passes through
+/// zero where the route's pivot event finds it. As `step` → 0 the band vanishes and the law is
+/// Coulomb's.
+pub fn accelerations(
+    at: &State<'_>,
+    rates: [f64; 3],
+    step: f64,
+    creases: Creases,
+) -> Result<Motion, RigidError> {
+    let (geom, block, friction) = (at.geom, at.block, at.strength);
+    if creases.len() == 3 {
+        return Err(RigidError::Wedged);
+    }
+    let inertia = Inertia::new(block, geom)?;
+    let tw = twist(geom, rates)?;
+    let ctx = Ctx {
+        geom,
+        inertia,
+        mass: block.mass,
+        force: at.applied.total_force(),
+        torque: at.applied.total_moment() - tw.w.cross(&(inertia.world * tw.w)),
+        centripetal: geom.r.map(|r| tw.w.cross(&tw.w.cross(&r))),
+        arm: longest_arm(geom),
+        creases,
+    };
+    let frictionless = friction.is_frictionless();
+    let coefficients = |lambda: &[f64; 3]| -> [f64; 3] {
+        if frictionless {
+            [0.0; 3]
+        } else {
+            friction.coefficients(lambda)
+        }
+    };
+    let slip = ctx.slip_of(&tw);
+    let zero = [Vector3::zeros(); 3];
+    // The frictionless solution: the answer of a frictionless scene (no friction solve at
+    // all), the starting direction from rest, and the first normals of a stress-dependent
+    // criterion. A sliding block under Coulomb friction does not need it (μ is constant).
+    let needs_frictionless = frictionless || tw.is_zero() || friction.is_stress_dependent();
+    let sol = if needs_frictionless {
+        ctx.solve(&zero, &[0.0; 3])?
+    } else {
+        ctx.solve(&slip.map(unit), &coefficients(&[1.0; 3]))?
+    };
+    let (sol, stuck) = if frictionless {
+        (sol, None)
+    } else if tw.is_zero() {
+        from_rest(&ctx, &sol, &coefficients)?
+    } else {
+        let moving = Moving {
+            ctx: &ctx,
+            friction,
+            twist: &tw,
+            slip: &slip,
+            step,
+        };
+        moving.contact_forces(sol, &coefficients)?
+    };
+    on_their_faces(&sol, &creases, stuck)?;
+    let power_friction = (0..3).map(|i| sol.shear[i].dot(&slip[i])).sum();
+    Ok(Motion {
+        twist: tw,
+        accel: sol.a,
+        ang_accel: sol.e,
+        normal: sol.lambda,
+        shear: sol.shear,
+        slip,
+        acc: [sol.a.x, sol.a.z, theta_acceleration(geom, &tw, &sol.e)],
+        power_hydraulic: at.applied.power(&tw.v, &tw.w),
+        power_friction,
+        inertia,
+        stuck,
+        crease_normal: [0, 1, 2].map(|i| creases.at(i).map(|_| sol.crease[i])),
+        creases,
+    })
+}
+
+/// A moving block's contact problem: each shear opposes its contact's slip velocity.
+struct Moving<'a> {
+    ctx: &'a Ctx<'a>,
+    friction: &'a Strength,
+    twist: &'a Twist,
+    slip: &'a [Vector3<f64>; 3],
+    /// The integrator's step (s).
+    step: f64,
+}
+
+impl Moving<'_> {
+    /// The contact forces, from the solution `sol` with every contact slipping: a contact whose
+    /// slip vanishes while the block moves (a pivot) sticks if its cone allows, or else slips
+    /// along its tangential acceleration; a young, slow slip's direction is slaved; a
+    /// stress-dependent criterion's coefficients are settled. Also the contact that sticks.
+    fn contact_forces(
+        &self,
+        mut sol: Solved,
+        coefficients: &dyn Fn(&[f64; 3]) -> [f64; 3],
+    ) -> Result<(Solved, Option<usize>), RigidError> {
+        let (ctx, friction) = (self.ctx, self.friction);
+        let mut dir = self.slip.map(unit);
+        let mut mu = coefficients(&sol.lambda);
+        let (pivot, slaved) = self.pivot_or_slaved(&sol, &mut dir, &mu)?;
+        if slaved && pivot.is_none() {
+            sol = ctx.solve(&dir, &mu)?;
+        }
+        let mut stuck = None;
+        if let Some(i) = pivot {
+            let (s, settled) = friction.settle(
+                &mut mu,
+                (1e-13, MAX_FIXED_POINT),
+                |mu| ctx.solve_stick(&dir, mu, i),
+                |s| Some(s.lambda),
+            )?;
+            if settled && in_cone(&s.shear[i], mu[i], s.lambda[i]) {
+                stuck = Some(s);
+            }
+        }
+        Ok(match (stuck, pivot) {
+            (Some(s), _) => (s, pivot),
+            // The pivot's cone cannot hold it: it starts to slip, in the direction that
+            // reproduces itself (as from rest, for the one contact).
+            (None, Some(i)) => (slip_start(ctx, &mut dir, &mut mu, i, coefficients)?, None),
+            // Coulomb without a pivot: the solve above is the answer.
+            (None, None) if !friction.is_stress_dependent() => (sol, None),
+            (None, None) => {
+                let (sol, settled) = friction.settle(
+                    &mut mu,
+                    (1e-13, MAX_FIXED_POINT),
+                    |mu| ctx.solve(&dir, mu),
+                    |s| Some(s.lambda),
+                )?;
+                if !settled {
+                    return Err(RigidError::SlipFromRest);
+                }
+                (sol, None)
+            }
+        })
+    }
+
+    /// The pivot — a contact whose slip is zero, or a slow slip friction stops within the step —
+    /// and whether some young slip's direction in `dir` was slaved.
+    fn pivot_or_slaved(
+        &self,
+        sol: &Solved,
+        dir: &mut [Vector3<f64>; 3],
+        mu: &[f64; 3],
+    ) -> Result<(Option<usize>, bool), RigidError> {
+        let (ctx, slip, step) = (self.ctx, self.slip, self.step);
+        let scale = self.twist.v.norm() + self.twist.w.norm() * ctx.arm;
+        let mut pivot = (0..3).find(|&i| slip[i].norm() <= ZERO_SLIP * scale);
+        let mut slaved = false;
+        let zero_pivot = pivot;
+        for j in (0..3).filter(|&j| Some(j) != zero_pivot) {
+            let friction_accel = mu[j] * sol.lambda[j].abs() / ctx.mass;
+            if slip[j].norm() >= 4.0 * friction_accel * step {
+                continue;
+            }
+            if let Some((d, a)) = slaved_direction(ctx, dir, mu, j, &dir[j])? {
+                if a.abs() < 0.1 * friction_accel {
+                    dir[j] = d;
+                    slaved = true;
+                } else if a < 0.0
+                    && pivot.is_none()
+                    && slip[j].norm() <= -a * step
+                    && slip[j].norm() <= PIVOTING * scale
+                {
+                    // A slip this slow beside the block's own motion, that friction stops
+                    // within the step: the contact comes to a pivot here, sticking if its cone
+                    // holds it, or slipping from it in the direction that reproduces itself.
+                    // Followed as a slip, it overshoots zero step after step and chatters
+                    // about it, a few µm/s in size, in substeps of microseconds (a sample of
+                    // the default scene: 76 s for a 3.7 s route). A block coming to a stop as
+                    // a whole (every slip of the block's size) is left to the stop's event.
+                    pivot = Some(j);
+                }
+            }
+        }
+        Ok((pivot, slaved))
+    }
+}
+
+/// Every contact on its faces: each crease's second face (of the contacts not sticking) still
+/// pushing, and its own face too; every normal reaction positive.
+fn on_their_faces(sol: &Solved, creases: &Creases, stuck: Option<usize>) -> Result<(), RigidError> {
+    for c in creases.without(stuck).iter() {
+        if sol.crease[c.contact] <= 0.0 {
+            return Err(RigidError::CreaseLetsGo {
+                contact: c.contact,
+                normal_n: sol.crease[c.contact],
+            });
+        }
+        if sol.lambda[c.contact] <= 0.0 {
+            return Err(RigidError::CreaseTakesOver {
+                contact: c.contact,
+                normal_n: sol.lambda[c.contact],
+            });
+        }
+    }
+    for (i, &l) in sol.lambda.iter().enumerate() {
+        if l <= 0.0 {
+            return Err(RigidError::LiftOff {
+                contact: i,
+                normal_n: l,
+            });
+        }
+    }
+    Ok(())
+}
+
+/// θ̈ from u = i' (θ = atan2(u_z, u_x)), the twist `tw` and the angular acceleration `e`.
+fn theta_acceleration(geom: &ContactGeometry, tw: &Twist, e: &Vector3<f64>) -> f64 {
+    let u = geom.frame.i;
+    let du = tw.w.cross(&u);
+    let ddu = e.cross(&u) + tw.w.cross(&du);
+    let rho2 = u.x * u.x + u.z * u.z;
+    let theta_dot = (u.x * du.z - u.z * du.x) / rho2;
+    (u.x * ddu.z - u.z * ddu.x) / rho2 - 2.0 * theta_dot * (u.x * du.x + u.z * du.z) / rho2
+}
+
+/// A young slip this small a fraction of the block's speed, that friction stops within the
+/// step, is a pivot (see [`accelerations`]).
+const PIVOTING: f64 = 1e-3;
