@@ -72,13 +72,14 @@ pub use analysis::compare::{Comparison, Parting, compare_dynamics, compare_dynam
 pub use analysis::runner::{NOT_RUN, Outcome, RouteResult};
 pub use analysis::{run, run_observed};
 pub use coeffs::{CoeffInputs, Exact, SmallAngle};
-pub use geometry::direct::{DirectPose, solve as direct_pose};
-pub use geometry::{Displacement, Foundation, Frame, Ground, Plane, Pose, Site};
+pub use geometry::direct::solve as direct_pose;
+pub use geometry::{DirectPose, Displacement, Foundation, Frame, Ground, Plane, Pose, Site};
 pub use mechanics::static_friction::FactorOfSafety;
 pub use model::{
-    Block, Category, DynamicsModel, FaceStrength, Friction, Guideline, Initial, Integrator,
-    LoadCase, Loads, Mode, ModelError, Monolith, Record, RunSettings, Section, Simulation,
-    SimulationBuilder, SiteInformation, Strengths, Structure, UnknownName, WaterLoads,
+    Block, Category, DynamicsModel, FaceStrength, Friction, Guideline, Initial, Integrator, Levels,
+    LoadCase, Loads, MAX_INCREMENTS, MassProperties, Mode, ModelError, Monolith, Record, Resultant,
+    RunSettings, Section, Simulation, SimulationBuilder, SiteInformation, Strengths, Structure,
+    UnknownName, WaterLoads,
 };
 pub use roots::{
     AllRoots, BranchPoint, Inadmissible, Root, TrackError, TrackStats, Tracker, solve_all,

@@ -192,8 +192,9 @@ class Scene:
         progress: Progress = None,
     ) -> "Samples":
         """Every combination of the values given (``{"friction.mu_k": [0.3, 0.35, 0.4]}``),
-        each route on its own core: one row per combination, in order (the last key varies
-        fastest). ``progress(done, total)`` is told how far it is; Ctrl-C stops it with
+        each route on its own core, by the runner ``slideroute sweep`` uses: one row per
+        combination, in order (the last key varies fastest), the rows ``sweep.csv`` has.
+        ``progress(done, total)`` is told how far it is; Ctrl-C stops it with
         ``KeyboardInterrupt``."""
         given = [(k, [float(v) for v in vs]) for k, vs in values.items()]
         return Samples(self._s.sweep(given, dynamics, progress))
@@ -247,8 +248,11 @@ class Route:
 
 class Samples(dict):
     """Rows of samples (or of a sweep's combinations) as columns: ``sample``, each key's values,
-    ``factor_of_safety``, ``reason``, ``t_end_s``, ``travel_m``, ``final_yaw_deg``,
-    ``final_x_m``, ``final_z_m``, ``detail`` (why a sample's values made no valid scene)."""
+    ``factor_of_safety`` (±inf where no multiple of the loads starts the block, or the weight
+    alone does), ``reason``, ``t_end_s``, ``travel_m``, ``final_yaw_deg``, ``final_x_m``,
+    ``final_z_m``, ``max_alpha_deg``, ``max_beta_deg`` and ``detail`` (what ended the route, or
+    why a sample's values made no valid scene) — the command line's ``samples.csv`` and
+    ``sweep.csv`` columns, from the same runner."""
 
     def to_pandas(self) -> Any:
         """The rows as a pandas DataFrame."""

@@ -1,4 +1,4 @@
-"""The Python package against the command line and against independent results (issue #17)."""
+"""The Python package against the command line and against independent results."""
 
 from __future__ import annotations
 
@@ -178,6 +178,34 @@ def test_a_sweep_row_is_the_route_of_its_combination():
         ).route()
         assert sw["travel_m"][k] == r.travel_m
         assert sw["factor_of_safety"][k] == r.factor_of_safety
+
+
+def test_a_sweep_equals_the_command_lines_row_for_row(tmp_path):
+    # The command line and Python run a sweep through the library's one runner: the same rows.
+    scene_file = short(SCENES / "paper-like.toml", tmp_path, "1.0")
+    out = tmp_path / "sweep"
+    subprocess.run(
+        [cli(), "sweep", "--scene", str(scene_file), "--vary", "friction.mu_k=0.3,0.45,-1",
+         "--vary", "loads.eccentricity_m=0:1:2", "--out", str(out), "--quiet"],
+        check=True,
+    )
+    header, rows = read_csv(out / "sweep.csv")
+    sw = slideroute.Scene.from_file(scene_file).sweep(
+        {"friction.mu_k": [0.3, 0.45, -1.0], "loads.eccentricity_m": [0.0, 1.0]}
+    )
+    assert len(rows) == len(sw["sample"]) == 6
+    names = {"final_theta_deg": "final_yaw_deg"}
+    words = {"unbounded": math.inf, "not-holdable": -math.inf}
+    for k, name in enumerate(header):
+        col = sw[names.get(name, name)]
+        for j, row in enumerate(rows):
+            if name in ("reason", "detail"):
+                assert col[j] == row[k], (name, j)
+            else:
+                want = words.get(row[k], None) if name == "factor_of_safety" else None
+                want = as_float(row[k]) if want is None else want
+                assert same(float(col[j]), want), (name, j, col[j], row[k])
+    assert list(sw["reason"]).count("invalid scene") == 2
 
 
 def test_the_probabilistic_analysis_equals_the_command_lines(tmp_path):

@@ -22,11 +22,10 @@ mod generated {
     include!(concat!(env!("OUT_DIR"), "/coeffs.rs"));
 }
 
-pub use generated::{CoeffInputs, GENERAL_BASIS, GENERAL_SMALL_BASIS, GeneralInputs};
+pub use generated::{CoeffInputs, GeneralInputs};
 pub use generated::{
-    EXACT_BASIS_13, EXACT_BASIS_14, EXACT_NAMES_13, EXACT_NAMES_14, EXACT_TERMS,
-    SMALL_ANGLE_MONOMIALS, SMALL_ANGLE_UNSQUARED_A13, SMALL_ANGLE_UNSQUARED_A14,
-    SMALL_ANGLE_UNSQUARED_SPLIT,
+    EXACT_BASIS_13, EXACT_BASIS_14, EXACT_TERMS, SMALL_ANGLE_MONOMIALS, SMALL_ANGLE_UNSQUARED_A13,
+    SMALL_ANGLE_UNSQUARED_A14, SMALL_ANGLE_UNSQUARED_SPLIT,
 };
 
 /// Number of trig-basis terms of exact (13) plus (14).
@@ -101,11 +100,6 @@ impl CoeffInputs {
     }
 }
 
-/// Names of the small-angle coefficients, f1–f12.
-pub const SMALL_ANGLE_NAMES: [&str; 12] = [
-    "f1", "f2", "f3", "f4", "f5", "f6", "f7", "f8", "f9", "f10", "f11", "f12",
-];
-
 /// f1–f12 of system (15) at one displacement: (15a) is
 /// f1 + f2 α + f3 αβ + f4 α² + f5 α²β + f6 α²β² = 0 and (15b) is
 /// f7 + f8 β + f9 αβ + f10 β² + f11 αβ² + f12 α²β² = 0 (SI units, unscaled).
@@ -116,6 +110,12 @@ pub struct SmallAngle {
 }
 
 impl SmallAngle {
+    /// The coefficients' names, f1–f12, in the order of [`SmallAngle::f`].
+    pub const NAMES: [&'static str; 12] = [
+        "f1", "f2", "f3", "f4", "f5", "f6", "f7", "f8", "f9", "f10", "f11", "f12",
+    ];
+
+    /// The coefficients at the displacement and site of `inputs`.
     pub fn new(inputs: &CoeffInputs) -> Self {
         SmallAngle {
             f: generated::small_angle(inputs),
@@ -223,6 +223,12 @@ pub struct Exact {
 }
 
 impl Exact {
+    /// The names of (13)'s coefficients, its basis monomials, in the order of [`Exact::eq13`].
+    pub const NAMES_13: [&'static str; EXACT_TERMS[0]] = generated::EXACT_NAMES_13;
+    /// The names of (14)'s coefficients, in the order of [`Exact::eq14`].
+    pub const NAMES_14: [&'static str; EXACT_TERMS[1]] = generated::EXACT_NAMES_14;
+
+    /// The coefficients at the displacement and site of `inputs`.
     pub fn new(inputs: &CoeffInputs) -> Self {
         Exact {
             g: generated::exact_trig(inputs),

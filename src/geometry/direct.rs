@@ -130,7 +130,9 @@ pub fn solve(site: &Site, d: Displacement) -> Result<DirectPose, GeometryError> 
     Ok(finish(site, d, result))
 }
 
-/// The pose at `d` by Newton from a nearby pose (e.g. the previous increment's).
+/// The pose at `d` by Newton from a nearby pose (e.g. the previous increment's). The tests
+/// follow routes with it; the library's own routes follow the polynomial systems.
+#[cfg_attr(not(feature = "internals"), allow(dead_code))]
 pub fn solve_from(
     site: &Site,
     d: Displacement,

@@ -1,21 +1,19 @@
 //! Exact geometry of the sliding frame.
 //!
 //! * [`site`]: the frame and the foundation, all that geometry takes of a scene.
-//! * [`planes`]: the three foundation planes, their heights, normals and regions.
+//! * [`paper_planes`]: the paper's three foundation planes, their heights and regions.
 //! * [`frame`]: the local frame (i', j', k') built from the actual vertex positions, and R.
 //! * [`pose`]: the pose from (X, Z, θ, α, β) through the paper's relations (1), (2), (21), and
 //!   from (X, Z, θ, α, ψ).
-//! * [`relations`]: the paper's law-of-sines relations (13), (14) as printed (with √2).
 //! * [`direct`]: the independent pose solver (Newton on the three contact constraints) — the
 //!   oracle every other stage is tested against.
 
 pub mod direct;
 pub mod frame;
 pub mod ground;
+pub mod paper_planes;
 pub mod plane;
-pub mod planes;
 pub mod pose;
-pub mod relations;
 pub mod site;
 
 pub use direct::DirectPose;

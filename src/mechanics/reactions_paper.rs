@@ -45,9 +45,6 @@ pub enum ReactionsError {
     /// A frictionless normal reaction (25)–(27) is not positive: that contact lifts off.
     #[error("contact {0} lifts off (its frictionless normal reaction is not positive)")]
     LiftOff(usize),
-    /// The statics are singular (degenerate frame).
-    #[error("the frictionless statics are singular")]
-    Singular,
 }
 
 /// Offset of the half-angle parameter, so that no solution sits at t = ∞ except by accident.

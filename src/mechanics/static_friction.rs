@@ -41,7 +41,7 @@ pub enum StaticError {
 
 /// The interval of load multiples that static friction can hold at one pose.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct StaticCheck {
+pub struct HoldingRange {
     /// t_hi: the factor of safety (∞ when every multiple is held; −∞ when none is).
     pub factor_of_safety: f64,
     /// t_lo (−∞ when unbounded below; +∞ when no multiple is held).
@@ -122,7 +122,7 @@ impl std::fmt::Display for FactorOfSafety {
     }
 }
 
-impl StaticCheck {
+impl HoldingRange {
     /// The factor of safety this check gives.
     pub fn factor_of_safety(&self) -> FactorOfSafety {
         FactorOfSafety::from_multiple(self.factor_of_safety)
@@ -219,7 +219,7 @@ pub fn at_rest(
     geom: &ContactGeometry,
     applied: &Applied,
     friction: &Strength,
-) -> Result<StaticCheck, StaticError> {
+) -> Result<HoldingRange, StaticError> {
     let c = super::statics::frictionless_normals(geom, applied).unwrap_or([1.0; 3]);
     check(geom, applied, friction, &c)
 }
@@ -229,7 +229,7 @@ pub fn check(
     applied: &Applied,
     friction: &Strength,
     statics: &[f64; 3],
-) -> Result<StaticCheck, StaticError> {
+) -> Result<HoldingRange, StaticError> {
     let w = applied.weight.norm();
     let mut mu = friction.coefficients(statics);
     let cohesion = &friction.cohesion_n;
@@ -250,13 +250,13 @@ pub fn check(
     let lo = extreme_t(geom, applied, (&mu, cohesion), 1.0)?;
     if hi.0.is_nan() {
         // No multiple of the loads is held.
-        return Ok(StaticCheck {
+        return Ok(HoldingRange {
             factor_of_safety: f64::NEG_INFINITY,
             lowest: f64::INFINITY,
             normal: [f64::NAN; 3],
         });
     }
-    Ok(StaticCheck {
+    Ok(HoldingRange {
         factor_of_safety: hi.0,
         lowest: lo.0,
         normal: hi.1.map(|l| l * w),

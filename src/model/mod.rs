@@ -21,9 +21,7 @@ mod water;
 pub use block::Block;
 pub use error::ModelError;
 pub(crate) use error::{check, finite, non_negative, positive};
-pub use friction::{
-    BARTON_MAX_ANGLE_DEG, FaceStrength, Friction, Strength, Strengths, barycentric,
-};
+pub use friction::{FaceStrength, Friction, Strength, Strengths, barycentric};
 pub use guideline::{Category, Guideline, LoadCase, SiteInformation, Structure};
 pub use initial::Initial;
 pub use loads::Loads;
@@ -33,4 +31,4 @@ pub use record::Record;
 pub use settings::{DynamicsModel, Integrator, MAX_INCREMENTS, Mode, RunSettings};
 pub use simulation::{Simulation, SimulationBuilder};
 pub(crate) use simulation::{check_ratios, check_rigid_only, face_count};
-pub use water::{Levels, Resultant, WaterLoads, water_loads};
+pub use water::{Levels, Resultant, WaterLoads};

@@ -6,7 +6,7 @@ pub mod hessenberg;
 mod shown;
 
 pub use distribution::{Distribution, FORMS, Uncertain};
-pub use shown::{Shown, degrees, fixed, seconds};
+pub use shown::{degrees, fixed, seconds};
 
 /// An angle folded into (−π, π] by arithmetic (no trigonometric calls).
 #[inline]

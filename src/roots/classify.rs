@@ -7,7 +7,7 @@
 //!   plane (vertex 0 over the horizontal part, vertex 1 over plane 1, vertex 2 over plane 2).
 
 use crate::coeffs::{FoundationTrig, SiteTrig, SmallAngleUnsquared};
-use crate::geometry::planes::{along_dip_2, r};
+use crate::geometry::paper_planes::{along_dip_2, r};
 use crate::geometry::{Displacement, Pose};
 use crate::geometry::{PaperSite, Site};
 use crate::model::Mode;
@@ -92,6 +92,20 @@ pub fn pose(site: &Site, d: Displacement, mode: Mode, u: [f64; 2]) -> Option<Pos
     match (mode, site.as_paper()) {
         (Mode::SmallAngle, Some(p)) => Pose::from_tilts(p, d, u[0], u[1]).ok(),
         _ => Pose::from_tilt_roll(site, d, u[0], u[1]).ok(),
+    }
+}
+
+impl super::AllRoots {
+    /// The pose of the selected root (the physical one, by continuation), if a root is selected
+    /// and its frame is real.
+    pub fn selected_pose(&self, site: &Site) -> Option<Pose> {
+        let r = &self.roots[self.selected?];
+        pose(
+            site,
+            self.displacement,
+            self.mode,
+            [r.alpha.re, r.psi.unwrap_or(r.beta).re],
+        )
     }
 }
 

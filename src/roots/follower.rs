@@ -67,10 +67,6 @@ impl<'s> EigenFollower<'s> {
         &self.site
     }
 
-    pub fn point(&self) -> BranchPoint {
-        self.current
-    }
-
     pub fn pose(&self) -> Option<Pose> {
         classify::pose(&self.site, self.current.d, self.mode, self.current.u)
     }

@@ -3,7 +3,7 @@
 //! limit, and the factor of safety at the start, for any [`Dynamics`].
 
 use super::dynamics::{Dynamics, Flow, Start};
-use super::outcome::Outcome;
+use super::logbook::Logbook;
 use super::pose_finder::PoseFinder;
 use super::row::faces_of;
 use super::termination::Reason;
@@ -34,10 +34,10 @@ pub(super) fn drive<'a, 's, M: Dynamics<'a>>(
     sim: &'a Simulation,
     finder: &mut PoseFinder<'_>,
     progress: impl FnMut(f64) -> ControlFlow<()>,
-    outcome: Outcome<'s>,
-) -> Outcome<'s> {
+    log: Logbook<'s>,
+) -> Logbook<'s> {
     let start_pose = finder.pose();
-    let mut o = increments_of::<M>(sim, finder, progress, outcome);
+    let mut o = increments_of::<M>(sim, finder, progress, log);
     if o.fs.is_none() {
         // One factor of safety whatever the dynamics: the friction cones' at the start.
         o.fs = start_pose.and_then(|pose| {
@@ -58,10 +58,10 @@ fn increments_of<'a, 's, M: Dynamics<'a>>(
     sim: &'a Simulation,
     finder: &mut PoseFinder<'_>,
     mut progress: impl FnMut(f64) -> ControlFlow<()>,
-    outcome: Outcome<'s>,
-) -> Outcome<'s> {
+    log: Logbook<'s>,
+) -> Logbook<'s> {
     let settings = *sim.settings();
-    let (mut model, mut o) = match M::start(sim, finder, outcome) {
+    let (mut model, mut o) = match M::start(sim, finder, log) {
         Start::Moving(model, o) => (model, o),
         Start::Ended(o) => return o,
     };

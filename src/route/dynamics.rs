@@ -5,23 +5,23 @@
 //! (`paper/`) and the rigid body's (`rigid/`) implement it; a third model is one new module and
 //! one arm in `simulate.rs`.
 
-use super::outcome::Outcome;
+use super::logbook::Logbook;
 use super::pose_finder::PoseFinder;
 use super::row::Row;
 use crate::model::Simulation;
 
 /// How a start came out: the block moves (the model, ready to advance), or the route ended at
-/// t = 0 (it does not slide, or cannot be started), its row and reason in the outcome.
+/// t = 0 (it does not slide, or cannot be started), its row and reason in the logbook.
 pub(super) enum Start<'s, M> {
-    Moving(M, Outcome<'s>),
-    Ended(Outcome<'s>),
+    Moving(M, Logbook<'s>),
+    Ended(Logbook<'s>),
 }
 
 /// How an increment came out: go on, or the route ended within it (an event the model decided:
-/// a stop, a contact leaving its plane, …), its last row and reason in the outcome.
+/// a stop, a contact leaving its plane, …), its last row and reason in the logbook.
 pub(super) enum Flow<'s> {
-    Go(Outcome<'s>),
-    Ended(Outcome<'s>),
+    Go(Logbook<'s>),
+    Ended(Logbook<'s>),
 }
 
 /// One dynamics model.
@@ -30,7 +30,7 @@ pub(super) trait Dynamics<'a>: Sized {
     fn start<'s>(
         sim: &'a Simulation,
         finder: &mut PoseFinder<'_>,
-        o: Outcome<'s>,
+        o: Logbook<'s>,
     ) -> Start<'s, Self>;
 
     /// Advances increment `k` to `t_to` (rows of events within it pushed as they happen).
@@ -39,16 +39,16 @@ pub(super) trait Dynamics<'a>: Sized {
         finder: &mut PoseFinder<'_>,
         k: usize,
         t_to: f64,
-        o: Outcome<'s>,
+        o: Logbook<'s>,
     ) -> Flow<'s>;
 
     /// The row of the current state.
     fn row(&self) -> Row;
 
     /// What the model adds when the driver ends the route (the time limit, an interruption).
-    fn close(&self, _o: &mut Outcome<'_>) {}
+    fn close(&self, _o: &mut Logbook<'_>) {}
 
     /// What the model adds to the way the route ended, however it ended (the factor of safety
     /// known): where the model itself, not the physics, ends the route, the detail says so.
-    fn explain_end(_o: &mut Outcome<'_>) {}
+    fn explain_end(_o: &mut Logbook<'_>) {}
 }

@@ -1,13 +1,13 @@
 //! The failure route (paper §7) of a [`Simulation`](crate::model::Simulation): one driver loop
 //! (`driver.rs`) runs a dynamics model (`dynamics.rs`) — the paper's (`paper/`) or the rigid
 //! body's (`rigid/`) — from its start, increment by increment, until the route ends for a
-//! stated reason (`termination.rs`), recording rows (`row.rs`, `outcome.rs`); `simulate.rs` picks
+//! stated reason (`termination.rs`), recording rows in a logbook (`row.rs`, `logbook.rs`); `simulate.rs` picks
 //! the model and says how the computation went.
 
 mod driver;
 mod dynamics;
 pub mod integrator;
-mod outcome;
+mod logbook;
 pub mod paper;
 pub mod pose_finder;
 mod rigid;
@@ -15,11 +15,11 @@ mod row;
 mod simulate;
 pub mod termination;
 
-pub use outcome::EnergyBalance;
+pub use logbook::EnergyBalance;
 pub use pose_finder::PoseMethod;
-pub use row::{Row, faces_of};
+pub use row::Row;
 pub use simulate::{Runner, simulate};
-pub use termination::{Reason, Stop, Termination};
+pub use termination::{Reason, Termination};
 
 use crate::mechanics::static_friction::FactorOfSafety;
 use crate::model::{DynamicsModel, Integrator, Mode};

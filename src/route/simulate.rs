@@ -3,7 +3,7 @@
 //! computed, and says how the computation went ([`Diagnostics`]).
 
 use super::driver::drive;
-use super::outcome::Outcome;
+use super::logbook::Logbook;
 use super::paper::Paper;
 use super::pose_finder::{PoseFinder, PoseMethod};
 use super::rigid::RigidBody;
@@ -85,12 +85,12 @@ impl<'a> Runner<'a> {
         let settings = *sim.settings();
         let mut finder = PoseFinder::new(sim.site(), settings.mode, self.method);
         let sink = self.sink.as_deref_mut().map(|s| s as &mut dyn FnMut(&Row));
-        let outcome = Outcome::new(sink, self.keep_every);
+        let log = Logbook::new(sink, self.keep_every);
         // One driver; the model is the only difference.
         let mut o = match settings.dynamics {
-            DynamicsModel::Paper => drive::<Paper>(sim, &mut finder, &mut self.progress, outcome),
+            DynamicsModel::Paper => drive::<Paper>(sim, &mut finder, &mut self.progress, log),
             DynamicsModel::RigidBody => {
-                drive::<RigidBody>(sim, &mut finder, &mut self.progress, outcome)
+                drive::<RigidBody>(sim, &mut finder, &mut self.progress, log)
             }
         };
         // Newmark's permanent displacement and rotation, when the foundation was shaken.

@@ -8,9 +8,6 @@ use std::path::Path;
 /// The largest scene file (bytes): a scene is a few kilobytes.
 pub const MAX_SCENE_BYTES: u64 = 1 << 20;
 
-/// The largest grid of poses (bytes): some 300 000 rows.
-pub const MAX_GRID_BYTES: u64 = 16 << 20;
-
 /// Opens `path` for reading if it is a regular file of at most `limit` bytes; the error, for
 /// people, says why not (without the path: the caller names the file).
 pub fn open_bounded(path: &Path, limit: u64) -> Result<impl Read, String> {

@@ -8,9 +8,7 @@
 use crate::common::{hand_exact, hand_small_angle, scene};
 use proptest::prelude::*;
 use slideroute::Displacement;
-use slideroute::internals::coeffs::{
-    CoeffInputs, EXACT_NAMES_13, EXACT_NAMES_14, Exact, SmallAngle,
-};
+use slideroute::internals::coeffs::{CoeffInputs, Exact, SmallAngle};
 
 fn close(generated: f64, hand: f64, scale: f64) -> bool {
     (generated - hand).abs() <= 1e-12 * hand.abs() + 1e-14 * scale
@@ -50,8 +48,8 @@ proptest! {
         let hand = hand_exact(&s, d);
         let scale = s.l() + d.x.abs() + d.z.abs();
         let generated = [
-            EXACT_NAMES_13.iter().zip(e.eq13()).collect::<Vec<_>>(),
-            EXACT_NAMES_14.iter().zip(e.eq14()).collect::<Vec<_>>(),
+            Exact::NAMES_13.iter().zip(e.eq13()).collect::<Vec<_>>(),
+            Exact::NAMES_14.iter().zip(e.eq14()).collect::<Vec<_>>(),
         ];
         for (eq, (gen_eq, hand_eq)) in generated.iter().zip(&hand).enumerate() {
             prop_assert_eq!(gen_eq.len(), hand_eq.len(), "eq {} term count", eq);

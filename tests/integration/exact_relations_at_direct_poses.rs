@@ -2,10 +2,10 @@
 //! constraints, no polynomials), the paper's exact relations and our exact polynomial system
 //! vanish to round-off, and the paper's geometry (eqs. 1, 2, 21) rebuilds the same frame.
 
-use crate::common::scene;
+use crate::common::{relations, scene};
 use proptest::prelude::*;
 use slideroute::Scene;
-use slideroute::internals::geometry::{Displacement, Pose, direct, relations};
+use slideroute::internals::geometry::{Displacement, Pose, direct};
 use slideroute::{CoeffInputs, Exact};
 
 prop_compose! {

@@ -12,8 +12,8 @@ mod summary;
 pub use crate::numeric::{Distribution, FORMS, Uncertain};
 pub use design::{Design, MAX_SAMPLES, Sample, check_uncertain, run_values};
 pub use sampling::{Sampling, design};
-pub use sensitivity::{Sensitivity, sensitivities, spearman};
-pub use summary::{Given, Limits, Percentiles, Probability, Summary, percentiles, summarise};
+pub use sensitivity::{Sensitivity, sensitivities};
+pub use summary::{Given, Limits, Percentiles, Probability, Summary, summarise};
 
 use crate::scene::{Scene, SceneError};
 

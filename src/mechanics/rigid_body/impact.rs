@@ -214,21 +214,13 @@ pub struct ImpactLaw {
 /// the second alone (it climbs onto the face it met) — and a contact on one face alone faster
 /// than `law.release_speed`: it lifts off ([`RigidError::ImpactLifts`]). Frictionless, the
 /// twist after it is the one [`crease_rates`] gives.
+///
+/// The block moves with rates (Ẋ, Ż, θ̇) on the faces of `before` (its twist, and the kinetic
+/// energy the impact takes, are those), and the impulses hold it to the faces of `geom`: the
+/// same faces where a contact meets a face and rides its crease, other normals where a
+/// contact's own face changes at the impact (a contact running over a ridge onto the face
+/// beyond it).
 pub fn impact(
-    geom: &ContactGeometry,
-    block: &Block,
-    rates: [f64; 3],
-    creases: &Creases,
-    law: &ImpactLaw,
-) -> Result<Impact, RigidError> {
-    impact_onto(geom, geom, block, rates, creases, law)
-}
-
-/// [`impact`] where a contact's own face changes at the impact (a contact running over a ridge
-/// onto the face beyond it): the block moves with rates (Ẋ, Ż, θ̇) on the faces of `before`
-/// (its twist, and the kinetic energy the impact takes, are those), and the impulses hold it
-/// to the faces of `after` (the same pose, other normals).
-pub fn impact_onto(
     before: &ContactGeometry,
     geom: &ContactGeometry,
     block: &Block,

@@ -30,8 +30,8 @@ mod slip_start;
 
 pub use accelerations::{Motion, State, accelerations};
 pub use creases::{Crease, Creases, crease_rates};
-pub use impact::{Impact, ImpactLaw, impact, impact_onto};
-pub use kinematics::{Inertia, Twist, contact_velocity_map, pivot_rates, twist};
+pub use impact::{Impact, ImpactLaw, impact};
+pub use kinematics::{Inertia, Twist, contact_velocity_map, pivot_rates};
 
 /// Why the rigid-body accelerations cannot be had at a state.
 #[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]

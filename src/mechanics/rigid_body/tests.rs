@@ -2,7 +2,7 @@
 //! constraints.
 
 use super::contact::Ctx;
-use super::kinematics::{longest_arm, pivot_direction, unit};
+use super::kinematics::{longest_arm, pivot_direction, twist, unit};
 use super::*;
 use crate::geometry::{Displacement, Pose, direct};
 use crate::mechanics::ContactGeometry;
@@ -442,14 +442,14 @@ fn a_frictionless_impact_is_the_crease_projection_and_friction_takes_more() {
     for rates in [[1.0, 0.3, 0.0], [0.2, 0.5, 0.05], [0.5, 0.1, 0.1]] {
         let before = twist(&geom, rates).unwrap();
         let k0 = before.kinetic_energy(block.mass, &inertia);
-        let plain = impact(&geom, block, rates, &creases, &law(0.0)).unwrap();
+        let plain = impact(&geom, &geom, block, rates, &creases, &law(0.0)).unwrap();
         let (projected, removed) = crease_rates(&geom, block, rates, &creases).unwrap();
         for (a, b) in plain.rates.iter().zip(projected) {
             assert!((a - b).abs() < 1e-9, "{plain:?}");
         }
         assert!((plain.removed - removed).abs() < 1e-9 * k0);
         assert_eq!(plain.creases, creases);
-        let rough = impact(&geom, block, rates, &creases, &law(0.4)).unwrap();
+        let rough = impact(&geom, &geom, block, rates, &creases, &law(0.4)).unwrap();
         let after = twist(&geom, rough.rates).unwrap();
         let v2 = after.at(&geom.r[2]);
         let scale = before.at(&geom.r[2]).norm();
@@ -488,7 +488,7 @@ fn an_impact_with_friction_takes_energy_and_stops_the_contacts_on_their_faces() 
         ] {
             let before = twist(&geom, rates).unwrap();
             let k0 = before.kinetic_energy(block.mass, &inertia);
-            let after = impact(&geom, block, rates, &creases, &law).unwrap();
+            let after = impact(&geom, &geom, block, rates, &creases, &law).unwrap();
             let u = twist(&geom, after.rates).unwrap();
             let k1 = u.kinetic_energy(block.mass, &inertia);
             assert!(
@@ -522,7 +522,7 @@ fn an_impact_lets_a_face_go_only_if_its_contact_would_leave_it_fast_enough() {
             release_speed: f64::INFINITY,
             crease_release_speed,
         };
-        impact(&geom, block, rates, &creases, &law).unwrap()
+        impact(&geom, &geom, block, rates, &creases, &law).unwrap()
     };
     let let_go = go(1e-3);
     assert_eq!(let_go.creases, Creases::NONE);
@@ -556,7 +556,7 @@ fn running_over_a_ridge_is_a_hop_kept_on_the_face_beyond_or_a_lift_at_the_speed_
         crease_release_speed: f64::INFINITY,
     };
     let onto = |release_speed| {
-        impact_onto(
+        impact(
             &before,
             &after,
             block,

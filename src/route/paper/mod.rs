@@ -11,7 +11,7 @@ pub use state::State;
 pub use step::{paper_step, rk4_step};
 
 use super::dynamics::{Dynamics, Flow, Start};
-use super::outcome::Outcome;
+use super::logbook::Logbook;
 use super::pose_finder::PoseFinder;
 use super::row::{Row, faces_of};
 use super::termination::{Reason, Stop};
@@ -51,7 +51,7 @@ impl<'a> Dynamics<'a> for Paper<'a> {
     fn start<'s>(
         sim: &'a Simulation,
         finder: &mut PoseFinder<'_>,
-        mut o: Outcome<'s>,
+        mut o: Logbook<'s>,
     ) -> Start<'s, Self> {
         // At rest, or moving as the scene's [initial] says.
         let state = State {
@@ -108,7 +108,7 @@ impl<'a> Dynamics<'a> for Paper<'a> {
         finder: &mut PoseFinder<'_>,
         k: usize,
         t_to: f64,
-        mut o: Outcome<'s>,
+        mut o: Logbook<'s>,
     ) -> Flow<'s> {
         let sim = self.sim;
         let (state, ev) = (&self.state, &self.ev);
@@ -216,7 +216,7 @@ impl<'a> Dynamics<'a> for Paper<'a> {
     /// Where the paper's dynamics cannot start or continue the block, the detail says so and names
     /// the rigid body's: its kinematics hold only where its frictional system has a
     /// solution and its contacts stay on their planes, which is not physics ending the route.
-    fn explain_end(o: &mut Outcome<'_>) {
+    fn explain_end(o: &mut Logbook<'_>) {
         let t = &mut o.termination;
         let hint = match t.reason {
             Reason::DoesNotSlide if o.fs.is_some_and(|f| !f.at_least_one()) => Some(format!(

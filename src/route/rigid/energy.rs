@@ -2,7 +2,7 @@
 //! change of kinetic and potential energy since the start (`derivations/08-rigid-body.md` §3).
 
 use super::state::RigidState;
-use crate::route::outcome::EnergyBalance;
+use crate::route::logbook::EnergyBalance;
 
 /// What the balance is measured from: the start's kinetic energy (J) and the CM's height there
 /// (m), with the block's weight.

@@ -32,7 +32,7 @@ pub(super) struct BeforeImpact {
 /// The impact of a contact meeting a face, or running over a ridge onto one, at state `y`
 /// (`met`; `hold` what the contacts are held to after it; `derivations/10-faces.md` §6): the
 /// state just after it — its rates those the frictional, perfectly inelastic impulses leave
-/// ([`rigid_body::impact_onto`]; the friction coefficients at the contacts' normal forces
+/// ([`rigid_body::impact`]; the friction coefficients at the contacts' normal forces
 /// before it, the block moving on the faces it moved on until then, both in `before`), the
 /// kinetic energy they take booked as friction work — and what the contacts are held to then;
 /// the finder moves to the new site where the impact put a contact on the new face alone. Or,
@@ -75,7 +75,7 @@ pub(super) fn after_impact(
         removed,
         creases,
         moved,
-    } = match rigid_body::impact_onto(&moving, &geom, sim.block(), y.rates(), &creases, &law) {
+    } = match rigid_body::impact(&moving, &geom, sim.block(), y.rates(), &creases, &law) {
         Ok(after) => after,
         Err(RigidError::ImpactLifts {
             contact,

@@ -33,7 +33,7 @@ mod state;
 mod substep;
 
 use super::dynamics::{Dynamics, Flow, Start};
-use super::outcome::{EnergyBalance, Outcome};
+use super::logbook::{EnergyBalance, Logbook};
 use super::pose_finder::PoseFinder;
 use super::row::{Row, faces_of};
 use super::termination::{Reason, Stop};
@@ -117,7 +117,7 @@ impl<'a> RigidBody<'a> {
     }
 
     /// The route ended by a failure at the current state.
-    fn fail<'s>(&self, mut o: Outcome<'s>, s: Stop) -> Outcome<'s> {
+    fn fail<'s>(&self, mut o: Logbook<'s>, s: Stop) -> Logbook<'s> {
         o.energy = Some(self.balance(&self.y, &self.ev));
         o.finish(self.ev.row(self.t, &self.y), s.reason, self.t, s.detail)
     }
@@ -127,7 +127,7 @@ impl<'a> Dynamics<'a> for RigidBody<'a> {
     fn start<'s>(
         sim: &'a Simulation,
         finder: &mut PoseFinder<'_>,
-        mut o: Outcome<'s>,
+        mut o: Logbook<'s>,
     ) -> Start<'s, Self> {
         let mass = sim.block().mass;
         let init = sim.initial();
@@ -200,7 +200,7 @@ impl<'a> Dynamics<'a> for RigidBody<'a> {
         finder: &mut PoseFinder<'_>,
         k: usize,
         t_to: f64,
-        o: Outcome<'s>,
+        o: Logbook<'s>,
     ) -> Flow<'s> {
         self.substeps(finder, k, t_to, o)
     }
@@ -213,7 +213,7 @@ impl<'a> Dynamics<'a> for RigidBody<'a> {
         }
     }
 
-    fn close(&self, o: &mut Outcome<'_>) {
+    fn close(&self, o: &mut Logbook<'_>) {
         o.energy = Some(self.balance(&self.y, &self.ev));
     }
 }

@@ -10,10 +10,10 @@ use crate::geometry::Pose;
 use crate::mechanics::ContactGeometry;
 use crate::mechanics::loads::Applied;
 use crate::mechanics::rigid_body::{self, Creases, Motion};
-use crate::mechanics::static_friction::{self, StaticCheck};
+use crate::mechanics::static_friction::{self, HoldingRange};
 use crate::model::Simulation;
 use crate::route::dynamics::Flow;
-use crate::route::outcome::Outcome;
+use crate::route::logbook::Logbook;
 use crate::route::pose_finder::PoseFinder;
 use crate::route::row::{Row, faces_of};
 use crate::route::termination::{Reason, Stop};
@@ -26,7 +26,7 @@ use nalgebra::Vector3;
 pub(super) const BARELY: f64 = 1e-4;
 
 /// Whether the loads exceed the friction cones of `check` by less than [`BARELY`].
-pub(super) fn barely_exceeded(check: &StaticCheck) -> bool {
+pub(super) fn barely_exceeded(check: &HoldingRange) -> bool {
     check.lowest <= 1.0 && check.factor_of_safety >= 1.0 - BARELY
 }
 
@@ -38,7 +38,7 @@ pub(super) fn static_check(
     t: f64,
     faces: [u32; 3],
     bonded: bool,
-) -> Result<StaticCheck, Stop> {
+) -> Result<HoldingRange, Stop> {
     let applied = Applied::shaken(sim.loads(), sim.block(), &geom.frame, sim.ground(t));
     let strength = sim.strength(faces, bonded);
     static_friction::at_rest(geom, &applied, &strength).map_err(|err| Stop {
@@ -75,7 +75,7 @@ pub(super) fn rest_eval(
     sim: &Simulation,
     finder: &PoseFinder<'_>,
     pose: Pose,
-    check: &StaticCheck,
+    check: &HoldingRange,
 ) -> Result<Eval, Stop> {
     let geom = body_geometry(sim, &finder.site().normals(), &pose);
     let inertia = rigid_body::Inertia::new(sim.block(), &geom).map_err(stop_of)?;
@@ -128,7 +128,7 @@ impl RigidBody<'_> {
         stopped: &RigidState,
         k: usize,
         t_event: f64,
-        o: &mut Outcome<'_>,
+        o: &mut Logbook<'_>,
     ) -> Rest {
         let (sim, from) = (self.sim, &self.ev);
         let stop_pose = match finder.pose_at(stopped.displacement()) {
@@ -145,7 +145,7 @@ impl RigidBody<'_> {
         // At rest there: its energy balance and its row; while a record shakes the foundation it
         // rests, else the route ends "stopped" for `why`.
         let balance = self.energy.balance(stopped, 0.0, cm_y(sim, &stop_pose));
-        let held = |o: &mut Outcome<'_>, finder: &PoseFinder<'_>, why: String| {
+        let held = |o: &mut Logbook<'_>, finder: &PoseFinder<'_>, why: String| {
             o.push(rest_row(t_event, stopped, &stop_pose, from.faces));
             o.energy = Some(balance);
             if sim.record().is_some_and(|r| t_event < r.end()) {
@@ -201,7 +201,7 @@ impl RigidBody<'_> {
         &mut self,
         finder: &mut PoseFinder<'_>,
         t_target: f64,
-        mut o: Outcome<'s>,
+        mut o: Logbook<'s>,
     ) -> Flow<'s> {
         let sim = self.sim;
         let geom = ContactGeometry::new(&finder.site().normals(), &self.ev.pose);

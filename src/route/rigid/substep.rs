@@ -10,7 +10,7 @@ use super::rest::Rest;
 use super::state::{RigidState, VALUES};
 use super::{Ending, RigidBody};
 use crate::route::dynamics::Flow;
-use crate::route::outcome::Outcome;
+use crate::route::logbook::Logbook;
 use crate::route::pose_finder::PoseFinder;
 use crate::route::termination::Stop;
 
@@ -82,7 +82,7 @@ impl RigidBody<'_> {
         finder: &mut PoseFinder<'_>,
         k: usize,
         t_target: f64,
-        mut o: Outcome<'s>,
+        mut o: Logbook<'s>,
     ) -> Flow<'s> {
         let mut events = 0usize;
         while self.t < t_target * (1.0 - 1e-15) {
@@ -124,7 +124,7 @@ impl RigidBody<'_> {
         k: usize,
         left: f64,
         resolve: bool,
-        o: &mut Outcome<'_>,
+        o: &mut Logbook<'_>,
     ) -> Result<Substep, Ending> {
         let mass = self.sim.block().mass;
         let motion = self.ev.motion;
@@ -216,7 +216,7 @@ impl RigidBody<'_> {
         finder: &mut PoseFinder<'f>,
         trial: Trial<'f>,
         resolve: bool,
-        o: &mut Outcome<'_>,
+        o: &mut Logbook<'_>,
     ) -> Result<Substep, Ending> {
         let Trial {
             h,
@@ -248,7 +248,7 @@ impl RigidBody<'_> {
     }
 
     /// Takes the state `y`, evaluated as `e`, its travel booked.
-    fn go_to(&mut self, o: &mut Outcome<'_>, y: RigidState, e: Eval) {
+    fn go_to(&mut self, o: &mut Logbook<'_>, y: RigidState, e: Eval) {
         o.travel += (e.pose.cm - self.ev.pose.cm).norm();
         self.y = y;
         self.ev = e;
@@ -266,7 +266,7 @@ impl RigidBody<'_> {
         at_end: Option<Event>,
         resolve: bool,
         heading: &Heading<'_>,
-        o: &mut Outcome<'_>,
+        o: &mut Logbook<'_>,
     ) -> Result<Substep, Ending> {
         let sim = self.sim;
         let hold = Hold::of(&self.ev.motion);
@@ -351,7 +351,7 @@ impl RigidBody<'_> {
         k: usize,
         bracket: &Bracket,
         stop: &Stop,
-        o: &mut Outcome<'_>,
+        o: &mut Logbook<'_>,
     ) -> Result<Option<Substep>, Ending> {
         let sim = self.sim;
         let held = Hold::of(&self.ev.motion);
@@ -405,7 +405,7 @@ impl RigidBody<'_> {
         k: usize,
         bracket: &Bracket,
         stop: Stop,
-        o: &mut Outcome<'_>,
+        o: &mut Logbook<'_>,
     ) -> Ending {
         let (lo, y_lo) = (bracket.lo, bracket.y_lo);
         if lo > 0.0 {
@@ -430,7 +430,7 @@ impl RigidBody<'_> {
         k: usize,
         y_lo: RigidState,
         t_event: f64,
-        o: &mut Outcome<'_>,
+        o: &mut Logbook<'_>,
     ) -> Result<Substep, Ending> {
         let stopped = y_lo.stopped();
         match self.come_to_rest(finder, &stopped, k, t_event, o) {

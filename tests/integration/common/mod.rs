@@ -1,5 +1,8 @@
-//! Shared test helpers: scenes built from numbers, and the hand-derived formulas typed from
-//! `derivations/03-small-angle.md` and `derivations/04-exact.md`.
+//! Shared test helpers: scenes built from numbers, the hand-derived formulas typed from
+//! `derivations/03-small-angle.md` and `derivations/04-exact.md`, and the paper's relations as
+//! printed (`relations.rs`).
+
+pub mod relations;
 
 use slideroute::Displacement;
 use slideroute::Scene;

@@ -7,9 +7,12 @@ use crate::cli::RootsArgs;
 use crate::exit::{CliError, bad_input, failed, out};
 use crate::output::{RootsReport, grid_csv};
 use rayon::prelude::*;
-use slideroute::internals::scene::input::{MAX_GRID_BYTES, open_bounded};
+use slideroute::internals::scene::input::open_bounded;
 use slideroute::{Displacement, Mode, Scene};
 use std::path::Path;
+
+/// The largest grid of poses (bytes): some 300 000 rows.
+const MAX_GRID_BYTES: u64 = 16 << 20;
 
 /// Runs `slideroute roots`.
 pub fn roots(args: &RootsArgs) -> Result<(), CliError> {

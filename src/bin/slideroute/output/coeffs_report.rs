@@ -2,11 +2,7 @@
 
 use super::Ordered;
 use serde::Serialize;
-use slideroute::Displacement;
-use slideroute::Scene;
-use slideroute::internals::coeffs::{
-    CoeffInputs, EXACT_NAMES_13, EXACT_NAMES_14, Exact, SMALL_ANGLE_NAMES, SmallAngle,
-};
+use slideroute::{CoeffInputs, Displacement, Exact, Scene, SmallAngle};
 use std::fmt;
 
 /// The exact form's coefficients, by basis monomial, plus its tangent half-angle matrices.
@@ -55,11 +51,11 @@ impl CoeffReport {
             x_m: d.x,
             z_m: d.z,
             theta_deg: d.theta.to_degrees(),
-            small_angle: named(&SMALL_ANGLE_NAMES, &small.f),
+            small_angle: named(&SmallAngle::NAMES, &small.f),
             exact: ExactReport {
                 unknowns: ["sa = sin α", "ca = cos α", "sp = sin ψ", "cp = cos ψ"],
-                eq13: named(&EXACT_NAMES_13, exact.eq13()),
-                eq14: named(&EXACT_NAMES_14, exact.eq14()),
+                eq13: named(&Exact::NAMES_13, exact.eq13()),
+                eq14: named(&Exact::NAMES_14, exact.eq14()),
                 half_angle_eq13: half[0],
                 half_angle_eq14: half[1],
             },

@@ -1,5 +1,6 @@
 //! `samples.csv`: a probabilistic analysis's samples, one row per sample in order — its values,
-//! the factor of safety, how its route ended, the travel and where it ended.
+//! the factor of safety, how its route ended, the travel, where it ended, and the detail (what
+//! ended the route, or why the values made no valid scene).
 
 use slideroute::probabilistic::{Sample, Uncertain};
 use slideroute::{NOT_RUN, Outcome};
@@ -40,7 +41,7 @@ pub fn write_csv(
                 r.yaw_deg.to_string(),
                 r.x_m.to_string(),
                 r.z_m.to_string(),
-                String::new(),
+                r.detail.clone(),
             ]),
             Outcome::Invalid { reason } => {
                 rec.extend(["", "invalid scene", "", "", "", "", ""].map(String::from));

@@ -9,7 +9,7 @@ use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 use slideroute::Row;
 use slideroute::Scene;
-use slideroute::internals::geometry::planes::{PaperPlane as Plane, r as strike_2_distance};
+use slideroute::internals::geometry::paper_planes::{PaperPlane as Plane, r as strike_2_distance};
 use slideroute::internals::geometry::{PaperSite, direct};
 use slideroute::{Displacement, Pose};
 use std::path::Path;

@@ -1,13 +1,12 @@
 //! The paper's law-of-sines relations (13) and (14), evaluated as printed (with √2 for 1.41
 //! and 1/√2 for cos 45), in the unknowns α, β, with h from eq. (2) on 0 ≤ h ≤ 180°.
 //!
-//! This is the unsquared form: a root of the squared small-angle system that fails these (with
-//! small-angle substitutions) is spurious. It is also an independent statement of the relations
-//! the generated coefficients come from, so tests compare the two.
+//! An independent statement of the relations the generated coefficients come from, written here
+//! from the paper and not from the library, so that the tests compare the two.
 
-use super::pose::cos_h;
-use super::site::PaperSite;
-use super::{Displacement, GeometryError};
+use slideroute::Displacement;
+use slideroute::internals::geometry::PaperSite;
+use slideroute::internals::geometry::pose::cos_h;
 use std::f64::consts::SQRT_2;
 
 /// LHS − RHS of (13) and (14) (m) at tilts α, β (rad).
@@ -16,12 +15,12 @@ pub fn law_of_sines(
     d: Displacement,
     alpha: f64,
     beta: f64,
-) -> Result<[f64; 2], GeometryError> {
+) -> Result<[f64; 2], String> {
     let ch = cos_h(alpha, beta);
     if !(-1.0..=1.0).contains(&ch) {
-        return Err(GeometryError::NoRealFrame(format!(
-            "cos h = {ch} at α = {alpha}, β = {beta}"
-        )));
+        return Err(format!(
+            "no real frame: cos h = {ch} at α = {alpha}, β = {beta}"
+        ));
     }
     let h = ch.acos();
     let f = &site.frame;

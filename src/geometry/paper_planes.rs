@@ -5,23 +5,13 @@
 
 use super::site::PaperSite;
 
-/// Which of the paper's planes.
+/// Which of the paper's planes (the plan view names its regions by them).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(not(feature = "internals"), allow(dead_code))]
 pub enum PaperPlane {
     Horizontal,
     One,
     Two,
-}
-
-impl PaperPlane {
-    /// The plane carrying vertex `i`.
-    pub fn of_vertex(i: usize) -> PaperPlane {
-        match i {
-            0 => PaperPlane::Horizontal,
-            1 => PaperPlane::One,
-            _ => PaperPlane::Two,
-        }
-    }
 }
 
 /// R: the distance from the start CM to int. line 2/horiz (eq. 4).
@@ -36,7 +26,9 @@ pub fn along_dip_2(site: &PaperSite, x: f64, z: f64) -> f64 {
     x * k.cos() - z * k.sin()
 }
 
-/// The height of `plane` (extended without limit) above (X, Z).
+/// The height of `plane` (extended without limit) above (X, Z), by the paper's eqs. (4), (5):
+/// the tests hold the site's planes to it.
+#[cfg_attr(not(feature = "internals"), allow(dead_code))]
 pub fn height(site: &PaperSite, plane: PaperPlane, x: f64, z: f64) -> f64 {
     let g = &site.foundation;
     match plane {

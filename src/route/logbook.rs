@@ -25,9 +25,9 @@ pub struct EnergyBalance {
 }
 
 /// What a route's loop produced (either dynamics), before the diagnostics are added. Rows go
-/// through [`Outcome::push`]: each to the sink, if any (streamed as computed), and every
+/// through [`Logbook::push`]: each to the sink, if any (streamed as computed), and every
 /// `keep_every`-th (and the last) kept in `rows`.
-pub(super) struct Outcome<'s> {
+pub(super) struct Logbook<'s> {
     rows: Vec<Row>,
     sink: Option<&'s mut dyn FnMut(&Row)>,
     keep_every: usize,
@@ -46,11 +46,11 @@ pub(super) struct Outcome<'s> {
     pub energy: Option<EnergyBalance>,
 }
 
-impl<'s> Outcome<'s> {
+impl<'s> Logbook<'s> {
     /// Nothing yet: ends at the time limit unless told otherwise. Rows go to `sink` (if any)
     /// and every `keep_every`-th is kept.
     pub fn new(sink: Option<&'s mut dyn FnMut(&Row)>, keep_every: usize) -> Self {
-        Outcome {
+        Logbook {
             rows: Vec::new(),
             sink,
             keep_every: keep_every.max(1),
@@ -96,7 +96,7 @@ impl<'s> Outcome<'s> {
         self.last
     }
 
-    /// The kept rows, the last row always among them (taken out of the outcome).
+    /// The kept rows, the last row always among them (taken out of the logbook).
     pub fn take_rows(&mut self) -> Vec<Row> {
         if let Some(last) = self.last {
             if self.rows.last().is_none_or(|r| r.t_s != last.t_s) {
