@@ -1,6 +1,6 @@
 //! The scene as used, in its file's own keys and units (degrees, SI), every default filled in:
-//! what `summary.json` echoes so that anyone holding an output folder can tell what produced it
-//! (issue #13).
+//! what `summary.json` echoes so that anyone holding an output folder can tell what produced
+//! it.
 
 use super::Scene;
 use crate::model::Friction;
@@ -19,16 +19,56 @@ impl Scene {
     /// Every section present, every key with its value as used (defaults filled in), in the
     /// scene file's keys and units.
     pub fn as_used(&self) -> Table {
-        let f = Value::Float;
         let mut t = Table::new();
         t.insert("name".into(), Value::String(self.name.clone()));
         // The frame and the foundation have no defaults: as the file gave them (the paper's
         // lengths and angles, or contacts and faces).
-        for section in ["frame", "foundation"] {
+        self.as_given(&mut t, &["frame", "foundation"]);
+        self.block_as_used(&mut t);
+        self.loads_as_used(&mut t);
+        if let Some(fr) = &self.friction {
+            t.insert("friction".into(), self.friction_as_used(fr));
+        }
+        if let Some(s) = &self.settings {
+            t.insert(
+                "solver".into(),
+                table(&[
+                    ("mode", Value::String(s.mode.as_str().into())),
+                    ("dt_s", Value::Float(s.dt)),
+                    ("t_end_s", Value::Float(s.t_end)),
+                    ("dynamics", Value::String(s.dynamics.as_str().into())),
+                    ("integrator", Value::String(s.integrator.as_str().into())),
+                    ("stride", Value::Integer(s.stride as i64)),
+                ]),
+            );
+        }
+        // The guideline and the load cases, as the file gave them.
+        self.as_given(&mut t, &["check", "case"]);
+        let i = &self.initial;
+        t.insert(
+            "initial".into(),
+            table(&[
+                ("vx_m_s", Value::Float(i.vx)),
+                ("vz_m_s", Value::Float(i.vz)),
+                ("omega_deg_s", Value::Float(i.omega.to_degrees())),
+            ]),
+        );
+        t
+    }
+
+    /// The `sections` the file gives, as it gives them.
+    fn as_given(&self, t: &mut Table, sections: &[&str]) {
+        for &section in sections {
             if let Some(v) = self.source.get(section) {
                 t.insert(section.into(), v.clone());
             }
         }
+    }
+
+    /// `[monolith]` as given (its mass properties follow from it), or `[block]` with the
+    /// rigid-body inertia's defaults.
+    fn block_as_used(&self, t: &mut Table) {
+        let f = Value::Float;
         if let Some(m) = self.source.get("monolith") {
             t.insert("monolith".into(), m.clone());
         } else if let Some(b) = &self.block {
@@ -43,106 +83,83 @@ impl Scene {
                 ]),
             );
         }
-        if let Some(l) = &self.loads {
-            let mut loads = vec![
-                ("eccentricity_m", f(l.eccentricity)),
-                ("gravity_m_s2", f(l.gravity)),
-            ];
-            match &l.water {
-                // The water's force comes from its levels.
-                Some(w) => {
-                    let v = &w.levels;
-                    let mut water = vec![
-                        ("headwater_m", f(v.headwater)),
-                        ("tailwater_m", f(v.tailwater)),
-                        ("density_kg_m3", f(v.density)),
-                        ("drain_efficiency", f(v.drain_efficiency)),
-                    ];
-                    if v.drain_efficiency > 0.0 {
-                        water.push(("drain_position_m", f(v.drain_position)));
-                    }
-                    t.insert("water".into(), table(&water));
+    }
+
+    /// `[loads]`, with `[water]`'s levels where the water's force comes from them, and
+    /// `[seismic]`.
+    fn loads_as_used(&self, t: &mut Table) {
+        let f = Value::Float;
+        let Some(l) = &self.loads else {
+            return;
+        };
+        let mut loads = vec![
+            ("eccentricity_m", f(l.eccentricity)),
+            ("gravity_m_s2", f(l.gravity)),
+        ];
+        match &l.water {
+            Some(w) => {
+                let v = &w.levels;
+                let mut water = vec![
+                    ("headwater_m", f(v.headwater)),
+                    ("tailwater_m", f(v.tailwater)),
+                    ("density_kg_m3", f(v.density)),
+                    ("drain_efficiency", f(v.drain_efficiency)),
+                ];
+                if v.drain_efficiency > 0.0 {
+                    water.push(("drain_position_m", f(v.drain_position)));
                 }
-                None => loads.insert(0, ("hydraulic_force_n", f(l.hydraulic_force))),
+                t.insert("water".into(), table(&water));
             }
-            t.insert("loads".into(), table(&loads));
-            if self.source.contains_key("seismic") {
-                let mut seismic = vec![("kh", f(l.kh)), ("kv", f(l.kv))];
-                let record = self.source.get("seismic").and_then(|s| s.get("record"));
-                if let Some(r) = record {
-                    seismic.push(("record", r.clone()));
-                }
-                t.insert("seismic".into(), table(&seismic));
+            None => loads.insert(0, ("hydraulic_force_n", f(l.hydraulic_force))),
+        }
+        t.insert("loads".into(), table(&loads));
+        if let Some(given) = self.source.get("seismic") {
+            let mut seismic = vec![("kh", f(l.kh)), ("kv", f(l.kv))];
+            if let Some(r) = given.get("record") {
+                seismic.push(("record", r.clone()));
             }
+            t.insert("seismic".into(), table(&seismic));
         }
-        if let Some(fr) = &self.friction {
-            let v = match *fr {
-                Friction::Coulomb { mu_k } => table(&[
-                    ("model", Value::String("coulomb".into())),
-                    ("mu_k", f(mu_k)),
-                ]),
-                Friction::BartonChoubey {
-                    jrc,
-                    jcs_pa,
-                    phi_r,
-                    contact_area_m2,
-                } => table(&[
-                    ("model", Value::String("barton-choubey".into())),
-                    ("jrc", f(jrc)),
-                    ("jcs_pa", f(jcs_pa)),
-                    ("phi_r_deg", f(phi_r.to_degrees())),
-                    ("contact_area_m2", f(contact_area_m2)),
-                ]),
-            };
-            let mut v = v;
-            if let Value::Table(table) = &mut v {
-                let st = &self.strengths;
-                if st.has_cohesion() {
-                    table.insert("cohesion_pa".into(), f(st.cohesion_pa));
-                    table.insert("cohesion_area_m2".into(), f(st.shares_m2.iter().sum()));
-                }
-                // The faces' own criteria, as the file gave them.
-                let given = self.source.get("friction").and_then(|f| f.get("face"));
-                if let Some(faces) = given {
-                    table.insert("face".into(), faces.clone());
-                }
-            }
-            t.insert("friction".into(), v);
-        }
-        if let Some(s) = &self.settings {
-            t.insert(
-                "solver".into(),
-                table(&[
-                    ("mode", Value::String(s.mode.as_str().into())),
-                    ("dt_s", f(s.dt)),
-                    ("t_end_s", f(s.t_end)),
-                    ("dynamics", Value::String(s.dynamics.as_str().into())),
-                    ("integrator", Value::String(s.integrator.as_str().into())),
-                    ("stride", Value::Integer(s.stride as i64)),
-                ]),
-            );
-        }
-        // The guideline and the load cases, as the file gave them.
-        for section in ["check", "case"] {
-            if let Some(v) = self.source.get(section) {
-                t.insert(section.into(), v.clone());
-            }
-        }
-        let i = &self.initial;
-        t.insert(
-            "initial".into(),
-            table(&[
-                ("vx_m_s", f(i.vx)),
-                ("vz_m_s", f(i.vz)),
-                ("omega_deg_s", f(i.omega.to_degrees())),
+    }
+
+    /// `[friction]`: the criterion `fr` with its own keys, the cohesion, the faces' own
+    /// criteria as given.
+    fn friction_as_used(&self, fr: &Friction) -> Value {
+        let f = Value::Float;
+        let mut v = match *fr {
+            Friction::Coulomb { mu_k } => table(&[
+                ("model", Value::String(fr.model().into())),
+                ("mu_k", f(mu_k)),
             ]),
-        );
-        t
+            Friction::BartonChoubey {
+                jrc,
+                jcs_pa,
+                phi_r,
+                contact_area_m2,
+            } => table(&[
+                ("model", Value::String(fr.model().into())),
+                ("jrc", f(jrc)),
+                ("jcs_pa", f(jcs_pa)),
+                ("phi_r_deg", f(phi_r.to_degrees())),
+                ("contact_area_m2", f(contact_area_m2)),
+            ]),
+        };
+        if let Value::Table(table) = &mut v {
+            let st = &self.strengths;
+            if st.has_cohesion() {
+                table.insert("cohesion_pa".into(), f(st.cohesion_pa));
+                table.insert("cohesion_area_m2".into(), f(st.shares_m2.iter().sum()));
+            }
+            if let Some(faces) = self.source.get("friction").and_then(|f| f.get("face")) {
+                table.insert("face".into(), faces.clone());
+            }
+        }
+        v
     }
 }
 
 /// The loads a scene's route uses, in the engineer's terms (N, m, from the heel along x' and
-/// above the base): what `summary.json` echoes (issue #16).
+/// above the base): what `summary.json` echoes.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct LoadsUsed {
     /// m g.

@@ -149,7 +149,10 @@ fn defined_names(root: &Path) -> std::collections::BTreeSet<String> {
             .take_while(|c| c.is_alphanumeric() || *c == '_')
             .collect()
     };
-    for file in sources.iter().filter(|f| f.extension().is_some_and(|e| e == "rs")) {
+    for file in sources
+        .iter()
+        .filter(|f| f.extension().is_some_and(|e| e == "rs"))
+    {
         names.insert(file.file_stem().unwrap().to_string_lossy().to_string());
         if let Some(dir) = file.parent().and_then(|d| d.file_name()) {
             names.insert(dir.to_string_lossy().to_string());
@@ -175,9 +178,15 @@ fn defined_names(root: &Path) -> std::collections::BTreeSet<String> {
             }
             // A field or a variant: the line's first word, before `:`, `,`, `(` or `{`.
             let first = line.trim_start().trim_start_matches("pub(crate) ");
-            let first = first.trim_start_matches("pub(super) ").trim_start_matches("pub ");
+            let first = first
+                .trim_start_matches("pub(super) ")
+                .trim_start_matches("pub ");
             let name = ident(first);
-            if !name.is_empty() && first[name.len()..].trim_start().starts_with([':', ',', '(', '{']) {
+            if !name.is_empty()
+                && first[name.len()..]
+                    .trim_start()
+                    .starts_with([':', ',', '(', '{'])
+            {
                 names.insert(name);
             }
         }
@@ -194,7 +203,9 @@ fn quoted_code_names(text: &str) -> Vec<String> {
         let is_path = k % 2 == 1
             && !t.is_empty()
             && t.split("::").all(|s| {
-                s.chars().next().is_some_and(|c| c.is_alphabetic() || c == '_')
+                s.chars()
+                    .next()
+                    .is_some_and(|c| c.is_alphabetic() || c == '_')
                     && s.chars().all(|c| c.is_alphanumeric() || c == '_')
             });
         if is_path && (t.contains("::") || t.contains('_') || t.chars().any(char::is_uppercase)) {
@@ -231,7 +242,10 @@ fn every_code_name_a_document_quotes_is_in_the_code() {
             }
         }
     }
-    assert!(seen > 50, "only {seen} code names found: the scan is broken");
+    assert!(
+        seen > 50,
+        "only {seen} code names found: the scan is broken"
+    );
     assert!(
         stale.is_empty(),
         "quoted in the documents, not in the code:\n{}",
@@ -245,7 +259,11 @@ fn the_code_name_scan_finds_paths_and_names_and_skips_words() {
                 `slideroute run`, `accelerations_in_crease` and `x`";
     assert_eq!(
         quoted_code_names(text),
-        vec!["Strength::settle", "RigidBody::new", "accelerations_in_crease"]
+        vec![
+            "Strength::settle",
+            "RigidBody::new",
+            "accelerations_in_crease"
+        ]
     );
     let defined = defined_names(Path::new(env!("CARGO_MANIFEST_DIR")));
     assert!(defined.contains("Simulation") && defined.contains("settle"));

@@ -74,7 +74,7 @@ fn every_route_of_every_scene_matches_its_stored_reference() {
     let mut checked = 0;
     for file in scenes() {
         let base = Scene::from_file(&file).unwrap();
-        for model in [DynamicsModel::Paper, DynamicsModel::RigidBody] {
+        for model in DynamicsModel::ALL {
             // A ground-motion record moves the foundation under a rigid body only.
             let Ok(scene) = base.with_dynamics(model) else {
                 assert!(base.record().is_some() && model == DynamicsModel::Paper);

@@ -25,7 +25,7 @@ pub fn report(args: &ReportArgs) -> Result<(), CliError> {
     })
     .map_err(failed)?;
     bar.finish_and_clear();
-    let extreme = crate::report::extreme(if quick { 20 } else { 200 });
+    let extreme = crate::report::extreme(if quick { 20 } else { 200 }).map_err(failed)?;
     let mut folder = Folder::open(&args.out).map_err(failed)?;
     let csv_path = folder
         .write_with("work-precision.csv", |tmp| {

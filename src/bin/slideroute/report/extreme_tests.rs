@@ -8,7 +8,7 @@ use slideroute::{PoseMethod, Reason};
 
 #[test]
 fn every_extreme_case_agrees_with_the_direct_solver_or_ends_with_its_reason() {
-    for row in report::extreme(50) {
+    for row in report::extreme(50).unwrap() {
         assert_ne!(row.reason, "invalid scene", "{}: {}", row.case, row.detail);
         assert!(
             row.t_s.is_finite() && row.travel_m.is_finite(),
@@ -31,7 +31,7 @@ fn every_extreme_case_agrees_with_the_direct_solver_or_ends_with_its_reason() {
 
 #[test]
 fn extreme_cases_that_slide_converge_as_dt_halves() {
-    for case in report::extreme_cases() {
+    for case in report::extreme_cases().unwrap() {
         let run = |dt: f64| {
             let keys: [(&str, toml::Value); 3] = [
                 ("solver.dt_s", dt.into()),

@@ -43,7 +43,13 @@ pub struct Reference {
 
 const DT0: f64 = 0.02;
 
-fn with_solver(scene: &Scene, mode: Mode, integrator: Integrator, dt: f64, t_end: f64) -> Scene {
+fn with_solver(
+    scene: &Scene,
+    mode: Mode,
+    integrator: Integrator,
+    dt: f64,
+    t_end: f64,
+) -> Result<Scene, String> {
     // The ladder compares the paper's dynamics' integrators and modes.
     let keys: [(&str, toml::Value); 6] = [
         ("dynamics", "paper".into()),
@@ -56,7 +62,7 @@ fn with_solver(scene: &Scene, mode: Mode, integrator: Integrator, dt: f64, t_end
     // Its callers pass the report's own valid steps and horizons.
     scene
         .with_keys(keys.map(|(key, value)| (format!("solver.{key}"), value)))
-        .unwrap_or_else(|e| panic!("report ladder scene: {e}"))
+        .map_err(|e| format!("report ladder scene: {e}"))
 }
 
 /// The route of `scene` by `method`, and how its computation went.
@@ -84,15 +90,9 @@ fn max_distance(coarse: &Route, fine: &Route, ratio: usize) -> f64 {
 }
 
 /// The scenes of the report with their horizons.
-pub fn scenes() -> Vec<(Scene, f64)> {
-    vec![
-        (Scene::default_scene(), 1.0),
-        (
-            Scene::from_toml(SHALLOW_SCENE_TOML, "shallow")
-                .expect("embedded shallow scene is valid"),
-            0.5,
-        ),
-    ]
+pub fn scenes() -> Result<Vec<(Scene, f64)>, String> {
+    let shallow = Scene::from_toml(SHALLOW_SCENE_TOML, "shallow").map_err(|e| e.to_string())?;
+    Ok(vec![(Scene::default_scene(), 1.0), (shallow, 0.5)])
 }
 
 /// The error of a report stopped by its caller.
@@ -111,13 +111,13 @@ pub fn work_precision(
     let ref_dt = DT0 / 512.0;
     let mut points = Vec::new();
     let mut references = Vec::new();
-    for (scene, horizon) in scenes() {
+    for (scene, horizon) in scenes()? {
         let reference = run(
-            &with_solver(&scene, Mode::Exact, Integrator::Rk4, ref_dt, horizon),
+            &with_solver(&scene, Mode::Exact, Integrator::Rk4, ref_dt, horizon)?,
             PoseMethod::Continuation,
         )?;
         let check = run(
-            &with_solver(&scene, Mode::Exact, Integrator::Rk4, ref_dt / 2.0, horizon),
+            &with_solver(&scene, Mode::Exact, Integrator::Rk4, ref_dt / 2.0, horizon)?,
             PoseMethod::Continuation,
         )?;
         references.push(Reference {
@@ -132,7 +132,7 @@ pub fn work_precision(
                 for integrator in [Integrator::Paper, Integrator::Rk4] {
                     for k in 0..levels {
                         let dt = DT0 / f64::from(1u32 << k);
-                        let s = with_solver(&scene, mode, integrator, dt, horizon);
+                        let s = with_solver(&scene, mode, integrator, dt, horizon)?;
                         let mut times = Vec::with_capacity(repeats);
                         let mut last = None;
                         for _ in 0..repeats {
@@ -231,19 +231,18 @@ fn l1z_over_l2z(s: &Scene, ratio: f64) -> [(&'static str, toml::Value); 2] {
 }
 
 /// Scenes chosen to break naive code (see `docs/performance.md`, "Stiff and extreme cases").
-pub fn extreme_cases() -> Vec<Case> {
+pub fn extreme_cases() -> Result<Vec<Case>, String> {
     // The stiff and extreme cases are the paper's dynamics' unless a case says otherwise.
     let base = Scene::default_scene()
         .with_dynamics(DynamicsModel::Paper)
-        .expect("the default scene takes either dynamics");
+        .map_err(|e| e.to_string())?;
     // Each case is the base scene with some keys changed, as a scene file would change them.
     let case = |name: &'static str, keys: &[(&str, toml::Value)]| {
         let keys = keys.iter().map(|(k, v)| (*k, v.clone()));
         // The cases are fixed and valid (`every_extreme_case_is_a_valid_scene`).
-        let scene = base
-            .with_keys(keys.chain([("name", name.into())]))
-            .unwrap_or_else(|e| panic!("extreme case {name}: {e}"));
-        Case { name, scene }
+        base.with_keys(keys.chain([("name", name.into())]))
+            .map(|scene| Case { name, scene })
+            .map_err(|e| format!("extreme case {name}: {e}"))
     };
     let f = |v: f64| toml::Value::Float(v);
     let force = |v: f64| ("loads.hydraulic_force_n", f(v));
@@ -256,7 +255,7 @@ pub fn extreme_cases() -> Vec<Case> {
     // Paper-like: driving (F − 2.338 MN) against a capacity of 4.152 MN at μ = 0.4; FS = R / D.
     let force_for_fs = |fs: f64| 4.152_011e6 / fs + 2.337_862e6;
     let rigid = ("solver.dynamics", toml::Value::from("rigid-body"));
-    vec![
+    [
         case("dips 0.5°", &dips(0.5, 0.5)),
         case("dips 1°/2°", &dips(1.0, 2.0)),
         case(
@@ -300,6 +299,8 @@ pub fn extreme_cases() -> Vec<Case> {
             &[rigid, ("friction.mu_k", f(0.6)), ("initial.vx_m_s", f(1.0))],
         ),
     ]
+    .into_iter()
+    .collect()
 }
 
 /// The outcome of one stiff or extreme case.
@@ -320,8 +321,8 @@ pub struct ExtremeRow {
 
 /// Runs the stiff and extreme cases, checking up to `sample` rows of each against the direct
 /// pose solver (exact mode).
-pub fn extreme(sample: usize) -> Vec<ExtremeRow> {
-    extreme_cases()
+pub fn extreme(sample: usize) -> Result<Vec<ExtremeRow>, String> {
+    Ok(extreme_cases()?
         .into_iter()
         .map(|c| {
             let Computed {
@@ -380,7 +381,7 @@ pub fn extreme(sample: usize) -> Vec<ExtremeRow> {
                 detail: r.termination.detail.clone(),
             }
         })
-        .collect()
+        .collect())
 }
 
 #[cfg(test)]
@@ -394,7 +395,7 @@ mod tests {
         let base = Scene::default_scene()
             .with_dynamics(DynamicsModel::Paper)
             .unwrap();
-        let cases = extreme_cases();
+        let cases = extreme_cases().unwrap();
         assert_eq!(cases.len(), 18);
         for c in &cases {
             assert_eq!(c.scene.name(), c.name);
