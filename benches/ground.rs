@@ -6,8 +6,8 @@
 //!   planes as a general site (the generated general system).
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use slideroute::Tracker;
 use slideroute::internals::{model::Mode, scene::Scene};
+use slideroute::poses::Tracker;
 use slideroute::{Displacement, Ground, Site};
 use std::hint::black_box;
 

@@ -26,25 +26,26 @@
 //! be stopped, streams the rows and says how the computation went ([`Diagnostics`]).
 //!
 //! **Many routes.** A sweep of scene keys ([`sweep`]), a probabilistic analysis
-//! ([`probabilistic`]), the load cases of a guideline ([`check_cases`]) and the paper's dynamics
-//! beside the rigid body's ([`compare_dynamics`]) run through one runner, the command line and
-//! Python alike.
+//! ([`probabilistic`]), the load cases of a guideline ([`check`]) and the paper's dynamics
+//! beside the rigid body's ([`compare`]) run through one runner, the command line and Python
+//! alike; each of many routes comes to a [`RouteResult`], or an [`Outcome`] without one.
 //!
-//! **The poses behind it.** The coefficients of the pose system ([`SmallAngle`]'s f1–f12 of
-//! (15), [`Exact`]), all its roots by eigenvalues ([`solve_all`]), the physical one followed by
-//! continuation ([`Tracker`]), and the independent direct solver every test measures against
-//! ([`direct_pose`]):
+//! **The poses behind it** ([`poses`]). The coefficients of the pose system (`SmallAngle`'s
+//! f1–f12 of (15), `Exact`), all its roots by eigenvalues (`solve_all`), the physical one
+//! followed by continuation (`Tracker`), and the independent direct solver every test measures
+//! against (`direct_pose`):
 //!
 //! ```
-//! use slideroute::{CoeffInputs, Displacement, Mode, Scene, SmallAngle, Tracker};
+//! use slideroute::poses::{CoeffInputs, SmallAngle, Tracker, direct_pose, solve_all};
+//! use slideroute::{Displacement, Mode, Scene};
 //! let scene = Scene::default_scene();
 //! let d = Displacement::new(0.5, 0.1, 2f64.to_radians());
 //! let f = SmallAngle::new(&CoeffInputs::new(scene.site().as_paper().unwrap(), d)); // f1–f12 of (15)
 //! assert_eq!(f.f.len(), 12);
-//! let all = slideroute::solve_all(scene.site(), d, Mode::Exact).unwrap(); // every root, classified
+//! let all = solve_all(scene.site(), d, Mode::Exact).unwrap(); // every root, classified
 //! let mut tracker = Tracker::new(scene.site(), Mode::Exact);
 //! let here = tracker.advance(d).unwrap(); // u = (α, ψ) on the physical branch
-//! let oracle = slideroute::direct_pose(scene.site(), d).unwrap();
+//! let oracle = direct_pose(scene.site(), d).unwrap();
 //! assert!((here.u[0] - oracle.alpha(scene.l())).abs() < 1e-9 && !all.roots.is_empty());
 //! ```
 //!
@@ -67,28 +68,44 @@ mod roots;
 mod route;
 mod scene;
 
-pub use analysis::check::{CaseResult, check_cases};
-pub use analysis::compare::{Comparison, Parting, compare_dynamics, compare_dynamics_observed};
 pub use analysis::runner::{NOT_RUN, Outcome, RouteResult};
 pub use analysis::{run, run_observed};
-pub use coeffs::{CoeffInputs, Exact, SmallAngle};
-pub use geometry::direct::solve as direct_pose;
-pub use geometry::{DirectPose, Displacement, Foundation, Frame, Ground, Plane, Pose, Site};
+pub use geometry::{Displacement, Foundation, Frame, Ground, Plane, Pose, Site};
 pub use mechanics::static_friction::FactorOfSafety;
 pub use model::{
-    Block, Category, DynamicsModel, FaceStrength, Friction, Guideline, Initial, Integrator, Levels,
-    LoadCase, Loads, MAX_INCREMENTS, MassProperties, Mode, ModelError, Monolith, Record, Resultant,
-    RunSettings, Section, Simulation, SimulationBuilder, SiteInformation, Strengths, Structure,
-    UnknownName, WaterLoads,
-};
-pub use roots::{
-    AllRoots, BranchPoint, Inadmissible, Root, TrackError, TrackStats, Tracker, solve_all,
+    Block, DynamicsModel, FaceStrength, Friction, Initial, Integrator, Levels, Loads,
+    MAX_INCREMENTS, MassProperties, Mode, ModelError, Monolith, Record, Resultant, RunSettings,
+    Section, Simulation, SimulationBuilder, Strengths, UnknownName, WaterLoads,
 };
 pub use route::{
     Computed, Diagnostics, EnergyBalance, PoseMethod, Reason, Route, Row, Runner, Termination,
     simulate,
 };
 pub use scene::{LoadsUsed, Scene, SceneError, SceneErrorKind};
+
+/// The poses behind a route: the coefficients of the pose systems, all their roots by
+/// eigenvalues, the physical one followed by continuation, and the independent direct solver.
+pub mod poses {
+    pub use crate::coeffs::{CoeffInputs, Exact, SmallAngle};
+    pub use crate::geometry::DirectPose;
+    pub use crate::geometry::direct::solve as direct_pose;
+    pub use crate::roots::{
+        AllRoots, BranchPoint, Inadmissible, Root, TrackError, TrackStats, Tracker, solve_all,
+    };
+}
+
+/// Load cases checked against the sliding factor of safety their guideline requires.
+pub mod check {
+    pub use crate::analysis::check::{CaseResult, check_cases, meets};
+    pub use crate::model::{Category, Guideline, LoadCase, SiteInformation, Structure};
+}
+
+/// The paper's dynamics beside the rigid body's: both routes of one scene, and where they part.
+pub mod compare {
+    pub use crate::analysis::compare::{
+        Comparison, Parting, compare_dynamics, compare_dynamics_observed,
+    };
+}
 
 /// Sweeps: every combination of values of some scene keys, each combination's route.
 pub mod sweep {

@@ -183,8 +183,9 @@ pub fn generate() -> String {
     let unsq_body = emit::body(&unsq_outs, &param_access);
     let (e13, e14) = (&unsq_exps[0], &unsq_exps[1]);
     let unsquared = quote! {
-        /// (α, β) exponents of the terms of A in the unsquared small-angle (13), then (14).
+        /// (α, β) exponents of the terms of A in the unsquared small-angle (13).
         pub const SMALL_ANGLE_UNSQUARED_A13: &[(u32, u32)] = #e13;
+        /// (α, β) exponents of the terms of A in the unsquared small-angle (14).
         pub const SMALL_ANGLE_UNSQUARED_A14: &[(u32, u32)] = #e14;
         /// Number of A-terms of (13); the output is A13 terms, B13, A14 terms, B14.
         pub const SMALL_ANGLE_UNSQUARED_SPLIT: usize = #n_a13;
@@ -218,11 +219,13 @@ pub fn generate() -> String {
     let exact = quote! {
         /// Number of trig-basis terms of exact (13) and (14).
         pub const EXACT_TERMS: [usize; 2] = [#n13, #n14];
-        /// (sin α, cos α, sin ψ, cos ψ) exponents of each term of exact (13), then (14).
+        /// (sin α, cos α, sin ψ, cos ψ) exponents of each term of exact (13).
         pub const EXACT_BASIS_13: [[u32; 4]; #n13] = #b13;
+        /// (sin α, cos α, sin ψ, cos ψ) exponents of each term of exact (14).
         pub const EXACT_BASIS_14: [[u32; 4]; #n14] = #b14;
-        /// Readable names of the basis monomials (`one`, `sa`, `ca_sp`, …).
+        /// Readable names of the basis monomials of (13) (`one`, `sa`, `ca_sp`, …).
         pub const EXACT_NAMES_13: [&str; #n13] = #nm13;
+        /// Readable names of the basis monomials of (14).
         pub const EXACT_NAMES_14: [&str; #n14] = #nm14;
         /// Coefficients of exact (13), then (14), in the trig basis above
         /// (see `derivations/04-exact.md`).

@@ -168,7 +168,7 @@ impl PyScene {
     ) -> PyResult<Bound<'py, PyDict>> {
         let mode = self.mode(py, mode)?;
         let d = Displacement::new(x_m, z_m, theta_deg.to_radians());
-        let all = slideroute::solve_all(self.inner.site(), d, mode)
+        let all = slideroute::poses::solve_all(self.inner.site(), d, mode)
             .map_err(|e| input_error(py, "displacement", e.to_string()))?;
         let out = PyDict::new(py);
         out.set_item("finite_roots", all.finite_roots)?;
@@ -243,7 +243,7 @@ impl PyScene {
                 .into_par_iter()
                 .map(|k| {
                     let d = Displacement::new(x[k], z[k], t[k].to_radians());
-                    let Ok(all) = slideroute::solve_all(site, d, mode) else {
+                    let Ok(all) = slideroute::poses::solve_all(site, d, mode) else {
                         return [f64::NAN; 5];
                     };
                     match all.selected_pose(site) {
@@ -294,7 +294,7 @@ impl PyScene {
         theta_deg: f64,
     ) -> PyResult<Bound<'py, PyDict>> {
         let d = Displacement::new(x_m, z_m, theta_deg.to_radians());
-        let p = slideroute::direct_pose(self.inner.site(), d)
+        let p = slideroute::poses::direct_pose(self.inner.site(), d)
             .map_err(|e| input_error(py, "displacement", e.to_string()))?;
         let out = PyDict::new(py);
         out.set_item("tilt_deg", p.tilt.to_degrees())?;

@@ -10,6 +10,7 @@ use crate::scene::{LoadsUsed, Scene, SceneError};
 /// One load case checked.
 #[derive(Debug, Clone, serde::Serialize)]
 pub struct CaseResult {
+    /// The load case.
     pub case: LoadCase,
     /// The guideline factor of safety at the start (`None` where the start has no pose).
     pub factor_of_safety: Option<FactorOfSafety>,

@@ -11,17 +11,22 @@ use serde::Serialize;
 pub struct Parting {
     /// The separation that counts as "parted": 1% of the side length L (m).
     pub threshold_m: f64,
-    /// First time the CM positions are farther apart than the threshold (s), and where the
-    /// rigid body's CM is then (X, Z in m); `None` if they never part while both run.
+    /// The first time the CM positions are farther apart than the threshold (s); `None` if they
+    /// never part while both run.
     pub parted_at_s: Option<f64>,
+    /// Where the rigid body's CM is then: X (m).
     pub parted_at_x_m: Option<f64>,
+    /// And Z (m).
     pub parted_at_z_m: Option<f64>,
-    /// Over the time both routes run: the largest CM separation (m) and when (s).
+    /// Over the time both routes run: the largest CM separation (m).
     pub max_separation_m: f64,
+    /// When it is reached (s).
     pub max_separation_at_s: f64,
-    /// Both at the last common time: CM separation (m) and yaw difference rigid − paper (°).
+    /// The last time both routes run (s).
     pub common_until_s: f64,
+    /// Their CM separation then (m).
     pub separation_at_end_m: f64,
+    /// Their yaw difference then, rigid − paper (degrees).
     pub yaw_difference_at_end_deg: f64,
 }
 

@@ -9,10 +9,6 @@ use crate::route::{Reason, Route};
 use crate::scene::{Scene, SceneError};
 use std::ops::ControlFlow;
 
-/// The most points of a route's CM path a row keeps ([`RouteResult::cm_path_m`]): enough to
-/// draw it in a route fan, little enough that ten thousand rows keep ten megabytes.
-pub const PATH_POINTS: usize = 64;
-
 /// The reason written for an item a stopped run did not start.
 pub const NOT_RUN: &str = "not run (interrupted)";
 
@@ -21,25 +17,36 @@ pub const NOT_RUN: &str = "not run (interrupted)";
 pub struct RouteResult {
     /// The factor of safety at the start (absent only where its cone program failed).
     pub factor_of_safety: Option<FactorOfSafety>,
-    /// How the route ended, when (s), and what exactly happened.
+    /// How the route ended.
     pub reason: Reason,
+    /// When (s).
     pub t_s: f64,
+    /// What exactly happened, for people.
     pub detail: String,
-    /// Travel (m), and the final position (m) and yaw (degrees).
+    /// Travel (m).
     pub travel_m: f64,
+    /// The final position of the CM, X and Z (m).
     pub x_m: f64,
+    /// Z (m).
     pub z_m: f64,
+    /// The final yaw (degrees).
     pub yaw_deg: f64,
-    /// The largest tilts along the route (degrees).
+    /// The largest tilt α along the route (degrees).
     pub max_alpha_deg: f64,
+    /// The largest tilt β along the route (degrees).
     pub max_beta_deg: f64,
-    /// The CM path in plan, (X, Z) in m, thinned evenly to at most [`PATH_POINTS`] points (the
+    /// The CM path in plan, (X, Z) in m, thinned evenly to at most [`RouteResult::PATH_POINTS`]
+    /// points (the
     /// first and last kept).
     #[serde(skip)]
     pub cm_path_m: Vec<[f64; 2]>,
 }
 
 impl RouteResult {
+    /// The most points of a route's CM path a row keeps ([`RouteResult::cm_path_m`]): enough to
+    /// draw it in a route fan, little enough that ten thousand rows keep ten megabytes.
+    pub const PATH_POINTS: usize = 64;
+
     /// What `route` came to.
     pub fn of(route: &Route) -> RouteResult {
         let last = route.rows.last();
@@ -63,7 +70,7 @@ impl RouteResult {
                     .iter()
                     .map(|r| [r.x_m, r.z_m])
                     .collect::<Vec<_>>(),
-                PATH_POINTS,
+                RouteResult::PATH_POINTS,
             ),
         }
     }
@@ -172,11 +179,11 @@ mod tests {
     #[test]
     fn a_thinned_path_keeps_its_ends_and_at_most_its_count() {
         let v: Vec<usize> = (0..1000).collect();
-        let t = thin(&v, PATH_POINTS);
-        assert_eq!(t.len(), PATH_POINTS);
+        let t = thin(&v, RouteResult::PATH_POINTS);
+        assert_eq!(t.len(), RouteResult::PATH_POINTS);
         assert_eq!((t[0], *t.last().unwrap()), (0, 999));
         assert!(t.windows(2).all(|w| w[0] < w[1]));
-        assert_eq!(thin(&v[..10], PATH_POINTS), v[..10].to_vec());
+        assert_eq!(thin(&v[..10], RouteResult::PATH_POINTS), v[..10].to_vec());
     }
 
     #[test]

@@ -12,11 +12,14 @@ use crate::geometry::{Displacement, Site};
 /// the contacts and the planes' normals, read as they are).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum SiteTrig {
+    /// The paper's site: its foundation's trigonometric functions.
     Paper(FoundationTrig),
+    /// Any other site.
     General,
 }
 
 impl SiteTrig {
+    /// The functions `site`'s coefficients need.
     pub fn new(site: &Site) -> SiteTrig {
         match site.as_paper() {
             Some(p) => SiteTrig::Paper(FoundationTrig::new(p)),
@@ -29,11 +32,14 @@ impl SiteTrig {
 /// general one on any other.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Inputs {
+    /// The paper's systems' inputs.
     Paper(CoeffInputs),
+    /// The general system's inputs.
     General(GeneralInputs),
 }
 
 impl Inputs {
+    /// The inputs of `site` at displacement `d`.
     pub fn new(site: &Site, d: Displacement) -> Inputs {
         Inputs::with_trig(site, &SiteTrig::new(site), d)
     }
@@ -87,14 +93,16 @@ impl GeneralInputs {
     }
 }
 
-/// The general equations at one displacement, in the trig basis [`GENERAL_BASIS`] (contact 1's
+/// The general equations at one displacement, in the trig basis `GENERAL_BASIS` (contact 1's
 /// then contact 2's), in metres.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct GeneralExact {
+    /// The coefficients, contact 1's equation then contact 2's.
     pub g: [f64; 2 * GENERAL_BASIS.len()],
 }
 
 impl GeneralExact {
+    /// The equations at `inputs`.
     pub fn new(inputs: &GeneralInputs) -> GeneralExact {
         GeneralExact {
             g: generated::general_exact_trig(inputs),
@@ -123,13 +131,15 @@ impl GeneralExact {
 }
 
 /// The general equations with sin α → α, cos α → 1, sin ψ → ψ, cos ψ → 1: bilinear in (α, ψ),
-/// coefficients of [`GENERAL_SMALL_BASIS`] (1, α, ψ, αψ), contact 1's then contact 2's.
+/// coefficients of `GENERAL_SMALL_BASIS` (1, α, ψ, αψ), contact 1's then contact 2's.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct GeneralSmallAngle {
+    /// The coefficients, contact 1's equation then contact 2's.
     pub c: [f64; 2 * GENERAL_SMALL_BASIS.len()],
 }
 
 impl GeneralSmallAngle {
+    /// The equations at `inputs`.
     pub fn new(inputs: &GeneralInputs) -> GeneralSmallAngle {
         GeneralSmallAngle {
             c: generated::general_small_angle(inputs),

@@ -48,6 +48,7 @@ impl FoundationTrig {
         (1.0 / self.cot_xi, 1.0 / self.cot_zeta)
     }
 
+    /// The functions of `site`'s foundation.
     pub fn new(site: &PaperSite) -> Self {
         let g = site.foundation;
         let (sk, ck) = g.kappa.sin_cos();
@@ -176,6 +177,7 @@ pub struct UnsquaredValue {
 }
 
 impl SmallAngleUnsquared {
+    /// The relations at `inputs`.
     pub fn new(inputs: &CoeffInputs) -> Self {
         SmallAngleUnsquared {
             c: generated::small_angle_unsquared(inputs),
@@ -214,7 +216,7 @@ impl SmallAngleUnsquared {
 }
 
 /// The exact relations (13), (14) at one displacement, as coefficients of the trig basis
-/// monomials in [`EXACT_BASIS_13`] / [`EXACT_BASIS_14`] (exponents of sin α, cos α, sin ψ,
+/// monomials of [`Exact::BASIS_13`] / [`Exact::BASIS_14`] (exponents of sin α, cos α, sin ψ,
 /// cos ψ). Each equation reads LHS − RHS of the paper's (13) or (14), in metres.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Exact {
@@ -223,6 +225,11 @@ pub struct Exact {
 }
 
 impl Exact {
+    /// The basis monomials of (13): the exponents of (sin α, cos α, sin ψ, cos ψ) of each term,
+    /// in the order of [`Exact::eq13`].
+    pub const BASIS_13: [[u32; 4]; EXACT_TERMS[0]] = EXACT_BASIS_13;
+    /// Those of (14), in the order of [`Exact::eq14`].
+    pub const BASIS_14: [[u32; 4]; EXACT_TERMS[1]] = EXACT_BASIS_14;
     /// The names of (13)'s coefficients, its basis monomials, in the order of [`Exact::eq13`].
     pub const NAMES_13: [&'static str; EXACT_TERMS[0]] = generated::EXACT_NAMES_13;
     /// The names of (14)'s coefficients, in the order of [`Exact::eq14`].

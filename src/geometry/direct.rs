@@ -18,6 +18,7 @@ use std::f64::consts::SQRT_2;
 /// A pose found by the direct solver.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DirectPose {
+    /// The displacement it is at.
     pub displacement: Displacement,
     /// Rotation about the horizontal normal of side 01 (rad): the elevation of side 01.
     pub tilt: f64,
@@ -29,6 +30,7 @@ pub struct DirectPose {
     pub vertices: [Vector3<f64>; 3],
     /// Largest constraint residual at the solution (m).
     pub residual: f64,
+    /// Newton's iterations it took.
     pub iterations: usize,
 }
 
@@ -48,6 +50,7 @@ impl DirectPose {
         ((self.vertices[2].y - self.vertices[1].y) / l).asin()
     }
 
+    /// The local frame of its vertices (L the frame's side, m).
     pub fn frame(&self, l: f64) -> LocalFrame {
         LocalFrame::from_vertices(&self.vertices, l)
     }

@@ -10,8 +10,11 @@ use nalgebra::{Matrix3, Vector3};
 /// Orthonormal local axes (i', j', k') and R.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LocalFrame {
+    /// i': along side 01, from vertex 0 to vertex 1.
     pub i: Vector3<f64>,
+    /// j': the frame's upward normal.
     pub j: Vector3<f64>,
+    /// k' = i' × j'.
     pub k: Vector3<f64>,
 }
 

@@ -88,14 +88,23 @@ impl PointDistance for Triangle {
 /// Why a triangle cannot be a face.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SurfaceError {
+    /// No triangles at all.
     #[error("the surface has no triangles")]
     Empty,
+    /// A triangle (its number) with a corner not a finite number.
     #[error("triangle {0} has a corner that is not a finite number")]
     NonFinite(usize),
+    /// A triangle (its number) with no area.
     #[error("triangle {0} has no area (its corners are on one line)")]
     Degenerate(usize),
+    /// A triangle that is vertical or overhangs: no ground a block slides on.
     #[error("triangle {index} is vertical or overhangs (its normal's Y part is {normal_y:.3e})")]
-    Vertical { index: usize, normal_y: f64 },
+    Vertical {
+        /// Its number.
+        index: usize,
+        /// Its upward normal's Y part.
+        normal_y: f64,
+    },
 }
 
 impl Ground {
@@ -151,6 +160,7 @@ impl Ground {
         })
     }
 
+    /// Every face, in its number's order.
     pub fn faces(&self) -> &[Plane] {
         &self.faces
     }

@@ -27,12 +27,16 @@ pub use site::{Foundation, Frame, PaperSite, Site};
 /// from +X towards +Z). The start of sliding is the default, (0, 0, 0).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Displacement {
+    /// X (m).
     pub x: f64,
+    /// Z (m).
     pub z: f64,
+    /// θ (rad).
     pub theta: f64,
 }
 
 impl Displacement {
+    /// The displacement (X, Z) (m) and θ (rad).
     pub fn new(x: f64, z: f64, theta: f64) -> Self {
         Displacement { x, z, theta }
     }
@@ -42,6 +46,7 @@ impl Displacement {
         Displacement::new(self.x * s, self.z * s, self.theta * s)
     }
 
+    /// Whether X, Z and θ are all finite.
     pub fn is_finite(&self) -> bool {
         self.x.is_finite() && self.z.is_finite() && self.theta.is_finite()
     }
@@ -58,8 +63,11 @@ pub enum GeometryError {
         "the direct pose solver did not converge at {at}: residual {residual:.3e} m after {iterations} iterations"
     )]
     NotConverged {
+        /// The displacement it was at, for people.
         at: String,
+        /// The largest constraint residual it reached (m).
         residual: f64,
+        /// The iterations it took.
         iterations: usize,
     },
     /// A non-finite input.

@@ -9,8 +9,11 @@ use super::site::PaperSite;
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(not(feature = "internals"), allow(dead_code))]
 pub enum PaperPlane {
+    /// The horizontal plane, under contact 0.
     Horizontal,
+    /// Plane 1, under contact 1.
     One,
+    /// Plane 2, under contact 2.
     Two,
 }
 

@@ -14,10 +14,13 @@ use std::f64::consts::SQRT_2;
 /// A placed frame.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Pose {
+    /// The displacement it is at.
     pub displacement: Displacement,
-    /// Elevation angles of sides 01, 02 and 1→2 (rad).
+    /// α: the elevation of side 01 (rad).
     pub alpha: f64,
+    /// β: the elevation of side 02 (rad).
     pub beta: f64,
+    /// γ: the elevation of side 1→2 (rad).
     pub gamma: f64,
     /// Interior projection angle between sides 01 and 02 (rad, eq. 2).
     pub h: f64,
@@ -28,6 +31,7 @@ pub struct Pose {
     pub vertices: [Vector3<f64>; 3],
     /// CM in global coordinates (eq. 21).
     pub cm: Vector3<f64>,
+    /// The local axes (i', j', k').
     pub frame: LocalFrame,
 }
 

@@ -11,9 +11,13 @@ use std::sync::Arc;
 /// r0 = (−L1X, L1Z), r1 = (L2X, L1Z), r2 = (L2X, −L2Z) (paper eq. (20)); all lengths in m.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Frame {
+    /// From the CM to vertex 0 along −x′.
     pub l1x: f64,
+    /// From the CM to side 12 along x′.
     pub l2x: f64,
+    /// From the CM to side 01 along z′.
     pub l1z: f64,
+    /// From the CM to vertex 2 along −z′.
     pub l2z: f64,
 }
 
@@ -62,7 +66,9 @@ impl Foundation {
 /// The paper's site: its right isosceles frame and its three planes.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PaperSite {
+    /// The paper's frame.
     pub frame: Frame,
+    /// The paper's three planes.
     pub foundation: Foundation,
 }
 

@@ -25,6 +25,7 @@ pub struct Applied {
 }
 
 impl Applied {
+    /// The loads on `block` at the pose whose local axes are `frame`.
     pub fn new(loads: &Loads, block: &Block, frame: &LocalFrame) -> Self {
         Applied::shaken(loads, block, frame, [0.0; 3])
     }

@@ -29,13 +29,16 @@ use nalgebra::{Matrix3, Matrix3x4, SMatrix, Vector3, Vector4};
 /// One solution of the frictional system, with the accelerations it implies.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Reaction {
+    /// The normal reactions (N), along each plane's upward normal.
     pub normal: [Vector3<f64>; 3],
+    /// The shear reactions (N), in each plane.
     pub shear: [Vector3<f64>; 3],
     /// Direction of each shear force in its plane (rad): 0 along the projection of +i', π
     /// against it.
     pub angles: [f64; 3],
-    /// CM acceleration along i' (m/s²) and angular acceleration about j' (rad/s²), eq. (23).
+    /// CM acceleration along i' (m/s²), eq. (23).
     pub accel: f64,
+    /// Angular acceleration about j' (rad/s²), eq. (23).
     pub ang_accel: f64,
 }
 

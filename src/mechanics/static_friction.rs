@@ -35,6 +35,7 @@ use clarabel::solver::{
 /// Why the static check has no answer.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum StaticError {
+    /// The conic solver's failure, in its words.
     #[error("the cone program could not be solved: {0}")]
     Solver(String),
 }
@@ -60,7 +61,10 @@ pub struct HoldingRange {
 #[serde(tag = "kind", rename_all = "kebab-case")]
 pub enum FactorOfSafety {
     /// t_hi, finite.
-    Finite { value: f64 },
+    Finite {
+        /// t_hi.
+        value: f64,
+    },
     /// Every multiple of the driving loads is held: no scaling of them starts the block (they
     /// do not push it along any way it could slide).
     Unbounded,
@@ -224,6 +228,8 @@ pub fn at_rest(
     check(geom, applied, friction, &c)
 }
 
+/// [`at_rest`] with the normal forces `c` at which a stress-dependent criterion's
+/// coefficients start their fixed point.
 pub fn check(
     geom: &ContactGeometry,
     applied: &Applied,

@@ -20,6 +20,7 @@ pub struct Section {
     pub height: f64,
     /// c: crest length along x′ (0 < c ≤ b).
     pub crest_length: f64,
+    /// ρ: the concrete's density (kg/m³).
     pub density: f64,
 }
 
@@ -27,14 +28,17 @@ pub struct Section {
 /// inertia tensor about the centre of mass in the block axes (x′, y′, z′).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct MassProperties {
+    /// m (kg).
     pub mass: f64,
     /// x̄: the centre of mass from the heel along x′ (m).
     pub cm_from_heel: f64,
     /// ȳ: the centre of mass above the base (m).
     pub cm_height: f64,
-    /// ∫(y² + z²) dm, ∫(x² + z²) dm, ∫(x² + y²) dm about the centre of mass (kg·m²).
+    /// ∫(y² + z²) dm about the centre of mass (kg·m²).
     pub inertia_x: f64,
+    /// ∫(x² + z²) dm (kg·m²).
     pub inertia_y: f64,
+    /// ∫(x² + y²) dm (kg·m²).
     pub inertia_z: f64,
     /// ∫ x y dm about the centre of mass (kg·m²); ∫ x z dm = ∫ y z dm = 0 by symmetry in z′.
     pub product_xy: f64,

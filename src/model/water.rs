@@ -77,7 +77,7 @@ pub struct Resultant {
     pub at_m: f64,
 }
 
-/// The water's loads on a monolith ([`water_loads`]).
+/// The water's loads on a monolith from its levels (`derivations/11-dam-loads.md` §2).
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct WaterLoads {
     /// The reservoir's push on the upstream face, along +x′, at its height above the base.

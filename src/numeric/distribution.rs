@@ -9,22 +9,48 @@ use statrs::distribution::{ContinuousCDF, LogNormal, Normal, Triangular, Uniform
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Distribution {
     /// `normal:mean:sd`.
-    Normal { mean: f64, sd: f64 },
+    Normal {
+        /// The mean.
+        mean: f64,
+        /// The standard deviation.
+        sd: f64,
+    },
     /// `truncnormal:mean:sd:lo:hi`: the normal of that mean and standard deviation, kept
     /// within [lo, hi].
     TruncNormal {
+        /// The untruncated normal's mean.
         mean: f64,
+        /// Its standard deviation.
         sd: f64,
+        /// The lowest value kept.
         lo: f64,
+        /// The highest value kept.
         hi: f64,
     },
     /// `lognormal:mean:sd`: positive, with that mean and standard deviation of the value itself
     /// (its logarithm normal with σ² = ln(1 + sd²/mean²), μ = ln(mean) − σ²/2).
-    LogNormal { mean: f64, sd: f64 },
+    LogNormal {
+        /// The value's mean.
+        mean: f64,
+        /// The value's standard deviation.
+        sd: f64,
+    },
     /// `uniform:lo:hi`.
-    Uniform { lo: f64, hi: f64 },
+    Uniform {
+        /// The lowest value.
+        lo: f64,
+        /// The highest value.
+        hi: f64,
+    },
     /// `triangular:lo:mode:hi`.
-    Triangular { lo: f64, mode: f64, hi: f64 },
+    Triangular {
+        /// The lowest value.
+        lo: f64,
+        /// The most likely value.
+        mode: f64,
+        /// The highest value.
+        hi: f64,
+    },
 }
 
 /// The names a distribution is written with, and their parameters.
@@ -229,7 +255,9 @@ fn normal(mean: f64, sd: f64) -> Normal {
 /// `key=name:p1:p2…`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Uncertain {
+    /// The scene key (`section.key`).
     pub key: String,
+    /// Its distribution.
     pub distribution: Distribution,
 }
 

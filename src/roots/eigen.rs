@@ -21,7 +21,9 @@ pub type Coeffs = [[f64; 3]; 3];
 /// A finite root (x, y), after refinement, with its relative residual.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RawRoot {
+    /// The first unknown.
     pub x: C,
+    /// The second.
     pub y: C,
     /// max(|p|/Σ|p terms|, |q|/Σ|q terms|) at the root.
     pub residual: f64,
@@ -30,6 +32,7 @@ pub struct RawRoot {
 /// All finite roots (up to 8) and the number of eigenvalues at infinity.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RawRoots {
+    /// The finite roots.
     pub roots: Vec<RawRoot>,
     /// Eigenvalues of the pencil at x = ∞, plus finite x whose y is at infinity.
     pub at_infinity: usize,

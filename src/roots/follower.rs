@@ -67,6 +67,7 @@ impl<'s> EigenFollower<'s> {
         &self.site
     }
 
+    /// The pose at the current point, if its frame is real.
     pub fn pose(&self) -> Option<Pose> {
         classify::pose(&self.site, self.current.d, self.mode, self.current.u)
     }

@@ -44,7 +44,9 @@ use std::f64::consts::SQRT_2;
 /// One root, in the physical unknowns.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Root {
+    /// α (rad).
     pub alpha: Complex64,
+    /// β (rad).
     pub beta: Complex64,
     /// Roll about side 01 (exact mode only).
     pub psi: Option<Complex64>,
@@ -52,8 +54,12 @@ pub struct Root {
     pub multiplicity: usize,
     /// Relative residual of the polynomial system after refinement.
     pub residual: f64,
+    /// Whether it is real (to round-off).
     pub real: bool,
+    /// Whether it is a root of the squared system (15) that the unsquared relations refuse.
     pub spurious: bool,
+    /// Whether it is a pose the block can take: real, not spurious, its tilts in range and its
+    /// contacts on their planes' regions.
     pub admissible: bool,
     /// For a real root that is not admissible: why.
     pub why_not: Option<Inadmissible>,
@@ -62,7 +68,9 @@ pub struct Root {
 /// Every root of one mode's system at one displacement.
 #[derive(Debug, Clone, PartialEq)]
 pub struct AllRoots {
+    /// The pose system solved.
     pub mode: Mode,
+    /// The displacement it was solved at.
     pub displacement: Displacement,
     /// Finite roots; coinciding ones merged (see [`Root::multiplicity`]).
     pub roots: Vec<Root>,

@@ -21,20 +21,28 @@ use crate::model::Mode;
 /// the general system's (in u = (α, ψ) for both modes) on any other.
 #[derive(Debug, Clone, Copy)]
 pub enum Equations {
+    /// The paper's small-angle (13), (14) before squaring.
     SmallAngle(SmallAngleUnsquared),
+    /// The paper's exact (13), (14).
     Exact(Exact),
+    /// The general system with small angles.
     GeneralSmallAngle(GeneralSmallAngle),
+    /// The general system, exact.
     GeneralExact(GeneralExact),
 }
 
 /// Residual, Jacobian and the size of each equation's terms (for round-off judgements).
 pub struct Evaluated {
+    /// The residuals (m).
     pub r: [f64; 2],
+    /// ∂r/∂u.
     pub j: [[f64; 2]; 2],
+    /// Σ|terms| of each equation.
     pub scale: [f64; 2],
 }
 
 impl Equations {
+    /// `mode`'s equations of `site` at displacement `d`.
     pub fn new(site: &Site, d: Displacement, mode: Mode) -> Self {
         Self::from_inputs(&Inputs::new(site, d), mode)
     }

@@ -27,13 +27,16 @@ use std::borrow::Cow;
 /// A point on the followed branch: displacement and u = (α, β) (small-angle) or (α, ψ) (exact).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BranchPoint {
+    /// The displacement.
     pub d: Displacement,
+    /// The unknowns there (rad).
     pub u: [f64; 2],
 }
 
 /// Why the branch cannot be followed further.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum TrackError {
+    /// A displacement that is not finite.
     #[error("non-finite displacement {0:?}")]
     NonFinite(Displacement),
     /// The corrector failed at every step size down to the minimum: a turning point, roots
@@ -43,9 +46,13 @@ pub enum TrackError {
         fixed(*x, 6), fixed(*z, 6), fixed(*theta_deg, 6)
     )]
     BranchEnded {
+        /// Where: X (m).
         x: f64,
+        /// Z (m).
         z: f64,
+        /// θ (degrees).
         theta_deg: f64,
+        /// What the equations show there, for people.
         diagnosis: String,
     },
     /// The branch continues but the pose is no longer admissible.
@@ -54,9 +61,13 @@ pub enum TrackError {
         fixed(*x, 6), fixed(*z, 6), fixed(*theta_deg, 6)
     )]
     Inadmissible {
+        /// Where: X (m).
         x: f64,
+        /// Z (m).
         z: f64,
+        /// θ (degrees).
         theta_deg: f64,
+        /// Why the pose is not admissible.
         reason: Inadmissible,
     },
 }
@@ -64,8 +75,11 @@ pub enum TrackError {
 /// Counters for reports and benchmarks.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize)]
 pub struct TrackStats {
+    /// Accepted steps.
     pub steps: usize,
+    /// Steps refused and retried shorter.
     pub rejected: usize,
+    /// Newton iterations of the corrector, in all.
     pub newton_iterations: usize,
 }
 
@@ -87,6 +101,7 @@ pub struct Tracker<'s> {
     /// The regions' tolerance of the admissibility check (a fraction of L; see
     /// [`super::classify::check_pose_within`]).
     region_tol: f64,
+    /// What following the branch has cost so far.
     pub stats: TrackStats,
 }
 
@@ -196,6 +211,7 @@ impl<'s> Tracker<'s> {
         }
     }
 
+    /// The pose system followed.
     pub fn mode(&self) -> Mode {
         self.mode
     }

@@ -24,6 +24,7 @@ pub enum PoseMethod {
 }
 
 impl PoseMethod {
+    /// The method's name, as the report writes it.
     pub fn as_str(self) -> &'static str {
         match self {
             PoseMethod::Continuation => "continuation",
@@ -37,7 +38,9 @@ impl PoseMethod {
 #[allow(clippy::large_enum_variant)]
 #[derive(Debug, Clone)]
 pub enum PoseFinder<'s> {
+    /// By continuation of the physical branch.
     Continuation(Tracker<'s>),
+    /// By all roots at every increment.
     AllRoots(EigenFollower<'s>),
 }
 
@@ -114,6 +117,7 @@ impl<'s> PoseFinder<'s> {
         }
     }
 
+    /// The pose at the current point, if its frame is real.
     pub fn pose(&self) -> Option<Pose> {
         match self {
             PoseFinder::Continuation(t) => t.pose(),

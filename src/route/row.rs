@@ -6,20 +6,32 @@ use serde::Serialize;
 /// start at rest, without reactions.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Default)]
 pub struct Row {
+    /// Time (s).
     pub t_s: f64,
+    /// The CM's X (m).
     pub x_m: f64,
+    /// The CM's height Y (m).
     pub y_m: f64,
+    /// The CM's Z (m).
     pub z_m: f64,
+    /// The yaw θ (degrees).
     pub theta_deg: f64,
+    /// The tilt α: the elevation of side 01 (degrees).
     pub alpha_deg: f64,
+    /// The tilt β: the elevation of side 02 (degrees).
     pub beta_deg: f64,
+    /// The tilt γ: the elevation of side 1→2 (degrees).
     pub gamma_deg: f64,
+    /// Ẋ (m/s).
     pub vx_m_s: f64,
+    /// Ż (m/s).
     pub vz_m_s: f64,
+    /// θ̇ (degrees a second).
     pub omega_deg_s: f64,
-    /// Normal and shear reaction magnitudes at contacts 0, 1, 2 (N); `None` where the
-    /// reactions could not be had (the last row of a route that ended for that reason).
+    /// Normal reaction magnitudes at contacts 0, 1, 2 (N); `None` where the reactions could not
+    /// be had (the last row of a route that ended for that reason, a block at rest).
     pub n_n: Option<[f64; 3]>,
+    /// Shear reaction magnitudes at contacts 0, 1, 2 (N), likewise.
     pub s_n: Option<[f64; 3]>,
     /// The face each contact rests on: its plane's number (the paper's planes and any three
     /// planes: 0, 1, 2 for contacts 0, 1, 2; a ground of faces: the face's number).

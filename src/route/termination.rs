@@ -74,6 +74,7 @@ impl Reason {
         Reason::ALL.into_iter().find(|r| r.as_str() == text)
     }
 
+    /// The reason in words, as route.csv's readers and the summaries write it.
     pub const fn as_str(self) -> &'static str {
         match self {
             Reason::DoesNotSlide => "does not slide",
@@ -106,6 +107,7 @@ impl fmt::Display for Reason {
 /// How and when a route ended.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Termination {
+    /// Why it ended.
     pub reason: Reason,
     /// Time of the last state of the route (s).
     pub t_s: f64,

@@ -174,7 +174,9 @@ pub struct LoadsUsed {
     pub uplift_n: f64,
     /// The centre of mass above the base.
     pub cm_height_m: f64,
+    /// The horizontal pseudo-static coefficient (a fraction of g).
     pub kh: f64,
+    /// The vertical one.
     pub kv: f64,
     /// The water's loads from levels, each with where it acts.
     pub water: Option<crate::model::WaterLoads>,

@@ -24,11 +24,6 @@ use crate::model::{
 };
 use std::path::Path;
 
-/// The scene compiled into the binary: the paper-like scene of `scenes/paper-like.toml`.
-pub const DEFAULT_SCENE_TOML: &str = include_str!("../../scenes/paper-like.toml");
-/// The origin named in errors about the embedded default scene.
-pub const DEFAULT_ORIGIN: &str = "<embedded default scene>";
-
 /// A validated scene: read from a file or text ([`Scene::from_file`], [`Scene::from_toml`]) or
 /// made from one by changing keys ([`Scene::with`]), and in no other way, so that every scene
 /// is one a file could give. `frame` and `foundation` are always present; the other sections
@@ -36,7 +31,8 @@ pub const DEFAULT_ORIGIN: &str = "<embedded default scene>";
 #[derive(Debug, Clone)]
 pub struct Scene {
     pub(crate) name: String,
-    /// Where the scene came from (file path or [`DEFAULT_ORIGIN`]), used in error messages.
+    /// Where the scene came from (file path or [`Scene::DEFAULT_ORIGIN`]), used in error
+    /// messages.
     pub(crate) origin: String,
     /// The contact frame and the foundation: all that geometry, the coefficients and the roots
     /// take of a scene.
@@ -96,9 +92,15 @@ impl PartialEq for Scene {
 }
 
 impl Scene {
+    /// The scene compiled into the library: the paper-like scene of `scenes/paper-like.toml`.
+    pub const DEFAULT_TOML: &'static str = include_str!("../../scenes/paper-like.toml");
+
+    /// The origin named in errors about the embedded default scene.
+    pub const DEFAULT_ORIGIN: &'static str = "<embedded default scene>";
+
     /// The embedded default scene (paper-like).
     pub fn default_scene() -> Scene {
-        Scene::from_toml(DEFAULT_SCENE_TOML, DEFAULT_ORIGIN)
+        Scene::from_toml(Scene::DEFAULT_TOML, Scene::DEFAULT_ORIGIN)
             .expect("the embedded default scene is valid (checked by a test)")
     }
 
@@ -215,7 +217,7 @@ impl Scene {
         &self.name
     }
 
-    /// Where the scene came from: a file path or [`DEFAULT_ORIGIN`].
+    /// Where the scene came from: a file path or [`Scene::DEFAULT_ORIGIN`].
     pub fn origin(&self) -> &str {
         &self.origin
     }

@@ -202,7 +202,7 @@ fn roots_json_has_selected_pose_roots_and_counts() {
     // Agrees with the independent direct pose solver.
     let scene = slideroute::internals::scene::Scene::default_scene();
     let d = slideroute::internals::geometry::Displacement::new(0.5, 0.1, 2f64.to_radians());
-    let p = slideroute::direct_pose(scene.site(), d).unwrap();
+    let p = slideroute::poses::direct_pose(scene.site(), d).unwrap();
     let a = v["selected"]["alpha_deg"].as_f64().unwrap();
     assert!((a - p.alpha(scene.l()).to_degrees()).abs() < 1e-8);
 
@@ -653,7 +653,7 @@ fn small_angle_geometry_with_the_default_rigid_body_is_refused_and_runs_with_the
     let dir = temp_dir("small-angle");
     std::fs::create_dir_all(&dir).unwrap();
     let scene = dir.join("sa.toml");
-    let text = slideroute::internals::scene::DEFAULT_SCENE_TOML.replace(
+    let text = slideroute::Scene::DEFAULT_TOML.replace(
         "mode = \"exact\"       # or \"small-angle\"",
         "mode = \"small-angle\" # or \"exact\"",
     );
@@ -783,7 +783,7 @@ fn sweep_keys_are_given_once_whole_number_keys_take_whole_numbers_and_stop_is_hi
     let scene = dir.join("stride.toml");
     std::fs::write(
         &scene,
-        slideroute::internals::scene::DEFAULT_SCENE_TOML
+        slideroute::Scene::DEFAULT_TOML
             .replace("# stride = 1             #", "stride = 1 #")
             .replace("t_end_s = 20.0", "t_end_s = 0.05"),
     )
@@ -993,7 +993,7 @@ fn an_interrupted_run_stops_at_the_next_increment_and_writes_what_it_computed() 
     let scene = dir.join("long.toml");
     std::fs::write(
         &scene,
-        slideroute::internals::scene::DEFAULT_SCENE_TOML
+        slideroute::Scene::DEFAULT_TOML
             .replace("dt_s = 1.0e-3", "dt_s = 1.0e-5")
             .replace("eccentricity_m = 1.0 ", "eccentricity_m = 0.0 ")
             .replace("hydraulic_force_n = 8.0e6", "hydraulic_force_n = 7.0e6"),
@@ -1064,7 +1064,7 @@ fn long_scene(dir: &std::path::Path) -> std::path::PathBuf {
     let scene = dir.join("long.toml");
     std::fs::write(
         &scene,
-        slideroute::internals::scene::DEFAULT_SCENE_TOML
+        slideroute::Scene::DEFAULT_TOML
             .replace("dt_s = 1.0e-3", "dt_s = 1.0e-5")
             .replace("eccentricity_m = 1.0 ", "eccentricity_m = 0.0 ")
             .replace("hydraulic_force_n = 8.0e6", "hydraulic_force_n = 7.0e6"),
@@ -1179,7 +1179,7 @@ fn pictures_stay_small_whatever_the_routes_length() {
     let scene = dir.join("fine.toml");
     std::fs::write(
         &scene,
-        slideroute::internals::scene::DEFAULT_SCENE_TOML.replace("dt_s = 1.0e-3", "dt_s = 1.0e-5"),
+        slideroute::Scene::DEFAULT_TOML.replace("dt_s = 1.0e-3", "dt_s = 1.0e-5"),
     )
     .unwrap();
     let out = dir.join("out");
@@ -1329,7 +1329,7 @@ fn general_scenes_run_from_the_command_line_and_coeffs_says_why_it_cannot() {
 #[test]
 fn a_surface_that_is_not_obj_is_bad_input_naming_the_file() {
     let obj = temp_file("junk.obj", "v 0 0 0\nf 1 2 3 4 5\nthis is not obj\n");
-    let text = slideroute::internals::scene::DEFAULT_SCENE_TOML;
+    let text = slideroute::Scene::DEFAULT_TOML;
     let start = text.find("[foundation]").unwrap();
     let end = text.find("[block]").unwrap();
     let scene = format!(

@@ -204,7 +204,7 @@ fn check_gives_each_case_its_guideline_requirement_and_routes_it() {
     // ordinary site information (1.5, 1.3, 1.1). The flood raises the uplift more than the
     // push and lowers the factor; the earthquake's kh W drives it under 1 and the block slides.
     let s = Scene::from_toml(&monolith(), "monolith").unwrap();
-    let r = slideroute::check_cases(&s, |_| ()).unwrap();
+    let r = slideroute::check::check_cases(&s, |_| ()).unwrap();
     assert_eq!(r.len(), 3);
     let required: Vec<f64> = r.iter().map(|c| c.case.required_fs).collect();
     assert_eq!(required, [1.5, 1.3, 1.1]);

@@ -6,7 +6,7 @@ use crate::common::{relations, scene};
 use proptest::prelude::*;
 use slideroute::Scene;
 use slideroute::internals::geometry::{Displacement, Pose, direct};
-use slideroute::{CoeffInputs, Exact};
+use slideroute::poses::{CoeffInputs, Exact};
 
 prop_compose! {
     fn scene_and_reachable_pose()(

@@ -16,7 +16,7 @@ fn scene_file(name: &str) -> Scene {
 
 /// The default scene with its frame written as `contacts_m` (the general system's site).
 fn default_as_contacts() -> Scene {
-    let text = slideroute::internals::scene::DEFAULT_SCENE_TOML;
+    let text = slideroute::Scene::DEFAULT_TOML;
     let start = text.find("l1x =").unwrap();
     let end = text[start..].find("[foundation]").unwrap() + start;
     let text = format!(
@@ -107,7 +107,7 @@ fn on_the_papers_faces_contact_2_rides_the_crease_then_plane_1_alone_until_conta
         );
         let p = match &near {
             Some(q) => slideroute::internals::geometry::direct::solve_from(s.site(), d, q),
-            None => slideroute::direct_pose(s.site(), d),
+            None => slideroute::poses::direct_pose(s.site(), d),
         }
         .unwrap();
         let off = plane_1.signed_distance(&p.vertices[2]);
@@ -187,7 +187,7 @@ fn assert_rows_on_their_faces(s: &Scene, r: &Route) -> Vec<[u32; 3]> {
     let (ground, _) = s.site().ground().unwrap();
     let mut seen = vec![r.rows[0].faces];
     let l = s.l();
-    let mut near: Option<slideroute::DirectPose> = None;
+    let mut near: Option<slideroute::poses::DirectPose> = None;
     for row in &r.rows {
         if *seen.last().unwrap() != row.faces {
             seen.push(row.faces);
@@ -204,7 +204,7 @@ fn assert_rows_on_their_faces(s: &Scene, r: &Route) -> Vec<[u32; 3]> {
         );
         let p = match &near {
             Some(q) => slideroute::internals::geometry::direct::solve_from(&site, d, q),
-            None => slideroute::direct_pose(&site, d),
+            None => slideroute::poses::direct_pose(&site, d),
         }
         .unwrap();
         assert!(

@@ -29,7 +29,7 @@ fn a_ten_million_increment_route_streams_in_bounded_memory() {
     let scene = dir.join("fine.toml");
     std::fs::write(
         &scene,
-        slideroute::internals::scene::DEFAULT_SCENE_TOML
+        slideroute::Scene::DEFAULT_TOML
             .replace("dt_s = 1.0e-3", "dt_s = 2.0e-7")
             .replace("# stride = 1 ", "stride = 10 "),
     )

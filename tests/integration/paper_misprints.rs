@@ -6,7 +6,7 @@
 use crate::common::{printed_f1_f2_f7_f11, scene};
 use slideroute::Scene;
 use slideroute::internals::geometry::{Displacement, direct};
-use slideroute::{CoeffInputs, SmallAngle};
+use slideroute::poses::{CoeffInputs, SmallAngle};
 
 /// (15) residuals with our coefficients, and with one printed coefficient swapped in.
 fn residuals_with_printed(index: usize, s: &Scene, d: Displacement) -> (f64, f64) {

@@ -144,7 +144,7 @@ fn faceted_scene() -> impl Strategy<Value = String> {
                     [r * at.cos(), 0.0, r * at.sin()],
                 );
             }
-            let rest = slideroute::internals::scene::DEFAULT_SCENE_TOML;
+            let rest = slideroute::Scene::DEFAULT_TOML;
             let rest = &rest[rest.find("[block]").unwrap()..];
             let rest = rest.replace("t_end_s = 20.0", "t_end_s = 0.3").replace(
                 "dt_s = 1.0e-3",
@@ -171,7 +171,7 @@ proptest! {
                 // the bound.
                 for mode in [Mode::Exact, Mode::SmallAngle] {
                     let d = Displacement::new(0.3, -0.1, 0.05);
-                    if let Ok(all) = slideroute::solve_all(scene.site(), d, mode) {
+                    if let Ok(all) = slideroute::poses::solve_all(scene.site(), d, mode) {
                         prop_assert!(all.finite_roots <= 8);
                     }
                 }

@@ -58,6 +58,7 @@ fn pearson(a: &[f64], b: &[f64]) -> Option<f64> {
 /// One uncertain value's rank correlations, over the samples whose route ran.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct Sensitivity {
+    /// The uncertain scene key.
     pub key: String,
     /// With the factor of safety (absent where it cannot be had: too few samples, or one side
     /// constant).

@@ -8,7 +8,9 @@ use crate::analysis::runner::{Outcome, RouteResult};
 /// A probability with its 95 % Wilson interval, over the samples whose route ran.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct Probability {
+    /// The proportion.
     pub value: f64,
+    /// Its 95 % Wilson score interval.
     pub ci95: [f64; 2],
 }
 
@@ -38,8 +40,11 @@ fn probability(k: usize, n: usize) -> Probability {
 /// count, as the largest or smallest).
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct Percentiles {
+    /// The 5th percentile.
     pub p5: f64,
+    /// The median.
     pub p50: f64,
+    /// The 95th percentile.
     pub p95: f64,
 }
 
@@ -73,7 +78,9 @@ pub fn percentiles(mut v: Vec<f64>) -> Option<Percentiles> {
 /// One uncertain key as it was given.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct Given {
+    /// The scene key.
     pub key: String,
+    /// Its distribution, as written (`normal:0.4:0.05`).
     pub distribution: String,
 }
 
@@ -111,26 +118,39 @@ impl Limits {
 /// `probabilistic.json`.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct Summary {
+    /// The scene's name.
     pub scene: String,
+    /// How many samples the design has.
     pub samples: usize,
+    /// The seed they were drawn from.
     pub seed: u64,
+    /// How they were drawn.
     pub sampling: Sampling,
+    /// The uncertain keys and their distributions.
     pub distributions: Vec<Given>,
-    /// Samples whose route ran, whose values made no valid scene, and that were not run.
+    /// Samples whose route ran.
     pub routes: usize,
+    /// Samples whose values made no valid scene.
     pub invalid_samples: usize,
+    /// Samples not run (the analysis was stopped first).
     pub not_run: usize,
     /// Factor of safety below 1, over the samples whose route ran.
     pub probability_of_sliding: Probability,
+    /// The travel limit asked about (m).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub travel_limit_m: Option<f64>,
+    /// The travel over it, over the samples whose route ran.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub probability_travel_exceeds_limit: Option<Probability>,
+    /// The rotation limit asked about (degrees, of the final yaw's size).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub rotation_limit_deg: Option<f64>,
+    /// The final yaw over it in size, over the samples whose route ran.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub probability_rotation_exceeds_limit: Option<Probability>,
+    /// Of the factor of safety.
     pub factor_of_safety: Option<Percentiles>,
+    /// Of the travel (m).
     pub travel_m: Option<Percentiles>,
     /// Of the final yaw's size.
     pub rotation_deg: Option<Percentiles>,

@@ -16,20 +16,26 @@ use nalgebra::Vector3;
 /// Everything the rigid-body dynamics gives at one state.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Motion {
+    /// The twist the rates give, every contact on its faces.
     pub twist: Twist,
-    /// CM acceleration and angular acceleration (global).
+    /// CM acceleration (global, m/s²).
     pub accel: Vector3<f64>,
+    /// Angular acceleration (global, rad/s²).
     pub ang_accel: Vector3<f64>,
-    /// Normal reaction magnitudes (N) and shear force vectors (N).
+    /// Normal reaction magnitudes (N).
     pub normal: [f64; 3],
+    /// Shear force vectors (N).
     pub shear: [Vector3<f64>; 3],
     /// Slip velocity of each contact (m/s).
     pub slip: [Vector3<f64>; 3],
     /// (Ẍ, Z̈, θ̈).
     pub acc: [f64; 3],
-    /// Power of the hydraulic force and couple, and of friction (W; friction's is ≤ 0).
+    /// Power of the applied loads other than gravity's pull: the water's, the pseudo-static
+    /// forces' and a record's (W).
     pub power_hydraulic: f64,
+    /// Power of friction (W, ≤ 0).
     pub power_friction: f64,
+    /// The inertia at this pose.
     pub inertia: Inertia,
     /// The contact that sticks while the block turns about it (its slip vanished and its shear
     /// lies inside its cone), if any.

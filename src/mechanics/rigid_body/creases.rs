@@ -16,8 +16,9 @@ pub struct Crease {
     pub contact: usize,
     /// The second face's upward unit normal.
     pub normal: Vector3<f64>,
-    /// The second face's offset e (m·P = e) and its number in the ground (for the route).
+    /// The second face's offset e (m·P = e).
     pub offset: f64,
+    /// The second face's number in the ground (for the route's rows).
     pub face: usize,
 }
 
@@ -46,6 +47,7 @@ impl Creases {
         self.iter().count()
     }
 
+    /// Whether no contact rides a crease.
     pub fn is_empty(&self) -> bool {
         self.len() == 0
     }
@@ -81,7 +83,7 @@ impl From<Crease> for Creases {
 /// The rates (Ẋ, Ż, θ̇) with each crease contact's velocity into its crease's second face
 /// removed, and the kinetic energy this takes away (J, ≤ 0): the projection a perfectly
 /// inelastic, frictionless impulse along those faces' normals makes (in the kinetic-energy
-/// metric, as [`pivot_rates`]): r' = r − G⁻¹Rᵀ(RG⁻¹Rᵀ)⁻¹Rr, with G the metric of the rates and
+/// metric, as [`pivot_rates`](super::pivot_rates)): r' = r − G⁻¹Rᵀ(RG⁻¹Rᵀ)⁻¹Rr, with G the metric of the rates and
 /// R the rows n_B · v_i. Keeps contacts riding creases on both faces against the integrator's
 /// drift, and takes the velocity into a face a contact meets.
 pub fn crease_rates(

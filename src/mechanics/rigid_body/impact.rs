@@ -187,6 +187,7 @@ pub struct Impact {
 /// release that lets a face go.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ImpactLaw {
+    /// Each contact's friction coefficient.
     pub mu: [f64; 3],
     /// A face that would have to pull its contact at the impact lets it go only if the contact,
     /// let go, would leave the face faster than this (m/s): a slower release is a hop of a few
@@ -213,7 +214,7 @@ pub struct ImpactLaw {
 /// on along its own (the impact only grazed the face just met), its own face lets it go on along
 /// the second alone (it climbs onto the face it met) — and a contact on one face alone faster
 /// than `law.release_speed`: it lifts off ([`RigidError::ImpactLifts`]). Frictionless, the
-/// twist after it is the one [`crease_rates`] gives.
+/// twist after it is the one [`crease_rates`](super::crease_rates) gives.
 ///
 /// The block moves with rates (Ẋ, Ż, θ̇) on the faces of `before` (its twist, and the kinetic
 /// energy the impact takes, are those), and the impulses hold it to the faces of `geom`: the

@@ -11,7 +11,9 @@ use nalgebra::{Matrix3, Matrix6, Vector3, Vector6};
 /// The inertia tensor in global axes and its inverse, at one pose.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Inertia {
+    /// The tensor in global axes (kg·m²).
     pub world: Matrix3<f64>,
+    /// Its inverse.
     pub inverse: Matrix3<f64>,
 }
 
@@ -34,11 +36,14 @@ impl Inertia {
 /// CM velocity v and angular velocity ω (global, rad/s about the global axes).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Twist {
+    /// v (m/s).
     pub v: Vector3<f64>,
+    /// ω (rad/s).
     pub w: Vector3<f64>,
 }
 
 impl Twist {
+    /// Whether the block is at rest: v and ω exactly zero.
     pub fn is_zero(&self) -> bool {
         self.v == Vector3::zeros() && self.w == Vector3::zeros()
     }

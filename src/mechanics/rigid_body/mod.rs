@@ -38,7 +38,12 @@ pub use kinematics::{Inertia, Twist, contact_velocity_map, pivot_rates};
 pub enum RigidError {
     /// A normal reaction is not positive: the contact lifts off its plane.
     #[error("contact {contact} lifts off (normal reaction {normal_n:.6e} N)")]
-    LiftOff { contact: usize, normal_n: f64 },
+    LiftOff {
+        /// The contact.
+        contact: usize,
+        /// Its normal reaction (N).
+        normal_n: f64,
+    },
     /// The contact equations are singular: the velocities are not determined by (Ẋ, Ż, θ̇), or
     /// friction makes the normal forces indeterminate (Painlevé's paradox).
     #[error("the contact equations are singular ({0})")]
@@ -55,24 +60,40 @@ pub enum RigidError {
         "contact {contact}: its friction cone cannot hold it, and no slip direction is consistent \
          with its friction (the contact problem has no solution there)"
     )]
-    SlipStart { contact: usize },
+    SlipStart {
+        /// The contact.
+        contact: usize,
+    },
     /// The contact riding a crease is pulled off its second face (that face's normal force is
     /// not positive): it leaves the crease and goes on along its own face alone.
     #[error("contact {contact} leaves the crease (its second face's reaction {normal_n:.6e} N)")]
-    CreaseLetsGo { contact: usize, normal_n: f64 },
+    CreaseLetsGo {
+        /// The contact.
+        contact: usize,
+        /// Its second face's reaction (N).
+        normal_n: f64,
+    },
     /// The contact riding a crease is pulled off its own face while its second face holds it:
     /// it goes on along the second face alone.
     #[error(
         "contact {contact} leaves its face for the crease's other face (its own face's reaction \
          {normal_n:.6e} N)"
     )]
-    CreaseTakesOver { contact: usize, normal_n: f64 },
+    CreaseTakesOver {
+        /// The contact.
+        contact: usize,
+        /// Its own face's reaction (N).
+        normal_n: f64,
+    },
     /// The equations of one contact sticking while the others slip are singular.
     #[error(
         "contact {contact}: the equations of it sticking while the others slip are singular \
          (its tangential constraints depend on the normal ones at this pose)"
     )]
-    StickSingular { contact: usize },
+    StickSingular {
+        /// The contact that would stick.
+        contact: usize,
+    },
     /// Every contact rides a crease: six constraints hold the block's six degrees of freedom
     /// (`derivations/10-faces.md` §4), it is wedged.
     #[error("every contact rides a crease: the block is wedged")]
@@ -84,8 +105,11 @@ pub enum RigidError {
          impulse would be {impulse_n_s:.6e} N·s)"
     )]
     ImpactLifts {
+        /// The contact.
         contact: usize,
+        /// The impulse that would hold it (N·s, negative: a pull).
         impulse_n_s: f64,
+        /// How fast it leaves its face, let go (m/s).
         speed_m_s: f64,
     },
 }

@@ -1,6 +1,7 @@
 //! The paper's dynamics (§5–7; `[solver] dynamics = "paper"`): translation along x' and
 //! turning about y', with the paper's frictional reactions (`mechanics::reactions_paper`), the
-//! paper's update (33)–(38) or RK4. A [`Dynamics`] the driver (`driver.rs`) runs.
+//! paper's update (33)–(38) or RK4 (`step.rs`), its right-hand side (`rhs.rs`). A dynamics model
+//! (`route/dynamics.rs`) the driver (`driver.rs`) runs.
 
 mod rhs;
 mod state;

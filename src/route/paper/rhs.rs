@@ -28,8 +28,11 @@ use nalgebra::Vector3;
 /// Everything known at one state.
 #[derive(Debug, Clone, Copy)]
 pub struct Evaluation {
+    /// The pose.
     pub pose: Pose,
+    /// The contacts at it.
     pub geom: ContactGeometry,
+    /// The paper's reactions there.
     pub reaction: Reaction,
     /// (Ẍ, Z̈, θ̈) in m/s², m/s², rad/s².
     pub acc: [f64; 3],

@@ -6,7 +6,8 @@ use crate::cli::CheckArgs;
 use crate::exit::{CliError, bad_input, failed, out, outln};
 use crate::output::folder::Folder;
 use crate::output::{check_files, route_files};
-use slideroute::{CaseResult, Guideline, Scene, check_cases};
+use slideroute::Scene;
+use slideroute::check::{CaseResult, Guideline, check_cases};
 use std::path::PathBuf;
 
 /// `check.json`: the guideline and every case.

@@ -11,7 +11,8 @@ use crate::output::summary::CompareSummary;
 pub fn compare(args: &RunArgs) -> Result<(), CliError> {
     let scene = load(&args.scene)?;
     let mut folder = Folder::open(&args.out).map_err(failed)?;
-    let c = slideroute::compare_dynamics_observed(&scene, interrupted).map_err(bad_input)?;
+    let c =
+        slideroute::compare::compare_dynamics_observed(&scene, interrupted).map_err(bad_input)?;
     #[allow(unused_mut)]
     let mut files = crate::output::compare_files::write(&mut folder, &scene, &c).map_err(failed)?;
     #[cfg(feature = "plots")]

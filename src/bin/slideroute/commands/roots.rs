@@ -35,7 +35,7 @@ pub fn roots(args: &RootsArgs) -> Result<(), CliError> {
 
 /// Every root at `d`, as the report prints it.
 fn report(scene: &Scene, mode: Mode, d: Displacement) -> Result<RootsReport, String> {
-    slideroute::solve_all(scene.site(), d, mode)
+    slideroute::poses::solve_all(scene.site(), d, mode)
         .map(|all| RootsReport::new(scene, &all))
         .map_err(|e| e.to_string())
 }

@@ -8,7 +8,7 @@ use slideroute::{Scene, SceneErrorKind};
 pub fn scene(args: &SceneFileArgs) -> Result<(), CliError> {
     match (args.print_default, &args.check) {
         (true, _) => {
-            out!("{}", slideroute::internals::scene::DEFAULT_SCENE_TOML);
+            out!("{}", slideroute::Scene::DEFAULT_TOML);
             Ok(())
         }
         (false, Some(p)) => {

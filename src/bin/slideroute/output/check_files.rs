@@ -2,7 +2,7 @@
 //! coefficients, water loads, factor of safety, requirement and verdict, as an engineer would
 //! file it; and the same as CSV.
 
-use slideroute::CaseResult;
+use slideroute::check::CaseResult;
 use slideroute::internals::numeric::{fixed, seconds};
 use std::fmt;
 

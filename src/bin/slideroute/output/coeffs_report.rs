@@ -2,7 +2,8 @@
 
 use super::Ordered;
 use serde::Serialize;
-use slideroute::{CoeffInputs, Displacement, Exact, Scene, SmallAngle};
+use slideroute::poses::{CoeffInputs, Exact, SmallAngle};
+use slideroute::{Displacement, Scene};
 use std::fmt;
 
 /// The exact form's coefficients, by basis monomial, plus its tangent half-angle matrices.

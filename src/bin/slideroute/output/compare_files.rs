@@ -5,7 +5,8 @@
 
 use super::folder::Folder;
 use super::route_files::{self, Manifest};
-use slideroute::{Comparison, Scene};
+use slideroute::Scene;
+use slideroute::compare::Comparison;
 use std::path::PathBuf;
 
 /// Writes both routes and `comparison.json` into `folder`; returns the paths written.

@@ -2,8 +2,9 @@
 //! what factor of safety, at what cost, and what was written. Numbers at a precision for people
 //! (the files keep every digit).
 
+use slideroute::Computed;
+use slideroute::compare::Comparison;
 use slideroute::internals::numeric::{fixed, seconds};
-use slideroute::{Comparison, Computed};
 use std::fmt;
 use std::path::PathBuf;
 

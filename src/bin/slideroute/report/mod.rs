@@ -358,7 +358,7 @@ pub fn extreme(sample: usize) -> Result<Vec<ExtremeRow>, String> {
                             row.z_m,
                             row.theta_deg.to_radians(),
                         );
-                        let p = slideroute::direct_pose(c.scene.site(), d).ok()?;
+                        let p = slideroute::poses::direct_pose(c.scene.site(), d).ok()?;
                         Some(
                             (p.alpha(l) - row.alpha_deg.to_radians())
                                 .abs()

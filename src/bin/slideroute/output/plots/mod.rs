@@ -172,7 +172,7 @@ pub fn plan(path: &Path, scene: &Scene, route: &Route) -> Res<()> {
 }
 
 /// Both dynamics' routes of one scene on one plan view (`run --compare-dynamics`).
-pub fn compare_plan(path: &Path, scene: &Scene, c: &slideroute::Comparison) -> Res<()> {
+pub fn compare_plan(path: &Path, scene: &Scene, c: &slideroute::compare::Comparison) -> Res<()> {
     let (rigid, paper) = (
         thinned(&c.rigid_body.route.rows),
         thinned(&c.paper.route.rows),

@@ -174,7 +174,7 @@ fn a_foundation_of_faces_is_drawn_face_by_face_with_its_creases() {
         [[foundation.plane]]\ndip_deg = 20.0\ndip_direction_deg = 180.0\npoint_m = [4.0, 0.0, 0.0]\n\
         [[foundation.plane]]\ndip_deg = 25.0\ndip_direction_deg = 150.0\npoint_m = [4.0, 0.0, -5.0]\n\
         [[foundation.plane]]\ndip_deg = 60.0\ndip_direction_deg = 180.0\npoint_m = [14.0, 3.64, 0.0]\n";
-    let text = slideroute::internals::scene::DEFAULT_SCENE_TOML;
+    let text = slideroute::Scene::DEFAULT_TOML;
     let start = text.find("[foundation]").unwrap();
     let end = text.find("[block]").unwrap();
     let text = format!("{}{faces}\n{}", &text[..start], &text[end..]);
