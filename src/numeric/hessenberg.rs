@@ -81,165 +81,47 @@ impl Hessenberg {
     }
 
     /// All eigenvalues as (re, im); `None` if the iteration does not converge (30 sweeps per
-    /// eigenvalue), which for these matrices signals a defect upstream.
-    #[allow(clippy::many_single_char_names)]
+    /// eigenvalue), which for these matrices signals a defect upstream. The shifted QR
+    /// algorithm of an upper Hessenberg matrix (Numerical Recipes' `hqr`): deflate at a
+    /// negligible subdiagonal, take a trailing 1×1 or 2×2 block's eigenvalues, else one double
+    /// shift (Francis) sweep.
     pub fn eigenvalues(mut self, wr: &mut [f64; N], wi: &mut [f64; N]) -> Option<usize> {
         let n = self.n;
+        let anorm = self.norm();
         let a = &mut self.a;
-        let mut anorm = 0.0;
-        for i in 1..=n {
-            for j in (i.max(2) - 1)..=n {
-                anorm += a[i][j].abs();
-            }
-        }
         let mut nn = n;
+        // The exceptional shifts taken so far, added back to every eigenvalue.
         let mut t = 0.0;
-        let (mut p, mut q, mut r): (f64, f64, f64);
-        let (mut x, mut y, mut z);
-        let mut w;
         while nn >= 1 {
             let mut its = 0;
-            let mut l;
             loop {
-                l = nn;
-                while l >= 2 {
-                    let mut s = a[l - 1][l - 1].abs() + a[l][l].abs();
-                    if s == 0.0 {
-                        s = anorm;
-                    }
-                    if a[l][l - 1].abs() + s == s {
-                        a[l][l - 1] = 0.0;
-                        break;
-                    }
-                    l -= 1;
-                }
-                x = a[nn][nn];
+                let l = small_subdiagonal(a, nn, anorm);
+                let x = a[nn][nn];
                 if l == nn {
+                    // A 1×1 block: one eigenvalue.
                     wr[nn - 1] = x + t;
                     wi[nn - 1] = 0.0;
                     nn -= 1;
                 } else {
-                    y = a[nn - 1][nn - 1];
-                    w = a[nn][nn - 1] * a[nn - 1][nn];
+                    let y = a[nn - 1][nn - 1];
+                    let w = a[nn][nn - 1] * a[nn - 1][nn];
                     if l == nn - 1 {
-                        p = 0.5 * (y - x);
-                        q = p * p + w;
-                        z = q.abs().sqrt();
-                        x += t;
-                        if q >= 0.0 {
-                            z = p + z.copysign(p);
-                            wr[nn - 2] = x + z;
-                            wr[nn - 1] = x + z;
-                            if z != 0.0 {
-                                wr[nn - 1] = x - w / z;
-                            }
-                            wi[nn - 2] = 0.0;
-                            wi[nn - 1] = 0.0;
-                        } else {
-                            wr[nn - 2] = x + p;
-                            wr[nn - 1] = x + p;
-                            wi[nn - 2] = -z;
-                            wi[nn - 1] = z;
-                        }
+                        let (re, im) = two_by_two(Shift { x, y, w }, t);
+                        (wr[nn - 2], wr[nn - 1]) = (re[0], re[1]);
+                        (wi[nn - 2], wi[nn - 1]) = (im[0], im[1]);
                         nn -= 2;
                     } else {
                         if its == 30 {
                             return None;
                         }
-                        if its == 10 || its == 20 {
-                            // Exceptional shift.
-                            t += x;
-                            for i in 1..=nn {
-                                a[i][i] -= x;
-                            }
-                            let s = a[nn][nn - 1].abs() + a[nn - 1][nn - 2].abs();
-                            x = 0.75 * s;
-                            y = x;
-                            w = -0.4375 * s * s;
-                        }
+                        let shift = if its == 10 || its == 20 {
+                            exceptional_shift(a, nn, &mut t, x)
+                        } else {
+                            Shift { x, y, w }
+                        };
                         its += 1;
-                        let mut m = nn - 2;
-                        loop {
-                            z = a[m][m];
-                            r = x - z;
-                            let s = y - z;
-                            p = (r * s - w) / a[m + 1][m] + a[m][m + 1];
-                            q = a[m + 1][m + 1] - z - r - s;
-                            r = a[m + 2][m + 1];
-                            let s = p.abs() + q.abs() + r.abs();
-                            p /= s;
-                            q /= s;
-                            r /= s;
-                            if m == l {
-                                break;
-                            }
-                            let u = a[m][m - 1].abs() * (q.abs() + r.abs());
-                            let v =
-                                p.abs() * (a[m - 1][m - 1].abs() + z.abs() + a[m + 1][m + 1].abs());
-                            if u + v == v {
-                                break;
-                            }
-                            m -= 1;
-                        }
-                        for i in (m + 2)..=nn {
-                            a[i][i - 2] = 0.0;
-                            if i != m + 2 {
-                                a[i][i - 3] = 0.0;
-                            }
-                        }
-                        let mut k = m;
-                        while k < nn {
-                            if k != m {
-                                p = a[k][k - 1];
-                                q = a[k + 1][k - 1];
-                                r = 0.0;
-                                if k != nn - 1 {
-                                    r = a[k + 2][k - 1];
-                                }
-                                x = p.abs() + q.abs() + r.abs();
-                                if x != 0.0 {
-                                    p /= x;
-                                    q /= x;
-                                    r /= x;
-                                }
-                            }
-                            let s = (p * p + q * q + r * r).sqrt().copysign(p);
-                            if s != 0.0 {
-                                if k == m {
-                                    if l != m {
-                                        a[k][k - 1] = -a[k][k - 1];
-                                    }
-                                } else {
-                                    a[k][k - 1] = -s * x;
-                                }
-                                p += s;
-                                x = p / s;
-                                y = q / s;
-                                z = r / s;
-                                q /= p;
-                                r /= p;
-                                for j in k..=nn {
-                                    p = a[k][j] + q * a[k + 1][j];
-                                    if k != nn - 1 {
-                                        p += r * a[k + 2][j];
-                                        a[k + 2][j] -= p * z;
-                                    }
-                                    a[k + 1][j] -= p * y;
-                                    a[k][j] -= p * x;
-                                }
-                                let mmin = if nn < k + 3 { nn } else { k + 3 };
-                                for i in l..=mmin {
-                                    p = x * a[i][k] + y * a[i][k + 1];
-                                    if k != nn - 1 {
-                                        p += z * a[i][k + 2];
-                                        a[i][k + 2] -= p * r;
-                                    }
-                                    a[i][k + 1] -= p * q;
-                                    a[i][k] -= p;
-                                }
-                            }
-                            k += 1;
-                        }
+                        let (m, first) = sweep_start(a, l, nn, &shift);
+                        francis_sweep(a, Rows { l, m, nn }, first);
                     }
                 }
                 if l + 1 >= nn {
@@ -248,6 +130,183 @@ impl Hessenberg {
             }
         }
         Some(n)
+    }
+
+    /// Σ|a_ij| over the Hessenberg part: the scale a negligible subdiagonal is judged by.
+    fn norm(&self) -> f64 {
+        let mut anorm = 0.0;
+        for i in 1..=self.n {
+            for j in (i.max(2) - 1)..=self.n {
+                anorm += self.a[i][j].abs();
+            }
+        }
+        anorm
+    }
+}
+
+/// The double shift of a sweep: the trailing 2×2 block's x = a_nn, y = a_(n−1)(n−1) and
+/// w = a_n(n−1) a_(n−1)n (or the exceptional shift's).
+struct Shift {
+    x: f64,
+    y: f64,
+    w: f64,
+}
+
+/// The row l of the lowest negligible subdiagonal element at or above row `nn` (set to zero),
+/// or 1: where the active block starts.
+fn small_subdiagonal<const M: usize>(a: &mut [[f64; M]; M], nn: usize, anorm: f64) -> usize {
+    let mut l = nn;
+    while l >= 2 {
+        let mut s = a[l - 1][l - 1].abs() + a[l][l].abs();
+        if s == 0.0 {
+            s = anorm;
+        }
+        if a[l][l - 1].abs() + s == s {
+            a[l][l - 1] = 0.0;
+            break;
+        }
+        l -= 1;
+    }
+    l
+}
+
+/// The eigenvalues (re, im) of a trailing 2×2 block (x = a_22, y = a_11, w = a_21 a_12), the
+/// exceptional shifts `t` added back: a real pair, or a complex conjugate pair.
+fn two_by_two(block: Shift, t: f64) -> ([f64; 2], [f64; 2]) {
+    let Shift { x, y, w } = block;
+    let p = 0.5 * (y - x);
+    let q = p * p + w;
+    let z = q.abs().sqrt();
+    let x = x + t;
+    if q >= 0.0 {
+        let z = p + z.copysign(p);
+        let low = if z != 0.0 { x - w / z } else { x + z };
+        ([x + z, low], [0.0, 0.0])
+    } else {
+        ([x + p, x + p], [-z, z])
+    }
+}
+
+/// The exceptional shift after 10 and 20 sweeps without a deflation: the diagonal shifted by
+/// a_nn (added to `t`), and an ad hoc shift from the last subdiagonal elements.
+fn exceptional_shift<const M: usize>(
+    a: &mut [[f64; M]; M],
+    nn: usize,
+    t: &mut f64,
+    x: f64,
+) -> Shift {
+    *t += x;
+    for i in 1..=nn {
+        a[i][i] -= x;
+    }
+    let s = a[nn][nn - 1].abs() + a[nn - 1][nn - 2].abs();
+    Shift {
+        x: 0.75 * s,
+        y: 0.75 * s,
+        w: -0.4375 * s * s,
+    }
+}
+
+/// Where the double-shift sweep starts: the row m ≥ l below which two consecutive subdiagonal
+/// elements are small enough, and the first Householder vector (p, q, r) there.
+fn sweep_start<const M: usize>(
+    a: &[[f64; M]; M],
+    l: usize,
+    nn: usize,
+    shift: &Shift,
+) -> (usize, [f64; 3]) {
+    let Shift { x, y, w } = *shift;
+    let mut m = nn - 2;
+    loop {
+        let z = a[m][m];
+        let r = x - z;
+        let s = y - z;
+        let p = (r * s - w) / a[m + 1][m] + a[m][m + 1];
+        let q = a[m + 1][m + 1] - z - r - s;
+        let r = a[m + 2][m + 1];
+        let s = p.abs() + q.abs() + r.abs();
+        let (p, q, r) = (p / s, q / s, r / s);
+        if m == l {
+            return (m, [p, q, r]);
+        }
+        let u = a[m][m - 1].abs() * (q.abs() + r.abs());
+        let v = p.abs() * (a[m - 1][m - 1].abs() + z.abs() + a[m + 1][m + 1].abs());
+        if u + v == v {
+            return (m, [p, q, r]);
+        }
+        m -= 1;
+    }
+}
+
+/// The rows a sweep works on: the active block l..=nn, the sweep starting at row m.
+struct Rows {
+    l: usize,
+    m: usize,
+    nn: usize,
+}
+
+/// One Francis double-shift QR sweep of the active block from row m, its first Householder
+/// vector `first`: the bulge chased down the subdiagonal.
+fn francis_sweep<const M: usize>(a: &mut [[f64; M]; M], rows: Rows, first: [f64; 3]) {
+    let Rows { l, m, nn } = rows;
+    for i in (m + 2)..=nn {
+        a[i][i - 2] = 0.0;
+        if i != m + 2 {
+            a[i][i - 3] = 0.0;
+        }
+    }
+    let [mut p, mut q, mut r] = first;
+    let mut x = 0.0;
+    let mut k = m;
+    while k < nn {
+        if k != m {
+            p = a[k][k - 1];
+            q = a[k + 1][k - 1];
+            r = 0.0;
+            if k != nn - 1 {
+                r = a[k + 2][k - 1];
+            }
+            x = p.abs() + q.abs() + r.abs();
+            if x != 0.0 {
+                p /= x;
+                q /= x;
+                r /= x;
+            }
+        }
+        let s = (p * p + q * q + r * r).sqrt().copysign(p);
+        if s != 0.0 {
+            if k == m {
+                if l != m {
+                    a[k][k - 1] = -a[k][k - 1];
+                }
+            } else {
+                a[k][k - 1] = -s * x;
+            }
+            p += s;
+            let (x, y, z) = (p / s, q / s, r / s);
+            q /= p;
+            r /= p;
+            for j in k..=nn {
+                p = a[k][j] + q * a[k + 1][j];
+                if k != nn - 1 {
+                    p += r * a[k + 2][j];
+                    a[k + 2][j] -= p * z;
+                }
+                a[k + 1][j] -= p * y;
+                a[k][j] -= p * x;
+            }
+            let mmin = if nn < k + 3 { nn } else { k + 3 };
+            for i in l..=mmin {
+                p = x * a[i][k] + y * a[i][k + 1];
+                if k != nn - 1 {
+                    p += z * a[i][k + 2];
+                    a[i][k + 2] -= p * r;
+                }
+                a[i][k + 1] -= p * q;
+                a[i][k] -= p;
+            }
+        }
+        k += 1;
     }
 }
 

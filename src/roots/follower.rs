@@ -20,7 +20,7 @@ pub struct EigenFollower<'s> {
     site: Cow<'s, Site>,
     /// The foundation's trigonometric functions and the unknowns' scales, computed once.
     trig: SiteTrig,
-    scales: (f64, f64),
+    scales: system::UnknownScales,
     mode: Mode,
     current: BranchPoint,
     /// The regions' tolerance of the admissibility check (see [`classify::check_pose_within`]).
@@ -88,7 +88,7 @@ impl<'s> EigenFollower<'s> {
             reason,
         };
         let inputs = Inputs::with_trig(&self.site, &self.trig, target);
-        let (sx, sy) = self.scales;
+        let system::UnknownScales { x: sx, y: sy } = self.scales;
         let (p, q) = system::biquadratic_from(&self.site, &inputs, self.scales, target, self.mode);
         let raw = eigen::candidates(&p, &q);
         let mut best: Option<([f64; 2], f64)> = None;

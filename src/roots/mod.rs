@@ -132,137 +132,21 @@ pub fn solve_all(site: &Site, d: Displacement, mode: Mode) -> Result<AllRoots, T
         .map(|(r, k)| (r, k * g))
         .collect();
     let finite: usize = merged.iter().map(|(_, k)| k).sum();
-    let (sx, sy) = system::unknown_scales(site, mode);
-    let unsquared = match (mode, site.as_paper()) {
-        (Mode::SmallAngle, Some(p)) => Some(SmallAngleUnsquared::new(&CoeffInputs::new(p, d))),
-        _ => None,
-    };
-    let general = site.as_paper().is_none();
+    let classifier = Classifier::new(site, d, mode);
     let mut roots: Vec<Root> = merged
         .into_iter()
-        .map(|(r, multiplicity)| {
-            let (alpha, beta, psi) = match mode {
-                // A general site's small-angle unknowns are (α, ψ); β from the pose below.
-                Mode::SmallAngle if general => {
-                    (r.x * sx, Complex64::new(f64::NAN, f64::NAN), Some(r.y * sy))
-                }
-                Mode::SmallAngle => (r.x * sx, r.y * sy, None),
-                Mode::Exact if general => {
-                    let alpha = (r.x * sx).atan() * 2.0;
-                    let psi = (r.y * sy).atan() * 2.0;
-                    (alpha, Complex64::new(f64::NAN, f64::NAN), Some(psi))
-                }
-                Mode::Exact => {
-                    let alpha = (r.x * sx).atan() * 2.0;
-                    let psi = (r.y * sy).atan() * 2.0;
-                    let beta = ((alpha.sin() - alpha.cos() * psi.sin()) / SQRT_2).asin();
-                    (alpha, beta, Some(psi))
-                }
-            };
-            let second = psi.unwrap_or(beta);
-            let real = alpha.im.abs() <= 1e-9 && second.im.abs() <= 1e-9;
-            let spurious = real
-                && match (mode, &unsquared) {
-                    (Mode::SmallAngle, Some(u)) => {
-                        classify::small_angle_spurious(u, alpha.re, beta.re)
-                    }
-                    _ => classify::exact_mirrored(second.re),
-                };
-            let placed = real
-                .then(|| classify::pose(site, d, mode, [alpha.re, second.re]))
-                .flatten();
-            let beta = match (general, &placed) {
-                (true, Some(p)) => Complex64::new(p.beta, 0.0),
-                _ => beta,
-            };
-            let why_not = if !real {
-                None
-            } else if spurious {
-                Some(Inadmissible::Spurious)
-            } else {
-                match placed {
-                    None => Some(Inadmissible::NoRealFrame),
-                    Some(p) => classify::check_pose(site, &p).err(),
-                }
-            };
-            Root {
-                alpha,
-                beta,
-                psi,
-                multiplicity,
-                residual: r.residual,
-                real,
-                spurious,
-                admissible: real && why_not.is_none(),
-                why_not,
-            }
-        })
+        .map(|(r, multiplicity)| classifier.root(&r, multiplicity))
         .collect();
     roots.sort_by(|a, b| {
         (!a.admissible, !a.real, a.alpha.re, a.beta.re)
             .partial_cmp(&(!b.admissible, !b.real, b.alpha.re, b.beta.re))
             .unwrap_or(std::cmp::Ordering::Equal)
     });
-
     let (selected, selection_error) = match select(site, d, mode) {
-        Ok(p) => {
-            let k = roots
-                .iter()
-                .enumerate()
-                .filter(|(_, r)| r.real)
-                .map(|(k, r)| {
-                    let s = r.psi.unwrap_or(r.beta).re;
-                    (k, (r.alpha.re - p.u[0]).abs().max((s - p.u[1]).abs()))
-                })
-                .min_by(|a, b| a.1.total_cmp(&b.1));
-            // The rest pose (X = Z = θ = 0, both inclined contacts on their strikes) is a
-            // root where the eigenvalue solve of the resultant loses it (the system degenerates
-            // there; issue #12): the tracked pose, when it satisfies the unsquared equations to
-            // round-off, is then the selected root itself.
-            let tracked = || {
-                let e = system::Equations::new(site, d, mode).eval(p.u)?;
-                let rel = (0..2)
-                    .map(|i| e.r[i].abs() / e.scale[i].max(f64::MIN_POSITIVE))
-                    .fold(0.0, f64::max);
-                (rel < 1e-10).then_some(rel)
-            };
-            match k {
-                Some((k, dist)) if dist < 1e-6 => (Some(k), None),
-                _ if tracked().is_some() => {
-                    let psi = (mode == Mode::Exact).then(|| Complex64::new(p.u[1], 0.0));
-                    let beta = match mode {
-                        Mode::SmallAngle => p.u[1],
-                        Mode::Exact => {
-                            ((p.u[0].sin() - p.u[0].cos() * p.u[1].sin()) / SQRT_2).asin()
-                        }
-                    };
-                    roots.insert(
-                        0,
-                        Root {
-                            alpha: Complex64::new(p.u[0], 0.0),
-                            beta: Complex64::new(beta, 0.0),
-                            psi,
-                            multiplicity: 1,
-                            residual: tracked().unwrap_or(0.0),
-                            real: true,
-                            spurious: false,
-                            admissible: true,
-                            why_not: None,
-                        },
-                    );
-                    (Some(0), None)
-                }
-                _ => (
-                    None,
-                    Some(TrackError::BranchEnded {
-                        x: d.x,
-                        z: d.z,
-                        theta_deg: d.theta.to_degrees(),
-                        diagnosis: "the tracked pose matches none of the roots".into(),
-                    }),
-                ),
-            }
-        }
+        Ok(p) => match select_among(site, d, mode, &p, &mut roots) {
+            Ok(k) => (Some(k), None),
+            Err(e) => (None, Some(e)),
+        },
         Err(e) => (None, Some(e)),
     };
     Ok(AllRoots {
@@ -274,6 +158,168 @@ pub fn solve_all(site: &Site, d: Displacement, mode: Mode) -> Result<AllRoots, T
         selected,
         selection_error,
     })
+}
+
+/// What classifying one root of the solved system needs: the site, displacement and mode, and
+/// the scales and unsquared relations they give.
+struct Classifier<'a> {
+    site: &'a Site,
+    d: Displacement,
+    mode: Mode,
+    /// The solver's unknowns are the physical ones divided by these ([`system::unknown_scales`]).
+    scales: system::UnknownScales,
+    /// The unsquared small-angle relations, on the paper's site only.
+    unsquared: Option<SmallAngleUnsquared>,
+    /// A site other than the paper's: the unknowns are (α, ψ) in both modes.
+    general: bool,
+}
+
+impl<'a> Classifier<'a> {
+    fn new(site: &'a Site, d: Displacement, mode: Mode) -> Self {
+        let unsquared = match (mode, site.as_paper()) {
+            (Mode::SmallAngle, Some(p)) => Some(SmallAngleUnsquared::new(&CoeffInputs::new(p, d))),
+            _ => None,
+        };
+        Classifier {
+            site,
+            d,
+            mode,
+            scales: system::unknown_scales(site, mode),
+            unsquared,
+            general: site.as_paper().is_none(),
+        }
+    }
+
+    /// (α, β, ψ) of a root in the solver's scaled unknowns; β is NaN where it comes only from
+    /// the pose (a general site).
+    fn unknowns(&self, r: &eigen::RawRoot) -> (Complex64, Complex64, Option<Complex64>) {
+        let (x, y) = (r.x * self.scales.x, r.y * self.scales.y);
+        let unknown = Complex64::new(f64::NAN, f64::NAN);
+        match self.mode {
+            // A general site's small-angle unknowns are (α, ψ); β from the pose.
+            Mode::SmallAngle if self.general => (x, unknown, Some(y)),
+            Mode::SmallAngle => (x, y, None),
+            Mode::Exact => {
+                let alpha = x.atan() * 2.0;
+                let psi = y.atan() * 2.0;
+                let beta = if self.general {
+                    unknown
+                } else {
+                    ((alpha.sin() - alpha.cos() * psi.sin()) / SQRT_2).asin()
+                };
+                (alpha, beta, Some(psi))
+            }
+        }
+    }
+
+    /// One root classified: real, spurious, admissible, and why not.
+    fn root(&self, r: &eigen::RawRoot, multiplicity: usize) -> Root {
+        let (alpha, beta, psi) = self.unknowns(r);
+        let second = psi.unwrap_or(beta);
+        let real = alpha.im.abs() <= 1e-9 && second.im.abs() <= 1e-9;
+        let spurious = real
+            && match (self.mode, &self.unsquared) {
+                (Mode::SmallAngle, Some(u)) => classify::small_angle_spurious(u, alpha.re, beta.re),
+                _ => classify::exact_mirrored(second.re),
+            };
+        let placed = real
+            .then(|| classify::pose(self.site, self.d, self.mode, [alpha.re, second.re]))
+            .flatten();
+        let beta = match (self.general, &placed) {
+            (true, Some(p)) => Complex64::new(p.beta, 0.0),
+            _ => beta,
+        };
+        let why_not = if !real {
+            None
+        } else if spurious {
+            Some(Inadmissible::Spurious)
+        } else {
+            match placed {
+                None => Some(Inadmissible::NoRealFrame),
+                Some(p) => classify::check_pose(self.site, &p).err(),
+            }
+        };
+        Root {
+            alpha,
+            beta,
+            psi,
+            multiplicity,
+            residual: r.residual,
+            real,
+            spurious,
+            admissible: real && why_not.is_none(),
+            why_not,
+        }
+    }
+}
+
+/// The index among `roots` of the branch's pose `p`: the nearest real root within 10⁻⁶ rad.
+///
+/// The rest pose (X = Z = θ = 0, both inclined contacts on their strikes) is a root the
+/// eigenvalue solve of the resultant loses (the system degenerates there): the tracked pose,
+/// when it satisfies the unsquared equations to round-off, is then inserted as the selected root
+/// itself.
+fn select_among(
+    site: &Site,
+    d: Displacement,
+    mode: Mode,
+    p: &BranchPoint,
+    roots: &mut Vec<Root>,
+) -> Result<usize, TrackError> {
+    let nearest = roots
+        .iter()
+        .enumerate()
+        .filter(|(_, r)| r.real)
+        .map(|(k, r)| {
+            let s = r.psi.unwrap_or(r.beta).re;
+            (k, (r.alpha.re - p.u[0]).abs().max((s - p.u[1]).abs()))
+        })
+        .min_by(|a, b| a.1.total_cmp(&b.1));
+    if let Some((k, dist)) = nearest {
+        if dist < 1e-6 {
+            return Ok(k);
+        }
+    }
+    let residual = system::Equations::new(site, d, mode)
+        .eval(p.u)
+        .map(|e| {
+            (0..2)
+                .map(|i| e.r[i].abs() / e.scale[i].max(f64::MIN_POSITIVE))
+                .fold(0.0, f64::max)
+        })
+        .filter(|&rel| rel < 1e-10);
+    match residual {
+        Some(residual) => {
+            roots.insert(0, tracked_root(p, mode, residual));
+            Ok(0)
+        }
+        None => Err(TrackError::BranchEnded {
+            x: d.x,
+            z: d.z,
+            theta_deg: d.theta.to_degrees(),
+            diagnosis: "the tracked pose matches none of the roots".into(),
+        }),
+    }
+}
+
+/// The tracked pose `p` as a root (admissible, real, single).
+fn tracked_root(p: &BranchPoint, mode: Mode, residual: f64) -> Root {
+    let psi = (mode == Mode::Exact).then(|| Complex64::new(p.u[1], 0.0));
+    let beta = match mode {
+        Mode::SmallAngle => p.u[1],
+        Mode::Exact => ((p.u[0].sin() - p.u[0].cos() * p.u[1].sin()) / SQRT_2).asin(),
+    };
+    Root {
+        alpha: Complex64::new(p.u[0], 0.0),
+        beta: Complex64::new(beta, 0.0),
+        psi,
+        multiplicity: 1,
+        residual,
+        real: true,
+        spurious: false,
+        admissible: true,
+        why_not: None,
+    }
 }
 
 /// The physical pose at `d`: the branch followed from the start of sliding along the straight

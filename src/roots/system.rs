@@ -99,10 +99,20 @@ impl Equations {
     }
 }
 
+/// The scales of the all-roots solver's two unknowns: each physical unknown (α or tan α/2, and
+/// β, ψ or tan ψ/2) is the solver's times its scale, so that the physical roots are of order one.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct UnknownScales {
+    /// The first unknown's scale.
+    pub x: f64,
+    /// The second unknown's scale.
+    pub y: f64,
+}
+
 /// Scales of the unknowns for the all-roots solver (see the module docs). On a general site,
 /// the largest of the planes' dips stands for ξ and ζ (at least 0.01 rad, so that a foundation
 /// of level faces still has a scale).
-pub fn unknown_scales(site: &Site, mode: Mode) -> (f64, f64) {
+pub fn unknown_scales(site: &Site, mode: Mode) -> UnknownScales {
     let (xi, zeta) = match site.as_paper() {
         Some(p) => (p.foundation.xi, p.foundation.zeta),
         None => {
@@ -110,13 +120,17 @@ pub fn unknown_scales(site: &Site, mode: Mode) -> (f64, f64) {
             (dip, dip)
         }
     };
-    match mode {
+    let (x, y) = match mode {
         Mode::SmallAngle => (xi.tan(), zeta.tan()),
         Mode::Exact => ((xi / 2.0).tan(), (xi.max(zeta) / 2.0).tan()),
-    }
+    };
+    UnknownScales { x, y }
 }
 
-fn scaled(c: &Coeffs, sx: f64, sy: f64) -> Coeffs {
+/// The coefficients of the polynomial in the scaled unknowns, normalised to a largest
+/// coefficient of 1.
+fn scaled(c: &Coeffs, scales: UnknownScales) -> Coeffs {
+    let UnknownScales { x: sx, y: sy } = scales;
     let mut out = [[0.0; 3]; 3];
     let mut big = 0.0f64;
     for i in 0..3 {
@@ -160,7 +174,7 @@ pub fn biquadratic(site: &Site, d: Displacement, mode: Mode) -> (Coeffs, Coeffs)
 pub fn biquadratic_from(
     site: &Site,
     inputs: &Inputs,
-    (sx, sy): (f64, f64),
+    scales: UnknownScales,
     d: Displacement,
     mode: Mode,
 ) -> (Coeffs, Coeffs) {
@@ -201,5 +215,5 @@ pub fn biquadratic_from(
         (Inputs::General(g), Mode::SmallAngle) => GeneralSmallAngle::new(g).coefficients(),
         (Inputs::General(g), Mode::Exact) => GeneralExact::new(g).half_angle(),
     };
-    (scaled(&raw[0], sx, sy), scaled(&raw[1], sx, sy))
+    (scaled(&raw[0], scales), scaled(&raw[1], scales))
 }
