@@ -248,10 +248,45 @@ impl System {
         (p, res)
     }
 
-    /// All solutions (j, φ) with j > 0.
+    /// All solutions (j, φ) with j > 0: the affine equations in u = (c0, s0, c1, s1, c2, s2),
+    /// solved along a line in u for φ0 = δ + 2 atan t ([`Parametrised`]); the two contact
+    /// circles' resultant in t gives every candidate, each polished by Newton.
     fn solve(&self) -> Vec<Point> {
+        let (m, rhs) = self.affine_rows();
+        let Some(line) = Parametrised::new(&m, &rhs) else {
+            return Vec::new();
+        };
+        let circles = [line.circle(0), line.circle(2)];
+        // R = (a2 b0 − a0 b2)² − (a2 b1 − a1 b2)(a1 b0 − a0 b1).
+        let [a, b] = &circles;
+        let (res, _, _) =
+            crate::numeric::quadratic_resultant([&a.c0, &a.c1, &[a.c2]], [&b.c0, &b.c1, &[b.c2]]);
+        let Some(ts) = poly_roots(&res) else {
+            return Vec::new();
+        };
+        let mut out: Vec<Point> = Vec::new();
+        for (t, im) in ts {
+            if im.abs() > 1e-6 * (1.0 + t.abs()) {
+                continue;
+            }
+            let Some(p) = self.point_at(t, &line, &circles) else {
+                continue;
+            };
+            if !out
+                .iter()
+                .any(|q| (0..3).all(|i| wrap(q.phi[i] - p.phi[i]).abs() < 1e-7))
+            {
+                out.push(p);
+            }
+        }
+        out
+    }
+
+    /// The three affine equations M u = rhs in u = (c0, s0, c1, s1, c2, s2): the two of w's
+    /// components 2 and 3, and the one that makes components 0 and 1 parallel to w's; each row
+    /// scaled to a largest entry of 1.
+    fn affine_rows(&self) -> (SMatrix<f64, 3, 6>, Vector3<f64>) {
         let (w0, w1) = (self.w[0], self.w[1]);
-        // Three affine equations in u = (c0, s0, c1, s1, c2, s2): rows of M u = rhs.
         let mut m = SMatrix::<f64, 3, 6>::zeros();
         let mut rhs = Vector3::zeros();
         for i in 0..3 {
@@ -273,25 +308,85 @@ impl System {
                 rhs[r] /= s;
             }
         }
+        (m, rhs)
+    }
+
+    /// The point at a real root `t` of the circles' resultant: τ̂ from the first circle (the
+    /// root that best satisfies the second), the angles from u, then Newton ([`Self::polish`]);
+    /// `None` unless it converges to j > 0.
+    fn point_at(&self, t: f64, line: &Parametrised, circles: &[Circle; 2]) -> Option<Point> {
+        let ev = |c: &[f64]| c.iter().rev().fold(0.0, |acc, &k| acc * t + k);
+        let [a, b] = circles;
+        let w2 = 1.0 + t * t;
+        let upt: [f64; 4] = line.up.map(|row| ev(&row));
+        let (qa, qb, qc) = (a.c2, ev(&a.c1), ev(&a.c0));
+        let disc = qb * qb - 4.0 * qa * qc;
+        if disc < -1e-9 * (qb * qb + (4.0 * qa * qc).abs()) {
+            return None;
+        }
+        let sq = disc.max(0.0).sqrt();
+        let qq = -0.5 * (qb + sq.copysign(qb));
+        let mut cands = vec![];
+        if qa != 0.0 {
+            cands.push(qq / qa);
+        }
+        if qq != 0.0 {
+            cands.push(qc / qq);
+        }
+        let other = |tau: f64| (b.c2 * tau * tau + ev(&b.c1) * tau + ev(&b.c0)).abs();
+        let tau = cands
+            .into_iter()
+            .min_by(|x, y| other(*x).total_cmp(&other(*y)))?;
+        let u: [f64; 4] = [0, 1, 2, 3].map(|k| (upt[k] + tau * line.v[k]) / w2);
+        let phi0 = DELTA + 2.0 * t.atan();
+        let phi = [phi0, u[1].atan2(u[0]), u[3].atan2(u[2])];
+        // Newton on the reduced equations, then j (N0) from the direction of w.
+        let (mut p, residual) = self.polish(Point::new(0.0, phi));
+        if !(residual < 1e-9 && p.j > 0.0) {
+            return None;
+        }
+        p.phi = p.phi.map(wrap);
+        Some(p)
+    }
+}
+
+/// The solutions of the affine equations as a line in u' = (c1, s1, c2, s2) for each φ0 =
+/// δ + 2 atan t, multiplied by (1 + t²): Û(t) + τ̂ v.
+struct Parametrised {
+    /// Û_p(t) = Q (rhs (1+t²) − M0 (ĉ0, ŝ0)): four quadratics in t (coefficients from t⁰).
+    up: [[f64; 3]; 4],
+    /// The null vector of M' (unit).
+    v: Vector4<f64>,
+}
+
+/// One contact's circle c1² + s1² = 1 (or c2² + s2² = 1) on the line, multiplied by (1 + t²)²:
+/// c2 τ̂² + c1(t) τ̂ + c0(t) = 0.
+struct Circle {
+    c2: f64,
+    c1: [f64; 3],
+    c0: [f64; 5],
+}
+
+impl Parametrised {
+    /// From the affine rows: the null vector of M' (the last four columns, 3×4) by signed 3×3
+    /// minors and the min-norm inverse Q = M'ᵀ(M'M'ᵀ)⁻¹; `None` if M' is rank-deficient.
+    fn new(m: &SMatrix<f64, 3, 6>, rhs: &Vector3<f64>) -> Option<Self> {
         let m0 = m.fixed_columns::<2>(0).into_owned();
         let mp: Matrix3x4<f64> = m.fixed_columns::<4>(2).into_owned();
-        // Null vector of M' (3×4) by signed 3×3 minors, and the min-norm inverse Q = M'ᵀ(M'M'ᵀ)⁻¹.
         let minor = |skip: usize| {
             let cols: Vec<usize> = (0..4).filter(|&c| c != skip).collect();
             let sub = Matrix3::from_fn(|r, c| mp[(r, cols[c])]);
             sub.determinant()
         };
         let v = Vector4::new(minor(0), -minor(1), minor(2), -minor(3));
-        let Some(inv) = (mp * mp.transpose()).try_inverse() else {
-            return Vec::new();
-        };
+        let inv = (mp * mp.transpose()).try_inverse()?;
         if v.norm() < 1e-12 {
-            return Vec::new();
+            return None;
         }
         let v = v.normalize();
         let q = mp.transpose() * inv;
-        // Û_p(t) = Q (rhs (1+t²) − M0 (ĉ0, ŝ0)), with ĉ0 = c0 (1+t²), ŝ0 = s0 (1+t²) and
-        // φ0 = δ + 2 atan t: ĉ0 = cos δ (1 − t²) − 2 t sin δ, ŝ0 = sin δ (1 − t²) + 2 t cos δ.
+        // ĉ0 = c0 (1+t²), ŝ0 = s0 (1+t²) with φ0 = δ + 2 atan t:
+        // ĉ0 = cos δ (1 − t²) − 2 t sin δ, ŝ0 = sin δ (1 − t²) + 2 t cos δ.
         let (sd, cd) = DELTA.sin_cos();
         let c_hat = [cd, -2.0 * sd, -cd];
         let s_hat = [sd, 2.0 * cd, -sd];
@@ -304,79 +399,29 @@ impl System {
                 row[d] = qb[k] * one_t2[d] - qm[(k, 0)] * c_hat[d] - qm[(k, 1)] * s_hat[d];
             }
         }
-        // Circle of contact c (components 2c−2, 2c−1 of u'): τ̂² |v|² + 2τ̂ (Û·v) + |Û|² − (1+t²)².
+        Some(Parametrised { up, v })
+    }
+
+    /// The circle of the contact whose (c, s) are components k0, k0 + 1 of u':
+    /// τ̂² |v|² + 2τ̂ (Û·v) + |Û|² − (1+t²)².
+    fn circle(&self, k0: usize) -> Circle {
+        let (up, v) = (&self.up, &self.v);
+        let one_t2 = [1.0, 0.0, 1.0];
         let mut one_t2_sq = [0.0; 5];
         poly_mul(&one_t2, &one_t2, &mut one_t2_sq);
-        let circle = |k0: usize| {
-            let a2 = v[k0] * v[k0] + v[k0 + 1] * v[k0 + 1];
-            let mut a1 = [0.0; 3];
-            for d in 0..3 {
-                a1[d] = 2.0 * (up[k0][d] * v[k0] + up[k0 + 1][d] * v[k0 + 1]);
-            }
-            let (mut s0, mut s1) = ([0.0; 5], [0.0; 5]);
-            poly_mul(&up[k0], &up[k0], &mut s0);
-            poly_mul(&up[k0 + 1], &up[k0 + 1], &mut s1);
-            let mut a0 = [0.0; 5];
-            for d in 0..5 {
-                a0[d] = s0[d] + s1[d] - one_t2_sq[d];
-            }
-            (a2, a1, a0)
-        };
-        let (a2, a1, a0) = circle(0);
-        let (b2, b1, b0) = circle(2);
-        // R = (a2 b0 − a0 b2)² − (a2 b1 − a1 b2)(a1 b0 − a0 b1).
-        let (res, _, _) = crate::numeric::quadratic_resultant([&a0, &a1, &[a2]], [&b0, &b1, &[b2]]);
-        let Some(ts) = poly_roots(&res) else {
-            return Vec::new();
-        };
-
-        let mut out: Vec<Point> = Vec::new();
-        for (t, im) in ts {
-            if im.abs() > 1e-6 * (1.0 + t.abs()) {
-                continue;
-            }
-            let ev = |c: &[f64]| c.iter().rev().fold(0.0, |acc, &k| acc * t + k);
-            let w2 = 1.0 + t * t;
-            let upt: [f64; 4] = [ev(&up[0]), ev(&up[1]), ev(&up[2]), ev(&up[3])];
-            // τ̂: the root of circle 1 that best satisfies circle 2.
-            let (qa, qb_, qc) = (a2, ev(&a1), ev(&a0));
-            let disc = qb_ * qb_ - 4.0 * qa * qc;
-            if disc < -1e-9 * (qb_ * qb_ + (4.0 * qa * qc).abs()) {
-                continue;
-            }
-            let sq = disc.max(0.0).sqrt();
-            let qq_ = -0.5 * (qb_ + sq.copysign(qb_));
-            let mut cands = vec![];
-            if qa != 0.0 {
-                cands.push(qq_ / qa);
-            }
-            if qq_ != 0.0 {
-                cands.push(qc / qq_);
-            }
-            let other = |tau: f64| (b2 * tau * tau + ev(&b1) * tau + ev(&b0)).abs();
-            let Some(tau) = cands
-                .into_iter()
-                .min_by(|x, y| other(*x).total_cmp(&other(*y)))
-            else {
-                continue;
-            };
-            let u: [f64; 4] = [0, 1, 2, 3].map(|k| (upt[k] + tau * v[k]) / w2);
-            let phi0 = DELTA + 2.0 * t.atan();
-            let phi = [phi0, u[1].atan2(u[0]), u[3].atan2(u[2])];
-            // Newton on the reduced equations, then j (N0) from the direction of w.
-            let (mut p, residual) = self.polish(Point::new(0.0, phi));
-            if !(residual < 1e-9 && p.j > 0.0) {
-                continue;
-            }
-            p.phi = p.phi.map(wrap);
-            if !out
-                .iter()
-                .any(|q| (0..3).all(|i| wrap(q.phi[i] - p.phi[i]).abs() < 1e-7))
-            {
-                out.push(p);
-            }
+        let c2 = v[k0] * v[k0] + v[k0 + 1] * v[k0 + 1];
+        let mut c1 = [0.0; 3];
+        for d in 0..3 {
+            c1[d] = 2.0 * (up[k0][d] * v[k0] + up[k0 + 1][d] * v[k0 + 1]);
         }
-        out
+        let (mut s0, mut s1) = ([0.0; 5], [0.0; 5]);
+        poly_mul(&up[k0], &up[k0], &mut s0);
+        poly_mul(&up[k0 + 1], &up[k0 + 1], &mut s1);
+        let mut c0 = [0.0; 5];
+        for d in 0..5 {
+            c0[d] = s0[d] + s1[d] - one_t2_sq[d];
+        }
+        Circle { c2, c1, c0 }
     }
 }
 
