@@ -11,7 +11,6 @@ use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_m
 use slideroute::internals::analysis::probabilistic::{
     Design, Limits, Sampling, Uncertain, sample_scene, summarise,
 };
-use slideroute::internals::route;
 use slideroute::internals::{model::DynamicsModel, scene::Scene};
 use std::hint::black_box;
 

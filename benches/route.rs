@@ -7,8 +7,9 @@
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use slideroute::Displacement;
+use slideroute::internals::route::PoseMethod;
+use slideroute::internals::route::paper::evaluate;
 use slideroute::internals::route::pose_finder::PoseFinder;
-use slideroute::internals::route::{self, PoseMethod, paper};
 use slideroute::internals::{
     model::{DynamicsModel, Mode},
     scene::Scene,
@@ -48,7 +49,7 @@ fn whole_routes(c: &mut Criterion) {
     };
     let rigid = rigid_3s(&base);
     let rigid_frictionless = rigid_3s(&frictionless);
-    // The same scene as any triangle (`contacts_m`): the general pose system (issue #15).
+    // The same scene as any triangle (`contacts_m`): the general pose system.
     let general = rigid_3s(&as_contacts(&base));
     for (name, s) in [
         ("paper-like route, exact, friction", &base),
@@ -72,29 +73,21 @@ fn one_increment(c: &mut Criterion) {
     let scene = Scene::default_scene()
         .with_dynamics(DynamicsModel::Paper)
         .unwrap();
-    let dynamics = &scene.simulation().unwrap();
+    let sim = scene.simulation().unwrap();
     for method in [PoseMethod::Continuation, PoseMethod::AllRoots] {
         // Position the finder and the chosen reaction at X = 0.5 m, then time the next 1 mm.
-        let mut finder = PoseFinder::new(&scene, Mode::Exact, method);
+        let mut finder = PoseFinder::new(sim.site(), Mode::Exact, method);
         let mut prev = None;
         for k in 1..=500 {
             let d = Displacement::new(1e-3 * k as f64, 0.0, -1e-4 * k as f64);
-            let ev = rhs::evaluate(&scene, &dynamics, &mut finder, d, prev.as_ref(), None).unwrap();
+            let ev = evaluate(&sim, &mut finder, d, prev.as_ref(), None).unwrap();
             prev = Some(ev.reaction);
         }
         let next = Displacement::new(0.501, 0.0, -0.0501);
         c.bench_function(&format!("one increment ({})", method.as_str()), |b| {
             b.iter(|| {
                 let mut f = finder.clone();
-                rhs::evaluate(
-                    &scene,
-                    &dynamics,
-                    &mut f,
-                    black_box(next),
-                    prev.as_ref(),
-                    None,
-                )
-                .unwrap()
+                evaluate(&sim, &mut f, black_box(next), prev.as_ref(), None).unwrap()
             })
         });
     }

@@ -19,6 +19,9 @@ pub fn simulate(sim: &Simulation) -> Route {
     Runner::new(sim).run().route
 }
 
+/// Where a streamed route's kept rows go, as they are made.
+type RowSink<'a> = Box<dyn FnMut(&Row) + 'a>;
+
 /// How a simulation is run, apart from what is simulated: the pose method, who is told of the
 /// progress (and may stop the route), and where rows go as they are computed.
 ///
@@ -38,7 +41,7 @@ pub struct Runner<'a> {
     sim: &'a Simulation,
     method: PoseMethod,
     progress: Box<dyn FnMut(f64) -> ControlFlow<()> + 'a>,
-    sink: Option<Box<dyn FnMut(&Row) + 'a>>,
+    sink: Option<RowSink<'a>>,
     keep_every: usize,
 }
 

@@ -286,7 +286,7 @@ fn frictionless_in_a_groove_the_block_slides_along_it_and_turns_about_its_contac
         &State {
             geom: &geom,
             applied: &applied,
-            block: block,
+            block,
             strength: &frictionless,
         },
         [0.0; 3],
@@ -314,7 +314,7 @@ fn frictionless_in_a_groove_the_block_slides_along_it_and_turns_about_its_contac
         &State {
             geom: &geom,
             applied: &applied,
-            block: block,
+            block,
             strength: &frictionless,
         },
         [0.0; 3],
@@ -339,7 +339,7 @@ fn sliding_in_a_groove_both_faces_rub_and_every_constraint_holds() {
         &State {
             geom: &geom,
             applied: &applied,
-            block: block,
+            block,
             strength: &friction,
         },
         [1.0, 0.0, 0.0],
@@ -396,9 +396,9 @@ fn a_crease_lets_go_of_the_face_that_pulls() {
     let run = |geom: &ContactGeometry, crease: Crease| {
         accelerations(
             &State {
-                geom: geom,
+                geom,
                 applied: &applied,
-                block: block,
+                block,
                 strength: &frictionless,
             },
             [0.0; 3],

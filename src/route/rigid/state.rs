@@ -87,7 +87,7 @@ impl RigidState {
     }
 
     /// The values in the integrator's order.
-    pub fn to_array(&self) -> [f64; VALUES] {
+    pub fn to_array(self) -> [f64; VALUES] {
         [
             self.x,
             self.z,

@@ -21,7 +21,7 @@ pub use sweep::sweep;
 #[cfg(feature = "cli")]
 pub use work_precision::work_precision;
 
-use plan::Track;
+use plan::{PlanView, Track};
 use plotters::style::RGBColor;
 use series::Series;
 use sheet::{Entry, Mark, Res};
@@ -158,16 +158,16 @@ pub fn plan(path: &Path, scene: &Scene, route: &Route) -> Res<()> {
     plan::plan_view(
         path,
         scene,
-        &title,
-        (
-            &[Track {
+        &PlanView {
+            title: &title,
+            tracks: &[Track {
                 name: "path of the centre of mass (CM)".into(),
                 rows: &rows,
                 color: COLORS[0],
             }],
-            None,
-        ),
-        &route_notes(route),
+            fan: None,
+            notes: &route_notes(route),
+        },
     )
 }
 
@@ -188,9 +188,9 @@ pub fn compare_plan(path: &Path, scene: &Scene, c: &slideroute::compare::Compari
     plan::plan_view(
         path,
         scene,
-        &format!("{}: plan view of both dynamics", scene.name()),
-        (
-            &[
+        &PlanView {
+            title: &format!("{}: plan view of both dynamics", scene.name()),
+            tracks: &[
                 Track {
                     name: name("rigid body", &c.rigid_body.route),
                     rows: &rigid,
@@ -202,12 +202,12 @@ pub fn compare_plan(path: &Path, scene: &Scene, c: &slideroute::compare::Compari
                     color: COLORS[3],
                 },
             ],
-            None,
-        ),
-        &[Entry::new(
-            Mark::None,
-            fs_words(c.rigid_body.route.factor_of_safety),
-        )],
+            fan: None,
+            notes: &[Entry::new(
+                Mark::None,
+                fs_words(c.rigid_body.route.factor_of_safety),
+            )],
+        },
     )
 }
 

@@ -4,7 +4,7 @@
 //! factor of safety and with the travel).
 
 use super::plan::{self, Fan, Track};
-use super::sheet::{self, Entry, Mark, Res, Sheet, err};
+use super::sheet::{self, Area, Entry, Mark, Res, Sheet, err};
 use super::thinned;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
@@ -112,22 +112,19 @@ pub fn route_fan(
     plan::plan_view(
         path,
         scene,
-        &format!("{}: route fan, plan view from above", scene.name()),
-        (&tracks, Some(&fan)),
-        &notes,
+        &plan::PlanView {
+            title: &format!("{}: route fan, plan view from above", scene.name()),
+            tracks: &tracks,
+            fan: Some(&fan),
+            notes: &notes,
+        },
     )
 }
 
 /// The histogram of the factor of safety: bars below 1 red, at or above blue; infinite values
 /// (no multiple of the loads starts the block, or the weight alone does) counted in the panel.
 pub fn factor_of_safety(path: &Path, samples: &[Sample], summary: &Summary) -> Res<()> {
-    let fs: Vec<Option<f64>> = samples
-        .iter()
-        .filter_map(|s| match &s.outcome {
-            Outcome::Route(r) => Some(r.factor_of_safety_value()),
-            _ => None,
-        })
-        .collect();
+    let fs = factors_of_safety(samples);
     let finite: Vec<f64> = fs
         .iter()
         .flatten()
@@ -146,89 +143,149 @@ pub fn factor_of_safety(path: &Path, samples: &[Sample], summary: &Summary) -> R
             )],
         );
     }
-    let (mut lo, mut hi) = sheet::ranges(finite.iter().copied().chain([1.0]));
-    let bins = (finite.len() as f64).sqrt().clamp(10.0, 60.0) as usize;
-    let width = (hi - lo) / bins as f64;
-    let mut counts = vec![0usize; bins];
-    for v in &finite {
-        counts[(((v - lo) / width) as usize).min(bins - 1)] += 1;
-    }
-    let top = counts.iter().copied().max().unwrap_or(1) as f64 * 1.08;
-    (lo, hi) = (lo - 0.5 * width, hi + 0.5 * width);
+    let histogram = Histogram::of(&finite);
     let sheet = Sheet::new(path, (1200, 600), &title)?;
-    let mut chart = ChartBuilder::on(&sheet.chart)
-        .margin(10)
-        .x_label_area_size(40)
-        .y_label_area_size(60)
-        .build_cartesian_2d(lo..hi, 0.0..top)
-        .map_err(err(path))?;
-    let fx = sheet::ticks(lo, hi);
-    chart
-        .configure_mesh()
-        .max_light_lines(1)
-        .x_desc("factor of safety at the start")
-        .y_desc("samples")
-        .x_label_formatter(&fx)
-        .y_label_formatter(&|v| format!("{v:.0}"))
-        .light_line_style(BLACK.mix(0.05))
-        .draw()
-        .map_err(err(path))?;
-    let start = lo + 0.5 * width;
-    chart
-        .draw_series(
-            counts
-                .iter()
-                .enumerate()
-                .filter(|(_, c)| **c > 0)
-                .map(|(k, c)| {
-                    let x0 = start + k as f64 * width;
-                    let color = if x0 + 0.5 * width < 1.0 { BELOW } else { ABOVE };
-                    Rectangle::new(
-                        [(x0, 0.0), (x0 + width, *c as f64)],
-                        color.mix(0.6).filled(),
-                    )
-                }),
-        )
-        .map_err(err(path))?;
-    chart
-        .draw_series(DashedLineSeries::new(
-            [(1.0, 0.0), (1.0, top)],
-            6,
-            4,
-            BLACK.stroke_width(2),
-        ))
-        .map_err(err(path))?;
-    let count = |f: &dyn Fn(&Option<f64>) -> bool| fs.iter().filter(|v| f(v)).count();
-    let mut entries = vec![
-        Entry::new(Mark::Swatch(BELOW), "factor of safety below 1: slides"),
-        Entry::new(Mark::Swatch(ABOVE), "1 or more: held"),
-        Entry::new(Mark::Dashed(BLACK), "factor of safety 1"),
-        Entry::new(
-            Mark::None,
-            format!("probability of sliding {}", summary.probability_of_sliding),
-        ),
-        Entry::new(
-            Mark::None,
-            format!(
-                "{} routes, {} bars of {}",
-                summary.routes,
-                bins,
-                fixed(width, 4)
-            ),
-        ),
-    ];
-    if let Some(p) = summary.factor_of_safety {
-        entries.push(Entry::new(
-            Mark::None,
-            format!(
-                "5 % {}, median {}, 95 % {}",
-                fixed(p.p5, 3),
-                fixed(p.p50, 3),
-                fixed(p.p95, 3)
-            ),
-        ));
+    histogram.draw(path, &sheet.chart)?;
+    let mut entries = histogram.entries(summary);
+    entries.extend(not_drawn(&fs));
+    let y = sheet::heading(path, &sheet.panel, "Legend", 0)?;
+    sheet::legend(path, &sheet.panel, &entries, y)?;
+    sheet.root.present().map_err(err(path))
+}
+
+/// The factor of safety of each sample whose route ran: a number, ±∞, or none where the cone
+/// program failed.
+fn factors_of_safety(samples: &[Sample]) -> Vec<Option<f64>> {
+    samples
+        .iter()
+        .filter_map(|s| match &s.outcome {
+            Outcome::Route(r) => Some(r.factor_of_safety_value()),
+            _ => None,
+        })
+        .collect()
+}
+
+/// The bars of the factor of safety's histogram: the axis from `lo` to `hi` (half a bar wider
+/// than the values and 1 each side), the bars' width and counts from `lo` plus half a bar, and
+/// the top of the count axis.
+struct Histogram {
+    lo: f64,
+    hi: f64,
+    width: f64,
+    counts: Vec<usize>,
+    top: f64,
+}
+
+impl Histogram {
+    /// The histogram of the `finite` factors of safety (not empty): about √n bars, from 10 to
+    /// 60, over the values and 1.
+    fn of(finite: &[f64]) -> Histogram {
+        let (lo, hi) = sheet::ranges(finite.iter().copied().chain([1.0]));
+        let bins = (finite.len() as f64).sqrt().clamp(10.0, 60.0) as usize;
+        let width = (hi - lo) / bins as f64;
+        let mut counts = vec![0usize; bins];
+        for v in finite {
+            counts[(((v - lo) / width) as usize).min(bins - 1)] += 1;
+        }
+        let top = counts.iter().copied().max().unwrap_or(1) as f64 * 1.08;
+        Histogram {
+            lo: lo - 0.5 * width,
+            hi: hi + 0.5 * width,
+            width,
+            counts,
+            top,
+        }
     }
-    for (n, words) in [
+
+    /// Its axes on `area`, its bars (below 1 red, at or above blue) and a dashed line at 1.
+    fn draw(&self, path: &Path, area: &Area) -> Res<()> {
+        let (lo, hi, width, top) = (self.lo, self.hi, self.width, self.top);
+        let mut chart = ChartBuilder::on(area)
+            .margin(10)
+            .x_label_area_size(40)
+            .y_label_area_size(60)
+            .build_cartesian_2d(lo..hi, 0.0..top)
+            .map_err(err(path))?;
+        let fx = sheet::ticks(lo, hi);
+        chart
+            .configure_mesh()
+            .max_light_lines(1)
+            .x_desc("factor of safety at the start")
+            .y_desc("samples")
+            .x_label_formatter(&fx)
+            .y_label_formatter(&|v| format!("{v:.0}"))
+            .light_line_style(BLACK.mix(0.05))
+            .draw()
+            .map_err(err(path))?;
+        let start = lo + 0.5 * width;
+        chart
+            .draw_series(
+                self.counts
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, c)| **c > 0)
+                    .map(|(k, c)| {
+                        let x0 = start + k as f64 * width;
+                        let color = if x0 + 0.5 * width < 1.0 { BELOW } else { ABOVE };
+                        Rectangle::new(
+                            [(x0, 0.0), (x0 + width, *c as f64)],
+                            color.mix(0.6).filled(),
+                        )
+                    }),
+            )
+            .map_err(err(path))?;
+        chart
+            .draw_series(DashedLineSeries::new(
+                [(1.0, 0.0), (1.0, top)],
+                6,
+                4,
+                BLACK.stroke_width(2),
+            ))
+            .map_err(err(path))?;
+        Ok(())
+    }
+
+    /// The legend's entries: the bars' colours, the line at 1, the probability of sliding, the
+    /// number of routes and bars, and the percentiles of the factor of safety.
+    fn entries(&self, summary: &Summary) -> Vec<Entry> {
+        let mut entries = vec![
+            Entry::new(Mark::Swatch(BELOW), "factor of safety below 1: slides"),
+            Entry::new(Mark::Swatch(ABOVE), "1 or more: held"),
+            Entry::new(Mark::Dashed(BLACK), "factor of safety 1"),
+            Entry::new(
+                Mark::None,
+                format!("probability of sliding {}", summary.probability_of_sliding),
+            ),
+            Entry::new(
+                Mark::None,
+                format!(
+                    "{} routes, {} bars of {}",
+                    summary.routes,
+                    self.counts.len(),
+                    fixed(self.width, 4)
+                ),
+            ),
+        ];
+        if let Some(p) = summary.factor_of_safety {
+            entries.push(Entry::new(
+                Mark::None,
+                format!(
+                    "5 % {}, median {}, 95 % {}",
+                    fixed(p.p5, 3),
+                    fixed(p.p50, 3),
+                    fixed(p.p95, 3)
+                ),
+            ));
+        }
+        entries
+    }
+}
+
+/// The legend's notes of the factors of safety `fs` the histogram does not draw: how many are
+/// +∞, −∞ or none, and what each means (no note for none of a kind).
+fn not_drawn(fs: &[Option<f64>]) -> Vec<Entry> {
+    let count = |f: &dyn Fn(&Option<f64>) -> bool| fs.iter().filter(|v| f(v)).count();
+    [
         (
             count(&|v| *v == Some(f64::INFINITY)),
             "no multiple of the driving loads starts the block (factor of safety +∞)",
@@ -238,17 +295,11 @@ pub fn factor_of_safety(path: &Path, samples: &[Sample], summary: &Summary) -> R
             "the weight alone starts the block (−∞)",
         ),
         (count(&|v| v.is_none()), "the cone program failed (none)"),
-    ] {
-        if n > 0 {
-            entries.push(Entry::new(
-                Mark::None,
-                format!("not drawn: {n} where {words}"),
-            ));
-        }
-    }
-    let y = sheet::heading(path, &sheet.panel, "Legend", 0)?;
-    sheet::legend(path, &sheet.panel, &entries, y)?;
-    sheet.root.present().map_err(err(path))
+    ]
+    .into_iter()
+    .filter(|(n, _)| *n > 0)
+    .map(|(n, words)| Entry::new(Mark::None, format!("not drawn: {n} where {words}")))
+    .collect()
 }
 
 /// The sensitivity tornado: for each uncertain value, Spearman's ρ with the factor of safety

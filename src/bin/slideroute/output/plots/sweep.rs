@@ -7,6 +7,7 @@
 use super::COLORS;
 use super::sheet::{self, Area, Entry, Mark, Res, Sheet, err};
 use crate::sweep::{SweepRow, Vary};
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use plotters::style::colors::colormaps::{ColorMap, ViridisRGB};
 use plotters::style::text_anchor::{HPos, Pos, VPos};
@@ -96,26 +97,7 @@ pub fn sweep(path: &Path, varies: &[Vary], rows: &[SweepRow]) -> Res<()> {
             &["No key was varied, so there is nothing to plot.".into()],
         );
     };
-    let groups = groups(rows);
-    let few = groups.len() <= COLORS.len();
-    let second = varies.get(1);
-    let (lo2, hi2) = second.map_or((0.0, 0.0), |v| {
-        v.values
-            .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |a, &x| {
-                (a.0.min(x), a.1.max(x))
-            })
-    });
-    let color_of = |k: usize, key: &[f64]| -> RGBColor {
-        if groups.len() == 1 {
-            COLORS[1]
-        } else if few {
-            COLORS[k % COLORS.len()]
-        } else {
-            scale_color(key.first().copied().unwrap_or(0.0), lo2, hi2)
-        }
-    };
-
+    let plot = SweepPlot::new(path, varies, rows);
     let title = format!(
         "sweep: travel of the centre of mass and factor of safety against {}",
         first.key
@@ -123,15 +105,20 @@ pub fn sweep(path: &Path, varies: &[Vary], rows: &[SweepRow]) -> Res<()> {
     let sheet = Sheet::new(path, SIZE, &title)?;
     let (_, ch) = sheet.chart.dim_in_pixel();
     let (top, bottom) = sheet.chart.split_vertically((f64::from(ch) * 0.6) as u32);
+    plot.draw_travel(&top)?;
+    plot.draw_factors_of_safety(&bottom)?;
+    let mut y = plot.draw_group_key(&sheet.panel)?;
+    y = plot.draw_markers(&sheet.panel, y)?;
+    plot.draw_counts(&sheet.panel, y)?;
+    sheet.root.present().map_err(err(path))
+}
 
-    // The x axis: numbers, or the words of a word key at 0, 1, ….
-    let (x0, x1) = match &first.words {
-        Some(w) => (-0.5, w.len() as f64 - 0.5),
-        None => sheet::ranges(rows.iter().map(|r| r.values[0])),
-    };
+/// The tick labels of the x axis over `(x0, x1)`: numbers, or the words of a word key at 0,
+/// 1, … (none between).
+fn x_labels(first: &Vary, (x0, x1): (f64, f64)) -> impl Fn(&f64) -> String {
     let words = first.words.clone();
     let numbers = sheet::ticks(x0, x1);
-    let x_label = move |v: &f64| match &words {
+    move |v: &f64| match &words {
         Some(w) => {
             let k = v.round();
             if (v - k).abs() < 1e-6 && k >= 0.0 {
@@ -141,228 +128,323 @@ pub fn sweep(path: &Path, varies: &[Vary], rows: &[SweepRow]) -> Res<()> {
             }
         }
         None => numbers(v),
-    };
+    }
+}
 
-    // Travel.
-    let (t0, t1) = sheet::ranges(rows.iter().filter_map(|r| r.travel_m).chain([0.0]));
-    let x_count = first.words.as_ref().map_or(10, |w| w.len());
-    let mut chart = ChartBuilder::on(&top)
-        .margin(10)
-        .x_label_area_size(40)
-        .y_label_area_size(65)
-        .build_cartesian_2d(x0..x1, t0..t1)
-        .map_err(err(path))?;
-    let fy = sheet::ticks(t0, t1);
-    chart
-        .configure_mesh()
-        .max_light_lines(1)
-        .x_desc(axis_name(first))
-        .y_desc("travel of the CM (m)")
-        .x_labels(x_count)
-        .x_label_formatter(&x_label)
-        .y_label_formatter(&fy)
-        .draw()
-        .map_err(err(path))?;
-    for (k, (key, members)) in groups.iter().enumerate() {
-        let color = color_of(k, key);
-        let pts: Vec<(f64, f64)> = members
+/// A chart of the sweep: the first varied key across, travel or factor of safety up.
+type SweepChart<'a, 'p> =
+    ChartContext<'a, SVGBackend<'p>, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
+/// What the drawing steps of a sweep picture share: the file (for its errors), the varied keys
+/// (at least one), the rows and their groups (one line each), the range of the second key's
+/// values (for a colour scale) and the range of the x axis.
+struct SweepPlot<'a> {
+    path: &'a Path,
+    varies: &'a [Vary],
+    rows: &'a [SweepRow],
+    groups: Vec<(Vec<f64>, Vec<&'a SweepRow>)>,
+    /// The second key's lowest and highest values (0, 0 without one).
+    second_range: (f64, f64),
+    /// The x axis's range: the first key's values, or its words at 0, 1, ….
+    x_range: (f64, f64),
+}
+
+impl<'a> SweepPlot<'a> {
+    /// The picture of `rows`, `varies` not empty.
+    fn new(path: &'a Path, varies: &'a [Vary], rows: &'a [SweepRow]) -> Self {
+        let second_range = varies.get(1).map_or((0.0, 0.0), |v| {
+            v.values
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |a, &x| {
+                    (a.0.min(x), a.1.max(x))
+                })
+        });
+        let x_range = match &varies[0].words {
+            Some(w) => (-0.5, w.len() as f64 - 0.5),
+            None => sheet::ranges(rows.iter().map(|r| r.values[0])),
+        };
+        SweepPlot {
+            path,
+            varies,
+            rows,
+            groups: groups(rows),
+            second_range,
+            x_range,
+        }
+    }
+
+    /// The first varied key, across both charts.
+    fn first(&self) -> &Vary {
+        &self.varies[0]
+    }
+
+    /// Whether the groups are few enough for a colour each, named in a legend (else the
+    /// colour follows the second key on a scale).
+    fn few(&self) -> bool {
+        self.groups.len() <= COLORS.len()
+    }
+
+    /// The colour of the `k`-th group, whose other keys' values are `key`.
+    fn color_of(&self, k: usize, key: &[f64]) -> RGBColor {
+        if self.groups.len() == 1 {
+            COLORS[1]
+        } else if self.few() {
+            COLORS[k % COLORS.len()]
+        } else {
+            let (lo, hi) = self.second_range;
+            scale_color(key.first().copied().unwrap_or(0.0), lo, hi)
+        }
+    }
+
+    /// The finite factors of safety of the rows.
+    fn finite_factors(&self) -> Vec<f64> {
+        self.rows
             .iter()
-            .filter_map(|r| r.travel_m.map(|t| (r.values[0], t)))
-            .collect();
+            .filter_map(|r| r.factor_of_safety.and_then(|f| f.value()))
+            .collect()
+    }
+
+    /// A chart on `area` over `y_range`, its axes drawn: the first key across (numbers, or
+    /// the words of a word key at 0, 1, …), `y_desc` up.
+    fn axes<'c, 'p>(
+        &self,
+        area: &'c Area<'p>,
+        y_range: (f64, f64),
+        y_desc: &str,
+    ) -> Res<SweepChart<'c, 'p>> {
+        let first = self.first();
+        let (x0, x1) = self.x_range;
+        let (y0, y1) = y_range;
+        let x_label = x_labels(first, self.x_range);
+        let x_count = first.words.as_ref().map_or(10, |w| w.len());
+        let mut chart = ChartBuilder::on(area)
+            .margin(10)
+            .x_label_area_size(40)
+            .y_label_area_size(65)
+            .build_cartesian_2d(x0..x1, y0..y1)
+            .map_err(err(self.path))?;
+        let fy = sheet::ticks(y0, y1);
         chart
-            .draw_series(LineSeries::new(pts, color.mix(0.8).stroke_width(2)))
-            .map_err(err(path))?;
-        for r in members {
-            let Some(t) = r.travel_m else { continue };
-            let at = (r.values[0], t);
-            let mark = match outcome(r) {
-                Outcome::Slid => Mark::Dot(color),
-                Outcome::DidNotSlide => Mark::Square(color),
-                Outcome::EndedAtOnce => Mark::Cross(color),
-                Outcome::NoRoute => continue,
-            };
-            draw_at(path, &chart, at, mark)?;
-        }
+            .configure_mesh()
+            .max_light_lines(1)
+            .x_desc(axis_name(first))
+            .y_desc(y_desc)
+            .x_labels(x_count)
+            .x_label_formatter(&x_label)
+            .y_label_formatter(&fy)
+            .draw()
+            .map_err(err(self.path))?;
+        Ok(chart)
     }
 
-    // Factor of safety.
-    let finite: Vec<f64> = rows
-        .iter()
-        .filter_map(|r| r.factor_of_safety.and_then(|f| f.value()))
-        .collect();
-    let (f0, f1) = sheet::ranges(finite.iter().copied().chain([1.0]));
-    let mut fs_chart = ChartBuilder::on(&bottom)
-        .margin(10)
-        .x_label_area_size(40)
-        .y_label_area_size(65)
-        .build_cartesian_2d(x0..x1, f0..f1)
-        .map_err(err(path))?;
-    let ff = sheet::ticks(f0, f1);
-    fs_chart
-        .configure_mesh()
-        .max_light_lines(1)
-        .x_desc(axis_name(first))
-        .y_desc("factor of safety")
-        .x_labels(x_count)
-        .x_label_formatter(&x_label)
-        .y_label_formatter(&ff)
-        .draw()
-        .map_err(err(path))?;
-    fs_chart
-        .draw_series(DashedLineSeries::new(
-            [(x0, 1.0), (x1, 1.0)],
-            8,
-            5,
-            BLACK.mix(0.7).stroke_width(1),
-        ))
-        .map_err(err(path))?;
-    for (k, (key, members)) in groups.iter().enumerate() {
-        let color = color_of(k, key);
-        let pts: Vec<(f64, f64)> = members
-            .iter()
-            .filter_map(|r| {
-                r.factor_of_safety
-                    .and_then(|f| f.value())
-                    .map(|f| (r.values[0], f))
-            })
-            .collect();
-        fs_chart
-            .draw_series(LineSeries::new(pts.clone(), color.mix(0.8).stroke_width(2)))
-            .map_err(err(path))?;
-        for r in members {
-            let (at, mark) = match r.factor_of_safety {
-                Some(FactorOfSafety::Finite { value }) => ((r.values[0], value), Mark::Dot(color)),
-                Some(FactorOfSafety::Unbounded) => ((r.values[0], f1), Mark::Triangle(color, true)),
-                Some(FactorOfSafety::NotHoldable) => {
-                    ((r.values[0], f0), Mark::Triangle(color, false))
-                }
-                None => continue,
-            };
-            draw_at(path, &fs_chart, at, mark)?;
+    /// The upper chart: the CM's travel against the first key, a line for each group and
+    /// each combination's outcome marked (slid, did not slide, ended at once).
+    fn draw_travel(&self, area: &Area) -> Res<()> {
+        let y_range = sheet::ranges(self.rows.iter().filter_map(|r| r.travel_m).chain([0.0]));
+        let mut chart = self.axes(area, y_range, "travel of the CM (m)")?;
+        for (k, (key, members)) in self.groups.iter().enumerate() {
+            let color = self.color_of(k, key);
+            let pts: Vec<(f64, f64)> = members
+                .iter()
+                .filter_map(|r| r.travel_m.map(|t| (r.values[0], t)))
+                .collect();
+            chart
+                .draw_series(LineSeries::new(pts, color.mix(0.8).stroke_width(2)))
+                .map_err(err(self.path))?;
+            for r in members {
+                let Some(t) = r.travel_m else { continue };
+                let at = (r.values[0], t);
+                let mark = match outcome(r) {
+                    Outcome::Slid => Mark::Dot(color),
+                    Outcome::DidNotSlide => Mark::Square(color),
+                    Outcome::EndedAtOnce => Mark::Cross(color),
+                    Outcome::NoRoute => continue,
+                };
+                draw_at(self.path, &chart, at, mark)?;
+            }
         }
+        Ok(())
     }
 
-    // The panel: groups or colour bar, markers, counts.
-    let mut y = 0;
-    if groups.len() > 1 && few {
-        y = sheet::heading(path, &sheet.panel, "Lines", y)?;
-        let entries: Vec<Entry> = groups
-            .iter()
-            .enumerate()
-            .map(|(k, (key, _))| {
-                let text = varies[1..]
-                    .iter()
-                    .zip(key)
-                    .map(|(v, &x)| value_text(v, x))
-                    .collect::<Vec<_>>()
-                    .join(", ");
-                Entry::new(Mark::Line(color_of(k, key)), text)
-            })
-            .collect();
-        y = sheet::legend(path, &sheet.panel, &entries, y)?;
-    } else if let Some(v) = second.filter(|_| !few) {
-        y = sheet::heading(path, &sheet.panel, "Colour", y)?;
-        y = colour_bar(path, &sheet.panel, v, (lo2, hi2), y)?;
-        if varies.len() > 2 {
-            let others: Vec<&str> = varies[2..].iter().map(|v| v.key.as_str()).collect();
-            y = sheet::legend(
-                path,
-                &sheet.panel,
-                &[Entry::new(
-                    Mark::None,
-                    format!(
-                        "one line for each value of {} and of {}",
-                        v.key,
-                        others.join(", ")
-                    ),
-                )],
-                y,
-            )?;
+    /// The lower chart: the factor of safety against the first key, dashed at 1, a line for
+    /// each group through its finite values, and an unbounded one or one the weight alone
+    /// overcomes marked at the top or the bottom.
+    fn draw_factors_of_safety(&self, area: &Area) -> Res<()> {
+        let (f0, f1) = sheet::ranges(self.finite_factors().into_iter().chain([1.0]));
+        let mut chart = self.axes(area, (f0, f1), "factor of safety")?;
+        let (x0, x1) = self.x_range;
+        chart
+            .draw_series(DashedLineSeries::new(
+                [(x0, 1.0), (x1, 1.0)],
+                8,
+                5,
+                BLACK.mix(0.7).stroke_width(1),
+            ))
+            .map_err(err(self.path))?;
+        for (k, (key, members)) in self.groups.iter().enumerate() {
+            let color = self.color_of(k, key);
+            let pts: Vec<(f64, f64)> = members
+                .iter()
+                .filter_map(|r| {
+                    r.factor_of_safety
+                        .and_then(|f| f.value())
+                        .map(|f| (r.values[0], f))
+                })
+                .collect();
+            chart
+                .draw_series(LineSeries::new(pts.clone(), color.mix(0.8).stroke_width(2)))
+                .map_err(err(self.path))?;
+            for r in members {
+                let (at, mark) = match r.factor_of_safety {
+                    Some(FactorOfSafety::Finite { value }) => {
+                        ((r.values[0], value), Mark::Dot(color))
+                    }
+                    Some(FactorOfSafety::Unbounded) => {
+                        ((r.values[0], f1), Mark::Triangle(color, true))
+                    }
+                    Some(FactorOfSafety::NotHoldable) => {
+                        ((r.values[0], f0), Mark::Triangle(color, false))
+                    }
+                    None => continue,
+                };
+                draw_at(self.path, &chart, at, mark)?;
+            }
         }
+        Ok(())
     }
-    // One group: its own colour; several: the markers' shapes are what the legend explains.
-    let marker = if groups.len() == 1 { COLORS[1] } else { BLACK };
-    y = sheet::heading(path, &sheet.panel, "Markers", y + 6)?;
-    // Only the marks this sweep uses.
-    let has = |o: Outcome| rows.iter().any(|r| outcome(r) == o);
-    let has_fs = |f: FactorOfSafety| rows.iter().any(|r| r.factor_of_safety == Some(f));
-    let marks = [
-        (
-            has(Outcome::Slid) || !finite.is_empty(),
-            Entry::new(
-                Mark::Dot(marker),
-                "the block slid (its travel), or a factor of safety",
-            ),
-        ),
-        (
-            has(Outcome::DidNotSlide),
-            Entry::new(
-                Mark::Square(marker),
-                "did not slide: travel 0, friction holds it",
-            ),
-        ),
-        (
-            has(Outcome::EndedAtOnce),
-            Entry::new(
-                Mark::Cross(marker),
-                "ended at once (t = 0) for another reason: see sweep.csv",
-            ),
-        ),
-        (
-            has_fs(FactorOfSafety::Unbounded),
-            Entry::new(
-                Mark::Triangle(marker, true),
-                "factor of safety unbounded (no multiple of the water load starts it)",
-            ),
-        ),
-        (
-            has_fs(FactorOfSafety::NotHoldable),
-            Entry::new(
-                Mark::Triangle(marker, false),
-                "no factor of safety: the weight alone slides it",
-            ),
-        ),
-        (
-            true,
-            Entry::new(
-                Mark::Dashed(BLACK),
-                "factor of safety 1: the loads just start the block",
-            ),
-        ),
-    ];
-    let marks: Vec<Entry> = marks.into_iter().filter(|m| m.0).map(|m| m.1).collect();
-    y = sheet::legend(path, &sheet.panel, &marks, y)?;
-    let count = |o: Outcome| rows.iter().filter(|r| outcome(r) == o).count();
-    let plural = if rows.len() == 1 { "" } else { "s" };
-    let mut counts = format!(
-        "{} combination{plural}: {} slid, {} did not slide, {} ended at once",
-        rows.len(),
-        count(Outcome::Slid),
-        count(Outcome::DidNotSlide),
-        count(Outcome::EndedAtOnce)
-    );
-    if count(Outcome::NoRoute) > 0 {
-        counts.push_str(&format!(
-            ", {} had no route (not drawn; see sweep.csv)",
-            count(Outcome::NoRoute)
-        ));
+
+    /// At the top of the panel, what tells the groups apart: a legend line for each of a few
+    /// groups, or the colour bar of the second key (and which other keys share its colours);
+    /// nothing for a single group. Returns the y below it.
+    fn draw_group_key(&self, panel: &Area) -> Res<i32> {
+        let (path, varies) = (self.path, self.varies);
+        let mut y = 0;
+        if self.groups.len() > 1 && self.few() {
+            y = sheet::heading(path, panel, "Lines", y)?;
+            let entries: Vec<Entry> = self
+                .groups
+                .iter()
+                .enumerate()
+                .map(|(k, (key, _))| {
+                    let text = varies[1..]
+                        .iter()
+                        .zip(key)
+                        .map(|(v, &x)| value_text(v, x))
+                        .collect::<Vec<_>>()
+                        .join(", ");
+                    Entry::new(Mark::Line(self.color_of(k, key)), text)
+                })
+                .collect();
+            y = sheet::legend(path, panel, &entries, y)?;
+        } else if let Some(v) = varies.get(1).filter(|_| !self.few()) {
+            y = sheet::heading(path, panel, "Colour", y)?;
+            y = colour_bar(path, panel, v, self.second_range, y)?;
+            if varies.len() > 2 {
+                let others: Vec<&str> = varies[2..].iter().map(|v| v.key.as_str()).collect();
+                y = sheet::legend(
+                    path,
+                    panel,
+                    &[Entry::new(
+                        Mark::None,
+                        format!(
+                            "one line for each value of {} and of {}",
+                            v.key,
+                            others.join(", ")
+                        ),
+                    )],
+                    y,
+                )?;
+            }
+        }
+        Ok(y)
     }
-    y = sheet::heading(path, &sheet.panel, "Sweep", y + 6)?;
-    sheet::legend(path, &sheet.panel, &[Entry::new(Mark::None, counts)], y)?;
-    sheet.root.present().map_err(err(path))
+
+    /// The markers this sweep uses, explained from `y` in the panel (in the group's colour
+    /// for a single group, else in black); returns the y below them.
+    fn draw_markers(&self, panel: &Area, y: i32) -> Res<i32> {
+        let rows = self.rows;
+        let marker = if self.groups.len() == 1 {
+            COLORS[1]
+        } else {
+            BLACK
+        };
+        let y = sheet::heading(self.path, panel, "Markers", y + 6)?;
+        let has = |o: Outcome| rows.iter().any(|r| outcome(r) == o);
+        let has_fs = |f: FactorOfSafety| rows.iter().any(|r| r.factor_of_safety == Some(f));
+        let marks = [
+            (
+                has(Outcome::Slid) || !self.finite_factors().is_empty(),
+                Entry::new(
+                    Mark::Dot(marker),
+                    "the block slid (its travel), or a factor of safety",
+                ),
+            ),
+            (
+                has(Outcome::DidNotSlide),
+                Entry::new(
+                    Mark::Square(marker),
+                    "did not slide: travel 0, friction holds it",
+                ),
+            ),
+            (
+                has(Outcome::EndedAtOnce),
+                Entry::new(
+                    Mark::Cross(marker),
+                    "ended at once (t = 0) for another reason: see sweep.csv",
+                ),
+            ),
+            (
+                has_fs(FactorOfSafety::Unbounded),
+                Entry::new(
+                    Mark::Triangle(marker, true),
+                    "factor of safety unbounded (no multiple of the water load starts it)",
+                ),
+            ),
+            (
+                has_fs(FactorOfSafety::NotHoldable),
+                Entry::new(
+                    Mark::Triangle(marker, false),
+                    "no factor of safety: the weight alone slides it",
+                ),
+            ),
+            (
+                true,
+                Entry::new(
+                    Mark::Dashed(BLACK),
+                    "factor of safety 1: the loads just start the block",
+                ),
+            ),
+        ];
+        let marks: Vec<Entry> = marks.into_iter().filter(|m| m.0).map(|m| m.1).collect();
+        sheet::legend(self.path, panel, &marks, y)
+    }
+
+    /// How many combinations slid, did not slide, ended at once or had no route, under the
+    /// heading "Sweep" from `y` in the panel; returns the y below.
+    fn draw_counts(&self, panel: &Area, y: i32) -> Res<i32> {
+        let rows = self.rows;
+        let count = |o: Outcome| rows.iter().filter(|r| outcome(r) == o).count();
+        let plural = if rows.len() == 1 { "" } else { "s" };
+        let mut counts = format!(
+            "{} combination{plural}: {} slid, {} did not slide, {} ended at once",
+            rows.len(),
+            count(Outcome::Slid),
+            count(Outcome::DidNotSlide),
+            count(Outcome::EndedAtOnce)
+        );
+        if count(Outcome::NoRoute) > 0 {
+            counts.push_str(&format!(
+                ", {} had no route (not drawn; see sweep.csv)",
+                count(Outcome::NoRoute)
+            ));
+        }
+        let y = sheet::heading(self.path, panel, "Sweep", y + 6)?;
+        sheet::legend(self.path, panel, &[Entry::new(Mark::None, counts)], y)
+    }
 }
 
 /// Draws `mark` at data point `at` of `chart`.
-fn draw_at(
-    path: &Path,
-    chart: &ChartContext<
-        '_,
-        SVGBackend<'_>,
-        Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
-    >,
-    at: (f64, f64),
-    mark: Mark,
-) -> Res<()> {
+fn draw_at(path: &Path, chart: &SweepChart<'_, '_>, at: (f64, f64), mark: Mark) -> Res<()> {
     let (x, y) = chart.backend_coord(&at);
     let area = chart.plotting_area().strip_coord_spec();
     let (ox, oy) = area.get_base_pixel();

@@ -1,0 +1,567 @@
+//! The plan view from above, like the paper's Figure 12: the foundation's regions shaded and
+//! named with their dips and down-dip arrows ([`regions`]), the strike lines or creases, the
+//! hydraulic force on its line of action at the start, the contact frame along the route with
+//! the contacts numbered at the start and the end ([`route`]), the CM path — enlarged in an
+//! inset when it is short beside the frame ([`inset`]) — and the legend ([`legend`]). Names go
+//! where they keep off the data ([`labels`]).
+//!
+//! [`plan_view`] draws in named steps, each over the last: the regions, their edges, a route
+//! fan, the frames and CM paths, the changes of face, the force, the contacts' numbers, the
+//! regions' names, the inset's box; then the panel.
+
+mod inset;
+mod labels;
+mod legend;
+mod regions;
+mod route;
+
+use super::sheet::{self, Entry, Res, Sheet, err};
+use labels::{along, arrow, free_spot};
+use plotters::coord::types::RangedCoordf64;
+use plotters::prelude::*;
+use plotters::style::text_anchor::{HPos, Pos, VPos};
+use regions::{Region, area_of, foundation_regions};
+use route::{Force, face_changes, line_of_action, outlines_of};
+use slideroute::{Row, Scene};
+use std::path::Path;
+
+pub(super) const PLANE_1: RGBColor = RGBColor(30, 90, 200);
+pub(super) const PLANE_2: RGBColor = RGBColor(0, 140, 60);
+pub(super) const HORIZONTAL: RGBColor = RGBColor(150, 130, 100);
+const FORCE: RGBColor = RGBColor(150, 30, 150);
+/// The marks of a contact's change of face.
+const FACE_CHANGE: RGBColor = RGBColor(200, 30, 30);
+/// The colour of a route fan.
+const FAN: RGBColor = RGBColor(200, 30, 30);
+
+/// Sheet size of a plan view (pixels).
+pub(super) const SIZE: (u32, u32) = (1200, 760);
+const MARGIN: u32 = 10;
+const X_LABELS: u32 = 40;
+const Y_LABELS: u32 = 55;
+
+/// A point of the plan, (X, Z) in m.
+type P = (f64, f64);
+
+/// One route on a plan view: its name in the legend, its rows (thinned) and its colour.
+pub(super) struct Track<'r> {
+    pub name: String,
+    pub rows: &'r [Row],
+    pub color: RGBColor,
+}
+
+/// Many CM paths drawn thin under the tracks (a probabilistic analysis's route fan): each a
+/// polyline in plan (X, Z in m), with what the legend says of them.
+pub(super) struct Fan<'f> {
+    pub paths: &'f [Vec<[f64; 2]>],
+    pub name: String,
+}
+
+/// What one plan view shows: its title, the routes (the first one's frame in black), a route
+/// fan if any, and the notes in the panel.
+pub(super) struct PlanView<'a> {
+    pub title: &'a str,
+    pub tracks: &'a [Track<'a>],
+    pub fan: Option<&'a Fan<'a>>,
+    pub notes: &'a [Entry],
+}
+
+/// The part of the plan a chart shows (m): X across, Z down the page.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct View {
+    x0: f64,
+    x1: f64,
+    z0: f64,
+    z1: f64,
+}
+
+impl View {
+    /// The view's corners, anticlockwise from (x0, z0).
+    fn corners(&self) -> Vec<P> {
+        let View { x0, x1, z0, z1 } = *self;
+        vec![(x0, z0), (x1, z0), (x1, z1), (x0, z1)]
+    }
+
+    /// Whether the segment p–q runs along the view's border (and so is not an edge of the
+    /// foundation).
+    fn on_border(&self, p: P, q: P) -> bool {
+        let View { x0, x1, z0, z1 } = *self;
+        let eps = 1e-9 * (x1 - x0);
+        [(p.0, q.0, x0), (p.0, q.0, x1)]
+            .iter()
+            .any(|&(a, b, c)| (a - c).abs() < eps && (b - c).abs() < eps)
+            || [(p.1, q.1, z0), (p.1, q.1, z1)]
+                .iter()
+                .any(|&(a, b, c)| (a - c).abs() < eps && (b - c).abs() < eps)
+    }
+}
+
+/// The chart of a plan view: data (X, Z) in metres on the sheet's left part.
+type Chart<'a, 'b> = ChartContext<'a, SVGBackend<'b>, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
+/// Draws the plan view `shown` of `scene` into `path`.
+pub(super) fn plan_view(path: &Path, scene: &Scene, shown: &PlanView) -> Res<()> {
+    let sheet = Sheet::new(path, SIZE, shown.title)?;
+    let plan = Plan::new(scene, shown, sheet.chart.dim_in_pixel());
+    let mut chart = plan.chart(path, &sheet.chart)?;
+    let regions = foundation_regions(scene, plan.view);
+    let surface = scene.site().ground().is_some_and(|(g, _)| g.is_surface());
+    let draw = |e| err(path)(e);
+    plan.shade(&mut chart, &regions, surface).map_err(draw)?;
+    plan.draw_edges(&mut chart, &regions, surface)
+        .map_err(draw)?;
+    plan.draw_fan(&mut chart).map_err(draw)?;
+    plan.draw_routes(&mut chart).map_err(draw)?;
+    let first_rows = shown.tracks.first().map_or(&[][..], |t| t.rows);
+    let changes = face_changes(scene, first_rows);
+    plan.mark_face_changes(&mut chart, &changes).map_err(draw)?;
+    let mut obstacles = plan.draw_force(&mut chart).map_err(draw)?;
+    plan.number_contacts(&mut chart).map_err(draw)?;
+    plan.name_regions(&mut chart, &regions, &mut obstacles)
+        .map_err(draw)?;
+    let inset = plan.box_short_route(&mut chart).map_err(draw)?;
+
+    let drawn = legend::Drawn {
+        regions: &regions,
+        surface,
+        force: plan.force,
+        changes: &changes,
+    };
+    let entries = legend::entries(scene, shown, &drawn);
+    let mut y = sheet::heading(path, &sheet.panel, "Legend", 0)?;
+    y = sheet::legend(path, &sheet.panel, &entries, y)?;
+    if !shown.notes.is_empty() {
+        y = sheet::heading(path, &sheet.panel, "Route", y + 6)?;
+        y = sheet::legend(path, &sheet.panel, shown.notes, y)?;
+    }
+    if inset {
+        inset::draw_inset(path, &sheet.panel, y + 8, shown.tracks, plan.scale)?;
+    }
+    sheet.root.present().map_err(err(path))
+}
+
+/// The error of one drawing step.
+type Drawing = DrawingAreaErrorKind<<SVGBackend<'static> as DrawingBackend>::ErrorType>;
+
+/// A plan view laid out: what it shows, the frames' outlines, the force at the start, and the
+/// view at equal scales on both axes.
+struct Plan<'a> {
+    scene: &'a Scene,
+    tracks: &'a [Track<'a>],
+    fan: Option<&'a Fan<'a>>,
+    /// Each track's frame outlines ([`outlines_of`]).
+    outlines: Vec<Vec<[P; 3]>>,
+    /// The frame's side length L (m).
+    l: f64,
+    /// The first track's first row.
+    start: Option<Row>,
+    force: Option<Force>,
+    /// The force arrow's length (m) and tail.
+    arrow_len: f64,
+    force_tail: Option<P>,
+    view: View,
+    /// Metres per pixel, on both axes.
+    scale: f64,
+}
+
+impl<'a> Plan<'a> {
+    /// The layout on a chart area of `(cw, ch)` pixels: every path, outline and the force
+    /// arrow in view, with room round the frame for the regions' names.
+    fn new(scene: &'a Scene, shown: &PlanView<'a>, (cw, ch): (u32, u32)) -> Self {
+        let tracks = shown.tracks;
+        let outlines: Vec<Vec<[P; 3]>> =
+            tracks.iter().map(|t| outlines_of(scene, t.rows)).collect();
+        let l = scene.l();
+        let start = tracks.first().and_then(|t| t.rows.first()).copied();
+        let force = start.as_ref().and_then(|s| line_of_action(scene, s));
+        let arrow_len = 0.3 * l;
+        let force_tail =
+            force.map(|f| (f.at.0 - arrow_len * f.dir.0, f.at.1 - arrow_len * f.dir.1));
+        let mut plan = Plan {
+            scene,
+            tracks,
+            fan: shown.fan,
+            outlines,
+            l,
+            start,
+            force,
+            arrow_len,
+            force_tail,
+            view: View {
+                x0: 0.0,
+                x1: 0.0,
+                z0: 0.0,
+                z1: 0.0,
+            },
+            scale: 0.0,
+        };
+        let pts: Vec<P> = tracks
+            .iter()
+            .flat_map(|t| t.rows.iter().map(|r| (r.x_m, r.z_m)))
+            .chain(plan.outlines.iter().flatten().flatten().copied())
+            .chain(force_tail)
+            .chain(force.map(|f| f.at))
+            .chain(plan.fan_points())
+            .collect();
+        let pad = 0.15 * l;
+        let (x0, x1) = sheet::ranges(pts.iter().map(|p| p.0));
+        let (z0, z1) = sheet::ranges(pts.iter().map(|p| p.1));
+        let (x0, x1, z0, z1) = (x0 - pad, x1 + pad, z0 - pad, z1 + pad);
+        let plot_w = f64::from(cw - 2 * MARGIN - Y_LABELS);
+        let plot_h = f64::from(ch - 2 * MARGIN - X_LABELS);
+        let scale = ((x1 - x0) / plot_w).max((z1 - z0) / plot_h) * 1.04;
+        let (cx, cz) = (0.5 * (x0 + x1), 0.5 * (z0 + z1));
+        plan.view = View {
+            x0: cx - 0.5 * scale * plot_w,
+            x1: cx + 0.5 * scale * plot_w,
+            z0: cz - 0.5 * scale * plot_h,
+            z1: cz + 0.5 * scale * plot_h,
+        };
+        plan.scale = scale;
+        plan
+    }
+
+    /// Every point of the route fan's paths.
+    fn fan_points(&self) -> impl Iterator<Item = P> + '_ {
+        self.fan
+            .into_iter()
+            .flat_map(|f| f.paths.iter().flatten().map(|p| (p[0], p[1])))
+    }
+
+    /// The chart and its mesh, X across and Z down the page.
+    fn chart<'c, 'b>(&self, path: &Path, area: &'c sheet::Area<'b>) -> Res<Chart<'c, 'b>> {
+        let View { x0, x1, z0, z1 } = self.view;
+        let mut chart = ChartBuilder::on(area)
+            .margin(MARGIN)
+            .x_label_area_size(X_LABELS)
+            .y_label_area_size(Y_LABELS)
+            .build_cartesian_2d(x0..x1, z1..z0)
+            .map_err(err(path))?;
+        let (fx, fz) = (sheet::ticks(x0, x1), sheet::ticks(z0, z1));
+        chart
+            .configure_mesh()
+            .max_light_lines(1)
+            .x_desc("X (m), forward")
+            .y_desc("Z (m), lateral (down the page)")
+            .x_label_formatter(&fx)
+            .y_label_formatter(&fz)
+            .light_line_style(BLACK.mix(0.05))
+            .bold_line_style(BLACK.mix(0.12))
+            .draw()
+            .map_err(err(path))?;
+        Ok(chart)
+    }
+
+    /// The foundation's regions, shaded (a surface's triangles fully, by dip).
+    fn shade(&self, chart: &mut Chart, regions: &[Region], surface: bool) -> Result<(), Drawing> {
+        for r in regions.iter().filter(|r| r.poly.len() >= 3) {
+            let fill = if surface {
+                r.color.filled()
+            } else {
+                r.color.mix(0.10).filled()
+            };
+            chart.draw_series(std::iter::once(Polygon::new(r.poly.clone(), fill)))?;
+        }
+        Ok(())
+    }
+
+    /// The regions' edges inside the view: the paper's strike lines (the inclined regions'
+    /// edges, in their colours), or the creases between faces (in grey).
+    fn draw_edges(
+        &self,
+        chart: &mut Chart,
+        regions: &[Region],
+        surface: bool,
+    ) -> Result<(), Drawing> {
+        let (edged, grey) = match self.scene.site().as_paper() {
+            Some(_) => (&regions[1..], false),
+            None => (regions, true),
+        };
+        let view = self.view;
+        let edges: Vec<(Vec<P>, RGBColor)> = edged
+            .iter()
+            .flat_map(|r| {
+                let n = r.poly.len();
+                let color = if grey { RGBColor(90, 90, 90) } else { r.color };
+                (0..n)
+                    .map(|k| (r.poly[k], r.poly[(k + 1) % n]))
+                    .filter(|&(p, q)| !view.on_border(p, q))
+                    .map(move |(p, q)| (vec![p, q], color))
+                    .collect::<Vec<_>>()
+            })
+            .collect();
+        let width = if surface { 1 } else { 2 };
+        for (line, color) in edges {
+            let color = if surface {
+                color.mix(0.35)
+            } else {
+                color.into()
+            };
+            chart.draw_series(LineSeries::new(line, color.stroke_width(width)))?;
+        }
+        Ok(())
+    }
+
+    /// The route fan, thin and pale enough that where many paths run together reads darker,
+    /// with a dot where each ended.
+    fn draw_fan(&self, chart: &mut Chart) -> Result<(), Drawing> {
+        let Some(f) = self.fan else {
+            return Ok(());
+        };
+        let alpha = (3.0 / (f.paths.len().max(1) as f64).sqrt()).clamp(0.05, 0.6);
+        for p in f.paths.iter().filter(|p| p.len() > 1) {
+            chart.draw_series(LineSeries::new(
+                p.iter().map(|q| (q[0], q[1])),
+                FAN.mix(alpha).stroke_width(1),
+            ))?;
+        }
+        chart.draw_series(
+            f.paths
+                .iter()
+                .filter_map(|p| p.last())
+                .map(|q| Circle::new((q[0], q[1]), 2, FAN.mix(alpha.max(0.25)).filled())),
+        )?;
+        Ok(())
+    }
+
+    /// The frame along each route (thick at the start and end), then the CM paths with a dot
+    /// at the start and a ring at the end.
+    fn draw_routes(&self, chart: &mut Chart) -> Result<(), Drawing> {
+        for (k, (outlines, track)) in self.outlines.iter().zip(self.tracks).enumerate() {
+            let ink = if k == 0 { BLACK } else { track.color };
+            for (j, o) in outlines.iter().enumerate() {
+                let mut pts = o.to_vec();
+                pts.push(o[0]);
+                let style = if j == 0 || j + 1 == outlines.len() {
+                    ink.stroke_width(2)
+                } else {
+                    ink.mix(0.3).stroke_width(1)
+                };
+                chart.draw_series(std::iter::once(PathElement::new(pts, style)))?;
+            }
+        }
+        for track in self.tracks {
+            chart.draw_series(LineSeries::new(
+                track.rows.iter().map(|r| (r.x_m, r.z_m)),
+                track.color.stroke_width(2),
+            ))?;
+            if let (Some(a), Some(b)) = (track.rows.first(), track.rows.last()) {
+                chart.draw_series(std::iter::once(
+                    EmptyElement::at((a.x_m, a.z_m)) + Circle::new((0, 0), 4, track.color.filled()),
+                ))?;
+                if a == b {
+                    continue;
+                }
+                chart.draw_series(std::iter::once(
+                    EmptyElement::at((b.x_m, b.z_m))
+                        + Circle::new((0, 0), 4, WHITE.filled())
+                        + Circle::new((0, 0), 4, track.color.stroke_width(2)),
+                ))?;
+            }
+        }
+        Ok(())
+    }
+
+    /// A square where a contact of the first route changed face or went into or out of a
+    /// crease.
+    fn mark_face_changes(&self, chart: &mut Chart, changes: &[(P, String)]) -> Result<(), Drawing> {
+        for (at, _) in changes {
+            chart.draw_series(std::iter::once(
+                EmptyElement::at(*at)
+                    + Rectangle::new([(-4, -4), (4, 4)], FACE_CHANGE.stroke_width(2)),
+            ))?;
+        }
+        Ok(())
+    }
+
+    /// The hydraulic force on its line of action at the start (dashed), its arrow, the offset
+    /// from the CM and its size; returns the points the regions' names keep away from.
+    fn draw_force(&self, chart: &mut Chart) -> Result<Vec<P>, Drawing> {
+        let mut obstacles: Vec<P> = Vec::new();
+        let (Some(force), Some(tail), Some(s)) = (self.force, self.force_tail, self.start) else {
+            return Ok(obstacles);
+        };
+        let Force {
+            at: q,
+            dir: d,
+            size: f,
+            eccentricity: e,
+        } = force;
+        let l = self.l;
+        let far = (q.0 + 0.5 * l * d.0, q.1 + 0.5 * l * d.1);
+        chart.draw_series(DashedLineSeries::new(
+            [tail, far],
+            6,
+            4,
+            FORCE.mix(0.8).stroke_width(1),
+        ))?;
+        for part in arrow(tail, d, self.arrow_len) {
+            chart.draw_series(std::iter::once(PathElement::new(
+                part,
+                FORCE.stroke_width(3),
+            )))?;
+        }
+        if e != 0.0 {
+            chart.draw_series(std::iter::once(PathElement::new(
+                vec![(s.x_m, s.z_m), q],
+                FORCE.stroke_width(1),
+            )))?;
+        }
+        let label = ("sans-serif", 14)
+            .into_font()
+            .color(&FORCE)
+            .pos(Pos::new(HPos::Right, VPos::Center));
+        chart.draw_series(std::iter::once(Text::new(
+            format!("F = {}", sheet::force(f)),
+            (tail.0 - 0.02 * l * d.0, tail.1 - 0.02 * l * d.1),
+            label,
+        )))?;
+        obstacles.extend(along(tail, far, 20));
+        Ok(obstacles)
+    }
+
+    /// Contacts numbered at the start (dots, the first route's) and at the end (crosses) of
+    /// every route that moved: not where a contact has hardly moved (its start number is
+    /// there), and below and to the left where a start number stands close by.
+    fn number_contacts(&self, chart: &mut Chart) -> Result<(), Drawing> {
+        let starts: Vec<P> = self
+            .outlines
+            .first()
+            .and_then(|o| o.first())
+            .map_or(vec![], |o| o.to_vec());
+        for (k, (outlines, track)) in self.outlines.iter().zip(self.tracks).enumerate() {
+            let ink = if k == 0 { BLACK } else { track.color };
+            let number = |i: usize| {
+                Text::new(
+                    format!("{i}"),
+                    (7, -15),
+                    ("sans-serif", 15).into_font().color(&ink),
+                )
+            };
+            let moved = track.rows.len() > 1 && track.rows.first() != track.rows.last();
+            if let Some(first) = outlines.first().filter(|_| k == 0) {
+                chart.draw_series(first.iter().enumerate().map(|(i, &p)| {
+                    EmptyElement::at(p) + Circle::new((0, 0), 5, ink.filled()) + number(i)
+                }))?;
+            }
+            let Some(last) = outlines.last().filter(|_| moved) else {
+                continue;
+            };
+            let first = outlines.first().copied().unwrap_or(*last);
+            chart.draw_series(
+                last.iter()
+                    .map(|&p| EmptyElement::at(p) + Cross::new((0, 0), 6, ink.stroke_width(2))),
+            )?;
+            let starts: Vec<P> = starts.iter().chain(first.iter()).copied().collect();
+            let scale = self.scale;
+            let near = |p: &P, q: &P, px: f64| (p.0 - q.0).hypot(p.1 - q.1) <= px * scale;
+            chart.draw_series(
+                last.iter()
+                    .enumerate()
+                    .filter(|(i, p)| !near(p, &first[*i], 3.0))
+                    .map(|(i, &p)| {
+                        let crowded = starts.iter().any(|q| near(&p, q, 14.0));
+                        let at = if crowded { (-16, 4) } else { (7, -15) };
+                        EmptyElement::at(p)
+                            + Text::new(
+                                format!("{i}"),
+                                at,
+                                ("sans-serif", 15).into_font().color(&ink),
+                            )
+                    }),
+            )?;
+        }
+        Ok(())
+    }
+
+    /// Names, dips and down-dip arrows of the regions, where they keep off the data: the
+    /// routes, the fan, the frames and the force (`obstacles`), and the names already placed.
+    fn name_regions(
+        &self,
+        chart: &mut Chart,
+        regions: &[Region],
+        obstacles: &mut Vec<P>,
+    ) -> Result<(), Drawing> {
+        for t in self.tracks {
+            let every = (t.rows.len() / 400).max(1);
+            obstacles.extend(t.rows.iter().step_by(every).map(|r| (r.x_m, r.z_m)));
+        }
+        obstacles.extend(self.fan_points().step_by(7));
+        for o in self.outlines.iter().flatten() {
+            for k in 0..3 {
+                obstacles.extend(along(o[k], o[(k + 1) % 3], 12));
+            }
+        }
+        let scale = self.scale;
+        let label_room = 45.0 * scale;
+        let View { x0, x1, z0, z1 } = self.view;
+        let view_area = (x1 - x0) * (z1 - z0);
+        for r in regions.iter().filter(|r| !r.name.is_empty()) {
+            // Named where the region is its own (for the paper's, where it is the only
+            // inclined plane), if there is room there.
+            let poly = if r.label_poly.len() >= 3 && area_of(&r.label_poly) >= 0.02 * view_area {
+                &r.label_poly
+            } else {
+                &r.poly
+            };
+            if poly.len() < 3 || area_of(poly) < 0.02 * view_area {
+                continue;
+            }
+            let Some((spot, clear)) = free_spot(poly, obstacles, self.view) else {
+                continue;
+            };
+            if clear < label_room {
+                continue;
+            }
+            let style = ("sans-serif", 15)
+                .into_font()
+                .color(&r.color)
+                .pos(Pos::new(HPos::Center, VPos::Bottom));
+            chart.draw_series(std::iter::once(Text::new(r.name.clone(), spot, style)))?;
+            if let Some(d) = r.down {
+                // Centred just under the name (Z grows down the page).
+                let len = 36.0 * scale;
+                let centre = (spot.0, spot.1 + 22.0 * scale);
+                let from = (centre.0 - 0.5 * len * d.0, centre.1 - 0.5 * len * d.1);
+                for part in arrow(from, d, len) {
+                    chart.draw_series(std::iter::once(PathElement::new(
+                        part,
+                        r.color.stroke_width(2),
+                    )))?;
+                }
+            }
+            obstacles.extend(along(
+                (spot.0 - label_room, spot.1),
+                (spot.0 + label_room, spot.1),
+                8,
+            ));
+        }
+        Ok(())
+    }
+
+    /// A route short beside the view (and no fan): its extent boxed here, to be drawn enlarged
+    /// in the panel; whether it is.
+    fn box_short_route(&self, chart: &mut Chart) -> Result<bool, Drawing> {
+        let cm: Vec<P> = self
+            .tracks
+            .iter()
+            .flat_map(|t| t.rows.iter().map(|r| (r.x_m, r.z_m)))
+            .collect();
+        let span = |f: fn(&P) -> f64| {
+            cm.iter().map(f).fold(f64::NEG_INFINITY, f64::max)
+                - cm.iter().map(f).fold(f64::INFINITY, f64::min)
+        };
+        let cm_span = span(|p| p.0).max(span(|p| p.1));
+        let View { x0, x1, z0, z1 } = self.view;
+        let inset = self.fan.is_none() && cm_span > 0.0 && cm_span < 0.12 * (x1 - x0).min(z1 - z0);
+        if inset {
+            let (ix0, ix1) = sheet::ranges(cm.iter().map(|p| p.0));
+            let (iz0, iz1) = sheet::ranges(cm.iter().map(|p| p.1));
+            chart.draw_series(std::iter::once(Rectangle::new(
+                [(ix0, iz0), (ix1, iz1)],
+                BLACK.mix(0.6).stroke_width(1),
+            )))?;
+        }
+        Ok(inset)
+    }
+}
