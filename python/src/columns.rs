@@ -30,7 +30,11 @@ type Column<'a> = (&'a str, &'a dyn Fn(&RouteResult) -> f64);
 
 /// Rows as columns: `sample`, each key's values, then what each route came to (NaN where no
 /// route ran; the factor of safety ±∞ where unbounded or not holdable), its reason and detail.
-pub fn columns_of<'py>(py: Python<'py>, keys: &[&str], rows: &[Row<'_>]) -> PyResult<Bound<'py, PyDict>> {
+pub fn columns_of<'py>(
+    py: Python<'py>,
+    keys: &[&str],
+    rows: &[Row<'_>],
+) -> PyResult<Bound<'py, PyDict>> {
     let out = PyDict::new(py);
     out.set_item(
         "sample",
@@ -48,7 +52,9 @@ pub fn columns_of<'py>(py: Python<'py>, keys: &[&str], rows: &[Row<'_>]) -> PyRe
             .collect()
     };
     let float_columns: [Column; 8] = [
-        ("factor_of_safety", &|r| r.factor_of_safety_value().unwrap_or(f64::NAN)),
+        ("factor_of_safety", &|r| {
+            r.factor_of_safety_value().unwrap_or(f64::NAN)
+        }),
         ("t_end_s", &|r| r.t_s),
         ("travel_m", &|r| r.travel_m),
         ("final_yaw_deg", &|r| r.yaw_deg),
@@ -154,4 +160,3 @@ pub fn samples_from<'py>(
         })
         .collect()
 }
-

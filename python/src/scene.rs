@@ -369,4 +369,3 @@ pub fn toml_value(py: Python<'_>, key: &str, v: &Bound<'_, PyAny>) -> PyResult<t
         format!("{key}: a number, a bool or a string, not {}", v.get_type()),
     ))
 }
-
