@@ -81,11 +81,7 @@ fn residual(site: &Site, d: Displacement, u: &Vector3<f64>) -> Vector3<f64> {
 }
 
 /// Newton from `guess` at a fixed displacement.
-fn newton(
-    site: &Site,
-    d: Displacement,
-    guess: Vector3<f64>,
-) -> Result<(Vector3<f64>, f64, usize), GeometryError> {
+fn newton(site: &Site, d: Displacement, guess: Vector3<f64>) -> Result<Converged, GeometryError> {
     let l = site.l();
     let tol = 1e-14 * l;
     let mut u = guess;
@@ -109,7 +105,11 @@ fn newton(
         let small_step =
             delta[0].abs() < 1e-15 && delta[1].abs() < 1e-15 && delta[2].abs() < 1e-15 * l;
         if r.amax() <= tol || (small_step && r.amax() <= 1e-12 * l) {
-            return Ok((u, r.amax(), it));
+            return Ok(Converged {
+                u,
+                residual: r.amax(),
+                iterations: it,
+            });
         }
     }
     Err(GeometryError::NotConverged {
@@ -124,11 +124,13 @@ pub fn solve(site: &Site, d: Displacement) -> Result<DirectPose, GeometryError> 
     if !d.is_finite() {
         return Err(GeometryError::NonFinite(format!("{d:?}")));
     }
-    let mut u = Vector3::zeros();
-    let mut result = (u, 0.0, 0);
+    let mut result = Converged {
+        u: Vector3::zeros(),
+        residual: 0.0,
+        iterations: 0,
+    };
     for k in 1..=STEPS {
-        result = newton(site, d.scaled(k as f64 / STEPS as f64), u)?;
-        u = result.0;
+        result = newton(site, d.scaled(k as f64 / STEPS as f64), result.u)?;
     }
     Ok(finish(site, d, result))
 }
@@ -146,15 +148,25 @@ pub fn solve_from(
     Ok(finish(site, d, result))
 }
 
-fn finish(site: &Site, d: Displacement, (u, res, it): (Vector3<f64>, f64, usize)) -> DirectPose {
+/// Where Newton converged: u = (tilt, roll, CM height), the largest residual left and the
+/// iterations it took.
+struct Converged {
+    u: Vector3<f64>,
+    residual: f64,
+    iterations: usize,
+}
+
+/// The pose at `d` from Newton's converged unknowns.
+fn finish(site: &Site, d: Displacement, c: Converged) -> DirectPose {
+    let u = c.u;
     DirectPose {
         displacement: d,
         tilt: u[0],
         roll: u[1],
         cm_y: u[2],
         vertices: place(site, d, &u),
-        residual: res,
-        iterations: it,
+        residual: c.residual,
+        iterations: c.iterations,
     }
 }
 

@@ -25,7 +25,7 @@
 
 use super::ContactGeometry;
 use super::loads::Applied;
-use crate::model::Strength;
+use crate::model::{Settling, Strength};
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::{
     DefaultSettings, DefaultSolver, IPSolver, SolverStatus, SupportedConeT::NonnegativeConeT,
@@ -146,7 +146,8 @@ const N_ROW: usize = 18;
 fn extreme_t(
     geom: &ContactGeometry,
     applied: &Applied,
-    (mu, cohesion): (&[f64; 3], &[f64; 3]),
+    mu: &[f64; 3],
+    cohesion: &[f64; 3],
     sense: f64,
 ) -> Result<(f64, [f64; 3]), StaticError> {
     let w = applied.weight.norm();
@@ -245,15 +246,18 @@ pub fn check(
         friction
             .settle(
                 &mut mu,
-                (1e-10, 50),
-                |mu| extreme_t(geom, applied, (mu, cohesion), -1.0),
+                Settling {
+                    tol: 1e-10,
+                    max_solves: 50,
+                },
+                |mu| extreme_t(geom, applied, mu, cohesion, -1.0),
                 |hi| hi.1[0].is_finite().then(|| hi.1.map(|l| l * w)),
             )?
             .0
     } else {
-        extreme_t(geom, applied, (&mu, cohesion), -1.0)?
+        extreme_t(geom, applied, &mu, cohesion, -1.0)?
     };
-    let lo = extreme_t(geom, applied, (&mu, cohesion), 1.0)?;
+    let lo = extreme_t(geom, applied, &mu, cohesion, 1.0)?;
     if hi.0.is_nan() {
         // No multiple of the loads is held.
         return Ok(HoldingRange {

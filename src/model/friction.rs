@@ -206,19 +206,20 @@ impl Strength {
 
     /// Settles the coefficients μ of a stress-dependent criterion with the normal forces they
     /// give (the one fixed point of the paper's §8 for every solve that needs it): solve at μ
-    /// and take μ' at the solution's normals, until μ' differs from μ by less than `tol` (at
-    /// most `max` solves). Returns the last solution — the one at the μ its own normals
+    /// and take μ' at the solution's normals, until μ' differs from μ by less than
+    /// [`Settling::tol`] (at most [`Settling::max_solves`] solves). Returns the last solution — the one at the μ its own normals
     /// reproduce to `tol` — and whether it settled; μ is left at μ'. `normals` answering
     /// `None` (a solution without finite normals) stops the iteration unsettled.
     pub fn settle<S, E>(
         &self,
         mu: &mut [f64; 3],
-        (tol, max): (f64, usize),
+        settling: Settling,
         mut solve: impl FnMut(&[f64; 3]) -> Result<S, E>,
         normals: impl Fn(&S) -> Option<[f64; 3]>,
     ) -> Result<(S, bool), E> {
+        let Settling { tol, max_solves } = settling;
         let mut sol = solve(mu)?;
-        for k in 0..max.max(1) {
+        for k in 0..max_solves.max(1) {
             if k > 0 {
                 sol = solve(mu)?;
             }
@@ -234,6 +235,16 @@ impl Strength {
         }
         Ok((sol, false))
     }
+}
+
+/// When [`Strength::settle`] stops: μ changed by less than `tol` in the last solve, or after
+/// `max_solves` solves (unsettled).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Settling {
+    /// The largest change of any μ that counts as settled.
+    pub tol: f64,
+    /// The most solves tried.
+    pub max_solves: usize,
 }
 
 /// Faces with their own criterion and cohesion (`[[friction.face]]`).
@@ -400,7 +411,15 @@ mod tests {
         let solve = |mu: &[f64; 3]| -> Result<[f64; 3], ()> { Ok(mu.map(|m| 1e6 / (1.0 + m))) };
         let mut mu = [0.5; 3];
         let (n, settled) = s
-            .settle(&mut mu, (1e-13, 100), solve, |n| Some(*n))
+            .settle(
+                &mut mu,
+                Settling {
+                    tol: 1e-13,
+                    max_solves: 100,
+                },
+                solve,
+                |n| Some(*n),
+            )
             .unwrap();
         assert!(settled);
         for j in 0..3 {
@@ -409,7 +428,17 @@ mod tests {
         }
         // Normals that cannot be had stop it, unsettled.
         let mut mu = [0.5; 3];
-        let (_, settled) = s.settle(&mut mu, (1e-13, 100), solve, |_| None).unwrap();
+        let (_, settled) = s
+            .settle(
+                &mut mu,
+                Settling {
+                    tol: 1e-13,
+                    max_solves: 100,
+                },
+                solve,
+                |_| None,
+            )
+            .unwrap();
         assert!(!settled && mu == [0.5; 3]);
     }
 

@@ -21,7 +21,7 @@ mod water;
 pub use block::Block;
 pub use error::ModelError;
 pub(crate) use error::{check, finite, non_negative, positive};
-pub use friction::{FaceStrength, Friction, Strength, Strengths, barycentric};
+pub use friction::{FaceStrength, Friction, Settling, Strength, Strengths, barycentric};
 pub use guideline::{Category, Guideline, LoadCase, SiteInformation, Structure};
 pub use initial::Initial;
 pub use loads::Loads;

@@ -20,6 +20,14 @@ pub const MAX_RECORD_BYTES: u64 = 64 << 20;
 /// X, Y, Z.
 pub const RECORD_COLUMNS: [&str; 4] = ["t_s", "ax_g", "ay_g", "az_g"];
 
+/// Where a scene's named files come from: the folder a relative name is found in, and the
+/// files already read (one the scene still names is not read again).
+#[derive(Clone, Copy)]
+pub(super) struct Sources<'a> {
+    pub folder: &'a Path,
+    pub files: &'a Files,
+}
+
 /// The files a scene named and what was read from them, by the name the scene gave.
 #[derive(Default)]
 pub(super) struct Files {

@@ -129,7 +129,15 @@ impl Scene {
         origin: &str,
         folder: &Path,
     ) -> Result<Scene, SceneError> {
-        read::from_table(table, origin, (folder, &files::Files::default()))
+        let files = files::Files::default();
+        read::from_table(
+            table,
+            origin,
+            files::Sources {
+                folder,
+                files: &files,
+            },
+        )
     }
 
     /// The same scene with one key set, in the file's own key and units
@@ -174,7 +182,12 @@ impl Scene {
             };
             table.insert(name.to_string(), value.into());
         }
-        read::from_table(doc, &self.origin, (&self.folder, &files::Files::of(self)))
+        let files = files::Files::of(self);
+        let sources = files::Sources {
+            folder: &self.folder,
+            files: &files,
+        };
+        read::from_table(doc, &self.origin, sources)
     }
 
     /// The same scene with the other dynamics model (when it has a `[solver]`). A change of
@@ -188,7 +201,12 @@ impl Scene {
                 if let Some(solver) = doc.get_mut("solver").and_then(|v| v.as_table_mut()) {
                     solver.remove("integrator");
                 }
-                read::from_table(doc, &self.origin, (&self.folder, &files::Files::of(self)))?
+                let files = files::Files::of(self);
+                let sources = files::Sources {
+                    folder: &self.folder,
+                    files: &files,
+                };
+                read::from_table(doc, &self.origin, sources)?
                     .with("solver.dynamics", model.as_str())
             }
             _ => Ok(self.clone()),

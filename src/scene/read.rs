@@ -2,7 +2,7 @@
 //! and column of the key it names (or of the nearest enclosing key the file has).
 
 use super::error::SceneErrorKind;
-use super::files::Files;
+use super::files::{Files, Sources};
 use super::raw::{self, ReadError};
 use super::validate::validate;
 use super::{Scene, SceneError};
@@ -39,20 +39,31 @@ pub(super) fn from_toml(text: &str, origin: &str, folder: &Path) -> Result<Scene
             })?;
     let raw = raw::read(toml::Deserializer::from(doc.clone()))
         .map_err(|e| located(read_error(e, origin, Some(text))))?;
-    validate(raw, origin, table, (folder, &Files::default())).map_err(located)
+    let files = Files::default();
+    validate(
+        raw,
+        origin,
+        table,
+        Sources {
+            folder,
+            files: &files,
+        },
+    )
+    .map_err(located)
 }
 
 /// A document given as a table (a scene edited by key, [`Scene::with`]): errors name the key,
 /// without a position.
-/// `files` are the files the scene named when it was read: one it still names is not read again.
+/// `sources` has the files the scene named when it was read: one it still names is not read
+/// again.
 pub(super) fn from_table(
     table: toml::Table,
     origin: &str,
-    (folder, files): (&Path, &Files),
+    sources: Sources,
 ) -> Result<Scene, SceneError> {
     let raw =
         raw::read(toml::Value::Table(table.clone())).map_err(|e| read_error(e, origin, None))?;
-    validate(raw, origin, table, (folder, files))
+    validate(raw, origin, table, sources)
 }
 
 fn read_error(e: ReadError, origin: &str, text: Option<&str>) -> SceneError {

@@ -10,7 +10,7 @@ use super::kinematics::{Inertia, Twist, longest_arm, twist, unit};
 use super::slip_start::{from_rest, slaved_direction, slip_start};
 use crate::mechanics::ContactGeometry;
 use crate::mechanics::loads::Applied;
-use crate::model::{Block, Strength};
+use crate::model::{Block, Settling, Strength};
 use nalgebra::Vector3;
 
 /// Everything the rigid-body dynamics gives at one state.
@@ -195,7 +195,10 @@ impl Moving<'_> {
         if let Some(i) = pivot {
             let (s, settled) = friction.settle(
                 &mut mu,
-                (1e-13, MAX_FIXED_POINT),
+                Settling {
+                    tol: 1e-13,
+                    max_solves: MAX_FIXED_POINT,
+                },
                 |mu| ctx.solve_stick(&dir, mu, i),
                 |s| Some(s.lambda),
             )?;
@@ -213,7 +216,10 @@ impl Moving<'_> {
             (None, None) => {
                 let (sol, settled) = friction.settle(
                     &mut mu,
-                    (1e-13, MAX_FIXED_POINT),
+                    Settling {
+                        tol: 1e-13,
+                        max_solves: MAX_FIXED_POINT,
+                    },
                     |mu| ctx.solve(&dir, mu),
                     |s| Some(s.lambda),
                 )?;

@@ -14,7 +14,7 @@ mod site;
 mod solver;
 
 use super::error::SceneErrorKind;
-use super::files::Files;
+use super::files::{Files, Sources};
 use super::raw::RawScene;
 use super::{Scene, SceneError};
 use crate::model::{self, ModelError, UnknownName};
@@ -34,8 +34,9 @@ pub(super) fn validate(
     raw: RawScene,
     origin: &str,
     source: toml::Table,
-    (folder, files): (&Path, &Files),
+    sources: Sources,
 ) -> Result<Scene, SceneError> {
+    let Sources { folder, files } = sources;
     Reader {
         origin,
         folder,

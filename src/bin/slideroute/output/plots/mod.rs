@@ -216,7 +216,7 @@ pub fn compare_plan(path: &Path, scene: &Scene, c: &slideroute::compare::Compari
 struct Chart<'a> {
     file: &'a str,
     title: &'a str,
-    axes: (&'a str, &'a str),
+    axes: series::Axes<'a>,
     x: &'a [f64],
     series: Vec<Series<'a>>,
     lacks: &'a str,
@@ -263,7 +263,10 @@ pub fn write_route_plots(dir: &Path, scene: &Scene, route: &Route) -> Res<Vec<Pa
         Chart {
             file: "profile.svg",
             title: "elevation of the centre of mass",
-            axes: ("distance travelled by the CM (m)", "CM height Y (m)"),
+            axes: series::Axes {
+                x: "distance travelled by the CM (m)",
+                y: "CM height Y (m)",
+            },
             x: &s,
             series: vec![Series {
                 name: "CM height",
@@ -275,7 +278,10 @@ pub fn write_route_plots(dir: &Path, scene: &Scene, route: &Route) -> Res<Vec<Pa
         Chart {
             file: "angles.svg",
             title: "tilts and yaw",
-            axes: ("time (s)", "angle (°)"),
+            axes: series::Axes {
+                x: "time (s)",
+                y: "angle (°)",
+            },
             x: &t,
             series: vec![
                 Series {
@@ -304,7 +310,10 @@ pub fn write_route_plots(dir: &Path, scene: &Scene, route: &Route) -> Res<Vec<Pa
         Chart {
             file: "reactions.svg",
             title: "contact reactions",
-            axes: ("time (s)", "force (MN)"),
+            axes: series::Axes {
+                x: "time (s)",
+                y: "force (MN)",
+            },
             x: &t,
             series: (0..6)
                 .map(|k| Series {

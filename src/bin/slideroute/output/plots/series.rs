@@ -15,11 +15,18 @@ pub(super) struct Series<'a> {
     pub color: RGBColor,
 }
 
+/// What the axes of a time series say: the x quantity and the y quantity, with units.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Axes<'a> {
+    pub x: &'a str,
+    pub y: &'a str,
+}
+
 /// Several series against one x quantity; `notes` under the legend.
 pub(super) fn lines(
     path: &Path,
     title: &str,
-    (x_desc, y_desc): (&str, &str),
+    axes: Axes,
     x: &[f64],
     series: &[Series],
     notes: &[Entry],
@@ -37,8 +44,8 @@ pub(super) fn lines(
     chart
         .configure_mesh()
         .max_light_lines(1)
-        .x_desc(x_desc)
-        .y_desc(y_desc)
+        .x_desc(axes.x)
+        .y_desc(axes.y)
         .x_label_formatter(&fx)
         .y_label_formatter(&fy)
         .draw()
