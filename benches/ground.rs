@@ -1,4 +1,4 @@
-//! Foundations of faces (issue #15): `cargo bench --bench ground`.
+//! Foundations of faces: `cargo bench --bench ground`.
 //!
 //! * the face under a point of a triangulated surface of 10⁴ triangles, through the R*-tree,
 //!   against a scan of every triangle (the tree's cost grows as log n, the scan's as n);

@@ -1,4 +1,4 @@
-//! Probabilistic throughput (issue #17): `cargo bench --bench probabilistic`.
+//! Probabilistic throughput: `cargo bench --bench probabilistic`.
 //!
 //! * samples per second on one core, the default scene with μ, the eccentricity and the dip of
 //!   plane 2 uncertain, under each dynamics (the time of one sample is the figure; samples/s

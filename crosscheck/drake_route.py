@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """The path of a slideroute scene's block in Drake (pydrake), for the cross-check of the
-rigid-body mode (issue #7). Independent of slideroute's code: it reads only the scene file.
+rigid-body mode. Independent of slideroute's code: it reads only the scene file.
 
 Model: one free rigid body (mass, full inertia tensor about the CM in the block axes x', y', z')
 with three small spheres welded at the contact points; each sphere collides only with its own
@@ -16,13 +16,13 @@ at t = 0: the block's twist is those rates made consistent with the three contac
 their planes (the CM's vertical velocity and the roll and pitch rates solved from the three
 normal-velocity constraints, as slideroute's velocity projection does).
 
-A foundation of faces (`[[foundation.plane]]`, issue #15) is the union of the faces'
+A foundation of faces (`[[foundation.plane]]`) is the union of the faces'
 half-spaces (the rock below the highest face), and every sphere collides with every face: a
 contact rides a crease or crosses onto another face as Drake's contact forces decide. The frame
 may be any triangle (`contacts_m`). --radius, --stiffness and --dissipation refine the contact
 (tiny spheres, stiff contact, near-plastic impacts) until the path no longer changes.
 
-A ground-motion record (`[seismic] record`, issue #16: CSV t_s, ax_g, ay_g, az_g, found beside
+A ground-motion record (`[seismic] record`: CSV t_s, ax_g, ay_g, az_g, found beside
 the scene) moves the foundation itself: the half-spaces belong to a ground body on three
 prismatic joints (X, Y, Z), a million times the block's mass, driven by joint forces that give it
 the record's acceleration (each step's mean of the record, linear between samples; gravity on
@@ -30,7 +30,7 @@ it balanced); the block's loads at the contacts move it by a millionth of that. 
 written relative to the ground, as slideroute's route is. Pseudo-static kh, kv are forces
 kh m g along +X and kv m g along +Y at the CM.
 
-A monolith (`[monolith]`, `[water]`, issue #16) is computed here from the file on its own: the
+A monolith (`[monolith]`, `[water]`) is computed here from the file on its own: the
 section's mass, centre of mass (ȳ above the base) and inertia tensor (Green's theorem on the
 polygon heel, top of the upstream face, crest, toe), and the water's loads as body-fixed forces
 at their points: the reservoir's push on the upstream face, the tailwater's push and weight on the

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes scenes/shaken-motion.csv: the ground-motion record of scenes/shaken.toml (issue #16).
+"""Writes scenes/shaken-motion.csv: the ground-motion record of scenes/shaken.toml.
 
 The foundation's acceleration (fractions of g along the scene's X, Y, Z) at 200 samples a
 second for 2.5 s: sinusoids of 1.5 Hz along X (0.7 g), 1 Hz along Z (0.3 g) and 2.5 Hz along Y

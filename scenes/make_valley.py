@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes scenes/valley.obj: a rough rock valley for scenes/valley.toml (issue #15).
+"""Writes scenes/valley.obj: a rough rock valley for scenes/valley.toml.
 
 A triangulated surface (Wavefront OBJ, Y up, scene coordinates in metres) on a 2 m grid over
 X in [-12, 36], Z in [-18, 18]: 24 x 18 cells, two triangles each, 864 triangles.

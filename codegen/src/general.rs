@@ -1,5 +1,5 @@
-//! The pose system for any contact triangle and any three planes (issue #15;
-//! `derivations/09-general-pose.md`).
+//! The pose system for any contact triangle and any three planes
+//! (`derivations/09-general-pose.md`).
 //!
 //! The block's orientation is the yaw θ of its x' axis, the tilt α of x' and the roll ψ about
 //! it, as in the exact form of the paper's system (`derivations/04-exact.md`):

@@ -1,4 +1,4 @@
-"""The Dask example gives the in-process run's numbers (issue #17)."""
+"""The Dask example gives the in-process run's numbers."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-//! A foundation of any number of faces (issue #15). Two kinds:
+//! A foundation of any number of faces. Two kinds:
 //!
 //! * a list of planes: the ground at (X, Z) is the highest of them there, a valley of rock
 //!   faces, defined everywhere;

@@ -1,6 +1,6 @@
 //! Whether the paper's dynamics starts the block: its resisting-over-driving ratio at onset
 //! (reported as `paper_ratio`; the factor of safety of every route, whatever the dynamics, is
-//! the friction cones' of `super::static_friction`, issue #12).
+//! the friction cones' of `super::static_friction`).
 //!
 //! Driving force D = (F + W + Σ N_i^S)·i': the hydraulic force and the components along the
 //! sliding direction x' of the weight and of the frictionless normal reactions (25)–(27) — at

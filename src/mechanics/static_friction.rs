@@ -1,6 +1,6 @@
 //! Static friction at rest in the rigid-body mode: does a state of contact forces exist that
 //! holds the block, with each contact force inside its friction cone? And the factor of safety
-//! at onset (issue #7, `derivations/08-rigid-body.md` §5).
+//! at onset (`derivations/08-rigid-body.md` §5).
 //!
 //! With the block at rest the six equilibrium equations (force and moment) are linear in the
 //! nine unknowns λ_i (normal) and the two in-plane components of each shear f_i; the friction
@@ -51,7 +51,7 @@ pub struct HoldingRange {
     pub normal: [f64; 3],
 }
 
-/// The factor of safety of a block at rest (issue #12): one definition, whatever the dynamics
+/// The factor of safety of a block at rest: one definition, whatever the dynamics
 /// that move it afterwards. It is t_hi, the largest multiple of the driving loads (the hydraulic
 /// force and its couple) at which static friction within the three cones can still hold the
 /// block — equivalently, the loads divided by 1/t_hi are the most it can take. Below 1 the

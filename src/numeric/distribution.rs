@@ -1,4 +1,4 @@
-//! Distributions of an uncertain scene value (issue #17): written `name:p1:p2…` on the command
+//! Distributions of an uncertain scene value: written `name:p1:p2…` on the command
 //! line and in a scene's `[uncertain]` table, sampled by their quantile function so that any
 //! design of uniforms — plain Monte Carlo or a Latin hypercube (`uncertainty/sampling.rs`) — maps
 //! onto them.

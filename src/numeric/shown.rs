@@ -1,4 +1,4 @@
-//! Numbers for people (issue #13): messages give a length, a time or an angle at a sensible
+//! Numbers for people: messages give a length, a time or an angle at a sensible
 //! precision, not every digit of a double (`t = 1.6260000000000001 s`) nor 300 digits of a huge
 //! input (`--x 1e308`). Files (CSV, JSON) keep full precision; these are for messages only.
 

@@ -71,7 +71,7 @@ impl<'s> Logbook<'s> {
     }
 
     /// The route ends for `reason` at `t`, its last state `last` recorded as the last row
-    /// whatever the stride (issue #13).
+    /// whatever the stride.
     pub fn finish(mut self, last: Row, reason: Reason, t: f64, detail: String) -> Self {
         if self.last.is_none_or(|r| r.t_s != last.t_s) {
             self.push(last);

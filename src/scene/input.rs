@@ -1,4 +1,4 @@
-//! Reading an input file with bounds (issue #13): only a regular file, at most a stated size,
+//! Reading an input file with bounds: only a regular file, at most a stated size,
 //! so that `/dev/zero`, a FIFO with no writer or a runaway file gets one clear error instead of
 //! growing memory without end, an abort or a hang.
 

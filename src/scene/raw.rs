@@ -1,7 +1,7 @@
 //! The scene file as written: TOML, degrees, the documented keys. Every key is optional here and
 //! every name (mode, model, …) a string, so that serde reports only values of the wrong type;
 //! a missing key, an unknown key or an unknown name is found by [`super::validate`] and
-//! [`read`], which know which key it is, without reading serde's message text (issue #14).
+//! [`read`], which know which key it is, without reading serde's message text.
 //! [`super::Scene`] is the validated, typed form, in radians.
 
 use serde::Deserialize;
@@ -24,7 +24,7 @@ pub struct RawScene {
     pub check: Option<RawCheck>,
     pub case: Option<Vec<RawCase>>,
     /// `[uncertain]`: `"section.key" = "name:p1:p2…"`, the distributions of a probabilistic
-    /// analysis (issue #17).
+    /// analysis.
     pub uncertain: Option<std::collections::BTreeMap<String, String>>,
 }
 

@@ -459,7 +459,7 @@ fn initial_motion_defaults_to_rest_and_is_read_in_degrees_and_checked() {
 
 #[test]
 fn rigid_body_with_small_angle_geometry_is_refused_naming_the_mode() {
-    // Issue #12: the combination cost about a thousand tracker steps an increment; it is
+    // The combination cost about a thousand tracker steps an increment; it is
     // refused with the reason, and the paper's dynamics keep the small-angle system.
     let small = with("mode = \"exact\"", "mode = \"small-angle\"");
     let s = Scene::from_toml(&small, "s.toml").unwrap();
@@ -472,7 +472,7 @@ fn rigid_body_with_small_angle_geometry_is_refused_naming_the_mode() {
 
 #[test]
 fn an_increment_longer_than_the_route_is_an_error_naming_solver_dt_s() {
-    // Issue #13: dt_s 30 with t_end_s 20 ran and ended "no admissible root".
+    // dt_s 30 with t_end_s 20 ran and ended "no admissible root".
     assert_names(
         &with("dt_s = 1.0e-3", "dt_s = 30.0"),
         "solver.dt_s",
@@ -482,7 +482,7 @@ fn an_increment_longer_than_the_route_is_an_error_naming_solver_dt_s() {
 
 #[test]
 fn a_frame_whose_side_overflows_is_an_error_naming_the_frame() {
-    // Issue #13: four lengths of 1.5e308 m passed and wrote NaN tilts.
+    // Four lengths of 1.5e308 m passed and wrote NaN tilts.
     let text = ["l1x = 6.0", "l2x = 4.0", "l1z = 5.0", "l2z = 5.0"]
         .iter()
         .fold(GOOD.to_string(), |t, k| {
@@ -493,7 +493,7 @@ fn a_frame_whose_side_overflows_is_an_error_naming_the_frame() {
 
 #[test]
 fn likely_mistakes_give_warnings_naming_the_key() {
-    // Issue #13: a dip under 1° (radians typed as degrees) and μ over 2 ran without a word.
+    // A dip under 1° (radians typed as degrees) and μ over 2 ran without a word.
     let s = Scene::from_toml(GOOD, "d").unwrap();
     assert!(s.warnings().is_empty(), "{:?}", s.warnings());
     let text = with("xi_deg = 20.0", "xi_deg = 0.35").replace("mu_k = 0.40", "mu_k = 22");
@@ -508,7 +508,7 @@ fn likely_mistakes_give_warnings_naming_the_key() {
 
 #[test]
 fn derived_quantities_that_are_not_usable_are_errors_naming_the_key() {
-    // Issue #13, item 6: each input finite and positive, but the weight infinite, the water
+    // Each input finite and positive, but the weight infinite, the water
     // load or a moment of inertia absurd against it: one line naming the key to change.
     assert_names(
         &with("mass_kg = 1.0e6", "mass_kg = 1.0e308"),
@@ -535,7 +535,7 @@ fn derived_quantities_that_are_not_usable_are_errors_naming_the_key() {
 #[test]
 fn every_error_gives_the_line_of_the_key_it_names() {
     // Out of range, unknown name, missing key (its section's line), unknown key: each found by
-    // the key, not by reading an error's text (issue #14).
+    // the key, not by reading an error's text.
     let line_of = |text: &str| err(text).position.map(|p| p.0);
     let line = |key: &str| GOOD.lines().position(|l| l.starts_with(key)).unwrap() + 1;
     assert_eq!(line_of(&with("l1x = 6.0", "l1x = -6.0")), Some(line("l1x")));

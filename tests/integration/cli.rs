@@ -343,7 +343,7 @@ fn run_writes_route_csv_and_summary_json() {
         assert!(!v["termination"][k].is_null(), "termination.{k}");
     }
     assert_eq!(v["mode"], "exact");
-    // The default dynamics is the rigid body's (issue #12), integrated with RK4.
+    // The default dynamics is the rigid body's, integrated with RK4.
     assert_eq!(v["dynamics"], "rigid-body");
     assert_eq!(v["integrator"], "rk4");
     // One factor of safety, the friction cones', as a typed value: never null or infinite.
@@ -648,7 +648,7 @@ fn a_kicked_scene_ends_stopped_with_its_last_row_at_rest() {
 
 #[test]
 fn small_angle_geometry_with_the_default_rigid_body_is_refused_and_runs_with_the_papers_dynamics() {
-    // Issue #12: the combination cost about a thousand tracker steps an increment; `scene
+    // The combination cost about a thousand tracker steps an increment; `scene
     // --check` and `run` refuse it naming the key and the remedy, `--dynamics paper` runs it.
     let dir = temp_dir("small-angle");
     std::fs::create_dir_all(&dir).unwrap();
@@ -691,7 +691,7 @@ fn small_angle_geometry_with_the_default_rigid_body_is_refused_and_runs_with_the
 
 #[test]
 fn roots_at_the_rest_pose_select_the_flat_frame() {
-    // Issue #12: `roots` at X = Z = θ = 0 answered "no pose selected".
+    // `roots` at X = Z = θ = 0 answered "no pose selected".
     let o = run(&["roots", "--x", "0", "--z", "0", "--theta-deg", "0"]);
     assert!(o.status.success(), "{}", stderr(&o));
     let out = String::from_utf8_lossy(&o.stdout);
@@ -703,7 +703,7 @@ fn roots_at_the_rest_pose_select_the_flat_frame() {
 
 #[test]
 fn a_closed_pipe_on_stdout_ends_quietly() {
-    // Issue #13, item 5: like `slideroute roots … --json | head -0`, whoever reads standard
+    // Like `slideroute roots … --json | head -0`, whoever reads standard
     // output has gone before it is written. It used to panic ("failed printing to stdout", exit
     // 101); now it ends quietly, as other Unix tools do.
     for args in [
@@ -733,7 +733,7 @@ fn a_closed_pipe_on_stdout_ends_quietly() {
 
 #[test]
 fn a_full_disk_is_a_one_line_failure_with_exit_code_1() {
-    // Issue #13, item 5: standard output on a full device (/dev/full) and an output folder that
+    // Standard output on a full device (/dev/full) and an output folder that
     // cannot be made are failures, not bad input: one line, exit 1.
     let full = std::fs::File::options()
         .write(true)
@@ -763,7 +763,6 @@ fn a_full_disk_is_a_one_line_failure_with_exit_code_1() {
 
 #[test]
 fn sweep_keys_are_given_once_whole_number_keys_take_whole_numbers_and_stop_is_hit_exactly() {
-    // Issue #13, item 7.
     let dir = temp_dir("sweep-keys");
     let d = dir.to_str().unwrap();
     assert_bad_input(
@@ -824,7 +823,7 @@ fn sweep_keys_are_given_once_whole_number_keys_take_whole_numbers_and_stop_is_hi
 
 #[test]
 fn sweep_dynamics_flag_runs_every_combination_with_that_dynamics() {
-    // Issue #13, item 7: `sweep --dynamics paper` on the default (rigid-body) scene.
+    // `sweep --dynamics paper` on the default (rigid-body) scene.
     let dir = temp_dir("sweep-dynamics");
     let csv = sweep_csv(
         &dir,
@@ -842,7 +841,7 @@ fn sweep_dynamics_flag_runs_every_combination_with_that_dynamics() {
 
 #[test]
 fn inputs_that_are_not_regular_files_or_too_large_are_refused() {
-    // Issue #13, item 4: `scene --check /dev/zero` grew to 3.3 GB, `roots --grid /dev/zero`
+    // `scene --check /dev/zero` grew to 3.3 GB, `roots --grid /dev/zero`
     // aborted on an 8 GB allocation, a FIFO with no writer blocked for ever.
     assert_bad_input(
         &run(&["scene", "--check", "/dev/zero"]),
@@ -876,7 +875,7 @@ fn inputs_that_are_not_regular_files_or_too_large_are_refused() {
 
 #[test]
 fn a_second_run_into_a_folder_in_use_is_refused() {
-    // Issue #13, item 1: two runs into one --out spliced their route.csv files. A run holds a
+    // Two runs into one --out spliced their route.csv files. A run holds a
     // lock on its folder (here held as if by this test's own, living, process).
     let dir = temp_dir("locked");
     std::fs::create_dir_all(&dir).unwrap();
@@ -905,7 +904,7 @@ fn a_second_run_into_a_folder_in_use_is_refused() {
 
 #[test]
 fn a_run_replaces_every_output_of_an_earlier_run_and_nothing_else() {
-    // Issue #13, item 1: `--no-plots` or `--compare-dynamics` into a used folder left another
+    // `--no-plots` or `--compare-dynamics` into a used folder left another
     // run's pictures beside the new route.
     let dir = temp_dir("replace");
     let d = dir.to_str().unwrap();
@@ -948,7 +947,7 @@ fn a_run_replaces_every_output_of_an_earlier_run_and_nothing_else() {
 
 #[test]
 fn summary_json_is_a_manifest_of_what_produced_the_folder() {
-    // Issue #13, item 2: the version, the command line, the scene as used (defaults filled in)
+    // The version, the command line, the scene as used (defaults filled in)
     // and the files written with their sizes.
     let dir = temp_dir("manifest");
     let d = dir.to_str().unwrap();
@@ -987,7 +986,7 @@ fn summary_json_is_a_manifest_of_what_produced_the_folder() {
 
 #[test]
 fn an_interrupted_run_stops_at_the_next_increment_and_writes_what_it_computed() {
-    // Issue #13, item 3: Ctrl-C (here SIGINT by `kill`) while a long route runs.
+    // Ctrl-C (here SIGINT by `kill`) while a long route runs.
     let dir = temp_dir("interrupt");
     std::fs::create_dir_all(&dir).unwrap();
     let scene = dir.join("long.toml");
@@ -1075,7 +1074,7 @@ fn long_scene(dir: &std::path::Path) -> std::path::PathBuf {
 
 #[test]
 fn an_interrupted_sweep_writes_a_row_for_every_combination() {
-    // Issue #13, item 3 for sweeps: routes under way stop at their next increment, those not
+    // Routes under way stop at their next increment, those not
     // started are rows "not run (interrupted)"; the files are whole, the lock gone.
     let dir = temp_dir("interrupt-sweep");
     let scene = long_scene(&dir);
@@ -1172,7 +1171,7 @@ fn an_interrupted_report_writes_nothing_and_says_so() {
 
 #[test]
 fn pictures_stay_small_whatever_the_routes_length() {
-    // Issue #13, item 4: a 4.4e6-increment route drew a 207 MB reactions.svg. Here 202 400
+    // A 4.4e6-increment route drew a 207 MB reactions.svg. Here 202 400
     // increments (the paper's dynamics at dt = 10 µs): every picture under 2 MB.
     let dir = temp_dir("big-pictures");
     std::fs::create_dir_all(&dir).unwrap();
@@ -1208,7 +1207,7 @@ fn pictures_stay_small_whatever_the_routes_length() {
 
 #[test]
 fn sweeps_vary_words_and_lists() {
-    // Issue #13, item 7: `--vary solver.dynamics=paper,rigid-body`, `solver.mode=…`, number
+    // `--vary solver.dynamics=paper,rigid-body`, `solver.mode=…`, number
     // lists; a wrong word is bad input (it made every row "invalid scene" with exit 0).
     let dir = temp_dir("sweep-words");
     let d = dir.to_str().unwrap();
@@ -1247,7 +1246,7 @@ fn sweeps_vary_words_and_lists() {
 
 #[test]
 fn a_change_of_dynamics_that_changes_the_integrator_says_so() {
-    // Issue #14: `with_dynamics` brings the model's own integrator; the command line says so.
+    // `with_dynamics` brings the model's own integrator; the command line says so.
     let dir = temp_dir("dynamics-note");
     let o = run(&[
         "run",

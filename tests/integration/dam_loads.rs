@@ -1,4 +1,4 @@
-//! Dam loads in the engineer's terms (issue #16): the monolith from its section, the water from
+//! Dam loads in the engineer's terms: the monolith from its section, the water from
 //! its levels, pseudo-static coefficients, and the guideline factor of safety, each against its
 //! closed form on a level base (`derivations/11-dam-loads.md`).
 

@@ -1,4 +1,4 @@
-//! Hygiene (issue #14, item 5): every file a doc comment or a document names is in the
+//! Hygiene: every file a doc comment or a document names is in the
 //! repository.
 
 use std::path::{Path, PathBuf};

@@ -1,4 +1,4 @@
-//! The rigid-body mode against Drake, a multibody engine nobody here wrote (issue #7).
+//! The rigid-body mode against Drake, a multibody engine nobody here wrote.
 //!
 //! Needs the cross-check's Python environment: `crosscheck/setup.sh` (pydrake in
 //! `crosscheck/.venv`; or set `SLIDEROUTE_DRAKE_PYTHON` to a Python that has it). `.ci/run`
@@ -210,7 +210,7 @@ fn rigid_body_kicked_stops_where_drake_stops() {
 #[test]
 #[ignore = "needs pydrake (crosscheck/setup.sh); run by .ci/run"]
 fn rigid_body_sticking_pivot_on_a_strike_line_keeps_the_route_going_as_in_drake() {
-    // Issue #12's first scene: contact 2 sticks on plane 2's strike line until contact 0
+    // scenes/pivot-held.toml: contact 2 sticks on plane 2's strike line until contact 0
     // reaches plane 1 at 1.96 s (it ended after 0.018 s before, at a time set by dt).
     agrees_with_drake("pivot-held", End::Contact0ReachesPlane1 { l2x: 4.0 });
 }
@@ -218,7 +218,7 @@ fn rigid_body_sticking_pivot_on_a_strike_line_keeps_the_route_going_as_in_drake(
 #[test]
 #[ignore = "needs pydrake (crosscheck/setup.sh); run by .ci/run"]
 fn rigid_body_pivot_reaching_its_cone_starts_to_slip_as_in_drake() {
-    // Issue #12's second scene: the stuck contact reaches its cone's edge at 1.482 s and slips
+    // scenes/pivot-released.toml: the stuck contact reaches its cone's edge at 1.482 s and slips
     // (it ended "the contact forces are not determined" there before).
     agrees_with_drake("pivot-released", End::Contact0ReachesPlane1 { l2x: 4.0 });
 }
@@ -226,7 +226,8 @@ fn rigid_body_pivot_reaching_its_cone_starts_to_slip_as_in_drake() {
 #[test]
 #[ignore = "needs pydrake (crosscheck/setup.sh); run by .ci/run"]
 fn rigid_body_creeping_contact_pivots_until_contact_0_reaches_plane_1_as_in_drake() {
-    // Issue #17's sample: contact 2's slip of a few µm/s, stopped by friction within a step, is a
+    // A probabilistic analysis's sample: contact 2's slip of a few µm/s, stopped by friction
+    // within a step, is a
     // pivot; followed as a slip it crept across plane 2's strike and the route ended "contact 2
     // left plane 2" at 2.350 s, where Drake's contact 2 stays put until contact 0 crosses at 2.499 s.
     agrees_with_drake("creeping-pivot", End::Contact0ReachesPlane1 { l2x: 4.0 });
@@ -235,7 +236,7 @@ fn rigid_body_creeping_contact_pivots_until_contact_0_reaches_plane_1_as_in_drak
 #[test]
 #[ignore = "needs pydrake (crosscheck/setup.sh); run by .ci/run"]
 fn rigid_body_shaken_by_a_record_slips_turns_and_stops_as_on_drakes_moving_ground() {
-    // Issue #16: scenes/shaken.toml, held at the start (factor of safety 1.29) and shaken by
+    // scenes/shaken.toml, held at the start (factor of safety 1.29) and shaken by
     // scenes/shaken-motion.csv. Ours takes the record as the inertial force −m a(t) on the
     // block, relative to the foundation; Drake moves its ground body by the record and the
     // block's path is taken relative to it. It slips at each swing, turns 3° and stops at
@@ -246,7 +247,7 @@ fn rigid_body_shaken_by_a_record_slips_turns_and_stops_as_on_drakes_moving_groun
 #[test]
 #[ignore = "needs pydrake (crosscheck/setup.sh); run by .ci/run"]
 fn rigid_body_monolith_with_its_centre_of_mass_above_the_base_agrees_with_drake() {
-    // Issue #16: scenes/monolith-earthquake.toml, a monolith from its section with its water
+    // scenes/monolith-earthquake.toml, a monolith from its section with its water
     // and a pseudo-static earthquake. Drake computes the section's mass, centre of mass (6 m up)
     // and inertia and the water's loads from the file on its own, the contacts 6 m below the
     // centre of mass. With the centre of mass taken in the base plane the yaw differed by
@@ -271,8 +272,8 @@ const REFINED_FINE: [&str; 8] = [
     "50",
 ];
 
-/// A faceted scene's route against refined Drake (`drake`: its settings, `--dt` first; issue
-/// #15): within 1 % of travel and of CM position and 0.5° of yaw at every millisecond until
+/// A faceted scene's route against refined Drake (`drake`: its settings, `--dt` first):
+/// within 1 % of travel and of CM position and 0.5° of yaw at every millisecond until
 /// our route ends, where the impact of a contact on a face lifts contact `lifted` off (our
 /// end's detail says which): Drake's `lifted` rises a millimetre off the ground within 50 ms of
 /// our end. Returns our route's rows.
@@ -339,7 +340,7 @@ fn faceted_agrees_with_refined_drake(
 #[test]
 #[ignore = "needs pydrake (crosscheck/setup.sh); run by .ci/run"]
 fn rigid_body_on_the_papers_planes_as_faces_rides_the_crease_as_in_refined_drake() {
-    // Issue #15: the paper's planes as faces of one ground (every Drake sphere against every
+    // The paper's planes as faces of one ground (every Drake sphere against every
     // half-space). Contact 2 rides the crease of planes 1 and 2, goes onto plane 1 alone at
     // 3.79 s, and contact 0 meets plane 1 at 4.217 s, where the impact lifts contact 1 and the
     // route ends (Drake: contact 0 crosses plane 1's strike at 4.2155 s, contact 1 lifts).
@@ -359,7 +360,7 @@ fn rigid_body_on_the_papers_planes_as_faces_rides_the_crease_as_in_refined_drake
 #[test]
 #[ignore = "needs pydrake (crosscheck/setup.sh); run by .ci/run"]
 fn rigid_body_meets_and_leaves_a_fourth_face_as_in_refined_drake() {
-    // Issue #15: scenes/four-faces.toml. Contact 1 meets the 8° face at 1.19 s (a frictional
+    // scenes/four-faces.toml. Contact 1 meets the 8° face at 1.19 s (a frictional
     // impact) and climbs onto it, leaves it for the 20° face at 2.47 s; contact 0 meets the 8°
     // face at 4.26 s; contact 0 meets the 20° face at 4.82 s and the impact throws contact 1 off:
     // the end, where Drake's contact 1 rises almost 2 mm.
@@ -380,7 +381,7 @@ fn rigid_body_meets_and_leaves_a_fourth_face_as_in_refined_drake() {
 #[test]
 #[ignore = "needs pydrake (crosscheck/setup.sh); run by .ci/run"]
 fn rigid_body_climbs_a_ramp_beside_a_flank_as_in_refined_drake() {
-    // Issue #15: scenes/ramp-faces.toml. Six impacts, each turning the block: its friction
+    // scenes/ramp-faces.toml. Six impacts, each turning the block: its friction
     // follows the contacts' slips within the impact (taken at once with the slips before it,
     // the yaw was 2.7° off by the end). Contact 2 climbs the ramp, the flank, the 30° face;
     // contact 1 the ramp and the 30° face; contact 0 the ramp, and its impact on the 30° face

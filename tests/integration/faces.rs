@@ -1,4 +1,4 @@
-//! Any contact triangle and foundations of faces (issue #15): the paper's scene written in the
+//! Any contact triangle and foundations of faces: the paper's scene written in the
 //! general forms follows the paper's route; a contact that reaches another face ends the route
 //! there, naming both; every row agrees with the direct pose solver.
 

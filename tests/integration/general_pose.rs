@@ -1,5 +1,5 @@
-//! The pose system for any contact triangle and any three planes (issue #15,
-//! `derivations/09-general-pose.md`): on the paper's site it has the paper's roots; on any site
+//! The pose system for any contact triangle and any three planes
+//! (`derivations/09-general-pose.md`): on the paper's site it has the paper's roots; on any site
 //! its selected root is the direct pose solver's pose.
 
 use crate::common::{sample, scene};

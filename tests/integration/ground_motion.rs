@@ -1,4 +1,4 @@
-//! A ground-motion record (`seismic.record`, issue #16): the foundation shaken, the route the
+//! A ground-motion record (`seismic.record`): the foundation shaken, the route the
 //! block's motion relative to it — Newmark's sliding block in 3-D, against his closed forms
 //! (`derivations/11-dam-loads.md` §7).
 

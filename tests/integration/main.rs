@@ -1,4 +1,4 @@
-//! The integration tests, one crate (issue #14: one binary links the library once, not
+//! The integration tests, one crate (one binary links the library once, not
 //! thirteen times). Each module is one concern; `common` holds the hand derivations and helpers
 //! they share. Data files live beside this folder: `tests/corpus/` (malformed scenes) and
 //! `tests/reference/` (the stored routes).

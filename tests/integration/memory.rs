@@ -1,4 +1,4 @@
-//! Bounded memory (issue #13, item 4): rows stream to route.csv as they are computed, so the
+//! Bounded memory: rows stream to route.csv as they are computed, so the
 //! process's peak memory does not grow with the route's length. The route runs in a child
 //! process whose own peak resident set is measured, so the other tests of this binary do not
 //! count.

@@ -1,4 +1,4 @@
-//! The rigid-body dynamics mode (issue #7): energy, the direct pose solver, the scenes where
+//! The rigid-body dynamics mode: energy, the direct pose solver, the scenes where
 //! the paper's dynamics has no solution, the flat limit with friction, and the start.
 
 use crate::common;
@@ -247,7 +247,7 @@ fn a_kicked_block_on_the_paper_like_foundation_stops_and_is_held() {
     common::assert_rows_match_direct(&s, &r.rows);
 }
 
-// ---- issue #12: routes end only where the physics does ----
+// ---- Routes end only where the physics does ----
 
 fn scene_file(name: &str, keys: &[(&str, f64)]) -> Scene {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -267,7 +267,7 @@ fn shear_ratio(r: &Route, contact: usize, t0: f64, t1: f64) -> (f64, f64) {
 
 #[test]
 fn a_contact_sticking_on_its_strike_line_stays_on_its_plane_whatever_dt() {
-    // Issue #12's first scene (c = −1.5 m, FS 0.60): contact 2 sticks on plane 2's strike line,
+    // scenes/pivot-held.toml (c = −1.5 m, FS 0.60): contact 2 sticks on plane 2's strike line,
     // where it started, with shear 0.18–0.35 of its normal force, and holds there until contact
     // 0 reaches plane 1 (Drake: 1.959 s). It used to end "a contact left its plane" once
     // speed × dt reached about 4e-5 m: after 0.010 / 0.018 / 0.035 s at dt = 2 / 1 / 0.5 ms.
@@ -304,7 +304,7 @@ fn a_contact_sticking_on_its_strike_line_stays_on_its_plane_whatever_dt() {
 
 #[test]
 fn a_sticking_pivot_that_reaches_its_cone_starts_to_slip_and_the_route_goes_on() {
-    // Issue #12's second scene (10 MN): contact 2, stuck, reaches its cone's edge at 1.482 s
+    // scenes/pivot-released.toml (10 MN): contact 2, stuck, reaches its cone's edge at 1.482 s
     // and slips from there (|S| = μN); the block goes on until contact 0 reaches plane 1 at
     // 1.540 s (Drake: 1.540 s). It used to end "the contact forces are not determined".
     let r = run(&scene_file("pivot-released", &[]));
@@ -402,7 +402,7 @@ fn the_factor_of_safety_is_the_cones_whatever_the_dynamics_and_typed_where_it_ha
 
 #[test]
 fn kicked_blocks_stop_without_chatter_and_keep_their_energy_balance() {
-    // Issue #12: a young, slow slip's direction is slaved to its quasi-static value. Before, 7
+    // A young, slow slip's direction is slaved to its quasi-static value. Before, 7
     // of these 18 kicked scenes chattered (a contact's slip turning round every microsecond),
     // leaving 4–300 J of energy error, up to 1.3e-3 of the friction work; now at most 1e-9.
     let base = scene_file("kicked", &[]);
@@ -451,7 +451,7 @@ fn a_released_contact_slips_without_chatter_whatever_dt() {
 
 #[test]
 fn a_slip_friction_stops_within_a_step_beside_a_sliding_block_pivots_instead_of_chattering() {
-    // A probabilistic sample of the default scene (issue #17): contact 2's slip stays at a few
+    // A probabilistic sample of the default scene: contact 2's slip stays at a few
     // µm/s for seconds while contacts 0 and 1 slide at half a metre a second. Followed as a
     // slip it overshot zero every step; the energy balance refused every substep above a few
     // microseconds: 1.2 million poses and 76 s for this 3.7 s route, residual −2.17 J. That

@@ -116,7 +116,7 @@ fn poses_beyond_a_contact_leaving_its_plane_are_refused_with_the_reason() {
 fn the_rest_pose_is_a_selected_root() {
     // X = Z = θ = 0, both inclined contacts on their strikes: the eigenvalue solve of the
     // resultant misses this root (the system degenerates there), and `roots` answered "no pose
-    // selected" (issue #12). The tracked pose, which satisfies the equations, is the root.
+    // selected". The tracked pose, which satisfies the equations, is the root.
     let s = Scene::default_scene();
     for mode in [Mode::Exact, Mode::SmallAngle] {
         let all = roots::solve_all(s.site(), Displacement::new(0.0, 0.0, 0.0), mode).unwrap();

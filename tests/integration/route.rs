@@ -391,7 +391,7 @@ fn a_kicked_block_stops_exactly_at_rest() {
 
 #[test]
 fn the_last_increment_ends_exactly_at_t_end_and_the_final_state_is_the_last_row() {
-    // Issue #13: t_end_s = 1.1605 with dt 1 ms ran to 1.161 s; a stride > 1 dropped the final
+    // t_end_s = 1.1605 with dt 1 ms ran to 1.161 s; a stride > 1 dropped the final
     // state from route.csv (by up to stride − 1 increments), also where a route ends early.
     for dynamics in [DynamicsModel::Paper, DynamicsModel::RigidBody] {
         for (t_end, stride) in [(1.1605, 7), (0.05, 1)] {

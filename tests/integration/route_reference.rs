@@ -1,4 +1,4 @@
-//! Routes do not move under refactoring (issue #14): every scene of `scenes/` under both
+//! Routes do not move under refactoring: every scene of `scenes/` under both
 //! dynamics against reference rows stored in `tests/reference/` (every 25th row and the last,
 //! at full precision, with the reason and the number of increments), to 1e-12 of each
 //! column's scale.

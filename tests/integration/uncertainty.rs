@@ -1,4 +1,4 @@
-//! Uncertain scene values (issue #17): the probability of sliding against its closed form.
+//! Uncertain scene values: the probability of sliding against its closed form.
 
 use slideroute::Scene;
 use slideroute::probabilistic::{Sampling, Uncertain, sample_scene, sample_values};

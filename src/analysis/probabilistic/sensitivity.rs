@@ -1,4 +1,4 @@
-//! Which uncertain value matters (issue #17): Spearman's rank correlation of each sampled value
+//! Which uncertain value matters: Spearman's rank correlation of each sampled value
 //! with the factor of safety and with the travel — the sensitivity tornado's bars. Ranks, not
 //! values, so that a monotone effect of any shape counts fully and an infinite factor of safety
 //! (a block no multiple of the loads starts) is simply the largest.

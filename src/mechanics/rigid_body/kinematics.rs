@@ -158,7 +158,7 @@ pub(super) fn pivot_direction(
 /// pivot direction and ⟨a, b⟩_M = m v_a·v_b + ω_a·I ω_b. It removes kinetic energy only to
 /// second order in the slip it removes (½ |Δv|²_M), where a projection in any other metric
 /// changes it to first order — at 1e-6 of the speed on a block of 27 MJ, tens of joules
-/// (issue #12) — and the route books what it removes as friction work.
+/// — and the route books what it removes as friction work.
 pub fn pivot_rates(
     geom: &ContactGeometry,
     block: &Block,

@@ -156,7 +156,7 @@ pub(super) fn slaved_direction(
     Ok(s.lambda.iter().all(|&l| l > 0.0).then_some((d, h)))
 }
 
-/// A pivot whose cone cannot hold it starts to slip while the block moves (issue #12): the
+/// A pivot whose cone cannot hold it starts to slip while the block moves: the
 /// direction d of its slip is the one whose friction −μλ d makes its tangential acceleration
 /// point along d itself (the slip then grows from zero along d: the consistent slip-start
 /// problem, as from rest, for one contact): a consistent direction

@@ -155,13 +155,13 @@ fn from_rest_each_shear_opposes_its_contacts_tangential_acceleration() {
             "{i}"
         );
     }
-    // About 1 m/s² forward at the start (issue #7's prototype).
+    // About 1 m/s² forward at the start (as a first hand estimate of the rigid body gave).
     assert!((0.8..1.3).contains(&m.accel.x), "{}", m.accel.x);
 }
 
 #[test]
 fn a_pivot_its_cone_cannot_hold_slips_along_its_own_tangential_acceleration() {
-    // Issue #12: while the block moves, a contact whose slip is zero and whose cone cannot
+    // While the block moves, a contact whose slip is zero and whose cone cannot
     // hold it starts to slip along d with its friction −μλ d, where the tangential
     // acceleration this gives points along d itself (a_t ∥ d, a_t·d ≥ 0). Checked by
     // recomputing a_t from the returned accelerations.

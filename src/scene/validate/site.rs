@@ -105,7 +105,7 @@ impl Reader<'_> {
         };
         let (lx, lz) = (frame.l1x + frame.l2x, frame.l1z + frame.l2z);
         // Each length is finite, but their sum (L, on which every derived length and the pose's
-        // coordinates rest) may not be (issue #13: 1.5e308 m each gave NaN tilts); nor may L²,
+        // coordinates rest) may not be (1.5e308 m each gave NaN tilts); nor may L²,
         // which the pose and the inertia scales use.
         if !(lx * lx).is_finite() || !(lz * lz).is_finite() {
             return Err(self.invalid("frame",

@@ -1,4 +1,4 @@
-//! `slideroute check`'s table of load cases (issue #16): each case's levels, seismic
+//! `slideroute check`'s table of load cases: each case's levels, seismic
 //! coefficients, water loads, factor of safety, requirement and verdict, as an engineer would
 //! file it; and the same as CSV.
 

@@ -1,4 +1,4 @@
-//! An output folder that a person can trust (issue #13): whole files or none, one run at a
+//! An output folder that a person can trust: whole files or none, one run at a
 //! time, and nothing left over from an earlier run.
 //!
 //! * Every file is written under a temporary name in the same folder and renamed into place

@@ -8,7 +8,7 @@ use std::path::PathBuf;
 /// The header of `route.csv`: the fields of a [`Row`], in its order, with their units.
 pub const ROUTE_HEADER: [&str; 23] = Row::COLUMNS;
 
-/// route.csv written row by row as the route computes them (issue #13: memory does not grow
+/// route.csv written row by row as the route computes them (memory does not grow
 /// with the route's length): the header [`ROUTE_HEADER`], then one record per [`CsvRows::push`];
 /// reactions that could not be had are empty. The first write error is kept and returned by
 /// [`CsvRows::finish`].
@@ -56,7 +56,7 @@ pub fn write_csv(out: impl Write, rows: &[Row]) -> Result<(), csv::Error> {
     w.finish()
 }
 
-/// What produced an output folder (issue #13): `summary.json` carries it, so that anyone
+/// What produced an output folder: `summary.json` carries it, so that anyone
 /// holding the folder can tell.
 #[derive(Debug, Clone, serde::Serialize)]
 pub struct Manifest {

@@ -1,4 +1,4 @@
-//! Pictures (SVG, pure Rust) an engineer reads at a glance (issue #13, item 9): the plan view
+//! Pictures (SVG, pure Rust) an engineer reads at a glance: the plan view
 //! like the paper's Figure 12, the CM profile, the angles and the reactions against time, the
 //! sweep and the work–precision report. Every picture keeps its legend in a side panel, off the
 //! data; a route that does not move gets a picture that says why instead of empty axes; no
@@ -31,7 +31,7 @@ use slideroute::internals::numeric::{fixed, seconds};
 use slideroute::{Reason, Route, Row};
 use std::path::{Path, PathBuf};
 
-/// The most points a picture draws of a route (issue #13): past this, rows are thinned evenly
+/// The most points a picture draws of a route: past this, rows are thinned evenly
 /// (the first and last always kept), so that no picture grows with the route's length — about
 /// 0.5 MB for the largest, the reactions, whatever the number of increments.
 pub const MAX_POINTS: usize = 4000;

@@ -1,4 +1,4 @@
-//! The pictures of `slideroute probabilistic` (issue #17): the route fan (every sampled CM
+//! The pictures of `slideroute probabilistic`: the route fan (every sampled CM
 //! path in plan over the foundation, beside the route of the scene as written), the histogram
 //! of the factor of safety, and the sensitivity tornado (each input's rank correlation with the
 //! factor of safety and with the travel).

@@ -1,4 +1,4 @@
-//! The sheet every picture is drawn on (issue #13, item 9): the chart on the left and a side
+//! The sheet every picture is drawn on: the chart on the left and a side
 //! panel on the right for the legend, notes, an inset or a colour bar. Nothing in the panel is
 //! drawn over the chart, so a legend can never cover data.
 

@@ -1,4 +1,4 @@
-//! The sweep picture (issue #13, item 9): the CM's travel and the factor of safety against the
+//! The sweep picture: the CM's travel and the factor of safety against the
 //! first varied key, one line per combination of the other keys. Legends are in numeric order
 //! with units; past a handful of groups the colour follows the second key on a scale with a
 //! colour bar; a block that did not slide, a route that ended at once and one that slid are

@@ -288,8 +288,7 @@ fn a_scene_that_does_not_slide_gets_pictures_that_say_so() {
 #[test]
 fn pictures_of_odd_scenes_draw_without_fail() {
     // Frames from 1 cm to 10 km, any proportions, dips and strike, loads and offsets: every
-    // scene that runs gets its four pictures, whole and small, and never a panic (issue #13:
-    // never a panic, on any input).
+    // scene that runs gets its four pictures, whole and small, and never a panic, on any input.
     let mut seed = 0x2545_f491_4f6c_dd1du64;
     let mut next = || {
         seed ^= seed << 13;
