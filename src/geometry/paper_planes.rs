@@ -5,18 +5,6 @@
 
 use super::site::PaperSite;
 
-/// Which of the paper's planes (the plan view names its regions by them).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-#[cfg_attr(not(feature = "internals"), allow(dead_code))]
-pub enum PaperPlane {
-    /// The horizontal plane, under contact 0.
-    Horizontal,
-    /// Plane 1, under contact 1.
-    One,
-    /// Plane 2, under contact 2.
-    Two,
-}
-
 /// R: the distance from the start CM to int. line 2/horiz (eq. 4).
 pub fn r(site: &PaperSite) -> f64 {
     let k = site.foundation.kappa;
@@ -29,23 +17,33 @@ pub fn along_dip_2(site: &PaperSite, x: f64, z: f64) -> f64 {
     x * k.cos() - z * k.sin()
 }
 
-/// The height of `plane` (extended without limit) above (X, Z), by the paper's eqs. (4), (5):
-/// the tests hold the site's planes to it.
-#[cfg_attr(not(feature = "internals"), allow(dead_code))]
-pub fn height(site: &PaperSite, plane: PaperPlane, x: f64, z: f64) -> f64 {
-    let g = &site.foundation;
-    match plane {
-        PaperPlane::Horizontal => 0.0,
-        PaperPlane::One => (x - site.frame.l2x) * g.xi.tan(),
-        PaperPlane::Two => (along_dip_2(site, x, z) - r(site)) * g.zeta.tan(),
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::scene::Scene;
     use nalgebra::Vector3;
+
+    /// Which of the paper's planes.
+    #[derive(Debug, Clone, Copy, PartialEq, Eq)]
+    enum PaperPlane {
+        /// The horizontal plane, under contact 0.
+        Horizontal,
+        /// Plane 1, under contact 1.
+        One,
+        /// Plane 2, under contact 2.
+        Two,
+    }
+
+    /// The height of `plane` (extended without limit) above (X, Z), by the paper's eqs. (4), (5),
+    /// written apart from the site's planes to hold them to it.
+    fn height(site: &PaperSite, plane: PaperPlane, x: f64, z: f64) -> f64 {
+        let g = &site.foundation;
+        match plane {
+            PaperPlane::Horizontal => 0.0,
+            PaperPlane::One => (x - site.frame.l2x) * g.xi.tan(),
+            PaperPlane::Two => (along_dip_2(site, x, z) - r(site)) * g.zeta.tan(),
+        }
+    }
 
     #[test]
     fn start_vertices_lie_on_the_strike_lines() {

@@ -9,7 +9,8 @@
 //!   along the straight segment to (X, Z, θ) ([`Tracker`]).
 //!
 //! ```
-//! use slideroute::{Displacement, Mode, Scene, Tracker, solve_all};
+//! use slideroute::poses::{Tracker, solve_all};
+//! use slideroute::{Displacement, Mode, Scene};
 //! let site = Scene::default_scene().site().clone();
 //! let d = Displacement::new(0.5, 0.1, 2f64.to_radians());
 //! let all = solve_all(&site, d, Mode::Exact).unwrap();

@@ -111,7 +111,7 @@ pub struct RunArgs {
     pub no_plots: bool,
     /// Dynamics model, overriding the scene's `[solver] dynamics`: `paper` (the paper's
     /// §5–7) or `rigid-body` (Newton–Euler with friction opposing each contact's slip).
-    #[arg(long, value_name = "MODEL", value_parser = named::<DynamicsModel, 2>(DynamicsModel::ALL.map(DynamicsModel::as_str)))]
+    #[arg(long, value_name = "MODEL", value_parser = named::<DynamicsModel, _>(DynamicsModel::ALL.map(DynamicsModel::as_str)))]
     pub dynamics: Option<DynamicsModel>,
     /// Run both dynamics models: DIR/paper/ and DIR/rigid-body/ (route.csv, summary.json),
     /// DIR/comparison.json (both summaries and where the routes part) and
@@ -133,7 +133,7 @@ pub struct SweepArgs {
     #[arg(long, value_name = "KEY=START:STOP:COUNT", required = true)]
     pub vary: Vec<String>,
     /// Dynamics model for every combination, overriding the scene's `[solver] dynamics`.
-    #[arg(long, value_name = "MODEL", value_parser = named::<DynamicsModel, 2>(DynamicsModel::ALL.map(DynamicsModel::as_str)))]
+    #[arg(long, value_name = "MODEL", value_parser = named::<DynamicsModel, _>(DynamicsModel::ALL.map(DynamicsModel::as_str)))]
     pub dynamics: Option<DynamicsModel>,
     /// Output folder (created if needed).
     #[arg(long, value_name = "DIR", default_value = "out")]
@@ -162,7 +162,7 @@ pub struct ProbabilisticArgs {
     #[arg(long = "dist", value_name = "KEY=DISTRIBUTION")]
     pub dist: Vec<String>,
     /// `lhs` (a Latin hypercube) or `mc` (plain Monte Carlo).
-    #[arg(long, default_value = "lhs", value_parser = named::<Sampling, 2>(Sampling::ALL.map(Sampling::as_str)))]
+    #[arg(long, default_value = "lhs", value_parser = named::<Sampling, _>(Sampling::ALL.map(Sampling::as_str)))]
     pub sampling: Sampling,
     /// Report the probability that the travel exceeds this (m).
     #[arg(long, value_name = "M", allow_negative_numbers = true)]
@@ -171,7 +171,7 @@ pub struct ProbabilisticArgs {
     #[arg(long, value_name = "DEGREES", allow_negative_numbers = true)]
     pub rotation_limit_deg: Option<f64>,
     /// Dynamics model for every sample, overriding the scene's `[solver] dynamics`.
-    #[arg(long, value_name = "MODEL", value_parser = named::<DynamicsModel, 2>(DynamicsModel::ALL.map(DynamicsModel::as_str)))]
+    #[arg(long, value_name = "MODEL", value_parser = named::<DynamicsModel, _>(DynamicsModel::ALL.map(DynamicsModel::as_str)))]
     pub dynamics: Option<DynamicsModel>,
     /// Output folder (created if needed).
     #[arg(long, value_name = "DIR", default_value = "probabilistic")]
@@ -245,7 +245,7 @@ pub struct RootsArgs {
     #[command(flatten)]
     pub pose: PoseArgs,
     /// Which system: exact or small-angle. Default: the scene's [solver] mode, else exact.
-    #[arg(long, value_parser = named::<Mode, 2>(Mode::ALL.map(Mode::as_str)))]
+    #[arg(long, value_parser = named::<Mode, _>(Mode::ALL.map(Mode::as_str)))]
     pub mode: Option<Mode>,
     /// CSV of poses with header `x_m,z_m,theta_deg` (m, m, degrees); needs --out.
     #[arg(long, value_name = "POSES.csv", conflicts_with_all = ["x", "z", "theta_deg"], requires = "out")]

@@ -55,10 +55,8 @@ pub fn route_fan(
             "{} samples ({}), seed {}",
             summary.samples,
             match summary.sampling {
-                slideroute::internals::analysis::probabilistic::Sampling::MonteCarlo =>
-                    "Monte Carlo",
-                slideroute::internals::analysis::probabilistic::Sampling::LatinHypercube =>
-                    "Latin hypercube",
+                slideroute::probabilistic::Sampling::MonteCarlo => "Monte Carlo",
+                slideroute::probabilistic::Sampling::LatinHypercube => "Latin hypercube",
             },
             summary.seed
         ),
@@ -306,7 +304,7 @@ fn not_drawn(fs: &[Option<f64>]) -> Vec<Entry> {
 /// and with the travel, the values ordered by their largest |ρ|.
 pub fn tornado(path: &Path, summary: &Summary) -> Res<()> {
     let mut rows: Vec<_> = summary.rank_correlations.iter().collect();
-    let size = |s: &&slideroute::internals::analysis::probabilistic::Sensitivity| {
+    let size = |s: &&slideroute::probabilistic::Sensitivity| {
         s.with_factor_of_safety
             .unwrap_or(0.0)
             .abs()
