@@ -404,23 +404,19 @@ mod tests {
         assert!(none.is_frictionless() && !none.is_stress_dependent());
     }
 
+    /// Settled to round-off, well within the solves it may take.
+    const SETTLING: Settling = Settling {
+        tol: 1e-13,
+        max_solves: 100,
+    };
+
     #[test]
     fn settling_reaches_the_coefficients_its_normals_give() {
         // A toy solve: the normal force falls as the coefficient grows, N = 1 MN / (1 + μ).
         let s = Strength::from(barton());
         let solve = |mu: &[f64; 3]| -> Result<[f64; 3], ()> { Ok(mu.map(|m| 1e6 / (1.0 + m))) };
         let mut mu = [0.5; 3];
-        let (n, settled) = s
-            .settle(
-                &mut mu,
-                Settling {
-                    tol: 1e-13,
-                    max_solves: 100,
-                },
-                solve,
-                |n| Some(*n),
-            )
-            .unwrap();
+        let (n, settled) = s.settle(&mut mu, SETTLING, solve, |n| Some(*n)).unwrap();
         assert!(settled);
         for j in 0..3 {
             assert!((barton().coefficient(n[j]) - mu[j]).abs() < 1e-12);
@@ -428,17 +424,7 @@ mod tests {
         }
         // Normals that cannot be had stop it, unsettled.
         let mut mu = [0.5; 3];
-        let (_, settled) = s
-            .settle(
-                &mut mu,
-                Settling {
-                    tol: 1e-13,
-                    max_solves: 100,
-                },
-                solve,
-                |_| None,
-            )
-            .unwrap();
+        let (_, settled) = s.settle(&mut mu, SETTLING, solve, |_| None).unwrap();
         assert!(!settled && mu == [0.5; 3]);
     }
 

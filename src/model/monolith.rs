@@ -169,10 +169,11 @@ impl Monolith {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
-    fn section() -> Section {
+    /// A section whose mass properties are checked by hand below (the water's tests use it).
+    pub(crate) fn section() -> Section {
         Section {
             base_length: 20.0,
             width: 10.0,

@@ -170,16 +170,7 @@ pub fn water_loads(section: &Section, levels: &Levels, g: f64) -> WaterLoads {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn section() -> Section {
-        Section {
-            base_length: 20.0,
-            width: 10.0,
-            height: 15.0,
-            crest_length: 5.0,
-            density: 2400.0,
-        }
-    }
+    use crate::model::monolith::tests::section;
 
     fn levels(head: f64, tail: f64, e: f64) -> Levels {
         Levels {

@@ -102,3 +102,16 @@ pub fn interrupted_after(what: &str, files: &[PathBuf]) -> CliError {
         names.join(", ")
     ))
 }
+
+/// The failure of a run of many routes that was interrupted after writing `files` whole: the
+/// `items` under way (samples, combinations) stopped, those not started are rows
+/// [`NOT_RUN`](slideroute::NOT_RUN).
+pub fn many_interrupted_after(items: &str, files: &[PathBuf]) -> CliError {
+    interrupted_after(
+        &format!(
+            "interrupted: {items} under way stopped, those not started are rows \"{}\"",
+            slideroute::NOT_RUN
+        ),
+        files,
+    )
+}

@@ -8,7 +8,7 @@ use crate::geometry::{Displacement, Pose, direct};
 use crate::mechanics::ContactGeometry;
 use crate::mechanics::loads::Applied;
 use crate::model::Friction;
-use crate::model::Strength;
+use crate::model::{Simulation, Strength};
 use crate::scene::Scene;
 use nalgebra::Vector3;
 
@@ -17,6 +17,41 @@ fn at(scene: &Scene, d: Displacement) -> ContactGeometry {
     let l = scene.l();
     let pose = Pose::from_tilts(scene.site.as_paper().unwrap(), d, p.alpha(l), p.beta(l)).unwrap();
     ContactGeometry::new(&scene.site().normals(), &pose)
+}
+
+/// The scene's block at `d` (its pose by the direct solver), every contact on its own plane's
+/// criterion: what [`accelerations`] takes there.
+struct AtPose {
+    sim: Simulation,
+    geom: ContactGeometry,
+    applied: Applied,
+    strength: Strength,
+}
+
+impl AtPose {
+    fn new(scene: &Scene, d: Displacement) -> AtPose {
+        let sim = scene.simulation().unwrap();
+        let geom = at(scene, d);
+        let applied = Applied::new(sim.loads(), sim.block(), &geom.frame);
+        let strength = sim.strength([0, 1, 2], false);
+        AtPose {
+            sim,
+            geom,
+            applied,
+            strength,
+        }
+    }
+
+    /// The accelerations moving with `rates`, in no crease.
+    fn motion(&self, rates: [f64; 3]) -> Motion {
+        let state = State {
+            geom: &self.geom,
+            applied: &self.applied,
+            block: self.sim.block(),
+            strength: &self.strength,
+        };
+        accelerations(&state, rates, 0.0, Creases::NONE).unwrap()
+    }
 }
 
 #[test]
@@ -72,21 +107,9 @@ fn the_projected_twist_keeps_contacts_on_their_planes_and_gives_the_rates() {
 #[test]
 fn frictionless_accelerations_keep_contact_accelerations_on_the_planes() {
     let scene = Scene::default_scene().with("friction.mu_k", 0.0).unwrap();
-    let d = scene.simulation().unwrap();
-    let geom = at(&scene, Displacement::new(0.7, 0.2, 0.1));
-    let applied = Applied::new(d.loads(), d.block(), &geom.frame);
-    let m = accelerations(
-        &State {
-            geom: &geom,
-            applied: &applied,
-            block: d.block(),
-            strength: &d.strength([0, 1, 2], false),
-        },
-        [1.0, 0.1, 0.2],
-        0.0,
-        Creases::NONE,
-    )
-    .unwrap();
+    let at = AtPose::new(&scene, Displacement::new(0.7, 0.2, 0.1));
+    let (geom, applied) = (&at.geom, &at.applied);
+    let m = at.motion([1.0, 0.1, 0.2]);
     for i in 0..3 {
         let r = geom.r[i];
         let acc = m.accel + m.ang_accel.cross(&r) + m.twist.w.cross(&m.twist.w.cross(&r));
@@ -99,27 +122,14 @@ fn frictionless_accelerations_keep_contact_accelerations_on_the_planes() {
         + (0..3)
             .map(|i| geom.n[i] * m.normal[i])
             .sum::<Vector3<f64>>();
-    assert!((total / d.block().mass - m.accel).norm() < 1e-12);
+    assert!((total / at.sim.block().mass - m.accel).norm() < 1e-12);
 }
 
 #[test]
 fn shear_opposes_slip_with_the_criterion_magnitude() {
     let scene = Scene::default_scene();
-    let d = scene.simulation().unwrap();
-    let geom = at(&scene, Displacement::new(0.5, 0.0, -0.05));
-    let applied = Applied::new(d.loads(), d.block(), &geom.frame);
-    let m = accelerations(
-        &State {
-            geom: &geom,
-            applied: &applied,
-            block: d.block(),
-            strength: &d.strength([0, 1, 2], false),
-        },
-        [1.0, 0.1, 0.2],
-        0.0,
-        Creases::NONE,
-    )
-    .unwrap();
+    let at = AtPose::new(&scene, Displacement::new(0.5, 0.0, -0.05));
+    let m = at.motion([1.0, 0.1, 0.2]);
     for i in 0..3 {
         let s = m.slip[i];
         assert!((m.shear[i].norm() - 0.4 * m.normal[i]).abs() < 1e-6);
@@ -131,21 +141,9 @@ fn shear_opposes_slip_with_the_criterion_magnitude() {
 #[test]
 fn from_rest_each_shear_opposes_its_contacts_tangential_acceleration() {
     let scene = Scene::default_scene();
-    let d = scene.simulation().unwrap();
-    let geom = at(&scene, Displacement::new(0.0, 0.0, 0.0));
-    let applied = Applied::new(d.loads(), d.block(), &geom.frame);
-    let m = accelerations(
-        &State {
-            geom: &geom,
-            applied: &applied,
-            block: d.block(),
-            strength: &d.strength([0, 1, 2], false),
-        },
-        [0.0; 3],
-        0.0,
-        Creases::NONE,
-    )
-    .unwrap();
+    let at = AtPose::new(&scene, Displacement::new(0.0, 0.0, 0.0));
+    let geom = &at.geom;
+    let m = at.motion([0.0; 3]);
     for i in 0..3 {
         let r = geom.r[i];
         let acc = m.accel + m.ang_accel.cross(&r);
@@ -166,26 +164,13 @@ fn a_pivot_its_cone_cannot_hold_slips_along_its_own_tangential_acceleration() {
     // acceleration this gives points along d itself (a_t ∥ d, a_t·d ≥ 0). Checked by
     // recomputing a_t from the returned accelerations.
     let scene = Scene::default_scene().with("friction.mu_k", 0.05).unwrap();
-    let d = scene.simulation().unwrap();
-    let geom = at(&scene, Displacement::new(0.5, 0.1, 0.05));
-    let applied = Applied::new(d.loads(), d.block(), &geom.frame);
-    let arm = longest_arm(&geom);
+    let at = AtPose::new(&scene, Displacement::new(0.5, 0.1, 0.05));
+    let geom = &at.geom;
+    let arm = longest_arm(geom);
     let mut checked = 0;
     for i in 0..3 {
-        let p = pivot_direction(&geom, arm, i).unwrap() * 2.0;
-        let rates = [p.x, p.y, p.z / arm];
-        let m = accelerations(
-            &State {
-                geom: &geom,
-                applied: &applied,
-                block: d.block(),
-                strength: &d.strength([0, 1, 2], false),
-            },
-            rates,
-            0.0,
-            Creases::NONE,
-        )
-        .unwrap();
+        let p = pivot_direction(geom, arm, i).unwrap() * 2.0;
+        let m = at.motion([p.x, p.y, p.z / arm]);
         assert!(
             m.slip[i].norm() < 1e-12,
             "contact {i} does not slip at the start"

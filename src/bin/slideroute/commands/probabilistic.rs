@@ -4,13 +4,13 @@
 
 use super::{load_with, progress_bar};
 use crate::cli::ProbabilisticArgs;
-use crate::exit::{CliError, bad_input, failed, interrupted, interrupted_after, outln};
+use crate::exit::{CliError, bad_input, failed, interrupted, many_interrupted_after, outln};
 use crate::output::folder::Folder;
 use crate::output::route_files::{Manifest, write_json_with_manifest};
+use slideroute::Scene;
 use slideroute::probabilistic::{
     Design, Limits, MAX_SAMPLES, Sampling, Summary, Uncertain, check_uncertain, merged, summarise,
 };
-use slideroute::{NOT_RUN, Scene};
 
 /// Runs `slideroute probabilistic`.
 pub fn probabilistic(args: &ProbabilisticArgs) -> Result<(), CliError> {
@@ -75,13 +75,7 @@ pub fn probabilistic(args: &ProbabilisticArgs) -> Result<(), CliError> {
     folder.finish().map_err(failed)?;
     written.push(json);
     if interrupted() {
-        return Err(interrupted_after(
-            &format!(
-                "interrupted: samples under way stopped, those not started are rows \
-                 \"{NOT_RUN}\""
-            ),
-            &written,
-        ));
+        return Err(many_interrupted_after("samples", &written));
     }
     if !args.quiet {
         print_summary(&summary, args.sampling, &written)?;

@@ -3,10 +3,9 @@
 
 use super::{load_with, progress_bar};
 use crate::cli::SweepArgs;
-use crate::exit::{CliError, bad_input, failed, interrupted, interrupted_after, outln};
+use crate::exit::{CliError, bad_input, failed, interrupted, many_interrupted_after, outln};
 use crate::output::folder::Folder;
 use crate::sweep::SweepRow;
-use slideroute::NOT_RUN;
 use slideroute::sweep::{Sweep, Vary};
 use std::collections::BTreeMap;
 
@@ -51,13 +50,7 @@ pub fn sweep(args: &SweepArgs) -> Result<(), CliError> {
     );
     folder.finish().map_err(failed)?;
     if interrupted() {
-        return Err(interrupted_after(
-            &format!(
-                "interrupted: combinations under way stopped, those not started are rows \
-                 \"{NOT_RUN}\""
-            ),
-            &written,
-        ));
+        return Err(many_interrupted_after("combinations", &written));
     }
     if !args.quiet {
         let mut counts: BTreeMap<&str, usize> = BTreeMap::new();
