@@ -2,6 +2,8 @@
 # Creates python/.venv and installs the Python package from this checkout into it — one
 # `pip install`, which builds the Rust extension with maturin (fetched from PyPI) — with what its
 # tests need. Idempotent: a second run rebuilds the extension only if the sources changed.
+# `python/setup.sh --requirements` makes the environment and installs the tests' requirements
+# only (CI does that while Rust compiles).
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 python="${PYTHON:-python3}"
@@ -10,5 +12,8 @@ if [ ! -x "$here/.venv/bin/python" ]; then
 fi
 pip=("$here/.venv/bin/python" -m pip --disable-pip-version-check)
 "${pip[@]}" install --quiet -r "$here/requirements-test.txt"
+if [ "${1:-}" = "--requirements" ]; then
+    exit 0
+fi
 "${pip[@]}" install --quiet "$here"
 "$here/.venv/bin/python" -c "import slideroute; print('slideroute', slideroute.__version__, 'ready:', slideroute.__file__)"
