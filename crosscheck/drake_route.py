@@ -43,6 +43,7 @@ contact K's position, so that a reader sees where each contact is, e.g. past a s
 """
 import argparse
 import csv
+import json
 import math
 import sys
 import tomllib
@@ -57,7 +58,7 @@ from pydrake.geometry import (
     SceneGraph,
     Sphere,
 )
-from pydrake.math import RigidTransform
+from pydrake.math import RigidTransform, RotationMatrix
 from pydrake.multibody.math import SpatialForce, SpatialVelocity
 from pydrake.multibody.plant import (
     AddMultibodyPlant,
@@ -179,8 +180,22 @@ def load(path):
         data = np.loadtxt(os.path.join(folder, seismic["record"]), delimiter=",", skiprows=1,
                           ndmin=2)
         record = (data[:, 0], data[:, 1:4])
+    # The base (slideroute's `contacts = "base"`): [base] outline_m (from the heel and the
+    # width's middle for a monolith, about the CM for a block), a monolith's base rectangle, or
+    # the bounding box of the frame's contacts; corners (x', z') about the CM.
+    shift = 0.0
+    if "monolith" in s:
+        shift = section(s["monolith"])[1]
+    if "base" in s and "outline_m" in s["base"]:
+        outline = [(x - shift, z) for x, z in s["base"]["outline_m"]]
+    elif "monolith" in s:
+        b, w = s["monolith"]["base_length_m"], s["monolith"]["width_m"]
+        outline = [(-shift, -w / 2), (b - shift, -w / 2), (b - shift, w / 2), (-shift, w / 2)]
+    else:
+        xs, zs = [c[0] for c in corners], [c[2] for c in corners]
+        outline = [(min(xs), min(zs)), (max(xs), min(zs)), (max(xs), max(zs)), (min(xs), max(zs))]
     return dict(
-        corners=corners, faces=faces, record=record,
+        corners=corners, faces=faces, record=record, outline=outline,
         kh=seismic.get("kh", 0.0), kv=seismic.get("kv", 0.0),
         xi=math.radians(fo.get("xi_deg", 0.0)), zeta=math.radians(fo.get("zeta_deg", 0.0)),
         kappa=math.radians(fo.get("kappa_deg", 0.0)),
@@ -192,6 +207,35 @@ def load(path):
         mu=fi["mu_k"],
         init=s.get("initial", {}),
     )
+
+
+def base_points(outline, n):
+    """Points of the base polygon (x', z') as (x', 0, z'): its corners, n along each edge, and
+    an n × n grid inside."""
+    pts = []
+    m = len(outline)
+    for k in range(m):
+        (x0, z0), (x1, z1) = outline[k], outline[(k + 1) % m]
+        for j in range(n):
+            t = j / n
+            pts.append((x0 + t * (x1 - x0), z0 + t * (z1 - z0)))
+    xs, zs = [x for x, _ in outline], [z for _, z in outline]
+
+    def inside(x, z):
+        c = False
+        for k in range(m):
+            (xa, za), (xb, zb) = outline[k], outline[(k + 1) % m]
+            if (za > z) != (zb > z) and x < xa + (z - za) / (zb - za) * (xb - xa):
+                c = not c
+        return c
+
+    for i in range(1, n):
+        for j in range(1, n):
+            x = min(xs) + (max(xs) - min(xs)) * i / n
+            z = min(zs) + (max(zs) - min(zs)) * j / n
+            if inside(x, z):
+                pts.append((x, z))
+    return [np.array([x, 0.0, z]) for x, z in pts]
 
 
 def planes(p):
@@ -269,8 +313,16 @@ def main():
     ap.add_argument("--radius", type=float, default=SPHERE_RADIUS, help="contact sphere, m")
     ap.add_argument("--stiffness", type=float, default=STIFFNESS, help="per geometry, N/m")
     ap.add_argument("--dissipation", type=float, default=DISSIPATION, help="Hunt-Crossley, s/m")
+    ap.add_argument("--base", action="store_true",
+                    help="the block's whole base: spheres on a grid over its footprint, every one"
+                         " against every face (slideroute's contacts = \"base\")")
+    ap.add_argument("--grid", type=int, default=9, help="base: grid points along each side")
+    ap.add_argument("--start", help="base: slideroute's summary.json, whose base.resting pose"
+                                    " the block starts in")
+    ap.add_argument("--mu-delta", type=float, default=0.0, help="added to mu (chaos check)")
     a = ap.parse_args()
     p = load(a.scene)
+    p["mu"] += a.mu_delta
 
     builder = DiagramBuilder()
     plant, scene_graph = AddMultibodyPlant(
@@ -311,7 +363,8 @@ def main():
     # The base plane lies ȳ below the centre of mass (a monolith's; zero for [block]).
     below = np.array([0.0, -p["height"], 0.0])
     spheres, halves = [], []
-    for i, corner in enumerate(corners):
+    points = base_points(p["outline"], a.grid) if a.base else corners
+    for i, corner in enumerate(points):
         # The sphere's centre is the contact point; each plane is lowered by the radius.
         spheres.append(plant.RegisterCollisionGeometry(
             block, RigidTransform(corner + below), Sphere(a.radius), f"contact{i}", props()))
@@ -320,7 +373,7 @@ def main():
             ground, RigidTransform(HalfSpace.MakePose(n, point - a.radius * n)),
             HalfSpace(), f"plane{j}", props()))
     plant.Finalize()
-    if p["faces"] is None:
+    if p["faces"] is None and not a.base:
         # The paper's model: each contact sees only its own plane.
         decl = CollisionFilterDeclaration()
         for i, s in enumerate(spheres):
@@ -333,10 +386,22 @@ def main():
     simulator = Simulator(diagram)
     context = simulator.get_mutable_context()
     plant_context = plant.GetMyMutableContextFromRoot(context)
-    plant.SetFreeBodyPose(plant_context, block, RigidTransform(-below))
-    if p["height"] > 0 and p["init"]:
+    if a.base:
+        # Where slideroute set the block down, and the scene's rates as slideroute takes them.
+        with open(a.start) as f:
+            rest = json.load(f)["base"]["resting"]
+        pose0 = RigidTransform(RotationMatrix(np.array(rest["rotation"])),
+                               np.array([rest["x_m"], rest["y_m"], rest["z_m"]]))
+        plant.SetFreeBodyPose(plant_context, block, pose0)
+        i0 = p["init"]
+        v0 = np.array([i0.get("vx_m_s", 0.0), 0.0, i0.get("vz_m_s", 0.0)])
+        w0 = np.array([0.0, -math.radians(i0.get("omega_deg_s", 0.0)), 0.0])
+        plant.SetFreeBodySpatialVelocity(plant_context, block, SpatialVelocity(w0, v0))
+    else:
+        plant.SetFreeBodyPose(plant_context, block, RigidTransform(-below))
+    if p["height"] > 0 and p["init"] and not a.base:
         sys.exit(f"{a.scene}: initial: the Drake cross-check starts a monolith at rest only")
-    v0, w0 = initial_twist(p, corners, start_normals(p))
+    v0, w0 = initial_twist(p, corners, start_normals(p)) if not a.base else (v0, w0)
     plant.SetFreeBodySpatialVelocity(plant_context, block, SpatialVelocity(w0, v0))
     port = plant.get_applied_spatial_force_input_port()
     if joints:

@@ -70,16 +70,16 @@ mod scene;
 
 pub use analysis::runner::{NOT_RUN, Outcome, RouteResult};
 pub use analysis::{run, run_observed};
-pub use geometry::{Displacement, Foundation, Frame, Ground, Plane, Pose, Site};
+pub use geometry::{BodyPose, Displacement, Foundation, Frame, Ground, Plane, Pose, Site};
 pub use mechanics::static_friction::FactorOfSafety;
 pub use model::{
-    Block, DynamicsModel, FaceStrength, Friction, Initial, Integrator, Levels, Loads,
-    MAX_INCREMENTS, MassProperties, Mode, ModelError, Monolith, Record, Resultant, RunSettings,
-    Section, Simulation, SimulationBuilder, Strengths, UnknownName, WaterLoads,
+    Base, Block, Contacts, DynamicsModel, FaceStrength, Friction, Initial, Integrator, Levels,
+    Loads, MAX_INCREMENTS, MassProperties, Mode, ModelError, Monolith, Record, Resultant,
+    RunSettings, Section, Simulation, SimulationBuilder, Strengths, UnknownName, WaterLoads,
 };
 pub use route::{
-    Computed, Diagnostics, EnergyBalance, PoseMethod, Reason, Route, Row, Runner, Termination,
-    simulate,
+    BaseReport, Carrying, Computed, Diagnostics, EnergyBalance, OVERTURN_DEG, PoseMethod, Reason,
+    Resting, Route, Row, Runner, Termination, pose_of_row, simulate,
 };
 pub use scene::{LoadsUsed, Scene, SceneError, SceneErrorKind};
 

@@ -80,7 +80,7 @@ def test_a_route_as_a_dataframe_has_the_rows_and_columns_of_the_arrays():
     r = slideroute.Scene.default().with_keys({"solver.t_end_s": 1.0}).route()
     df = r.to_pandas()
     assert isinstance(df, pd.DataFrame)
-    assert df.shape == (len(r), 23)
+    assert df.shape == (len(r), 25)
     np.testing.assert_array_equal(df["x_m"].to_numpy(), r.columns["x_m"])
 
 

@@ -12,16 +12,21 @@ pub mod direct;
 pub mod frame;
 pub mod ground;
 pub mod paper_planes;
+pub mod penetration;
 pub mod plane;
 pub mod pose;
+pub mod settle;
 pub mod site;
+pub mod touch;
 
 pub use direct::DirectPose;
 pub use frame::LocalFrame;
 pub use ground::Ground;
 pub use plane::Plane;
 pub use pose::Pose;
+pub use settle::{Rest, SettleError, set_down};
 pub use site::{Foundation, Frame, PaperSite, Site};
+pub use touch::{BodyPose, Feature, Footprint, Touch, in_outline, touches};
 
 /// The horizontal displacement of the block: CM moved by (X, Z) (m), side 01 yawed by θ (rad,
 /// from +X towards +Z). The start of sliding is the default, (0, 0, 0).

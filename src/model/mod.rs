@@ -5,6 +5,7 @@
 //! (the errors name each value as a scene file does), and put together in a [`Simulation`].
 //! No file format lives here: the scene reader (`scene/`) builds these from a scene file.
 
+mod base;
 mod block;
 mod error;
 mod friction;
@@ -18,6 +19,7 @@ mod settings;
 mod simulation;
 mod water;
 
+pub use base::Base;
 pub use block::Block;
 pub use error::ModelError;
 pub(crate) use error::{check, finite, non_negative, positive};
@@ -28,7 +30,7 @@ pub use loads::Loads;
 pub use monolith::{MassProperties, Monolith, Section};
 pub use names::UnknownName;
 pub use record::Record;
-pub use settings::{DynamicsModel, Integrator, MAX_INCREMENTS, Mode, RunSettings};
+pub use settings::{Contacts, DynamicsModel, Integrator, MAX_INCREMENTS, Mode, RunSettings};
 pub use simulation::{Simulation, SimulationBuilder};
 pub(crate) use simulation::{check_ratios, check_rigid_only, face_count};
 pub use water::{Levels, Resultant, WaterLoads};

@@ -60,6 +60,20 @@ pub enum Integrator {
 
 named!(Integrator, "integrator", [Paper => "paper", Rk4 => "rk4"]);
 
+/// Where the block touches the ground.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Contacts {
+    /// The paper's idealisation: three points of a frame, each on its own face.
+    #[default]
+    Frame,
+    /// The block's whole base: it touches the ground wherever they meet, rests where it is set
+    /// down, rocks, hops and lands (`derivations/13-base-contact.md`).
+    Base,
+}
+
+named!(Contacts, "contacts", [Frame => "frame", Base => "base"]);
+
 /// The run settings: which dynamics and pose system, the increment and the time limit, the
 /// integrator and which increments are recorded.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -77,6 +91,8 @@ pub struct RunSettings {
     pub stride: usize,
     /// Which dynamics moves the block.
     pub dynamics: DynamicsModel,
+    /// Where the block touches the ground.
+    pub contacts: Contacts,
 }
 
 impl RunSettings {
@@ -90,7 +106,14 @@ impl RunSettings {
             integrator: dynamics.default_integrator(),
             stride: 1,
             dynamics,
+            contacts: Contacts::Frame,
         }
+    }
+
+    /// The same settings with the block touching the ground by `contacts`.
+    #[must_use]
+    pub fn with_contacts(self, contacts: Contacts) -> RunSettings {
+        RunSettings { contacts, ..self }
     }
 
     /// The same settings with the pose system `mode`.
@@ -150,6 +173,13 @@ impl RunSettings {
                 "solver.integrator",
                 "the rigid-body dynamics integrates with \"rk4\" only (the paper's update \
                  belongs to the paper's dynamics)",
+            ));
+        }
+        if self.contacts == Contacts::Base && self.dynamics != DynamicsModel::RigidBody {
+            return Err(ModelError::new(
+                "solver.contacts",
+                "a base touching the ground wherever they meet moves as a rigid body: it needs \
+                 solver.dynamics = \"rigid-body\"",
             ));
         }
         if self.stride == 0 {

@@ -1,12 +1,13 @@
 //! A simulation: the physical model and how it is run, checked once when it is built.
 
+use super::base::Base;
 use super::block::Block;
 use super::error::ModelError;
 use super::friction::{Friction, Strength, Strengths};
 use super::initial::Initial;
 use super::loads::Loads;
 use super::record::Record;
-use super::settings::{DynamicsModel, RunSettings};
+use super::settings::{Contacts, DynamicsModel, RunSettings};
 use crate::geometry::Site;
 use nalgebra::Vector3;
 use std::sync::Arc;
@@ -27,6 +28,8 @@ pub struct Simulation {
     settings: RunSettings,
     initial: Initial,
     record: Option<Arc<Record>>,
+    /// The base the block touches the ground with (`contacts = "base"`).
+    base: Option<Base>,
     /// The upward unit normals of the planes under contacts 0, 1, 2, computed once.
     normals: [Vector3<f64>; 3],
 }
@@ -60,6 +63,7 @@ pub struct SimulationBuilder {
     settings: Option<RunSettings>,
     initial: Initial,
     record: Option<Arc<Record>>,
+    base: Option<Base>,
 }
 
 impl Simulation {
@@ -75,6 +79,7 @@ impl Simulation {
             settings: None,
             initial: Initial::default(),
             record: None,
+            base: None,
         }
     }
 
@@ -132,6 +137,21 @@ impl Simulation {
     /// The foundation's acceleration (g, along X, Y, Z) at time t: the record's, or none.
     pub fn ground(&self, t: f64) -> [f64; 3] {
         self.record.as_ref().map_or([0.0; 3], |r| r.at(t))
+    }
+
+    /// The base the block touches the ground with: set where the run settings say
+    /// `contacts = "base"` (the one given, or the bounding rectangle of the frame's contacts).
+    pub fn base(&self) -> Option<&Base> {
+        self.base.as_ref()
+    }
+
+    /// The friction criterion of face `face` (its own, or the default).
+    pub fn face_friction(&self, face: u32) -> Friction {
+        self.strengths
+            .faces
+            .iter()
+            .find(|f| f.faces.contains(&face))
+            .map_or(self.friction, |f| f.friction)
     }
 
     /// The upward unit normals of the planes under contacts 0, 1, 2 at the start.
@@ -194,6 +214,13 @@ impl SimulationBuilder {
         self
     }
 
+    /// The base the block touches the ground with under `contacts = "base"` (without one, the
+    /// bounding rectangle of the frame's contacts at the centre of mass's height).
+    pub fn base(mut self, base: Base) -> Self {
+        self.base = Some(base);
+        self
+    }
+
     /// The simulation, or the first fault: a part missing, a value out of its range, or parts
     /// that do not go together.
     pub fn build(self) -> Result<Simulation, ModelError> {
@@ -224,8 +251,19 @@ impl SimulationBuilder {
             self.record.is_some(),
             self.strengths.has_cohesion(),
         )?;
+        let base = match settings.contacts {
+            Contacts::Frame => None,
+            Contacts::Base => {
+                check_base_friction(&friction, &self.strengths)?;
+                match self.base {
+                    Some(b) => Some(b),
+                    None => Some(Base::around(self.site.contacts(), loads.cm_height)?),
+                }
+            }
+        };
         Ok(Simulation {
             name: self.name,
+            base,
             normals: self.site.normals(),
             site: self.site,
             block,
@@ -237,6 +275,28 @@ impl SimulationBuilder {
             record: self.record,
         })
     }
+}
+
+/// What a base's contacts take for now: Coulomb friction on every face, no cohesion (a
+/// stress-dependent criterion needs each contact's normal force, which a base's many contacts
+/// share by impulses; cohesion needs a bonded area).
+fn check_base_friction(friction: &Friction, strengths: &Strengths) -> Result<(), ModelError> {
+    let criteria = std::iter::once(friction).chain(strengths.faces.iter().map(|f| &f.friction));
+    if criteria.clone().any(Friction::is_stress_dependent) {
+        return Err(ModelError::new(
+            "solver.contacts",
+            "a base touching the ground (contacts = \"base\") takes Coulomb friction only; \
+             use contacts = \"frame\" for a stress-dependent criterion",
+        ));
+    }
+    if strengths.has_cohesion() {
+        return Err(ModelError::new(
+            "friction.cohesion_pa",
+            "a base touching the ground (contacts = \"base\") takes no cohesion yet; use \
+             contacts = \"frame\"",
+        ));
+    }
+    Ok(())
 }
 
 /// How many faces the ground under `site` has: the paper's three planes, or a ground's faces.

@@ -44,6 +44,8 @@ pub(super) struct Logbook<'s> {
     pub switches: usize,
     /// The energy balance (rigid-body dynamics).
     pub energy: Option<EnergyBalance>,
+    /// A block on its base: where it rested, what carried it, how deep its base went.
+    pub base: Option<super::body::BaseReport>,
 }
 
 impl<'s> Logbook<'s> {
@@ -67,6 +69,7 @@ impl<'s> Logbook<'s> {
             increments: 0,
             switches: 0,
             energy: None,
+            base: None,
         }
     }
 

@@ -4,6 +4,7 @@
 //! stated reason (`termination.rs`), recording rows in a logbook (`row.rs`, `logbook.rs`); `simulate.rs` picks
 //! the model and says how the computation went.
 
+mod body;
 mod driver;
 mod dynamics;
 pub mod integrator;
@@ -15,6 +16,7 @@ mod row;
 mod simulate;
 pub mod termination;
 
+pub use body::{BaseReport, Carrying, OVERTURN_DEG, Resting, pose_of_row};
 pub use logbook::EnergyBalance;
 pub use pose_finder::PoseMethod;
 pub use row::Row;
@@ -70,6 +72,10 @@ pub struct Route {
     /// (degrees; the tilts are the foundation's).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub permanent_rotation_deg: Option<f64>,
+    /// A block on its base (`contacts = "base"`): where it rested before any load, what carried
+    /// it, and the deepest its base went into the ground.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub base: Option<BaseReport>,
 }
 
 /// A route and how its computation went ([`Runner::run`]): written side by side (summary.json

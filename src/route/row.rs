@@ -38,12 +38,19 @@ pub struct Row {
     pub faces: [u32; 3],
     /// The second face of each contact riding a crease (`None` for a contact on its face alone).
     pub crease: [Option<u32>; 3],
+    /// A base touching the ground (`contacts = "base"`): the corners of the base that carry the
+    /// block, as the sum of 2^k over corner numbers k (the outline's order, from 0); `None` for
+    /// the three-point frame.
+    pub corners_carrying: Option<u32>,
+    /// A base touching the ground: how many points carry the block (its corners, the ground's
+    /// vertices under it, ground edges across its edges); `None` for the three-point frame.
+    pub points_carrying: Option<u32>,
 }
 
 impl Row {
     /// The names of a row's values, with their units, in the order of [`Row::values`]: the
     /// header of `route.csv`.
-    pub const COLUMNS: [&'static str; 23] = [
+    pub const COLUMNS: [&'static str; 25] = [
         "t_s",
         "x_m",
         "y_m",
@@ -67,12 +74,14 @@ impl Row {
         "crease_face0",
         "crease_face1",
         "crease_face2",
+        "corners_carrying",
+        "points_carrying",
     ];
 
     /// The row's values in the order of [`Row::COLUMNS`]; `None` for reactions that could not
     /// be had and for a contact on no crease.
-    pub fn values(&self) -> [Option<f64>; 23] {
-        let mut v = [None; 23];
+    pub fn values(&self) -> [Option<f64>; 25] {
+        let mut v = [None; 25];
         let scalars = [
             self.t_s,
             self.x_m,
@@ -95,6 +104,8 @@ impl Row {
             v[17 + k] = Some(f64::from(self.faces[k]));
             v[20 + k] = self.crease[k].map(f64::from);
         }
+        v[23] = self.corners_carrying.map(f64::from);
+        v[24] = self.points_carrying.map(f64::from);
         v
     }
 }
@@ -129,6 +140,8 @@ mod tests {
             s_n: Some([15.0, 16.0, 17.0]),
             faces: [18, 19, 20],
             crease: [None, Some(21), None],
+            corners_carrying: Some(0b101),
+            points_carrying: Some(3),
         };
         let at = |name: &str| r.values()[Row::COLUMNS.iter().position(|c| *c == name).unwrap()];
         assert_eq!(at("t_s"), Some(r.t_s));
@@ -139,6 +152,8 @@ mod tests {
         assert_eq!(at("face0"), Some(18.0));
         assert_eq!(at("crease_face1"), Some(21.0));
         assert_eq!(at("crease_face0"), None);
+        assert_eq!(at("corners_carrying"), Some(5.0));
+        assert_eq!(at("points_carrying"), Some(3.0));
         let lost = Row {
             n_n: None,
             s_n: None,
@@ -146,6 +161,6 @@ mod tests {
         };
         let v = lost.values();
         assert!(v[11..17].iter().all(Option::is_none));
-        assert_eq!(v.iter().filter(|x| x.is_some()).count(), 11 + 3 + 1);
+        assert_eq!(v.iter().filter(|x| x.is_some()).count(), 11 + 3 + 1 + 2);
     }
 }

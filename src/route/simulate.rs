@@ -2,6 +2,7 @@
 //! pose method, reports progress (and may be told to stop), streams the rows as they are
 //! computed, and says how the computation went ([`Diagnostics`]).
 
+use super::body::OnBase;
 use super::driver::drive;
 use super::logbook::Logbook;
 use super::paper::Paper;
@@ -9,7 +10,7 @@ use super::pose_finder::{PoseFinder, PoseMethod};
 use super::rigid::RigidBody;
 use super::row::Row;
 use super::{Computed, Diagnostics, Route};
-use crate::model::{DynamicsModel, Simulation};
+use crate::model::{Contacts, DynamicsModel, Simulation};
 use std::ops::ControlFlow;
 use std::time::Instant;
 
@@ -90,9 +91,12 @@ impl<'a> Runner<'a> {
         let sink = self.sink.as_deref_mut().map(|s| s as &mut dyn FnMut(&Row));
         let log = Logbook::new(sink, self.keep_every);
         // One driver; the model is the only difference.
-        let mut o = match settings.dynamics {
-            DynamicsModel::Paper => drive::<Paper>(sim, &mut finder, &mut self.progress, log),
-            DynamicsModel::RigidBody => {
+        let mut o = match (settings.contacts, settings.dynamics) {
+            (Contacts::Base, _) => drive::<OnBase>(sim, &mut finder, &mut self.progress, log),
+            (Contacts::Frame, DynamicsModel::Paper) => {
+                drive::<Paper>(sim, &mut finder, &mut self.progress, log)
+            }
+            (Contacts::Frame, DynamicsModel::RigidBody) => {
                 drive::<RigidBody>(sim, &mut finder, &mut self.progress, log)
             }
         };
@@ -116,6 +120,7 @@ impl<'a> Runner<'a> {
             energy: o.energy,
             permanent_displacement_m: permanent.map(|p| p.0),
             permanent_rotation_deg: permanent.map(|p| p.1),
+            base: o.base.take(),
         };
         Computed {
             route,

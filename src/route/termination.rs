@@ -45,11 +45,15 @@ pub enum Reason {
     ContactForcesUndetermined,
     /// The caller asked the route to stop (Ctrl-C, SIGTERM): what was computed stands.
     Interrupted,
+    /// A base touching the ground: it turned over (its base tilted beyond the stated limit).
+    Overturned,
+    /// A base touching the ground: part of it went over no ground (off the surveyed surface).
+    BaseOffGround,
 }
 
 impl Reason {
     /// Every reason, in the order declared.
-    pub const ALL: [Reason; 17] = [
+    pub const ALL: [Reason; 19] = [
         Reason::DoesNotSlide,
         Reason::NoFrictionSolution,
         Reason::Stopped,
@@ -67,6 +71,8 @@ impl Reason {
         Reason::TimeLimit,
         Reason::ContactForcesUndetermined,
         Reason::Interrupted,
+        Reason::Overturned,
+        Reason::BaseOffGround,
     ];
 
     /// The reason written `text` ([`Reason::as_str`]), if any.
@@ -94,6 +100,8 @@ impl Reason {
             Reason::TimeLimit => "time limit",
             Reason::ContactForcesUndetermined => "the contact forces are not determined",
             Reason::Interrupted => "interrupted",
+            Reason::Overturned => "the block overturned",
+            Reason::BaseOffGround => "the base left the surveyed ground",
         }
     }
 }
@@ -179,7 +187,9 @@ mod tests {
                 | Reason::NoAdmissibleRoot
                 | Reason::TimeLimit
                 | Reason::ContactForcesUndetermined
-                | Reason::Interrupted => true,
+                | Reason::Interrupted
+                | Reason::Overturned
+                | Reason::BaseOffGround => true,
             };
             assert!(listed);
             assert_eq!(Reason::parse(r.as_str()), Some(r));

@@ -39,9 +39,12 @@ impl Scene {
                     ("dynamics", Value::String(s.dynamics.as_str().into())),
                     ("integrator", Value::String(s.integrator.as_str().into())),
                     ("stride", Value::Integer(s.stride as i64)),
+                    ("contacts", Value::String(s.contacts.as_str().into())),
                 ]),
             );
         }
+        // The footprint as the file gave it (a monolith's follows from its section).
+        self.as_given(&mut t, &["base"]);
         // The guideline and the load cases, as the file gave them.
         self.as_given(&mut t, &["check", "case"]);
         let i = &self.initial;

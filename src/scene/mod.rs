@@ -57,6 +57,8 @@ pub struct Scene {
     pub(crate) strengths: Strengths,
     /// `[uncertain]`: the distributions of a probabilistic analysis, by key name.
     pub(crate) uncertain: Vec<crate::numeric::Uncertain>,
+    /// `[base]`, or a monolith's base rectangle: the footprint under `contacts = "base"`.
+    pub(crate) base: Option<crate::model::Base>,
 }
 
 /// Two scenes are equal when their values are (the documents may differ in how they wrote
@@ -75,6 +77,7 @@ impl PartialEq for Scene {
             &self.strengths,
             self.record.as_deref(),
             &self.uncertain,
+            &self.base,
         ) == (
             &other.name,
             &other.origin,
@@ -87,6 +90,7 @@ impl PartialEq for Scene {
             &other.strengths,
             other.record.as_deref(),
             &other.uncertain,
+            &other.base,
         )
     }
 }

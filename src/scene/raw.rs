@@ -22,6 +22,7 @@ pub struct RawScene {
     pub water: Option<RawWater>,
     pub seismic: Option<RawSeismic>,
     pub check: Option<RawCheck>,
+    pub base: Option<RawBase>,
     pub case: Option<Vec<RawCase>>,
     /// `[uncertain]`: `"section.key" = "name:p1:p2…"`, the distributions of a probabilistic
     /// analysis.
@@ -190,6 +191,17 @@ pub struct RawSolver {
     pub dynamics: Option<String>,
     /// Record every `stride`-th increment (default 1: every one).
     pub stride: Option<i64>,
+    /// Where the block touches the ground: "frame" (default) or "base".
+    pub contacts: Option<String>,
+}
+
+/// `[base]`: the block's footprint, where it touches the ground under `contacts = "base"`.
+#[derive(Debug, Default, Deserialize)]
+#[serde(expecting = "the table [base]")]
+pub struct RawBase {
+    /// The corners (x', z') (m): from the heel and the width's middle for a `[monolith]`,
+    /// about the centre of mass for a `[block]`.
+    pub outline_m: Option<Vec<Vec<f64>>>,
 }
 
 /// Why a document is not a [`RawScene`]: a key that is not a scene's, or a value of the wrong

@@ -34,6 +34,9 @@ impl Scene {
         if let Some(record) = &self.record {
             builder = builder.record(record.clone());
         }
+        if let Some(base) = &self.base {
+            builder = builder.base(base.clone());
+        }
         builder
             .build()
             .map_err(|e| SceneError::new(&self.origin, e.key, e.reason))

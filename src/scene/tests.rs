@@ -725,11 +725,16 @@ fn a_foundation_of_faces_puts_each_contact_on_the_face_under_it() {
     assert_eq!(used["foundation"]["plane"].as_array().unwrap().len(), 3);
 }
 
+/// The same scene with the block on the paper's three-point frame (`contacts = "frame"`).
+fn on_frame(text: &str) -> String {
+    text.replacen("[solver]\n", "[solver]\ncontacts = \"frame\"\n", 1)
+}
+
 #[test]
 fn a_start_under_the_ground_or_above_it_is_refused_naming_the_contact_and_the_face() {
     // The paper's planes with κ = −30°: plane 2 stands 2.33 m above contact 1's start
     // (−L sin κ tan ζ with L = 10 m, ζ = 25°).
-    let e = err(&with_faces(&papers_faces(-30.0)));
+    let e = err(&on_frame(&with_faces(&papers_faces(-30.0))));
     assert_eq!(e.key, "foundation.plane");
     let msg = e.to_string();
     assert!(msg.contains("contact 1") && msg.contains("face 2"), "{msg}");
@@ -738,10 +743,21 @@ fn a_start_under_the_ground_or_above_it_is_refused_naming_the_contact_and_the_fa
         "{msg}"
     );
     // A level ground 1 m down: every contact in the air.
-    let e = err(&with_faces(&[(0.0, 0.0, [0.0, -1.0, 0.0])]));
+    let e = err(&on_frame(&with_faces(&[(0.0, 0.0, [0.0, -1.0, 0.0])])));
     assert!(e.to_string().contains("above the ground"), "{e}");
     // The position points at the faces.
     assert!(e.position.is_some());
+}
+
+#[test]
+fn a_block_on_its_base_is_set_down_wherever_the_ground_is() {
+    // The same grounds with the block on its base (the default on faces): it starts where it
+    // rests, whatever height the faces are at.
+    for faces in [papers_faces(-30.0), vec![(0.0, 0.0, [0.0, -1.0, 0.0])]] {
+        let s = Scene::from_toml(&with_faces(&faces), "dam.toml").unwrap();
+        assert_eq!(s.settings().unwrap().contacts, crate::model::Contacts::Base);
+        assert!(s.simulation().is_ok());
+    }
 }
 
 #[test]
@@ -793,6 +809,7 @@ fn with_surface(
     folder: &std::path::Path,
     name: &str,
     obj: Option<&str>,
+    frame: bool,
 ) -> Result<Scene, SceneError> {
     if let Some(obj) = obj {
         std::fs::write(folder.join(name), obj).unwrap();
@@ -801,6 +818,7 @@ fn with_surface(
         "[foundation]\nxi_deg = 20.0\nzeta_deg = 25.0\nkappa_deg = 30.0\n",
         &format!("[foundation]\nsurface = \"{name}\"\n"),
     );
+    let text = if frame { on_frame(&text) } else { text };
     let path = folder.join("scene.toml");
     std::fs::write(&path, text).unwrap();
     Scene::from_file(&path)
@@ -820,7 +838,7 @@ fn level_square(y: f64) -> String {
 #[test]
 fn a_surface_is_read_from_an_obj_file_beside_the_scene() {
     let dir = scratch("surface");
-    let s = with_surface(&dir, "square.obj", Some(&level_square(0.0))).unwrap();
+    let s = with_surface(&dir, "square.obj", Some(&level_square(0.0)), false).unwrap();
     let (ground, faces) = s.site().ground().unwrap();
     assert!(ground.is_surface());
     assert_eq!(ground.faces().len(), 2);
@@ -849,7 +867,7 @@ fn a_surface_is_read_from_an_obj_file_beside_the_scene() {
 fn a_bad_surface_is_named_with_its_file_and_reason() {
     let dir = scratch("bad-surface");
     let reason = |name: &str, obj: Option<&str>| {
-        let e = with_surface(&dir, name, obj).unwrap_err();
+        let e = with_surface(&dir, name, obj, true).unwrap_err();
         assert_eq!(e.key, "foundation.surface", "{e}");
         e.reason
     };

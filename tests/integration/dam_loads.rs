@@ -406,9 +406,11 @@ fn cohesion_holds_a_block_until_it_first_slides() {
     );
     assert!(r.factor_of_safety.and_then(|f| f.value()).unwrap() > 1.0);
     let kicked = |text: &str| {
+        // On its frame both (a base takes no cohesion yet).
         let s = Scene::from_toml(&(text.to_string() + "\n[initial]\nvx_m_s = 1.0\n"), "k")
             .unwrap()
             .with("solver.t_end_s", 1.0)
+            .and_then(|s| s.with("solver.contacts", "frame"))
             .unwrap();
         slideroute::run(&s).unwrap()
     };
@@ -436,6 +438,8 @@ fn a_monolith_turning_about_its_raised_centre_of_mass_keeps_its_energy_balance()
     let s = Scene::from_file(&path)
         .unwrap()
         .with("solver.t_end_s", 3.0)
+        .unwrap()
+        .with("solver.contacts", "frame")
         .unwrap();
     let r = slideroute::run(&s).unwrap();
     let e = r.energy.unwrap();

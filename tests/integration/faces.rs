@@ -27,8 +27,11 @@ fn default_as_contacts() -> Scene {
     Scene::from_toml(&text, "contacts").unwrap()
 }
 
+/// The route of `s` under `model` on the paper's three-point frame (`contacts = "frame"`: these
+/// tests are the frame's on faces; `base_contact.rs` has the base's).
 fn run(s: &Scene, model: DynamicsModel) -> Route {
-    slideroute::run(&s.with_dynamics(model).unwrap()).unwrap()
+    let s = s.with_dynamics(model).unwrap();
+    slideroute::run(&s.with("solver.contacts", "frame").unwrap()).unwrap()
 }
 
 /// The largest difference of position (m) and yaw (°) between two routes' rows.
@@ -315,7 +318,7 @@ fn envelope_triangles(
 
 /// `name`'s scene with its plane list replaced by the same ground as a triangulated surface
 /// (written to a scratch folder as OBJ).
-fn as_surface(name: &str) -> Scene {
+pub(super) fn as_surface(name: &str) -> Scene {
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
     let text = std::fs::read_to_string(root.join(format!("{name}.toml"))).unwrap();
     let s = Scene::from_toml(&text, name).unwrap();

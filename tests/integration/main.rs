@@ -9,6 +9,7 @@
 mod common;
 
 mod architecture;
+mod base_contact;
 mod cli;
 mod coefficients_match_derivation;
 mod dam_loads;

@@ -8,7 +8,10 @@
 //! `SLIDEROUTE_BLESS=1 cargo test --test integration route_reference`.
 
 use slideroute::internals::route::{self, Row};
-use slideroute::internals::{model::DynamicsModel, scene::Scene};
+use slideroute::internals::{
+    model::{Contacts, DynamicsModel},
+    scene::Scene,
+};
 use std::path::{Path, PathBuf};
 
 const EVERY: usize = 25;
@@ -80,6 +83,8 @@ fn every_route_of_every_scene_matches_its_stored_reference() {
                 assert!(base.record().is_some() && model == DynamicsModel::Paper);
                 continue;
             };
+            // The three-point frame's routes, whatever a scene's default contacts.
+            let scene = scene.with("solver.contacts", "frame").unwrap();
             let name = format!(
                 "{}-{}.csv",
                 file.file_stem().unwrap().to_string_lossy(),
@@ -98,8 +103,26 @@ fn every_route_of_every_scene_matches_its_stored_reference() {
             compare(&name, &got, &want);
             checked += 1;
         }
+        // A block on its base, where the scene's default is its base: the first 3 s.
+        if base
+            .settings()
+            .is_some_and(|s| s.contacts == Contacts::Base)
+        {
+            let name = format!("{}-base.csv", file.file_stem().unwrap().to_string_lossy());
+            let scene = base.with("solver.t_end_s", 3.0).unwrap();
+            let got = reference_text(&slideroute::run(&scene).unwrap());
+            let path = dir.join(&name);
+            if bless {
+                std::fs::write(&path, &got).unwrap();
+                continue;
+            }
+            let want = std::fs::read_to_string(&path)
+                .unwrap_or_else(|e| panic!("{name}: {e} (record with SLIDEROUTE_BLESS=1)"));
+            compare(&name, &got, &want);
+            checked += 1;
+        }
     }
-    assert!(bless || checked >= 14, "{checked} routes checked");
+    assert!(bless || checked >= 20, "{checked} routes checked");
 }
 
 fn compare(name: &str, got: &str, want: &str) {

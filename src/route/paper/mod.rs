@@ -37,6 +37,8 @@ fn row(s: &State, ev: Option<&Evaluation>, pose: &crate::geometry::Pose, faces: 
         s_n: ev.map(|e| e.reaction.shear.map(|v| v.norm())),
         faces,
         crease: [None; 3],
+        corners_carrying: None,
+        points_carrying: None,
     }
 }
 

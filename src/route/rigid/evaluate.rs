@@ -56,6 +56,8 @@ impl Eval {
             s_n: Some(self.motion.shear.map(|s| s.norm())),
             faces: self.faces,
             crease: self.motion.creases.faces(),
+            corners_carrying: None,
+            points_carrying: None,
         }
     }
 }

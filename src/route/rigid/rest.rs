@@ -66,6 +66,8 @@ pub(super) fn rest_row(t: f64, y: &RigidState, pose: &Pose, faces: [u32; 3]) -> 
         s_n: None,
         faces,
         crease: [None; 3],
+        corners_carrying: None,
+        points_carrying: None,
     }
 }
 

@@ -2,9 +2,9 @@
 
 use super::Reader;
 use crate::geometry::Site;
-use crate::model::{Block, Monolith, Section};
+use crate::model::{Base, Block, Monolith, Section};
 use crate::scene::SceneError;
-use crate::scene::raw::{RawBlock, RawMonolith, RawScene};
+use crate::scene::raw::{RawBase, RawBlock, RawMonolith, RawScene};
 
 impl Reader<'_> {
     /// The block: `[block]` as given, or `[monolith]`'s from its section (with the monolith, whose
@@ -36,6 +36,50 @@ impl Reader<'_> {
             }
             (None, None) => Ok((None, None)),
         }
+    }
+
+    /// `[base] outline_m` (from the heel and the width's middle for a monolith, about the
+    /// centre of mass for a block), or a monolith's base rectangle; `None` for a block without
+    /// an outline (its frame's bounding rectangle is taken when the base is needed).
+    pub(super) fn base(
+        &self,
+        raw: Option<&RawBase>,
+        monolith: Option<&Monolith>,
+    ) -> Result<Option<Base>, SceneError> {
+        let (shift, depth) = match monolith {
+            Some(m) => (m.props.cm_from_heel, m.props.cm_height),
+            None => (0.0, 0.0),
+        };
+        let outline = match raw.and_then(|b| b.outline_m.as_ref()) {
+            Some(corners) => {
+                let mut out = Vec::with_capacity(corners.len());
+                for (k, c) in corners.iter().enumerate() {
+                    let [x, z] = c[..] else {
+                        return Err(self.invalid(
+                            "base.outline_m",
+                            format!("corner {k} must be a pair [x, z] in metres, got {c:?}"),
+                        ));
+                    };
+                    out.push([x - shift, z]);
+                }
+                out
+            }
+            None => match monolith {
+                Some(m) => {
+                    let (b, w) = (m.section.base_length, m.section.width);
+                    vec![
+                        [-shift, -w / 2.0],
+                        [b - shift, -w / 2.0],
+                        [b - shift, w / 2.0],
+                        [-shift, w / 2.0],
+                    ]
+                }
+                None => return Ok(None),
+            },
+        };
+        Base::polygon(outline, depth)
+            .map(Some)
+            .map_err(|e| self.model(e))
     }
 
     /// `[block]`, with the rigid-body inertia defaults (a thin plate in the x'z' plane).

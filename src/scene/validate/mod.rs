@@ -17,7 +17,7 @@ use super::error::SceneErrorKind;
 use super::files::{Files, Sources};
 use super::raw::RawScene;
 use super::{Scene, SceneError};
-use crate::model::{self, ModelError, UnknownName};
+use crate::model::{self, Contacts, ModelError, UnknownName};
 use std::path::Path;
 
 /// What reading one document needs: where it came from (named in every error), the folder the
@@ -48,11 +48,14 @@ pub(super) fn validate(
 impl Reader<'_> {
     /// Every section in turn, then what they must agree on.
     fn scene(&self, raw: RawScene, source: toml::Table) -> Result<Scene, SceneError> {
+        let contacts = self.contacts_of(&raw)?;
         let site = self.site(
             self.section("frame", &raw.frame)?,
             self.section("foundation", &raw.foundation)?,
+            contacts == Contacts::Base,
         )?;
         let (block, monolith) = self.body(&raw, &site)?;
+        let base = self.base(raw.base.as_ref(), monolith.as_ref())?;
         let (loads, record) = self.loads(&raw, monolith.as_ref())?;
         let friction = raw
             .friction
@@ -63,7 +66,11 @@ impl Reader<'_> {
             Some(f) => self.strengths(f, &site, monolith.as_ref())?,
             None => Default::default(),
         };
-        let settings = raw.solver.as_ref().map(|s| self.solver(s)).transpose()?;
+        let settings = raw
+            .solver
+            .as_ref()
+            .map(|s| self.solver(s, contacts))
+            .transpose()?;
         let initial = self.initial(raw.initial.as_ref())?;
         if let Some(s) = &settings {
             model::check_rigid_only(s.dynamics, record.is_some(), strengths.has_cohesion())
@@ -94,6 +101,7 @@ impl Reader<'_> {
             record,
             strengths,
             uncertain,
+            base,
         })
     }
 

@@ -32,10 +32,11 @@ impl Reader<'_> {
         &self,
         frame: &raw::RawFrame,
         foundation: &raw::RawFoundation,
+        set_down: bool,
     ) -> Result<Site, SceneError> {
         let frame = self.frame(frame)?;
         let foundation = self.foundation(foundation)?;
-        self.site_of(frame, foundation)
+        self.site_of(frame, foundation, set_down)
     }
 
     /// `[frame]`: either the paper's four lengths or `contacts_m`, not both.
@@ -229,8 +230,14 @@ impl Reader<'_> {
     /// The site: the paper's frame on the paper's planes keeps the paper's systems; any triangle on
     /// the paper's planes (each through its contact's start, as the paper's are) takes the general
     /// system; on a list of faces each contact starts on the face under it (the block starts flat at
-    /// Y = 0, so each contact must be on the ground there, neither under it nor above it).
-    fn site_of(&self, frame: FrameIn, foundation: FoundationIn) -> Result<Site, SceneError> {
+    /// Y = 0, so each contact must be on the ground there, neither under it nor above it), unless
+    /// the block is `set_down` on its base (`contacts = "base"`), when it starts where it rests.
+    fn site_of(
+        &self,
+        frame: FrameIn,
+        foundation: FoundationIn,
+        set_down: bool,
+    ) -> Result<Site, SceneError> {
         let contacts = match &frame {
             FrameIn::Paper(f) => f.vertices(),
             FrameIn::Contacts(c) => *c,
@@ -248,15 +255,21 @@ impl Reader<'_> {
                 Ok(Site::general(c, planes))
             }
             (_, FoundationIn::Faces(faces)) => {
-                self.on_ground(contacts, Arc::new(Ground::planes(faces)))
+                self.on_ground(contacts, Arc::new(Ground::planes(faces)), set_down)
             }
-            (_, FoundationIn::Surface(ground)) => self.on_ground(contacts, ground),
+            (_, FoundationIn::Surface(ground)) => self.on_ground(contacts, ground, set_down),
         }
     }
 
     /// Contacts starting flat at Y = 0 on a ground of faces: each must be on the ground there,
-    /// neither under it nor above it, and takes the face under it.
-    fn on_ground(&self, contacts: [[f64; 2]; 3], ground: Arc<Ground>) -> Result<Site, SceneError> {
+    /// neither under it nor above it, and takes the face under it. A block `set_down` on its base
+    /// only needs ground under its contacts' plan positions.
+    fn on_ground(
+        &self,
+        contacts: [[f64; 2]; 3],
+        ground: Arc<Ground>,
+        set_down: bool,
+    ) -> Result<Site, SceneError> {
         let key = if ground.is_surface() {
             "foundation.surface"
         } else {
@@ -270,7 +283,7 @@ impl Reader<'_> {
             let Some((top, h)) = ground.top(x, z) else {
                 return Err(self.invalid(key, format!("{at}, off the surveyed surface")));
             };
-            if h > tol {
+            if h > tol && !set_down {
                 return Err(self.invalid(
                     key,
                     format!(
@@ -279,7 +292,7 @@ impl Reader<'_> {
                     ),
                 ));
             }
-            if h < -tol {
+            if h < -tol && !set_down {
                 return Err(self.invalid(key,
                     format!(
                         "{at}, above the ground: the highest face there, face {top}, is {:.6} m \

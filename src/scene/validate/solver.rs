@@ -1,13 +1,55 @@
 //! `[solver]` and `[initial]`: how the route is run, and the motion at its start.
 
 use super::Reader;
-use crate::model::{DynamicsModel, Initial, RunSettings};
+use crate::model::{Contacts, DynamicsModel, Initial, RunSettings};
 use crate::scene::SceneError;
-use crate::scene::raw::{RawInitial, RawSolver};
+use crate::scene::raw::{RawInitial, RawScene, RawSolver};
 
 impl Reader<'_> {
-    /// The run settings, with each dynamics model's default integrator.
-    pub(super) fn solver(&self, s: &RawSolver) -> Result<RunSettings, SceneError> {
+    /// Where the block touches the ground: `solver.contacts` as given, or by default its base
+    /// wherever the rigid body runs on faces, a surface or under a monolith with Coulomb
+    /// friction and no cohesion, and the paper's three-point frame on the paper's planes, under
+    /// the paper's dynamics, or with a criterion or cohesion a base does not take yet.
+    pub(super) fn contacts_of(&self, raw: &RawScene) -> Result<Contacts, SceneError> {
+        let solver = raw.solver.as_ref();
+        if let Some(w) = solver.and_then(|s| s.contacts.as_deref()) {
+            return self.named("solver.contacts", w);
+        }
+        let dynamics: DynamicsModel = match solver.and_then(|s| s.dynamics.as_deref()) {
+            None => DynamicsModel::default(),
+            Some(w) => self.named("solver.dynamics", w)?,
+        };
+        let faces = raw
+            .foundation
+            .as_ref()
+            .is_some_and(|f| f.plane.is_some() || f.surface.is_some());
+        let body = faces || raw.monolith.is_some();
+        // A base takes Coulomb friction without cohesion (`derivations/13-base-contact.md` §8):
+        // a scene with another criterion or with cohesion stays on its frame unless told.
+        let coulomb = |model: Option<&str>, cohesion: Option<f64>| {
+            model.is_none_or(|m| m == "coulomb") && cohesion.is_none_or(|c| c == 0.0)
+        };
+        let plain = raw.friction.as_ref().is_none_or(|f| {
+            coulomb(f.model.as_deref(), f.cohesion_pa)
+                && f.face
+                    .iter()
+                    .flatten()
+                    .all(|g| coulomb(g.model.as_deref(), g.cohesion_pa))
+        });
+        Ok(if body && plain && dynamics == DynamicsModel::RigidBody {
+            Contacts::Base
+        } else {
+            Contacts::Frame
+        })
+    }
+
+    /// The run settings, with each dynamics model's default integrator and the block touching
+    /// the ground by `contacts`.
+    pub(super) fn solver(
+        &self,
+        s: &RawSolver,
+        contacts: Contacts,
+    ) -> Result<RunSettings, SceneError> {
         let mode = self.named("solver.mode", self.need("solver.mode", s.mode.as_deref())?)?;
         let dynamics: DynamicsModel = match s.dynamics.as_deref() {
             None => DynamicsModel::default(),
@@ -22,6 +64,7 @@ impl Reader<'_> {
         if let Some(w) = s.integrator.as_deref() {
             settings = settings.with_integrator(self.named("solver.integrator", w)?);
         }
+        settings = settings.with_contacts(contacts);
         if let Some(k) = s.stride {
             if k < 1 {
                 return Err(self.invalid(

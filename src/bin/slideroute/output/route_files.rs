@@ -6,7 +6,7 @@ use std::io::Write;
 use std::path::PathBuf;
 
 /// The header of `route.csv`: the fields of a [`Row`], in its order, with their units.
-pub const ROUTE_HEADER: [&str; 23] = Row::COLUMNS;
+pub const ROUTE_HEADER: [&str; 25] = Row::COLUMNS;
 
 /// route.csv written row by row as the route computes them (memory does not grow
 /// with the route's length): the header [`ROUTE_HEADER`], then one record per [`CsvRows::push`];

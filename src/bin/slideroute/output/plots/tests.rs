@@ -203,7 +203,11 @@ fn a_foundation_of_faces_is_drawn_face_by_face_with_its_creases() {
 fn the_plan_view_marks_where_a_contact_rides_a_crease_and_changes_face() {
     let path =
         std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/paper-like-faces.toml");
-    let scene = Scene::from_file(&path).unwrap();
+    // The three-point frame's contacts (on its base a block has corners, not contacts).
+    let scene = Scene::from_file(&path)
+        .unwrap()
+        .with("solver.contacts", "frame")
+        .unwrap();
     let (dir, route) = route_pictures("crease", &scene);
     assert!(route.rows.iter().any(|r| r.crease == [None, None, Some(1)]));
     let svg = read(&dir, "plan.svg");
@@ -338,4 +342,39 @@ fn pictures_of_odd_scenes_draw_without_fail() {
         drawn += 1;
     }
     assert!(drawn >= 30, "only {drawn} of 40 scenes ran");
+}
+
+#[test]
+fn the_plan_view_of_a_block_on_its_base_draws_its_base_and_where_it_touched() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/ramp-faces.toml");
+    let scene = Scene::from_file(&path)
+        .unwrap()
+        .with("solver.t_end_s", 1.0)
+        .unwrap();
+    let (dir, route) = route_pictures("on-base", &scene);
+    let corners = route.base.as_ref().unwrap().outline_m.len();
+    let svg = read(&dir, "plan.svg");
+    // The base's outline: a closed path of its corners and the first again, at each drawn pose.
+    let closed = svg
+        .split("<polyline")
+        .skip(1)
+        .filter(|p| {
+            let points = p
+                .split("points=\"")
+                .nth(1)
+                .and_then(|q| q.split('"').next())
+                .unwrap_or("");
+            points.split_whitespace().count() == corners + 1
+        })
+        .count();
+    assert!(closed >= 2, "{closed} outlines of {corners} corners");
+    // The touch marks, in their colour, and the legend's words for them.
+    assert!(svg.contains("#E67800"), "no touch marks");
+    let words = texts(&svg)
+        .into_iter()
+        .map(|t| t.text)
+        .collect::<Vec<_>>()
+        .join(" ");
+    assert!(words.contains("corners carrying the block"), "{words}");
+    assert!(!words.contains("contact 0 onto"), "{words}");
 }

@@ -3,7 +3,7 @@
 
 use super::regions::Region;
 use super::route::Force;
-use super::{FACE_CHANGE, FAN, FORCE, HORIZONTAL, PLANE_1, PLANE_2, PlanView};
+use super::{FACE_CHANGE, FAN, FORCE, HORIZONTAL, PLANE_1, PLANE_2, PlanView, TOUCH};
 use crate::output::plots::sheet::{self, Entry, Mark};
 use plotters::prelude::*;
 use slideroute::Scene;
@@ -15,6 +15,8 @@ pub(super) struct Drawn<'a> {
     pub surface: bool,
     pub force: Option<Force>,
     pub changes: &'a [(super::P, String)],
+    /// A block on its base: its base's outline is drawn, and where it touched the ground.
+    pub on_base: bool,
 }
 
 /// The legend's entries, in order: the foundation, the force, each route and the fan, the
@@ -38,16 +40,34 @@ pub(super) fn entries(scene: &Scene, shown: &PlanView, drawn: &Drawn) -> Vec<Ent
         entries.push(Entry::new(Mark::Line(FAN), f.name.clone()));
         entries.push(Entry::new(Mark::Dot(FAN), "where each sampled route ended"));
     }
-    entries.push(Entry::new(
-        Mark::Dot(BLACK),
-        "contacts 0, 1, 2 at the start; thick frame: start and end, thin: every 1/8 of the route",
-    ));
+    if drawn.on_base {
+        entries.push(Entry::new(
+            Mark::Dot(BLACK),
+            "corners of the base at the start (numbered as route.csv's corners_carrying); thick \
+             outline: start and end, thin: every 1/8 of the route",
+        ));
+        entries.push(Entry::new(
+            Mark::Dot(TOUCH),
+            "corners carrying the block at those poses (where the base touched the ground)",
+        ));
+    } else {
+        entries.push(Entry::new(
+            Mark::Dot(BLACK),
+            "contacts 0, 1, 2 at the start; thick frame: start and end, thin: every 1/8 of the \
+             route",
+        ));
+    }
     if shown
         .tracks
         .iter()
         .any(|t| t.rows.len() > 1 && t.rows.first() != t.rows.last())
     {
-        entries.push(Entry::new(Mark::Cross(BLACK), "contacts at the end"));
+        let end = if drawn.on_base {
+            "corners at the end"
+        } else {
+            "contacts at the end"
+        };
+        entries.push(Entry::new(Mark::Cross(BLACK), end));
         if !drawn.changes.is_empty() {
             let said: Vec<&str> = drawn.changes.iter().map(|(_, s)| s.as_str()).collect();
             entries.push(Entry::new(

@@ -31,6 +31,8 @@ pub(super) const HORIZONTAL: RGBColor = RGBColor(150, 130, 100);
 const FORCE: RGBColor = RGBColor(150, 30, 150);
 /// The marks of a contact's change of face.
 const FACE_CHANGE: RGBColor = RGBColor(200, 30, 30);
+/// Where a block on its base touched the ground.
+pub(super) const TOUCH: RGBColor = RGBColor(230, 120, 0);
 /// The colour of a route fan.
 const FAN: RGBColor = RGBColor(200, 30, 30);
 
@@ -126,6 +128,7 @@ pub(super) fn plan_view(path: &Path, scene: &Scene, shown: &PlanView) -> Res<()>
         surface,
         force: plan.force,
         changes: &changes,
+        on_base: !plan.touches.is_empty(),
     };
     let entries = legend::entries(scene, shown, &drawn);
     let mut y = sheet::heading(path, &sheet.panel, "Legend", 0)?;
@@ -149,8 +152,11 @@ struct Plan<'a> {
     scene: &'a Scene,
     tracks: &'a [Track<'a>],
     fan: Option<&'a Fan<'a>>,
-    /// Each track's frame outlines ([`outlines_of`]).
-    outlines: Vec<Vec<[P; 3]>>,
+    /// Each track's outlines ([`outlines_of`]): the frame's triangle, or a block on its base
+    /// its base's polygon.
+    outlines: Vec<Vec<Vec<P>>>,
+    /// Where a block on its base touched the ground at those rows: its carrying corners.
+    touches: Vec<P>,
     /// The frame's side length L (m).
     l: f64,
     /// The first track's first row.
@@ -169,8 +175,10 @@ impl<'a> Plan<'a> {
     /// arrow in view, with room round the frame for the regions' names.
     fn new(scene: &'a Scene, shown: &PlanView<'a>, (cw, ch): (u32, u32)) -> Self {
         let tracks = shown.tracks;
-        let outlines: Vec<Vec<[P; 3]>> =
+        let drawn: Vec<(Vec<Vec<P>>, Vec<P>)> =
             tracks.iter().map(|t| outlines_of(scene, t.rows)).collect();
+        let touches: Vec<P> = drawn.iter().flat_map(|(_, t)| t.iter().copied()).collect();
+        let outlines: Vec<Vec<Vec<P>>> = drawn.into_iter().map(|(o, _)| o).collect();
         let l = scene.l();
         let start = tracks.first().and_then(|t| t.rows.first()).copied();
         let force = start.as_ref().and_then(|s| line_of_action(scene, s));
@@ -182,6 +190,7 @@ impl<'a> Plan<'a> {
             tracks,
             fan: shown.fan,
             outlines,
+            touches,
             l,
             start,
             force,
@@ -330,7 +339,7 @@ impl<'a> Plan<'a> {
         for (k, (outlines, track)) in self.outlines.iter().zip(self.tracks).enumerate() {
             let ink = if k == 0 { BLACK } else { track.color };
             for (j, o) in outlines.iter().enumerate() {
-                let mut pts = o.to_vec();
+                let mut pts = o.clone();
                 pts.push(o[0]);
                 let style = if j == 0 || j + 1 == outlines.len() {
                     ink.stroke_width(2)
@@ -339,6 +348,14 @@ impl<'a> Plan<'a> {
                 };
                 chart.draw_series(std::iter::once(PathElement::new(pts, style)))?;
             }
+        }
+        // Where a block on its base touched the ground.
+        if !self.touches.is_empty() {
+            chart.draw_series(
+                self.touches
+                    .iter()
+                    .map(|&p| Circle::new(p, 3, TOUCH.filled())),
+            )?;
         }
         for track in self.tracks {
             chart.draw_series(LineSeries::new(
@@ -447,7 +464,7 @@ impl<'a> Plan<'a> {
             let Some(last) = outlines.last().filter(|_| moved) else {
                 continue;
             };
-            let first = outlines.first().copied().unwrap_or(*last);
+            let first = outlines.first().cloned().unwrap_or_else(|| last.clone());
             chart.draw_series(
                 last.iter()
                     .map(|&p| EmptyElement::at(p) + Cross::new((0, 0), 6, ink.stroke_width(2))),
@@ -488,8 +505,8 @@ impl<'a> Plan<'a> {
         }
         obstacles.extend(self.fan_points().step_by(7));
         for o in self.outlines.iter().flatten() {
-            for k in 0..3 {
-                obstacles.extend(along(o[k], o[(k + 1) % 3], 12));
+            for k in 0..o.len() {
+                obstacles.extend(along(o[k], o[(k + 1) % o.len()], 12));
             }
         }
         let scale = self.scale;

@@ -1,10 +1,14 @@
 //! What a route puts on the plan view besides its CM path: the contact frame's outline at its
-//! poses, where a contact changed face or rode a crease, and the hydraulic force's line of
-//! action at the start.
+//! poses (a block on its base: its base's outline, and the corners that carried it), where a
+//! contact changed face or rode a crease, and the hydraulic force's line of action at the
+//! start.
 
 use super::P;
 use crate::output::plots::sheet;
+use nalgebra::Vector3;
 use slideroute::internals::geometry::direct;
+use slideroute::internals::model::Base;
+use slideroute::internals::route::pose_of_row;
 use slideroute::{Displacement, Pose, Row, Scene};
 
 /// The frame's vertices in plan at a row's pose: from the row's tilts on the paper's site, by
@@ -27,20 +31,67 @@ fn vertices(scene: &Scene, row: &Row) -> Option<[P; 3]> {
     Some(v.map(|v| (v.x, v.z)))
 }
 
-/// Frame outlines every 1/8 of a route's rows (and at its end).
-pub(super) fn outlines_of(scene: &Scene, rows: &[Row]) -> Vec<[P; 3]> {
+/// A block on its base at a row: its base's corners in plan, rebuilt from the row alone
+/// (`pose_of_row`), and those that carry it.
+fn base_corners(scene: &Scene, base: &Base, row: &Row) -> Option<(Vec<P>, Vec<P>)> {
+    let pose = pose_of_row(row, scene.site().contacts(), base.depth())?;
+    let corners: Vec<P> = base
+        .outline()
+        .iter()
+        .map(|&[x, z]| {
+            let p = pose.point(&Vector3::new(x, -base.depth(), z));
+            (p.x, p.z)
+        })
+        .collect();
+    let carrying = row.corners_carrying.unwrap_or(0);
+    let touching = corners
+        .iter()
+        .enumerate()
+        .filter(|(k, _)| *k < 32 && carrying & (1 << k) != 0)
+        .map(|(_, p)| *p)
+        .collect();
+    Some((corners, touching))
+}
+
+/// Outlines every 1/8 of a route's rows (and at its end): the frame's triangle, or, for a
+/// block on its base, its base's polygon; and, for a block on its base, the corners that
+/// carried it at those rows.
+pub(super) fn outlines_of(scene: &Scene, rows: &[Row]) -> (Vec<Vec<P>>, Vec<P>) {
     let every = (rows.len() / 8).max(1);
-    rows.iter()
+    let drawn = rows
+        .iter()
         .enumerate()
         .filter(|(k, _)| k % every == 0 || *k + 1 == rows.len())
-        .filter_map(|(_, r)| vertices(scene, r))
-        .collect()
+        .map(|(_, r)| r);
+    let on_base = rows.first().is_some_and(|r| r.corners_carrying.is_some());
+    let sim = scene.simulation().ok().filter(|_| on_base);
+    match sim.as_ref().and_then(|s| s.base()) {
+        Some(base) => {
+            let (mut outlines, mut touches) = (Vec::new(), Vec::new());
+            for (corners, touching) in drawn.filter_map(|r| base_corners(scene, base, r)) {
+                outlines.push(corners);
+                touches.extend(touching);
+            }
+            (outlines, touches)
+        }
+        None => (
+            drawn
+                .filter_map(|r| vertices(scene, r))
+                .map(|v| v.to_vec())
+                .collect(),
+            Vec::new(),
+        ),
+    }
 }
 
 /// Where a contact changed face, rode into a crease or left one, along `rows`: its plan
 /// position then and what happened, e.g. "contact 2 into the crease with face 1 at 0.003 s".
 pub(super) fn face_changes(scene: &Scene, rows: &[Row]) -> Vec<(P, String)> {
     let mut out = Vec::new();
+    // A block on its base has no three contacts to follow from face to face.
+    if rows.first().is_some_and(|r| r.corners_carrying.is_some()) {
+        return out;
+    }
     for w in rows.windows(2) {
         let (a, b) = (&w[0], &w[1]);
         let mut said = Vec::new();

@@ -1,0 +1,56 @@
+//! How far a base is inside the ground, by sampling: an independent check of the contact
+//! model's own gaps (`derivations/13-base-contact.md` §5).
+//!
+//! The base is sampled on a grid over its outline's bounding box (the points on the base) and
+//! along its edges; at each sample the ground's height over its plan point is compared with
+//! the sample's own. Nothing here uses the touches the dynamics uses.
+
+use super::ground::Ground;
+use super::touch::{BodyPose, in_outline};
+use nalgebra::Vector3;
+
+/// The deepest a sample of the base `outline` (x′, z′ about the CM, at `depth` below it) at
+/// `pose` is below the ground, measured vertically (m; zero or negative when every sample is on
+/// or above it), with `per_side` samples along each side of the grid and of each edge. Samples
+/// over no ground are skipped.
+pub fn deepest(
+    ground: &Ground,
+    outline: &[[f64; 2]],
+    depth: f64,
+    pose: &BodyPose,
+    per_side: usize,
+) -> f64 {
+    let per_side = per_side.max(2);
+    let lo = |k: usize| outline.iter().map(|c| c[k]).fold(f64::INFINITY, f64::min);
+    let hi = |k: usize| {
+        outline
+            .iter()
+            .map(|c| c[k])
+            .fold(f64::NEG_INFINITY, f64::max)
+    };
+    let step = |k: usize, i: usize| lo(k) + (hi(k) - lo(k)) * i as f64 / (per_side - 1) as f64;
+    let mut points: Vec<[f64; 2]> = Vec::with_capacity(per_side * per_side);
+    for i in 0..per_side {
+        for j in 0..per_side {
+            let p = [step(0, i), step(1, j)];
+            if in_outline(outline, p) {
+                points.push(p);
+            }
+        }
+    }
+    let n = outline.len();
+    for k in 0..n {
+        let (a, b) = (outline[k], outline[(k + 1) % n]);
+        for i in 0..per_side {
+            let s = i as f64 / per_side as f64;
+            points.push([a[0] + s * (b[0] - a[0]), a[1] + s * (b[1] - a[1])]);
+        }
+    }
+    points
+        .iter()
+        .filter_map(|&[x, z]| {
+            let q = pose.point(&Vector3::new(x, -depth, z));
+            ground.top(q.x, q.z).map(|(_, h)| h - q.y)
+        })
+        .fold(f64::NEG_INFINITY, f64::max)
+}

@@ -1,0 +1,329 @@
+//! The route of a block on its whole base (`[solver] contacts = "base"`;
+//! `derivations/13-base-contact.md`).
+//!
+//! The block is a rigid body in six degrees of freedom. It is first set down on the ground
+//! under its own weight (`geometry::settle`): the lowest pose of its base with nothing below the
+//! ground. Then, step by step, the loads at the pose give the free velocities; the base's
+//! touches with the ground within the step's reach (`geometry::touch`: corners on faces, the
+//! ground's vertices under the base, ground edges across its edges) give the contacts; the
+//! contact impulses (`mechanics::impulses`: no contact pulls, no gap closes past zero, Coulomb
+//! friction exactly) give the velocities at the step's end, and the pose moves by them
+//! (`step.rs`). A contact is made where a gap closes (an inelastic impact, the energy it takes
+//! booked with friction's) and released where its impulse falls to zero, so the block rocks,
+//! hops, drops off a step and lands as the physics says. We deliberately differ from the
+//! three-point model here: the step is time-stepped (first order, every contact change inside
+//! a step, not located to round-off), because the contacts of a base on real rock change by
+//! the dozen.
+//!
+//! The route ends only where the physics does: the block stops and static friction holds it
+//! (no ground motion), it overturns (its base tilts beyond [`OVERTURN_DEG`]), its base goes
+//! over no ground, or the time limit.
+
+mod report;
+mod state;
+mod step;
+
+pub use report::{BaseReport, Carrying, Resting, pose_of_row};
+
+use super::dynamics::{Dynamics, Flow, Start};
+use super::logbook::{EnergyBalance, Logbook};
+use super::pose_finder::PoseFinder;
+use super::row::Row;
+use super::termination::Reason;
+use crate::geometry::penetration::deepest;
+use crate::geometry::{BodyPose, Footprint, Ground, SettleError, set_down};
+use crate::model::{Base, Simulation};
+use nalgebra::{Matrix3, Vector3};
+use state::BodyState;
+use std::cell::Cell;
+use std::sync::Arc;
+use step::{Ctx, Stepped};
+
+/// The tilt of the base from level beyond which the block has overturned (degrees).
+pub const OVERTURN_DEG: f64 = 60.0;
+
+/// Samples along each side of the base in the independent check of its penetration.
+const PENETRATION_SAMPLES: usize = 6;
+
+/// A block on its base under way.
+pub(super) struct OnBase<'a> {
+    sim: &'a Simulation,
+    base: &'a Base,
+    ground: Arc<Ground>,
+    inertia: Matrix3<f64>,
+    size: f64,
+    s: BodyState,
+    t: f64,
+    /// What the last step found (the touches carrying the block).
+    last: Stepped,
+    /// The CM's height at the start and the kinetic energy there.
+    origin: (f64, f64),
+    /// The deepest the base went into the ground in any recorded row (m).
+    deepest: Cell<f64>,
+}
+
+impl<'a> OnBase<'a> {
+    fn ctx(&self) -> Ctx<'_> {
+        Ctx {
+            sim: self.sim,
+            ground: &self.ground,
+            base: footprint(self.base),
+            inertia: self.inertia,
+            size: self.size,
+        }
+    }
+
+    /// The base point under the CM: where the three-point frame's rows put the block.
+    fn under_cm(&self) -> Vector3<f64> {
+        self.s
+            .pose
+            .point(&Vector3::new(0.0, -self.base.depth(), 0.0))
+    }
+
+    /// The energy balance and the deepest penetration, into the logbook.
+    fn seal(&self, o: &mut Logbook<'_>) {
+        let mass = self.sim.block().mass;
+        let kinetic = self.s.kinetic(mass, &self.inertia);
+        let potential = mass * self.sim.loads().gravity * (self.s.pose.cm.y - self.origin.0);
+        let (wa, wc) = (self.s.work_applied, self.s.work_contacts);
+        o.energy = Some(EnergyBalance {
+            work_hydraulic_j: wa,
+            work_friction_j: wc,
+            kinetic_j: kinetic,
+            kinetic_initial_j: self.origin.1,
+            potential_change_j: potential,
+            residual_j: wa + wc - (kinetic - self.origin.1) - potential,
+        });
+        if let Some(b) = o.base.as_mut() {
+            b.max_penetration_m = b.max_penetration_m.max(self.deepest.get());
+        }
+    }
+
+    /// Whether the block is still: its speed, and its turning at its size, below a millionth
+    /// of what its weight gives it in a step.
+    fn still(&self, h: f64) -> bool {
+        let g = self.sim.loads().gravity;
+        self.s.v.norm() + self.s.w.norm() * self.size <= 1e-6 * g * h
+    }
+
+    /// The base's tilt from level (degrees).
+    fn tilt_deg(&self) -> f64 {
+        self.s.pose.up().y.clamp(-1.0, 1.0).acos().to_degrees()
+    }
+
+    fn end<'s>(&self, mut o: Logbook<'s>, reason: Reason, detail: String) -> Flow<'s> {
+        let row = self.row();
+        self.seal(&mut o);
+        Flow::Ended(o.finish(row, reason, self.t, detail))
+    }
+}
+
+fn footprint(base: &Base) -> Footprint<'_> {
+    Footprint {
+        outline: base.outline(),
+        depth: base.depth(),
+    }
+}
+
+/// The ground under the block: the site's faces or surface, or the paper's three planes (the
+/// highest of them, the paper's valley).
+fn ground_of(sim: &Simulation) -> Arc<Ground> {
+    match sim.site().shared_ground() {
+        Some(g) => Arc::clone(g),
+        None => Arc::new(Ground::planes(sim.site().planes().to_vec())),
+    }
+}
+
+impl<'a> Dynamics<'a> for OnBase<'a> {
+    fn start<'s>(
+        sim: &'a Simulation,
+        _finder: &mut PoseFinder<'_>,
+        o: Logbook<'s>,
+    ) -> Start<'s, Self> {
+        let Some(base) = sim.base() else {
+            return Start::Ended(o.end(
+                Reason::ContactForcesUndetermined,
+                0.0,
+                "the simulation has no base".into(),
+            ));
+        };
+        let size = (0..base.outline().len())
+            .map(|k| footprint(base).corner(k).norm())
+            .fold(base.depth(), f64::max);
+        let flat = BodyPose {
+            cm: Vector3::new(0.0, base.depth(), 0.0),
+            rotation: Matrix3::identity(),
+        };
+        let ground = ground_of(sim);
+        let mut body = OnBase {
+            sim,
+            base,
+            ground,
+            inertia: sim.block().tensor(),
+            size,
+            s: BodyState::at_rest(flat),
+            t: 0.0,
+            last: Stepped::default(),
+            origin: (flat.cm.y, 0.0),
+            deepest: Cell::new(f64::NEG_INFINITY),
+        };
+        let rest = match set_down(&body.ground, footprint(base), flat, 1e-10 * size) {
+            Ok(r) => r,
+            Err(e) => {
+                let reason = match e {
+                    SettleError::OffGround(_) => Reason::BaseOffGround,
+                    SettleError::Tips(_) => Reason::Overturned,
+                    SettleError::Solver(_) => Reason::ContactForcesUndetermined,
+                };
+                let row = body.row();
+                return Start::Ended(o.finish(
+                    row,
+                    reason,
+                    0.0,
+                    format!("the block cannot be set down: {e}"),
+                ));
+            }
+        };
+        body.s = BodyState::at_rest(rest.pose);
+        let mut o = o;
+        o.base = Some(BaseReport {
+            resting: Resting::of(&rest),
+            max_penetration_m: f64::NEG_INFINITY,
+            outline_m: base.outline().to_vec(),
+        });
+        let init = sim.initial();
+        body.s.v = Vector3::new(init.vx, 0.0, init.vz);
+        body.s.w = Vector3::new(0.0, -init.omega, 0.0);
+        body.origin = (
+            rest.pose.cm.y,
+            body.s.kinetic(sim.block().mass, &body.inertia),
+        );
+        body.last = Stepped {
+            touches: rest
+                .carrying
+                .iter()
+                .map(|(t, share)| (*t, share * body.ctx().weight_impulse(1.0)))
+                .collect(),
+            h: 1.0,
+            ..Stepped::default()
+        };
+        o.push(body.row());
+        let shaken = sim.record().is_some_and(|r| r.end() > 0.0);
+        if init.at_rest() && !shaken {
+            // Held where it rests? One trial step under the loads.
+            let mut trial = body.s;
+            let h = sim.settings().dt;
+            body.ctx().step(&mut trial, 0.0, h, &[]);
+            let moved = trial.v.norm() + trial.w.norm() * size > 1e-6 * sim.loads().gravity * h;
+            if !moved {
+                body.seal(&mut o);
+                o.energy = Some(EnergyBalance::default());
+                return Start::Ended(o.end(
+                    Reason::DoesNotSlide,
+                    0.0,
+                    "static friction holds the block where it rests on its base".into(),
+                ));
+            }
+        }
+        Start::Moving(body, o)
+    }
+
+    fn advance<'s>(
+        &mut self,
+        _finder: &mut PoseFinder<'_>,
+        _k: usize,
+        t_to: f64,
+        mut o: Logbook<'s>,
+    ) -> Flow<'s> {
+        let h = t_to - self.t;
+        let before = self.under_cm();
+        let mut s = self.s;
+        let stepped = self.ctx().step(&mut s, self.t, h, &self.last.impulses);
+        if !(s.v.iter().chain(s.w.iter()).all(|x| x.is_finite())) {
+            return self.end(
+                o,
+                Reason::ContactForcesUndetermined,
+                format!("the step from t = {} s gave no finite velocity", self.t),
+            );
+        }
+        self.s = s;
+        self.t = t_to;
+        self.last = stepped;
+        o.travel += (self.under_cm() - before).norm();
+        if let Some(&k) = self.last.off_ground.first() {
+            return self.end(
+                o,
+                Reason::BaseOffGround,
+                format!("corner {k} of the base went over no ground"),
+            );
+        }
+        if self.tilt_deg() > OVERTURN_DEG {
+            let tilt = self.tilt_deg();
+            return self.end(
+                o,
+                Reason::Overturned,
+                format!("the base tilted {tilt:.1}° from level, beyond {OVERTURN_DEG}°"),
+            );
+        }
+        let shaken = self.sim.record().is_some();
+        if !shaken && self.still(h) {
+            return self.end(
+                o,
+                Reason::Stopped,
+                "the block stopped and static friction holds it on its base".into(),
+            );
+        }
+        Flow::Go(o)
+    }
+
+    fn row(&self) -> Row {
+        let pose = &self.s.pose;
+        let depth = self.base.depth();
+        let inside = deepest(
+            &self.ground,
+            self.base.outline(),
+            depth,
+            pose,
+            PENETRATION_SAMPLES,
+        );
+        self.deepest.set(self.deepest.get().max(inside));
+        let p0 = self.under_cm();
+        let v0 = self.s.v + self.s.w.cross(&(p0 - pose.cm));
+        let frame = self
+            .sim
+            .site()
+            .contacts()
+            .map(|[x, z]| pose.point(&Vector3::new(x, -depth, z)));
+        let elevation = |a: usize, b: usize| {
+            let d = frame[b] - frame[a];
+            (d.y / d.norm()).clamp(-1.0, 1.0).asin().to_degrees()
+        };
+        let faces = frame.map(|p| self.ground.top(p.x, p.z).map_or(0, |(f, _)| f as u32));
+        let (corners, points) = self
+            .last
+            .carrying_summary(self.ctx().weight_impulse(self.last.h));
+        Row {
+            t_s: self.t,
+            x_m: p0.x,
+            y_m: p0.y,
+            z_m: p0.z,
+            theta_deg: self.s.yaw().to_degrees(),
+            alpha_deg: elevation(0, 1),
+            beta_deg: elevation(0, 2),
+            gamma_deg: elevation(1, 2),
+            vx_m_s: v0.x,
+            vz_m_s: v0.z,
+            omega_deg_s: self.s.yaw_rate().to_degrees(),
+            n_n: None,
+            s_n: None,
+            faces,
+            crease: [None; 3],
+            corners_carrying: Some(corners),
+            points_carrying: Some(points),
+        }
+    }
+
+    fn close(&self, o: &mut Logbook<'_>) {
+        self.seal(o);
+    }
+}

@@ -1,0 +1,215 @@
+//! One step of the body on its base (`derivations/13-base-contact.md` §4): the loads at the
+//! pose, the free velocities, the touches within reach, the contact impulses, the drift.
+
+use super::state::BodyState;
+use crate::geometry::{BodyPose, Feature, Footprint, Ground, LocalFrame, Touch, touches};
+use crate::mechanics::impulses::{self, Body, ContactRow};
+use crate::mechanics::loads::Applied;
+use crate::model::Simulation;
+use nalgebra::{Matrix3, Vector3};
+
+/// What a step is taken with: the simulation, the ground, the base, the body's inertia.
+pub(super) struct Ctx<'a> {
+    pub sim: &'a Simulation,
+    pub ground: &'a Ground,
+    pub base: Footprint<'a>,
+    /// The inertia tensor about the CM in the body's axes (kg·m²).
+    pub inertia: Matrix3<f64>,
+    /// The base's reach from the CM (m): the largest corner distance, or the depth.
+    pub size: f64,
+}
+
+/// What one step found.
+#[derive(Debug, Clone, Default)]
+pub(super) struct Stepped {
+    /// The touches the step was solved with, and each one's normal impulse (N·s).
+    pub touches: Vec<(Touch, f64)>,
+    /// Each touch's whole impulse (N·s, world): the next step's warm start.
+    pub impulses: Vec<(Touch, Vector3<f64>)>,
+    /// Corners of the base over no ground.
+    pub off_ground: Vec<usize>,
+    /// The step's length (s).
+    pub h: f64,
+}
+
+impl Stepped {
+    /// The touches whose normal impulse is not zero: those that carry the block (`scale`, N·s,
+    /// the weight's impulse over the step, sets what is zero).
+    pub fn carrying(&self, scale: f64) -> impl Iterator<Item = &Touch> {
+        self.touches
+            .iter()
+            .filter(move |(_, p)| *p > 1e-9 * scale)
+            .map(|(t, _)| t)
+    }
+
+    /// The corners that carry, as the sum of 2^k, and how many points carry.
+    pub fn carrying_summary(&self, scale: f64) -> (u32, u32) {
+        let mut corners = 0u32;
+        let mut points = 0u32;
+        for t in self.carrying(scale) {
+            points += 1;
+            if let Feature::Corner(k) = t.feature {
+                corners |= 1u32.checked_shl(k as u32).unwrap_or(0);
+            }
+        }
+        (corners, points)
+    }
+}
+
+/// The work of a step's contact impulses (J, ≤ 0): friction's at the slip it leaves,
+/// P_t · u_t⁺, and an impact's, ½ P_n (u_n + u_n⁺) with u_n the contact's approach before the
+/// step (−½ m_eff u_n² for a contact closed inelastically; zero for one that stays closed,
+/// whose impulse only holds the weight). The energy balance's residual is then the step's own
+/// error: ½ (μ g h)² m a step of sliding, nothing at rest.
+fn contact_work(
+    rows: &[ContactRow],
+    solved: &impulses::Solved,
+    (v0, w0): (Vector3<f64>, Vector3<f64>),
+) -> f64 {
+    rows.iter()
+        .enumerate()
+        .map(|(i, c)| {
+            let after = solved.v + solved.w.cross(&c.arm);
+            let before = v0 + w0.cross(&c.arm);
+            let pn = solved.normal[i];
+            let approach = c.normal.dot(&before).min(0.0);
+            solved.tangential[i].dot(&after) + 0.5 * pn * (approach + c.normal.dot(&after))
+        })
+        .sum()
+}
+
+/// The impulse solve stops when a sweep changes no impulse by more than this fraction of the
+/// largest.
+const SOLVE_TOL: f64 = 1e-7;
+
+/// The deepest a base may stay in the ground after a step, as a fraction of its size.
+const DEPTH_TOL: f64 = 1e-8;
+
+impl Ctx<'_> {
+    /// Moves the pose out of the ground where the step's drift left it in (by the curvature of
+    /// a turn within the step, of order h² ω² r): the smallest mass-weighted displacement that
+    /// closes every gap, found as the step's impulses are, frictionless and with the gaps as
+    /// the distances to close; the velocities are kept (post-stabilisation).
+    fn project_out(&self, s: &mut BodyState, body: &Body) {
+        for _ in 0..4 {
+            let found = touches(self.ground, self.base, &s.pose, 0.0, 0.0);
+            let worst = found.touches.iter().map(|t| t.gap).fold(0.0, f64::min);
+            if worst >= -DEPTH_TOL * self.size {
+                return;
+            }
+            let rows: Vec<ContactRow> = found
+                .touches
+                .iter()
+                .map(|c| ContactRow {
+                    arm: c.on_base - s.pose.cm,
+                    normal: c.normal,
+                    mu: 0.0,
+                    closing: c.gap,
+                    guess: Vector3::zeros(),
+                })
+                .collect();
+            let body = Body {
+                inv_inertia: s
+                    .world_inertia(&self.inertia)
+                    .try_inverse()
+                    .unwrap_or(body.inv_inertia),
+                ..*body
+            };
+            let moved =
+                impulses::solve(&body, Vector3::zeros(), Vector3::zeros(), &rows, 1e-12, 400);
+            let (v, w) = (s.v, s.w);
+            s.v = moved.v;
+            s.w = moved.w;
+            s.drift(1.0);
+            s.v = v;
+            s.w = w;
+        }
+    }
+
+    /// The loads at `pose` and time `t`: the force (N) and the moment about the CM (N·m), and
+    /// the force without the weight.
+    pub fn loads(&self, pose: &BodyPose, t: f64) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>) {
+        let r = pose.rotation;
+        let frame = LocalFrame::from_axes(r.column(0).into_owned(), r.column(2).into_owned());
+        let sim = self.sim;
+        let applied = Applied::shaken(sim.loads(), sim.block(), &frame, sim.ground(t))
+            .about(&(frame.j * self.base.depth));
+        let force = applied.total_force();
+        (force, applied.total_moment(), force - applied.weight)
+    }
+
+    /// μ of face `face`: its Coulomb coefficient (a base takes no stress-dependent criterion;
+    /// `Simulation::builder` refuses one).
+    fn mu(&self, face: usize) -> f64 {
+        match self.sim.face_friction(face as u32) {
+            crate::model::Friction::Coulomb { mu_k } => mu_k,
+            other => other.coefficient(1.0),
+        }
+    }
+
+    /// The weight's impulse over a step `h` (N·s): the scale of a step's impulses.
+    pub fn weight_impulse(&self, h: f64) -> f64 {
+        self.sim.block().mass * self.sim.loads().gravity * h
+    }
+
+    /// One step of `h` (s) from state `s` at time `t`, the impulses started from those of the
+    /// touches in `warm` (the last step's).
+    pub fn step(
+        &self,
+        s: &mut BodyState,
+        t: f64,
+        h: f64,
+        warm: &[(Touch, Vector3<f64>)],
+    ) -> Stepped {
+        let mass = self.sim.block().mass;
+        let inertia = s.world_inertia(&self.inertia);
+        let inv_inertia = inertia.try_inverse().unwrap_or_else(Matrix3::zeros);
+        let (force, moment, driving) = self.loads(&s.pose, t);
+        // The free velocities: the loads alone (the gyroscopic couple explicit).
+        let v_free = s.v + force * (h / mass);
+        let w_free = s.w + inv_inertia * (moment - s.w.cross(&(inertia * s.w))) * h;
+        let reach_speed = v_free.norm() + w_free.norm() * self.size;
+        let reach = 1e-3 * self.size + 2.0 * h * reach_speed;
+        let found = touches(self.ground, self.base, &s.pose, reach, h * reach_speed);
+        let rows: Vec<ContactRow> = found
+            .touches
+            .iter()
+            .map(|c| ContactRow {
+                arm: c.on_base - s.pose.cm,
+                normal: c.normal,
+                mu: self.mu(c.face),
+                // A gap closes at most to zero within the step; a depth (round-off, the
+                // curvature of a turn) is undone over a few steps, not thrown out in one.
+                closing: if c.gap >= 0.0 { c.gap } else { 0.2 * c.gap } / h,
+                guess: warm
+                    .iter()
+                    .find(|(t, _)| t.feature == c.feature && t.face == c.face)
+                    .map_or_else(Vector3::zeros, |(_, p)| *p),
+            })
+            .collect();
+        let body = Body {
+            inv_mass: 1.0 / mass,
+            inv_inertia,
+        };
+        let solved = impulses::solve(&body, v_free, w_free, &rows, SOLVE_TOL, 400);
+        let (v0, w0) = (s.v, s.w);
+        s.v = solved.v;
+        s.w = solved.w;
+        s.work_applied += h * (driving.dot(&s.v) + moment.dot(&s.w));
+        s.work_contacts += contact_work(&rows, &solved, (v0, w0));
+        s.drift(h);
+        self.project_out(s, &body);
+        Stepped {
+            impulses: found
+                .touches
+                .iter()
+                .zip(&solved.normal)
+                .zip(&solved.tangential)
+                .map(|((t, pn), pt)| (*t, t.normal * *pn + pt))
+                .collect(),
+            touches: found.touches.into_iter().zip(solved.normal).collect(),
+            off_ground: found.off_ground,
+            h,
+        }
+    }
+}

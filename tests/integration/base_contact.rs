@@ -1,0 +1,290 @@
+//! A block on its whole base (`contacts = "base"`) against closed forms: sliding down a plane
+//! dipping downstream, held on one, a kicked block's stopping distance, a drop off a step and
+//! the landing after it; every recorded row out of the ground by an independent check that
+//! rebuilds the base from the row alone; no route ending at a three-point limit.
+
+use nalgebra::{Matrix3, Rotation3, Vector3};
+use slideroute::internals::geometry::penetration::deepest;
+use slideroute::internals::geometry::{BodyPose, Ground};
+use slideroute::internals::model::Contacts;
+use slideroute::internals::route::{Reason, Route, Row};
+use slideroute::internals::scene::Scene;
+use std::path::{Path, PathBuf};
+
+/// A 4 m × 4 m block of 1000 t (its frame's contacts at ±2 m), CM in its base, on `foundation`
+/// (TOML), pushed by nothing, with μ and `[initial]` as given.
+fn block_scene(foundation: &str, mu: f64, initial: &str, t_end: f64, dt: f64) -> String {
+    format!(
+        r#"
+name = "base test"
+[frame]
+contacts_m = [[-2.0, 2.0], [2.0, 2.0], [2.0, -2.0]]
+{foundation}
+[block]
+mass_kg = 1.0e6
+inertia_kg_m2 = 2.6667e6
+[loads]
+hydraulic_force_n = 0.0
+eccentricity_m = 0.0
+gravity_m_s2 = 9.81
+[friction]
+model = "coulomb"
+mu_k = {mu}
+[solver]
+mode = "exact"
+dt_s = {dt}
+t_end_s = {t_end}
+{initial}
+"#
+    )
+}
+
+/// One plane through the origin, dipping `dip` degrees towards `direction` degrees.
+fn plane(dip: f64, direction: f64) -> String {
+    format!(
+        "[foundation]\n[[foundation.plane]]\ndip_deg = {dip}\ndip_direction_deg = \
+         {direction}\npoint_m = [0.0, 0.0, 0.0]\n"
+    )
+}
+
+fn run(text: &str) -> Route {
+    let scene = Scene::from_toml(text, "base test").unwrap();
+    assert_eq!(scene.settings().unwrap().contacts, Contacts::Base);
+    slideroute::run(&scene).unwrap()
+}
+
+fn travel_along(route: &Route) -> f64 {
+    let (a, b) = (route.rows[0], *route.rows.last().unwrap());
+    (b.x_m - a.x_m).hypot(b.y_m - a.y_m).hypot(b.z_m - a.z_m)
+}
+
+#[test]
+fn a_block_on_a_plane_dipping_downstream_starts_on_it_and_slides_at_g_sin_less_mu_g_cos() {
+    let (dip, mu, t) = (20f64.to_radians(), 0.2, 2.0);
+    let a = 9.81 * (dip.sin() - mu * dip.cos());
+    let exact = 0.5 * a * t * t;
+    let errors: Vec<f64> = [2e-3, 1e-3, 5e-4]
+        .iter()
+        .map(|&dt| {
+            let route = run(&block_scene(&plane(20.0, 0.0), mu, "", t, dt));
+            assert_eq!(route.termination.reason, Reason::TimeLimit);
+            // It rests on the plane before it moves: its base tilted by the dip, down along +X.
+            let rest = &route.base.as_ref().unwrap().resting;
+            assert!((rest.tilt_deg - 20.0).abs() < 1e-9, "{}", rest.tilt_deg);
+            let last = route.rows.last().unwrap();
+            // Straight down the dip: no yaw, no sideways drift (to the impulse solve's tolerance).
+            assert!(
+                last.theta_deg.abs() < 1e-6 && last.z_m.abs() < 1e-6,
+                "{last:?}"
+            );
+            assert!((last.alpha_deg + 20.0).abs() < 1e-6, "{}", last.alpha_deg);
+            travel_along(&route) - exact
+        })
+        .collect();
+    // First order: the error halves with the step, and is under 0.2 % at 1 ms.
+    assert!(errors[1].abs() < 2e-3 * exact, "{errors:?} of {exact}");
+    for w in errors.windows(2) {
+        let ratio = w[0] / w[1];
+        assert!((1.8..2.2).contains(&ratio), "{errors:?}");
+    }
+}
+
+#[test]
+fn a_block_on_a_plane_dipping_less_than_its_friction_angle_rests_there() {
+    let route = run(&block_scene(&plane(20.0, 0.0), 0.5, "", 1.0, 1e-3));
+    assert_eq!(route.termination.reason, Reason::DoesNotSlide);
+    let rest = &route.base.as_ref().unwrap().resting;
+    assert_eq!(rest.carrying.len(), 4, "{:?}", rest.carrying);
+    let shares: f64 = rest.carrying.iter().map(|c| c.share).sum();
+    // The shares carry the weight along Y: each normal is cos 20° up.
+    assert!(
+        (shares * 20f64.to_radians().cos() - 1.0).abs() < 1e-6,
+        "{shares}"
+    );
+}
+
+#[test]
+fn a_kicked_block_on_level_ground_stops_where_friction_says() {
+    let (v, mu, g) = (2.0, 0.4, 9.81);
+    let route = run(&block_scene(
+        &plane(0.0, 0.0),
+        mu,
+        &format!("[initial]\nvx_m_s = {v}"),
+        3.0,
+        1e-3,
+    ));
+    assert_eq!(route.termination.reason, Reason::Stopped);
+    let (distance, time) = (v * v / (2.0 * mu * g), v / (mu * g));
+    let last = route.rows.last().unwrap();
+    assert!(
+        (last.x_m - distance).abs() < 2e-3,
+        "{} against {distance}",
+        last.x_m
+    );
+    assert!((route.termination.t_s - time).abs() <= 1.5e-3);
+    // The friction work is the kinetic energy it took.
+    let e = route.energy.unwrap();
+    // (The step's own error: ½ (μ g h)² m a step, 0.2 % here.)
+    let kinetic = 0.5 * 1e6 * v * v;
+    assert!(
+        (e.work_friction_j + kinetic).abs() < 5e-3 * kinetic,
+        "{e:?}"
+    );
+    assert!(e.residual_j.abs() < 5e-3 * kinetic, "{e:?}");
+}
+
+/// A surface: level at Y = 0 for X < 3, a face falling 0.3 m over 0.05 m, level at −0.3 beyond;
+/// 40 m wide.
+fn step_surface(dir: &Path) -> PathBuf {
+    let xs = [(-10.0, 0.0), (3.0, 0.0), (3.05, -0.3), (40.0, -0.3)];
+    let mut obj = String::new();
+    for (x, y) in xs {
+        for z in [-20.0, 20.0] {
+            obj.push_str(&format!("v {x} {y} {z}\n"));
+        }
+    }
+    for k in 0..3 {
+        let (a, b, c, d) = (2 * k + 1, 2 * k + 2, 2 * k + 3, 2 * k + 4);
+        obj.push_str(&format!("f {a} {b} {d}\nf {a} {d} {c}\n"));
+    }
+    let path = dir.join("step.obj");
+    std::fs::write(&path, obj).unwrap();
+    path
+}
+
+#[test]
+fn a_block_sliding_off_a_step_drops_lands_and_slides_on_to_a_stop_out_of_the_rock() {
+    let dir = std::env::temp_dir().join(format!("slideroute-step-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    step_surface(&dir);
+    let text = block_scene(
+        "[foundation]\nsurface = \"step.obj\"\n",
+        0.2,
+        "[initial]\nvx_m_s = 12.0",
+        8.0,
+        1e-3,
+    );
+    let file = dir.join("step.toml");
+    std::fs::write(&file, text).unwrap();
+    let scene = Scene::from_file(&file).unwrap();
+    let route = slideroute::run(&scene).unwrap();
+    assert_eq!(
+        route.termination.reason,
+        Reason::Stopped,
+        "{:?}",
+        route.termination
+    );
+    let last = route.rows.last().unwrap();
+    // On the lower level, flat, past the step.
+    assert!((last.y_m + 0.3).abs() < 1e-6, "{}", last.y_m);
+    assert!(last.x_m > 3.05 + 2.0 && last.alpha_deg.abs() < 1e-6);
+    // In the air for a while (rows with nothing carrying it), nose down, landing on its front
+    // corners (1 and 2) alone before it comes down flat.
+    assert!(route.rows.iter().any(|r| r.points_carrying == Some(0)));
+    assert!(route.rows.iter().any(|r| r.alpha_deg < -1.0));
+    assert!(route.rows.iter().any(|r| r.corners_carrying == Some(0b110)));
+    // The energy: what it had and the drop, taken by friction and the landing's impacts, to
+    // the step's first order.
+    let e = route.energy.unwrap();
+    let given = 0.5 * 1e6 * 144.0 + 1e6 * 9.81 * 0.3;
+    assert!((e.potential_change_j + 1e6 * 9.81 * 0.3).abs() < 1e-3);
+    assert!(e.residual_j.abs() < 0.01 * given, "{e:?}");
+    assert_rows_out_of_ground(&scene, &route, 2e-6 * 4.0);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Rebuilds the base at each row from the row alone — the point under the CM, the yaw and the
+/// tilts of the frame's sides — and samples it densely against the ground.
+fn assert_rows_out_of_ground(scene: &Scene, route: &Route, limit: f64) {
+    let sim = scene.simulation().unwrap();
+    let base = sim.base().unwrap();
+    let ground: Ground = match scene.site().shared_ground() {
+        Some(g) => (**g).clone(),
+        None => Ground::planes(scene.site().planes().to_vec()),
+    };
+    let contacts = scene
+        .site()
+        .contacts()
+        .map(|[x, z]| Vector3::new(x, 0.0, z));
+    for row in &route.rows {
+        let rotation = rebuild(row, &contacts);
+        let under = Vector3::new(row.x_m, row.y_m, row.z_m);
+        let pose = BodyPose {
+            cm: under + rotation.column(1) * base.depth(),
+            rotation,
+        };
+        let inside = deepest(&ground, base.outline(), base.depth(), &pose, 40);
+        assert!(inside <= limit, "t = {} s: {inside} m inside", row.t_s);
+    }
+}
+
+/// The rotation with the row's yaw whose frame sides 0→1 and 0→2 rise at the row's α and β:
+/// yaw θ, then a pitch and a roll found by Newton on the two elevations.
+fn rebuild(row: &Row, c: &[Vector3<f64>; 3]) -> Matrix3<f64> {
+    let yaw = Rotation3::from_axis_angle(&Vector3::y_axis(), -row.theta_deg.to_radians());
+    let at = |p: f64, r: f64| {
+        yaw * Rotation3::from_axis_angle(&Vector3::z_axis(), p)
+            * Rotation3::from_axis_angle(&Vector3::x_axis(), r)
+    };
+    let elevation = |m: &Rotation3<f64>, a: usize, b: usize| {
+        let d = m * (c[b] - c[a]);
+        (d.y / d.norm()).asin()
+    };
+    let want = [row.alpha_deg.to_radians(), row.beta_deg.to_radians()];
+    let (mut p, mut r) = (0.0, 0.0);
+    for _ in 0..50 {
+        let f = |p: f64, r: f64| {
+            let m = at(p, r);
+            [elevation(&m, 0, 1) - want[0], elevation(&m, 0, 2) - want[1]]
+        };
+        let f0 = f(p, r);
+        let eps = 1e-7;
+        let (fp, fr) = (f(p + eps, r), f(p, r + eps));
+        let j = nalgebra::Matrix2::new(
+            (fp[0] - f0[0]) / eps,
+            (fr[0] - f0[0]) / eps,
+            (fp[1] - f0[1]) / eps,
+            (fr[1] - f0[1]) / eps,
+        );
+        let step = j.try_inverse().unwrap() * nalgebra::Vector2::new(f0[0], f0[1]);
+        p -= step[0];
+        r -= step[1];
+        if step.norm() < 1e-14 {
+            break;
+        }
+    }
+    at(p, r).into_inner()
+}
+
+#[test]
+fn every_row_of_every_base_route_in_scenes_is_out_of_the_rock_and_ends_for_a_physical_reason() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
+    let mut checked = 0;
+    for name in ["four-faces", "ramp-faces", "paper-like-faces", "valley"] {
+        let scene = Scene::from_file(&dir.join(format!("{name}.toml")))
+            .unwrap()
+            .with("solver.t_end_s", 3.0)
+            .unwrap();
+        assert_eq!(scene.settings().unwrap().contacts, Contacts::Base);
+        let route = slideroute::run(&scene).unwrap();
+        let three_point = [
+            Reason::ContactLiftedOff,
+            Reason::ContactOverRidge,
+            Reason::Contact0ReachedInclinedPlane,
+            Reason::ContactReachedAnotherFace,
+            Reason::CreaseLetsGo,
+            Reason::CreaseTakesOver,
+        ];
+        assert!(
+            !three_point.contains(&route.termination.reason),
+            "{name}: {:?}",
+            route.termination
+        );
+        let l = scene.l();
+        let report = route.base.as_ref().unwrap();
+        assert!(report.max_penetration_m <= 1e-6 * l, "{name}: {report:?}");
+        assert_rows_out_of_ground(&scene, &route, 1e-6 * l);
+        checked += 1;
+    }
+    assert_eq!(checked, 4);
+}
