@@ -26,7 +26,7 @@ pub use plane::Plane;
 pub use pose::Pose;
 pub use settle::{Rest, SettleError, set_down};
 pub use site::{Foundation, Frame, PaperSite, Site};
-pub use touch::{BodyPose, Feature, Footprint, Touch, in_outline, touches};
+pub use touch::{BodyPose, Feature, Footprint, Touch, in_outline, plan_box, touches};
 
 /// The horizontal displacement of the block: CM moved by (X, Z) (m), side 01 yawed by θ (rad,
 /// from +X towards +Z). The start of sliding is the default, (0, 0, 0).

@@ -6,7 +6,7 @@
 //! the sample's own. Nothing here uses the touches the dynamics uses.
 
 use super::ground::Ground;
-use super::touch::{BodyPose, in_outline};
+use super::touch::{BodyPose, in_outline, plan_box};
 use nalgebra::Vector3;
 
 /// The deepest a sample of the base `outline` (x′, z′ about the CM, at `depth` below it) at
@@ -21,14 +21,10 @@ pub fn deepest(
     per_side: usize,
 ) -> f64 {
     let per_side = per_side.max(2);
-    let lo = |k: usize| outline.iter().map(|c| c[k]).fold(f64::INFINITY, f64::min);
-    let hi = |k: usize| {
-        outline
-            .iter()
-            .map(|c| c[k])
-            .fold(f64::NEG_INFINITY, f64::max)
+    let b = plan_box(outline.iter().copied());
+    let step = |k: usize, i: usize| {
+        b[2 * k] + (b[2 * k + 1] - b[2 * k]) * i as f64 / (per_side - 1) as f64
     };
-    let step = |k: usize, i: usize| lo(k) + (hi(k) - lo(k)) * i as f64 / (per_side - 1) as f64;
     let mut points: Vec<[f64; 2]> = Vec::with_capacity(per_side * per_side);
     for i in 0..per_side {
         for j in 0..per_side {

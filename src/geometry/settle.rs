@@ -12,7 +12,7 @@
 //! plane of the ground's upper hull under the footprint; this finds that plane by the physics.
 
 use super::ground::Ground;
-use super::touch::{BodyPose, Footprint, Touch, touches};
+use super::touch::{BodyPose, Footprint, Touch, plan_box, touches};
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::{
     DefaultSettings, DefaultSolver, IPSolver, SolverStatus, SupportedConeT::NonnegativeConeT,
@@ -121,13 +121,7 @@ fn above_ground(
     let corners: Vec<Vector3<f64>> = (0..base.outline.len())
         .map(|k| pose.point(&base.corner(k)))
         .collect();
-    let lo = |k: usize| corners.iter().map(|c| c[k]).fold(f64::INFINITY, f64::min);
-    let hi = |k: usize| {
-        corners
-            .iter()
-            .map(|c| c[k])
-            .fold(f64::NEG_INFINITY, f64::max)
-    };
+    let [x0, x1, z0, z1] = plan_box(corners.iter().map(|c| [c.x, c.z]));
     let mut top = f64::NEG_INFINITY;
     for (k, c) in corners.iter().enumerate() {
         match ground.top(c.x, c.z) {
@@ -135,11 +129,11 @@ fn above_ground(
             None => return Err(SettleError::OffGround(k)),
         }
     }
-    for f in ground.faces_in((lo(0), hi(0), lo(2), hi(2))) {
+    for f in ground.faces_in((x0, x1, z0, z1)) {
         if let Some(tri) = ground.triangle(f) {
             let plane = &ground.faces()[f];
             for [x, z] in tri {
-                if (lo(0)..=hi(0)).contains(&x) && (lo(2)..=hi(2)).contains(&z) {
+                if (x0..=x1).contains(&x) && (z0..=z1).contains(&z) {
                     top = top.max(plane.height(x, z));
                 }
             }

@@ -155,14 +155,8 @@ fn surface_touches(
     reach: f64,
     out: &mut Touches,
 ) {
-    let lo = |k: usize| corners.iter().map(|c| c[k]).fold(f64::INFINITY, f64::min);
-    let hi = |k: usize| {
-        corners
-            .iter()
-            .map(|c| c[k])
-            .fold(f64::NEG_INFINITY, f64::max)
-    };
-    let rect = (lo(0) - reach, hi(0) + reach, lo(2) - reach, hi(2) + reach);
+    let [x0, x1, z0, z1] = plan_box(corners.iter().map(|c| [c.x, c.z]));
+    let rect = (x0 - reach, x1 + reach, z0 - reach, z1 + reach);
     let up = pose.up();
     let to_body = pose.rotation.transpose();
     let n = base.outline.len();
@@ -256,6 +250,19 @@ fn crossing(
     }
     let body = Vector3::new(a[0] + s * d1[0], -base.depth, a[1] + s * d1[1]);
     Some((body, ga + (gb - ga) * t))
+}
+
+/// The plan box [x0, x1, z0, z1] of `points` given as (x, z).
+pub fn plan_box(points: impl IntoIterator<Item = [f64; 2]>) -> [f64; 4] {
+    points.into_iter().fold(
+        [
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        ],
+        |[x0, x1, z0, z1], [x, z]| [x0.min(x), x1.max(x), z0.min(z), z1.max(z)],
+    )
 }
 
 /// Whether point `q` is inside or on the simple polygon `p` (crossing number, with the

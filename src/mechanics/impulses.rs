@@ -135,13 +135,6 @@ pub fn disc_minimum(w: &Tangential, u: &Vector2<f64>, radius: f64, nu: &mut f64)
     p * (radius / p.norm())
 }
 
-/// Each contact's compliance, as a fraction of its own effective inverse mass on the diagonal
-/// (a constraint-force mixing): where the impulses are not unique (four corners on one plane,
-/// corners sticking) it picks the least-norm one, which is what equal stiff springs at the
-/// contacts give (Drake's point contact), and the route does not depend on how the sweeps
-/// started. It lets a contact close at ε P_n a step: below 1e-9 m here.
-const COMPLIANCE: f64 = 1e-3;
-
 /// Over-relaxation of the normal updates in the first sweeps: a corner in a crease is two
 /// nearly opposed normals at one point, which plain Gauss–Seidel shares out slowly (37 sweeps a
 /// step on the default scene, 27 with these; the solution is the same).
@@ -192,12 +185,8 @@ fn normal_at_point(
             w[(a, b)] = k(&rows[ia].normal, &rows[ib].normal);
         }
     }
-    let rigid = w;
-    for a in 0..g {
-        w[(a, a)] *= 1.0 + COMPLIANCE;
-    }
     for (a, &ia) in idx.iter().enumerate() {
-        let held: f64 = (0..g).map(|b| rigid[(a, b)] * out.normal[idx[b]]).sum();
+        let held: f64 = (0..g).map(|b| w[(a, b)] * out.normal[idx[b]]).sum();
         q[a] = rows[ia].normal.dot(&u) + rows[ia].closing - held;
     }
     let mut found = None;
@@ -286,11 +275,13 @@ pub fn solve(
             let k = |a: &Vector3<f64>, b: &Vector3<f64>| {
                 body.inv_mass * a.dot(b) + c.arm.cross(a).dot(&(body.inv_inertia * c.arm.cross(b)))
             };
-            // With the contact's compliance on the diagonal (`COMPLIANCE`).
-            let wn = k(&c.normal, &c.normal) * (1.0 + COMPLIANCE);
-            let (a, d) = (k(&t1, &t1), k(&t2, &t2));
-            let soft = COMPLIANCE * 0.5 * (a + d);
-            let wt = Tangential::new(Matrix2::new(a + soft, k(&t1, &t2), k(&t2, &t1), d + soft));
+            let wn = k(&c.normal, &c.normal);
+            let wt = Tangential::new(Matrix2::new(
+                k(&t1, &t1),
+                k(&t1, &t2),
+                k(&t2, &t1),
+                k(&t2, &t2),
+            ));
             (t1, t2, wn, wt)
         })
         .collect();
@@ -331,8 +322,7 @@ pub fn solve(
             } else {
                 let u = out.v + out.w.cross(&c.arm);
                 let pn_old = out.normal[i];
-                let soft = wn * COMPLIANCE / (1.0 + COMPLIANCE) * pn_old;
-                let pn = (pn_old - relax * (c.normal.dot(&u) + c.closing + soft) / wn).max(0.0);
+                let pn = (pn_old - relax * (c.normal.dot(&u) + c.closing) / wn).max(0.0);
                 apply(&mut out, c, c.normal * (pn - pn_old));
                 out.normal[i] = pn;
             }
@@ -344,10 +334,7 @@ pub fn solve(
             let ut = Vector2::new(u.dot(&t1), u.dot(&t2));
             // The slip this contact's friction finds, and the friction of least kinetic energy
             // within its disc: Coulomb's law for this contact, the others held.
-            let rigid = wt.w
-                - Matrix2::identity() * (wt.w[(0, 0)] + wt.w[(1, 1)]) * COMPLIANCE
-                    / (2.0 + 2.0 * COMPLIANCE);
-            let pt = disc_minimum(&wt, &(ut - rigid * pt_old), c.mu * pn, &mut nus[i]);
+            let pt = disc_minimum(&wt, &(ut - wt.w * pt_old), c.mu * pn, &mut nus[i]);
             let new = t1 * pt.x + t2 * pt.y;
             apply(&mut out, c, new - old);
             out.tangential[i] = new;

@@ -76,14 +76,8 @@ impl Base {
     /// The bounding rectangle of three frame contacts (x′, z′ about the centre of mass) at
     /// `depth`: a block given only by its frame.
     pub fn around(contacts: &[[f64; 2]; 3], depth: f64) -> Result<Base, ModelError> {
-        let lo = |k: usize| contacts.iter().map(|c| c[k]).fold(f64::INFINITY, f64::min);
-        let hi = |k: usize| {
-            contacts
-                .iter()
-                .map(|c| c[k])
-                .fold(f64::NEG_INFINITY, f64::max)
-        };
-        Base::rectangle([lo(0), hi(0)], [lo(1), hi(1)], depth)
+        let [x0, x1, z0, z1] = crate::geometry::plan_box(contacts.iter().copied());
+        Base::rectangle([x0, x1], [z0, z1], depth)
     }
 
     /// The corners (x′, z′), in the order of a positive shoelace area.

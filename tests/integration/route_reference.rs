@@ -90,18 +90,7 @@ fn every_route_of_every_scene_matches_its_stored_reference() {
                 file.file_stem().unwrap().to_string_lossy(),
                 model.as_str()
             );
-            let route = slideroute::run(&scene).unwrap();
-            let got = reference_text(&route);
-            let path = dir.join(&name);
-            if bless {
-                std::fs::create_dir_all(&dir).unwrap();
-                std::fs::write(&path, &got).unwrap();
-                continue;
-            }
-            let want = std::fs::read_to_string(&path)
-                .unwrap_or_else(|e| panic!("{name}: {e} (record with SLIDEROUTE_BLESS=1)"));
-            compare(&name, &got, &want);
-            checked += 1;
+            checked += usize::from(matches_reference(&dir, &name, &scene, bless));
         }
         // A block on its base, where the scene's default is its base: the first 3 s.
         if base
@@ -110,19 +99,26 @@ fn every_route_of_every_scene_matches_its_stored_reference() {
         {
             let name = format!("{}-base.csv", file.file_stem().unwrap().to_string_lossy());
             let scene = base.with("solver.t_end_s", 3.0).unwrap();
-            let got = reference_text(&slideroute::run(&scene).unwrap());
-            let path = dir.join(&name);
-            if bless {
-                std::fs::write(&path, &got).unwrap();
-                continue;
-            }
-            let want = std::fs::read_to_string(&path)
-                .unwrap_or_else(|e| panic!("{name}: {e} (record with SLIDEROUTE_BLESS=1)"));
-            compare(&name, &got, &want);
-            checked += 1;
+            checked += usize::from(matches_reference(&dir, &name, &scene, bless));
         }
     }
     assert!(bless || checked >= 20, "{checked} routes checked");
+}
+
+/// Runs `scene` and checks its route against the reference `name` in `dir` (true), or, when
+/// `bless`, records it there (false).
+fn matches_reference(dir: &Path, name: &str, scene: &Scene, bless: bool) -> bool {
+    let got = reference_text(&slideroute::run(scene).unwrap());
+    let path = dir.join(name);
+    if bless {
+        std::fs::create_dir_all(dir).unwrap();
+        std::fs::write(&path, &got).unwrap();
+        return false;
+    }
+    let want = std::fs::read_to_string(&path)
+        .unwrap_or_else(|e| panic!("{name}: {e} (record with SLIDEROUTE_BLESS=1)"));
+    compare(name, &got, &want);
+    true
 }
 
 fn compare(name: &str, got: &str, want: &str) {

@@ -56,6 +56,17 @@ impl Stepped {
     }
 }
 
+/// The impulse solve's row of touch `c` of the body in state `s`.
+fn row_of(c: &Touch, s: &BodyState, mu: f64, closing: f64, guess: Vector3<f64>) -> ContactRow {
+    ContactRow {
+        arm: c.on_base - s.pose.cm,
+        normal: c.normal,
+        mu,
+        closing,
+        guess,
+    }
+}
+
 /// The work of a step's contact impulses (J, ≤ 0): friction's at the slip it leaves,
 /// P_t · u_t⁺, and an impact's, ½ P_n (u_n + u_n⁺) with u_n the contact's approach before the
 /// step (−½ m_eff u_n² for a contact closed inelastically; zero for one that stays closed,
@@ -97,16 +108,11 @@ impl Ctx<'_> {
             if worst >= -DEPTH_TOL * self.size {
                 return;
             }
+            // Frictionless, each gap the distance to close.
             let rows: Vec<ContactRow> = found
                 .touches
                 .iter()
-                .map(|c| ContactRow {
-                    arm: c.on_base - s.pose.cm,
-                    normal: c.normal,
-                    mu: 0.0,
-                    closing: c.gap,
-                    guess: Vector3::zeros(),
-                })
+                .map(|c| row_of(c, s, 0.0, c.gap, Vector3::zeros()))
                 .collect();
             let body = Body {
                 inv_inertia: s
@@ -174,17 +180,15 @@ impl Ctx<'_> {
         let rows: Vec<ContactRow> = found
             .touches
             .iter()
-            .map(|c| ContactRow {
-                arm: c.on_base - s.pose.cm,
-                normal: c.normal,
-                mu: self.mu(c.face),
+            .map(|c| {
                 // A gap closes at most to zero within the step; a depth (round-off, the
                 // curvature of a turn) is undone over a few steps, not thrown out in one.
-                closing: if c.gap >= 0.0 { c.gap } else { 0.2 * c.gap } / h,
-                guess: warm
+                let closing = if c.gap >= 0.0 { c.gap } else { 0.2 * c.gap } / h;
+                let guess = warm
                     .iter()
                     .find(|(t, _)| t.feature == c.feature && t.face == c.face)
-                    .map_or_else(Vector3::zeros, |(_, p)| *p),
+                    .map_or_else(Vector3::zeros, |(_, p)| *p);
+                row_of(c, s, self.mu(c.face), closing, guess)
             })
             .collect();
         let body = Body {
