@@ -45,7 +45,7 @@ pub(super) struct Logbook<'s> {
     /// The energy balance (rigid-body dynamics).
     pub energy: Option<EnergyBalance>,
     /// A block on its base: where it rested, what carried it, how deep its base went.
-    pub base: Option<super::body::BaseReport>,
+    pub base: Option<super::body::report::BaseReport>,
 }
 
 impl<'s> Logbook<'s> {

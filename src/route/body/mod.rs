@@ -19,7 +19,7 @@
 //! (no ground motion), it overturns (its base tilts beyond [`OVERTURN_DEG`]), its base goes
 //! over no ground, or the time limit.
 
-mod report;
+pub(super) mod report;
 mod state;
 mod step;
 
