@@ -278,6 +278,7 @@ pub fn keys_of(section: &str) -> &'static [&'static str] {
         "water" => fields::<RawWater>(),
         "seismic" => fields::<RawSeismic>(),
         "check" => fields::<RawCheck>(),
+        "base" => fields::<RawBase>(),
         "case" => fields::<RawCase>(),
         "foundation.plane" => fields::<RawPlane>(),
         "friction.face" => fields::<RawFaceFriction>(),
@@ -324,5 +325,20 @@ mod tests {
         assert!(keys_of("").contains(&"foundation"));
         assert!(keys_of("solver").contains(&"stride"));
         assert!(keys_of("nothing").is_empty());
+    }
+
+    #[test]
+    fn every_section_a_scene_may_have_names_its_keys() {
+        // A section left out of `keys_of` would say "the keys of [base] are" and nothing.
+        for section in keys_of("")
+            .iter()
+            .filter(|s| !["name", "uncertain"].contains(s))
+        {
+            assert!(
+                !keys_of(section).is_empty(),
+                "[{section}] has no keys listed"
+            );
+        }
+        assert_eq!(keys_of("base"), ["outline_m"]);
     }
 }

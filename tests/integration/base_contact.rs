@@ -288,3 +288,36 @@ fn every_row_of_every_base_route_in_scenes_is_out_of_the_rock_and_ends_for_a_phy
     }
     assert_eq!(checked, 4);
 }
+
+#[test]
+fn a_monolith_outline_is_read_from_the_heel_and_stands_its_centre_of_mass_high() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
+    let text = std::fs::read_to_string(dir.join("monolith.toml")).unwrap();
+    let text = text.replacen(
+        "[solver]",
+        "[base]\noutline_m = [[0.0, -5.0], [12.0, -5.0], [12.0, 5.0], [0.0, 5.0]]\n\n[solver]",
+        1,
+    );
+    let scene = Scene::from_toml(&text, "monolith with an outline").unwrap();
+    let sim = scene.simulation().unwrap();
+    let base = sim.base().unwrap();
+    // The section's centre of mass by hand, from the file's own dimensions.
+    let monolith = scene.document()["monolith"].as_table().unwrap();
+    let (b, h, c) = (
+        monolith["base_length_m"].as_float().unwrap(),
+        monolith["height_m"].as_float().unwrap(),
+        monolith["crest_length_m"].as_float().unwrap(),
+    );
+    // A trapezoid heel (0, 0), toe (b, 0), crest (c, h), (0, h): x̄ = (b² + b c + c²) / (3 (b + c)),
+    // ȳ = h (b + 2 c) / (3 (b + c)).
+    let x_bar = (b * b + b * c + c * c) / (3.0 * (b + c));
+    let y_bar = h * (b + 2.0 * c) / (3.0 * (b + c));
+    assert!(
+        (base.outline()[0][0] + x_bar).abs() < 1e-9,
+        "{:?}",
+        base.outline()
+    );
+    assert!((base.outline()[1][0] - (12.0 - x_bar)).abs() < 1e-9);
+    assert!((base.depth() - y_bar).abs() < 1e-9, "{}", base.depth());
+    assert!((base.area() - 120.0).abs() < 1e-9);
+}
