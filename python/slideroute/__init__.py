@@ -238,6 +238,15 @@ class Route:
             return float(fs["value"])
         return float("inf") if fs["kind"] == "unbounded" else float("-inf")
 
+    @property
+    def base(self) -> Optional[Dict[str, Any]]:
+        """A block on its base (``contacts = "base"``): ``resting`` (where it rested before any
+        load: the CM, yaw, tilt, rotation and the points that carried it with their shares),
+        ``max_penetration_m`` (the deepest its base went into the ground) and ``outline_m``
+        (its corners, numbered as the ``corners_carrying`` column's bits); None on the paper's
+        three-point frame."""
+        return self.summary.get("base")
+
     def __len__(self) -> int:
         return len(self.columns["t_s"])
 

@@ -84,6 +84,24 @@ def test_a_route_as_a_dataframe_has_the_rows_and_columns_of_the_arrays():
     np.testing.assert_array_equal(df["x_m"].to_numpy(), r.columns["x_m"])
 
 
+def test_a_block_on_its_base_says_where_it_rested_and_how_deep_its_base_went():
+    r = slideroute.Scene.from_file(SCENES / "ramp-faces.toml").with_keys({"solver.t_end_s": 0.5}).route()
+    base = r.base
+    assert base is not None
+    assert base["max_penetration_m"] <= 1e-6 * 10.0
+    rest = base["resting"]
+    shares = sum(c["share"] for c in rest["carrying"])
+    assert shares > 0.99
+    assert len(base["outline_m"]) == 4
+    carrying = r.columns["corners_carrying"]
+    assert np.all((carrying >= 0) & (carrying < 16))
+    # On its three-point frame there is no base.
+    frame = slideroute.Scene.from_file(SCENES / "ramp-faces.toml").with_keys(
+        {"solver.t_end_s": 0.1, "solver.contacts": "frame"}).route()
+    assert frame.base is None
+    assert np.all(np.isnan(frame.columns["corners_carrying"]))
+
+
 def test_a_scene_from_a_file_a_dict_and_its_pickle_are_the_same_scene():
     s = slideroute.Scene.from_file(SCENES / "paper-like.toml")
     d = s.to_dict()
