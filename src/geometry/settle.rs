@@ -335,4 +335,28 @@ mod tests {
         let e = set_down(&ground, base, at(0.5, 0.5), 1e-12).unwrap_err();
         assert_eq!(e, SettleError::OffGround(0));
     }
+
+    #[test]
+    fn a_tall_block_on_a_plane_dipping_downstream_rests_flush_on_it() {
+        // A monolith's base 20 m × 10 m, its centre of mass 8 m up, on a 6° plane: the lowest
+        // pose with the centre of mass over its plan point is the base along the plane.
+        let dip = 6f64.to_radians();
+        let plane = Plane::through(Vector3::new(dip.sin(), dip.cos(), 0.0), Vector3::zeros());
+        let ground = Ground::planes(vec![plane]);
+        let outline = vec![[-7.0, -5.0], [13.0, -5.0], [13.0, 5.0], [-7.0, 5.0]];
+        let base = Footprint {
+            outline: &outline,
+            depth: 8.0,
+        };
+        let start = BodyPose {
+            cm: Vector3::new(0.0, 8.0, 0.0),
+            rotation: Matrix3::identity(),
+        };
+        let rest = set_down(&ground, base, start, 1e-12).unwrap();
+        assert!(
+            (rest.pose.up() - plane.normal()).norm() < 1e-9,
+            "{}",
+            rest.pose.up()
+        );
+    }
 }
