@@ -321,3 +321,41 @@ fn a_monolith_outline_is_read_from_the_heel_and_stands_its_centre_of_mass_high()
     assert!((base.depth() - y_bar).abs() < 1e-9, "{}", base.depth());
     assert!((base.area() - 120.0).abs() < 1e-9);
 }
+
+#[test]
+fn a_monolith_climbing_a_six_degree_face_on_its_base_needs_no_tracker_and_keeps_its_balance() {
+    // `scenes/monolith-earthquake.toml` with one more face rising at 6° along +X from
+    // X = 4.5 m: on its three-point frame the tracker took about 850 steps an increment there
+    // (a hop the model does not follow, an energy residual of 2.4e4 J over 3 s).
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
+    let text = std::fs::read_to_string(dir.join("monolith-earthquake.toml")).unwrap();
+    let face = "[[foundation.plane]]\ndip_deg = 6.0\ndip_direction_deg = 180.0\n\
+                point_m = [4.5, 0.0, 0.0]\n\n[monolith]";
+    let text = text.replacen("[monolith]", face, 1);
+    let scene = Scene::from_toml(&text, "monolith onto a 6° face")
+        .unwrap()
+        .with("solver.t_end_s", 3.0)
+        .unwrap();
+    let sim = scene.simulation().unwrap();
+    let computed = slideroute::Runner::new(&sim).run();
+    let route = &computed.route;
+    assert_eq!(route.termination.reason, Reason::TimeLimit);
+    assert!(
+        route.increments == 3000 && route.travel_m > 1.0,
+        "{}",
+        route.travel_m
+    );
+    // No pose system is tracked on a base: no tracker steps an increment, against 5 allowed.
+    let tracked = computed.diagnostics.tracker.map_or(0, |t| t.steps);
+    let steps = tracked as f64 / route.increments as f64;
+    assert!(steps < 5.0, "{steps} tracker steps an increment");
+    // Its base rests on the 6° face as well as the level one, and stays out of the rock.
+    let report = route.base.as_ref().unwrap();
+    assert!(report.resting.tilt_deg > 1.0, "{}", report.resting.tilt_deg);
+    assert!(report.max_penetration_m <= 1e-6 * scene.l());
+    let e = route.energy.unwrap();
+    assert!(
+        e.residual_j.abs() < 1e-3 * e.work_hydraulic_j.abs(),
+        "{e:?}"
+    );
+}
