@@ -54,18 +54,7 @@ impl PointDistance for Triangle {
         }
         // To the nearest edge.
         (0..3)
-            .map(|k| {
-                let (a, b) = (self.corners[k], self.corners[(k + 1) % 3]);
-                let (dx, dz) = (b[0] - a[0], b[1] - a[1]);
-                let len2 = dx * dx + dz * dz;
-                let t = if len2 > 0.0 {
-                    (((point[0] - a[0]) * dx + (point[1] - a[1]) * dz) / len2).clamp(0.0, 1.0)
-                } else {
-                    0.0
-                };
-                let (px, pz) = (a[0] + t * dx - point[0], a[1] + t * dz - point[1]);
-                px * px + pz * pz
-            })
+            .map(|k| segment_distance_2(self.corners[k], self.corners[(k + 1) % 3], *point))
             .fold(f64::INFINITY, f64::min)
     }
 
@@ -83,6 +72,18 @@ impl PointDistance for Triangle {
         let pos = d1 > eps || d2 > eps || d3 > eps;
         !(neg && pos)
     }
+}
+
+/// The squared plan distance (m²) from `q` to the segment from `a` to `b`.
+pub(crate) fn segment_distance_2(a: [f64; 2], b: [f64; 2], q: [f64; 2]) -> f64 {
+    let (dx, dz) = (b[0] - a[0], b[1] - a[1]);
+    let len2 = dx * dx + dz * dz;
+    let t = if len2 > 0.0 {
+        (((q[0] - a[0]) * dx + (q[1] - a[1]) * dz) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (a[0] + t * dx - q[0]).powi(2) + (a[1] + t * dz - q[1]).powi(2)
 }
 
 /// Why a triangle cannot be a face.

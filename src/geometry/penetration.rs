@@ -50,3 +50,32 @@ pub fn deepest(
         })
         .fold(f64::NEG_INFINITY, f64::max)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::Plane;
+    use nalgebra::Matrix3;
+
+    #[test]
+    fn a_base_sunk_into_a_sloping_plane_is_as_deep_as_its_lowest_corner_is_below_it() {
+        // A plane rising 10° along +X; the level base 2 m × 2 m with its centre at Y = 0.05 m:
+        // its corner at X = +1 is tan 10° − 0.05 m below the plane, the deepest of its points.
+        let dip = 10f64.to_radians();
+        let plane = Plane::through(Vector3::new(-dip.sin(), dip.cos(), 0.0), Vector3::zeros());
+        let ground = Ground::planes(vec![plane]);
+        let outline = [[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]];
+        let pose = BodyPose {
+            cm: Vector3::new(0.0, 0.05, 0.0),
+            rotation: Matrix3::identity(),
+        };
+        let d = deepest(&ground, &outline, 0.0, &pose, 6);
+        assert!((d - (dip.tan() - 0.05)).abs() < 1e-12, "{d}");
+        // Lifted clear of it, the deepest sample is above the plane.
+        let high = BodyPose {
+            cm: Vector3::new(0.0, 0.5, 0.0),
+            ..pose
+        };
+        assert!(deepest(&ground, &outline, 0.0, &high, 6) < 0.0);
+    }
+}

@@ -13,7 +13,7 @@
 //! along the normal (negative inside); the base's points are given in the block's own axes as
 //! well, so the contact's arm follows the block.
 
-use super::ground::Ground;
+use super::ground::{Ground, segment_distance_2};
 use nalgebra::{Matrix3, Vector3};
 
 /// A rigid body's pose: where its centre of mass is and how it is turned (columns: the body's
@@ -277,7 +277,7 @@ pub fn in_outline(p: &[[f64; 2]], q: [f64; 2]) -> bool {
     let mut inside = false;
     for k in 0..n {
         let (a, b) = (p[k], p[(k + 1) % n]);
-        if distance_to_segment_2(a, b, q) <= tol * tol {
+        if segment_distance_2(a, b, q) <= tol * tol {
             return true;
         }
         if (a[1] > q[1]) != (b[1] > q[1]) {
@@ -288,17 +288,6 @@ pub fn in_outline(p: &[[f64; 2]], q: [f64; 2]) -> bool {
         }
     }
     inside
-}
-
-fn distance_to_segment_2(a: [f64; 2], b: [f64; 2], q: [f64; 2]) -> f64 {
-    let (dx, dz) = (b[0] - a[0], b[1] - a[1]);
-    let len2 = dx * dx + dz * dz;
-    let t = if len2 > 0.0 {
-        (((q[0] - a[0]) * dx + (q[1] - a[1]) * dz) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (a[0] + t * dx - q[0]).powi(2) + (a[1] + t * dz - q[1]).powi(2)
 }
 
 #[cfg(test)]

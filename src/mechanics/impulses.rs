@@ -498,6 +498,42 @@ mod disc_tests {
     }
 
     #[test]
+    fn a_corner_in_a_v_groove_is_held_by_both_faces_as_the_statics_of_the_groove_say() {
+        // A point mass (no arm) dropped into a symmetric groove of faces at ±φ: both faces push,
+        // each P = m g h / (2 cos φ), and it stops; with the groove tipped, the statics of two
+        // forces along the normals carry the weight: P1 n1 + P2 n2 = m g h Y.
+        let (m, g, h) = (1000.0, 9.81, 1e-3);
+        let body = Body {
+            inv_mass: 1.0 / m,
+            inv_inertia: Matrix3::identity(),
+        };
+        for (a, b) in [(30f64, 30f64), (20.0, 50.0)] {
+            let (a, b) = (a.to_radians(), b.to_radians());
+            let n1 = Vector3::new(-a.sin(), a.cos(), 0.0);
+            let n2 = Vector3::new(b.sin(), b.cos(), 0.0);
+            let row = |n: Vector3<f64>| ContactRow {
+                arm: Vector3::zeros(),
+                normal: n,
+                mu: 0.0,
+                closing: 0.0,
+                guess: Vector3::zeros(),
+            };
+            let v = Vector3::new(0.0, -g * h, 0.0);
+            let s = solve(&body, v, Vector3::zeros(), &[row(n1), row(n2)], 1e-14, 50);
+            assert!(s.v.norm() < 1e-14, "{}", s.v);
+            // The two normals' statics by Cramer's rule in (X, Y).
+            let det = n1.x * n2.y - n2.x * n1.y;
+            let w = m * g * h;
+            let p1 = (0.0 * n2.y - n2.x * w) / det;
+            let p2 = (n1.x * w - 0.0 * n1.y) / det;
+            assert!((s.normal[0] - p1).abs() < 1e-12 * w, "{} {p1}", s.normal[0]);
+            assert!((s.normal[1] - p2).abs() < 1e-12 * w, "{} {p2}", s.normal[1]);
+            // Solved together at the point in the first sweep; the second only finds nothing moves.
+            assert_eq!(s.sweeps, 2);
+        }
+    }
+
+    #[test]
     fn the_friction_of_one_contact_is_the_least_energy_in_its_disc_and_opposes_its_slip() {
         let w = Matrix2::new(2.0, 0.7, 0.7, 1.0);
         let t = Tangential::new(w);

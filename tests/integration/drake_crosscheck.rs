@@ -418,8 +418,8 @@ fn rigid_body_climbs_a_ramp_beside_a_flank_as_in_refined_drake() {
 /// within 0.5° at every millisecond.
 ///
 /// Measured (`cargo test drake_crosscheck -- --ignored`): four-faces 0.53 % and 0.035°,
-/// ramp-faces 0.20 % and 0.214°. Against Drake's base sampled on a 9 × 9 grid — pressure over
-/// the whole base where it lies flush on a face — the yaw differs by 1.3° and 2.0° at 3 s
+/// ramp-faces 0.08 % and 0.111°. Against Drake's base sampled on a 9 × 9 grid — pressure over
+/// the whole base where it lies flush on a face — the yaw differs by 1.3° and 2.1° at 3 s
 /// (`crosscheck/README.md`): the friction's moment against turning is that of the corners
 /// here, a known gap of the base model (`derivations/13-base-contact.md` §8).
 fn base_agrees_with_drake(name: &str) {

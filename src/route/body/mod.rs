@@ -99,11 +99,11 @@ impl<'a> OnBase<'a> {
         }
     }
 
-    /// Whether the block is still: its speed, and its turning at its size, below a millionth
-    /// of what its weight gives it in a step.
-    fn still(&self, h: f64) -> bool {
+    /// Whether the block in state `s` is still: its speed, and its turning at its size, below a
+    /// millionth of what its weight gives it in a step `h`.
+    fn still(&self, s: &BodyState, h: f64) -> bool {
         let g = self.sim.loads().gravity;
-        self.s.v.norm() + self.s.w.norm() * self.size <= 1e-6 * g * h
+        s.v.norm() + s.w.norm() * self.size <= 1e-6 * g * h
     }
 
     /// The base's tilt from level (degrees).
@@ -198,13 +198,17 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
             rest.pose.cm.y,
             body.s.kinetic(sim.block().mass, &body.inertia),
         );
+        // What carries it at rest, each touch with its share of the weight over a step: the
+        // first step's warm start.
+        let h = sim.settings().dt;
+        let weight = body.ctx().weight_impulse(h);
         body.last = Stepped {
-            touches: rest
+            impulses: rest
                 .carrying
                 .iter()
-                .map(|(t, share)| (*t, share * body.ctx().weight_impulse(1.0)))
+                .map(|(t, share)| (*t, t.normal * (share * weight)))
                 .collect(),
-            h: 1.0,
+            h,
             ..Stepped::default()
         };
         o.push(body.row());
@@ -212,10 +216,8 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
         if init.at_rest() && !shaken {
             // Held where it rests? One trial step under the loads.
             let mut trial = body.s;
-            let h = sim.settings().dt;
-            body.ctx().step(&mut trial, 0.0, h, &[]);
-            let moved = trial.v.norm() + trial.w.norm() * size > 1e-6 * sim.loads().gravity * h;
-            if !moved {
+            body.ctx().step(&mut trial, 0.0, h, &body.last.impulses);
+            if body.still(&trial, h) {
                 body.seal(&mut o);
                 o.energy = Some(EnergyBalance::default());
                 return Start::Ended(o.end(
@@ -266,7 +268,7 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
             );
         }
         let shaken = self.sim.record().is_some();
-        if !shaken && self.still(h) {
+        if !shaken && self.still(&self.s, h) {
             return self.end(
                 o,
                 Reason::Stopped,

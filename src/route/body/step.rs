@@ -22,9 +22,8 @@ pub(super) struct Ctx<'a> {
 /// What one step found.
 #[derive(Debug, Clone, Default)]
 pub(super) struct Stepped {
-    /// The touches the step was solved with, and each one's normal impulse (N·s).
-    pub touches: Vec<(Touch, f64)>,
-    /// Each touch's whole impulse (N·s, world): the next step's warm start.
+    /// The touches the step was solved with, each with its impulse (N·s, world): what carries
+    /// the block, and the next step's warm start.
     pub impulses: Vec<(Touch, Vector3<f64>)>,
     /// Corners of the base over no ground.
     pub off_ground: Vec<usize>,
@@ -36,9 +35,9 @@ impl Stepped {
     /// The touches whose normal impulse is not zero: those that carry the block (`scale`, N·s,
     /// the weight's impulse over the step, sets what is zero).
     pub fn carrying(&self, scale: f64) -> impl Iterator<Item = &Touch> {
-        self.touches
+        self.impulses
             .iter()
-            .filter(move |(_, p)| *p > 1e-9 * scale)
+            .filter(move |(t, p)| t.normal.dot(p) > 1e-9 * scale)
             .map(|(t, _)| t)
     }
 
@@ -180,13 +179,18 @@ impl Ctx<'_> {
         let rows: Vec<ContactRow> = found
             .touches
             .iter()
-            .map(|c| {
+            .enumerate()
+            .map(|(i, c)| {
                 // A gap closes at most to zero within the step; a depth (round-off, the
                 // curvature of a turn) is undone over a few steps, not thrown out in one.
                 let closing = if c.gap >= 0.0 { c.gap } else { 0.2 * c.gap } / h;
+                // The same touch at the last step: found in the same place while the touches
+                // stay the same (a base at rest on hundreds of surface vertices), else sought.
+                let same = |t: &Touch| t.feature == c.feature && t.face == c.face;
                 let guess = warm
-                    .iter()
-                    .find(|(t, _)| t.feature == c.feature && t.face == c.face)
+                    .get(i)
+                    .filter(|(t, _)| same(t))
+                    .or_else(|| warm.iter().find(|(t, _)| same(t)))
                     .map_or_else(Vector3::zeros, |(_, p)| *p);
                 row_of(c, s, self.mu(c.face), closing, guess)
             })
@@ -206,12 +210,11 @@ impl Ctx<'_> {
         Stepped {
             impulses: found
                 .touches
-                .iter()
+                .into_iter()
                 .zip(&solved.normal)
                 .zip(&solved.tangential)
-                .map(|((t, pn), pt)| (*t, t.normal * *pn + pt))
+                .map(|((t, pn), pt)| (t, t.normal * *pn + pt))
                 .collect(),
-            touches: found.touches.into_iter().zip(solved.normal).collect(),
             off_ground: found.off_ground,
             h,
         }
