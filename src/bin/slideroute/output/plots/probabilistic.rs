@@ -104,6 +104,7 @@ pub fn route_fan(
             ),
             rows: &rows,
             color: RGBColor(0, 0, 0),
+            base: r.base.as_ref(),
         })
         .into_iter()
         .collect();

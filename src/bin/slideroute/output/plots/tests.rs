@@ -221,6 +221,9 @@ fn the_plan_view_marks_where_a_contact_rides_a_crease_and_changes_face() {
         "{words}"
     );
     assert!(words.contains("contact 2 onto face 1"), "{words}");
+    // No base there: no marks of where one touched the ground.
+    assert!(!svg.contains("#E67800"), "touch marks on a frame route");
+    assert!(words.contains("contacts 0, 1, 2 at the start"), "{words}");
 }
 
 #[test]
@@ -368,8 +371,29 @@ fn the_plan_view_of_a_block_on_its_base_draws_its_base_and_where_it_touched() {
         })
         .count();
     assert!(closed >= 2, "{closed} outlines of {corners} corners");
-    // The touch marks, in their colour, and the legend's words for them.
-    assert!(svg.contains("#E67800"), "no touch marks");
+    // No frame triangle: no closed path of three contacts and the first again.
+    let triangles = svg
+        .split("<polyline")
+        .skip(1)
+        .filter(|p| {
+            let points = p
+                .split("points=\"")
+                .nth(1)
+                .and_then(|q| q.split('"').next())
+                .unwrap_or("");
+            let pts: Vec<&str> = points.split_whitespace().collect();
+            pts.len() == 4 && pts[0] == pts[3]
+        })
+        .count();
+    assert_eq!(triangles, 0, "a frame's triangle on a base route");
+    // The touch marks on the plan (the legend's mark is larger), in their colour, and the
+    // legend's words for them.
+    let touches = svg
+        .split("<circle")
+        .skip(1)
+        .filter(|c| c.contains(" r=\"3\"") && c.contains("fill=\"#E67800\""))
+        .count();
+    assert!(touches >= 1, "no touch marks");
     let words = texts(&svg)
         .into_iter()
         .map(|t| t.text)

@@ -15,8 +15,13 @@ pub(super) struct Drawn<'a> {
     pub surface: bool,
     pub force: Option<Force>,
     pub changes: &'a [(super::P, String)],
-    /// A block on its base: its base's outline is drawn, and where it touched the ground.
+    /// The first route is a block on its base: its base's outline is drawn, its corners
+    /// numbered.
     pub on_base: bool,
+    /// The corners that carried a block on its base are marked.
+    pub touches: bool,
+    /// What else carried a block on its base at rest is marked.
+    pub resting: bool,
 }
 
 /// The legend's entries, in order: the foundation, the force, each route and the fan, the
@@ -46,15 +51,23 @@ pub(super) fn entries(scene: &Scene, shown: &PlanView, drawn: &Drawn) -> Vec<Ent
             "corners of the base at the start (numbered as route.csv's corners_carrying); thick \
              outline: start and end, thin: every 1/8 of the route",
         ));
-        entries.push(Entry::new(
-            Mark::Dot(TOUCH),
-            "corners carrying the block at those poses (where the base touched the ground)",
-        ));
     } else {
         entries.push(Entry::new(
             Mark::Dot(BLACK),
             "contacts 0, 1, 2 at the start; thick frame: start and end, thin: every 1/8 of the \
              route",
+        ));
+    }
+    if drawn.touches {
+        entries.push(Entry::new(
+            Mark::Dot(TOUCH),
+            "corners carrying the block at those poses (where the base touched the ground)",
+        ));
+    }
+    if drawn.resting {
+        entries.push(Entry::new(
+            Mark::Ring(TOUCH),
+            "at rest before the load, a ground vertex or edge under the base carrying it too",
         ));
     }
     if shown

@@ -6,8 +6,9 @@
 //! where they keep off the data ([`labels`]).
 //!
 //! [`plan_view`] draws in named steps, each over the last: the regions, their edges, a route
-//! fan, the frames and CM paths, the changes of face, the force, the contacts' numbers, the
-//! regions' names, the inset's box; then the panel.
+//! fan, the frames (a block on its base: its base's outlines) and CM paths, the changes of
+//! face, the force, the contacts' numbers, where a base touched the ground, the regions'
+//! names, the inset's box; then the panel.
 
 mod inset;
 mod labels;
@@ -21,8 +22,8 @@ use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 use regions::{Region, area_of, foundation_regions};
-use route::{Force, face_changes, line_of_action, outlines_of};
-use slideroute::{Row, Scene};
+use route::{Force, Outlines, face_changes, line_of_action, outlines_of};
+use slideroute::{BaseReport, Row, Scene};
 use std::path::Path;
 
 pub(super) const PLANE_1: RGBColor = RGBColor(30, 90, 200);
@@ -45,11 +46,13 @@ const Y_LABELS: u32 = 55;
 /// A point of the plan, (X, Z) in m.
 type P = (f64, f64);
 
-/// One route on a plan view: its name in the legend, its rows (thinned) and its colour.
+/// One route on a plan view: its name in the legend, its rows (thinned), its colour, and for
+/// a block on its base its base's report (where it rested and what carried it there).
 pub(super) struct Track<'r> {
     pub name: String,
     pub rows: &'r [Row],
     pub color: RGBColor,
+    pub base: Option<&'r BaseReport>,
 }
 
 /// Many CM paths drawn thin under the tracks (a probabilistic analysis's route fan): each a
@@ -115,10 +118,15 @@ pub(super) fn plan_view(path: &Path, scene: &Scene, shown: &PlanView) -> Res<()>
     plan.draw_fan(&mut chart).map_err(draw)?;
     plan.draw_routes(&mut chart).map_err(draw)?;
     let first_rows = shown.tracks.first().map_or(&[][..], |t| t.rows);
-    let changes = face_changes(scene, first_rows);
+    // A block on its base has no three contacts to follow from face to face.
+    let changes = match plan.on_base {
+        true => Vec::new(),
+        false => face_changes(scene, first_rows),
+    };
     plan.mark_face_changes(&mut chart, &changes).map_err(draw)?;
     let mut obstacles = plan.draw_force(&mut chart).map_err(draw)?;
     plan.number_contacts(&mut chart).map_err(draw)?;
+    plan.mark_touches(&mut chart).map_err(draw)?;
     plan.name_regions(&mut chart, &regions, &mut obstacles)
         .map_err(draw)?;
     let inset = plan.box_short_route(&mut chart).map_err(draw)?;
@@ -128,7 +136,9 @@ pub(super) fn plan_view(path: &Path, scene: &Scene, shown: &PlanView) -> Res<()>
         surface,
         force: plan.force,
         changes: &changes,
-        on_base: !plan.touches.is_empty(),
+        on_base: plan.on_base,
+        touches: !plan.touches.is_empty(),
+        resting: !plan.resting.is_empty(),
     };
     let entries = legend::entries(scene, shown, &drawn);
     let mut y = sheet::heading(path, &sheet.panel, "Legend", 0)?;
@@ -155,8 +165,13 @@ struct Plan<'a> {
     /// Each track's outlines ([`outlines_of`]): the frame's triangle, or a block on its base
     /// its base's polygon.
     outlines: Vec<Vec<Vec<P>>>,
+    /// Whether the first track is a block on its base (its outlines are its base's, its
+    /// numbers its corners').
+    on_base: bool,
     /// Where a block on its base touched the ground at those rows: its carrying corners.
     touches: Vec<P>,
+    /// What else carried a block on its base at rest: ground vertices and edges under it.
+    resting: Vec<P>,
     /// The frame's side length L (m).
     l: f64,
     /// The first track's first row.
@@ -175,10 +190,14 @@ impl<'a> Plan<'a> {
     /// arrow in view, with room round the frame for the regions' names.
     fn new(scene: &'a Scene, shown: &PlanView<'a>, (cw, ch): (u32, u32)) -> Self {
         let tracks = shown.tracks;
-        let drawn: Vec<(Vec<Vec<P>>, Vec<P>)> =
-            tracks.iter().map(|t| outlines_of(scene, t.rows)).collect();
-        let touches: Vec<P> = drawn.iter().flat_map(|(_, t)| t.iter().copied()).collect();
-        let outlines: Vec<Vec<Vec<P>>> = drawn.into_iter().map(|(o, _)| o).collect();
+        let drawn: Vec<Outlines> = tracks
+            .iter()
+            .map(|t| outlines_of(scene, t.rows, t.base))
+            .collect();
+        let on_base = drawn.first().is_some_and(|o| o.on_base);
+        let touches: Vec<P> = drawn.iter().flat_map(|o| o.touches.clone()).collect();
+        let resting: Vec<P> = drawn.iter().flat_map(|o| o.resting.clone()).collect();
+        let outlines: Vec<Vec<Vec<P>>> = drawn.into_iter().map(|o| o.shapes).collect();
         let l = scene.l();
         let start = tracks.first().and_then(|t| t.rows.first()).copied();
         let force = start.as_ref().and_then(|s| line_of_action(scene, s));
@@ -190,7 +209,9 @@ impl<'a> Plan<'a> {
             tracks,
             fan: shown.fan,
             outlines,
+            on_base,
             touches,
+            resting,
             l,
             start,
             force,
@@ -349,14 +370,6 @@ impl<'a> Plan<'a> {
                 chart.draw_series(std::iter::once(PathElement::new(pts, style)))?;
             }
         }
-        // Where a block on its base touched the ground.
-        if !self.touches.is_empty() {
-            chart.draw_series(
-                self.touches
-                    .iter()
-                    .map(|&p| Circle::new(p, 3, TOUCH.filled())),
-            )?;
-        }
         for track in self.tracks {
             chart.draw_series(LineSeries::new(
                 track.rows.iter().map(|r| (r.x_m, r.z_m)),
@@ -375,6 +388,27 @@ impl<'a> Plan<'a> {
                         + Circle::new((0, 0), 4, track.color.stroke_width(2)),
                 ))?;
             }
+        }
+        Ok(())
+    }
+
+    /// Where a block on its base touched the ground: a dot on each corner that carried it at
+    /// the drawn poses (over the corners' marks at the start and the end), and a ring where
+    /// a ground vertex or edge carried it at rest.
+    fn mark_touches(&self, chart: &mut Chart) -> Result<(), Drawing> {
+        if !self.resting.is_empty() {
+            chart.draw_series(
+                self.resting
+                    .iter()
+                    .map(|&p| Circle::new(p, 3, TOUCH.mix(0.8).stroke_width(1))),
+            )?;
+        }
+        if !self.touches.is_empty() {
+            chart.draw_series(
+                self.touches
+                    .iter()
+                    .map(|&p| Circle::new(p, 3, TOUCH.filled())),
+            )?;
         }
         Ok(())
     }

@@ -9,7 +9,7 @@ use nalgebra::Vector3;
 use slideroute::internals::geometry::direct;
 use slideroute::internals::model::Base;
 use slideroute::internals::route::pose_of_row;
-use slideroute::{Displacement, Pose, Row, Scene};
+use slideroute::{BaseReport, Displacement, Pose, Row, Scene};
 
 /// The frame's vertices in plan at a row's pose: from the row's tilts on the paper's site, by
 /// the direct pose solver on any other (a row does not carry the roll ψ).
@@ -53,35 +53,75 @@ fn base_corners(scene: &Scene, base: &Base, row: &Row) -> Option<(Vec<P>, Vec<P>
     Some((corners, touching))
 }
 
-/// Outlines every 1/8 of a route's rows (and at its end): the frame's triangle, or, for a
-/// block on its base, its base's polygon; and, for a block on its base, the corners that
-/// carried it at those rows.
-pub(super) fn outlines_of(scene: &Scene, rows: &[Row]) -> (Vec<Vec<P>>, Vec<P>) {
+/// What a route puts on the plan at its drawn rows (every 1/8 of them, and the last).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub(super) struct Outlines {
+    /// The frame's triangle at each drawn row, or, for a block on its base, its base's
+    /// polygon.
+    pub shapes: Vec<Vec<P>>,
+    /// Whether the route is a block on its base (its shapes are its base's).
+    pub on_base: bool,
+    /// A block on its base: the corners that carried it at those rows.
+    pub touches: Vec<P>,
+    /// A block on its base: what else carried it at rest before any load (a ground vertex
+    /// under its base, a ground edge across a base edge), each point once; its carrying
+    /// corners are among `touches` at the first row.
+    pub resting: Vec<P>,
+}
+
+/// A route's [`Outlines`]: the frame's triangle every 1/8 of its rows (and at its end), or,
+/// for a block on its base (its rows say which corners carry, or it has a `base` report), its
+/// base's polygon there, the corners that carried it, and what else carried it at rest. A base
+/// that cannot be placed draws nothing rather than a frame the route did not ride on.
+pub(super) fn outlines_of(scene: &Scene, rows: &[Row], report: Option<&BaseReport>) -> Outlines {
     let every = (rows.len() / 8).max(1);
     let drawn = rows
         .iter()
         .enumerate()
         .filter(|(k, _)| k % every == 0 || *k + 1 == rows.len())
         .map(|(_, r)| r);
-    let on_base = rows.first().is_some_and(|r| r.corners_carrying.is_some());
-    let sim = scene.simulation().ok().filter(|_| on_base);
-    match sim.as_ref().and_then(|s| s.base()) {
-        Some(base) => {
-            let (mut outlines, mut touches) = (Vec::new(), Vec::new());
-            for (corners, touching) in drawn.filter_map(|r| base_corners(scene, base, r)) {
-                outlines.push(corners);
-                touches.extend(touching);
-            }
-            (outlines, touches)
-        }
-        None => (
-            drawn
+    let on_base = report.is_some() || rows.first().is_some_and(|r| r.corners_carrying.is_some());
+    if !on_base {
+        return Outlines {
+            shapes: drawn
                 .filter_map(|r| vertices(scene, r))
                 .map(|v| v.to_vec())
                 .collect(),
-            Vec::new(),
-        ),
+            ..Outlines::default()
+        };
     }
+    let mut out = Outlines {
+        on_base,
+        resting: report.map_or(vec![], resting_points),
+        ..Outlines::default()
+    };
+    let sim = scene.simulation().ok();
+    if let Some(base) = sim.as_ref().and_then(|s| s.base()) {
+        for (corners, touching) in drawn.filter_map(|r| base_corners(scene, base, r)) {
+            out.shapes.push(corners);
+            out.touches.extend(touching);
+        }
+    }
+    out
+}
+
+/// What carried a block at rest besides its corners (a ground vertex under its base, a ground
+/// edge across a base edge), in plan, each point once.
+fn resting_points(report: &BaseReport) -> Vec<P> {
+    let mut out: Vec<P> = Vec::new();
+    for c in &report.resting.carrying {
+        if c.feature.starts_with("corner") {
+            continue;
+        }
+        let p = (c.x_m, c.z_m);
+        if !out
+            .iter()
+            .any(|q| (p.0 - q.0).hypot(p.1 - q.1) < 1e-6 * (1.0 + p.0.hypot(p.1)))
+        {
+            out.push(p);
+        }
+    }
+    out
 }
 
 /// Where a contact changed face, rode into a crease or left one, along `rows`: its plan
@@ -173,6 +213,55 @@ mod tests {
         let moment_y = q.1 * f;
         // A negative moment about +Y raises θ (θ is measured from +X towards +Z).
         assert!(moment_y < 0.0);
+    }
+
+    #[test]
+    fn a_block_on_its_base_is_outlined_by_its_base_where_its_rows_put_it() {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/ramp-faces.toml");
+        let scene = Scene::from_file(&path)
+            .unwrap()
+            .with("solver.t_end_s", 0.5)
+            .unwrap();
+        let route = slideroute::internals::analysis::run(&scene).unwrap();
+        let report = route.base.as_ref().unwrap();
+        let drawn = outlines_of(&scene, &route.rows, Some(report));
+        assert!(drawn.on_base);
+        assert!(drawn.shapes.len() >= 2);
+        // At the start the block rests level, unturned, its CM over the origin: its corners
+        // are its outline's.
+        let first = &drawn.shapes[0];
+        assert_eq!(first.len(), report.outline_m.len());
+        for (p, q) in first.iter().zip(&report.outline_m) {
+            assert!(
+                (p.0 - q[0]).abs() < 1e-6 && (p.1 - q[1]).abs() < 1e-6,
+                "{p:?} {q:?}"
+            );
+        }
+        // Every corner that carries it at a drawn row is marked, and only those.
+        let every = (route.rows.len() / 8).max(1);
+        let carrying: u32 = route
+            .rows
+            .iter()
+            .enumerate()
+            .filter(|(k, _)| k % every == 0 || *k + 1 == route.rows.len())
+            .map(|(_, r)| r.corners_carrying.unwrap().count_ones())
+            .sum();
+        assert_eq!(drawn.touches.len(), carrying as usize);
+        // A flat floor carries it at its corners alone.
+        assert!(drawn.resting.is_empty(), "{:?}", drawn.resting);
+        // The same rows as a frame route: the frame's triangles, nothing touching.
+        let frame_rows: Vec<Row> = route
+            .rows
+            .iter()
+            .map(|r| Row {
+                corners_carrying: None,
+                points_carrying: None,
+                ..*r
+            })
+            .collect();
+        let framed = outlines_of(&scene, &frame_rows, None);
+        assert!(!framed.on_base && framed.touches.is_empty());
+        assert!(framed.shapes.iter().all(|s| s.len() == 3));
     }
 
     #[test]
