@@ -174,18 +174,20 @@ impl Ground {
     /// The face the ground is made of over (X, Z) and its height there: the highest plane, or
     /// the highest triangle over the point; `None` off a surface.
     pub fn top(&self, x: f64, z: f64) -> Option<(usize, f64)> {
-        let candidates: Box<dyn Iterator<Item = usize>> = match &self.kind {
-            Kind::Planes => Box::new(0..self.faces.len()),
-            Kind::Surface { tree, .. } => {
-                Box::new(tree.locate_all_at_point(&[x, z]).map(|t| t.index))
-            }
-        };
-        candidates
-            .map(|k| (k, self.faces[k].height(x, z)))
-            .fold(None, |best, (k, h)| match best {
+        let highest = |best: Option<(usize, f64)>, k: usize| {
+            let h = self.faces[k].height(x, z);
+            match best {
                 Some((_, b)) if b >= h => best,
                 _ => Some((k, h)),
-            })
+            }
+        };
+        match &self.kind {
+            Kind::Planes => (0..self.faces.len()).fold(None, highest),
+            Kind::Surface { tree, .. } => tree
+                .locate_all_at_point(&[x, z])
+                .map(|t| t.index)
+                .fold(None, highest),
+        }
     }
 
     /// The face a contact at (X, Z) rests on: the face of the ground there; where several

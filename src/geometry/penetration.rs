@@ -13,6 +13,7 @@ use nalgebra::Vector3;
 /// `pose` is below the ground, measured vertically (m; zero or negative when every sample is on
 /// or above it), with `per_side` samples along each side of the grid and of each edge. Samples
 /// over no ground are skipped.
+#[cfg_attr(not(feature = "internals"), allow(dead_code))]
 pub fn deepest(
     ground: &Ground,
     outline: &[[f64; 2]],
@@ -20,6 +21,13 @@ pub fn deepest(
     pose: &BodyPose,
     per_side: usize,
 ) -> f64 {
+    deepest_of(ground, &samples(outline, depth, per_side), pose)
+}
+
+/// The samples of the base `outline` at `depth` below the CM, in body axes (m), as [`deepest`]
+/// takes them: a `per_side` × `per_side` grid over its bounding box, those on it, and `per_side`
+/// along each edge.
+pub fn samples(outline: &[[f64; 2]], depth: f64, per_side: usize) -> Vec<Vector3<f64>> {
     let per_side = per_side.max(2);
     let b = plan_box(outline.iter().copied());
     let step = |k: usize, i: usize| {
@@ -43,9 +51,17 @@ pub fn deepest(
         }
     }
     points
+        .into_iter()
+        .map(|[x, z]| Vector3::new(x, -depth, z))
+        .collect()
+}
+
+/// [`deepest`] over `samples` (body axes, m) at `pose`.
+pub fn deepest_of(ground: &Ground, samples: &[Vector3<f64>], pose: &BodyPose) -> f64 {
+    samples
         .iter()
-        .filter_map(|&[x, z]| {
-            let q = pose.point(&Vector3::new(x, -depth, z));
+        .filter_map(|s| {
+            let q = pose.point(s);
             ground.top(q.x, q.z).map(|(_, h)| h - q.y)
         })
         .fold(f64::NEG_INFINITY, f64::max)

@@ -16,6 +16,7 @@
 //! slip opposes it: Coulomb's law itself. Unlike a convex relaxation of the cone (Anitescu's),
 //! the block does not rise as it slides (`derivations/13-base-contact.md` §4).
 
+use super::pressure;
 use nalgebra::{Matrix2, Matrix3, Vector2, Vector3};
 
 /// One contact of the step: its arm from the CM, its frame, its friction and its gap.
@@ -44,6 +45,35 @@ pub struct Body {
     pub inv_inertia: Matrix3<f64>,
 }
 
+/// A base lying flush on its rock (`derivations/13-base-contact.md` §9): the rows on it carry
+/// the base's normal impulse, whose resultant [`pressure::spread`] shares over the base's area
+/// as a rigid base on a uniform bed does; the friction then acts at the base's quadrature
+/// points, each within μ times its share, and not at the rows. Where no such pressure has the
+/// rows' resultant (it is at the edge of the points' hull: the base about to tip), the rows
+/// carry their own friction, as without a patch.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Patch {
+    /// The rows on the flush base.
+    pub members: Vec<usize>,
+    /// Two unit axes in the base's plane (with the rows' normal, a right-handed frame).
+    pub axes: (Vector3<f64>, Vector3<f64>),
+    /// The quadrature points of the base over the flush rock.
+    pub points: Vec<PatchPoint>,
+}
+
+/// One quadrature point of a flush base.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PatchPoint {
+    /// r: from the CM to the point (m).
+    pub arm: Vector3<f64>,
+    /// Its weight: the area it stands for (m²).
+    pub weight: f64,
+    /// μ of the rock under it.
+    pub mu: f64,
+    /// Where the solve starts: its friction impulse at the last step (N·s, world), or zero.
+    pub guess: Vector3<f64>,
+}
+
 /// The solution: the velocities after the step and each contact's impulse (N·s) as (normal,
 /// tangential vector).
 #[derive(Debug, Clone, PartialEq)]
@@ -56,6 +86,9 @@ pub struct Solved {
     pub normal: Vec<f64>,
     /// Each contact's tangential impulse (N·s, world).
     pub tangential: Vec<Vector3<f64>>,
+    /// Each patch's points' impulses (N·s, world: a share of the normal impulse along the
+    /// normal and the friction), empty for a patch whose rows carried their own friction.
+    pub patch: Vec<Vec<Vector3<f64>>>,
     /// Sweeps taken.
     pub sweeps: usize,
     /// How far the last sweep moved the velocities (|Δv| + |Δω| × the longest arm), relative
@@ -76,12 +109,8 @@ pub struct Tangential {
 impl Tangential {
     /// W taken apart.
     pub fn new(w: Matrix2<f64>) -> Tangential {
-        let eig = w.symmetric_eigen();
-        Tangential {
-            w,
-            q: eig.eigenvectors,
-            lam: eig.eigenvalues,
-        }
+        let (lam, q) = crate::numeric::symmetric_eigen2(&w);
+        Tangential { w, q, lam }
     }
 }
 
@@ -191,24 +220,30 @@ fn normal_at_point(
     }
     let mut found = None;
     for set in 0u32..(1 << g) {
-        let on: Vec<usize> = (0..g).filter(|a| set & (1 << a) != 0).collect();
+        let pushes = |a: usize| set & (1 << a) != 0;
         let mut p = Vector3::zeros();
-        if !on.is_empty() {
-            let n = on.len();
-            let ws = nalgebra::DMatrix::from_fn(n, n, |a, b| w[(on[a], on[b])]);
-            let qs = nalgebra::DVector::from_fn(n, |a, _| -q[on[a]]);
+        if set != 0 {
+            // W and q of the contacts that push, the others' rows and columns the identity's
+            // (their p stays zero): one 3 × 3 solve, on the stack.
+            let ws = Matrix3::from_fn(|a, b| {
+                if pushes(a) && pushes(b) {
+                    w[(a, b)]
+                } else if a == b {
+                    1.0
+                } else {
+                    0.0
+                }
+            });
+            let qs = Vector3::from_fn(|a, _| if pushes(a) { -q[a] } else { 0.0 });
             let Some(x) = ws.lu().solve(&qs) else {
                 continue;
             };
-            for (a, &j) in on.iter().enumerate() {
-                p[j] = x[a];
-            }
+            p = x;
         }
         let scale = q.abs().max() + 1e-300;
         let fits = (0..g).all(|a| {
-            let pushes = on.contains(&a);
             let gap_rate = (0..g).map(|b| w[(a, b)] * p[b]).sum::<f64>() + q[a];
-            if pushes {
+            if pushes(a) {
                 p[a] >= 0.0
             } else {
                 gap_rate >= -1e-12 * scale
@@ -258,50 +293,257 @@ pub fn solve(
     tol: f64,
     max_sweeps: usize,
 ) -> Solved {
+    solve_with_patches(body, (v, w), rows, &[], tol, max_sweeps)
+}
+
+/// A contact's frame for the sweeps: its tangents, the normal's effective inverse mass and the
+/// tangential one, at the arm `arm` with normal `n`.
+fn frame_at(
+    body: &Body,
+    arm: &Vector3<f64>,
+    n: &Vector3<f64>,
+    t: (Vector3<f64>, Vector3<f64>),
+) -> Frame {
+    let k = |a: &Vector3<f64>, b: &Vector3<f64>| {
+        body.inv_mass * a.dot(b) + arm.cross(a).dot(&(body.inv_inertia * arm.cross(b)))
+    };
+    let (t1, t2) = t;
+    Frame {
+        t1,
+        t2,
+        wn: k(n, n),
+        wt: Tangential::new(Matrix2::new(
+            k(&t1, &t1),
+            k(&t1, &t2),
+            k(&t2, &t1),
+            k(&t2, &t2),
+        )),
+    }
+}
+
+/// A contact's tangents and effective inverse masses.
+#[derive(Debug, Clone, Copy)]
+struct Frame {
+    t1: Vector3<f64>,
+    t2: Vector3<f64>,
+    wn: f64,
+    wt: Tangential,
+}
+
+/// Adds the impulse `p` at `arm` to the body's velocities.
+fn apply_at(out: &mut Solved, body: &Body, arm: &Vector3<f64>, p: Vector3<f64>) {
+    out.v += p * body.inv_mass;
+    out.w += body.inv_inertia * arm.cross(&p);
+}
+
+/// Replaces the friction impulse `old` at `arm` by the least-energy one within `radius`, the
+/// others held (Coulomb's law for this point), and returns it.
+fn friction_at(
+    out: &mut Solved,
+    body: &Body,
+    arm: &Vector3<f64>,
+    f: &Frame,
+    radius: f64,
+    old: Vector3<f64>,
+    nu: &mut f64,
+) -> Vector3<f64> {
+    let u = out.v + out.w.cross(arm);
+    let pt_old = Vector2::new(old.dot(&f.t1), old.dot(&f.t2));
+    let ut = Vector2::new(u.dot(&f.t1), u.dot(&f.t2));
+    let pt = disc_minimum(&f.wt, &(ut - f.wt.w * pt_old), radius, nu);
+    let new = f.t1 * pt.x + f.t2 * pt.y;
+    apply_at(out, body, arm, new - old);
+    new
+}
+
+/// A flush patch within the sweeps: its points' frames and shares, and whether its points or
+/// its rows carry the friction.
+struct Spreading<'a> {
+    patch: &'a Patch,
+    /// Its number among the patches.
+    number: usize,
+    /// The rows' normal.
+    normal: Vector3<f64>,
+    frames: Vec<Frame>,
+    /// The bed under the points; None where they have no extent (then the rows rub).
+    bed: Option<pressure::Bed>,
+    shares: Vec<f64>,
+    nus: Vec<f64>,
+    /// The points carry the friction (else the rows do).
+    on: bool,
+}
+
+impl<'a> Spreading<'a> {
+    fn new(body: &Body, (number, patch): (usize, &'a Patch), rows: &[ContactRow]) -> Spreading<'a> {
+        let (e1, e2) = patch.axes;
+        let normal = patch
+            .members
+            .first()
+            .map_or(e1.cross(&e2), |&i| rows[i].normal);
+        Spreading {
+            patch,
+            number,
+            normal,
+            frames: patch
+                .points
+                .iter()
+                .map(|p| frame_at(body, &p.arm, &normal, (e1, e2)))
+                .collect(),
+            bed: pressure::Bed::new(
+                &patch
+                    .points
+                    .iter()
+                    .map(|p| [p.arm.dot(&e1), p.arm.dot(&e2)])
+                    .collect::<Vec<_>>(),
+                &patch.points.iter().map(|p| p.weight).collect::<Vec<_>>(),
+            ),
+            shares: Vec::new(),
+            nus: vec![0.0; patch.points.len()],
+            on: true,
+        }
+    }
+
+    /// Shares the rows' normal impulse over the points and gives each its friction, or, where
+    /// that cannot be, hands the friction back to the rows (true: the rows must take it now).
+    ///
+    /// Once the rows have the friction back, the points take it again only while `may_return`
+    /// (the first sweeps, the normals still settling): a base tipping to and fro over the rim
+    /// of its points' hull would keep the sweeps from settling.
+    fn sweep(
+        &mut self,
+        out: &mut Solved,
+        body: &Body,
+        rows: &[ContactRow],
+        may_return: bool,
+    ) -> bool {
+        if !self.on && !may_return {
+            return false;
+        }
+        let (e1, e2) = self.patch.axes;
+        let (normal, at) = (self.normal, self.number);
+        let total: f64 = self.patch.members.iter().map(|&i| out.normal[i]).sum();
+        let mut centre = [0.0; 2];
+        for &i in &self.patch.members {
+            let share = out.normal[i] / total;
+            centre[0] += share * rows[i].arm.dot(&e1);
+            centre[1] += share * rows[i].arm.dot(&e2);
+        }
+        let fits = self
+            .bed
+            .as_mut()
+            .is_some_and(|bed| bed.spread(total, centre, &mut self.shares));
+        if fits {
+            if !self.on {
+                // The rows' friction goes over to the points.
+                for &i in &self.patch.members {
+                    let old = std::mem::take(&mut out.tangential[i]);
+                    apply_at(out, body, &rows[i].arm, -old);
+                }
+            }
+            for (k, p) in self.patch.points.iter().enumerate() {
+                let was = out.patch[at][k];
+                let old = was - normal * normal.dot(&was);
+                let radius = p.mu * self.shares[k];
+                let new = friction_at(
+                    out,
+                    body,
+                    &p.arm,
+                    &self.frames[k],
+                    radius,
+                    old,
+                    &mut self.nus[k],
+                );
+                out.patch[at][k] = normal * self.shares[k] + new;
+            }
+        } else if self.on {
+            for (k, p) in self.patch.points.iter().enumerate() {
+                let old = std::mem::take(&mut out.patch[at][k]);
+                apply_at(out, body, &p.arm, -(old - normal * normal.dot(&old)));
+            }
+        }
+        let hand_back = self.on && !fits;
+        self.on = fits;
+        hand_back
+    }
+}
+
+/// Starts the solve from the guesses: each row's within its cone (without its friction where
+/// a flush patch's points carry it, `spread_rows`), each patch point's friction.
+fn warm_start(
+    out: &mut Solved,
+    body: &Body,
+    rows: &[ContactRow],
+    spread_rows: &[bool],
+    spreading: &[Spreading],
+) {
+    for (i, c) in rows.iter().enumerate() {
+        let pn = c.normal.dot(&c.guess).max(0.0);
+        let mut pt = c.guess - c.normal * c.normal.dot(&c.guess);
+        if spread_rows[i] {
+            pt = Vector3::zeros();
+        } else if pt.norm() > c.mu * pn {
+            pt *= c.mu * pn / pt.norm();
+        }
+        if pn > 0.0 {
+            apply_at(out, body, &c.arm, c.normal * pn + pt);
+            out.normal[i] = pn;
+            out.tangential[i] = pt;
+        }
+    }
+    for s in spreading {
+        let n = s.normal;
+        let guesses: Vec<Vector3<f64>> = s
+            .patch
+            .points
+            .iter()
+            .map(|q| q.guess - n * n.dot(&q.guess))
+            .collect();
+        for (q, g) in s.patch.points.iter().zip(&guesses) {
+            apply_at(out, body, &q.arm, *g);
+        }
+        out.patch.push(guesses);
+    }
+}
+
+/// [`solve`] with the parts of the base lying flush on rock, `patches` (no row in two of
+/// them; `derivations/13-base-contact.md` §9).
+pub fn solve_with_patches(
+    body: &Body,
+    (v, w): (Vector3<f64>, Vector3<f64>),
+    rows: &[ContactRow],
+    patches: &[Patch],
+    tol: f64,
+    max_sweeps: usize,
+) -> Solved {
     let m = rows.len();
     let mut out = Solved {
         v,
         w,
         normal: vec![0.0; m],
         tangential: vec![Vector3::zeros(); m],
+        patch: Vec::new(),
         sweeps: 0,
         change: 0.0,
     };
-    // Per contact: tangents, the normal's effective inverse mass, the tangential step.
-    let frames: Vec<(Vector3<f64>, Vector3<f64>, f64, Tangential)> = rows
+    let frames: Vec<Frame> = rows
         .iter()
-        .map(|c| {
-            let (t1, t2) = tangents(&c.normal);
-            let k = |a: &Vector3<f64>, b: &Vector3<f64>| {
-                body.inv_mass * a.dot(b) + c.arm.cross(a).dot(&(body.inv_inertia * c.arm.cross(b)))
-            };
-            let wn = k(&c.normal, &c.normal);
-            let wt = Tangential::new(Matrix2::new(
-                k(&t1, &t1),
-                k(&t1, &t2),
-                k(&t2, &t1),
-                k(&t2, &t2),
-            ));
-            (t1, t2, wn, wt)
-        })
+        .map(|c| frame_at(body, &c.arm, &c.normal, tangents(&c.normal)))
         .collect();
-    let apply = |out: &mut Solved, c: &ContactRow, p: Vector3<f64>| {
-        out.v += p * body.inv_mass;
-        out.w += body.inv_inertia * c.arm.cross(&p);
-    };
-    // The warm start, each guess within its cone.
-    for (i, c) in rows.iter().enumerate() {
-        let pn = c.normal.dot(&c.guess).max(0.0);
-        let mut pt = c.guess - c.normal * c.normal.dot(&c.guess);
-        if pt.norm() > c.mu * pn {
-            pt *= c.mu * pn / pt.norm();
-        }
-        if pn > 0.0 {
-            apply(&mut out, c, c.normal * pn + pt);
-            out.normal[i] = pn;
-            out.tangential[i] = pt;
+    let mut spreading: Vec<Spreading> = patches
+        .iter()
+        .enumerate()
+        .map(|p| Spreading::new(body, p, rows))
+        .collect();
+    let mut member_of = vec![usize::MAX; m];
+    for (k, p) in patches.iter().enumerate() {
+        for &i in &p.members {
+            member_of[i] = k;
         }
     }
+    let is_member = |s: &[Spreading], i: usize| s.get(member_of[i]).is_some_and(|s| s.on);
+    let apply = |out: &mut Solved, c: &ContactRow, p: Vector3<f64>| apply_at(out, body, &c.arm, p);
+    let spread_rows: Vec<bool> = (0..m).map(|i| is_member(&spreading, i)).collect();
+    warm_start(&mut out, body, rows, &spread_rows, &spreading);
     let arm = rows.iter().map(|c| c.arm.norm()).fold(0.0, f64::max);
     let mut nus = vec![0.0; m];
     for sweep in 1..=max_sweeps.max(1) {
@@ -311,7 +553,6 @@ pub fn solve(
         let mut largest: f64 = 1e-300;
         let (v_before, w_before) = (out.v, out.w);
         for (i, c) in rows.iter().enumerate() {
-            let (t1, t2, wn, wt) = frames[i];
             // Normal: the contacts at one point of the body (a corner in a crease, on two or
             // three faces) together and exactly, at the first of them; any other alone.
             let group = point_group(rows, i);
@@ -322,32 +563,58 @@ pub fn solve(
             } else {
                 let u = out.v + out.w.cross(&c.arm);
                 let pn_old = out.normal[i];
-                let pn = (pn_old - relax * (c.normal.dot(&u) + c.closing) / wn).max(0.0);
+                let pn = (pn_old - relax * (c.normal.dot(&u) + c.closing) / frames[i].wn).max(0.0);
                 apply(&mut out, c, c.normal * (pn - pn_old));
                 out.normal[i] = pn;
             }
             let pn = out.normal[i];
-            // Tangent.
-            let u = out.v + out.w.cross(&c.arm);
-            let old = out.tangential[i];
-            let pt_old = Vector2::new(old.dot(&t1), old.dot(&t2));
-            let ut = Vector2::new(u.dot(&t1), u.dot(&t2));
-            // The slip this contact's friction finds, and the friction of least kinetic energy
-            // within its disc: Coulomb's law for this contact, the others held.
-            let pt = disc_minimum(&wt, &(ut - wt.w * pt_old), c.mu * pn, &mut nus[i]);
-            let new = t1 * pt.x + t2 * pt.y;
-            apply(&mut out, c, new - old);
-            out.tangential[i] = new;
-            largest = largest.max(pn).max(pt.norm());
+            largest = largest.max(pn);
+            // Tangent: here, unless a flush patch's points carry it.
+            if !is_member(&spreading, i) {
+                let old = out.tangential[i];
+                out.tangential[i] = friction_at(
+                    &mut out,
+                    body,
+                    &c.arm,
+                    &frames[i],
+                    c.mu * pn,
+                    old,
+                    &mut nus[i],
+                );
+                largest = largest.max(out.tangential[i].norm());
+            }
+        }
+        for s in spreading.iter_mut() {
+            if s.sweep(&mut out, body, rows, sweep <= RELAXED_SWEEPS) {
+                for &i in &s.patch.members {
+                    let old = out.tangential[i];
+                    let radius = rows[i].mu * out.normal[i];
+                    out.tangential[i] = friction_at(
+                        &mut out,
+                        body,
+                        &rows[i].arm,
+                        &frames[i],
+                        radius,
+                        old,
+                        &mut nus[i],
+                    );
+                }
+            }
         }
         // The body's velocities are unique where the impulses are not (four corners on one
-        // plane share the weight in many ways): the sweeps stop when the velocities settle.
+        // plane share the weight in many ways; a flush patch's friction follows the share
+        // of the bed): the sweeps stop when the velocities settle.
         let moved = (out.v - v_before).norm() + (out.w - w_before).norm() * arm;
         let scale = largest * body.inv_mass + out.v.norm() + out.w.norm() * arm;
         out.sweeps = sweep;
         out.change = moved / scale;
         if out.change <= tol {
             break;
+        }
+    }
+    for s in &spreading {
+        if !s.on {
+            out.patch[s.number].clear();
         }
     }
     out

@@ -8,6 +8,7 @@
 pub mod impulses;
 pub mod loads;
 pub mod onset;
+pub mod pressure;
 pub mod reactions_paper;
 pub mod rigid_body;
 pub mod static_friction;

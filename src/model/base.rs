@@ -104,6 +104,116 @@ impl Base {
     pub fn contains(&self, p: [f64; 2]) -> bool {
         crate::geometry::in_outline(&self.outline, p)
     }
+
+    /// Points and weights (m²) of a quadrature over the base's area
+    /// (`derivations/13-base-contact.md` §9): the outline cut into triangles by its ears, each
+    /// triangle into `split`² alike, and in each the three-point rule exact for quadratics
+    /// (points at ⅔, ⅙, ⅙ of its corners, a third of its area each). The weights add up to the
+    /// area; the rule is exact for any quadratic over the base.
+    pub fn quadrature(&self, split: usize) -> Vec<([f64; 2], f64)> {
+        let split = split.max(1);
+        let mut out = Vec::with_capacity(ears(&self.outline).len() * 3 * split * split);
+        for [a, b, c] in ears(&self.outline) {
+            let at = |i: f64, j: f64| {
+                let (s, t) = (i / split as f64, j / split as f64);
+                [
+                    a[0] + s * (b[0] - a[0]) + t * (c[0] - a[0]),
+                    a[1] + s * (b[1] - a[1]) + t * (c[1] - a[1]),
+                ]
+            };
+            let area = signed_area(&[a, b, c]) / (split * split) as f64;
+            for i in 0..split {
+                for j in 0..split - i {
+                    let (fi, fj) = (i as f64, j as f64);
+                    let mut small = vec![[at(fi, fj), at(fi + 1.0, fj), at(fi, fj + 1.0)]];
+                    if i + j + 1 < split {
+                        small.push([at(fi + 1.0, fj), at(fi + 1.0, fj + 1.0), at(fi, fj + 1.0)]);
+                    }
+                    for [p, q, r] in small {
+                        for (u, v, w) in [(4.0, 1.0, 1.0), (1.0, 4.0, 1.0), (1.0, 1.0, 4.0)] {
+                            let point = [
+                                (u * p[0] + v * q[0] + w * r[0]) / 6.0,
+                                (u * p[1] + v * q[1] + w * r[1]) / 6.0,
+                            ];
+                            out.push((point, area / 3.0));
+                        }
+                    }
+                }
+            }
+        }
+        out
+    }
+
+    /// Points and weights (m) of the five-point Gauss–Legendre rule along edge `k` (corner k to
+    /// k + 1): where an edge lies on a face, its pressure and friction act there
+    /// (`derivations/13-base-contact.md` §9). Exact for polynomials of degree nine along it.
+    pub fn edge_quadrature(&self, k: usize) -> Vec<([f64; 2], f64)> {
+        const NODES: [(f64, f64); 5] = [
+            (-0.906_179_845_938_664, 0.236_926_885_056_189_1),
+            (-0.538_469_310_105_683_1, 0.478_628_670_499_366_5),
+            (0.0, 0.568_888_888_888_888_9),
+            (0.538_469_310_105_683_1, 0.478_628_670_499_366_5),
+            (0.906_179_845_938_664, 0.236_926_885_056_189_1),
+        ];
+        let n = self.outline.len();
+        let (a, b) = (self.outline[k % n], self.outline[(k + 1) % n]);
+        let half = 0.5 * (b[0] - a[0]).hypot(b[1] - a[1]);
+        NODES
+            .iter()
+            .map(|&(x, w)| {
+                let t = 0.5 * (1.0 + x);
+                (
+                    [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])],
+                    w * half,
+                )
+            })
+            .collect()
+    }
+}
+
+/// The triangles of a simple polygon of positive winding, by ear clipping: a corner whose
+/// triangle with its neighbours turns left and holds no other corner is cut off, until three
+/// are left.
+fn ears(outline: &[[f64; 2]]) -> Vec<[[f64; 2]; 3]> {
+    let orient = |a: [f64; 2], b: [f64; 2], c: [f64; 2]| {
+        (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+    };
+    let mut left: Vec<[f64; 2]> = outline.to_vec();
+    let mut out = Vec::with_capacity(outline.len().saturating_sub(2));
+    while left.len() > 3 {
+        let n = left.len();
+        let ear = (0..n).find(|&k| {
+            let (a, b, c) = (left[(k + n - 1) % n], left[k], left[(k + 1) % n]);
+            orient(a, b, c) > 0.0
+                && left.iter().all(|&p| {
+                    p == a
+                        || p == b
+                        || p == c
+                        || orient(a, b, p) < 0.0
+                        || orient(b, c, p) < 0.0
+                        || orient(c, a, p) < 0.0
+                })
+        });
+        // A simple polygon always has an ear; round-off on nearly collinear corners may hide
+        // it, and then the corner of least turn goes.
+        let k = ear.unwrap_or_else(|| {
+            (0..n)
+                .max_by(|&i, &j| {
+                    let o = |k: usize| orient(left[(k + n - 1) % n], left[k], left[(k + 1) % n]);
+                    o(i).total_cmp(&o(j))
+                })
+                .unwrap_or(0)
+        });
+        let (a, b, c) = (left[(k + n - 1) % n], left[k], left[(k + 1) % n]);
+        if orient(a, b, c) > 0.0 {
+            out.push([a, b, c]);
+        }
+        left.remove(k);
+    }
+    if left.len() == 3 && orient(left[0], left[1], left[2]) > 0.0 {
+        out.push([left[0], left[1], left[2]]);
+    }
+    out
 }
 
 /// The signed area (m²): the shoelace sum over (x′, z′) taken as a plane's (x, y); a base
@@ -199,5 +309,44 @@ mod tests {
         assert!(b.contains([0.5, 1.5]) && b.contains([1.5, 0.5]));
         assert!(!b.contains([1.5, 1.5]));
         assert!((b.area() - 3.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn the_quadrature_of_an_l_shaped_base_integrates_quadratics_exactly() {
+        let l = vec![
+            [0.0, 0.0],
+            [2.0, 0.0],
+            [2.0, 1.0],
+            [1.0, 1.0],
+            [1.0, 2.0],
+            [0.0, 2.0],
+        ];
+        let b = Base::polygon(l, 0.0).unwrap();
+        for split in [1, 3] {
+            let q = b.quadrature(split);
+            assert_eq!(q.len(), 4 * 3 * split * split);
+            let integral =
+                |f: &dyn Fn(f64, f64) -> f64| q.iter().map(|(p, w)| w * f(p[0], p[1])).sum::<f64>();
+            // By hand, over [0,2]×[0,1] and [0,1]×[1,2]: ∫1 = 2 + 1, ∫x = 2·1 + 1·½,
+            // ∫z = 2·½ + 1·1½, ∫x² = 8/3 + 1/3, ∫xz = 2·½ + ½·1½.
+            assert!((integral(&|_, _| 1.0) - 3.0).abs() < 1e-14);
+            assert!((integral(&|x, _| x) - 2.5).abs() < 1e-14);
+            assert!((integral(&|_, z| z) - 2.5).abs() < 1e-14);
+            assert!((integral(&|x, _| x * x) - 3.0).abs() < 1e-13);
+            assert!((integral(&|x, z| x * z) - 1.75).abs() < 1e-13);
+            assert!(q.iter().all(|(p, _)| b.contains(*p)));
+        }
+    }
+
+    #[test]
+    fn the_quadrature_along_an_edge_integrates_its_length_and_moments() {
+        let b = Base::rectangle([-3.0, 3.0], [-1.0, 1.0], 0.0).unwrap();
+        // Edge 0 runs from (−3, −1) to (3, −1): ∫1 = 6, ∫x = 0, ∫x⁴ = 2·3⁵/5.
+        let q = b.edge_quadrature(0);
+        let integral = |f: &dyn Fn(f64) -> f64| q.iter().map(|(p, w)| w * f(p[0])).sum::<f64>();
+        assert!((integral(&|_| 1.0) - 6.0).abs() < 1e-13);
+        assert!(integral(&|x| x).abs() < 1e-13);
+        assert!((integral(&|x| x.powi(4)) - 2.0 * 243.0 / 5.0).abs() < 1e-11);
+        assert!(q.iter().all(|(p, _)| (p[1] + 1.0).abs() < 1e-15));
     }
 }

@@ -1,12 +1,15 @@
 //! Small numerical kernels shared by the stages: eigenvalues of small Hessenberg matrices,
-//! dense polynomial products and the resultant of two quadratics.
+//! dense polynomial products, the resultant of two quadratics, and the eigen-decomposition of
+//! a symmetric 2 × 2 matrix.
 
 mod distribution;
 pub mod hessenberg;
 mod shown;
+mod symmetric2;
 
 pub use distribution::{Distribution, FORMS, Uncertain};
 pub use shown::{degrees, fixed, seconds};
+pub use symmetric2::symmetric_eigen2;
 
 /// An angle folded into (−π, π] by arithmetic (no trigonometric calls).
 #[inline]

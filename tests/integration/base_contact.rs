@@ -133,6 +133,39 @@ fn a_kicked_block_on_level_ground_stops_where_friction_says() {
     assert!(e.residual_j.abs() < 5e-3 * kinetic, "{e:?}");
 }
 
+#[test]
+fn a_block_spun_on_level_rock_stops_as_friction_over_its_whole_base_says() {
+    // A 4 m square base pressing evenly: the friction's moment about its centre is
+    // μ m g ∫|r| dA / A = μ m g a (√2 + ln(1 + √2)) / 6, and the spin stops after turning
+    // ω0² I / (2 T). The corners alone would give μ m g a / √2, turning it 46 % less.
+    let (w0, mu, g, a, m, inertia) = (30f64.to_radians(), 0.4, 9.81, 4.0, 1e6, 2.6667e6);
+    let torque = mu * m * g * a * (2f64.sqrt() + (1.0 + 2f64.sqrt()).ln()) / 6.0;
+    let (turn, time) = (w0 * w0 * inertia / (2.0 * torque), w0 * inertia / torque);
+    let route = run(&block_scene(
+        &plane(0.0, 0.0),
+        mu,
+        &format!("[initial]\nomega_deg_s = {}", w0.to_degrees()),
+        3.0,
+        1e-3,
+    ));
+    assert_eq!(route.termination.reason, Reason::Stopped);
+    let last = route.rows.last().unwrap();
+    // The quadrature's own error for |r| over the square is 0.2 %.
+    assert!(
+        (last.theta_deg.abs() - turn.to_degrees()).abs() < 5e-3 * turn.to_degrees(),
+        "turned {}° against {}°",
+        last.theta_deg,
+        turn.to_degrees()
+    );
+    assert!(
+        (route.termination.t_s - time).abs() <= 2e-3,
+        "{} against {time}",
+        route.termination.t_s
+    );
+    // Spinning in place: the centre stays put.
+    assert!(last.x_m.hypot(last.z_m) < 1e-6, "{last:?}");
+}
+
 /// A surface: level at Y = 0 for X < 3, a face falling 0.3 m over 0.05 m, level at −0.3 beyond;
 /// 40 m wide.
 fn step_surface(dir: &Path) -> PathBuf {

@@ -19,6 +19,7 @@
 //! (no ground motion), it overturns (its base tilts beyond [`OVERTURN_DEG`]), its base goes
 //! over no ground, or the time limit.
 
+mod flush;
 pub(super) mod report;
 mod state;
 mod step;
@@ -30,9 +31,10 @@ use super::logbook::{EnergyBalance, Logbook};
 use super::pose_finder::PoseFinder;
 use super::row::Row;
 use super::termination::Reason;
-use crate::geometry::penetration::deepest;
+use crate::geometry::penetration::{deepest_of, samples};
 use crate::geometry::{BodyPose, Footprint, Ground, SettleError, set_down};
 use crate::model::{Base, Simulation};
+use flush::Quadrature;
 use nalgebra::{Matrix3, Vector3};
 use state::BodyState;
 use std::cell::Cell;
@@ -52,6 +54,10 @@ pub(super) struct OnBase<'a> {
     ground: Arc<Ground>,
     inertia: Matrix3<f64>,
     size: f64,
+    /// The base's quadrature over its area and along its edges.
+    quadrature: Quadrature,
+    /// The base's samples for the independent check of its penetration (body axes, m).
+    samples: Vec<Vector3<f64>>,
     s: BodyState,
     t: f64,
     /// What the last step found (the touches carrying the block).
@@ -70,6 +76,7 @@ impl<'a> OnBase<'a> {
             base: footprint(self.base),
             inertia: self.inertia,
             size: self.size,
+            quadrature: &self.quadrature,
         }
     }
 
@@ -161,6 +168,8 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
             ground,
             inertia: sim.block().tensor(),
             size,
+            quadrature: Quadrature::of(base),
+            samples: samples(base.outline(), base.depth(), PENETRATION_SAMPLES),
             s: BodyState::at_rest(flat),
             t: 0.0,
             last: Stepped::default(),
@@ -216,7 +225,7 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
         if init.at_rest() && !shaken {
             // Held where it rests? One trial step under the loads.
             let mut trial = body.s;
-            body.ctx().step(&mut trial, 0.0, h, &body.last.impulses);
+            body.ctx().step(&mut trial, 0.0, h, &body.last);
             if body.still(&trial, h) {
                 body.seal(&mut o);
                 o.energy = Some(EnergyBalance::default());
@@ -240,7 +249,7 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
         let h = t_to - self.t;
         let before = self.under_cm();
         let mut s = self.s;
-        let stepped = self.ctx().step(&mut s, self.t, h, &self.last.impulses);
+        let stepped = self.ctx().step(&mut s, self.t, h, &self.last);
         if !(s.v.iter().chain(s.w.iter()).all(|x| x.is_finite())) {
             return self.end(
                 o,
@@ -281,13 +290,7 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
     fn row(&self) -> Row {
         let pose = &self.s.pose;
         let depth = self.base.depth();
-        let inside = deepest(
-            &self.ground,
-            self.base.outline(),
-            depth,
-            pose,
-            PENETRATION_SAMPLES,
-        );
+        let inside = deepest_of(&self.ground, &self.samples, pose);
         self.deepest.set(self.deepest.get().max(inside));
         let p0 = self.under_cm();
         let v0 = self.s.v + self.s.w.cross(&(p0 - pose.cm));

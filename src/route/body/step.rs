@@ -1,9 +1,10 @@
 //! One step of the body on its base (`derivations/13-base-contact.md` §4): the loads at the
 //! pose, the free velocities, the touches within reach, the contact impulses, the drift.
 
+use super::flush::{Bed, Quadrature, Spot, flush};
 use super::state::BodyState;
 use crate::geometry::{BodyPose, Feature, Footprint, Ground, LocalFrame, Touch, touches};
-use crate::mechanics::impulses::{self, Body, ContactRow};
+use crate::mechanics::impulses::{self, Body, ContactRow, Patch};
 use crate::mechanics::loads::Applied;
 use crate::model::Simulation;
 use nalgebra::{Matrix3, Vector3};
@@ -17,6 +18,9 @@ pub(super) struct Ctx<'a> {
     pub inertia: Matrix3<f64>,
     /// The base's reach from the CM (m): the largest corner distance, or the depth.
     pub size: f64,
+    /// The base's quadrature over its area and along its edges, where a base lying flush on
+    /// its rock presses and rubs (`derivations/13-base-contact.md` §9).
+    pub quadrature: &'a Quadrature,
 }
 
 /// What one step found.
@@ -25,6 +29,9 @@ pub(super) struct Stepped {
     /// The touches the step was solved with, each with its impulse (N·s, world): what carries
     /// the block, and the next step's warm start.
     pub impulses: Vec<(Touch, Vector3<f64>)>,
+    /// The impulse of each quadrature point where the base lay flush (N·s, world; its share of
+    /// the normal impulse and its friction): the next step's warm start.
+    pub patch: Vec<(Spot, Vector3<f64>)>,
     /// Corners of the base over no ground.
     pub off_ground: Vec<usize>,
     /// The step's length (s).
@@ -73,19 +80,34 @@ fn row_of(c: &Touch, s: &BodyState, mu: f64, closing: f64, guess: Vector3<f64>) 
 /// error: ½ (μ g h)² m a step of sliding, nothing at rest.
 fn contact_work(
     rows: &[ContactRow],
+    patches: &[Patch],
     solved: &impulses::Solved,
     (v0, w0): (Vector3<f64>, Vector3<f64>),
 ) -> f64 {
-    rows.iter()
-        .enumerate()
-        .map(|(i, c)| {
-            let after = solved.v + solved.w.cross(&c.arm);
-            let before = v0 + w0.cross(&c.arm);
-            let pn = solved.normal[i];
-            let approach = c.normal.dot(&before).min(0.0);
-            solved.tangential[i].dot(&after) + 0.5 * pn * (approach + c.normal.dot(&after))
+    // The flush patches' friction at their points (their normal shares are the rows').
+    let rubbed: f64 = patches
+        .iter()
+        .zip(&solved.patch)
+        .flat_map(|(p, imps)| {
+            let n = p.axes.0.cross(&p.axes.1);
+            p.points.iter().zip(imps).map(move |(q, imp)| {
+                let after = solved.v + solved.w.cross(&q.arm);
+                (imp - n * n.dot(imp)).dot(&after)
+            })
         })
-        .sum()
+        .sum();
+    rubbed
+        + rows
+            .iter()
+            .enumerate()
+            .map(|(i, c)| {
+                let after = solved.v + solved.w.cross(&c.arm);
+                let before = v0 + w0.cross(&c.arm);
+                let pn = solved.normal[i];
+                let approach = c.normal.dot(&before).min(0.0);
+                solved.tangential[i].dot(&after) + 0.5 * pn * (approach + c.normal.dot(&after))
+            })
+            .sum::<f64>()
 }
 
 /// The impulse solve stops when a sweep changes no impulse by more than this fraction of the
@@ -158,14 +180,8 @@ impl Ctx<'_> {
     }
 
     /// One step of `h` (s) from state `s` at time `t`, the impulses started from those of the
-    /// touches in `warm` (the last step's).
-    pub fn step(
-        &self,
-        s: &mut BodyState,
-        t: f64,
-        h: f64,
-        warm: &[(Touch, Vector3<f64>)],
-    ) -> Stepped {
+    /// last step, `warm`.
+    pub fn step(&self, s: &mut BodyState, t: f64, h: f64, warm: &Stepped) -> Stepped {
         let mass = self.sim.block().mass;
         let inertia = s.world_inertia(&self.inertia);
         let inv_inertia = inertia.try_inverse().unwrap_or_else(Matrix3::zeros);
@@ -188,9 +204,10 @@ impl Ctx<'_> {
                 // stay the same (a base at rest on hundreds of surface vertices), else sought.
                 let same = |t: &Touch| t.feature == c.feature && t.face == c.face;
                 let guess = warm
+                    .impulses
                     .get(i)
                     .filter(|(t, _)| same(t))
-                    .or_else(|| warm.iter().find(|(t, _)| same(t)))
+                    .or_else(|| warm.impulses.iter().find(|(t, _)| same(t)))
                     .map_or_else(Vector3::zeros, |(_, p)| *p);
                 row_of(c, s, self.mu(c.face), closing, guess)
             })
@@ -199,12 +216,22 @@ impl Ctx<'_> {
             inv_mass: 1.0 / mass,
             inv_inertia,
         };
-        let solved = impulses::solve(&body, v_free, w_free, &rows, SOLVE_TOL, 400);
+        let mu = |f: usize| self.mu(f);
+        let bed = Bed {
+            ground: self.ground,
+            quadrature: self.quadrature,
+            size: self.size,
+            mu: &mu,
+        };
+        let flushes = flush(&bed, s, &found.touches, &warm.patch);
+        let patches: Vec<Patch> = flushes.iter().map(|f| f.patch.clone()).collect();
+        let solved =
+            impulses::solve_with_patches(&body, (v_free, w_free), &rows, &patches, SOLVE_TOL, 400);
         let (v0, w0) = (s.v, s.w);
         s.v = solved.v;
         s.w = solved.w;
         s.work_applied += h * (driving.dot(&s.v) + moment.dot(&s.w));
-        s.work_contacts += contact_work(&rows, &solved, (v0, w0));
+        s.work_contacts += contact_work(&rows, &patches, &solved, (v0, w0));
         s.drift(h);
         self.project_out(s, &body);
         Stepped {
@@ -214,6 +241,11 @@ impl Ctx<'_> {
                 .zip(&solved.normal)
                 .zip(&solved.tangential)
                 .map(|((t, pn), pt)| (t, t.normal * *pn + pt))
+                .collect(),
+            patch: flushes
+                .iter()
+                .zip(&solved.patch)
+                .flat_map(|(f, imps)| f.spots.iter().copied().zip(imps.iter().copied()))
                 .collect(),
             off_ground: found.off_ground,
             h,

@@ -1,0 +1,250 @@
+//! Where the base lies flush on its rock (`derivations/13-base-contact.md` §9): its whole face
+//! on a plane of the rock, or an edge along one. There the touches found at corners and
+//! vertices carry the base's normal impulse, but its pressure — and so its friction — is over
+//! the area or along the edge, as on a stiff uniform bed; the impulse solve shares it over the
+//! quadrature points found here.
+
+use super::state::BodyState;
+use crate::geometry::{Feature, Ground, Touch};
+use crate::mechanics::impulses::{Patch, PatchPoint, tangents};
+use crate::model::Base;
+use nalgebra::Vector3;
+
+/// A base lies flush on its rock where its normal is within this angle (rad) of the rock's.
+const FLUSH_ANGLE: f64 = 1e-6;
+
+/// … and its gap there within this fraction of its size.
+const FLUSH_GAP: f64 = 1e-6;
+
+/// Each triangle of the base cut into this many squared for its quadrature (three points each).
+const AREA_SPLIT: usize = 2;
+
+/// The base's quadrature points in body axes about the CM (m), with their weights.
+#[derive(Debug, Clone, Default)]
+pub(super) struct Quadrature {
+    /// Over the area (weights in m²).
+    pub area: Vec<(Vector3<f64>, f64)>,
+    /// Along each edge k, from corner k to k + 1 (weights in m).
+    pub edges: Vec<Vec<(Vector3<f64>, f64)>>,
+}
+
+impl Quadrature {
+    /// The quadrature of `base` (`Base::quadrature`, `Base::edge_quadrature`).
+    pub fn of(base: &Base) -> Quadrature {
+        let body = |pts: Vec<([f64; 2], f64)>| -> Vec<(Vector3<f64>, f64)> {
+            pts.into_iter()
+                .map(|([x, z], w)| (Vector3::new(x, -base.depth(), z), w))
+                .collect()
+        };
+        Quadrature {
+            area: body(base.quadrature(AREA_SPLIT)),
+            edges: (0..base.outline().len())
+                .map(|k| body(base.edge_quadrature(k)))
+                .collect(),
+        }
+    }
+}
+
+/// Which quadrature point: of the area, or node j of edge k.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Spot {
+    /// Point k of the area.
+    Area(usize),
+    /// Node j of edge k.
+    Edge(usize, usize),
+}
+
+/// What the flush parts are sought on: the ground, the base's quadrature and size (m), and μ
+/// by face.
+pub(super) struct Bed<'a> {
+    pub ground: &'a Ground,
+    pub quadrature: &'a Quadrature,
+    pub size: f64,
+    pub mu: &'a dyn Fn(usize) -> f64,
+}
+
+/// A flush part of the base: the impulse solve's patch and which points it holds.
+#[derive(Debug, Clone)]
+pub(super) struct Flush {
+    pub patch: Patch,
+    pub spots: Vec<Spot>,
+}
+
+/// The flush parts of the base at state `s` among its `touches`, each point's impulse started
+/// from `warm` (the last step's, by point): the base's face on a plane of the rock (at least
+/// three of its area's points over rock in its plane), and each edge whose two corners touch
+/// one plane of the rock with no gap (at least two of its nodes over that rock). No touch is in
+/// two of them.
+pub(super) fn flush(
+    ctx: &Bed<'_>,
+    s: &BodyState,
+    touches: &[Touch],
+    warm: &[(Spot, Vector3<f64>)],
+) -> Vec<Flush> {
+    let up = s.pose.up();
+    let (cos, tol) = (FLUSH_ANGLE.cos(), FLUSH_GAP * ctx.size);
+    let close = |t: &Touch| t.gap.abs() <= tol;
+    let mut used = vec![false; touches.len()];
+    let mut out = Vec::new();
+    // The points of `pts` over rock flush with a plane of normal `n`.
+    let on_rock = |n: &Vector3<f64>,
+                   pts: &mut dyn Iterator<Item = (Spot, &(Vector3<f64>, f64))>| {
+        let faces = ctx.ground.faces();
+        let mut spots = Vec::new();
+        let mut points = Vec::new();
+        for (spot, (at, weight)) in pts {
+            let q = s.pose.point(at);
+            let Some((f, _)) = ctx.ground.top(q.x, q.z) else {
+                continue;
+            };
+            let face = &faces[f];
+            if face.normal().dot(n) >= cos && face.signed_distance(&q).abs() <= tol {
+                let guess = warm
+                    .iter()
+                    .find(|(w, _)| *w == spot)
+                    .map_or_else(Vector3::zeros, |(_, p)| *p);
+                spots.push(spot);
+                points.push(PatchPoint {
+                    arm: q - s.pose.cm,
+                    weight: *weight,
+                    mu: (ctx.mu)(f),
+                    guess,
+                });
+            }
+        }
+        (spots, points)
+    };
+    // The face on a plane.
+    let members: Vec<usize> = (0..touches.len())
+        .filter(|&i| touches[i].normal.dot(&up) >= cos && close(&touches[i]))
+        .collect();
+    if let Some(&first) = members.first() {
+        let n = touches[first].normal;
+        let mut pts = ctx
+            .quadrature
+            .area
+            .iter()
+            .enumerate()
+            .map(|(k, p)| (Spot::Area(k), p));
+        let (spots, points) = on_rock(&n, &mut pts);
+        if points.len() >= 3 {
+            for &i in &members {
+                used[i] = true;
+            }
+            out.push(Flush {
+                patch: Patch {
+                    members,
+                    axes: tangents(&n),
+                    points,
+                },
+                spots,
+            });
+        }
+    }
+    // Edges along a plane.
+    let corners = ctx.quadrature.edges.len();
+    for k in 0..corners {
+        let ends = |c: usize| -> Vec<usize> {
+            (0..touches.len())
+                .filter(|&i| {
+                    !used[i] && touches[i].feature == Feature::Corner(c) && close(&touches[i])
+                })
+                .collect()
+        };
+        let (from, to) = (ends(k), ends((k + 1) % corners));
+        let pair = from.iter().find_map(|&a| {
+            to.iter()
+                .find(|&&b| touches[a].normal.dot(&touches[b].normal) >= cos)
+                .map(|&b| (a, b))
+        });
+        let Some((a, b)) = pair else {
+            continue;
+        };
+        let n = touches[a].normal;
+        let mut pts = ctx.quadrature.edges[k]
+            .iter()
+            .enumerate()
+            .map(|(j, p)| (Spot::Edge(k, j), p));
+        let (spots, points) = on_rock(&n, &mut pts);
+        if points.len() >= 2 {
+            used[a] = true;
+            used[b] = true;
+            out.push(Flush {
+                patch: Patch {
+                    members: vec![a, b],
+                    axes: tangents(&n),
+                    points,
+                },
+                spots,
+            });
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::{BodyPose, Footprint, Plane, touches};
+    use nalgebra::{Matrix3, Rotation3};
+
+    /// A 4 m square base, its CM 1 m above it, at `pose` on level rock: the flush parts.
+    fn flush_on_level(pose: BodyPose) -> Vec<Flush> {
+        let base = Base::rectangle([-2.0, 2.0], [-2.0, 2.0], 1.0).unwrap();
+        let ground = Ground::planes(vec![Plane::through(Vector3::y(), Vector3::zeros())]);
+        let quadrature = Quadrature::of(&base);
+        let footprint = Footprint {
+            outline: base.outline(),
+            depth: base.depth(),
+        };
+        let found = touches(&ground, footprint, &pose, 1e-3, 0.0);
+        let mu = |_: usize| 0.5;
+        let bed = Bed {
+            ground: &ground,
+            quadrature: &quadrature,
+            size: base.size(),
+            mu: &mu,
+        };
+        flush(&bed, &BodyState::at_rest(pose), &found.touches, &[])
+    }
+
+    #[test]
+    fn a_base_lying_on_level_rock_presses_over_its_whole_area() {
+        let parts = flush_on_level(BodyPose {
+            cm: Vector3::new(3.0, 1.0, -1.0),
+            rotation: Matrix3::identity(),
+        });
+        assert_eq!(parts.len(), 1);
+        let patch = &parts[0].patch;
+        assert_eq!(patch.members.len(), 4);
+        assert_eq!(patch.points.len(), 24);
+        let area: f64 = patch.points.iter().map(|p| p.weight).sum();
+        assert!((area - 16.0).abs() < 1e-12);
+        assert!(patch.points.iter().all(|p| p.mu == 0.5));
+    }
+
+    #[test]
+    fn a_base_tipped_onto_an_edge_presses_along_that_edge_only() {
+        // Tipped 5° about its edge at x′ = 2 (corners 1 and 2), that edge on the rock.
+        let rotation = *Rotation3::from_axis_angle(&Vector3::z_axis(), -5f64.to_radians()).matrix();
+        let pivot = Vector3::new(2.0, -1.0, 0.0);
+        let pose = BodyPose {
+            cm: -(rotation * pivot) + Vector3::new(2.0, 0.0, 0.0),
+            rotation,
+        };
+        // The other edge is up in the air: 4 sin 5° above the rock.
+        let heel = pose.point(&Vector3::new(-2.0, -1.0, 0.0));
+        assert!(
+            (heel.y - 4.0 * 5f64.to_radians().sin()).abs() < 1e-12,
+            "{heel}"
+        );
+        let parts = flush_on_level(pose);
+        assert_eq!(parts.len(), 1, "{parts:?}");
+        assert_eq!(parts[0].patch.members.len(), 2);
+        assert!(parts[0].spots.iter().all(|s| matches!(s, Spot::Edge(1, _))));
+        let length: f64 = parts[0].patch.points.iter().map(|p| p.weight).sum();
+        assert!((length - 4.0).abs() < 1e-12, "{length}");
+        // Tipped more than the tolerance: nothing lies flush over the area.
+        assert!(parts.iter().all(|p| p.patch.points.len() == 5));
+    }
+}
