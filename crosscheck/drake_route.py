@@ -136,7 +136,9 @@ def water_forces(s, xb, yb, g):
     return [(np.array([x, y, 0.0]), np.array([fx, fy, 0.0])) for (x, y), (fx, fy) in out], net
 
 
-def load(path):
+def load(path, surface=False):
+    """The scene's block, loads and ground as one dict. A triangulated `[foundation] surface`
+    is refused unless `surface` (drake_body.py's prisms); then p["surface"] is the OBJ's path."""
     with open(path, "rb") as f:
         s = tomllib.load(f)
     fr, fo, lo, fi = s["frame"], s["foundation"], s["loads"], s["friction"]
@@ -163,8 +165,12 @@ def load(path):
             np.array([fr["l2x"], 0.0, fr["l1z"]]),
             np.array([fr["l2x"], 0.0, -fr["l2z"]]),
         ]
+    obj = None
     if "surface" in fo:
-        sys.exit(f"{path}: foundation.surface: the Drake cross-check takes planes only")
+        if not surface:
+            sys.exit(f"{path}: foundation.surface: the Drake cross-check takes planes only")
+        import os
+        obj = os.path.join(os.path.dirname(os.path.abspath(path)), fo["surface"])
     faces = None
     if "plane" in fo:
         faces = []
@@ -195,7 +201,7 @@ def load(path):
         xs, zs = [c[0] for c in corners], [c[2] for c in corners]
         outline = [(min(xs), min(zs)), (max(xs), min(zs)), (max(xs), max(zs)), (min(xs), max(zs))]
     return dict(
-        corners=corners, faces=faces, record=record, outline=outline,
+        corners=corners, faces=faces, record=record, outline=outline, surface=obj,
         kh=seismic.get("kh", 0.0), kv=seismic.get("kv", 0.0),
         xi=math.radians(fo.get("xi_deg", 0.0)), zeta=math.radians(fo.get("zeta_deg", 0.0)),
         kappa=math.radians(fo.get("kappa_deg", 0.0)),
@@ -236,6 +242,30 @@ def base_points(outline, n):
             if inside(x, z):
                 pts.append((x, z))
     return [np.array([x, 0.0, z]) for x, z in pts]
+
+
+def base_weights(outline, n):
+    """The share of the base's area each of base_points(outline, n) stands for, relative to the
+    mean (the trapezoid rule on the grid): 1 inside, 1/2 on an edge, 1/4 at a corner. A grid of
+    equal springs over-weights the base's rim by O(1/n) (its yaw converges slowly, at first
+    order); springs in these proportions are a uniform bed to second order. Exact for a
+    rectangle; for another outline the rim's shares are only near."""
+    m = len(outline)
+    w = []
+    for _ in range(m):
+        for j in range(n):
+            w.append(0.25 if j == 0 else 0.5)
+    inside = len(base_points(outline, n)) - len(w)
+    w += [1.0] * inside
+    mean = sum(w) / len(w)
+    return [x / mean for x in w]
+
+
+def sphere_stiffness(ground, combined):
+    """The stiffness of a base sphere whose contact with a ground geometry of stiffness `ground`
+    has the stiffness `combined` (Drake combines them as k1 k2 / (k1 + k2))."""
+    combined = min(combined, 0.9 * ground)
+    return ground * combined / (ground - combined)
 
 
 def planes(p):
@@ -304,6 +334,28 @@ def ground_velocity(record, g):
     return at
 
 
+def applied_loads(p, block, rot, below):
+    """The scene's loads on the block at the pose whose rotation (body to world) is `rot`, as
+    Drake's externally applied spatial forces: the eccentricity's couple -c F along y' and the
+    pseudo-static forces kh m g, kv m g at the centre of mass; the push F along x' at the base
+    point under it (`below`, body axes), or the water's loads where they act."""
+    def applied(point, torque, force):
+        f = ExternallyAppliedSpatialForce()
+        f.body_index = block.index()
+        f.p_BoBq_B = point
+        f.F_Bq_W = SpatialForce(torque, force)
+        return f
+
+    i_axis, j_axis = rot[:, 0], rot[:, 1]
+    seismic = np.array([p["kh"], p["kv"], 0.0]) * p["mass"] * p["g"]
+    forces = [applied(np.zeros(3), -p["c"] * p["force"] * j_axis, seismic)]
+    if p["plain"]:
+        forces.append(applied(below, np.zeros(3), p["force"] * i_axis))
+    for point, force in p["water"]:
+        forces.append(applied(point, np.zeros(3), rot @ force))
+    return forces
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--scene", required=True)
@@ -317,6 +369,8 @@ def main():
                     help="the block's whole base: spheres on a grid over its footprint, every one"
                          " against every face (slideroute's contacts = \"base\")")
     ap.add_argument("--grid", type=int, default=9, help="base: grid points along each side")
+    ap.add_argument("--equal-springs", action="store_true",
+                    help="base: every grid point's spring alike (the rim then over-weighted)")
     ap.add_argument("--start", help="base: slideroute's summary.json, whose base.resting pose"
                                     " the block starts in")
     ap.add_argument("--mu-delta", type=float, default=0.0, help="added to mu (chaos check)")
@@ -337,9 +391,10 @@ def main():
     )
     plant.mutable_gravity_field().set_gravity_vector([0.0, -p["g"], 0.0])
 
-    def props():
+    def props(stiffness=None):
         pp = ProximityProperties()
-        AddContactMaterial(a.dissipation, a.stiffness, CoulombFriction(p["mu"], p["mu"]), pp)
+        k = a.stiffness if stiffness is None else stiffness
+        AddContactMaterial(a.dissipation, k, CoulombFriction(p["mu"], p["mu"]), pp)
         return pp
 
     # The foundation: the world, or a ground body shaken by the record.
@@ -364,10 +419,15 @@ def main():
     below = np.array([0.0, -p["height"], 0.0])
     spheres, halves = [], []
     points = base_points(p["outline"], a.grid) if a.base else corners
+    # On a base, each sphere's spring in proportion to the area it stands for (a uniform bed),
+    # unless --equal-springs; the mean combined stiffness as two equal ones give.
+    weights = ([1.0] * len(points) if (not a.base or a.equal_springs or a.grid <= 1)
+               else base_weights(p["outline"], a.grid))
     for i, corner in enumerate(points):
         # The sphere's centre is the contact point; each plane is lowered by the radius.
+        k = sphere_stiffness(a.stiffness, 0.5 * a.stiffness * weights[i])
         spheres.append(plant.RegisterCollisionGeometry(
-            block, RigidTransform(corner + below), Sphere(a.radius), f"contact{i}", props()))
+            block, RigidTransform(corner + below), Sphere(a.radius), f"contact{i}", props(k)))
     for j, (n, point) in enumerate(planes(p)):
         halves.append(plant.RegisterCollisionGeometry(
             ground, RigidTransform(HalfSpace.MakePose(n, point - a.radius * n)),
@@ -439,22 +499,7 @@ def main():
                      *[x for c in contacts for x in c]))
         if k == steps:
             break
-        def applied(point, torque, force):
-            f = ExternallyAppliedSpatialForce()
-            f.body_index = block.index()
-            f.p_BoBq_B = point
-            f.F_Bq_W = SpatialForce(torque, force)
-            return f
-
-        seismic = np.array([p["kh"], p["kv"], 0.0]) * p["mass"] * p["g"]
-        # The eccentricity's couple and the pseudo-static forces at the centre of mass; the
-        # push F along x' at the base point under it, or the water's loads where they act.
-        forces = [applied(np.zeros(3), -p["c"] * p["force"] * j_axis, seismic)]
-        if p["plain"]:
-            forces.append(applied(below, np.zeros(3), p["force"] * i_axis))
-        for point, force in p["water"]:
-            forces.append(applied(point, np.zeros(3), rot @ force))
-        port.FixValue(plant_context, forces)
+        port.FixValue(plant_context, applied_loads(p, block, rot, below))
         if joints:
             shake(t, t + a.dt)
         simulator.AdvanceTo((k + 1) * a.dt)
