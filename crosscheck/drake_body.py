@@ -66,23 +66,19 @@ import numpy as np
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import drake_route as dr  # noqa: E402  (its scene reader, loads and base grid)
 from pydrake.geometry import (  # noqa: E402
-    AddContactMaterial,
     CollisionFilterDeclaration,
     GeometrySet,
     Box,
     Convex,
     HalfSpace,
-    ProximityProperties,
     Sphere,
 )
 from pydrake.math import RigidTransform, RotationMatrix  # noqa: E402
 from pydrake.multibody.math import SpatialVelocity  # noqa: E402
 from pydrake.multibody.plant import (  # noqa: E402
     AddMultibodyPlant,
-    CoulombFriction,
     MultibodyPlantConfig,
 )
-from pydrake.multibody.tree import RotationalInertia, SpatialInertia  # noqa: E402
 from pydrake.systems.analysis import Simulator  # noqa: E402
 from pydrake.systems.framework import DiagramBuilder  # noqa: E402
 
@@ -275,32 +271,10 @@ def main():
                              discrete_contact_approximation="tamsi"),
         builder,
     )
-    inertia = RotationalInertia(p["ix"], p["iy"], p["iz"], -p["ixy"], -p["ixz"], 0.0)
-    block = plant.AddRigidBody(
-        "block", SpatialInertia.MakeFromCentralInertia(p["mass"], np.zeros(3), inertia))
-    plant.mutable_gravity_field().set_gravity_vector([0.0, -p["g"], 0.0])
+    block, ground, joints = dr.add_block_and_ground(plant, p)
 
     def props(stiffness=None):
-        pp = ProximityProperties()
-        k = a.stiffness if stiffness is None else stiffness
-        AddContactMaterial(a.dissipation, k, CoulombFriction(p["mu"], p["mu"]), pp)
-        return pp
-
-    ground = plant.world_body()
-    joints = []
-    if p["record"] is not None:
-        from pydrake.multibody.tree import PrismaticJoint
-        big = dr.GROUND_MASS_RATIO * p["mass"]
-        parent = plant.world_body()
-        for k, axis in enumerate(np.eye(3)):
-            body = plant.AddRigidBody(
-                f"ground{k}", SpatialInertia.MakeFromCentralInertia(
-                    big, np.zeros(3), RotationalInertia(big, big, big)))
-            joints.append(plant.AddJoint(PrismaticJoint(
-                f"ground_{'xyz'[k]}", plant.world_frame() if k == 0 else parent.body_frame(),
-                body.body_frame(), axis)))
-            parent = body
-        ground = parent
+        return dr.contact_properties(a, p, stiffness)
 
     below = np.array([0.0, -p["height"], 0.0])
     points = np.array([c + below for c in dr.base_points(p["outline"], a.grid)])

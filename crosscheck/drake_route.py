@@ -356,6 +356,43 @@ def applied_loads(p, block, rot, below):
     return forces
 
 
+def add_block_and_ground(plant, p):
+    """The block (its inertia about the CM; gravity along -Y) and the body the foundation
+    belongs to: the world, or, under a record, a heavy body on three prismatic joints the record
+    drives. Returns (block, ground, joints)."""
+    # Product of inertia I_xz = ∫x'z' dm enters the tensor as -I_xz.
+    inertia = RotationalInertia(p["ix"], p["iy"], p["iz"], -p["ixy"], -p["ixz"], 0.0)
+    block = plant.AddRigidBody(
+        "block", SpatialInertia.MakeFromCentralInertia(p["mass"], np.zeros(3), inertia)
+    )
+    plant.mutable_gravity_field().set_gravity_vector([0.0, -p["g"], 0.0])
+    ground = plant.world_body()
+    joints = []
+    if p["record"] is not None:
+        from pydrake.multibody.tree import PrismaticJoint
+        big = GROUND_MASS_RATIO * p["mass"]
+        parent = plant.world_body()
+        for k, axis in enumerate(np.eye(3)):
+            body = plant.AddRigidBody(
+                f"ground{k}", SpatialInertia.MakeFromCentralInertia(
+                    big, np.zeros(3), RotationalInertia(big, big, big)))
+            joints.append(plant.AddJoint(PrismaticJoint(
+                f"ground_{'xyz'[k]}", plant.world_frame() if k == 0 else parent.body_frame(),
+                body.body_frame(), axis)))
+            parent = body
+        ground = parent
+    return block, ground, joints
+
+
+def contact_properties(a, p, stiffness=None):
+    """Point contact's properties: Hunt-Crossley dissipation and stiffness (the command line's
+    unless given), Coulomb's mu (static = dynamic)."""
+    pp = ProximityProperties()
+    k = a.stiffness if stiffness is None else stiffness
+    AddContactMaterial(a.dissipation, k, CoulombFriction(p["mu"], p["mu"]), pp)
+    return pp
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--scene", required=True)
@@ -384,35 +421,10 @@ def main():
                              discrete_contact_approximation="tamsi"),
         builder,
     )
-    # Product of inertia I_xz = ∫x'z' dm enters the tensor as -I_xz.
-    inertia = RotationalInertia(p["ix"], p["iy"], p["iz"], -p["ixy"], -p["ixz"], 0.0)
-    block = plant.AddRigidBody(
-        "block", SpatialInertia.MakeFromCentralInertia(p["mass"], np.zeros(3), inertia)
-    )
-    plant.mutable_gravity_field().set_gravity_vector([0.0, -p["g"], 0.0])
+    block, ground, joints = add_block_and_ground(plant, p)
 
     def props(stiffness=None):
-        pp = ProximityProperties()
-        k = a.stiffness if stiffness is None else stiffness
-        AddContactMaterial(a.dissipation, k, CoulombFriction(p["mu"], p["mu"]), pp)
-        return pp
-
-    # The foundation: the world, or a ground body shaken by the record.
-    ground = plant.world_body()
-    joints = []
-    if p["record"] is not None:
-        from pydrake.multibody.tree import PrismaticJoint
-        big = GROUND_MASS_RATIO * p["mass"]
-        parent = plant.world_body()
-        for k, axis in enumerate(np.eye(3)):
-            body = plant.AddRigidBody(
-                f"ground{k}", SpatialInertia.MakeFromCentralInertia(
-                    big, np.zeros(3), RotationalInertia(big, big, big)))
-            joints.append(plant.AddJoint(PrismaticJoint(
-                f"ground_{'xyz'[k]}", plant.world_frame() if k == 0 else parent.body_frame(),
-                body.body_frame(), axis)))
-            parent = body
-        ground = parent
+        return contact_properties(a, p, stiffness)
 
     corners = p["corners"]
     # The base plane lies ȳ below the centre of mass (a monolith's; zero for [block]).
