@@ -16,8 +16,16 @@
 //! slip opposes it: Coulomb's law itself. Unlike a convex relaxation of the cone (Anitescu's),
 //! the block does not rise as it slides (`derivations/13-base-contact.md` §4).
 
-use super::pressure;
+mod crease;
+mod disc;
+mod patch;
+
+pub use disc::{Tangential, disc_minimum};
+pub use patch::{Patch, PatchPoint};
+
+use crease::{normal_at_point, point_group};
 use nalgebra::{Matrix2, Matrix3, Vector2, Vector3};
+use patch::Spreading;
 
 /// One contact of the step: its arm from the CM, its frame, its friction and its gap.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -45,35 +53,6 @@ pub struct Body {
     pub inv_inertia: Matrix3<f64>,
 }
 
-/// A base lying flush on its rock (`derivations/13-base-contact.md` §9): the rows on it carry
-/// the base's normal impulse, whose resultant [`pressure::spread`] shares over the base's area
-/// as a rigid base on a uniform bed does; the friction then acts at the base's quadrature
-/// points, each within μ times its share, and not at the rows. Where no such pressure has the
-/// rows' resultant (it is at the edge of the points' hull: the base about to tip), the rows
-/// carry their own friction, as without a patch.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Patch {
-    /// The rows on the flush base.
-    pub members: Vec<usize>,
-    /// Two unit axes in the base's plane (with the rows' normal, a right-handed frame).
-    pub axes: (Vector3<f64>, Vector3<f64>),
-    /// The quadrature points of the base over the flush rock.
-    pub points: Vec<PatchPoint>,
-}
-
-/// One quadrature point of a flush base.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PatchPoint {
-    /// r: from the CM to the point (m).
-    pub arm: Vector3<f64>,
-    /// Its weight: the area it stands for (m²).
-    pub weight: f64,
-    /// μ of the rock under it.
-    pub mu: f64,
-    /// Where the solve starts: its friction impulse at the last step (N·s, world), or zero.
-    pub guess: Vector3<f64>,
-}
-
 /// The solution: the velocities after the step and each contact's impulse (N·s) as (normal,
 /// tangential vector).
 #[derive(Debug, Clone, PartialEq)]
@@ -96,74 +75,6 @@ pub struct Solved {
     pub change: f64,
 }
 
-/// A contact's tangential effective inverse mass W (2×2, symmetric positive definite) by its
-/// eigenvectors and eigenvalues, W = Q diag(λ) Qᵀ, taken apart once a step.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Tangential {
-    /// W itself.
-    pub w: Matrix2<f64>,
-    q: Matrix2<f64>,
-    lam: Vector2<f64>,
-}
-
-impl Tangential {
-    /// W taken apart.
-    pub fn new(w: Matrix2<f64>) -> Tangential {
-        let (lam, q) = crate::numeric::symmetric_eigen2(&w);
-        Tangential { w, q, lam }
-    }
-}
-
-/// The p of |p| ≤ `radius` that minimises ½ pᵀ W p + pᵀ u (W symmetric positive definite): the
-/// friction impulse of one contact whose slip without it is `u`, W its tangential effective
-/// inverse mass. Inside the disc, p = −W⁻¹u (it sticks); on its rim, p = −(W + ν I)⁻¹ u with
-/// ν ≥ 0 making |p| the radius, so the slip W p + u = −ν p opposes p: Coulomb's maximal
-/// dissipation. ν from the secular equation 1/|p(ν)| = 1/radius by Newton (Moré and
-/// Sorensen's form, nearly linear in ν).
-pub fn disc_minimum(w: &Tangential, u: &Vector2<f64>, radius: f64, nu: &mut f64) -> Vector2<f64> {
-    if radius <= 0.0 || u.norm() == 0.0 {
-        return Vector2::zeros();
-    }
-    let (q, lam) = (w.q, w.lam);
-    let g = q.transpose() * u;
-    let p_of = |nu: f64| -> Vector2<f64> {
-        -(q * Vector2::new(g[0] / (lam[0] + nu), g[1] / (lam[1] + nu)))
-    };
-    if lam.min() > 0.0 && p_of(0.0).norm() <= radius {
-        return p_of(0.0);
-    }
-    // |p(ν)| falls from above the radius (or from infinity) as ν grows; Newton from the last ν
-    // this contact found (a slip that changes little needs a step or two).
-    if !(*nu > 0.0 && p_of(*nu).norm() >= radius) {
-        // |p(ν)| ≥ |u| / (λ_max + ν), so at this ν it is at least the radius: Newton on the
-        // secular equation then climbs to the root without overshooting it.
-        *nu = (u.norm() / radius - lam.max()).max(0.0);
-    }
-    let mut nu_k = *nu;
-    for _ in 0..50 {
-        let nu = nu_k;
-        let p = p_of(nu);
-        let norm = p.norm();
-        if (norm - radius).abs() <= 1e-13 * radius {
-            break;
-        }
-        // d|p|/dν = −Σ g_k² / (λ_k + ν)³ / |p|.
-        let d = -(g[0] * g[0] / (lam[0] + nu).powi(3) + g[1] * g[1] / (lam[1] + nu).powi(3)) / norm;
-        // Newton on φ(ν) = 1/|p| − 1/radius: φ' = −d/|p|².
-        let phi = 1.0 / norm - 1.0 / radius;
-        let step = phi / (-d / (norm * norm));
-        let next = (nu - step).max(0.1 * nu);
-        nu_k = next;
-        if (next - nu).abs() <= 1e-15 * (nu.abs() + lam.max()) {
-            break;
-        }
-    }
-    *nu = nu_k;
-    let p = p_of(nu_k);
-    // On the rim exactly.
-    p * (radius / p.norm())
-}
-
 /// Over-relaxation of the normal updates in the first sweeps: a corner in a crease is two
 /// nearly opposed normals at one point, which plain Gauss–Seidel shares out slowly (37 sweeps a
 /// step on the default scene, 27 with these; the solution is the same).
@@ -171,106 +82,6 @@ const RELAX: f64 = 1.7;
 
 /// The sweeps over-relaxed.
 const RELAXED_SWEEPS: usize = 8;
-
-/// The rows next to row `i` at the same point of the body (the same arm).
-fn point_group(rows: &[ContactRow], i: usize) -> std::ops::Range<usize> {
-    let same = |j: usize| rows[j].arm == rows[i].arm;
-    let mut start = i;
-    while start > 0 && same(start - 1) {
-        start -= 1;
-    }
-    let mut end = i + 1;
-    while end < rows.len() && same(end) {
-        end += 1;
-    }
-    start..end
-}
-
-/// The normal impulses of the first three contacts of `group` at one point of the body (a
-/// fourth and more, which no ground of faces gives a corner but at a point where four planes
-/// meet, go alone), the others held: the
-/// small linear complementarity problem W p + q ≥ 0, p ≥ 0, p ⟂ (W p + q), solved exactly by
-/// trying each set of contacts that push (W the group's normal effective inverse mass, q their
-/// closing velocities without their own impulses). Where no set fits (a singular W: faces
-/// whose normals are not independent), each contact alone.
-fn normal_at_point(
-    out: &mut Solved,
-    rows: &[ContactRow],
-    group: std::ops::Range<usize>,
-    body: &Body,
-    apply: &impl Fn(&mut Solved, &ContactRow, Vector3<f64>),
-) {
-    let g = group.len().min(3);
-    let idx: Vec<usize> = group.clone().take(g).collect();
-    let r = rows[idx[0]].arm;
-    let u = out.v + out.w.cross(&r);
-    let k = |a: &Vector3<f64>, b: &Vector3<f64>| {
-        body.inv_mass * a.dot(b) + r.cross(a).dot(&(body.inv_inertia * r.cross(b)))
-    };
-    let mut w = Matrix3::zeros();
-    let mut q = Vector3::zeros();
-    for (a, &ia) in idx.iter().enumerate() {
-        for (b, &ib) in idx.iter().enumerate() {
-            w[(a, b)] = k(&rows[ia].normal, &rows[ib].normal);
-        }
-    }
-    for (a, &ia) in idx.iter().enumerate() {
-        let held: f64 = (0..g).map(|b| w[(a, b)] * out.normal[idx[b]]).sum();
-        q[a] = rows[ia].normal.dot(&u) + rows[ia].closing - held;
-    }
-    let mut found = None;
-    for set in 0u32..(1 << g) {
-        let pushes = |a: usize| set & (1 << a) != 0;
-        let mut p = Vector3::zeros();
-        if set != 0 {
-            // W and q of the contacts that push, the others' rows and columns the identity's
-            // (their p stays zero): one 3 × 3 solve, on the stack.
-            let ws = Matrix3::from_fn(|a, b| {
-                if pushes(a) && pushes(b) {
-                    w[(a, b)]
-                } else if a == b {
-                    1.0
-                } else {
-                    0.0
-                }
-            });
-            let qs = Vector3::from_fn(|a, _| if pushes(a) { -q[a] } else { 0.0 });
-            let Some(x) = ws.lu().solve(&qs) else {
-                continue;
-            };
-            p = x;
-        }
-        let scale = q.abs().max() + 1e-300;
-        let fits = (0..g).all(|a| {
-            let gap_rate = (0..g).map(|b| w[(a, b)] * p[b]).sum::<f64>() + q[a];
-            if pushes(a) {
-                p[a] >= 0.0
-            } else {
-                gap_rate >= -1e-12 * scale
-            }
-        });
-        if fits {
-            found = Some(p);
-            break;
-        }
-    }
-    let Some(p) = found else {
-        for &i in &idx {
-            let c = &rows[i];
-            let u = out.v + out.w.cross(&c.arm);
-            let pn_old = out.normal[i];
-            let pn = (pn_old - (c.normal.dot(&u) + c.closing) / k(&c.normal, &c.normal)).max(0.0);
-            apply(out, c, c.normal * (pn - pn_old));
-            out.normal[i] = pn;
-        }
-        return;
-    };
-    for (a, &i) in idx.iter().enumerate() {
-        let c = &rows[i];
-        apply(out, c, c.normal * (p[a] - out.normal[i]));
-        out.normal[i] = p[a];
-    }
-}
 
 /// Two unit tangents completing `n`.
 pub fn tangents(n: &Vector3<f64>) -> (Vector3<f64>, Vector3<f64>) {
@@ -354,117 +165,6 @@ fn friction_at(
     let new = f.t1 * pt.x + f.t2 * pt.y;
     apply_at(out, body, arm, new - old);
     new
-}
-
-/// A flush patch within the sweeps: its points' frames and shares, and whether its points or
-/// its rows carry the friction.
-struct Spreading<'a> {
-    patch: &'a Patch,
-    /// Its number among the patches.
-    number: usize,
-    /// The rows' normal.
-    normal: Vector3<f64>,
-    frames: Vec<Frame>,
-    /// The bed under the points; None where they have no extent (then the rows rub).
-    bed: Option<pressure::Bed>,
-    shares: Vec<f64>,
-    nus: Vec<f64>,
-    /// The points carry the friction (else the rows do).
-    on: bool,
-}
-
-impl<'a> Spreading<'a> {
-    fn new(body: &Body, (number, patch): (usize, &'a Patch), rows: &[ContactRow]) -> Spreading<'a> {
-        let (e1, e2) = patch.axes;
-        let normal = patch
-            .members
-            .first()
-            .map_or(e1.cross(&e2), |&i| rows[i].normal);
-        Spreading {
-            patch,
-            number,
-            normal,
-            frames: patch
-                .points
-                .iter()
-                .map(|p| frame_at(body, &p.arm, &normal, (e1, e2)))
-                .collect(),
-            bed: pressure::Bed::new(
-                &patch
-                    .points
-                    .iter()
-                    .map(|p| [p.arm.dot(&e1), p.arm.dot(&e2)])
-                    .collect::<Vec<_>>(),
-                &patch.points.iter().map(|p| p.weight).collect::<Vec<_>>(),
-            ),
-            shares: Vec::new(),
-            nus: vec![0.0; patch.points.len()],
-            on: true,
-        }
-    }
-
-    /// Shares the rows' normal impulse over the points and gives each its friction, or, where
-    /// that cannot be, hands the friction back to the rows (true: the rows must take it now).
-    ///
-    /// Once the rows have the friction back, the points take it again only while `may_return`
-    /// (the first sweeps, the normals still settling): a base tipping to and fro over the rim
-    /// of its points' hull would keep the sweeps from settling.
-    fn sweep(
-        &mut self,
-        out: &mut Solved,
-        body: &Body,
-        rows: &[ContactRow],
-        may_return: bool,
-    ) -> bool {
-        if !self.on && !may_return {
-            return false;
-        }
-        let (e1, e2) = self.patch.axes;
-        let (normal, at) = (self.normal, self.number);
-        let total: f64 = self.patch.members.iter().map(|&i| out.normal[i]).sum();
-        let mut centre = [0.0; 2];
-        for &i in &self.patch.members {
-            let share = out.normal[i] / total;
-            centre[0] += share * rows[i].arm.dot(&e1);
-            centre[1] += share * rows[i].arm.dot(&e2);
-        }
-        let fits = self
-            .bed
-            .as_mut()
-            .is_some_and(|bed| bed.spread(total, centre, &mut self.shares));
-        if fits {
-            if !self.on {
-                // The rows' friction goes over to the points.
-                for &i in &self.patch.members {
-                    let old = std::mem::take(&mut out.tangential[i]);
-                    apply_at(out, body, &rows[i].arm, -old);
-                }
-            }
-            for (k, p) in self.patch.points.iter().enumerate() {
-                let was = out.patch[at][k];
-                let old = was - normal * normal.dot(&was);
-                let radius = p.mu * self.shares[k];
-                let new = friction_at(
-                    out,
-                    body,
-                    &p.arm,
-                    &self.frames[k],
-                    radius,
-                    old,
-                    &mut self.nus[k],
-                );
-                out.patch[at][k] = normal * self.shares[k] + new;
-            }
-        } else if self.on {
-            for (k, p) in self.patch.points.iter().enumerate() {
-                let old = std::mem::take(&mut out.patch[at][k]);
-                apply_at(out, body, &p.arm, -(old - normal * normal.dot(&old)));
-            }
-        }
-        let hand_back = self.on && !fits;
-        self.on = fits;
-        hand_back
-    }
 }
 
 /// Starts the solve from the guesses: each row's within its cone (without its friction where
@@ -740,89 +440,5 @@ mod tests {
         );
         assert_eq!(s.normal, vec![0.0; 4]);
         assert_eq!(s.v.y, -1.0);
-    }
-}
-
-#[cfg(test)]
-mod disc_tests {
-    use super::*;
-
-    /// The minimum of ½ pᵀWp + pᵀu over the disc by brute force: a fine polar grid.
-    fn brute(w: &Matrix2<f64>, u: &Vector2<f64>, radius: f64) -> Vector2<f64> {
-        let f = |p: Vector2<f64>| 0.5 * p.dot(&(w * p)) + p.dot(u);
-        let mut best = (f64::INFINITY, Vector2::zeros());
-        for i in 0..=400 {
-            for j in 0..720 {
-                let r = radius * i as f64 / 400.0;
-                let a = (j as f64).to_radians() / 2.0;
-                let p = Vector2::new(r * a.cos(), r * a.sin());
-                if f(p) < best.0 {
-                    best = (f(p), p);
-                }
-            }
-        }
-        best.1
-    }
-
-    #[test]
-    fn a_corner_in_a_v_groove_is_held_by_both_faces_as_the_statics_of_the_groove_say() {
-        // A point mass (no arm) dropped into a symmetric groove of faces at ±φ: both faces push,
-        // each P = m g h / (2 cos φ), and it stops; with the groove tipped, the statics of two
-        // forces along the normals carry the weight: P1 n1 + P2 n2 = m g h Y.
-        let (m, g, h) = (1000.0, 9.81, 1e-3);
-        let body = Body {
-            inv_mass: 1.0 / m,
-            inv_inertia: Matrix3::identity(),
-        };
-        for (a, b) in [(30f64, 30f64), (20.0, 50.0)] {
-            let (a, b) = (a.to_radians(), b.to_radians());
-            let n1 = Vector3::new(-a.sin(), a.cos(), 0.0);
-            let n2 = Vector3::new(b.sin(), b.cos(), 0.0);
-            let row = |n: Vector3<f64>| ContactRow {
-                arm: Vector3::zeros(),
-                normal: n,
-                mu: 0.0,
-                closing: 0.0,
-                guess: Vector3::zeros(),
-            };
-            let v = Vector3::new(0.0, -g * h, 0.0);
-            let s = solve(&body, v, Vector3::zeros(), &[row(n1), row(n2)], 1e-14, 50);
-            assert!(s.v.norm() < 1e-14, "{}", s.v);
-            // The two normals' statics by Cramer's rule in (X, Y).
-            let det = n1.x * n2.y - n2.x * n1.y;
-            let w = m * g * h;
-            let p1 = (0.0 * n2.y - n2.x * w) / det;
-            let p2 = (n1.x * w - 0.0 * n1.y) / det;
-            assert!((s.normal[0] - p1).abs() < 1e-12 * w, "{} {p1}", s.normal[0]);
-            assert!((s.normal[1] - p2).abs() < 1e-12 * w, "{} {p2}", s.normal[1]);
-            // Solved together at the point in the first sweep; the second only finds nothing moves.
-            assert_eq!(s.sweeps, 2);
-        }
-    }
-
-    #[test]
-    fn the_friction_of_one_contact_is_the_least_energy_in_its_disc_and_opposes_its_slip() {
-        let w = Matrix2::new(2.0, 0.7, 0.7, 1.0);
-        let t = Tangential::new(w);
-        for (u, radius) in [
-            (Vector2::new(3.0, -1.0), 0.5),
-            (Vector2::new(0.2, 0.1), 5.0),
-            (Vector2::new(-1.0, 4.0), 1.0),
-        ] {
-            let mut nu = 0.0;
-            let p = disc_minimum(&t, &u, radius, &mut nu);
-            let b = brute(&w, &u, radius);
-            assert!((p - b).norm() < 0.02 * radius, "{p} against {b}");
-            assert!(p.norm() <= radius * (1.0 + 1e-12));
-            let slip = w * p + u;
-            if p.norm() < radius * (1.0 - 1e-9) {
-                // It sticks.
-                assert!(slip.norm() < 1e-12, "{slip}");
-            } else {
-                // It slides against its friction.
-                let cos = slip.dot(&p) / (slip.norm() * p.norm());
-                assert!((cos + 1.0).abs() < 1e-12, "{cos}");
-            }
-        }
     }
 }
