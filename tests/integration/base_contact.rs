@@ -323,6 +323,36 @@ fn every_row_of_every_base_route_in_scenes_is_out_of_the_rock_and_ends_for_a_phy
 }
 
 #[test]
+fn every_row_of_the_whole_body_scenes_is_out_of_the_rock_and_ends_for_a_physical_reason() {
+    // A plane dipping downstream, a bump, a monolith over a step, a rough surveyed-style surface
+    // (scenes/body/, crosscheck/make_terrain.py), 2 s each.
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/body");
+    for name in ["dip-faces", "bump", "monolith-step", "rough"] {
+        let scene = Scene::from_file(&dir.join(format!("{name}.toml")))
+            .unwrap()
+            .with("solver.t_end_s", 2.0)
+            .unwrap();
+        let route = slideroute::run(&scene).unwrap();
+        assert!(
+            matches!(
+                route.termination.reason,
+                Reason::TimeLimit | Reason::Stopped | Reason::Overturned | Reason::BaseOffGround
+            ),
+            "{name}: {:?}",
+            route.termination
+        );
+        let l = scene.l();
+        let report = route.base.as_ref().unwrap();
+        assert!(report.max_penetration_m <= 1e-6 * l, "{name}: {report:?}");
+        assert_rows_out_of_ground(&scene, &route, 1e-6 * l);
+        // The energy balance closes to the first-order step's error.
+        let e = route.energy.unwrap();
+        let work = e.work_hydraulic_j.abs().max(e.work_friction_j.abs());
+        assert!(e.residual_j.abs() < 2e-3 * work, "{name}: {e:?}");
+    }
+}
+
+#[test]
 fn a_monolith_outline_is_read_from_the_heel_and_stands_its_centre_of_mass_high() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes");
     let text = std::fs::read_to_string(dir.join("monolith.toml")).unwrap();
