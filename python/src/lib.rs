@@ -45,6 +45,10 @@ fn version() -> &'static str {
 
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    // NumPy's array interface is fetched here, at import, once: fetched at the first array a
+    // call makes, it imports NumPy's modules there, and a Ctrl-C arriving during that import
+    // became a panic, or was lost and the analysis ran on (numpy::PyArray's first use).
+    numpy::PyArray1::<f64>::zeros(m.py(), 0, false);
     m.add_class::<scene::PyScene>()?;
     m.add_function(wrap_pyfunction!(probabilistic::sample_values, m)?)?;
     m.add_function(wrap_pyfunction!(probabilistic::run_samples, m)?)?;

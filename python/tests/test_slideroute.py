@@ -345,6 +345,38 @@ def test_a_sample_whose_values_make_no_scene_is_a_row_that_says_why():
     assert summary["invalid_samples"] == 2 and summary["routes"] == 1
 
 
+def test_ctrl_c_at_the_first_call_of_an_analysis_is_a_keyboard_interrupt_not_a_panic():
+    import signal
+    import sys
+    import time
+
+    # The first array a call makes used to import NumPy's modules then: a Ctrl-C landing in
+    # that import became a PanicException, or was lost and the analysis ran on.
+    script = (
+        "import slideroute\n"
+        "s = slideroute.Scene.default()\n"
+        "print('started', flush=True)\n"
+        "try:\n"
+        "    slideroute.probabilistic(s, {'friction.mu_k': 'normal:0.4:0.05'}, samples=20000)\n"
+        "    print('finished')\n"
+        "except KeyboardInterrupt:\n"
+        "    print('interrupted')\n"
+    )
+    for delay in (0.0, 0.01, 0.03, 0.1):
+        p = subprocess.Popen(
+            [sys.executable, "-c", script],
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            text=True,
+        )
+        assert p.stdout.readline().strip() == "started"
+        time.sleep(delay)
+        p.send_signal(signal.SIGINT)
+        out, err = p.communicate(timeout=60)
+        assert out.strip() == "interrupted", (delay, out, err)
+        assert "Panic" not in err, (delay, err)
+
+
 def test_ctrl_c_stops_a_long_analysis_with_keyboard_interrupt():
     import signal
     import sys
