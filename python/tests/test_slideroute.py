@@ -345,6 +345,15 @@ def test_a_sample_whose_values_make_no_scene_is_a_row_that_says_why():
     assert summary["invalid_samples"] == 2 and summary["routes"] == 1
 
 
+def _ctrl_c_heard():
+    """In the child, before it starts: Ctrl-C as a terminal delivers it. A shell running these
+    tests in the background (`cmd &` without job control) hands its children SIGINT ignored,
+    and Python then installs no KeyboardInterrupt."""
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_DFL)
+
+
 def test_ctrl_c_at_the_first_call_of_an_analysis_is_a_keyboard_interrupt_not_a_panic():
     import signal
     import sys
@@ -368,6 +377,7 @@ def test_ctrl_c_at_the_first_call_of_an_analysis_is_a_keyboard_interrupt_not_a_p
             stdout=subprocess.PIPE,
             stderr=subprocess.PIPE,
             text=True,
+            preexec_fn=_ctrl_c_heard,
         )
         assert p.stdout.readline().strip() == "started"
         time.sleep(delay)
@@ -393,7 +403,9 @@ def test_ctrl_c_stops_a_long_analysis_with_keyboard_interrupt():
         "except KeyboardInterrupt:\n"
         "    print('interrupted')\n"
     )
-    p = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, text=True)
+    p = subprocess.Popen(
+        [sys.executable, "-c", script], stdout=subprocess.PIPE, text=True, preexec_fn=_ctrl_c_heard
+    )
     assert p.stdout.readline().strip() == "started"
     time.sleep(1.0)
     p.send_signal(signal.SIGINT)
