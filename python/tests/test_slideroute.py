@@ -345,6 +345,19 @@ def test_a_sample_whose_values_make_no_scene_is_a_row_that_says_why():
     assert summary["invalid_samples"] == 2 and summary["routes"] == 1
 
 
+# 20 000 rigid-body routes in a child: minutes of work, which says whether Ctrl-C ended it.
+_LONG_ANALYSIS = (
+    "import slideroute\n"
+    "s = slideroute.Scene.default()\n"
+    "print('started', flush=True)\n"
+    "try:\n"
+    "    slideroute.probabilistic(s, {'friction.mu_k': 'normal:0.4:0.05'}, samples=20000)\n"
+    "    print('finished')\n"
+    "except KeyboardInterrupt:\n"
+    "    print('interrupted')\n"
+)
+
+
 def _ctrl_c_heard():
     """In the child, before it starts: Ctrl-C as a terminal delivers it. A shell running these
     tests in the background (`cmd &` without job control) hands its children SIGINT ignored,
@@ -361,16 +374,7 @@ def test_ctrl_c_at_the_first_call_of_an_analysis_is_a_keyboard_interrupt_not_a_p
 
     # The first array a call makes used to import NumPy's modules then: a Ctrl-C landing in
     # that import became a PanicException, or was lost and the analysis ran on.
-    script = (
-        "import slideroute\n"
-        "s = slideroute.Scene.default()\n"
-        "print('started', flush=True)\n"
-        "try:\n"
-        "    slideroute.probabilistic(s, {'friction.mu_k': 'normal:0.4:0.05'}, samples=20000)\n"
-        "    print('finished')\n"
-        "except KeyboardInterrupt:\n"
-        "    print('interrupted')\n"
-    )
+    script = _LONG_ANALYSIS
     for delay in (0.0, 0.01, 0.03, 0.1):
         p = subprocess.Popen(
             [sys.executable, "-c", script],
@@ -393,16 +397,7 @@ def test_ctrl_c_stops_a_long_analysis_with_keyboard_interrupt():
     import time
 
     # 20 000 rigid-body routes: minutes of work; the interrupt must end it long before.
-    script = (
-        "import slideroute\n"
-        "s = slideroute.Scene.default()\n"
-        "print('started', flush=True)\n"
-        "try:\n"
-        "    slideroute.probabilistic(s, {'friction.mu_k': 'normal:0.4:0.05'}, samples=20000)\n"
-        "    print('finished')\n"
-        "except KeyboardInterrupt:\n"
-        "    print('interrupted')\n"
-    )
+    script = _LONG_ANALYSIS
     p = subprocess.Popen(
         [sys.executable, "-c", script], stdout=subprocess.PIPE, text=True, preexec_fn=_ctrl_c_heard
     )

@@ -313,10 +313,7 @@ fn every_row_of_every_base_route_in_scenes_is_out_of_the_rock_and_ends_for_a_phy
             "{name}: {:?}",
             route.termination
         );
-        let l = scene.l();
-        let report = route.base.as_ref().unwrap();
-        assert!(report.max_penetration_m <= 1e-6 * l, "{name}: {report:?}");
-        assert_rows_out_of_ground(&scene, &route, 1e-6 * l);
+        assert_physical_and_out_of_rock(name, &scene, &route);
         checked += 1;
     }
     assert_eq!(checked, 4);
@@ -333,23 +330,29 @@ fn every_row_of_the_whole_body_scenes_is_out_of_the_rock_and_ends_for_a_physical
             .with("solver.t_end_s", 2.0)
             .unwrap();
         let route = slideroute::run(&scene).unwrap();
-        assert!(
-            matches!(
-                route.termination.reason,
-                Reason::TimeLimit | Reason::Stopped | Reason::Overturned | Reason::BaseOffGround
-            ),
-            "{name}: {:?}",
-            route.termination
-        );
-        let l = scene.l();
-        let report = route.base.as_ref().unwrap();
-        assert!(report.max_penetration_m <= 1e-6 * l, "{name}: {report:?}");
-        assert_rows_out_of_ground(&scene, &route, 1e-6 * l);
+        assert_physical_and_out_of_rock(name, &scene, &route);
         // The energy balance closes to the first-order step's error.
         let e = route.energy.unwrap();
         let work = e.work_hydraulic_j.abs().max(e.work_friction_j.abs());
         assert!(e.residual_j.abs() < 2e-3 * work, "{name}: {e:?}");
     }
+}
+
+/// A base route ends for a physical reason (no three-point limit), and no row's base is more
+/// than 1e-6·L in the rock, by the solver's own report and by the base rebuilt from each row.
+fn assert_physical_and_out_of_rock(name: &str, scene: &Scene, route: &Route) {
+    assert!(
+        matches!(
+            route.termination.reason,
+            Reason::TimeLimit | Reason::Stopped | Reason::Overturned | Reason::BaseOffGround
+        ),
+        "{name}: {:?}",
+        route.termination
+    );
+    let l = scene.l();
+    let report = route.base.as_ref().unwrap();
+    assert!(report.max_penetration_m <= 1e-6 * l, "{name}: {report:?}");
+    assert_rows_out_of_ground(scene, route, 1e-6 * l);
 }
 
 #[test]
