@@ -7,6 +7,9 @@
 //!   from (X, Z, θ, α, ψ).
 //! * [`direct`]: the independent pose solver (Newton on the three contact constraints) — the
 //!   oracle every other stage is tested against.
+//! * [`touch`], [`settle`], [`penetration`]: a flat base against the ground: where they touch,
+//!   where it rests, how deep it went by an independent check.
+//! * [`relief`]: a base cast onto its rock, its underside the ground's own surface.
 
 pub mod direct;
 pub mod frame;
@@ -15,6 +18,7 @@ pub mod paper_planes;
 pub mod penetration;
 pub mod plane;
 pub mod pose;
+pub mod relief;
 pub mod settle;
 pub mod site;
 pub mod touch;
@@ -24,9 +28,10 @@ pub use frame::LocalFrame;
 pub use ground::Ground;
 pub use plane::Plane;
 pub use pose::Pose;
+pub use relief::{CastError, Relief, cast, relief_touches};
 pub use settle::{Rest, SettleError, set_down};
 pub use site::{Foundation, Frame, PaperSite, Site};
-pub use touch::{BodyPose, Feature, Footprint, Touch, in_outline, plan_box, touches};
+pub use touch::{BodyPose, Feature, Footprint, Touch, Touches, in_outline, plan_box, touches};
 
 /// The horizontal displacement of the block: CM moved by (X, Z) (m), side 01 yawed by θ (rad,
 /// from +X towards +Z). The start of sliding is the default, (0, 0, 0).

@@ -64,6 +64,10 @@ pub enum Feature {
     GroundVertex,
     /// A ground edge across edge `k` of the base (from corner k to k + 1).
     Crossing(usize),
+    /// Vertex `k` of a cast base's relief on a face.
+    ReliefVertex(usize),
+    /// A ground edge across edge `k` of a cast base's relief.
+    ReliefCrossing(usize),
 }
 
 /// One place where base and ground touch or nearly do.
@@ -107,23 +111,9 @@ pub fn touches(
     let n = base.outline.len();
     let corners: Vec<Vector3<f64>> = (0..n).map(|k| pose.point(&base.corner(k))).collect();
     for (k, q) in corners.iter().enumerate() {
-        let faces = if ground.is_surface() {
-            let Some((_, top)) = ground.top(q.x, q.z) else {
-                out.off_ground.push(k);
-                continue;
-            };
-            // The triangles the corner may reach in the step, each only where its plane is
-            // not above the ground under the corner: past a ridge a neighbour's plane stands
-            // above the rock (a corner is not held by it), at a valley below (it is).
-            let tol = 1e-9 * (1.0 + top.abs());
-            ground
-                .faces_by_distance(q.x, q.z, drift)
-                .into_iter()
-                .map(|(f, _)| f)
-                .filter(|&f| ground.faces()[f].height(q.x, q.z) <= top + tol)
-                .collect()
-        } else {
-            (0..ground.faces().len()).collect::<Vec<_>>()
+        let Some(faces) = holding_faces(ground, q, drift) else {
+            out.off_ground.push(k);
+            continue;
         };
         for f in faces {
             let plane = &ground.faces()[f];
@@ -144,6 +134,27 @@ pub fn touches(
         surface_touches(ground, base, pose, &corners, reach, &mut out);
     }
     out
+}
+
+/// The faces of `ground` that may hold a point of the base at `q` within a step that moves it
+/// up to `drift` (m): every plane of a ground of planes; on a surface the triangles within
+/// `drift` in plan, each only where its plane is not above the ground under `q` (past a ridge
+/// a neighbour's plane stands above the rock and does not hold the point; at a valley it is
+/// below and does). `None` over no ground.
+pub(crate) fn holding_faces(ground: &Ground, q: &Vector3<f64>, drift: f64) -> Option<Vec<usize>> {
+    if !ground.is_surface() {
+        return Some((0..ground.faces().len()).collect());
+    }
+    let (_, top) = ground.top(q.x, q.z)?;
+    let tol = 1e-9 * (1.0 + top.abs());
+    Some(
+        ground
+            .faces_by_distance(q.x, q.z, drift)
+            .into_iter()
+            .map(|(f, _)| f)
+            .filter(|&f| ground.faces()[f].height(q.x, q.z) <= top + tol)
+            .collect(),
+    )
 }
 
 /// The ground's vertices under the base and its edges across the base's edges.

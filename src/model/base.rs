@@ -15,6 +15,7 @@ use super::error::ModelError;
 pub struct Base {
     outline: Vec<[f64; 2]>,
     depth: f64,
+    cast: bool,
 }
 
 impl Base {
@@ -62,7 +63,11 @@ impl Base {
         if area < 0.0 {
             outline.reverse();
         }
-        Ok(Base { outline, depth })
+        Ok(Base {
+            outline,
+            depth,
+            cast: false,
+        })
     }
 
     /// The rectangle x′ in `x`, z′ in `z` (m, about the centre of mass) at `depth` (m).
@@ -78,6 +83,24 @@ impl Base {
     pub fn around(contacts: &[[f64; 2]; 3], depth: f64) -> Result<Base, ModelError> {
         let [x0, x1, z0, z1] = crate::geometry::plan_box(contacts.iter().copied());
         Base::rectangle([x0, x1], [z0, z1], depth)
+    }
+
+    /// The same footprint cast onto its rock (`[base] cast = true`): its underside is the
+    /// foundation's own surface under it where it rests, not a plane
+    /// (`derivations/13-base-contact.md` §10).
+    pub fn with_cast(mut self, cast: bool) -> Base {
+        self.cast = cast;
+        self
+    }
+
+    /// Whether the base is cast onto its rock.
+    pub fn is_cast(&self) -> bool {
+        self.cast
+    }
+
+    /// The outline cut into triangles by its ears (x′, z′, each counter-clockwise).
+    pub fn triangles(&self) -> Vec<[[f64; 2]; 3]> {
+        ears(&self.outline)
     }
 
     /// The corners (x′, z′), in the order of a positive shoelace area.

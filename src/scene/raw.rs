@@ -202,6 +202,9 @@ pub struct RawBase {
     /// The corners (x', z') (m): from the heel and the width's middle for a `[monolith]`,
     /// about the centre of mass for a `[block]`.
     pub outline_m: Option<Vec<Vec<f64>>>,
+    /// Whether the base is cast onto its rock: its underside the foundation's own surface
+    /// under the footprint where the block rests (default false: a flat base).
+    pub cast: Option<bool>,
 }
 
 /// Why a document is not a [`RawScene`]: a key that is not a scene's, or a value of the wrong
@@ -339,6 +342,6 @@ mod tests {
                 "[{section}] has no keys listed"
             );
         }
-        assert_eq!(keys_of("base"), ["outline_m"]);
+        assert_eq!(keys_of("base"), ["outline_m", "cast"]);
     }
 }

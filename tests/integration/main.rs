@@ -10,6 +10,7 @@ mod common;
 
 mod architecture;
 mod base_contact;
+mod cast_base;
 mod cli;
 mod coefficients_match_derivation;
 mod dam_loads;

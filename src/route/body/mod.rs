@@ -32,7 +32,9 @@ use super::pose_finder::PoseFinder;
 use super::row::Row;
 use super::termination::Reason;
 use crate::geometry::penetration::{deepest_of, samples};
-use crate::geometry::{BodyPose, Footprint, Ground, SettleError, set_down};
+use crate::geometry::{
+    BodyPose, CastError, Footprint, Ground, Relief, SettleError, cast, set_down,
+};
 use crate::model::{Base, Simulation};
 use flush::Quadrature;
 use nalgebra::{Matrix3, Vector3};
@@ -47,6 +49,10 @@ pub const OVERTURN_DEG: f64 = 60.0;
 /// Samples along each side of the base in the independent check of its penetration.
 const PENETRATION_SAMPLES: usize = 6;
 
+/// Samples along each side of a cast base's triangles in the same check (its vertices, the
+/// middles of its triangles' sides and their thirds: a relief has hundreds of triangles).
+const RELIEF_SAMPLES: usize = 3;
+
 /// A block on its base under way.
 pub(super) struct OnBase<'a> {
     sim: &'a Simulation,
@@ -56,6 +62,8 @@ pub(super) struct OnBase<'a> {
     size: f64,
     /// The base's quadrature over its area and along its edges.
     quadrature: Quadrature,
+    /// A base cast onto its rock: its underside, found where it rests.
+    relief: Option<Relief>,
     /// The base's samples for the independent check of its penetration (body axes, m).
     samples: Vec<Vector3<f64>>,
     s: BodyState,
@@ -74,6 +82,7 @@ impl<'a> OnBase<'a> {
             sim: self.sim,
             ground: &self.ground,
             base: footprint(self.base),
+            relief: self.relief.as_ref(),
             inertia: self.inertia,
             size: self.size,
             quadrature: &self.quadrature,
@@ -169,6 +178,7 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
             inertia: sim.block().tensor(),
             size,
             quadrature: Quadrature::of(base),
+            relief: None,
             samples: samples(base.outline(), base.depth(), PENETRATION_SAMPLES),
             s: BodyState::at_rest(flat),
             t: 0.0,
@@ -194,6 +204,28 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
             }
         };
         body.s = BodyState::at_rest(rest.pose);
+        if base.is_cast() {
+            match cast(&body.ground, &base.triangles(), &rest.pose) {
+                Ok(relief) => {
+                    body.size = body.size.max(relief.reach());
+                    body.samples = relief.samples(RELIEF_SAMPLES);
+                    body.relief = Some(relief);
+                }
+                Err(e) => {
+                    let reason = match e {
+                        CastError::OffGround { .. } => Reason::BaseOffGround,
+                        CastError::Steep(_) => Reason::ContactForcesUndetermined,
+                    };
+                    let row = body.row();
+                    return Start::Ended(o.finish(
+                        row,
+                        reason,
+                        0.0,
+                        format!("the base cannot be cast onto its rock: {e}"),
+                    ));
+                }
+            }
+        }
         let mut o = o;
         o.base = Some(BaseReport {
             resting: Resting::of(&rest),
@@ -262,10 +294,14 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
         self.last = stepped;
         o.travel += (self.under_cm() - before).norm();
         if let Some(&k) = self.last.off_ground.first() {
+            let point = match self.relief {
+                Some(_) => "vertex",
+                None => "corner",
+            };
             return self.end(
                 o,
                 Reason::BaseOffGround,
-                format!("corner {k} of the base went over no ground"),
+                format!("{point} {k} of the base went over no ground"),
             );
         }
         if self.tilt_deg() > OVERTURN_DEG {

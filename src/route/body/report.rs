@@ -27,6 +27,8 @@ impl Carrying {
             Feature::Corner(k) => format!("corner {k}"),
             Feature::GroundVertex => "ground vertex".to_string(),
             Feature::Crossing(k) => format!("ground edge across base edge {k}"),
+            Feature::ReliefVertex(k) => format!("cast base vertex {k}"),
+            Feature::ReliefCrossing(k) => format!("ground edge across cast base edge {k}"),
         };
         Carrying {
             feature,

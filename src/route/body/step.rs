@@ -3,7 +3,10 @@
 
 use super::flush::{Bed, Quadrature, Spot, flush};
 use super::state::BodyState;
-use crate::geometry::{BodyPose, Feature, Footprint, Ground, LocalFrame, Touch, touches};
+use crate::geometry::{
+    BodyPose, Feature, Footprint, Ground, LocalFrame, Relief, Touch, Touches, relief_touches,
+    touches,
+};
 use crate::mechanics::impulses::{self, Body, ContactRow, Patch};
 use crate::mechanics::loads::Applied;
 use crate::model::Simulation;
@@ -14,6 +17,9 @@ pub(super) struct Ctx<'a> {
     pub sim: &'a Simulation,
     pub ground: &'a Ground,
     pub base: Footprint<'a>,
+    /// A base cast onto its rock: its underside, which then touches the ground in place of the
+    /// flat footprint (`derivations/13-base-contact.md` §10).
+    pub relief: Option<&'a Relief>,
     /// The inertia tensor about the CM in the body's axes (kg·m²).
     pub inertia: Matrix3<f64>,
     /// The base's reach from the CM (m): the largest corner distance, or the depth.
@@ -118,13 +124,22 @@ const SOLVE_TOL: f64 = 1e-7;
 const DEPTH_TOL: f64 = 1e-8;
 
 impl Ctx<'_> {
+    /// The base's touches at `pose` within `reach` (m), each point meeting the faces it may
+    /// reach within a `drift` (m): the flat footprint's, or a cast base's relief's.
+    fn touches(&self, pose: &BodyPose, reach: f64, drift: f64) -> Touches {
+        match self.relief {
+            Some(relief) => relief_touches(self.ground, relief, pose, reach, drift),
+            None => touches(self.ground, self.base, pose, reach, drift),
+        }
+    }
+
     /// Moves the pose out of the ground where the step's drift left it in (by the curvature of
     /// a turn within the step, of order h² ω² r): the smallest mass-weighted displacement that
     /// closes every gap, found as the step's impulses are, frictionless and with the gaps as
     /// the distances to close; the velocities are kept (post-stabilisation).
     fn project_out(&self, s: &mut BodyState, body: &Body) {
         for _ in 0..4 {
-            let found = touches(self.ground, self.base, &s.pose, 0.0, 0.0);
+            let found = self.touches(&s.pose, 0.0, 0.0);
             let worst = found.touches.iter().map(|t| t.gap).fold(0.0, f64::min);
             if worst >= -DEPTH_TOL * self.size {
                 return;
@@ -191,7 +206,7 @@ impl Ctx<'_> {
         let w_free = s.w + inv_inertia * (moment - s.w.cross(&(inertia * s.w))) * h;
         let reach_speed = v_free.norm() + w_free.norm() * self.size;
         let reach = 1e-3 * self.size + 2.0 * h * reach_speed;
-        let found = touches(self.ground, self.base, &s.pose, reach, h * reach_speed);
+        let found = self.touches(&s.pose, reach, h * reach_speed);
         let rows: Vec<ContactRow> = found
             .touches
             .iter()
@@ -223,7 +238,12 @@ impl Ctx<'_> {
             size: self.size,
             mu: &mu,
         };
-        let flushes = flush(&bed, s, &found.touches, &warm.patch);
+        // A cast base presses where its relief touches; the flat base's pressure over its area
+        // is not its.
+        let flushes = match self.relief {
+            Some(_) => Vec::new(),
+            None => flush(&bed, s, &found.touches, &warm.patch),
+        };
         let patches: Vec<Patch> = flushes.iter().map(|f| f.patch.clone()).collect();
         let solved =
             impulses::solve_with_patches(&body, (v_free, w_free), &rows, &patches, SOLVE_TOL, 400);

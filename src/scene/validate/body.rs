@@ -39,9 +39,31 @@ impl Reader<'_> {
     }
 
     /// `[base] outline_m` (from the heel and the width's middle for a monolith, about the
-    /// centre of mass for a block), or a monolith's base rectangle; `None` for a block without
-    /// an outline (its frame's bounding rectangle is taken when the base is needed).
+    /// centre of mass for a block), or a monolith's base rectangle, cast onto its rock where
+    /// `[base] cast` says so; `None` for a flat block's base without an outline (its frame's
+    /// bounding rectangle is taken when the base is needed). A cast block's base without an
+    /// outline is that rectangle, `cm_height` (m) below its centre of mass.
     pub(super) fn base(
+        &self,
+        raw: Option<&RawBase>,
+        monolith: Option<&Monolith>,
+        site: &Site,
+        cm_height: f64,
+    ) -> Result<Option<Base>, SceneError> {
+        let cast = raw.and_then(|b| b.cast).unwrap_or(false);
+        Ok(match self.flat_base(raw, monolith)? {
+            Some(b) => Some(b.with_cast(cast)),
+            None if cast => Some(
+                Base::around(site.contacts(), cm_height)
+                    .map_err(|e| self.model(e))?
+                    .with_cast(true),
+            ),
+            None => None,
+        })
+    }
+
+    /// The base's footprint as given, or a monolith's base rectangle.
+    fn flat_base(
         &self,
         raw: Option<&RawBase>,
         monolith: Option<&Monolith>,

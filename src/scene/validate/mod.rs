@@ -55,8 +55,17 @@ impl Reader<'_> {
             contacts == Contacts::Base,
         )?;
         let (block, monolith) = self.body(&raw, &site)?;
-        let base = self.base(raw.base.as_ref(), monolith.as_ref())?;
         let (loads, record) = self.loads(&raw, monolith.as_ref())?;
+        let cm_height = loads.as_ref().map_or(0.0, |l| l.cm_height);
+        let base = self.base(raw.base.as_ref(), monolith.as_ref(), &site, cm_height)?;
+        let cast = raw.base.as_ref().and_then(|b| b.cast).unwrap_or(false);
+        if cast && contacts == Contacts::Frame {
+            return Err(self.invalid(
+                "base.cast",
+                "a base cast onto its rock touches it with its whole underside: set [solver] \
+                 contacts = \"base\" (the three-point frame has no base)",
+            ));
+        }
         let friction = raw
             .friction
             .as_ref()

@@ -1,0 +1,163 @@
+//! A base cast onto its rock (`[base] cast = true`) against closed forms: on a plane it is the
+//! flat base; on regular asperities it holds until the push reaches W tan(φ + i) and then rides
+//! up their flanks at the angle i (Patton's bilinear law), where a flat base resting on their
+//! crests slides at W tan φ.
+
+use super::base_contact::{assert_physical_and_out_of_rock, block_scene, plane, travel_along};
+use slideroute::internals::route::{Reason, Route};
+use slideroute::internals::scene::Scene;
+use std::path::{Path, PathBuf};
+
+/// A sawtooth along X: teeth 1 m long, flanks at `angle` degrees, level along Z, over
+/// ±10 m (an OBJ in a fresh folder).
+fn sawtooth(angle: f64, tag: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("slideroute-cast-{tag}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let h = 0.5 * angle.to_radians().tan();
+    let mut obj = String::new();
+    for k in 0..=40 {
+        let (x, y) = (-10.0 + 0.5 * k as f64, if k % 2 == 0 { 0.0 } else { h });
+        obj.push_str(&format!("v {x} {y} -10\nv {x} {y} 10\n"));
+    }
+    for k in 0..40 {
+        let (a, b, c, d) = (2 * k + 1, 2 * k + 2, 2 * k + 3, 2 * k + 4);
+        obj.push_str(&format!("f {a} {b} {d}\nf {a} {d} {c}\n"));
+    }
+    std::fs::write(dir.join("teeth.obj"), obj).unwrap();
+    dir
+}
+
+/// The block of `block_scene` on the sawtooth, pushed along +X by `push` times its weight, its
+/// base cast or flat.
+fn on_teeth(dir: &Path, push: f64, mu: f64, cast: bool, t_end: f64) -> Route {
+    let text = block_scene(
+        "[foundation]\nsurface = \"teeth.obj\"\n",
+        mu,
+        &format!("[base]\ncast = {cast}"),
+        t_end,
+        1e-3,
+    )
+    .replace(
+        "hydraulic_force_n = 0.0",
+        &format!("hydraulic_force_n = {}", push * 1e6 * 9.81),
+    );
+    let file = dir.join(format!("teeth-{push}-{cast}.toml"));
+    std::fs::write(&file, text).unwrap();
+    let scene = Scene::from_file(&file).unwrap();
+    slideroute::run(&scene).unwrap()
+}
+
+#[test]
+fn a_base_cast_on_asperities_holds_below_w_tan_phi_plus_i_where_a_flat_one_slides() {
+    let dir = sawtooth(10.0, "hold");
+    // μ = 0.5 (φ = 26.57°), i = 10°: the cast base holds up to tan 36.57° = 0.7415 W.
+    let held = on_teeth(&dir, 0.73, 0.5, true, 0.5);
+    assert_eq!(
+        held.termination.reason,
+        Reason::DoesNotSlide,
+        "{:?}",
+        held.termination
+    );
+    let pushed = on_teeth(&dir, 0.75, 0.5, true, 0.5);
+    assert_eq!(
+        pushed.termination.reason,
+        Reason::TimeLimit,
+        "{:?}",
+        pushed.termination
+    );
+    assert!(pushed.rows.last().unwrap().x_m > 1e-3);
+    let flat = on_teeth(&dir, 0.73, 0.5, false, 0.5);
+    assert_eq!(
+        flat.termination.reason,
+        Reason::TimeLimit,
+        "{:?}",
+        flat.termination
+    );
+    assert!(flat.rows.last().unwrap().x_m > 0.1);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn a_base_cast_on_asperities_rides_up_their_flanks_as_a_block_up_an_incline() {
+    let dir = sawtooth(10.0, "ride");
+    let (i, mu, push, t) = (10f64.to_radians(), 0.5, 0.8, 1.0);
+    let route = on_teeth(&dir, push, mu, true, t);
+    assert_eq!(
+        route.termination.reason,
+        Reason::TimeLimit,
+        "{:?}",
+        route.termination
+    );
+    // Up a flank of angle i pushed horizontally by P W: a = g (P (cos i − μ sin i) − sin i −
+    // μ cos i) along it, so x = ½ a cos i t², y = x tan i (before it reaches a crest).
+    let a = 9.81 * (push * (i.cos() - mu * i.sin()) - i.sin() - mu * i.cos());
+    let along = 0.5 * a * t * t;
+    let (first, last) = (route.rows[0], *route.rows.last().unwrap());
+    let (dx, dy) = (last.x_m - first.x_m, last.y_m - first.y_m);
+    assert!(dx < 0.5, "past a crest: {dx}");
+    let travel = travel_along(&route);
+    eprintln!("cast on teeth: travel {travel} m against {along} m, rise {dy} m over {dx} m");
+    assert!((travel - along).abs() < 5e-3 * along, "{travel} {along}");
+    assert!((dy - dx * i.tan()).abs() < 1e-6, "{dy} {dx}");
+    assert!(
+        last.theta_deg.abs() < 1e-6 && last.z_m.abs() < 1e-6,
+        "{last:?}"
+    );
+    let summary = route.base.as_ref().unwrap();
+    assert!(
+        summary.max_penetration_m < 1e-6 * 4.0,
+        "{}",
+        summary.max_penetration_m
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn a_base_cast_on_a_plane_dipping_downstream_slides_as_the_flat_base_does() {
+    let (dip, mu, t) = (20f64.to_radians(), 0.2, 1.0);
+    let text = block_scene(&plane(20.0, 0.0), mu, "[base]\ncast = true", t, 1e-3);
+    let scene = Scene::from_toml(&text, "cast").unwrap();
+    let route = slideroute::run(&scene).unwrap();
+    let exact = 0.5 * 9.81 * (dip.sin() - mu * dip.cos()) * t * t;
+    assert!((travel_along(&route) - exact).abs() < 2e-3 * exact);
+    let flat = slideroute::run(
+        &Scene::from_toml(&block_scene(&plane(20.0, 0.0), mu, "", t, 1e-3), "flat").unwrap(),
+    )
+    .unwrap();
+    let (c, f) = (route.rows.last().unwrap(), flat.rows.last().unwrap());
+    assert!(
+        (c.x_m - f.x_m).abs() < 1e-9 && (c.y_m - f.y_m).abs() < 1e-9,
+        "{c:?} {f:?}"
+    );
+}
+
+#[test]
+fn a_cast_base_on_the_three_point_frame_is_refused_naming_the_key() {
+    let text = block_scene(&plane(0.0, 0.0), 0.2, "[base]\ncast = true", 1.0, 1e-3)
+        .replace("mode = \"exact\"", "mode = \"exact\"\ncontacts = \"frame\"");
+    let err = Scene::from_toml(&text, "cast").unwrap_err();
+    assert!(err.to_string().contains("base.cast"), "{err}");
+}
+
+#[test]
+fn a_block_cast_on_teeth_and_pushed_off_its_centre_turns_over_them_out_of_the_rock() {
+    // scenes/body/cast-teeth.toml: 0.85 W, 0.5 m off the centre of mass, for 2 s.
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/body/cast-teeth.toml");
+    let scene = Scene::from_file(&file)
+        .unwrap()
+        .with("solver.t_end_s", 2.0)
+        .unwrap();
+    let route = slideroute::run(&scene).unwrap();
+    assert_physical_and_out_of_rock("cast-teeth", &scene, &route);
+    // It turned, and rode over the teeth: to pass them its CM rose at least by their height,
+    // 0.5 tan 10°, tip on tip (more where it leaves a crest in flight).
+    let (first, last) = (route.rows[0], *route.rows.last().unwrap());
+    assert!(last.theta_deg.abs() > 10.0, "{last:?}");
+    let h = 0.5 * 10f64.to_radians().tan();
+    let top = route
+        .rows
+        .iter()
+        .map(|r| r.y_m - first.y_m)
+        .fold(0.0, f64::max);
+    assert!(top >= h - 1e-6, "{top} {h}");
+}
