@@ -160,4 +160,35 @@ fn a_block_cast_on_teeth_and_pushed_off_its_centre_turns_over_them_out_of_the_ro
         .map(|r| r.y_m - first.y_m)
         .fold(0.0, f64::max);
     assert!(top >= h - 1e-6, "{top} {h}");
+    let e = route.energy.unwrap();
+    assert!(e.residual_j.abs() < 1e-3 * e.work_hydraulic_j, "{e:?}");
+}
+
+#[test]
+fn the_energy_balance_of_a_block_riding_over_teeth_closes_at_the_first_order_of_the_step() {
+    // Up a flank, over a crest and down into the next valley, where the block lands on the
+    // rising flank beyond: the impact that turns its slip is booked as friction's
+    // ½ P_t (u + u⁺) and the normal's ½ P_n (u_n + u_n⁺), so what is left halves with the step.
+    let dir = sawtooth(10.0, "energy");
+    let residual = |dt: f64| {
+        let text = block_scene(
+            "[foundation]\nsurface = \"teeth.obj\"\n",
+            0.5,
+            "[base]\ncast = true",
+            1.4,
+            dt,
+        )
+        .replace("hydraulic_force_n = 0.0", "hydraulic_force_n = 8.3385e6");
+        let file = dir.join(format!("energy-{dt}.toml"));
+        std::fs::write(&file, text).unwrap();
+        let route = slideroute::run(&Scene::from_file(&file).unwrap()).unwrap();
+        assert!(route.rows.last().unwrap().x_m > 1.0, "not past the crest");
+        let e = route.energy.unwrap();
+        e.residual_j / e.work_hydraulic_j
+    };
+    let (coarse, fine) = (residual(1e-3), residual(5e-4));
+    assert!(coarse.abs() < 1e-3, "{coarse}");
+    let ratio = coarse / fine;
+    assert!((1.6..2.5).contains(&ratio), "{coarse} {fine}");
+    std::fs::remove_dir_all(&dir).ok();
 }

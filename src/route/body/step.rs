@@ -79,11 +79,14 @@ fn row_of(c: &Touch, s: &BodyState, mu: f64, closing: f64, guess: Vector3<f64>) 
     }
 }
 
-/// The work of a step's contact impulses (J, ≤ 0): friction's at the slip it leaves,
-/// P_t · u_t⁺, and an impact's, ½ P_n (u_n + u_n⁺) with u_n the contact's approach before the
-/// step (−½ m_eff u_n² for a contact closed inelastically; zero for one that stays closed,
-/// whose impulse only holds the weight). The energy balance's residual is then the step's own
-/// error: ½ (μ g h)² m a step of sliding, nothing at rest.
+/// The work of a step's contact impulses (J, ≤ 0): friction's at the mean of the slip before
+/// the step and the slip it leaves, ½ P_t · (u_t + u_t⁺) (exact for a rigid body whose
+/// velocities the impulse takes from u to u⁺: a block braked by friction at its base, and an
+/// impact that stops or turns the slip), and an impact's, ½ P_n (u_n + u_n⁺) with u_n the
+/// contact's approach before the step (−½ m_eff u_n² for a contact closed inelastically; zero
+/// for one that stays closed, whose impulse only holds the weight). The energy balance's
+/// residual is then the step's own error, of the order of the loads' change of velocity in a
+/// step: nothing at rest.
 fn contact_work(
     rows: &[ContactRow],
     patches: &[Patch],
@@ -98,7 +101,8 @@ fn contact_work(
             let n = p.axes.0.cross(&p.axes.1);
             p.points.iter().zip(imps).map(move |(q, imp)| {
                 let after = solved.v + solved.w.cross(&q.arm);
-                (imp - n * n.dot(imp)).dot(&after)
+                let before = v0 + w0.cross(&q.arm);
+                0.5 * (imp - n * n.dot(imp)).dot(&(after + before))
             })
         })
         .sum();
@@ -111,7 +115,8 @@ fn contact_work(
                 let before = v0 + w0.cross(&c.arm);
                 let pn = solved.normal[i];
                 let approach = c.normal.dot(&before).min(0.0);
-                solved.tangential[i].dot(&after) + 0.5 * pn * (approach + c.normal.dot(&after))
+                0.5 * solved.tangential[i].dot(&(after + before))
+                    + 0.5 * pn * (approach + c.normal.dot(&after))
             })
             .sum::<f64>()
 }
