@@ -23,6 +23,9 @@ pub mod settle;
 pub mod site;
 pub mod touch;
 
+#[cfg(test)]
+pub(crate) mod fixtures;
+
 pub use direct::DirectPose;
 pub use frame::LocalFrame;
 pub use ground::Ground;
@@ -31,7 +34,9 @@ pub use pose::Pose;
 pub use relief::{CastError, Relief, cast, relief_touches};
 pub use settle::{Rest, SettleError, set_down};
 pub use site::{Foundation, Frame, PaperSite, Site};
-pub use touch::{BodyPose, Feature, Footprint, Touch, Touches, in_outline, plan_box, touches};
+pub use touch::{
+    BodyPose, Feature, Footprint, Touch, Touches, in_outline, plan_box, signed_area, touches,
+};
 
 /// The horizontal displacement of the block: CM moved by (X, Z) (m), side 01 yawed by θ (rad,
 /// from +X towards +Z). The start of sliding is the default, (0, 0, 0).

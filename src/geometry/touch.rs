@@ -263,6 +263,19 @@ fn crossing(
     Some((body, ga + (gb - ga) * t))
 }
 
+/// The signed area (m²) of the polygon `p` given as (x, z): the shoelace sum over (x, z) taken
+/// as a plane's (x, y). A base keeps the winding that makes it positive.
+pub fn signed_area(p: &[[f64; 2]]) -> f64 {
+    let n = p.len();
+    (0..n)
+        .map(|k| {
+            let (a, b) = (p[k], p[(k + 1) % n]);
+            a[0] * b[1] - b[0] * a[1]
+        })
+        .sum::<f64>()
+        / 2.0
+}
+
 /// The plan box [x0, x1, z0, z1] of `points` given as (x, z).
 pub fn plan_box(points: impl IntoIterator<Item = [f64; 2]>) -> [f64; 4] {
     points.into_iter().fold(
@@ -340,15 +353,7 @@ mod tests {
     #[test]
     fn a_bump_under_the_middle_of_a_base_is_a_ground_vertex_touch_at_its_height() {
         // Four triangles rising to a peak 0.1 m high at the origin, a 4 m square.
-        let peak = [0.0, 0.1, 0.0];
-        let c = [
-            [-2.0, 0.0, -2.0],
-            [2.0, 0.0, -2.0],
-            [2.0, 0.0, 2.0],
-            [-2.0, 0.0, 2.0],
-        ];
-        let tris: Vec<[[f64; 3]; 3]> = (0..4).map(|k| [c[k], c[(k + 1) % 4], peak]).collect();
-        let ground = Ground::surface(&tris).unwrap();
+        let ground = crate::geometry::fixtures::pyramid(0.1);
         let outline = square(1.0);
         let base = Footprint {
             outline: &outline,

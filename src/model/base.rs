@@ -7,6 +7,7 @@
 //! the block's plane y′ = −ȳ (ȳ the centre of mass's height above the base).
 
 use super::error::ModelError;
+use crate::geometry::signed_area;
 
 /// A flat base: a simple polygon in the block's own axes (x′, z′) about the centre of mass,
 /// its corners in the order whose shoelace area over (x′, z′) is positive, at the depth ȳ below
@@ -237,19 +238,6 @@ fn ears(outline: &[[f64; 2]]) -> Vec<[[f64; 2]; 3]> {
         out.push([left[0], left[1], left[2]]);
     }
     out
-}
-
-/// The signed area (m²): the shoelace sum over (x′, z′) taken as a plane's (x, y); a base
-/// keeps the winding that makes it positive.
-fn signed_area(p: &[[f64; 2]]) -> f64 {
-    let n = p.len();
-    (0..n)
-        .map(|k| {
-            let (a, b) = (p[k], p[(k + 1) % n]);
-            a[0] * b[1] - b[0] * a[1]
-        })
-        .sum::<f64>()
-        / 2.0
 }
 
 fn diameter(p: &[[f64; 2]]) -> f64 {

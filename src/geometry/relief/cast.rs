@@ -8,7 +8,7 @@
 //! polygon lifted onto its face's plane.
 
 use super::{Relief, ReliefFace};
-use crate::geometry::{BodyPose, Ground};
+use crate::geometry::{BodyPose, Ground, signed_area as area};
 use nalgebra::Vector3;
 use std::collections::HashMap;
 
@@ -166,18 +166,6 @@ fn clip(p: Vec<[f64; 2]>, c: Half) -> Vec<[f64; 2]> {
     out
 }
 
-/// The signed plan area (positive counter-clockwise).
-fn area(p: &[[f64; 2]]) -> f64 {
-    let n = p.len();
-    (0..n)
-        .map(|k| {
-            let (a, b) = (p[k], p[(k + 1) % n]);
-            a[0] * b[1] - b[0] * a[1]
-        })
-        .sum::<f64>()
-        / 2.0
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -248,15 +236,7 @@ mod tests {
     #[test]
     fn a_base_cast_on_a_surface_is_its_triangles_under_the_footprint() {
         // A pyramid 0.2 m high over a 4 m square, the base 2 m square over its top.
-        let peak = [0.0, 0.2, 0.0];
-        let c = [
-            [-2.0, 0.0, -2.0],
-            [2.0, 0.0, -2.0],
-            [2.0, 0.0, 2.0],
-            [-2.0, 0.0, 2.0],
-        ];
-        let tris: Vec<[[f64; 3]; 3]> = (0..4).map(|k| [c[k], c[(k + 1) % 4], peak]).collect();
-        let ground = Ground::surface(&tris).unwrap();
+        let ground = crate::geometry::fixtures::pyramid(0.2);
         let relief = cast(&ground, &square(1.0), &at([0.0, 1.2, 0.0])).unwrap();
         for v in relief.vertices() {
             let top = ground.top(v.x, v.z).unwrap().1;

@@ -127,6 +127,12 @@ impl<'a> OnBase<'a> {
         self.s.pose.up().y.clamp(-1.0, 1.0).acos().to_degrees()
     }
 
+    /// The route ended before it began, at the pose the block has (`reason`, `detail`).
+    fn refused<'s>(&self, o: Logbook<'s>, reason: Reason, detail: String) -> Start<'s, Self> {
+        let row = self.row();
+        Start::Ended(o.finish(row, reason, 0.0, detail))
+    }
+
     fn end<'s>(&self, mut o: Logbook<'s>, reason: Reason, detail: String) -> Flow<'s> {
         let row = self.row();
         self.seal(&mut o);
@@ -194,13 +200,7 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
                     SettleError::Tips(_) => Reason::Overturned,
                     SettleError::Solver(_) => Reason::ContactForcesUndetermined,
                 };
-                let row = body.row();
-                return Start::Ended(o.finish(
-                    row,
-                    reason,
-                    0.0,
-                    format!("the block cannot be set down: {e}"),
-                ));
+                return body.refused(o, reason, format!("the block cannot be set down: {e}"));
             }
         };
         body.s = BodyState::at_rest(rest.pose);
@@ -216,13 +216,8 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
                         CastError::OffGround { .. } => Reason::BaseOffGround,
                         CastError::Steep(_) => Reason::ContactForcesUndetermined,
                     };
-                    let row = body.row();
-                    return Start::Ended(o.finish(
-                        row,
-                        reason,
-                        0.0,
-                        format!("the base cannot be cast onto its rock: {e}"),
-                    ));
+                    let detail = format!("the base cannot be cast onto its rock: {e}");
+                    return body.refused(o, reason, detail);
                 }
             }
         }
