@@ -255,7 +255,9 @@ fn crossing(
     let r = [ga.x - a[0], ga.z - a[1]];
     let s = (r[0] * d2[1] - r[1] * d2[0]) / den;
     let t = (r[0] * d1[1] - r[1] * d1[0]) / den;
-    let inside = |u: f64| (0.0..=1.0).contains(&u);
+    // At an end of either edge the crossing is a corner on a face or a ground vertex under the
+    // base, which those touches hold (`geometry::relief` says why not here too).
+    let inside = |u: f64| u > 1e-9 && u < 1.0 - 1e-9;
     if !inside(s) || !inside(t) {
         return None;
     }
