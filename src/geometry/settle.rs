@@ -5,8 +5,9 @@
 //! Exact search by sequential linear programs: at a pose, each touch's gap moves to first
 //! order by n·(Δc + δ × r) for a drop Δc = (0, d, 0) of the centre of mass and a small tilt δ
 //! about the horizontal axes. The lowest d with every gap ≥ 0, δ within a trust region, is a
-//! linear program (Clarabel); the pose is moved by it, the touches found again exactly, and the
-//! program solved again until the tilt it asks for is at round-off. The program's dual values
+//! linear program (Clarabel; with a small cost on the tilt, so that where tilting lowers nothing
+//! it asks for none); the pose is moved by it, the touches found again exactly, and the program
+//! solved again until the tilt it asks for is at round-off or lowers nothing. The program's dual values
 //! are the contact forces that carry the weight at the pose: the contacts that carry it are
 //! those whose force is not zero. A flat base over a convex ground touches at the supporting
 //! plane of the ground's upper hull under the footprint; this finds that plane by the physics.
@@ -44,6 +45,9 @@ pub enum SettleError {
     /// The linear program failed.
     #[error("the linear program of the resting pose failed: {0}")]
     Solver(String),
+    /// The search did not settle.
+    #[error("the search for the resting pose did not settle in {0} programs")]
+    NotSettled(usize),
 }
 
 /// The largest tilt (rad) one program may ask for.
@@ -83,7 +87,10 @@ pub fn set_down(
                 up.y.acos().to_degrees()
             )));
         }
-        if tilt.norm() * size <= tol {
+        // Settled: the tilt asked for is at round-off, or it lowers nothing (a tilt about a
+        // line of supports, left by the solver's tolerance, below a millionth of the size).
+        let level = d.abs() <= 1e-3 * tol && tilt.norm() <= 1e-6;
+        if tilt.norm() * size <= tol || level {
             let found = touches(ground, base, &pose, 0.2 * size, 0.0);
             let (_, _, forces) = lowest_step(&pose, &found.touches).unwrap_or((0.0, tilt, forces));
             let carrying = forces
@@ -97,9 +104,7 @@ pub fn set_down(
             });
         }
     }
-    Err(SettleError::Tips(
-        "the search did not settle in 200 steps".into(),
-    ))
+    Err(SettleError::NotSettled(200))
 }
 
 /// Levels the block at its yaw with its base at the highest ground over the footprint's plan
@@ -209,7 +214,13 @@ fn lowest_step(pose: &BodyPose, found: &[Touch]) -> Result<Lowest, SettleError> 
         a[n_touch + j][col] = sign;
         b[n_touch + j] = TRUST * size;
     }
-    let p = CscMatrix::<f64>::zeros((3, 3));
+    // Where tilting lowers nothing to first order (the weight's line through two supports, or a
+    // support's edge), every tilt of that kind is as low, and an interior-point solution picks
+    // one in the middle: the search then tilts back and forth without end. A small cost on the
+    // tilt, ½ κ |s|² with κ = 10⁻²/size, picks the least: it moves no program whose lowest
+    // pose is one vertex of its feasible set, and none at all once the tilt is nothing.
+    let kappa = 1e-2 / size;
+    let p = CscMatrix::<f64>::from(&[[0.0, 0.0, 0.0], [0.0, kappa, 0.0], [0.0, 0.0, kappa]]);
     let q = [1.0, 0.0, 0.0];
     let a = CscMatrix::from(&a);
     let cones = [NonnegativeConeT(rows)];

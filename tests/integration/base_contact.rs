@@ -332,9 +332,18 @@ fn every_row_of_every_base_route_in_scenes_is_out_of_the_rock_and_ends_for_a_phy
 #[test]
 fn every_row_of_the_whole_body_scenes_is_out_of_the_rock_and_ends_for_a_physical_reason() {
     // A plane dipping downstream, a bump, a monolith over a step, a rough surveyed-style surface
-    // and a block cast onto it (scenes/body/, crosscheck/make_terrain.py), 2 s each.
+    // and a block cast onto it, and a block cast onto rock rising downstream whose flat base is
+    // first set down with its weight's line through two supports (scenes/body/,
+    // crosscheck/make_terrain.py), 2 s each.
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/body");
-    for name in ["dip-faces", "bump", "monolith-step", "rough", "cast-rough"] {
+    for name in [
+        "dip-faces",
+        "bump",
+        "monolith-step",
+        "rough",
+        "cast-rough",
+        "cast-adverse",
+    ] {
         let scene = Scene::from_file(&dir.join(format!("{name}.toml")))
             .unwrap()
             .with("solver.t_end_s", 2.0)

@@ -198,7 +198,9 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
                 let reason = match e {
                     SettleError::OffGround(_) => Reason::BaseOffGround,
                     SettleError::Tips(_) => Reason::Overturned,
-                    SettleError::Solver(_) => Reason::ContactForcesUndetermined,
+                    SettleError::Solver(_) | SettleError::NotSettled(_) => {
+                        Reason::ContactForcesUndetermined
+                    }
                 };
                 return body.refused(o, reason, format!("the block cannot be set down: {e}"));
             }
