@@ -41,7 +41,7 @@ use nalgebra::{Matrix3, Vector3};
 use state::BodyState;
 use std::cell::Cell;
 use std::sync::Arc;
-use step::{Ctx, Stepped};
+use step::{Ctx, HELD_SOLVE, STEP_SOLVE, Stepped};
 
 /// The tilt of the base from level beyond which the block has overturned (degrees).
 pub const OVERTURN_DEG: f64 = 60.0;
@@ -86,6 +86,7 @@ impl<'a> OnBase<'a> {
             inertia: self.inertia,
             size: self.size,
             quadrature: &self.quadrature,
+            solve: STEP_SOLVE,
         }
     }
 
@@ -254,7 +255,11 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
         if init.at_rest() && !shaken {
             // Held where it rests? One trial step under the loads.
             let mut trial = body.s;
-            body.ctx().step(&mut trial, 0.0, h, &body.last);
+            let held = Ctx {
+                solve: HELD_SOLVE,
+                ..body.ctx()
+            };
+            held.step(&mut trial, 0.0, h, &body.last);
             if body.still(&trial, h) {
                 body.seal(&mut o);
                 o.energy = Some(EnergyBalance::default());
