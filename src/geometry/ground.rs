@@ -10,14 +10,18 @@
 //! order of the file.
 
 use super::plane::Plane;
+use super::rock::Rock;
 use nalgebra::Vector3;
 use rstar::{AABB, PointDistance, RTree, RTreeObject};
+use std::sync::{Arc, OnceLock};
 
 /// The ground: its faces and how to find the one over a point.
 #[derive(Debug, Clone)]
 pub struct Ground {
     faces: Vec<Plane>,
     kind: Kind,
+    /// The same ground in the collision library's shapes, built when first asked for.
+    rock: OnceLock<Arc<Rock>>,
 }
 
 #[derive(Debug, Clone)]
@@ -115,6 +119,7 @@ impl Ground {
         Ground {
             faces,
             kind: Kind::Planes,
+            rock: OnceLock::new(),
         }
     }
 
@@ -158,12 +163,29 @@ impl Ground {
                 tree: RTree::bulk_load(tris),
                 corners,
             },
+            rock: OnceLock::new(),
         })
     }
 
     /// Every face, in its number's order.
     pub fn faces(&self) -> &[Plane] {
         &self.faces
+    }
+
+    /// The same ground in the collision library's shapes, for checks independent of this
+    /// type's own geometry (built on the first call, then shared by every clone made after).
+    pub fn rock(&self) -> &Rock {
+        self.rock.get_or_init(|| {
+            Arc::new(match &self.kind {
+                Kind::Planes => Rock::planes(&self.faces),
+                Kind::Surface { corners, .. } => Rock::surface(
+                    self.faces
+                        .iter()
+                        .zip(corners)
+                        .map(|(plane, c)| c.map(|[x, z]| [x, plane.height(x, z), z])),
+                ),
+            })
+        })
     }
 
     /// Whether the ground is a triangulated surface (else a list of planes).

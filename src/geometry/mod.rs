@@ -10,6 +10,8 @@
 //! * [`touch`], [`settle`], [`penetration`]: a flat base against the ground: where they touch,
 //!   where it rests, how deep it went by an independent check.
 //! * [`relief`]: a base cast onto its rock, its underside the ground's own surface.
+//! * [`rock`]: the ground in the collision library's shapes (`parry3d-f64`), the independent
+//!   check of the touches and of how deep the base went.
 
 pub mod direct;
 pub mod frame;
@@ -19,6 +21,7 @@ pub mod penetration;
 pub mod plane;
 pub mod pose;
 pub mod relief;
+pub mod rock;
 pub mod settle;
 pub mod site;
 pub mod touch;

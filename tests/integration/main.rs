@@ -30,4 +30,5 @@ mod roots_traps;
 mod route;
 mod route_reference;
 mod scene_fuzz;
+mod touches_against_parry;
 mod uncertainty;
