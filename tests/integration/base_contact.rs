@@ -227,6 +227,71 @@ fn a_block_sliding_off_a_step_drops_lands_and_slides_on_to_a_stop_out_of_the_roc
     std::fs::remove_dir_all(&dir).ok();
 }
 
+#[test]
+fn a_monolith_pushed_over_a_steps_edge_tips_once_its_centre_of_mass_is_past_it_by_its_height_times_a_over_g()
+ {
+    // The monolith of scenes/monolith.toml (20 m base, 15 m high, 5 m crest and 10 m wide:
+    // ȳ = 6 m, 4.5e6 kg) pushed in its base plane by F = 1.3e7 N (μ 0.2) towards the
+    // step at X = 3 m, its toe already over the lower level. Flush, it slides at
+    // a = F/m − μg; about its centre of mass the push and the friction, both ȳ below it, turn
+    // it by ȳ m a heel down, so the ground's resultant is ȳ a/g behind the centre of mass: the
+    // heel lifts, the block turning about the edge, when the centre of mass is that far past
+    // the edge.
+    let dir = std::env::temp_dir().join(format!("slideroute-tip-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    step_surface(&dir);
+    let text = r#"
+name = "tip"
+[frame]
+l1x = 6.0
+l2x = 4.0
+l1z = 5.0
+l2z = 5.0
+[foundation]
+surface = "step.obj"
+[monolith]
+base_length_m = 20.0
+width_m = 10.0
+height_m = 15.0
+crest_length_m = 5.0
+density_kg_m3 = 2400.0
+[loads]
+hydraulic_force_n = 1.3e7
+eccentricity_m = 0.0
+gravity_m_s2 = 9.81
+[friction]
+model = "coulomb"
+mu_k = 0.20
+[solver]
+mode = "exact"
+dt_s = 1.0e-3
+t_end_s = 3.1
+contacts = "base"
+"#;
+    let file = dir.join("tip.toml");
+    std::fs::write(&file, text).unwrap();
+    let route = slideroute::run(&Scene::from_file(&file).unwrap()).unwrap();
+    let (g, mass, height): (f64, f64, f64) = (9.81, 187.5 * 10.0 * 2400.0, 6.0);
+    let a = 1.3e7 / mass - 0.2 * g;
+    let tips_at = 3.0 + height * a / g;
+    // The tilt grows as the cube of the distance past that point (the edge's moment grows
+    // with it): 1e-7°, ten times the flush block's, is reached within
+    // 1.5 cm.
+    let tilted = route
+        .rows
+        .iter()
+        .position(|r| r.alpha_deg.abs() > 1e-7)
+        .expect("it tips");
+    let x = route.rows[tilted].x_m;
+    assert!(
+        x >= tips_at && x <= tips_at + 0.015,
+        "it tips at X = {x} m, the closed form says {tips_at} m"
+    );
+    // Turning about the edge, nose down: a tenth of a degree by 0.3 s later.
+    assert!(route.rows.last().unwrap().alpha_deg < -0.1);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 /// Rebuilds the base at each row from the row alone — the point under the CM, the yaw and the
 /// tilts of the frame's sides — and samples it densely against the ground.
 fn assert_rows_out_of_ground(scene: &Scene, route: &Route, limit: f64) {
