@@ -102,6 +102,9 @@ pub enum SurfaceError {
     /// A triangle (its number) with no area.
     #[error("triangle {0} has no area (its corners are on one line)")]
     Degenerate(usize),
+    /// A triangle (its number) so large that its normal overflows.
+    #[error("triangle {0} is too large to compute with (its sides' products overflow)")]
+    TooLarge(usize),
     /// A triangle that is vertical or overhangs: no ground a block slides on.
     #[error("triangle {index} is vertical or overhangs (its normal's Y part is {normal_y:.3e})")]
     Vertical {
@@ -139,6 +142,9 @@ impl Ground {
             let p = t.map(|c| Vector3::new(c[0], c[1], c[2]));
             let n = (p[1] - p[0]).cross(&(p[2] - p[0]));
             let size = (p[1] - p[0]).norm().max((p[2] - p[0]).norm());
+            if !(n.norm() * size).is_finite() {
+                return Err(SurfaceError::TooLarge(index));
+            }
             let has_area = n.norm() > 1e-12 * size * size;
             if !has_area {
                 return Err(SurfaceError::Degenerate(index));
@@ -317,6 +323,16 @@ mod tests {
             Plane::from_dip(xi, PI, Vector3::new(4.0, 0.0, 0.0)),
             Plane::from_dip(zeta, PI - kappa, Vector3::new(4.0, 0.0, -5.0)),
         ])
+    }
+
+    #[test]
+    fn a_triangle_whose_normal_overflows_is_refused_as_too_large_not_as_vertical() {
+        let big = 1e150;
+        let t = [[-big, 0.0, -big], [big, 0.0, -big], [big, 0.0, big]];
+        assert_eq!(
+            Ground::surface(&[t]).unwrap_err(),
+            SurfaceError::TooLarge(0)
+        );
     }
 
     #[test]
