@@ -50,7 +50,7 @@ pub enum SettleError {
     NotSettled(usize),
 }
 
-/// The largest tilt (rad) one program may ask for.
+/// The largest tilt (rad) one program may ask for (about each horizontal axis).
 const TRUST: f64 = 0.05;
 
 /// The lowest pose of `base` on `ground` with the centre of mass over the plan point and the
@@ -70,16 +70,39 @@ pub fn set_down(
     // survey's elevation), then lowered until its lowest touch meets the ground.
     above_ground(ground, base, &mut pose)?;
     lift_to_ground(ground, base, &mut pose, size)?;
+    // The tilt one program may ask for: cut where the pose it gives, on the ground found
+    // again exactly, is not lower by a quarter of what the program foresaw (the linear model
+    // missed a touch that the tilt brings on), grown back where the model holds.
+    let mut trust = TRUST;
+    // The lowest pose found, and the programs since it was lowered by more than `tol`: where
+    // the programs foresee no more than round-off and go back and forth between poses within
+    // `tol` of each other, the block has settled there.
+    let (mut best, mut stalled) = (pose, 0);
     for iteration in 1..=200 {
         let found = touches(ground, base, &pose, 0.2 * size, 0.0);
         if let Some(&k) = found.off_ground.first() {
             return Err(SettleError::OffGround(k));
         }
-        let (d, tilt, forces) = lowest_step(&pose, &found.touches)?;
+        let (d, tilt, forces) = lowest_step(&pose, &found.touches, trust)?;
+        let before = pose;
         let step = Rotation3::from_scaled_axis(tilt);
         pose.rotation = step.matrix() * pose.rotation;
         pose.cm.y += d;
         lift_to_ground(ground, base, &mut pose, size)?;
+        let lowered = before.cm.y - pose.cm.y;
+        let asked = tilt.x.abs().max(tilt.z.abs());
+        let at_trust = asked >= 0.5 * trust;
+        if d < -tol && lowered < 0.25 * -d && asked > 0.0 {
+            pose = before;
+            trust = 0.25 * asked;
+            if trust < 1e-12 {
+                return Err(SettleError::NotSettled(iteration));
+            }
+            continue;
+        }
+        if lowered > 0.75 * -d && at_trust {
+            trust = (2.0 * trust).min(TRUST);
+        }
         let up = pose.up();
         if up.y < 0.5 {
             return Err(SettleError::Tips(format!(
@@ -87,12 +110,25 @@ pub fn set_down(
                 up.y.acos().to_degrees()
             )));
         }
-        // Settled: the tilt asked for is at round-off, or it lowers nothing (a tilt about a
-        // line of supports, left by the solver's tolerance, below a millionth of the size).
+        if pose.cm.y < best.cm.y - tol {
+            stalled = 0;
+        } else {
+            stalled += 1;
+        }
+        if pose.cm.y < best.cm.y {
+            best = pose;
+        }
+        // Settled: the tilt asked for is at round-off; or it lowers nothing (a tilt about a
+        // line of supports, left by the solver's tolerance, below a millionth of the size);
+        // or four programs have found nothing lower by `tol` while foreseeing a lowering of
+        // at most a thousand times it.
         let level = d.abs() <= 1e-3 * tol && tilt.norm() <= 1e-6;
-        if tilt.norm() * size <= tol || level {
+        let stuck = stalled >= 4 && d >= -1e3 * tol;
+        if (tilt.norm() * size <= tol && !at_trust) || level || stuck {
+            let pose = if stuck { best } else { pose };
             let found = touches(ground, base, &pose, 0.2 * size, 0.0);
-            let (_, _, forces) = lowest_step(&pose, &found.touches).unwrap_or((0.0, tilt, forces));
+            let (_, _, forces) =
+                lowest_step(&pose, &found.touches, TRUST).unwrap_or((0.0, tilt, forces));
             let carrying = forces
                 .into_iter()
                 .filter(|(t, f)| *f > 1e-6 && t.gap <= tol.max(1e-9 * size))
@@ -184,7 +220,7 @@ type Lowest = (f64, Vector3<f64>, Vec<(Touch, f64)>);
 
 /// One linear program at `pose`: the drop d (negative: down), the tilt δ (about X and Z), and
 /// each touch's share of the weight (the program's dual values).
-fn lowest_step(pose: &BodyPose, found: &[Touch]) -> Result<Lowest, SettleError> {
+fn lowest_step(pose: &BodyPose, found: &[Touch], trust: f64) -> Result<Lowest, SettleError> {
     // Lowering and tilting move a touch along the vertical: a touch whose normal is nearly
     // level (a steep face beside the base) cannot be closed by them and is left to the
     // dynamics.
@@ -212,7 +248,7 @@ fn lowest_step(pose: &BodyPose, found: &[Touch]) -> Result<Lowest, SettleError> 
         .enumerate()
     {
         a[n_touch + j][col] = sign;
-        b[n_touch + j] = TRUST * size;
+        b[n_touch + j] = trust * size;
     }
     // Where tilting lowers nothing to first order (the weight's line through two supports, or a
     // support's edge), every tilt of that kind is as low, and an interior-point solution picks

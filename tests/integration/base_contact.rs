@@ -398,7 +398,8 @@ fn every_row_of_every_base_route_in_scenes_is_out_of_the_rock_and_ends_for_a_phy
 fn every_row_of_the_whole_body_scenes_is_out_of_the_rock_and_ends_for_a_physical_reason() {
     // A plane dipping downstream, a bump, a monolith over a step, a rough surveyed-style surface
     // and a block cast onto it, and a block cast onto rock rising downstream whose flat base is
-    // first set down with its weight's line through two supports (scenes/body/,
+    // first set down with its weight's line through two supports, and a slender monolith whose
+    // set-down went back and forth between two poses 3 nm apart (scenes/body/,
     // crosscheck/make_terrain.py), 2 s each.
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/body");
     for name in [
@@ -408,6 +409,7 @@ fn every_row_of_the_whole_body_scenes_is_out_of_the_rock_and_ends_for_a_physical
         "rough",
         "cast-rough",
         "cast-adverse",
+        "slender",
     ] {
         let scene = Scene::from_file(&dir.join(format!("{name}.toml")))
             .unwrap()
