@@ -132,6 +132,29 @@ fn a_base_cast_on_a_plane_dipping_downstream_slides_as_the_flat_base_does() {
 }
 
 #[test]
+fn a_base_cast_on_a_plane_and_pushed_off_its_centre_slides_and_turns_as_the_flat_base_does() {
+    // Up a plane rising 10° along +X, pushed by 0.85 W 0.5 m off its centre of mass (μ 0.5): a
+    // relief that is one plane is the flat base, and where it lies flush it presses over its
+    // area as the flat base does (its friction at its rim alone turned it 6.7° less by 1 s).
+    let push = |text: String| {
+        text.replace("hydraulic_force_n = 0.0", "hydraulic_force_n = 8.34e6")
+            .replace("eccentricity_m = 0.0", "eccentricity_m = 0.5")
+    };
+    let run = |cast: &str| {
+        let text = push(block_scene(&plane(10.0, 180.0), 0.5, cast, 1.0, 1e-3));
+        slideroute::run(&Scene::from_toml(&text, "plane").unwrap()).unwrap()
+    };
+    let (cast, flat) = (run("[base]\ncast = true"), run(""));
+    let (c, f) = (cast.rows.last().unwrap(), flat.rows.last().unwrap());
+    assert!(f.theta_deg.abs() > 10.0, "{f:?}");
+    let gap = (c.x_m - f.x_m).hypot(c.z_m - f.z_m);
+    assert!(
+        gap < 1e-3 && (c.theta_deg - f.theta_deg).abs() < 0.05,
+        "cast {c:?}, flat {f:?}"
+    );
+}
+
+#[test]
 fn a_cast_base_on_the_three_point_frame_is_refused_naming_the_key() {
     let text = block_scene(&plane(0.0, 0.0), 0.2, "[base]\ncast = true", 1.0, 1e-3)
         .replace("mode = \"exact\"", "mode = \"exact\"\ncontacts = \"frame\"");

@@ -5,7 +5,7 @@
 //! quadrature points found here.
 
 use super::state::BodyState;
-use crate::geometry::{Feature, Ground, Touch};
+use crate::geometry::{Feature, Ground, Relief, Touch};
 use crate::mechanics::impulses::{Patch, PatchPoint, tangents};
 use crate::model::Base;
 use nalgebra::Vector3;
@@ -24,6 +24,9 @@ const AREA_SPLIT: usize = 2;
 pub(super) struct Quadrature {
     /// Over the area (weights in m²).
     pub area: Vec<(Vector3<f64>, f64)>,
+    /// The unit normal into the block of the face each area point is on (body axes): y′ for a
+    /// flat base, its face's for a cast base's relief.
+    pub normals: Vec<Vector3<f64>>,
     /// Along each edge k, from corner k to k + 1 (weights in m).
     pub edges: Vec<Vec<(Vector3<f64>, f64)>>,
 }
@@ -36,12 +39,51 @@ impl Quadrature {
                 .map(|([x, z], w)| (Vector3::new(x, -base.depth(), z), w))
                 .collect()
         };
+        let area = body(base.quadrature(AREA_SPLIT));
         Quadrature {
-            area: body(base.quadrature(AREA_SPLIT)),
+            normals: vec![Vector3::y(); area.len()],
+            area,
             edges: (0..base.outline().len())
                 .map(|k| body(base.edge_quadrature(k)))
                 .collect(),
         }
+    }
+
+    /// The quadrature of a cast base's relief: each face cut into triangles from its first
+    /// corner, each triangle as a flat base's ear (cut into four, three points in each; the
+    /// weights its area in its own plane). No edges: a relief's bends are not flush on a plane.
+    pub fn of_relief(relief: &Relief) -> Quadrature {
+        let v = relief.vertices();
+        let mut q = Quadrature::default();
+        for face in relief.faces() {
+            let c = &face.corners;
+            for k in 1..c.len().saturating_sub(1) {
+                let (a, b, d) = (v[c[0]], v[c[k]], v[c[k + 1]]);
+                let split = AREA_SPLIT as f64;
+                let area = 0.5 * (b - a).cross(&(d - a)).norm() / (split * split);
+                let at = |i: f64, j: f64| a + (b - a) * (i / split) + (d - a) * (j / split);
+                for i in 0..AREA_SPLIT {
+                    for j in 0..AREA_SPLIT - i {
+                        let (fi, fj) = (i as f64, j as f64);
+                        let mut small = vec![[at(fi, fj), at(fi + 1.0, fj), at(fi, fj + 1.0)]];
+                        if i + j + 1 < AREA_SPLIT {
+                            small.push([
+                                at(fi + 1.0, fj),
+                                at(fi + 1.0, fj + 1.0),
+                                at(fi, fj + 1.0),
+                            ]);
+                        }
+                        for [p, r, t] in small {
+                            for (x, y, z) in [(4.0, 1.0, 1.0), (1.0, 4.0, 1.0), (1.0, 1.0, 4.0)] {
+                                q.area.push(((p * x + r * y + t * z) / 6.0, area / 3.0));
+                                q.normals.push(face.normal);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        q
     }
 }
 
@@ -81,7 +123,6 @@ pub(super) fn flush(
     touches: &[Touch],
     warm: &[(Spot, Vector3<f64>)],
 ) -> Vec<Flush> {
-    let up = s.pose.up();
     let (cos, tol) = (FLUSH_ANGLE.cos(), FLUSH_GAP * ctx.size);
     let close = |t: &Touch| t.gap.abs() <= tol;
     let mut used = vec![false; touches.len()];
@@ -114,17 +155,32 @@ pub(super) fn flush(
         }
         (spots, points)
     };
-    // The face on a plane.
-    let members: Vec<usize> = (0..touches.len())
-        .filter(|&i| touches[i].normal.dot(&up) >= cos && close(&touches[i]))
-        .collect();
-    if let Some(&first) = members.first() {
+    // The faces on planes: for each direction m of the base's faces (the flat base's one, its
+    // normal; a cast base's relief's, each set of parallel faces), the touches closed flush
+    // along m, and the area's points on those faces over rock in their plane (a relief's faces
+    // are along m where the cosine between their normals is within 1e-12 of one).
+    let normals = &ctx.quadrature.normals;
+    let mut directions: Vec<Vector3<f64>> = Vec::new();
+    for m in normals {
+        if !directions.iter().any(|d| d.dot(m) >= 1.0 - 1e-12) {
+            directions.push(*m);
+        }
+    }
+    for m_body in directions {
+        let m = s.pose.rotation * m_body;
+        let members: Vec<usize> = (0..touches.len())
+            .filter(|&i| !used[i] && touches[i].normal.dot(&m) >= cos && close(&touches[i]))
+            .collect();
+        let Some(&first) = members.first() else {
+            continue;
+        };
         let n = touches[first].normal;
         let mut pts = ctx
             .quadrature
             .area
             .iter()
             .enumerate()
+            .filter(|&(k, _)| normals[k].dot(&m_body) >= 1.0 - 1e-12)
             .map(|(k, p)| (Spot::Area(k), p));
         let (spots, points) = on_rock(&n, &mut pts);
         if points.len() >= 3 {

@@ -212,6 +212,7 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
                 Ok(relief) => {
                     body.size = body.size.max(relief.reach());
                     body.samples = relief.samples(RELIEF_SAMPLES);
+                    body.quadrature = Quadrature::of_relief(&relief);
                     body.relief = Some(relief);
                 }
                 Err(e) => {

@@ -250,12 +250,9 @@ impl Ctx<'_> {
             size: self.size,
             mu: &mu,
         };
-        // A cast base presses where its relief touches; the flat base's pressure over its area
-        // is not its.
-        let flushes = match self.relief {
-            Some(_) => Vec::new(),
-            None => flush(&bed, s, &found.touches, &warm.patch),
-        };
+        // Where the base (or a cast base's relief) lies flush on its rock, it presses over the
+        // area lying there.
+        let flushes = flush(&bed, s, &found.touches, &warm.patch);
         let patches: Vec<Patch> = flushes.iter().map(|f| f.patch.clone()).collect();
         let (tol, sweeps) = self.solve;
         let solved =
