@@ -5,7 +5,14 @@ horizontal path length of the written point), the largest distance between the t
 the largest yaw difference, absolute and as a share of the first path's travel. Standard library
 only.
 
-    python3 crosscheck/compare_paths.py a.csv b.csv [--cols x_m,y_m,z_m] [--until T]
+    python3 crosscheck/compare_paths.py a.csv b.csv [--cols x_m,y_m,z_m] [--cols-a x_m,y_m,z_m]
+        [--until T] [--spread plus.csv minus.csv]
+
+--cols names the point in b (and --spread's files), --cols-a in a if it differs: slideroute's
+route.csv writes the base point under the CM as x_m, y_m, z_m, drake_body.py as bx_m, by_m, bz_m.
+--spread: two more runs of b (e.g. Drake with mu + 0.001 and mu - 0.001); the comparison then
+ends where they first part by 1 % of a's travel (its 3-D path length until their end) or
+0.5°, as tests/integration/drake_crosscheck.rs's follows_drake does.
 """
 import argparse
 import csv
@@ -35,10 +42,25 @@ def main():
     ap.add_argument("b")
     ap.add_argument("--cols", default="x_m,y_m,z_m",
                     help="the point compared (e.g. bx_m,by_m,bz_m: the base point under the CM)")
+    ap.add_argument("--cols-a", help="the point compared in a, if not --cols")
     ap.add_argument("--until", type=float, default=float("inf"))
+    ap.add_argument("--spread", nargs=2, metavar=("PLUS", "MINUS"),
+                    help="end where these two runs of b part by 1 %% of a's travel or 0.5°")
     a = ap.parse_args()
     cols = a.cols.split(",")
-    pa, pb = read(a.a, cols), read(a.b, cols)
+    pa, pb = read(a.a, (a.cols_a or a.cols).split(",")), read(a.b, cols)
+    if a.spread:
+        plus, minus = read(a.spread[0], cols), read(a.spread[1], cols)
+        ts = sorted(t for t in plus if t in minus and t <= a.until + 1e-9)
+        mine = sorted(t for t in pa if t <= ts[-1] + 1e-9)
+        scale = sum(math.dist(pa[x][0], pa[y][0]) for x, y in zip(mine, mine[1:]))
+        apart = next((t for t in ts
+                      if math.dist(plus[t][0], minus[t][0]) > 0.01 * scale
+                      or abs((plus[t][1] - minus[t][1] + 180) % 360 - 180) > 0.5), None)
+        print(f"{a.spread[0]} and {a.spread[1]} part by 1 % of {scale:.4f} m or 0.5° at "
+              + (f"{apart:.3f} s" if apart is not None else f"no time until {ts[-1]:.3f} s"))
+        if apart is not None:
+            a.until = min(a.until, apart)
     common = sorted(t for t in pa if t in pb and t <= a.until + 1e-9)
     end = common[-1]
     ta, tb = travel(pa, end), travel(pb, end)

@@ -34,6 +34,24 @@ tops every --ridge-step (0.1 m) along every ridge (a convex edge) and at the rid
 convex hull, whose underside is the base); the plate meets only those, and the base's grid only
 the cells and prisms.
 
+A base cast onto its rock (--cast, slideroute's `[base] cast = true`, derivations/13-base-contact.md
+§10; needs --start): the base's underside is the ground's own surface under the footprint where
+slideroute set the block down, seen along the block's y' (the relief). The bed's spheres lie on
+the relief: the --grid points, with their area weights, and points every --bend-step along each
+relief bend (where two of the ground's faces that are not coplanar meet under the footprint),
+their ends on the rim included, each weighing --bend-weight of a grid point. A ridge of the
+ground must not pass through a relief face between the bed's points: the block carries, for each
+planar relief face (the ground's coplanar triangles clipped to the footprint), a thin plate
+whose underside is that face raised by the radius (a Box on a rectangle, else a Convex prism),
+meeting only the ground's ridge points (spheres centred on the ridges). And a ridge of the
+ground crossing a convex edge of the underside (a valley of the ground under the footprint, or
+the footprint's rim) meets it between both rows of points: a square Box (--edge-size) along each
+such edge of the block and each ridge of the ground, only its edge on the surface, meets only
+the other kind (Drake's box-box contact is exact, edge against edge too). The ground's cell
+boxes end where their neighbour's lowered plane cuts them at a ridge, and the plates where theirs
+does at a valley (ridge_trims, Relief.valley_trims), so that a sphere crossing a bend rides
+over it at its centre's distance.
+
 Contact, friction and loads as drake_route.py: point contact with a stiff penalty (2e11 N/m per
 geometry, 1e11 combined), Coulomb friction mu_k (static = dynamic), TAMSI at dt, the loads
 (drake_route.applied_loads) re-applied before every step at the current pose; a ground-motion
@@ -46,7 +64,8 @@ Start: --start summary.json puts the block where slideroute set it down (`restin
 yaw zero), the point under the CM at the origin (a [block]'s CM at the origin), its base 1 mm
 above the highest ground under the footprint, and left to settle under its weight alone (loads
 off, friction on) for --settle s (default 1); then its velocities are zeroed and the loads act
-from t = 0. Either way the scene's [initial] rates are given as drake_route --base gives them.
+from t = 0. With --start it settles only if --settle is given. Either way the scene's [initial]
+rates are given as drake_route --base gives them.
 
 Writes CSV every millisecond: t_s, x_m, y_m, z_m (the CM), theta_deg (yaw of x' from +X towards
 +Z), tilt_deg (between the body's y' and world Y), min_gap_m (the lowest base grid point's height
@@ -164,7 +183,8 @@ class Ground:
 
 def rectangles(v, tris):
     """Pairs of triangles that share an edge and together make a planar rectangle (a cell of a
-    grid whose heights are planar over it): each as (its four corners, the two triangles).
+    grid whose heights are planar over it): each as (its four corners, the two triangles, the
+    corners' vertex indices).
     Such a cell is a Box's top face, whose contact with a sphere Drake computes exactly."""
     edges = {}
     for k, t in enumerate(tris):
@@ -189,8 +209,105 @@ def rectangles(v, tris):
         if not ok or np.linalg.norm(pa + pb - pc - pd) > 1e-9 * np.linalg.norm(pa - pb):
             continue
         used.update(ks)
-        out.append((np.array(quad), ks))
+        out.append((np.array(quad), ks, (c, a, d, b)))
     return out
+
+
+def face_box(quad, n, shift, depth, trims):
+    """A Box on the rectangle `quad` (corners in order): its face moved by `shift` along the unit
+    normal n, the box reaching `depth` from it (below with depth < 0), each edge k (quad[k] to
+    quad[k + 1]) moved inward by trims.get(k, 0). Returns (pose, shape)."""
+    u, w = quad[1] - quad[0], quad[3] - quad[0]
+    lu, lw = np.linalg.norm(u), np.linalg.norm(w)
+    uh, wh = u / lu, w / lw
+    t = [trims.get(k, 0.0) for k in range(4)]
+    centre = (quad[0] + uh * (t[3] + lu - t[1]) / 2 + wh * (t[0] + lw - t[2]) / 2
+              + n * (shift + depth / 2))
+    rot = RotationMatrix(np.column_stack([uh, np.cross(n, uh), n]))
+    return RigidTransform(rot, centre), Box(lu - t[1] - t[3], lw - t[0] - t[2], abs(depth))
+
+
+def ridge_trims(corners, ks, v, tris, edges, n, r):
+    """A cell's (its corners' vertex indices, its triangles ks, its upward normal n) edges that
+    are ridges of the ground (the neighbour across falls away below the cell's plane), each with
+    the trim r tan(θ/2) (θ between the two faces' normals) that makes the cell's box, lowered by
+    r along n, end where the neighbour's lowered plane cuts it: the union of the lowered boxes
+    is then the ground eroded by r, and a sphere of radius r crossing the ridge touches it only
+    at its centre's distance r (untrimmed, the neighbour box's corner sticks out past the
+    bisector and a sphere crossing the ridge goes up to r (1 - cos θ) into it: 60 µm at a 20°
+    bend for r = 1 mm)."""
+    out = {}
+    for k in range(4):
+        a, b = corners[k], corners[(k + 1) % 4]
+        other = [j for j in edges.get((min(a, b), max(a, b)), []) if j not in ks]
+        if len(other) != 1:
+            continue
+        t = tris[other[0]]
+        p0, p1, p2 = v[t]
+        m = np.cross(p1 - p0, p2 - p0)
+        if abs(m[1]) < 1e-12:
+            continue
+        m = m / np.linalg.norm(m) * np.sign(m[1])
+        far = [int(x) for x in t if x not in (a, b)][0]
+        if (v[far] - v[a]) @ n < -1e-12:
+            theta = math.acos(min(1.0, max(-1.0, float(n @ m))))
+            out[k] = r * math.tan(theta / 2)
+    return out
+
+
+def ridge_edges(v, tris):
+    """The ground's ridges (convex edges: the neighbouring triangle falls away below the plane
+    of the other) as (end, end, the unit bisector of the two faces' upward normals, the angle
+    between them)."""
+    edges = {}
+    for k, t in enumerate(tris):
+        for e in range(3):
+            a, b = int(t[e]), int(t[(e + 1) % 3])
+            edges.setdefault((min(a, b), max(a, b)), []).append((k, int(t[(e + 2) % 3])))
+    out = []
+    for (a, b), side in edges.items():
+        if len(side) != 2:
+            continue
+        normals = []
+        for k, _ in side:
+            p0, p1, p2 = v[tris[k]]
+            n = np.cross(p1 - p0, p2 - p0)
+            normals.append(None if abs(n[1]) < 1e-12 else n / np.linalg.norm(n) * np.sign(n[1]))
+        if normals[0] is None or normals[1] is None:
+            continue
+        if (v[side[1][1]] - v[a]) @ normals[0] > -1e-9:
+            continue  # level or a valley
+        mid = normals[0] + normals[1]
+        theta = math.acos(min(1.0, max(-1.0, float(normals[0] @ normals[1]))))
+        out.append((v[a], v[b], mid / np.linalg.norm(mid), theta))
+    return out
+
+
+def edge_box(p, q, inward, half_angle, size, face=None):
+    """A Box of square section `size` along the convex edge p-q of a solid whose only part on
+    the solid's surface is that edge (Drake's box-box contact is exact, edge against edge
+    too): set as a diamond, its corner on the edge and its diagonal along the unit bisector
+    `inward` into the solid, where the solid's angle there is at least 90° (half_angle, half the
+    angle between the faces' outward normals, at most 45°); else (a footprint's rim sharper
+    than 90°) with one side on the face whose inward unit normal is `face`, sticking out past the
+    other face by the difference. Returns (pose, shape)."""
+    d = q - p
+    length = float(np.linalg.norm(d))
+    e = d / length
+    if half_angle <= math.pi / 4 + 1e-9 or face is None:
+        c = np.cross(e, inward)
+        a2, a3 = (inward + c) / math.sqrt(2), (inward - c) / math.sqrt(2)
+    else:
+        a3 = face - (face @ e) * e
+        a3 = a3 / np.linalg.norm(a3)
+        a2 = np.cross(a3, e)
+        if a2 @ inward < 0:
+            a2 = -a2
+    centre = (p + q) / 2 + (a2 + a3) * size / 2
+    rot = np.column_stack([a2, a3, e])
+    if np.linalg.det(rot) < 0:
+        rot = np.column_stack([a3, a2, e])
+    return RigidTransform(RotationMatrix(rot), centre), Box(size, size, length)
 
 
 def ridge_points(v, tris, centre, reach, step):
@@ -229,6 +346,293 @@ def ridge_points(v, tris, centre, reach, step):
     return np.array(pts).reshape(-1, 3), ridges
 
 
+def _clip(poly, outline):
+    """Sutherland-Hodgman: the convex polygon `poly` ((x, z) pairs) clipped to the convex,
+    counter-clockwise `outline`."""
+    out = [np.asarray(q, dtype=float) for q in poly]
+    m = len(outline)
+    for k in range(m):
+        a, b = np.asarray(outline[k], float), np.asarray(outline[(k + 1) % m], float)
+        e = b - a
+
+        def side(q):
+            return e[0] * (q[1] - a[1]) - e[1] * (q[0] - a[0])
+
+        src, out = out, []
+        for i in range(len(src)):
+            p, q = src[i], src[(i + 1) % len(src)]
+            sp, sq = side(p), side(q)
+            if sp >= 0:
+                out.append(p)
+            if (sp >= 0) != (sq >= 0):
+                out.append(p + (q - p) * sp / (sp - sq))
+        if not out:
+            return []
+    return out
+
+
+def _area(poly):
+    return 0.5 * sum(p[0] * q[1] - q[0] * p[1] for p, q in zip(poly, poly[1:] + poly[:1]))
+
+
+def _hull(pts):
+    """Convex hull (counter-clockwise, no collinear points) of (x, z) points."""
+    pts = sorted(set((round(float(x), 12), round(float(z), 12)) for x, z in pts))
+    if len(pts) < 3:
+        return pts
+
+    def half(seq):
+        h = []
+        for q in seq:
+            while len(h) >= 2 and ((h[-1][0] - h[-2][0]) * (q[1] - h[-2][1])
+                                   - (h[-1][1] - h[-2][1]) * (q[0] - h[-2][0])) <= 1e-12:
+                h.pop()
+            h.append(q)
+        return h
+
+    lo, hi = half(pts), half(pts[::-1])
+    return lo[:-1] + hi[:-1]
+
+
+class Relief:
+    """The underside of a base cast onto its rock: the ground (world vertices v, triangles tris)
+    under the footprint `outline` (x', z' about the CM, convex, counter-clockwise), seen along
+    the block's y' at the pose (rotation body-to-world `rot`, centre of mass `cm`), in body
+    axes about the CM."""
+
+    def __init__(self, v, tris, rot, cm, outline):
+        if _area(list(outline)) < 0:
+            outline = list(outline)[::-1]
+        self.outline = [tuple(map(float, q)) for q in outline]
+        vb = (np.asarray(v) - np.asarray(cm)) @ np.asarray(rot)  # body axes
+        self.height = Ground(surface=(vb, tris))  # y'(x', z') of the ground seen along y'
+        # Each triangle's plane y' = h0 + hx x' + hz z' over the body's plan.
+        planes = []
+        for t in tris:
+            p0, p1, p2 = vb[t]
+            n = np.cross(p1 - p0, p2 - p0)
+            if abs(n[1]) < 1e-12 * (n @ n) ** 0.5:
+                planes.append(None)
+                continue
+            planes.append(np.array([(n @ p0) / n[1], -n[0] / n[1], -n[2] / n[1]]))
+        self.planes = planes
+        scale = max(max(abs(x), abs(z)) for x, z in self.outline)
+
+        def same(a, b):
+            return (a is not None and b is not None
+                    and abs(a[1] - b[1]) < 1e-9 and abs(a[2] - b[2]) < 1e-9
+                    and abs(a[0] - b[0]) < 1e-9 * max(1.0, scale))
+
+        # Coplanar neighbours are one face (union-find over shared edges); a shared edge between
+        # faces that are not coplanar is a bend.
+        parent = list(range(len(tris)))
+
+        def find(i):
+            while parent[i] != i:
+                parent[i] = parent[parent[i]]
+                i = parent[i]
+            return i
+
+        edges = {}
+        for k, t in enumerate(tris):
+            for e in range(3):
+                a, b = int(t[e]), int(t[(e + 1) % 3])
+                edges.setdefault((min(a, b), max(a, b)), []).append(k)
+        bends = []
+        for (a, b), ks in edges.items():
+            if len(ks) != 2:
+                continue
+            if same(planes[ks[0]], planes[ks[1]]):
+                parent[find(ks[0])] = find(ks[1])
+            elif planes[ks[0]] is not None and planes[ks[1]] is not None:
+                # A valley of the ground (the far vertex of one triangle above the other's
+                # plane) is a convex edge of the block's underside; θ between the normals.
+                h = planes[ks[0]]
+                far = [int(x) for x in tris[ks[1]] if x not in (a, b)][0]
+                q = vb[far]
+                valley = q[1] > h[0] + h[1] * q[0] + h[2] * q[2]
+                n0 = np.array([-h[1], 1.0, -h[2]])
+                h1 = planes[ks[1]]
+                n1 = np.array([-h1[1], 1.0, -h1[2]])
+                cos = n0 @ n1 / np.linalg.norm(n0) / np.linalg.norm(n1)
+                bends.append((a, b, bool(valley), math.acos(min(1.0, max(-1.0, cos)))))
+        # The relief's faces: each face's triangles clipped to the footprint, lifted onto its
+        # plane; one polygon where they make a convex one, else each piece apart.
+        lo = np.array([min(x for x, _ in self.outline), min(z for _, z in self.outline)])
+        hi = np.array([max(x for x, _ in self.outline), max(z for _, z in self.outline)])
+        groups = {}
+        for k, t in enumerate(tris):
+            if planes[k] is None:
+                continue
+            plan = vb[t][:, [0, 2]]
+            if (plan.max(axis=0) < lo - 1e-9).any() or (plan.min(axis=0) > hi + 1e-9).any():
+                continue
+            poly = [tuple(q) for q in plan]
+            if _area(poly) < 0:
+                poly = poly[::-1]
+            piece = _clip(poly, self.outline)
+            if len(piece) >= 3 and _area([tuple(q) for q in piece]) > 1e-12 * scale * scale:
+                groups.setdefault(find(k), []).append(([tuple(q) for q in piece], planes[k]))
+        self.faces = []
+        for pieces in groups.values():
+            hull = _hull([q for poly, _ in pieces for q in poly])
+            total = sum(_area(poly) for poly, _ in pieces)
+            polys = ([hull] if abs(_area(hull) - total) <= 1e-9 * max(total, 1.0)
+                     else [_hull(poly) for poly, _ in pieces])
+            h = pieces[0][1]
+            for poly in polys:
+                self.faces.append(np.array([[x, h[0] + h[1] * x + h[2] * z, z]
+                                            for x, z in poly]))
+        covered = sum(_area([(q[0], q[2]) for q in f]) for f in self.faces)
+        if abs(covered - _area(self.outline)) > 1e-6 * _area(self.outline):
+            sys.exit(f"--cast: the ground covers {covered:.6g} m² of the footprint's "
+                     f"{_area(self.outline):.6g} m² where the block rests")
+        # The bends under the footprint, clipped to it (their ends on the rim where they cross).
+        self.bends, self.kinks = [], []
+        self.scale = scale
+        for a, b, valley, theta in bends:
+            p, q = vb[a][[0, 2]], vb[b][[0, 2]]
+            seg = _clip_segment(p, q, self.outline)
+            if seg is not None:
+                self.bends.append(seg)
+                self.kinks.append((valley, theta))
+
+    def convex_edges(self):
+        """The convex edges of the block's underside: the ground's valleys under the footprint
+        and the footprint's rim (where a relief face meets the block's vertical side), each as
+        (end, end, the unit bisector into the block, half the angle between the faces'
+        outward normals, the relief face's upward unit normal on the rim, else None), in body
+        axes. A bend on the rim is the rim's."""
+        out = []
+        m = len(self.outline)
+
+        def on_rim(x):
+            """The outline's edges (their lines) through x."""
+            lines = set()
+            for j in range(m):
+                a = np.array(self.outline[j])
+                e = np.array(self.outline[(j + 1) % m]) - a
+                if abs(e[0] * (x[1] - a[1]) - e[1] * (x[0] - a[0])) <= 1e-9 * (e @ e):
+                    lines.add(j)
+            return lines
+
+        for (p, q), (valley, theta) in zip(self.bends, self.kinks):
+            if not valley or on_rim(p) & on_rim(q):
+                continue
+            ends = [np.array([x, float(self.height.height(np.array([[x, z]]))[0]), z])
+                    for x, z in (p, q)]
+            # The two faces' upward normals, from the relief's height on either side.
+            d = q - p
+            side = np.array([-d[1], d[0]]) / np.linalg.norm(d)
+            mid = (p + q) / 2
+            normals = [self._normal(mid + s * 1e-4 * max(1.0, self.scale) * side)
+                       for s in (1, -1)]
+            b = normals[0] + normals[1]
+            out.append((ends[0], ends[1], b / np.linalg.norm(b), theta / 2, None))
+        for face in self.faces:
+            for k in range(len(face)):
+                p, q = face[k], face[(k + 1) % len(face)]
+                for j in range(m):
+                    a = np.array(self.outline[j])
+                    e = np.array(self.outline[(j + 1) % m]) - a
+                    on = [abs(e[0] * (x[2] - a[1]) - e[1] * (x[0] - a[0])) <= 1e-9 * (e @ e)
+                          for x in (p, q)]
+                    if all(on) and np.linalg.norm((q - p)[[0, 2]]) > 1e-9:
+                        n = np.cross(face[-1] - face[0], face[1] - face[0])
+                        n = n / np.linalg.norm(n) * np.sign(n[1])
+                        o = np.array([e[1], 0.0, -e[0]]) / np.linalg.norm(e)  # outward
+                        b = n - o
+                        half = math.acos(min(1.0, max(-1.0, float(-n @ o)))) / 2
+                        out.append((p, q, b / np.linalg.norm(b), half, n))
+                        break
+        return out
+
+    def _normal(self, xz):
+        """The relief's upward unit normal at (x', z') (inside a face)."""
+        h = 1e-6 * max(1.0, self.scale)
+        pts = np.array([xz, xz + [h, 0.0], xz + [0.0, h]])
+        y = self.height.height(pts)
+        n = np.array([-(y[1] - y[0]) / h, 1.0, -(y[2] - y[0]) / h])
+        return n / np.linalg.norm(n)
+
+    def valley_trims(self, face, r):
+        """The edges of a rectangular relief face (corners in order, body axes) that lie on a
+        valley of the ground (a convex edge of the block's underside), each with the trim
+        r tan(θ/2) that makes the face's plate, raised by r along its normal, end where its
+        neighbour's raised plane cuts it (ridge_trims, the block's side)."""
+        out = {}
+        for k in range(len(face)):
+            mid = (face[k] + face[(k + 1) % len(face)])[[0, 2]] / 2
+            for (p, q), (valley, theta) in zip(self.bends, self.kinks):
+                d = q - p
+                t = float(np.clip((mid - p) @ d / (d @ d), 0.0, 1.0))
+                if valley and np.linalg.norm(p + t * d - mid) < 1e-9 * max(1.0, self.scale):
+                    out[k] = r * math.tan(theta / 2)
+        return out
+
+    def bed(self, grid, step, bend_weight):
+        """The bed's points in body axes on the relief and each one's area weight (relative to
+        the mean grid point's): the --grid points (dr.base_points, dr.base_weights) and points
+        every `step` along each bend, its ends included, unless a grid point is there."""
+        xz = [(q[0], q[2]) for q in dr.base_points(self.outline, grid)]
+        w = list(dr.base_weights(self.outline, grid))
+        seen = {(round(x, 7), round(z, 7)) for x, z in xz}
+        extra = 0
+        for p, q in self.bends:
+            n = max(1, int(math.ceil(np.linalg.norm(q - p) / step)))
+            for j in range(n + 1):
+                x, z = p + (q - p) * j / n
+                key = (round(float(x), 7), round(float(z), 7))
+                if key in seen:
+                    continue
+                seen.add(key)
+                xz.append((float(x), float(z)))
+                w.append(bend_weight)
+                extra += 1
+        xz = np.array(xz)
+        y = self.height.height(xz)
+        if np.isnan(y).any():
+            sys.exit("--cast: a bed point is over no ground")
+        return np.column_stack([xz[:, 0], y, xz[:, 1]]), w, extra
+
+    def under(self, body):
+        """The relief's height y' at body points' (x', z'), NaN outside the footprint."""
+        xz = body[:, [0, 2]]
+        out = np.full(len(body), np.nan)
+        lo = np.min(self.outline, axis=0)
+        hi = np.max(self.outline, axis=0)
+        near = np.nonzero(((xz >= lo) & (xz <= hi)).all(axis=1))[0]
+        near = [k for k in near if _inside(xz[k], self.outline)]
+        if near:
+            out[near] = self.height.height(xz[near])
+        return out
+
+
+def _clip_segment(p, q, outline):
+    """The part of segment p-q inside the convex counter-clockwise `outline` (None if none)."""
+    t0, t1 = 0.0, 1.0
+    d = q - p
+    m = len(outline)
+    for k in range(m):
+        a, b = np.asarray(outline[k], float), np.asarray(outline[(k + 1) % m], float)
+        e = b - a
+        # inside: e × (x - a) >= 0
+        f0 = e[0] * (p[1] - a[1]) - e[1] * (p[0] - a[0])
+        fd = e[0] * d[1] - e[1] * d[0]
+        if abs(fd) < 1e-15:
+            if f0 < -1e-12:
+                return None
+            continue
+        t = -f0 / fd
+        if fd > 0:
+            t0 = max(t0, t)
+        else:
+            t1 = min(t1, t)
+    if t1 < t0 + 1e-12:
+        return None
+    return p + d * t0, p + d * t1
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--scene", required=True)
@@ -237,7 +641,9 @@ def main():
     ap.add_argument("--dt", type=float, default=1e-3)
     ap.add_argument("--mu-delta", type=float, default=0.0, help="added to every mu (chaos check)")
     ap.add_argument("--start", help="slideroute's summary.json: start where it rested")
-    ap.add_argument("--settle", type=float, default=1.0, help="without --start: settling time, s")
+    ap.add_argument("--settle", type=float, default=None,
+                    help="settling time under the weight alone, s (default 1 without --start,"
+                         " 0 with it)")
     ap.add_argument("--save-rest", help="without --start: write the settled pose here, in"
                                         " summary.json's form (for --start of another run)")
     ap.add_argument("--grid", type=int, default=20, help="base points along each side")
@@ -260,6 +666,20 @@ def main():
                     help="surface: every triangle a Convex prism, planar rectangular cells too")
     ap.add_argument("--boxes", action="store_true",
                     help="faces as boxes even when there are few of them")
+    ap.add_argument("--cast", action="store_true",
+                    help="surface: the base cast onto its rock ([base] cast = true): the bed on"
+                         " the ground's relief under the footprint where --start rests it")
+    ap.add_argument("--bend-step", type=float, default=None,
+                    help="--cast: spacing of the bed's points along the relief's bends, m"
+                         " (default: the grid's)")
+    ap.add_argument("--bend-weight", type=float, default=0.5,
+                    help="--cast: a bend point's spring (off the grid) against a grid point's")
+    ap.add_argument("--edge-size", type=float, default=0.02,
+                    help="--cast: the section of the boxes along the ground's ridges and the"
+                         " base's convex edges, m")
+    ap.add_argument("--dump-contacts", type=float, nargs="*", default=None,
+                    help="print the contacts (geometries, force, where in body axes) at these"
+                         " times, s (diagnosis)")
     ap.add_argument("--quiet", action="store_true")
     a = ap.parse_args()
     p = dr.load(a.scene, surface=True)
@@ -277,11 +697,34 @@ def main():
         return dr.contact_properties(a, p, stiffness)
 
     below = np.array([0.0, -p["height"], 0.0])
-    points = np.array([c + below for c in dr.base_points(p["outline"], a.grid)])
-    # Each sphere's spring in proportion to the area it stands for (dr.base_weights: a uniform
-    # bed to second order), unless --equal-springs.
-    weights = ([1.0] * len(points) if a.equal_springs
-               else dr.base_weights(p["outline"], a.grid))
+    rest = None
+    if a.start:
+        with open(a.start) as f:
+            summary = json.load(f)
+        rest = summary["resting"] if "resting" in summary else summary["base"]["resting"]
+    relief, extra = None, 0
+    if a.cast:
+        if p["surface"] is None:
+            sys.exit(f"{a.scene}: --cast takes a triangulated [foundation] surface")
+        if rest is None:
+            sys.exit("--cast: --start (slideroute's summary.json) gives where the base was cast")
+        v, tris = read_obj(p["surface"])
+        relief = Relief(v, tris, np.array(rest["rotation"]),
+                        np.array([rest["x_m"], rest["y_m"], rest["z_m"]]), p["outline"])
+        xs, zs = [x for x, _ in p["outline"]], [z for _, z in p["outline"]]
+        step = a.bend_step or min(max(xs) - min(xs), max(zs) - min(zs)) / a.grid
+        points, weights, extra = relief.bed(a.grid, step, a.bend_weight)
+        if a.equal_springs:
+            weights = [1.0] * len(points)
+        top = float(np.max(points[:, 1]))
+        if top > -p["height"] + 1e-9:
+            sys.exit(f"--cast: the relief reaches {top + p['height']:.3e} m above the flat base")
+    else:
+        points = np.array([c + below for c in dr.base_points(p["outline"], a.grid)])
+        # Each sphere's spring in proportion to the area it stands for (dr.base_weights: a
+        # uniform bed to second order), unless --equal-springs.
+        weights = ([1.0] * len(points) if a.equal_springs
+                   else dr.base_weights(p["outline"], a.grid))
     grid = [plant.RegisterCollisionGeometry(
                 block, RigidTransform(q), Sphere(a.radius), f"base{i}",
                 props(dr.sphere_stiffness(a.stiffness, 0.5 * a.stiffness * weights[i])))
@@ -295,6 +738,7 @@ def main():
         height = Ground(surface=(v, tris))
         kind = f"surface {os.path.basename(p['surface'])}: {len(tris)} triangles as prisms"
         prisms, knobs = [], []
+        block_caps, ground_caps = [], []
         if not a.no_ridges:
             # A ridge or a vertex of the ground between the base's grid points would go into
             # the base unseen: points there (spheres on the ground) against a plate on the block
@@ -303,17 +747,69 @@ def main():
             xs, zs = [x for x, _ in out], [z for _, z in out]
             size = max(math.hypot(x, z) for x, z in out)
             start = (0.0, 0.0)
-            if a.start:
-                with open(a.start) as f:
-                    sm = json.load(f)
-                rs = sm["resting"] if "resting" in sm else sm["base"]["resting"]
-                start = (rs["x_m"], rs["z_m"])
-            features, ridges = ridge_points(v, tris, start, size + a.reach, a.ridge_step)
+            if rest is not None:
+                start = (rest["x_m"], rest["z_m"])
+            features, ridges = ridge_points(v, tris, start,
+                                            (math.inf if a.cast else size + a.reach),
+                                            a.ridge_step)
+            if a.cast:  # the points themselves within reach (a long ridge's far part left out)
+                features = features[np.hypot(features[:, 0] - start[0],
+                                             features[:, 2] - start[1]) <= size + a.reach]
             kind += (f"; {len(features)} points at its vertices and along {ridges} ridges "
                      f"within {size + a.reach:.1f} m")
             thick = 0.02
             rect = (len(out) == 4 and len(set(xs)) == 2 and len(set(zs)) == 2)
-            if rect:
+            plates = []
+            if a.cast:
+                # A thin plate on each planar face of the relief, its underside the face raised
+                # by the radius along the face's normal (the ground's points then are the
+                # spheres' centres: a sphere lowered along Y would go r (1 - cos i) into a face
+                # tilted by i, 15 µm at 10° for r = 1 mm, and hold the block off its bed).
+                for j, face in enumerate(relief.faces):
+                    u = face[1] - face[0]
+                    n = np.cross(face[-1] - face[0], u)
+                    n = n / np.linalg.norm(n) * np.sign(n[1])
+                    face = face + r * n
+                    trims = relief.valley_trims(face - r * n, r)
+                    w = face[-1] - face[0]
+                    box = len(face) == 4 and all(
+                        abs((face[(i + 1) % 4] - face[i]) @ (face[(i + 2) % 4] - face[(i + 1) % 4]))
+                        <= 1e-9 * (u @ u + w @ w) for i in range(4))
+                    if box:
+                        at, shape = face_box(face, n, 0.0, thick, trims)
+                    else:
+                        pts = np.vstack([face, face + thick * n])
+                        centre = pts.mean(axis=0)
+                        shape = Convex((pts - centre).T, f"relief{j}")
+                        at = RigidTransform(centre)
+                    plates.append(plant.RegisterCollisionGeometry(
+                        block, at, shape, f"relief{j}", props()))
+                # Edge against edge (a ridge of the ground across a convex edge of the block's
+                # underside, which meet at a point between the rows of points): a box along
+                # each, touching the surface only along its edge, meeting only each other.
+                esize = a.edge_size
+                for j, (e0, e1, inward, half, face_n) in enumerate(relief.convex_edges()):
+                    at, shape = edge_box(e0, e1, inward, half, esize, face_n)
+                    block_caps.append(plant.RegisterCollisionGeometry(
+                        block, at, shape, f"edge{j}", props()))
+                for j, (e0, e1, up, theta) in enumerate(ridge_edges(v, tris)):
+                    seg = _clip_segment(e0[[0, 2]], e1[[0, 2]], [
+                        (start[0] + dx * (size + a.reach), start[1] + dz * (size + a.reach))
+                        for dx, dz in ((-1, -1), (1, -1), (1, 1), (-1, 1))])
+                    if seg is None:
+                        continue
+                    # The clipped ends, on the ridge.
+                    d = e1 - e0
+                    ends = [e0 + d * (float((q - e0[[0, 2]]) @ d[[0, 2]]) / float(d[[0, 2]] @ d[[0, 2]]))
+                            for q in seg]
+                    at, shape = edge_box(ends[0], ends[1], -up, theta / 2, esize)
+                    ground_caps.append(plant.RegisterCollisionGeometry(
+                        ground, at, shape, f"ridge{j}", props()))
+                kind += (f"; cast: {len(relief.faces)} relief faces as plates, "
+                         f"{len(relief.bends)} bends ({extra} bed points off the grid), "
+                         f"{len(block_caps)} convex edges of the base and {len(ground_caps)} "
+                         f"ridges as boxes of {esize * 1e3:g} mm")
+            elif rect:
                 plate_shape = Box(max(xs) - min(xs), thick, max(zs) - min(zs))
                 plate_at = np.array([(max(xs) + min(xs)) / 2, -p["height"] + thick / 2,
                                      (max(zs) + min(zs)) / 2])
@@ -321,31 +817,38 @@ def main():
                 hull = np.array([[x, y, z] for x, z in out for y in (0.0, thick)])
                 plate_at = np.array([0.0, -p["height"], 0.0])
                 plate_shape = Convex(hull.T, "base")
-            plate = plant.RegisterCollisionGeometry(block, RigidTransform(plate_at), plate_shape,
-                                                    "plate", props())
+            if not a.cast:
+                plates.append(plant.RegisterCollisionGeometry(
+                    block, RigidTransform(plate_at), plate_shape, "plate", props()))
+            lower = np.zeros(3) if a.cast else np.array([0.0, r, 0.0])
             for i, q in enumerate(features):
                 knobs.append(plant.RegisterCollisionGeometry(
-                    ground, RigidTransform(q - np.array([0.0, r, 0.0])), Sphere(r),
-                    f"knob{i}", props()))
+                    ground, RigidTransform(q - lower), Sphere(r), f"knob{i}", props()))
         down = np.array([0.0, r, 0.0])
         boxed = set()
         if not a.all_prisms:
-            for j, (quad, ks) in enumerate(rectangles(v, tris)):
+            edges = {}
+            for k, t in enumerate(tris):
+                for e in range(3):
+                    i0, i1 = int(t[e]), int(t[(e + 1) % 3])
+                    edges.setdefault((min(i0, i1), max(i0, i1)), []).append(k)
+            trimmed = 0
+            for j, (quad, ks, corners) in enumerate(rectangles(v, tris)):
                 u, w = quad[1] - quad[0], quad[3] - quad[0]
                 n = np.cross(w, u)
                 if abs(n[1]) < 1e-12:
                     continue
                 n = n / np.linalg.norm(n) * np.sign(n[1])
-                rot = RotationMatrix(np.column_stack(
-                    [u / np.linalg.norm(u), np.cross(n, u / np.linalg.norm(u)), n]))
-                # Lowered by the radius along its normal, as a half-space is.
-                centre = quad.mean(axis=0) - r * n - CELL_DEPTH / 2 * n
+                # Lowered by the radius along its normal, as a half-space is; with --cast
+                # ended short of the ground's ridges (ridge_trims).
+                trims = ridge_trims(corners, ks, v, tris, edges, n, r) if a.cast else {}
+                trimmed += len(trims)
+                pose, shape = face_box(quad, n, -r, -CELL_DEPTH, trims)
                 prisms.append(plant.RegisterCollisionGeometry(
-                    ground, RigidTransform(rot, centre),
-                    Box(np.linalg.norm(u), np.linalg.norm(w), CELL_DEPTH),
-                    f"cell{j}", props()))
+                    ground, pose, shape, f"cell{j}", props()))
                 boxed.update(ks)
-            kind += f" ({len(boxed) // 2} planar rectangular cells as boxes)"
+            kind += f" ({len(boxed) // 2} planar rectangular cells as boxes"
+            kind += f", {trimmed} of their edges trimmed at ridges)" if a.cast else ")"
         for k, t in enumerate(tris):
             if k in boxed:
                 continue
@@ -380,8 +883,11 @@ def main():
     if len(features):
         # The plate meets the ground's points only; the base's grid meets the prisms only.
         decl = CollisionFilterDeclaration()
-        decl.ExcludeBetween(GeometrySet(plate), GeometrySet(prisms))
+        decl.ExcludeBetween(GeometrySet(plates), GeometrySet(prisms))
         decl.ExcludeBetween(GeometrySet(grid), GeometrySet(knobs))
+        if block_caps or ground_caps:
+            decl.ExcludeBetween(GeometrySet(block_caps), GeometrySet(prisms + knobs))
+            decl.ExcludeBetween(GeometrySet(ground_caps), GeometrySet(grid + plates))
         scene_graph.collision_filter_manager().Apply(decl)
 
     diagram = builder.Build()
@@ -424,6 +930,9 @@ def main():
         if not len(features):
             return float("nan")
         body = (features - cm) @ rot  # body axes: x', y', z' about the CM
+        if relief is not None:  # cast: the relief's height over each point, along y'
+            gap = relief.under(body) - body[:, 1]
+            return float(np.nanmin(gap)) if not np.isnan(gap).all() else float("nan")
         near = np.abs(body[:, 1] + p["height"]) < 1.0
         under = [k for k in np.nonzero(near)[0] if _inside(body[k, [0, 2]], out_poly)]
         if not under:
@@ -435,16 +944,14 @@ def main():
         if not a.quiet:
             print(*x, file=sys.stderr)
 
-    say(f"{a.scene}: {len(points)} base points (grid {a.grid}), ground {kind}, "
+    say(f"{a.scene}: {len(points)} base points (grid {a.grid}"
+        f"{', cast' if a.cast else ''}), ground {kind}, "
         f"m = {p['mass']:.4g} kg, ȳ = {p['height']:.4g} m, mu = {p['mu']}")
     i0 = p["init"]
     v_init = np.array([i0.get("vx_m_s", 0.0), 0.0, i0.get("vz_m_s", 0.0)])
     w_init = np.array([0.0, -math.radians(i0.get("omega_deg_s", 0.0)), 0.0])
     t0 = 0.0
-    if a.start:
-        with open(a.start) as f:
-            summary = json.load(f)
-        rest = summary["resting"] if "resting" in summary else summary["base"]["resting"]
+    if rest is not None:
         plant.SetFreeBodyPose(pc, block, RigidTransform(
             RotationMatrix(np.array(rest["rotation"])),
             np.array([rest["x_m"], rest["y_m"], rest["z_m"]])))
@@ -462,16 +969,18 @@ def main():
             sys.exit(f"{a.scene}: part of the footprint is over no ground")
         plant.SetFreeBodyPose(pc, block, RigidTransform(np.array(
             [0.0, top + 1e-3 + p["height"], 0.0])))
+    settle = a.settle if a.settle is not None else (0.0 if rest is not None else 1.0)
+    if settle > 0:
         port.FixValue(pc, [])
         if joints:
             shake(np.zeros(3))
-        steps = int(round(a.settle / a.dt))
+        steps = int(round(settle / a.dt))
         simulator.AdvanceTo(steps * a.dt)
         t0 = steps * a.dt
         v = plant.EvalBodySpatialVelocityInWorld(pc, block)
         cm, rot, world = state()
         i_axis = rot[:, 0]
-        say(f"settled after {a.settle} s: CM ({cm[0]:.6f}, {cm[1]:.6f}, {cm[2]:.6f}) m, "
+        say(f"settled after {settle} s: CM ({cm[0]:.6f}, {cm[1]:.6f}, {cm[2]:.6f}) m, "
             f"theta {math.degrees(math.atan2(i_axis[2], i_axis[0])):.4f} deg, "
             f"tilt {math.degrees(math.acos(np.clip(rot[1, 1], -1, 1))):.4f} deg, "
             f"min gap {np.nanmin(gaps(world)):.3e} m (ridge points {feature_gap(cm, rot):.3e} m), "
@@ -509,6 +1018,8 @@ def main():
             t = k * a.dt
             shake((velocity(t + a.dt) - velocity(t)) / a.dt)
         simulator.AdvanceTo(t0 + (k + 1) * a.dt)
+        if a.dump_contacts and any(abs((k + 1) * a.dt - x) < a.dt / 2 for x in a.dump_contacts):
+            dump_contacts(plant, scene_graph, pc, (k + 1) * a.dt, cm, rot)
 
     with open(a.out, "w", newline="") as out:
         w = csv.writer(out)
@@ -522,6 +1033,32 @@ def main():
         f"{last[4]:.4f} deg, tilt {last[5]:.4f} deg, min gap {last[6]:.3e} m "
         f"(lowest over the run {min(x[6] for x in rows):.3e} m"
         + (f"; over the ground's ridge points {min(ridge):.3e} m)" if ridge else ")"))
+
+
+def dump_contacts(plant, scene_graph, pc, t, cm, rot):
+    """Prints every point contact's geometries, normal force and where (body axes) at time t."""
+    results = plant.get_contact_results_output_port().Eval(pc)
+    inspector = scene_graph.model_inspector()
+    rows = []
+    for i in range(results.num_point_pair_contacts()):
+        info = results.point_pair_contact_info(i)
+        pair = info.point_pair()
+        names = sorted([inspector.GetName(pair.id_A), inspector.GetName(pair.id_B)])
+        f = info.contact_force()
+        nf = abs(f @ pair.nhat_BA_W)
+        at = (info.contact_point() - cm) @ rot
+        rows.append((nf, names, at, pair.nhat_BA_W, pair.depth, info.slip_speed(),
+                     (pair.p_WCa - cm) @ rot, (pair.p_WCb - cm) @ rot,
+                     inspector.GetName(pair.id_A)))
+    rows.sort(key=lambda x: -x[0])
+    total = sum(x[0] for x in rows)
+    print(f"t = {t:.4f} s: {len(rows)} contacts, normal forces sum {total:.4e} N", file=sys.stderr)
+    for nf, names, at, n, depth, slip, pa, pb, name_a in rows[:40]:
+        print(f"  {nf:11.4e} N {names[0]:>9} {names[1]:>9} at x'y'z' ({at[0]:+.4f}, {at[1]:+.5f},"
+              f" {at[2]:+.4f}) n ({n[0]:+.3f}, {n[1]:+.3f}, {n[2]:+.3f}) depth {depth:.2e}"
+              f" slip {slip:.2e}; deepest points {name_a} ({pa[0]:+.5f}, {pa[1]:+.5f},"
+              f" {pa[2]:+.5f}), other ({pb[0]:+.5f}, {pb[1]:+.5f}, {pb[2]:+.5f})",
+              file=sys.stderr)
 
 
 def _inside(q, outline):
