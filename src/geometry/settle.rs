@@ -336,15 +336,7 @@ mod tests {
 
     #[test]
     fn a_base_over_a_bump_tips_off_it_onto_a_corner_and_stays_out_of_the_rock() {
-        let peak = [0.0, 0.1, 0.0];
-        let c = [
-            [-3.0, 0.0, -3.0],
-            [3.0, 0.0, -3.0],
-            [3.0, 0.0, 3.0],
-            [-3.0, 0.0, 3.0],
-        ];
-        let tris: Vec<[[f64; 3]; 3]> = (0..4).map(|k| [c[k], c[(k + 1) % 4], peak]).collect();
-        let ground = Ground::surface(&tris).unwrap();
+        let ground = crate::geometry::fixtures::pyramid_over(3.0, 0.1);
         let outline = square(1.0);
         let base = Footprint {
             outline: &outline,
