@@ -3,11 +3,10 @@
 //!
 //! The base is sampled on a grid over its outline's bounding box (the points on the base) and
 //! along its edges; at each sample the rock's height over its plan point — a ray cast down onto
-//! the ground in the collision library's shapes ([`Rock`]) — is compared with the sample's own.
+//! the ground in the collision library's shapes ([`super::rock::Rock`]) — is compared with the sample's own.
 //! Nothing here uses the touches the dynamics uses, nor the ground's own geometry.
 
 use super::ground::Ground;
-use super::rock::Rock;
 use super::touch::{BodyPose, in_outline, plan_box};
 use nalgebra::Vector3;
 
@@ -60,8 +59,7 @@ pub fn samples(outline: &[[f64; 2]], depth: f64, per_side: usize) -> Vec<Vector3
 
 /// [`deepest`] over `samples` (body axes, m) at `pose`.
 pub fn deepest_of(ground: &Ground, samples: &[Vector3<f64>], pose: &BodyPose) -> f64 {
-    let rock: &Rock = ground.rock();
-    rock.deepest(samples.iter().map(|s| pose.point(s)))
+    ground.rock().deepest(samples.iter().map(|s| pose.point(s)))
 }
 
 #[cfg(test)]

@@ -5,7 +5,7 @@
 //! is the same ground built once into parry's shapes — a triangle mesh with its own bounding
 //! volume hierarchy for a surface, half-spaces for a list of planes — and asked only two
 //! things: how high the rock is over a plan point (a vertical ray cast down onto it, the first
-//! hit), and whether a set of triangles passes into it. Those answer the independent checks of
+//! hit), and how far a triangle is from it. Those answer the independent checks of
 //! `derivations/13-base-contact.md` §5: the deepest any point of the base goes into the rock, and
 //! that the touches miss nothing.
 

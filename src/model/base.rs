@@ -8,6 +8,7 @@
 
 use super::error::ModelError;
 use crate::geometry::signed_area;
+use nalgebra::Vector3;
 
 /// A flat base: a simple polygon in the block's own axes (x′, z′) about the centre of mass,
 /// its corners in the order whose shoelace area over (x′, z′) is positive, at the depth ȳ below
@@ -17,6 +18,50 @@ pub struct Base {
     outline: Vec<[f64; 2]>,
     depth: f64,
     cast: bool,
+}
+
+/// Points and weights of a triangle (corners `t`, its area `area` in m²): cut into `split`²
+/// alike triangles, three points in each at 2/3, 1/6, 1/6 of its corners, each weighing a third
+/// of it. Exact for quadratics; a flat base's ears and a cast base's relief's faces alike
+/// (`derivations/13-base-contact.md` §9).
+pub fn triangle_quadrature(
+    t: [Vector3<f64>; 3],
+    area: f64,
+    split: usize,
+) -> Vec<(Vector3<f64>, f64)> {
+    let split = split.max(1);
+    let [a, b, c] = t;
+    let n = split as f64;
+    let at = |i: f64, j: f64| {
+        let (s, t) = (i / n, j / n);
+        Vector3::new(
+            a.x + s * (b.x - a.x) + t * (c.x - a.x),
+            a.y + s * (b.y - a.y) + t * (c.y - a.y),
+            a.z + s * (b.z - a.z) + t * (c.z - a.z),
+        )
+    };
+    let weight = area / (split * split) as f64 / 3.0;
+    let mut out = Vec::with_capacity(3 * split * split);
+    for i in 0..split {
+        for j in 0..split - i {
+            let (fi, fj) = (i as f64, j as f64);
+            let mut small = vec![[at(fi, fj), at(fi + 1.0, fj), at(fi, fj + 1.0)]];
+            if i + j + 1 < split {
+                small.push([at(fi + 1.0, fj), at(fi + 1.0, fj + 1.0), at(fi, fj + 1.0)]);
+            }
+            for [p, q, r] in small {
+                for (u, v, w) in [(4.0, 1.0, 1.0), (1.0, 4.0, 1.0), (1.0, 1.0, 4.0)] {
+                    let point = Vector3::new(
+                        (u * p.x + v * q.x + w * r.x) / 6.0,
+                        (u * p.y + v * q.y + w * r.y) / 6.0,
+                        (u * p.z + v * q.z + w * r.z) / 6.0,
+                    );
+                    out.push((point, weight));
+                }
+            }
+        }
+    }
+    out
 }
 
 impl Base {
@@ -135,37 +180,15 @@ impl Base {
     /// (points at ⅔, ⅙, ⅙ of its corners, a third of its area each). The weights add up to the
     /// area; the rule is exact for any quadratic over the base.
     pub fn quadrature(&self, split: usize) -> Vec<([f64; 2], f64)> {
-        let split = split.max(1);
-        let mut out = Vec::with_capacity(ears(&self.outline).len() * 3 * split * split);
-        for [a, b, c] in ears(&self.outline) {
-            let at = |i: f64, j: f64| {
-                let (s, t) = (i / split as f64, j / split as f64);
-                [
-                    a[0] + s * (b[0] - a[0]) + t * (c[0] - a[0]),
-                    a[1] + s * (b[1] - a[1]) + t * (c[1] - a[1]),
-                ]
-            };
-            let area = signed_area(&[a, b, c]) / (split * split) as f64;
-            for i in 0..split {
-                for j in 0..split - i {
-                    let (fi, fj) = (i as f64, j as f64);
-                    let mut small = vec![[at(fi, fj), at(fi + 1.0, fj), at(fi, fj + 1.0)]];
-                    if i + j + 1 < split {
-                        small.push([at(fi + 1.0, fj), at(fi + 1.0, fj + 1.0), at(fi, fj + 1.0)]);
-                    }
-                    for [p, q, r] in small {
-                        for (u, v, w) in [(4.0, 1.0, 1.0), (1.0, 4.0, 1.0), (1.0, 1.0, 4.0)] {
-                            let point = [
-                                (u * p[0] + v * q[0] + w * r[0]) / 6.0,
-                                (u * p[1] + v * q[1] + w * r[1]) / 6.0,
-                            ];
-                            out.push((point, area / 3.0));
-                        }
-                    }
-                }
-            }
-        }
-        out
+        let lift = |[x, z]: [f64; 2]| Vector3::new(x, 0.0, z);
+        ears(&self.outline)
+            .into_iter()
+            .flat_map(|[a, b, c]| {
+                let area = signed_area(&[a, b, c]);
+                triangle_quadrature([lift(a), lift(b), lift(c)], area, split)
+            })
+            .map(|(p, w)| ([p.x, p.z], w))
+            .collect()
     }
 
     /// Points and weights (m) of the five-point Gauss–Legendre rule along edge `k` (corner k to
@@ -275,6 +298,31 @@ fn crossing_edges(p: &[[f64; 2]]) -> Option<(usize, usize)> {
 
 #[cfg(test)]
 mod tests {
+
+    #[test]
+    fn the_triangle_rule_on_a_tilted_triangle_integrates_quadratics_exactly() {
+        // The triangle (0,0,0), (2,1,0), (0,1,3): area |(2,1,0) × (0,1,3)|/2 = |(3,−6,2)|/2 =
+        // 7/2. Over it ∫ x dA = A x̄ = 2A/3, and for linear f, g:
+        // ∫ f g dA = A (Σ fᵢ gᵢ + Σ fᵢ Σ gᵢ)/12.
+        let t = [
+            Vector3::new(0.0, 0.0, 0.0),
+            Vector3::new(2.0, 1.0, 0.0),
+            Vector3::new(0.0, 1.0, 3.0),
+        ];
+        let area: f64 = 0.5 * (t[1] - t[0]).cross(&(t[2] - t[0])).norm();
+        assert!((area - 3.5).abs() < 1e-15);
+        for split in [1, 2, 3] {
+            let pts = triangle_quadrature(t, area, split);
+            let int =
+                |f: &dyn Fn(&Vector3<f64>) -> f64| pts.iter().map(|(p, w)| f(p) * w).sum::<f64>();
+            assert!((int(&|_| 1.0) - area).abs() < 1e-12);
+            assert!((int(&|p| p.x) - area * 2.0 / 3.0).abs() < 1e-12);
+            // x at the corners 0, 2, 0 and z 0, 0, 3: Σ xᵢ zᵢ = 0, Σ xᵢ Σ zᵢ = 6.
+            let xz = area * (0.0 + 2.0 * 3.0) / 12.0;
+            assert!((int(&|p| p.x * p.z) - xz).abs() < 1e-12, "{split}");
+        }
+    }
+
     use super::*;
 
     #[test]

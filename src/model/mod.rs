@@ -19,7 +19,7 @@ mod settings;
 mod simulation;
 mod water;
 
-pub use base::Base;
+pub use base::{Base, triangle_quadrature};
 pub use block::Block;
 pub use error::ModelError;
 pub(crate) use error::{check, finite, non_negative, positive};

@@ -7,7 +7,7 @@
 use super::state::BodyState;
 use crate::geometry::{Feature, Ground, Relief, Touch};
 use crate::mechanics::impulses::{Patch, PatchPoint, tangents};
-use crate::model::Base;
+use crate::model::{Base, triangle_quadrature};
 use nalgebra::Vector3;
 
 /// A base lies flush on its rock where its normal is within this angle (rad) of the rock's.
@@ -24,9 +24,11 @@ const AREA_SPLIT: usize = 2;
 pub(super) struct Quadrature {
     /// Over the area (weights in m²).
     pub area: Vec<(Vector3<f64>, f64)>,
-    /// The unit normal into the block of the face each area point is on (body axes): y′ for a
-    /// flat base, its face's for a cast base's relief.
-    pub normals: Vec<Vector3<f64>>,
+    /// The area's points by the direction of the faces they are on: each unit normal into the
+    /// block (body axes) and the points on faces along it — a flat base's one face, y′; a cast
+    /// base's relief's, each set of parallel faces (the cosine between their normals within
+    /// 1e-12 of one).
+    pub faces: Vec<(Vector3<f64>, Vec<usize>)>,
     /// Along each edge k, from corner k to k + 1 (weights in m).
     pub edges: Vec<Vec<(Vector3<f64>, f64)>>,
 }
@@ -41,7 +43,7 @@ impl Quadrature {
         };
         let area = body(base.quadrature(AREA_SPLIT));
         Quadrature {
-            normals: vec![Vector3::y(); area.len()],
+            faces: vec![(Vector3::y(), (0..area.len()).collect())],
             area,
             edges: (0..base.outline().len())
                 .map(|k| body(base.edge_quadrature(k)))
@@ -50,36 +52,30 @@ impl Quadrature {
     }
 
     /// The quadrature of a cast base's relief: each face cut into triangles from its first
-    /// corner, each triangle as a flat base's ear (cut into four, three points in each; the
-    /// weights its area in its own plane). No edges: a relief's bends are not flush on a plane.
+    /// corner, each triangle as a flat base's ear (`triangle_quadrature`, the weights its area
+    /// in its own plane). No edges: a relief's bends are not flush on a plane.
     pub fn of_relief(relief: &Relief) -> Quadrature {
         let v = relief.vertices();
         let mut q = Quadrature::default();
         for face in relief.faces() {
+            let group = match q
+                .faces
+                .iter()
+                .position(|(m, _)| m.dot(&face.normal) >= 1.0 - 1e-12)
+            {
+                Some(g) => g,
+                None => {
+                    q.faces.push((face.normal, Vec::new()));
+                    q.faces.len() - 1
+                }
+            };
             let c = &face.corners;
             for k in 1..c.len().saturating_sub(1) {
-                let (a, b, d) = (v[c[0]], v[c[k]], v[c[k + 1]]);
-                let split = AREA_SPLIT as f64;
-                let area = 0.5 * (b - a).cross(&(d - a)).norm() / (split * split);
-                let at = |i: f64, j: f64| a + (b - a) * (i / split) + (d - a) * (j / split);
-                for i in 0..AREA_SPLIT {
-                    for j in 0..AREA_SPLIT - i {
-                        let (fi, fj) = (i as f64, j as f64);
-                        let mut small = vec![[at(fi, fj), at(fi + 1.0, fj), at(fi, fj + 1.0)]];
-                        if i + j + 1 < AREA_SPLIT {
-                            small.push([
-                                at(fi + 1.0, fj),
-                                at(fi + 1.0, fj + 1.0),
-                                at(fi, fj + 1.0),
-                            ]);
-                        }
-                        for [p, r, t] in small {
-                            for (x, y, z) in [(4.0, 1.0, 1.0), (1.0, 4.0, 1.0), (1.0, 1.0, 4.0)] {
-                                q.area.push(((p * x + r * y + t * z) / 6.0, area / 3.0));
-                                q.normals.push(face.normal);
-                            }
-                        }
-                    }
+                let t = [v[c[0]], v[c[k]], v[c[k + 1]]];
+                let area = 0.5 * (t[1] - t[0]).cross(&(t[2] - t[0])).norm();
+                for point in triangle_quadrature(t, area, AREA_SPLIT) {
+                    q.faces[group].1.push(q.area.len());
+                    q.area.push(point);
                 }
             }
         }
@@ -157,16 +153,8 @@ pub(super) fn flush(
     };
     // The faces on planes: for each direction m of the base's faces (the flat base's one, its
     // normal; a cast base's relief's, each set of parallel faces), the touches closed flush
-    // along m, and the area's points on those faces over rock in their plane (a relief's faces
-    // are along m where the cosine between their normals is within 1e-12 of one).
-    let normals = &ctx.quadrature.normals;
-    let mut directions: Vec<Vector3<f64>> = Vec::new();
-    for m in normals {
-        if !directions.iter().any(|d| d.dot(m) >= 1.0 - 1e-12) {
-            directions.push(*m);
-        }
-    }
-    for m_body in directions {
+    // along m, and the area's points on those faces over rock in their plane.
+    for (m_body, on_faces) in &ctx.quadrature.faces {
         let m = s.pose.rotation * m_body;
         let members: Vec<usize> = (0..touches.len())
             .filter(|&i| !used[i] && touches[i].normal.dot(&m) >= cos && close(&touches[i]))
@@ -175,13 +163,9 @@ pub(super) fn flush(
             continue;
         };
         let n = touches[first].normal;
-        let mut pts = ctx
-            .quadrature
-            .area
+        let mut pts = on_faces
             .iter()
-            .enumerate()
-            .filter(|&(k, _)| normals[k].dot(&m_body) >= 1.0 - 1e-12)
-            .map(|(k, p)| (Spot::Area(k), p));
+            .map(|&k| (Spot::Area(k), &ctx.quadrature.area[k]));
         let (spots, points) = on_rock(&n, &mut pts);
         if points.len() >= 3 {
             for &i in &members {
