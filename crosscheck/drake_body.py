@@ -34,23 +34,27 @@ tops every --ridge-step (0.1 m) along every ridge (a convex edge) and at the rid
 convex hull, whose underside is the base); the plate meets only those, and the base's grid only
 the cells and prisms.
 
-A base cast onto its rock (--cast, slideroute's `[base] cast = true`, derivations/13-base-contact.md
-§10; needs --start): the base's underside is the ground's own surface under the footprint where
-slideroute set the block down, seen along the block's y' (the relief). The bed's spheres lie on
-the relief: the --grid points, with their area weights, and points every --bend-step along each
-relief bend (where two of the ground's faces that are not coplanar meet under the footprint),
-their ends on the rim included, each weighing --bend-weight of a grid point. A ridge of the
-ground must not pass through a relief face between the bed's points: the block carries, for each
-planar relief face (the ground's coplanar triangles clipped to the footprint), a thin plate
-whose underside is that face raised by the radius (a Box on a rectangle, else a Convex prism),
-meeting only the ground's ridge points (spheres centred on the ridges). And a ridge of the
-ground crossing a convex edge of the underside (a valley of the ground under the footprint, or
-the footprint's rim) meets it between both rows of points: a square Box (--edge-size) along each
-such edge of the block and each ridge of the ground, only its edge on the surface, meets only
-the other kind (Drake's box-box contact is exact, edge against edge too). The ground's cell
-boxes end where their neighbour's lowered plane cuts them at a ridge, and the plates where theirs
-does at a valley (ridge_trims, Relief.valley_trims), so that a sphere crossing a bend rides
-over it at its centre's distance.
+A base cast onto its rock (--cast, slideroute's `[base] cast = true`,
+derivations/13-base-contact.md §10; needs --start): the base's underside is the ground's own
+surface under the footprint where slideroute set the block down, seen along the block's y' (the
+relief). The bed's spheres lie on the relief, a uniform bed over each of its faces (Relief.bed):
+each --grid point stands for its cell, and each face's part of the cell is one sphere weighted
+by that part's area (a point on a bend is one sphere for each face beside it, nudged into it);
+and points every --bend-step along each relief bend (where two of the ground's faces that are
+not coplanar meet under the footprint), their ends on the rim included, each weighing
+--bend-weight of a cell. A ridge of the ground must not pass through a relief face between the
+bed's points: the block carries, for each planar relief face (the ground's coplanar triangles
+clipped to the footprint), a thin plate whose underside is that face raised by the radius (a Box
+on a rectangle, else a Convex prism), meeting only the ground's ridge points (spheres centred
+--line-gap below the ridges, so that they carry only where a ridge alone carries the base: a
+line has no share of a uniform bed). And a ridge of the ground crossing a convex edge of the
+underside (a valley of the ground under the footprint, or the footprint's rim) meets it between
+both rows of points: a square Box (--edge-size) along each such edge of the block and each ridge
+of the ground, only its edge on the surface, meets only the other kind (Drake's box-box contact
+is exact, edge against edge too; the ridges' boxes --line-gap low as their points). The ground's
+cell boxes end where their neighbour's lowered plane cuts them at a ridge, and the plates where
+theirs does at a valley (ridge_trims, Relief.valley_trims), so that a sphere crossing a bend
+rides over it at its centre's distance.
 
 Contact, friction and loads as drake_route.py: point contact with a stiff penalty (2e11 N/m per
 geometry, 1e11 combined), Coulomb friction mu_k (static = dynamic), TAMSI at dt, the loads
@@ -571,13 +575,62 @@ class Relief:
         return out
 
     def bed(self, grid, step, bend_weight):
-        """The bed's points in body axes on the relief and each one's area weight (relative to
-        the mean grid point's): the --grid points (dr.base_points, dr.base_weights) and points
-        every `step` along each bend, its ends included, unless a grid point is there."""
-        xz = [(q[0], q[2]) for q in dr.base_points(self.outline, grid)]
-        w = list(dr.base_weights(self.outline, grid))
-        seen = {(round(x, 7), round(z, 7)) for x, z in xz}
+        """The bed's points in body axes on the relief and each one's spring weight, a uniform bed
+        over each face of the relief: its springs add up, face by face, to the face's area.
+
+        Each point of dr.base_points stands for its cell (the grid's spacing about it, clipped to
+        the footprint, as dr.base_weights), and each face's part of that cell is one sphere
+        weighted by that part's area. A grid point on a face's boundary is nudged 1e-3 of the
+        spacing into the face, and on a bend it is one sphere for each face beside it: when one
+        face lifts off, the other keeps only its own share, and a bend on the rim (its face's
+        share the face's) does not carry the next face of the rock it rides onto. Points every `step` along each bend that no grid point is on,
+        each weighing `bend_weight` of a cell, keep the bends out of the rock between them.
+        Weights are relative to the mean cell, as dr.base_weights. Returns (points, weights,
+        the number of spheres that are not grid points).
+
+        Until 2026-11-27 each grid point weighed its whole cell, whatever faces the cell spanned:
+        a point on a bend carried both faces' shares on the one face that touched, and each 0.5 m
+        flank of scenes/body/teeth.obj was a bed 0.5 m + one spacing long. The cast block's yaw
+        then started 5.3 %, 3.6 % and 2.1 % slower than the continuum's at 20, 40 and 80 points a
+        side (crosscheck/README.md, "The start on the teeth")."""
+        xz0 = [(float(q[0]), float(q[2])) for q in dr.base_points(self.outline, grid)]
+        xs, zs = [x for x, _ in self.outline], [z for _, z in self.outline]
+        dx, dz = (max(xs) - min(xs)) / grid, (max(zs) - min(zs)) / grid
+        per_area = len(xz0) / _area(self.outline)  # a weight per m², the mean cell's being 1
+        plans = [[(float(q[0]), float(q[2])) for q in f] for f in self.faces]
+        nudge = 1e-3 * min(dx, dz)
+
+        def inside(q, poly):
+            """q in the convex counter-clockwise `poly`, not within 1e-9 of its boundary."""
+            for k in range(len(poly)):
+                a, b = np.array(poly[k]), np.array(poly[(k + 1) % len(poly)])
+                e = b - a
+                if e[0] * (q[1] - a[1]) - e[1] * (q[0] - a[0]) <= 1e-9 * np.linalg.norm(e):
+                    return False
+            return True
+
+        xz, w = [], []
         extra = 0
+        for x, z in xz0:
+            cell = [(x - dx / 2, z - dz / 2), (x + dx / 2, z - dz / 2),
+                    (x + dx / 2, z + dz / 2), (x - dx / 2, z + dz / 2)]
+            cell = [tuple(q) for q in _clip(cell, self.outline)]
+            parts = []
+            for plan in plans:
+                piece = _clip(cell, plan) if len(cell) >= 3 else []
+                piece = [tuple(q) for q in piece]
+                area = _area(piece) if len(piece) >= 3 else 0.0
+                if area > 1e-9 * dx * dz:
+                    parts.append((plan, piece, area))
+            for plan, piece, area in parts:
+                q = np.array([x, z])
+                if not inside(q, plan):
+                    c = np.mean(np.array(piece), axis=0)
+                    q = q + (c - q) / np.linalg.norm(c - q) * nudge
+                xz.append((float(q[0]), float(q[1])))
+                w.append(area * per_area)
+            extra += max(0, len(parts) - 1)
+        seen = {(round(x, 7), round(z, 7)) for x, z in xz0}
         for p, q in self.bends:
             n = max(1, int(math.ceil(np.linalg.norm(q - p) / step)))
             for j in range(n + 1):
@@ -587,7 +640,7 @@ class Relief:
                     continue
                 seen.add(key)
                 xz.append((float(x), float(z)))
-                w.append(bend_weight)
+                w.append(bend_weight * dx * dz * per_area)
                 extra += 1
         xz = np.array(xz)
         y = self.height.height(xz)
@@ -672,8 +725,11 @@ def main():
     ap.add_argument("--bend-step", type=float, default=None,
                     help="--cast: spacing of the bed's points along the relief's bends, m"
                          " (default: the grid's)")
-    ap.add_argument("--bend-weight", type=float, default=0.5,
-                    help="--cast: a bend point's spring (off the grid) against a grid point's")
+    ap.add_argument("--bend-weight", type=float, default=0.05,
+                    help="--cast: a bend point's spring (off the grid) against a grid cell's")
+    ap.add_argument("--line-gap", type=float, default=2e-5,
+                    help="--cast: how far below the ridges their points and boxes are set, so that"
+                         " they carry only where a ridge alone carries the base, m")
     ap.add_argument("--edge-size", type=float, default=0.02,
                     help="--cast: the section of the boxes along the ground's ridges and the"
                          " base's convex edges, m")
@@ -760,6 +816,15 @@ def main():
             thick = 0.02
             rect = (len(out) == 4 and len(set(xs)) == 2 and len(set(zs)) == 2)
             plates = []
+            # The ridges' points against the relief's plates, and the ridges' boxes against the
+            # base's convex edges, are lines, not areas: where the base lies flush a uniform bed
+            # gives them no share. So with --cast the ridges' points and boxes are set --line-gap
+            # below the ridges, deeper than the bed sinks under the block's weight (0.3 µm on the
+            # teeth), and touch only where a ridge carries the base. On the ridges at full depth
+            # the rock's crests under scenes/body/cast-teeth.toml's flanks carried 42 % of its
+            # weight at 0.05 s (--dump-contacts), and the yaw started 7 % slow; with their
+            # springs at 1/50 instead, the crests sank 1.9 mm into the base once it rode on them.
+            gap = np.array([0.0, a.line_gap, 0.0]) if a.cast else np.zeros(3)
             if a.cast:
                 # A thin plate on each planar face of the relief, its underside the face raised
                 # by the radius along the face's normal (the ground's points then are the
@@ -802,7 +867,7 @@ def main():
                     d = e1 - e0
                     ends = [e0 + d * (float((q - e0[[0, 2]]) @ d[[0, 2]]) / float(d[[0, 2]] @ d[[0, 2]]))
                             for q in seg]
-                    at, shape = edge_box(ends[0], ends[1], -up, theta / 2, esize)
+                    at, shape = edge_box(ends[0] - gap, ends[1] - gap, -up, theta / 2, esize)
                     ground_caps.append(plant.RegisterCollisionGeometry(
                         ground, at, shape, f"ridge{j}", props()))
                 kind += (f"; cast: {len(relief.faces)} relief faces as plates, "
@@ -820,7 +885,7 @@ def main():
             if not a.cast:
                 plates.append(plant.RegisterCollisionGeometry(
                     block, RigidTransform(plate_at), plate_shape, "plate", props()))
-            lower = np.zeros(3) if a.cast else np.array([0.0, r, 0.0])
+            lower = gap if a.cast else np.array([0.0, r, 0.0])
             for i, q in enumerate(features):
                 knobs.append(plant.RegisterCollisionGeometry(
                     ground, RigidTransform(q - lower), Sphere(r), f"knob{i}", props()))
@@ -1053,7 +1118,13 @@ def dump_contacts(plant, scene_graph, pc, t, cm, rot):
     rows.sort(key=lambda x: -x[0])
     total = sum(x[0] for x in rows)
     print(f"t = {t:.4f} s: {len(rows)} contacts, normal forces sum {total:.4e} N", file=sys.stderr)
-    for nf, names, at, n, depth, slip, pa, pb, name_a in rows[:40]:
+    kinds = {}
+    for nf, names, *_ in rows:
+        kind = "-".join(sorted(name.rstrip("0123456789") for name in names))
+        kinds[kind] = kinds.get(kind, 0.0) + nf
+    print("  by kind: " + ", ".join(f"{k} {v:.4e} N" for k, v in sorted(kinds.items())),
+          file=sys.stderr)
+    for nf, names, at, n, depth, slip, pa, pb, name_a in rows:
         print(f"  {nf:11.4e} N {names[0]:>9} {names[1]:>9} at x'y'z' ({at[0]:+.4f}, {at[1]:+.5f},"
               f" {at[2]:+.4f}) n ({n[0]:+.3f}, {n[1]:+.3f}, {n[2]:+.3f}) depth {depth:.2e}"
               f" slip {slip:.2e}; deepest points {name_a} ({pa[0]:+.5f}, {pa[1]:+.5f},"

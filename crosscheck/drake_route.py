@@ -55,7 +55,6 @@ from pydrake.geometry import (
     GeometrySet,
     HalfSpace,
     ProximityProperties,
-    SceneGraph,
     Sphere,
 )
 from pydrake.math import RigidTransform, RotationMatrix
@@ -63,7 +62,6 @@ from pydrake.multibody.math import SpatialForce, SpatialVelocity
 from pydrake.multibody.plant import (
     AddMultibodyPlant,
     CoulombFriction,
-    DiscreteContactApproximation,
     ExternallyAppliedSpatialForce,
     MultibodyPlantConfig,
 )
@@ -501,7 +499,7 @@ def main():
     for k in range(steps + 1):
         pose = plant.EvalBodyPoseInWorld(plant_context, block)
         rot = pose.rotation().matrix()
-        i_axis, j_axis = rot[:, 0], rot[:, 1]
+        i_axis = rot[:, 0]
         shift = ground_at()
         # The base point under the centre of mass.
         cm = pose.multiply(below) - shift
