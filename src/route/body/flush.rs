@@ -2,7 +2,8 @@
 //! on a plane of the rock, or an edge along one. There the touches found at corners and
 //! vertices carry the base's normal impulse, but its pressure — and so its friction — is over
 //! the area or along the edge, as on a stiff uniform bed; the impulse solve shares it over the
-//! quadrature points found here.
+//! quadrature points found here. Where it rests on more than three points of one plane without
+//! lying flush, equal springs at the points share it (§9, "Points on a plane").
 
 use super::state::BodyState;
 use crate::geometry::{Feature, Ground, Relief, Touch};
@@ -15,6 +16,10 @@ const FLUSH_ANGLE: f64 = 1e-6;
 
 /// … and its gap there within this fraction of its size.
 const FLUSH_GAP: f64 = 1e-6;
+
+/// A touch among others on one plane starts from the last step's friction at the same features
+/// within this fraction of the base's size.
+const WARM_REACH: f64 = 0.05;
 
 /// Each triangle of the base cut into this many squared for its quadrature (three points each).
 const AREA_SPLIT: usize = 2;
@@ -84,12 +89,15 @@ impl Quadrature {
 }
 
 /// Which quadrature point: of the area, or node j of edge k.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub(super) enum Spot {
     /// Point k of the area.
     Area(usize),
     /// Node j of edge k.
     Edge(usize, usize),
+    /// A touch among others on one plane: its features, its face, and where it is on the
+    /// base (body axes, m), by which the next step finds it again.
+    Touch(Feature, usize, Vector3<f64>),
 }
 
 /// What the flush parts are sought on: the ground, the base's quadrature and size (m), and μ
@@ -111,8 +119,9 @@ pub(super) struct Flush {
 /// The flush parts of the base at state `s` among its `touches`, each point's impulse started
 /// from `warm` (the last step's, by point): the base's face on a plane of the rock (at least
 /// three of its area's points over rock in its plane), and each edge whose two corners touch
-/// one plane of the rock with no gap (at least two of its nodes over that rock). No touch is in
-/// two of them.
+/// one plane of the rock with no gap (at least two of its nodes over that rock); then the closed
+/// touches left, by normal, where three or more distinct points share one (each a point of
+/// weight one). No touch is in two of them.
 pub(super) fn flush(
     ctx: &Bed<'_>,
     s: &BodyState,
@@ -216,6 +225,61 @@ pub(super) fn flush(
                     points,
                 },
                 spots,
+            });
+        }
+    }
+    // Points on a plane: the closed touches left that share one normal, three or more apart
+    // (a flat base on the ground's vertices, a cast base's bends across the rock's crests).
+    // The rigid body leaves their shares open beyond three; equal springs at them, a uniform
+    // bed of points, fix them as the faces' bed does, and their friction acts with those shares.
+    let mut rest: Vec<usize> = (0..touches.len())
+        .filter(|&i| !used[i] && close(&touches[i]))
+        .collect();
+    while let Some(&first) = rest.first() {
+        let n = touches[first].normal;
+        let (members, others): (Vec<usize>, Vec<usize>) = rest
+            .iter()
+            .partition(|&&i| touches[i].normal.dot(&n) >= cos);
+        rest = others;
+        let (mut spots, mut points) = (Vec::new(), Vec::<PatchPoint>::new());
+        for &i in &members {
+            let t = &touches[i];
+            let arm = t.on_base - s.pose.cm;
+            if points.iter().any(|p| (p.arm - arm).norm() <= tol) {
+                continue;
+            }
+            // The last step's friction at the same features nearest to it (a crossing slides
+            // along its edges as the block moves).
+            let guess = warm
+                .iter()
+                .filter_map(|(w, p)| match w {
+                    Spot::Touch(feature, face, at) if *feature == t.feature && *face == t.face => {
+                        Some(((at - t.body).norm(), *p))
+                    }
+                    _ => None,
+                })
+                .filter(|(d, _)| *d <= WARM_REACH * ctx.size)
+                .min_by(|a, b| a.0.total_cmp(&b.0))
+                .map_or_else(Vector3::zeros, |(_, p)| p);
+            spots.push(Spot::Touch(t.feature, t.face, t.body));
+            points.push(PatchPoint {
+                arm,
+                weight: 1.0,
+                mu: (ctx.mu)(t.face),
+                guess,
+            });
+        }
+        if points.len() >= 3 {
+            for &i in &members {
+                used[i] = true;
+            }
+            out.push(Flush {
+                spots,
+                patch: Patch {
+                    members,
+                    axes: tangents(&n),
+                    points,
+                },
             });
         }
     }
