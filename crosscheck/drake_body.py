@@ -30,9 +30,11 @@ a surface of prisms is no converged reference. A surface is not convex: a ridge 
 it can touch the base between its grid points (a crest 0.25 m from the nearest row of a 0.5 m
 grid goes 35 mm into the base at 8°). So the ground also carries spheres of the same radius, their
 tops every --ridge-step (0.1 m) along every ridge (a convex edge) and at the ridges' ends, within
---reach of the footprint, which meet a thin plate on the block (a 2 cm Box, or the outline's
-convex hull, whose underside is the base); the plate meets only those, and the base's grid only
-the cells and prisms.
+--reach of the footprint, --line-gap (20 µm) below it, which meet a thin plate on the block (a
+2 cm Box, or the outline's convex hull, whose underside is the base); the plate meets only those,
+and the base's grid only the cells and prisms. Set so low, a row of them carries only where a
+ridge alone carries the base: where the base lies flush over a ridge a line has no share of a
+uniform bed, and on the ridge itself each point would carry as a grid point does.
 
 A base cast onto its rock (--cast, slideroute's `[base] cast = true`,
 derivations/13-base-contact.md §10; needs --start): the base's underside is the ground's own
@@ -728,8 +730,8 @@ def main():
     ap.add_argument("--bend-weight", type=float, default=0.05,
                     help="--cast: a bend point's spring (off the grid) against a grid cell's")
     ap.add_argument("--line-gap", type=float, default=2e-5,
-                    help="--cast: how far below the ridges their points and boxes are set, so that"
-                         " they carry only where a ridge alone carries the base, m")
+                    help="how far below the ridges their points (and with --cast their boxes) are"
+                         " set, so that they carry only where a ridge alone carries the base, m")
     ap.add_argument("--edge-size", type=float, default=0.02,
                     help="--cast: the section of the boxes along the ground's ridges and the"
                          " base's convex edges, m")
@@ -816,15 +818,16 @@ def main():
             thick = 0.02
             rect = (len(out) == 4 and len(set(xs)) == 2 and len(set(zs)) == 2)
             plates = []
-            # The ridges' points against the relief's plates, and the ridges' boxes against the
-            # base's convex edges, are lines, not areas: where the base lies flush a uniform bed
-            # gives them no share. So with --cast the ridges' points and boxes are set --line-gap
-            # below the ridges, deeper than the bed sinks under the block's weight (0.3 µm on the
-            # teeth), and touch only where a ridge carries the base. On the ridges at full depth
-            # the rock's crests under scenes/body/cast-teeth.toml's flanks carried 42 % of its
-            # weight at 0.05 s (--dump-contacts), and the yaw started 7 % slow; with their
-            # springs at 1/50 instead, the crests sank 1.9 mm into the base once it rode on them.
-            gap = np.array([0.0, a.line_gap, 0.0]) if a.cast else np.zeros(3)
+            # The ridges' points against the base's plate (a cast base's: its relief's plates),
+            # and with --cast the ridges' boxes against the base's convex edges, are lines, not
+            # areas: where the base lies flush a uniform bed gives them no share. So they are set
+            # --line-gap below the ridges, deeper than the bed sinks under the block's weight
+            # (0.3 µm on the teeth), and touch only where a ridge carries the base. On the ridges
+            # at full depth the rock's crests under scenes/body/cast-teeth.toml's flanks carried
+            # 42 % of its weight at 0.05 s (--dump-contacts), and the yaw started 7 % slow; with
+            # their springs at 1/50 instead, the crests sank 1.9 mm into the base once it rode on
+            # them.
+            gap = np.array([0.0, a.line_gap, 0.0])
             if a.cast:
                 # A thin plate on each planar face of the relief, its underside the face raised
                 # by the radius along the face's normal (the ground's points then are the
@@ -885,7 +888,7 @@ def main():
             if not a.cast:
                 plates.append(plant.RegisterCollisionGeometry(
                     block, RigidTransform(plate_at), plate_shape, "plate", props()))
-            lower = gap if a.cast else np.array([0.0, r, 0.0])
+            lower = gap if a.cast else np.array([0.0, r, 0.0]) + gap
             for i, q in enumerate(features):
                 knobs.append(plant.RegisterCollisionGeometry(
                     ground, RigidTransform(q - lower), Sphere(r), f"knob{i}", props()))

@@ -216,11 +216,23 @@ pub(super) fn flush(
             .map(|(j, p)| (Spot::Edge(k, j), p));
         let (spots, points) = on_rock(&n, &mut pts);
         if points.len() >= 2 {
-            used[a] = true;
-            used[b] = true;
+            // The edge's corners and the ground's edges across it on that plane: one line.
+            let members: Vec<usize> = (0..touches.len())
+                .filter(|&i| {
+                    i == a
+                        || i == b
+                        || (!used[i]
+                            && touches[i].feature == Feature::Crossing(k)
+                            && touches[i].normal.dot(&n) >= cos
+                            && close(&touches[i]))
+                })
+                .collect();
+            for &i in &members {
+                used[i] = true;
+            }
             out.push(Flush {
                 patch: Patch {
-                    members: vec![a, b],
+                    members,
                     axes: tangents(&n),
                     points,
                 },
@@ -270,6 +282,15 @@ pub(super) fn flush(
             });
         }
         if points.len() >= 3 {
+            // A ridge of the rock along the base touches it all along, not at its points: the
+            // rock is at the base midway between them too.
+            let touching = |arm: &Vector3<f64>| {
+                let q = s.pose.cm + arm;
+                ctx.ground
+                    .top(q.x, q.z)
+                    .is_some_and(|(f, _)| ctx.ground.faces()[f].signed_distance(&q).abs() <= tol)
+            };
+            along_one_line(&mut points, tol, &touching);
             for &i in &members {
                 used[i] = true;
             }
@@ -284,6 +305,50 @@ pub(super) fn flush(
         }
     }
     out
+}
+
+/// Points of a patch that lie on one line (within `tol` of the line through the two farthest
+/// apart) where the rock `touching` the base midway between each two of them too — a ridge of
+/// the rock along the base — stand for its length, not for one point each: each the trapezoid
+/// rule's share of the line between its neighbours, as a uniform bed along the line presses.
+/// Points apart (crossings of the base's edges with the rock's crests, on one line or not) keep
+/// their weights.
+fn along_one_line(points: &mut [PatchPoint], tol: f64, touching: &dyn Fn(&Vector3<f64>) -> bool) {
+    let far = |from: &Vector3<f64>| {
+        points
+            .iter()
+            .map(|p| p.arm)
+            .max_by(|a, b| (a - from).norm().total_cmp(&(b - from).norm()))
+    };
+    let (Some(p0), true) = (points.first().map(|p| p.arm), points.len() >= 3) else {
+        return;
+    };
+    let Some(p1) = far(&p0) else { return };
+    let Some(p2) = far(&p1) else { return };
+    let length = (p2 - p1).norm();
+    if length <= tol {
+        return;
+    }
+    let d = (p2 - p1) / length;
+    let off = |q: &Vector3<f64>| (q - p1 - d * (q - p1).dot(&d)).norm();
+    if points.iter().any(|p| off(&p.arm) > tol) {
+        return;
+    }
+    let mut order: Vec<(f64, usize)> = points
+        .iter()
+        .enumerate()
+        .map(|(i, p)| ((p.arm - p1).dot(&d), i))
+        .collect();
+    order.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let midway = |k: usize| (points[order[k].1].arm + points[order[k + 1].1].arm) / 2.0;
+    if !(0..order.len() - 1).all(|k| touching(&midway(k))) {
+        return;
+    }
+    for (k, &(s, i)) in order.iter().enumerate() {
+        let before = if k == 0 { s } else { order[k - 1].0 };
+        let after = order.get(k + 1).map_or(s, |o| o.0);
+        points[i].weight = 0.5 * (after - before);
+    }
 }
 
 #[cfg(test)]
@@ -350,5 +415,42 @@ mod tests {
         assert!((length - 4.0).abs() < 1e-12, "{length}");
         // Tipped more than the tolerance: nothing lies flush over the area.
         assert!(parts.iter().all(|p| p.patch.points.len() == 5));
+    }
+
+    /// Unit points at `zs` along z (and one more at `extra`, if given).
+    fn points_at(zs: &[f64], extra: Option<Vector3<f64>>) -> Vec<PatchPoint> {
+        zs.iter()
+            .map(|&z| Vector3::new(-1.0, -0.1, z))
+            .chain(extra)
+            .map(|arm| PatchPoint {
+                arm,
+                weight: 1.0,
+                mu: 0.5,
+                guess: Vector3::zeros(),
+            })
+            .collect()
+    }
+
+    #[test]
+    fn a_ridge_along_the_base_found_at_its_vertices_and_rim_weighs_by_length() {
+        // A crest under the base from z = −5 to 5, its vertices at −4, −2, …, 4 (out of order):
+        // each the trapezoid share of the line between its neighbours.
+        let mut pts = points_at(&[0.0, -5.0, 5.0, -4.0, 4.0, -2.0, 2.0], None);
+        along_one_line(&mut pts, 1e-9, &|_| true);
+        let w: Vec<f64> = pts.iter().map(|p| p.weight).collect();
+        let expect = [2.0, 0.5, 0.5, 1.5, 1.5, 2.0, 2.0];
+        assert!(
+            w.iter().zip(expect).all(|(a, b)| (a - b).abs() < 1e-12),
+            "{w:?}"
+        );
+        // The same points where the rock is not at the base between them (crossings of the
+        // base's edges with the rock's crests, on one line by chance): a point each.
+        let mut apart = points_at(&[0.0, -5.0, 5.0, -4.0], None);
+        along_one_line(&mut apart, 1e-9, &|arm| arm.z.abs() > 4.4);
+        assert!(apart.iter().all(|p| p.weight == 1.0));
+        // Not on one line: a point each.
+        let mut off = points_at(&[0.0, -5.0, 5.0], Some(Vector3::new(0.0, -0.1, 1.0)));
+        along_one_line(&mut off, 1e-9, &|_| true);
+        assert!(off.iter().all(|p| p.weight == 1.0));
     }
 }
