@@ -217,11 +217,12 @@ fn a_block_spun_on_eight_tips_of_rock_stops_as_equal_springs_at_them_say() {
         &format!("[initial]\nomega_deg_s = {}", w0.to_degrees()),
         3.0,
         1e-3,
-    )
-    .replace("mode = \"exact\"", "mode = \"exact\"\ncontacts = \"base\"");
+    );
     let file = dir.join("tips.toml");
     std::fs::write(&file, text).unwrap();
-    let route = slideroute::run(&Scene::from_file(&file).unwrap()).unwrap();
+    let scene = Scene::from_file(&file).unwrap();
+    assert_eq!(scene.settings().unwrap().contacts, Contacts::Base);
+    let route = slideroute::run(&scene).unwrap();
     std::fs::remove_dir_all(&dir).ok();
     assert_spun_in_place_and_stopped(&route, turn, time);
 }

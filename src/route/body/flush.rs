@@ -119,9 +119,10 @@ pub(super) struct Flush {
 /// The flush parts of the base at state `s` among its `touches`, each point's impulse started
 /// from `warm` (the last step's, by point): the base's face on a plane of the rock (at least
 /// three of its area's points over rock in its plane), and each edge whose two corners touch
-/// one plane of the rock with no gap (at least two of its nodes over that rock); then the closed
-/// touches left, by normal, where three or more distinct points share one (each a point of
-/// weight one). No touch is in two of them.
+/// one plane of the rock with no gap (at least two of its nodes over that rock), with the
+/// crossings along it; then the closed touches left, by normal, where three or more distinct
+/// points share one (each of weight one, or its length along a ridge: `along_one_line`). No
+/// touch is in two of them.
 pub(super) fn flush(
     ctx: &Bed<'_>,
     s: &BodyState,
@@ -320,10 +321,12 @@ fn along_one_line(points: &mut [PatchPoint], tol: f64, touching: &dyn Fn(&Vector
             .map(|p| p.arm)
             .max_by(|a, b| (a - from).norm().total_cmp(&(b - from).norm()))
     };
-    let (Some(p0), true) = (points.first().map(|p| p.arm), points.len() >= 3) else {
+    if points.len() < 3 {
+        return;
+    }
+    let Some(p1) = far(&points[0].arm) else {
         return;
     };
-    let Some(p1) = far(&p0) else { return };
     let Some(p2) = far(&p1) else { return };
     let length = (p2 - p1).norm();
     if length <= tol {
