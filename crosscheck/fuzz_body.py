@@ -16,11 +16,23 @@ prints its scene's folder; the scene is kept there to be run again.
     cargo build --release
     python3 crosscheck/fuzz_body.py --seed 12 --cases 30 --out /tmp/fuzz
 
+With `--bed PYTHON` (crosscheck/.venv/bin/python, which has NumPy) each case that moves is also
+run in bed_body.py, the bed of springs on the ground's own triangles, until `--bed-until` s, and
+the base point under the centre of mass must stay within 1 % of our travel and the yaw within
+0.5°, as tests/integration/drake_crosscheck.rs asks; where it does not, the bed is run again
+with μ ± 0.001 and the case is compared only until those two part by as much (a route that
+sensitive to μ has no sharper reference). About a minute a case.
+
+    python3 crosscheck/fuzz_body.py --seed 21 --cases 8 --out /tmp/fuzz-bed \
+        --bed crosscheck/.venv/bin/python
+
 Standard library only (make_terrain.py too), so it needs no environment. Exit 1 if a case failed.
 """
 
 import argparse
+import csv
 import json
+import math
 import os
 import random
 import subprocess
@@ -108,12 +120,82 @@ def judge(summary, size):
     return wrong
 
 
+def path(file, cols):
+    """{millisecond: (x, y, z, theta)} of a CSV's columns `cols` (three positions and a yaw)."""
+    out = {}
+    with open(file) as f:
+        for row in csv.DictReader(f):
+            t = round(float(row["t_s"]) * 1000)
+            out[t] = tuple(float(row[c]) for c in cols)
+    return out
+
+
+def bed_run(a, folder, until, dmu):
+    """bed_body.py's path for the case in `folder` with μ + dmu (None if it failed)."""
+    cast = ["--cast"] if "cast = true" in open(os.path.join(folder, "scene.toml")).read() else []
+    out = os.path.join(folder, f"bed{dmu}.csv")
+    run = subprocess.run([a.bed, os.path.join(HERE, "bed_body.py"), "--scene",
+                          os.path.join(folder, "scene.toml"), "--start",
+                          os.path.join(folder, "out", "summary.json"), "--out", out,
+                          "--t-end", str(until), "--mu-delta", str(dmu), "--quiet", *cast],
+                         capture_output=True, text=True, timeout=3600)
+    if run.returncode != 0:
+        return None, run.stderr.strip()[-300:]
+    return path(out, ("bx_m", "by_m", "bz_m", "theta_deg")), ""
+
+
+def against_bed(a, folder, until):
+    """What is wrong with the case's route against the bed of springs (empty if nothing), and
+    a line of what was measured."""
+    ours = path(os.path.join(folder, "out", "route.csv"), ("x_m", "y_m", "z_m", "theta_deg"))
+    ms = sorted(t for t in ours if t <= round(until * 1000))
+    travel = sum(math.dist(ours[s][:3], ours[t][:3]) for s, t in zip(ms, ms[1:]))
+    if travel < 1e-3:
+        return [], "held"
+    bed, err = bed_run(a, folder, until, 0.0)
+    if bed is None:
+        return [f"bed_body.py failed: {err}"], ""
+
+    def worst(end):
+        gap = yaw = 0.0
+        for t in ms:
+            if t > end or t not in bed:
+                continue
+            gap = max(gap, math.dist(ours[t][:3], bed[t][:3]))
+            yaw = max(yaw, abs((ours[t][3] - bed[t][3] + 180) % 360 - 180))
+        return gap, yaw
+
+    end = ms[-1]
+    gap, yaw = worst(end)
+    note = ""
+    if gap > 0.01 * travel or yaw > 0.5:
+        plus, _ = bed_run(a, folder, until, 0.001)
+        minus, _ = bed_run(a, folder, until, -0.001)
+        if plus and minus:
+            for t in ms:
+                if t in plus and t in minus and (
+                        math.dist(plus[t][:3], minus[t][:3]) > 0.01 * travel
+                        or abs((plus[t][3] - minus[t][3] + 180) % 360 - 180) > 0.5):
+                    end = t
+                    note = f", μ ± 0.001 part at {t / 1000:.3f} s"
+                    break
+        gap, yaw = worst(end)
+    line = (f"bed to {end / 1000:.3f} s{note}: CM {gap * 1e3:.2f} mm "
+            f"({100 * gap / travel:.2f} % of {travel:.3f} m), yaw {yaw:.3f}°")
+    wrong = []
+    if gap > 0.01 * travel or yaw > 0.5:
+        wrong.append(line)
+    return wrong, line
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--bin", default=os.path.join(HERE, "..", "target", "release", "slideroute"))
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--cases", type=int, default=20)
     ap.add_argument("--out", required=True, help="a folder for the cases' scenes and routes")
+    ap.add_argument("--bed", help="a Python with NumPy: compare each case with bed_body.py")
+    ap.add_argument("--bed-until", type=float, default=0.5, help="s")
     a = ap.parse_args()
     rng = random.Random(a.seed)
     failed = 0
@@ -136,8 +218,13 @@ def main():
             summary = json.load(f)
         wrong = judge(summary, size)
         term = summary["termination"]
+        line = ""
+        if a.bed and not wrong:
+            more, line = against_bed(a, folder, min(a.bed_until, term["t_s"]))
+            wrong += more
         print(f"{'FAIL' if wrong else 'ok  '} {head}: {term['reason']} at {term['t_s']:.3f} s"
-              + (f": {'; '.join(wrong)} [{folder}]" if wrong else ""), flush=True)
+              + (f": {'; '.join(wrong)} [{folder}]" if wrong else (f"; {line}" if line else "")),
+              flush=True)
         failed += bool(wrong)
     print(f"{a.cases - failed} of {a.cases} cases ok")
     sys.exit(1 if failed else 0)

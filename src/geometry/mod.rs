@@ -25,6 +25,7 @@ pub mod rock;
 pub mod settle;
 pub mod site;
 pub mod touch;
+mod wedge;
 
 #[cfg(test)]
 pub(crate) mod fixtures;

@@ -14,6 +14,7 @@
 //! well, so the contact's arm follows the block.
 
 use super::ground::{Ground, segment_distance_2};
+use super::wedge::{RockEdge, between, rock_edge};
 use nalgebra::{Matrix3, Vector3};
 
 /// A rigid body's pose: where its centre of mass is and how it is turned (columns: the body's
@@ -200,6 +201,7 @@ fn surface_touches(
                 to_body * (v[e] - pose.cm),
                 to_body * (v[(e + 1) % 3] - pose.cm),
             );
+            let mut rock = None;
             for k in 0..n {
                 let Some((body, g)) = crossing(base, k, [ga, gb]) else {
                     continue;
@@ -215,6 +217,20 @@ fn surface_touches(
                 let mut normal = across.normalize();
                 if normal.dot(&up) < 0.0 {
                     normal = -normal;
+                }
+                // A touch only where the rock's edge is a ridge and the normal lies between
+                // its faces' and between the base's and its side's (`wedge`).
+                let edge =
+                    *rock.get_or_insert_with(|| rock_edge(ground, f, &v[e], &v[(e + 1) % 3]));
+                let rim = b - a;
+                let inward = pose.rotation * Vector3::new(-rim.z, 0.0, rim.x).normalize();
+                let held = match edge {
+                    RockEdge::Ridge(na, nb) => between(&normal, &na, &nb),
+                    RockEdge::Other => false,
+                    RockEdge::Rim => true,
+                };
+                if !held || !between(&normal, &up, &inward) {
+                    continue;
                 }
                 // The ground's point is below the base's along the base's normal by -depth - g.y.
                 let gap = normal.dot(&up) * (-base.depth - g.y);
@@ -407,6 +423,35 @@ mod tests {
         for c in crossings {
             assert!(c.on_base.z.abs() < 1e-12 && (c.on_base.x.abs() - 1.0).abs() < 1e-12);
             assert!(c.gap.abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn a_base_edge_lying_nearly_along_a_ridge_meets_it_along_no_level_normal() {
+        // The ridge of the test above (its crest along X at Z = 0, 0.2 m high); a base whose
+        // edge z′ = -1 lies along the crest 1 µm above it, turned by 1e-5 rad so that it
+        // crosses the crest in plan and tilted along it by 1e-4 rad. Along a crest the normal
+        // across both edges is nearly level: no normal of the rock or the base there.
+        let a = [[-3.0, 0.2, 0.0], [3.0, 0.2, 0.0], [3.0, 0.1, 2.0]];
+        let b = [[-3.0, 0.2, 0.0], [3.0, 0.1, 2.0], [-3.0, 0.1, 2.0]];
+        let c = [[-3.0, 0.2, 0.0], [-3.0, 0.1, -2.0], [3.0, 0.1, -2.0]];
+        let d = [[-3.0, 0.2, 0.0], [3.0, 0.1, -2.0], [3.0, 0.2, 0.0]];
+        let ground = Ground::surface(&[a, b, c, d]).unwrap();
+        let outline = square(1.0);
+        let base = Footprint {
+            outline: &outline,
+            depth: 0.0,
+        };
+        let turn = nalgebra::Rotation3::from_axis_angle(&Vector3::y_axis(), 1e-5)
+            * nalgebra::Rotation3::from_axis_angle(&Vector3::z_axis(), 1e-4);
+        let pose = BodyPose {
+            cm: Vector3::new(0.0, 0.2 + 1e-6, 1.0),
+            rotation: *turn.matrix(),
+        };
+        let t = touches(&ground, base, &pose, 1e-3, 0.0);
+        assert!(!t.touches.is_empty());
+        for t in &t.touches {
+            assert!(t.normal.y > 0.99, "{t:?}");
         }
     }
 

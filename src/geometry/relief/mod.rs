@@ -39,6 +39,8 @@ pub struct Relief {
     faces: Vec<ReliefFace>,
     /// The edges where the relief bends or ends (pairs of vertex indices).
     edges: Vec<[usize; 2]>,
+    /// The faces beside each edge: two at a bend, one on the rim.
+    edge_faces: Vec<Vec<usize>>,
     face_tree: RTree<Boxed>,
     edge_tree: RTree<Boxed>,
 }
@@ -57,13 +59,12 @@ impl Relief {
                 }
             }
         }
-        let edges: Vec<[usize; 2]> = by_edge
+        let (edges, edge_faces): (Vec<[usize; 2]>, Vec<Vec<usize>>) = by_edge
             .into_iter()
             .filter(|(_, fs)| {
                 fs.len() != 2 || (faces[fs[0]].normal - faces[fs[1]].normal).norm() > 1e-9
             })
-            .map(|(e, _)| e)
-            .collect();
+            .unzip();
         let plan = |ids: &mut dyn Iterator<Item = usize>| {
             let mut lo = [f64::INFINITY; 2];
             let mut hi = [f64::NEG_INFINITY; 2];
@@ -92,6 +93,7 @@ impl Relief {
             vertices,
             faces,
             edges,
+            edge_faces,
             face_tree,
             edge_tree,
         }
@@ -110,6 +112,44 @@ impl Relief {
     /// The edges where the relief bends or ends.
     pub fn edges(&self) -> &[[usize; 2]] {
         &self.edges
+    }
+
+    /// Whether edge `k` is convex on the block — a keel, where the relief's two faces fall away
+    /// from each other (a valley of the rock it was cast on), or on the rim — and if so the
+    /// normals into the block of the faces that meet there: the relief's (body axes), and on
+    /// the rim the block's side's, level, into the block.
+    pub fn keel(&self, k: usize) -> Option<[Vector3<f64>; 2]> {
+        let [i, j] = self.edges[k];
+        let (p, q) = (self.vertices[i], self.vertices[j]);
+        match self.edge_faces[k][..] {
+            [f] => {
+                // Level, at right angles to the edge, towards the face's middle.
+                let face = &self.faces[f];
+                let mid = face
+                    .corners
+                    .iter()
+                    .map(|&c| self.vertices[c])
+                    .sum::<Vector3<f64>>()
+                    / face.corners.len() as f64;
+                let d = q - p;
+                let mut inward = Vector3::new(-d.z, 0.0, d.x).normalize();
+                if inward.dot(&(mid - p)) < 0.0 {
+                    inward = -inward;
+                }
+                Some([face.normal, inward])
+            }
+            [f, g] => {
+                let (a, b) = (&self.faces[f], &self.faces[g]);
+                let far = b
+                    .corners
+                    .iter()
+                    .map(|&c| self.vertices[c])
+                    .map(|w| (w - p).dot(&a.normal))
+                    .fold(f64::NEG_INFINITY, f64::max);
+                (far > 1e-9 * (q - p).norm()).then_some([a.normal, b.normal])
+            }
+            _ => None,
+        }
     }
 
     /// The faces whose plan (x′, z′) holds the point `p` (its boundary, within round-off,

@@ -10,6 +10,7 @@
 
 use super::Relief;
 use crate::geometry::touch::{Touches, holding_faces};
+use crate::geometry::wedge::{RockEdge, between, rock_edge};
 use crate::geometry::{BodyPose, Feature, Ground, Touch, plan_box};
 use nalgebra::Vector3;
 use std::collections::HashSet;
@@ -109,6 +110,7 @@ fn under_relief(
             continue;
         }
         let (ga, gb) = (b[i], b[j]);
+        let mut rock = None;
         let lo = [ga.x.min(gb.x), ga.z.min(gb.z)];
         let hi = [ga.x.max(gb.x), ga.z.max(gb.z)];
         for k in relief.edges_in(lo, hi) {
@@ -119,6 +121,21 @@ fn under_relief(
             let mut n = (q - p).cross(&(gb - ga)).normalize();
             if n.y < 0.0 {
                 n = -n;
+            }
+            // A touch only where both edges are convex and the normal lies between each one's
+            // faces' (`wedge`): a keel across a ridge, not an edge along the rock's edge it was
+            // cast from.
+            let Some([ma, mb]) = relief.keel(k) else {
+                continue;
+            };
+            let edge = *rock.get_or_insert_with(|| rock_edge(ground, f, &v[i], &v[j]));
+            let held = match edge {
+                RockEdge::Ridge(na, nb) => between(&n, &(to_body * na), &(to_body * nb)),
+                RockEdge::Other => false,
+                RockEdge::Rim => true,
+            };
+            if !held || !between(&n, &ma, &mb) {
+                continue;
             }
             let gap = (on - g).dot(&n);
             if gap < reach {
@@ -236,6 +253,32 @@ mod tests {
                 .iter()
                 .any(|f| (t.normal - f.normal()).norm() < 1e-12);
             assert!(of_a_face && t.gap.abs() < 1e-12, "{t:?}");
+        }
+    }
+
+    #[test]
+    fn a_cast_base_slid_along_the_rocks_edges_it_was_cast_from_meets_them_along_no_level_normal() {
+        // Slid 2 mm along the teeth (along Z), turned by 1e-5 rad, tilted along them by 1e-4 rad
+        // and lifted 1 µm: each bend of the relief lies along the edge it was cast from and
+        // crosses it at a grazing angle, their slopes apart. A ridge of the rock under a groove
+        // of the base, or a keel over a valley, is no contact there; the normal across two
+        // edges so nearly parallel is nearly level.
+        let ground = sawtooth(1.0, 10f64.to_radians(), 6);
+        let rest = BodyPose {
+            cm: Vector3::new(0.3, 1.0, 0.2),
+            rotation: Matrix3::identity(),
+        };
+        let relief = cast(&ground, &square(2.0), &rest).unwrap();
+        let turn = nalgebra::Rotation3::from_axis_angle(&Vector3::y_axis(), 1e-5)
+            * nalgebra::Rotation3::from_axis_angle(&Vector3::x_axis(), 1e-4);
+        let pose = BodyPose {
+            cm: rest.cm + Vector3::new(0.0, 1e-6, 2e-3),
+            rotation: *turn.matrix(),
+        };
+        let found = relief_touches(&ground, &relief, &pose, 1e-3, 0.0);
+        assert!(!found.touches.is_empty());
+        for t in &found.touches {
+            assert!(t.normal.y > 0.98, "{t:?}");
         }
     }
 
