@@ -400,14 +400,18 @@ mod tests {
         assert!(corner_gaps.iter().all(|g| (g - expect).abs() < 1e-12));
     }
 
-    #[test]
-    fn a_ridge_under_a_base_edge_touches_where_they_cross() {
-        // A ridge along X at Z = 0, 0.2 m high, its sides falling 0.1 over 2 m.
+    /// A ridge along X at Z = 0, 0.2 m high, its sides falling 0.1 over 2 m.
+    fn ridge_along_x() -> Ground {
         let a = [[-3.0, 0.2, 0.0], [3.0, 0.2, 0.0], [3.0, 0.1, 2.0]];
         let b = [[-3.0, 0.2, 0.0], [3.0, 0.1, 2.0], [-3.0, 0.1, 2.0]];
         let c = [[-3.0, 0.2, 0.0], [-3.0, 0.1, -2.0], [3.0, 0.1, -2.0]];
         let d = [[-3.0, 0.2, 0.0], [3.0, 0.1, -2.0], [3.0, 0.2, 0.0]];
-        let ground = Ground::surface(&[a, b, c, d]).unwrap();
+        Ground::surface(&[a, b, c, d]).unwrap()
+    }
+
+    #[test]
+    fn a_ridge_under_a_base_edge_touches_where_they_cross() {
+        let ground = ridge_along_x();
         let outline = square(1.0);
         let base = Footprint {
             outline: &outline,
@@ -428,15 +432,11 @@ mod tests {
 
     #[test]
     fn a_base_edge_lying_nearly_along_a_ridge_meets_it_along_no_level_normal() {
-        // The ridge of the test above (its crest along X at Z = 0, 0.2 m high); a base whose
+        // The ridge along X (its crest at Z = 0, 0.2 m high); a base whose
         // edge z′ = -1 lies along the crest 1 µm above it, turned by 1e-5 rad so that it
         // crosses the crest in plan and tilted along it by 1e-4 rad. Along a crest the normal
         // across both edges is nearly level: no normal of the rock or the base there.
-        let a = [[-3.0, 0.2, 0.0], [3.0, 0.2, 0.0], [3.0, 0.1, 2.0]];
-        let b = [[-3.0, 0.2, 0.0], [3.0, 0.1, 2.0], [-3.0, 0.1, 2.0]];
-        let c = [[-3.0, 0.2, 0.0], [-3.0, 0.1, -2.0], [3.0, 0.1, -2.0]];
-        let d = [[-3.0, 0.2, 0.0], [3.0, 0.1, -2.0], [3.0, 0.2, 0.0]];
-        let ground = Ground::surface(&[a, b, c, d]).unwrap();
+        let ground = ridge_along_x();
         let outline = square(1.0);
         let base = Footprint {
             outline: &outline,

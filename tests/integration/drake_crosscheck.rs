@@ -556,19 +556,26 @@ fn base_climbing_a_ramp_beside_a_flank_agrees_with_drake() {
 /// half-spaces or its surface as boxes and prisms, its ridges as rows of points), as
 /// [`follows_drake`] says.
 fn body_follows_drake(name: &str, horizon: f64, at_least: f64) {
+    body_follows("drake_body.py", name, horizon, at_least, &["--grid", "20"]);
+}
+
+/// A scene of `scenes/body/` against `script` (in `crosscheck/`, with `extra` arguments), as
+/// [`follows_drake`] says.
+fn body_follows(script: &str, name: &str, horizon: f64, at_least: f64, extra: &[&str]) {
     let file = root().join("scenes/body").join(format!("{name}.toml"));
     let scene = Scene::from_file(&file)
         .unwrap()
         .with("solver.t_end_s", horizon)
         .unwrap();
     let cols = ["t_s", "bx_m", "by_m", "bz_m", "theta_deg"];
-    let args = ["--grid", "20", "--quiet"];
+    let mut args = vec!["--quiet"];
+    args.extend(extra);
     follows_drake(
         name,
         &file,
         &scene,
         horizon,
-        ("drake_body.py", &args, cols),
+        (script, &args, cols),
         at_least,
     );
 }
@@ -587,22 +594,7 @@ fn a_block_turning_on_a_plane_dipping_downstream_follows_drakes_whole_body() {
 /// as [`follows_drake`] says: the reference on rough ground, where Drake's point contact against
 /// convex prisms is not exact (`crosscheck/README.md`, "A bed of springs on the triangles").
 fn body_follows_bed(name: &str, horizon: f64, at_least: f64, extra: &[&str]) {
-    let file = root().join("scenes/body").join(format!("{name}.toml"));
-    let scene = Scene::from_file(&file)
-        .unwrap()
-        .with("solver.t_end_s", horizon)
-        .unwrap();
-    let cols = ["t_s", "bx_m", "by_m", "bz_m", "theta_deg"];
-    let mut args = vec!["--quiet"];
-    args.extend(extra);
-    follows_drake(
-        name,
-        &file,
-        &scene,
-        horizon,
-        ("bed_body.py", &args, cols),
-        at_least,
-    );
+    body_follows("bed_body.py", name, horizon, at_least, extra);
 }
 
 #[test]
