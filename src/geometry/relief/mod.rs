@@ -39,8 +39,8 @@ pub struct Relief {
     faces: Vec<ReliefFace>,
     /// The edges where the relief bends or ends (pairs of vertex indices).
     edges: Vec<[usize; 2]>,
-    /// The faces beside each edge: two at a bend, one on the rim.
-    edge_faces: Vec<Vec<usize>>,
+    /// Each edge's normals into the block where it is convex on the block (`keel`).
+    keels: Vec<Option<[Vector3<f64>; 2]>>,
     face_tree: RTree<Boxed>,
     edge_tree: RTree<Boxed>,
 }
@@ -65,6 +65,11 @@ impl Relief {
                 fs.len() != 2 || (faces[fs[0]].normal - faces[fs[1]].normal).norm() > 1e-9
             })
             .unzip();
+        let keels = edges
+            .iter()
+            .zip(&edge_faces)
+            .map(|(&e, fs)| keel_of(&vertices, &faces, e, fs))
+            .collect();
         let plan = |ids: &mut dyn Iterator<Item = usize>| {
             let mut lo = [f64::INFINITY; 2];
             let mut hi = [f64::NEG_INFINITY; 2];
@@ -93,7 +98,7 @@ impl Relief {
             vertices,
             faces,
             edges,
-            edge_faces,
+            keels,
             face_tree,
             edge_tree,
         }
@@ -119,37 +124,7 @@ impl Relief {
     /// normals into the block of the faces that meet there: the relief's (body axes), and on
     /// the rim the block's side's, level, into the block.
     pub fn keel(&self, k: usize) -> Option<[Vector3<f64>; 2]> {
-        let [i, j] = self.edges[k];
-        let (p, q) = (self.vertices[i], self.vertices[j]);
-        match self.edge_faces[k][..] {
-            [f] => {
-                // Level, at right angles to the edge, towards the face's middle.
-                let face = &self.faces[f];
-                let mid = face
-                    .corners
-                    .iter()
-                    .map(|&c| self.vertices[c])
-                    .sum::<Vector3<f64>>()
-                    / face.corners.len() as f64;
-                let d = q - p;
-                let mut inward = Vector3::new(-d.z, 0.0, d.x).normalize();
-                if inward.dot(&(mid - p)) < 0.0 {
-                    inward = -inward;
-                }
-                Some([face.normal, inward])
-            }
-            [f, g] => {
-                let (a, b) = (&self.faces[f], &self.faces[g]);
-                let far = b
-                    .corners
-                    .iter()
-                    .map(|&c| self.vertices[c])
-                    .map(|w| (w - p).dot(&a.normal))
-                    .fold(f64::NEG_INFINITY, f64::max);
-                (far > 1e-9 * (q - p).norm()).then_some([a.normal, b.normal])
-            }
-            _ => None,
-        }
+        self.keels[k]
     }
 
     /// The faces whose plan (x′, z′) holds the point `p` (its boundary, within round-off,
@@ -216,5 +191,44 @@ impl Relief {
     /// The largest distance of a vertex from the centre of mass (m).
     pub fn reach(&self) -> f64 {
         self.vertices.iter().map(|v| v.norm()).fold(0.0, f64::max)
+    }
+}
+
+/// [`Relief::keel`] of the edge from vertex `i` to `j` with the faces `beside` it.
+fn keel_of(
+    vertices: &[Vector3<f64>],
+    faces: &[ReliefFace],
+    [i, j]: [usize; 2],
+    beside: &[usize],
+) -> Option<[Vector3<f64>; 2]> {
+    let (p, q) = (vertices[i], vertices[j]);
+    match beside[..] {
+        [f] => {
+            // Level, at right angles to the edge, towards the face's middle.
+            let face = &faces[f];
+            let mid = face
+                .corners
+                .iter()
+                .map(|&c| vertices[c])
+                .sum::<Vector3<f64>>()
+                / face.corners.len() as f64;
+            let d = q - p;
+            let mut inward = Vector3::new(-d.z, 0.0, d.x).normalize();
+            if inward.dot(&(mid - p)) < 0.0 {
+                inward = -inward;
+            }
+            Some([face.normal, inward])
+        }
+        [f, g] => {
+            let (a, b) = (&faces[f], &faces[g]);
+            let far = b
+                .corners
+                .iter()
+                .map(|&c| vertices[c])
+                .map(|w| (w - p).dot(&a.normal))
+                .fold(f64::NEG_INFINITY, f64::max);
+            (far > 1e-9 * (q - p).norm()).then_some([a.normal, b.normal])
+        }
+        _ => None,
     }
 }
