@@ -5,6 +5,7 @@
 //! j' (c > 0 turns the block so that θ grows); weight −m g along Y; each normal reaction lies
 //! along the upward unit normal of its contact's plane and each shear reaction in that plane.
 
+pub mod held;
 pub mod impulses;
 pub mod loads;
 pub mod onset;

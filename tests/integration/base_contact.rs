@@ -135,6 +135,55 @@ fn a_kicked_block_on_level_ground_stops_where_friction_says() {
 }
 
 #[test]
+fn a_block_kicked_against_a_push_it_cannot_hold_turns_back_where_it_comes_to_rest() {
+    // Pushed along +X by 0.3 W with μ = 0.2 and kicked along −X: it slows at 0.5 g, comes to
+    // rest exactly at the end of step 300, and, the push beyond what friction holds, slides
+    // back at 0.1 g. At rest for an instant it is slow, but not held: it must not stop there.
+    let (mu, g, h) = (0.2, 9.81, 1e-3);
+    let v0 = 0.5 * g * 300.0 * h;
+    let text = block_scene(
+        &plane(0.0, 0.0),
+        mu,
+        &format!("[initial]\nvx_m_s = {}", -v0),
+        1.0,
+        h,
+    )
+    .replace(
+        "hydraulic_force_n = 0.0",
+        &format!("hydraulic_force_n = {}", 0.3 * 1e6 * g),
+    );
+    let route = run(&text);
+    assert_eq!(route.termination.reason, Reason::TimeLimit);
+    let back = 0.5 * 0.1 * g * 0.7 * 0.7;
+    let want = -v0 * v0 / (2.0 * 0.5 * g) + back;
+    let last = route.rows.last().unwrap();
+    assert!(
+        (last.x_m - want).abs() < 2e-3,
+        "{} against {want}",
+        last.x_m
+    );
+}
+
+#[test]
+fn a_block_twisted_beyond_its_beds_friction_turns_though_forces_at_its_corners_could_hold_it() {
+    // A 4 m square base on level rock, μ = 0.4, pushed by 0.05 W with a couple of 8.3 MN·m
+    // (17 m off its centre). Forces at its corners could hold a couple of μ W √2 a = 11.1 MN·m,
+    // so a rigid equilibrium exists; but it presses evenly over its area, whose friction holds
+    // μ W a (√2 + ln(1 + √2)) / 3 = 6.0 MN·m (derivations/13-base-contact.md §6, §9): it turns.
+    let g = 9.81;
+    let text = block_scene(&plane(0.0, 0.0), 0.4, "", 0.5, 1e-3)
+        .replace(
+            "hydraulic_force_n = 0.0",
+            &format!("hydraulic_force_n = {}", 0.05 * 1e6 * g),
+        )
+        .replace("eccentricity_m = 0.0", "eccentricity_m = 17.0");
+    let route = run(&text);
+    assert_eq!(route.termination.reason, Reason::TimeLimit);
+    let last = route.rows.last().unwrap();
+    assert!(last.theta_deg.abs() > 1.0, "{last:?}");
+}
+
+#[test]
 fn a_block_spun_on_level_rock_stops_as_friction_over_its_whole_base_says() {
     // A 4 m square base pressing evenly: the friction's moment about its centre is
     // μ m g ∫|r| dA / A = μ m g a (√2 + ln(1 + √2)) / 6, and the spin stops after turning

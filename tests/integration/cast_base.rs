@@ -50,15 +50,17 @@ fn on_teeth(dir: &Path, push: f64, mu: f64, cast: bool, t_end: f64) -> Route {
 #[test]
 fn a_base_cast_on_asperities_holds_below_w_tan_phi_plus_i_where_a_flat_one_slides() {
     let dir = sawtooth(10.0, "hold");
-    // μ = 0.5 (φ = 26.57°), i = 10°: the cast base holds up to tan 36.57° = 0.7415 W.
-    let held = on_teeth(&dir, 0.73, 0.5, true, 0.5);
+    // μ = 0.5 (φ = 26.57°), i = 10°: the cast base holds up to tan 36.57° = 0.7415 W, to the
+    // thousandth: whether it is held is a cone program over its touches, not a step's sweeps.
+    let limit = (0.5f64.atan() + 10f64.to_radians()).tan();
+    let held = on_teeth(&dir, 0.999 * limit, 0.5, true, 0.5);
     assert_eq!(
         held.termination.reason,
         Reason::DoesNotSlide,
         "{:?}",
         held.termination
     );
-    let pushed = on_teeth(&dir, 0.75, 0.5, true, 0.5);
+    let pushed = on_teeth(&dir, 1.001 * limit, 0.5, true, 1.0);
     assert_eq!(
         pushed.termination.reason,
         Reason::TimeLimit,
@@ -313,8 +315,8 @@ fn the_energy_balance_of_a_block_riding_over_teeth_closes_at_the_first_order_of_
 #[test]
 fn a_monolith_cast_onto_rough_rock_is_held_where_its_flat_base_slides() {
     // scenes/body/cast-monolith.toml: 15.5 m of headwater, μ = 0.48, cells within 6.2° of level.
-    // Cast, it rests on hundreds of touches at once, and whether it is held is asked with a
-    // converged impulse solve (a step's left a micrometre's creep that then stopped).
+    // Cast, it rests on hundreds of touches at once, and whether it is held is asked of a cone
+    // program over them (a step's sweeps left a micrometre's creep that then stopped).
     let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/body/cast-monolith.toml");
     let scene = Scene::from_file(&file).unwrap();
     let cast = slideroute::run(&scene).unwrap();
@@ -339,4 +341,92 @@ fn a_monolith_cast_onto_rough_rock_is_held_where_its_flat_base_slides() {
         flat.termination
     );
     assert!(travel_along(&flat) > 0.05, "{}", travel_along(&flat));
+}
+
+/// crosscheck/make_terrain.py's bump: level ground on a 2 m grid (X −24 to 40 m, Z ±20 m) with
+/// a ridge of two faces rising at `deg` degrees to a crest along Z at X = `at`, 2 m wide (an
+/// OBJ in a fresh folder).
+fn ridge(deg: f64, at: f64, tag: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("slideroute-ridge-{tag}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut xs: Vec<f64> = (0..=32).map(|k| -24.0 + 2.0 * k as f64).collect();
+    xs.extend([at - 1.0, at, at + 1.0]);
+    xs.sort_by(f64::total_cmp);
+    xs.dedup_by(|a, b| (*a - *b).abs() < 1e-9);
+    let zs: Vec<f64> = (0..=20).map(|k| -20.0 + 2.0 * k as f64).collect();
+    let t = deg.to_radians().tan();
+    let mut obj = String::new();
+    for x in &xs {
+        for z in &zs {
+            let y = t * (1.0 - (x - at).abs()).max(0.0);
+            obj.push_str(&format!("v {x} {y} {z}\n"));
+        }
+    }
+    let id = |i: usize, j: usize| i * zs.len() + j + 1;
+    for i in 0..xs.len() - 1 {
+        for j in 0..zs.len() - 1 {
+            let (p, q, r, s) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
+            obj.push_str(&format!("f {p} {s} {r}\nf {p} {r} {q}\n"));
+        }
+    }
+    std::fs::write(dir.join("ridge.obj"), obj).unwrap();
+    dir
+}
+
+#[test]
+fn a_block_cast_over_a_ridge_and_held_by_its_flank_stays_where_it_was_cast() {
+    // Fuzz seed 14, case 26: a 7.6 m square block cast over a 12.5° ridge 1.8 m behind its
+    // centre, pushed by 0.66 W off its centre, μ = 0.449 (φ = 24.2°). It rests on 370 touches;
+    // a step's sweeps, and 40 000 of them in a trial step, left it moving at 7e-7 m/s, and it
+    // crept 2 µm to the time limit. The cone program over the touches holds it (a bed of springs
+    // on the triangles creeps 2.4 mm in 0.3 s at a sink of 0.1 mm, 1.0 mm and slowing at
+    // 25 µm: its creep is its compliance).
+    let dir = ridge(12.5, -1.8, "held");
+    let a = 3.797329255668137;
+    let text = format!(
+        r#"
+name = "cast over a ridge"
+[frame]
+contacts_m = [[{m}, {a}], [{a}, {a}], [{a}, {m}]]
+[block]
+mass_kg = 1.0e6
+inertia_kg_m2 = 9.6131e6
+[loads]
+hydraulic_force_n = 6.484e6
+eccentricity_m = -0.66
+gravity_m_s2 = 9.81
+[foundation]
+surface = "ridge.obj"
+[friction]
+model = "coulomb"
+mu_k = 0.449
+[solver]
+mode = "exact"
+dt_s = 1.0e-3
+t_end_s = 1.5
+contacts = "base"
+[base]
+cast = true
+"#,
+        m = -a
+    );
+    let file = dir.join("ridge.toml");
+    std::fs::write(&file, text).unwrap();
+    let scene = Scene::from_file(&file).unwrap();
+    let route = slideroute::run(&scene).unwrap();
+    assert_eq!(
+        route.termination.reason,
+        Reason::DoesNotSlide,
+        "{:?}",
+        route.termination
+    );
+    // Pushed a fifth harder it slides, and climbs the flank.
+    let pushed = slideroute::run(&scene.with("loads.hydraulic_force_n", 7.8e6).unwrap()).unwrap();
+    assert_eq!(pushed.termination.reason, Reason::TimeLimit);
+    let (first, last) = (pushed.rows[0], *pushed.rows.last().unwrap());
+    assert!(
+        last.x_m - first.x_m > 0.01 && last.y_m > first.y_m,
+        "{last:?}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
 }

@@ -46,6 +46,12 @@ use step::{Ctx, HELD_SOLVE, STEP_SOLVE, Stepped};
 /// The tilt of the base from level beyond which the block has overturned (degrees).
 pub const OVERTURN_DEG: f64 = 60.0;
 
+/// The speed, as a fraction of g h, under which a step leaves a block held where a rigid
+/// equilibrium exists (`derivations/13-base-contact.md` §6): a thousandth of what its weight
+/// gives it in a step, above what a step's unconverged sweeps leave a held block with, below
+/// a block that the loads move on.
+const SLOW: f64 = 1e-3;
+
 /// Samples along each side of the base in the independent check of its penetration.
 const PENETRATION_SAMPLES: usize = 6;
 
@@ -116,11 +122,28 @@ impl<'a> OnBase<'a> {
         }
     }
 
-    /// Whether the block in state `s` is still: its speed, and its turning at its size, below a
-    /// millionth of what its weight gives it in a step `h`.
-    fn still(&self, s: &BodyState, h: f64) -> bool {
+    /// Whether the block in state `s` is slow: its speed, and its turning at its size, below
+    /// [`SLOW`] of what its weight gives it in a step `h`.
+    fn slow(&self, s: &BodyState, h: f64) -> bool {
         let g = self.sim.loads().gravity;
-        s.v.norm() + s.w.norm() * self.size <= 1e-6 * g * h
+        s.v.norm() + s.w.norm() * self.size <= SLOW * g * h
+    }
+
+    /// Whether static friction holds the block at rest where it is, at time `t`
+    /// (`derivations/13-base-contact.md` §6): a rigid equilibrium exists (`Ctx::equilibrium`;
+    /// a cone program that fails says no, and the steps go on), and a trial step of `h` from
+    /// rest, its impulses solved to convergence, leaves it slow.
+    fn held(&self, t: f64, h: f64) -> bool {
+        if !self.ctx().equilibrium(&self.s.pose, t).unwrap_or(false) {
+            return false;
+        }
+        let mut trial = BodyState::at_rest(self.s.pose);
+        let converged = Ctx {
+            solve: HELD_SOLVE,
+            ..self.ctx()
+        };
+        converged.step(&mut trial, t, h, &self.last);
+        self.slow(&trial, h)
     }
 
     /// The base's tilt from level (degrees).
@@ -253,23 +276,14 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
         };
         o.push(body.row());
         let shaken = sim.record().is_some_and(|r| r.end() > 0.0);
-        if init.at_rest() && !shaken {
-            // Held where it rests? One trial step under the loads.
-            let mut trial = body.s;
-            let held = Ctx {
-                solve: HELD_SOLVE,
-                ..body.ctx()
-            };
-            held.step(&mut trial, 0.0, h, &body.last);
-            if body.still(&trial, h) {
-                body.seal(&mut o);
-                o.energy = Some(EnergyBalance::default());
-                return Start::Ended(o.end(
-                    Reason::DoesNotSlide,
-                    0.0,
-                    "static friction holds the block where it rests on its base".into(),
-                ));
-            }
+        if init.at_rest() && !shaken && body.held(0.0, h) {
+            body.seal(&mut o);
+            o.energy = Some(EnergyBalance::default());
+            return Start::Ended(o.end(
+                Reason::DoesNotSlide,
+                0.0,
+                "static friction holds the block where it rests on its base".into(),
+            ));
         }
         Start::Moving(body, o)
     }
@@ -316,7 +330,9 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
             );
         }
         let shaken = self.sim.record().is_some();
-        if !shaken && self.still(&self.s, h) {
+        if !shaken && self.slow(&self.s, h) && self.held(self.t, h) {
+            self.s.v = Vector3::zeros();
+            self.s.w = Vector3::zeros();
             return self.end(
                 o,
                 Reason::Stopped,

@@ -7,8 +7,10 @@ use crate::geometry::{
     BodyPose, Feature, Footprint, Ground, LocalFrame, Relief, Touch, Touches, relief_touches,
     touches,
 };
+use crate::mechanics::held::{Support, held};
 use crate::mechanics::impulses::{self, Body, ContactRow, Patch};
 use crate::mechanics::loads::Applied;
+use crate::mechanics::static_friction::StaticError;
 use crate::model::Simulation;
 use nalgebra::{Matrix3, Vector3};
 
@@ -132,6 +134,10 @@ pub(super) const STEP_SOLVE: (f64, usize) = (1e-7, 400);
 /// hundreds at once, and a step's solve leaves a creep of a micrometre that then stops).
 pub(super) const HELD_SOLVE: (f64, usize) = (1e-10, 40_000);
 
+/// The widest gap, as a fraction of the base's size, of a touch that supports a block at rest
+/// ([`Ctx::equilibrium`]): the depth a route may reach (`derivations/13-base-contact.md` §5).
+const SUPPORT_GAP: f64 = 1e-6;
+
 /// The deepest a base may stay in the ground after a step, as a fraction of its size.
 const DEPTH_TOL: f64 = 1e-8;
 
@@ -199,6 +205,29 @@ impl Ctx<'_> {
             crate::model::Friction::Coulomb { mu_k } => mu_k,
             other => other.coefficient(1.0),
         }
+    }
+
+    /// Whether a rigid equilibrium of the block at rest at `pose` under the loads at time `t`
+    /// exists (`mechanics::held`): forces at the touches within [`SUPPORT_GAP`] of the base's
+    /// size, each within its cone, that balance the loads. Necessary for static friction to
+    /// hold it, whatever the law that shares the pressure over a flush base (§9 of
+    /// `derivations/13-base-contact.md`); whether that law holds it too is the step's to say.
+    pub fn equilibrium(&self, pose: &BodyPose, t: f64) -> Result<bool, StaticError> {
+        let reach = SUPPORT_GAP * self.size;
+        let supports: Vec<Support> = self
+            .touches(pose, reach, 0.0)
+            .touches
+            .iter()
+            .filter(|c| c.gap <= reach)
+            .map(|c| Support {
+                arm: c.on_base - pose.cm,
+                normal: c.normal,
+                mu: self.mu(c.face),
+            })
+            .collect();
+        let (force, moment, _) = self.loads(pose, t);
+        let weight = self.sim.block().mass * self.sim.loads().gravity;
+        held(&supports, force, moment, weight, self.size)
     }
 
     /// The weight's impulse over a step `h` (N·s): the scale of a step's impulses.

@@ -1,0 +1,248 @@
+//! Whether a block at rest on any number of contacts is held by static friction
+//! (`derivations/13-base-contact.md` §6): does a state of contact forces exist, each inside its
+//! friction cone, that balances the loads?
+//!
+//! The question of `static_friction.rs` for the three-point frame, asked of a base touching the
+//! rock at many points: with the block at rest, the six equilibrium equations
+//! Σ f_i + F = 0 and Σ r_i × f_i + M = 0 are linear in the contact forces
+//! f_i = λ_i n_i + a_i t1_i + b_i t2_i, and each cone |(a_i, b_i)| ≤ μ_i λ_i, λ_i ≥ 0 is a
+//! second-order cone. Whether the set of such forces is empty is one feasibility program
+//! (Clarabel). It is the rigid body's criterion: a base lying flush over an area is held by it
+//! exactly when it is held by forces at the area's corners, since a force inside the hull of
+//! points on one plane splits among them within their cones with the same resultant and moment.
+
+use super::static_friction::StaticError;
+use clarabel::algebra::CscMatrix;
+use clarabel::solver::{
+    DefaultSettings, DefaultSolver, IPSolver, SolverStatus, SupportedConeT::NonnegativeConeT,
+    SupportedConeT::SecondOrderConeT, SupportedConeT::ZeroConeT,
+};
+use nalgebra::Vector3;
+
+/// A contact of a block at rest, free to carry any force within its cone.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Support {
+    /// r: from the centre of mass to the contact point (m).
+    pub arm: Vector3<f64>,
+    /// n: unit normal into the block.
+    pub normal: Vector3<f64>,
+    /// μ.
+    pub mu: f64,
+}
+
+/// Whether the `supports` hold the block against the force `force` (N, the weight included)
+/// and the moment `moment` about its centre of mass (N·m). `weight` (N) and `size` (m) scale
+/// the program; an infeasible program means the loads start the block.
+pub fn held(
+    supports: &[Support],
+    force: Vector3<f64>,
+    moment: Vector3<f64>,
+    weight: f64,
+    size: f64,
+) -> Result<bool, StaticError> {
+    if supports.is_empty() {
+        return Ok(false);
+    }
+    if !(weight > 0.0 && weight.is_finite() && size > 0.0 && size.is_finite()) {
+        return Err(StaticError::Solver(format!(
+            "the scales must be positive and finite (weight {weight} N, size {size} m)"
+        )));
+    }
+    let mut p = Program::new(supports.len());
+    // A force `dir` (in weights) at `arm` on the six equations, in column `col`.
+    let on_equations = |p: &mut Program, col: usize, arm: &Vector3<f64>, dir: Vector3<f64>| {
+        let lever = (arm / size).cross(&dir);
+        for (r, v) in dir.iter().chain(lever.iter()).enumerate() {
+            p.put(r, col, *v);
+        }
+    };
+    for (i, s) in supports.iter().enumerate() {
+        let (cone, floor) = (p.cone(i), p.floor(i));
+        let t1 = tangent(&s.normal);
+        let t2 = s.normal.cross(&t1);
+        for (k, dir) in [s.normal, t1, t2].into_iter().enumerate() {
+            let col = 3 * i + k;
+            on_equations(&mut p, col, &s.arm, dir);
+            // The cone's rows: s = (μ λ, a, b) = −A x; and λ ≥ 0 (the cone alone lets a
+            // frictionless contact pull).
+            p.put(cone + k, col, if k == 0 { -s.mu } else { -1.0 });
+            if k == 0 {
+                p.put(floor, col, -1.0);
+            }
+        }
+    }
+    let mut b = vec![0.0; p.rows()];
+    for k in 0..3 {
+        b[k] = -force[k] / weight;
+        b[3 + k] = -moment[k] / (weight * size);
+    }
+    p.feasible(&b)
+}
+
+/// The feasibility program's matrix, assembled by column: the six equations, then each
+/// support's cone (three rows), then each one's floor (one row).
+struct Program {
+    columns: Vec<Vec<(usize, f64)>>,
+    m: usize,
+}
+
+impl Program {
+    /// The program of `m` supports: three columns each.
+    fn new(m: usize) -> Program {
+        Program {
+            columns: vec![Vec::new(); 3 * m],
+            m,
+        }
+    }
+
+    fn rows(&self) -> usize {
+        6 + 4 * self.m
+    }
+
+    /// The first row of support `i`'s cone.
+    fn cone(&self, i: usize) -> usize {
+        6 + 3 * i
+    }
+
+    /// The row of support `i`'s floor (λ_i ≥ 0).
+    fn floor(&self, i: usize) -> usize {
+        6 + 3 * self.m + i
+    }
+
+    fn put(&mut self, row: usize, col: usize, v: f64) {
+        if v != 0.0 {
+            self.columns[col].push((row, v));
+        }
+    }
+
+    /// Whether A x + s = b has a solution with s in the cones (Clarabel, no objective).
+    fn feasible(mut self, b: &[f64]) -> Result<bool, StaticError> {
+        let n = self.columns.len();
+        let mut colptr = Vec::with_capacity(n + 1);
+        let (mut rowval, mut nzval) = (Vec::new(), Vec::new());
+        colptr.push(0);
+        for col in &mut self.columns {
+            col.sort_by_key(|e| e.0);
+            for (r, v) in col.iter() {
+                rowval.push(*r);
+                nzval.push(*v);
+            }
+            colptr.push(rowval.len());
+        }
+        let a = CscMatrix::new(self.rows(), n, colptr, rowval, nzval);
+        let mut cones = vec![ZeroConeT(6)];
+        cones.extend(std::iter::repeat_n(SecondOrderConeT(3), self.m));
+        cones.push(NonnegativeConeT(self.m));
+        let p = CscMatrix::<f64>::zeros((n, n));
+        let q = vec![0.0; n];
+        let settings = DefaultSettings {
+            verbose: false,
+            ..DefaultSettings::default()
+        };
+        let mut solver = DefaultSolver::new(&p, &q, &a, b, &cones, settings)
+            .map_err(|e| StaticError::Solver(e.to_string()))?;
+        solver.solve();
+        match solver.solution.status {
+            SolverStatus::Solved | SolverStatus::AlmostSolved => Ok(true),
+            SolverStatus::PrimalInfeasible | SolverStatus::AlmostPrimalInfeasible => Ok(false),
+            other => Err(StaticError::Solver(format!("{other:?}"))),
+        }
+    }
+}
+
+/// A unit tangent to `n`.
+fn tangent(n: &Vector3<f64>) -> Vector3<f64> {
+    let helper = if n.x.abs() < 0.9 {
+        Vector3::x()
+    } else {
+        Vector3::z()
+    };
+    n.cross(&helper).normalize()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const W: f64 = 1000.0 * 9.81;
+
+    /// The four corners of a 2a × 2a base at depth d below the CM, on level ground.
+    fn corners(a: f64, d: f64, mu: f64) -> Vec<Support> {
+        [(-a, -a), (a, -a), (a, a), (-a, a)]
+            .iter()
+            .map(|&(x, z)| Support {
+                arm: Vector3::new(x, -d, z),
+                normal: Vector3::y(),
+                mu,
+            })
+            .collect()
+    }
+
+    fn holds(s: &[Support], force: Vector3<f64>, moment: Vector3<f64>) -> bool {
+        held(s, force - Vector3::y() * W, moment, W, 2.0).unwrap()
+    }
+
+    #[test]
+    fn a_block_on_level_ground_is_held_by_a_push_up_to_mu_times_its_weight() {
+        let s = corners(1.0, 0.5, 0.6);
+        // Pushed at the height of its CM, 0.5 m above the base: it would tip only at H·0.5 = W·1.
+        let push = |h: f64| {
+            let f = Vector3::new(h, 0.0, 0.0);
+            holds(&s, f, Vector3::zeros())
+        };
+        assert!(push(0.999 * 0.6 * W));
+        assert!(!push(1.001 * 0.6 * W));
+    }
+
+    #[test]
+    fn a_couple_about_the_vertical_is_held_up_to_the_corners_friction_times_their_arm() {
+        // Each corner carries W/4 and μ W/4 across its arm of √2 a: T = μ W √2 a.
+        let (a, mu) = (1.5, 0.4);
+        let s = corners(a, 1.0, mu);
+        let limit = mu * W * 2f64.sqrt() * a;
+        let turn = |t: f64| holds(&s, Vector3::zeros(), Vector3::new(0.0, t, 0.0));
+        assert!(turn(0.999 * limit));
+        assert!(!turn(1.001 * limit));
+    }
+
+    #[test]
+    fn a_push_high_above_the_base_tips_the_block_however_rough_the_ground() {
+        // H at 3 m above the base (2.5 m above the CM) about the front edge: tips when
+        // H · 3 > W · a.
+        let s = corners(1.0, 0.5, 10.0);
+        let tip = W / 3.0;
+        let push = |h: f64| {
+            let f = Vector3::new(h, 0.0, 0.0);
+            // The couple of a force at 2.5 m above the CM along +X: r × F = (0, 2.5, 0) × (H, 0, 0).
+            holds(&s, f, Vector3::new(0.0, 2.5, 0.0).cross(&f))
+        };
+        assert!(push(0.999 * tip));
+        assert!(!push(1.001 * tip));
+    }
+
+    #[test]
+    fn a_frictionless_block_on_an_incline_is_not_held_and_on_level_ground_it_is() {
+        let dip = 10f64.to_radians();
+        let n = Vector3::new(dip.sin(), dip.cos(), 0.0);
+        let mut s = corners(1.0, 0.5, 0.0);
+        assert!(holds(&s, Vector3::zeros(), Vector3::zeros()));
+        for c in &mut s {
+            c.normal = n;
+        }
+        assert!(!holds(&s, Vector3::zeros(), Vector3::zeros()));
+        // With friction above tan 10° it is.
+        for c in &mut s {
+            c.mu = 1.01 * dip.tan();
+        }
+        assert!(holds(&s, Vector3::zeros(), Vector3::zeros()));
+    }
+
+    #[test]
+    fn a_block_with_nothing_under_it_is_not_held_and_bad_scales_are_an_error() {
+        let down = -Vector3::y() * W;
+        assert!(!held(&[], down, Vector3::zeros(), W, 1.0).unwrap());
+        let s = corners(1.0, 0.5, 0.5);
+        assert!(held(&s, down, Vector3::zeros(), 0.0, 1.0).is_err());
+        assert!(held(&s, down, Vector3::zeros(), W, f64::NAN).is_err());
+    }
+}
