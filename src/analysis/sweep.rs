@@ -99,7 +99,7 @@ impl std::str::FromStr for Vary {
         if key.split('.').count() != 2 || key.split('.').any(str::is_empty) {
             return Err(bad("KEY must be `section.key`"));
         }
-        if range.contains(',') || words_of(key).is_some() {
+        if range.contains(',') || takes_words(key) {
             return list(key, range).map_err(|why| bad(&why));
         }
         let parts: Vec<&str> = range.split(':').collect();
@@ -156,8 +156,12 @@ fn list(key: &str, range: &str) -> Result<Vary, String> {
     if items.len() > MAX_VALUES {
         return Err(format!("the list has more than {MAX_VALUES} items"));
     }
-    if let Some(allowed) = words_of(key) {
-        if let Some(w) = items.iter().find(|w| !allowed.contains(w)) {
+    if takes_words(key) {
+        let allowed = words_of(key);
+        let stranger = allowed
+            .as_ref()
+            .and_then(|a| items.iter().find(|w| !a.contains(w)).map(|w| (w, a)));
+        if let Some((w, allowed)) = stranger {
             return Err(format!(
                 "`{w}` is not one of {} (the key takes words, as a list)",
                 allowed.join(", ")
@@ -193,13 +197,31 @@ const OPTIONAL_KEYS: [&str; 9] = [
 /// Keys that take whole numbers.
 const INTEGER_KEYS: [&str; 1] = ["solver.stride"];
 
-/// The words a key takes, for a key that takes words: the names the scene itself accepts.
+/// Keys that name a file beside the scene: any word is a value (the scene, read again, says
+/// whether the file is there and what is in it).
+const FILE_KEYS: [&str; 5] = [
+    "foundation.surface",
+    "seismic.record",
+    "seismic.record_x",
+    "seismic.record_y",
+    "seismic.record_z",
+];
+
+/// Whether `key` takes words: those of [`words_of`], or a file's name.
+fn takes_words(key: &str) -> bool {
+    words_of(key).is_some() || FILE_KEYS.contains(&key)
+}
+
+/// The words a key takes, for a key that takes words from a list: the names the scene itself
+/// accepts.
 fn words_of(key: &str) -> Option<Vec<&'static str>> {
     Some(match key {
         "solver.dynamics" => DynamicsModel::ALL.map(DynamicsModel::as_str).to_vec(),
         "solver.integrator" => Integrator::ALL.map(Integrator::as_str).to_vec(),
         "solver.mode" => Mode::ALL.map(Mode::as_str).to_vec(),
         "friction.model" => Friction::MODELS.to_vec(),
+        "seismic.units" => vec!["g", "m/s2", "cm/s2"],
+        "seismic.polarity" => vec!["normal", "reversed"],
         _ => return None,
     })
 }
@@ -242,7 +264,7 @@ pub fn check_key(base: &Scene, key: &str, words: bool, values: &[f64]) -> Result
         )),
         None => Ok(()),
     };
-    let takes_words = words_of(key).is_some();
+    let takes_words = takes_words(key);
     match sec.get(name) {
         None if optional && INTEGER_KEYS.contains(&key) => whole(values),
         None if optional => Ok(()),
@@ -410,6 +432,12 @@ mod tests {
         let words = vary("solver.dynamics=paper,rigid-body");
         assert_eq!(words.values, vec![0.0, 1.0]);
         assert_eq!(words.cell(1.0), "rigid-body");
+        // A file's name is any word; a polarity one of two.
+        let files = vary("seismic.record_x=RSN1_X.AT2,RSN2_X.AT2");
+        assert_eq!(files.cell(1.0), "RSN2_X.AT2");
+        assert_eq!(vary("seismic.record=motion.csv").words.unwrap().len(), 1);
+        let e = "seismic.polarity=normal,up".parse::<Vary>().unwrap_err();
+        assert!(e.reason.contains("not one of normal, reversed"), "{e}");
         for bad in ["solver.dynamics=0:1:2", "solver.dynamics=paper,rigid"] {
             let e = bad.parse::<Vary>().unwrap_err();
             assert!(e.reason.contains("not one of paper, rigid-body"), "{e}");

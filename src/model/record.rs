@@ -74,6 +74,27 @@ impl Record {
         self.t.get(k).copied()
     }
 
+    /// The same record with every acceleration times `k` (a scale, a polarity): refused where
+    /// a sample then exceeds 10 g.
+    pub fn scaled(&self, k: f64) -> Result<Record, ModelError> {
+        Record::new(
+            self.t
+                .iter()
+                .zip(&self.a)
+                .map(|(t, a)| (*t, a.map(|v| v * k)))
+                .collect(),
+        )
+    }
+
+    /// The peak ground acceleration (g): the largest |a| of a horizontal component (X or Z)
+    /// at any sample.
+    pub fn pga(&self) -> f64 {
+        self.a
+            .iter()
+            .map(|a| a[0].abs().max(a[2].abs()))
+            .fold(0.0, f64::max)
+    }
+
     /// The last sample's time (s): after it the ground is still.
     pub fn end(&self) -> f64 {
         self.t[self.t.len() - 1]
@@ -102,6 +123,11 @@ mod tests {
         assert_eq!(r.next_sample(0.0), Some(1.0));
         assert_eq!(r.next_sample(1.0 - 1e-15), Some(3.0));
         assert_eq!(r.next_sample(3.0), None);
+        assert_eq!(r.pga(), 1.0);
+        let reversed = r.scaled(-2.0).unwrap();
+        assert_eq!(reversed.at(0.5), [-1.0, 0.5, -0.2]);
+        assert_eq!(reversed.pga(), 2.0);
+        assert!(r.scaled(11.0).is_err());
     }
 
     #[test]

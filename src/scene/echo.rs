@@ -118,8 +118,20 @@ impl Scene {
         t.insert("loads".into(), table(&loads));
         if let Some(given) = self.source.get("seismic") {
             let mut seismic = vec![("kh", f(l.kh)), ("kv", f(l.kv))];
-            if let Some(r) = given.get("record") {
-                seismic.push(("record", r.clone()));
+            for key in [
+                "record",
+                "record_x",
+                "record_y",
+                "record_z",
+                "units",
+                "dt_s",
+                "scale",
+                "target_pga_g",
+                "polarity",
+            ] {
+                if let Some(v) = given.get(key) {
+                    seismic.push((key, v.clone()));
+                }
             }
             t.insert("seismic".into(), table(&seismic));
         }

@@ -46,9 +46,16 @@ impl Files {
                 .and_then(|v| v.as_str())
                 .map(str::to_string)
         };
+        // The scene's record is the file's unless it was scaled or reversed; then the file is
+        // read again.
+        let adjusted = ["scale", "target_pga_g", "polarity"]
+            .iter()
+            .any(|k| scene.source.get("seismic").and_then(|s| s.get(k)).is_some());
         Files {
             surface: named("foundation", "surface").zip(scene.site.shared_ground().cloned()),
-            record: named("seismic", "record").zip(scene.record.clone()),
+            record: named("seismic", "record")
+                .filter(|_| !adjusted)
+                .zip(scene.record.clone()),
         }
     }
 

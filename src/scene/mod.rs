@@ -11,6 +11,7 @@ mod files;
 pub mod input;
 mod raw;
 mod read;
+mod record_files;
 mod simulation;
 mod validate;
 

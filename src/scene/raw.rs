@@ -80,6 +80,14 @@ pub struct RawSeismic {
     pub kh: Option<f64>,
     pub kv: Option<f64>,
     pub record: Option<String>,
+    pub record_x: Option<String>,
+    pub record_y: Option<String>,
+    pub record_z: Option<String>,
+    pub units: Option<String>,
+    pub dt_s: Option<f64>,
+    pub scale: Option<f64>,
+    pub target_pga_g: Option<f64>,
+    pub polarity: Option<String>,
 }
 
 /// The motion at t = 0 (default: at rest).

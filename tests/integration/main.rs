@@ -23,6 +23,7 @@ mod ground_motion;
 mod memory;
 mod paper_misprints;
 mod reactions_paper;
+mod record_files;
 mod rigid_body;
 mod roots_against_direct;
 mod roots_completeness;

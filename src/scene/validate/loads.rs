@@ -5,6 +5,7 @@ use super::Reader;
 use crate::model::{Levels, Loads, Monolith, Record};
 use crate::scene::SceneError;
 use crate::scene::raw::{RawLoads, RawScene, RawSeismic, RawWater};
+use crate::scene::record_files::{Component, Units, combine, read_component};
 use std::sync::Arc;
 
 impl Reader<'_> {
@@ -15,8 +16,9 @@ impl Reader<'_> {
         raw: &RawScene,
         monolith: Option<&Monolith>,
     ) -> Result<(Option<Loads>, Option<Arc<Record>>), SceneError> {
+        let gravity = raw.loads.as_ref().and_then(|l| l.gravity_m_s2);
         let (kh, kv, record) = match &raw.seismic {
-            Some(s) => self.seismic(s)?,
+            Some(s) => self.seismic(s, gravity)?,
             None => (0.0, 0.0, None),
         };
         let Some(l) = &raw.loads else {
@@ -101,17 +103,147 @@ impl Reader<'_> {
     }
 
     /// (k_h, k_v), fractions of g (checked with the loads they belong to), and the
-    /// ground-motion record, read from the scene's folder (or the one read before under that
-    /// name).
-    fn seismic(&self, s: &RawSeismic) -> Result<(f64, f64, Option<Arc<Record>>), SceneError> {
-        let record = match &s.record {
-            Some(name) => Some(
-                self.files
-                    .record(self.folder, name)
-                    .map_err(|why| self.invalid("seismic.record", why))?,
-            ),
+    /// ground-motion record: three components in one file (`record`, read from the scene's
+    /// folder, or the one read before under that name), or one file a component
+    /// (`record_x`, `record_y`, `record_z`: `scene/record_files.rs`) in `units` with gravity
+    /// `gravity` (m/s²); then scaled by `scale` or to `target_pga_g`, and reversed by
+    /// `polarity`.
+    fn seismic(
+        &self,
+        s: &RawSeismic,
+        gravity: Option<f64>,
+    ) -> Result<(f64, f64, Option<Arc<Record>>), SceneError> {
+        let parts = [&s.record_x, &s.record_y, &s.record_z];
+        let components = parts.iter().any(|p| p.is_some());
+        let record = match (&s.record, components) {
+            (Some(_), true) => {
+                return Err(self.invalid(
+                    "seismic.record",
+                    "give the record as one file of three components (record) or one file a \
+                     component (record_x, record_y, record_z), not both",
+                ));
+            }
+            (Some(name), false) => {
+                for (key, given) in [
+                    ("seismic.units", s.units.is_some()),
+                    ("seismic.dt_s", s.dt_s.is_some()),
+                ] {
+                    if given {
+                        return Err(self.invalid(
+                            key,
+                            "is for one file a component (record_x, record_y, record_z); \
+                             seismic.record is in g with its times (t_s,ax_g,ay_g,az_g)",
+                        ));
+                    }
+                }
+                Some(
+                    self.files
+                        .record(self.folder, name)
+                        .map_err(|why| self.invalid("seismic.record", why))?,
+                )
+            }
+            (None, true) => Some(Arc::new(self.components(s, gravity)?)),
+            (None, false) => {
+                for (key, given) in [
+                    ("seismic.units", s.units.is_some()),
+                    ("seismic.dt_s", s.dt_s.is_some()),
+                    ("seismic.scale", s.scale.is_some()),
+                    ("seismic.target_pga_g", s.target_pga_g.is_some()),
+                    ("seismic.polarity", s.polarity.is_some()),
+                ] {
+                    if given {
+                        return Err(self.invalid(key, "is for a record, and the scene has none"));
+                    }
+                }
+                None
+            }
+        };
+        let record = match record {
+            Some(r) => Some(self.adjusted(s, r)?),
             None => None,
         };
         Ok((s.kh.unwrap_or(0.0), s.kv.unwrap_or(0.0), record))
+    }
+
+    /// The record of one file a component.
+    fn components(&self, s: &RawSeismic, gravity: Option<f64>) -> Result<Record, SceneError> {
+        let units = match &s.units {
+            Some(u) => Some(Units::parse(u).map_err(|why| self.invalid("seismic.units", why))?),
+            None => None,
+        };
+        let gravity = gravity
+            .filter(|g| *g > 0.0 && g.is_finite())
+            .unwrap_or(9.81);
+        let mut parts: [Option<Component>; 3] = [None, None, None];
+        for (part, (key, name)) in parts.iter_mut().zip([
+            ("seismic.record_x", &s.record_x),
+            ("seismic.record_y", &s.record_y),
+            ("seismic.record_z", &s.record_z),
+        ]) {
+            if let Some(name) = name {
+                let path = self.folder.join(name);
+                let read = read_component(&path, s.dt_s)
+                    .and_then(|c| c.in_g(units, gravity))
+                    .map_err(|why| self.invalid(key, format!("{}: {why}", path.display())))?;
+                *part = Some(read);
+            }
+        }
+        Record::new(combine(&parts)).map_err(|e| {
+            let hint = if e.reason.contains("over 10 g") && units.is_none() {
+                " (is it in cm/s2 or m/s2? say so with seismic.units)"
+            } else {
+                ""
+            };
+            self.invalid("seismic.record_x", format!("{}{hint}", e.reason))
+        })
+    }
+
+    /// `record` scaled by `scale` or to `target_pga_g`, and reversed by `polarity`.
+    fn adjusted(&self, s: &RawSeismic, record: Arc<Record>) -> Result<Arc<Record>, SceneError> {
+        let mut k = match (s.scale, s.target_pga_g) {
+            (Some(_), Some(_)) => {
+                return Err(self.invalid(
+                    "seismic.scale",
+                    "give a scale or a target PGA (seismic.target_pga_g), not both",
+                ));
+            }
+            (Some(scale), None) => self.positive("seismic.scale", scale)?,
+            (None, Some(target)) => {
+                let target = self.positive("seismic.target_pga_g", target)?;
+                let pga = record.pga();
+                if pga <= 0.0 {
+                    return Err(self.invalid(
+                        "seismic.target_pga_g",
+                        "the record has no horizontal acceleration to scale",
+                    ));
+                }
+                target / pga
+            }
+            (None, None) => 1.0,
+        };
+        match s.polarity.as_deref() {
+            None | Some("normal") => {}
+            Some("reversed") => k = -k,
+            Some("both") => {
+                return Err(self.invalid(
+                    "seismic.polarity",
+                    "\"both\" is not built yet: run the scene with \"normal\" and with \
+                     \"reversed\"",
+                ));
+            }
+            Some(other) => {
+                return Err(self.invalid(
+                    "seismic.polarity",
+                    format!("`{other}` is not a polarity: \"normal\" or \"reversed\""),
+                ));
+            }
+        }
+        if k == 1.0 {
+            return Ok(record);
+        }
+        record
+            .scaled(k)
+            .map(Arc::new)
+            .map_err(|e| self.invalid("seismic.scale", e.reason))
     }
 }

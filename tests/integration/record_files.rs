@@ -1,0 +1,271 @@
+//! Records as strong-motion files come (`seismic.record_x`, `record_y`, `record_z`: PEER
+//! `.AT2`, two columns, one column at `seismic.dt_s`; `units`, `scale`, `target_pga_g`,
+//! `polarity`): each routes exactly as the same accelerations in fractions of g in one
+//! three-component file (`seismic.record`), which the closed forms of `ground_motion.rs` check.
+
+use slideroute::Scene;
+use slideroute::sweep::{Sweep, Vary};
+use slideroute::{Outcome, Route};
+use std::path::{Path, PathBuf};
+
+/// A record along X and Z: 300 samples 0.01 s apart, in thousandths of g (exact in decimal),
+/// that slides the block forward (+X) only.
+fn motion() -> Vec<(f64, f64, f64)> {
+    (0..300)
+        .map(|k| {
+            let t = k as f64 * 0.01;
+            let x = -(150.0 * (7.0 * t).sin() * (-0.3 * t).exp() + 100.0).round() / 1000.0;
+            let z = (50.0 * (11.0 * t + 1.0).sin()).round() / 1000.0;
+            (t, x, z)
+        })
+        .collect()
+}
+
+/// A fresh folder for one test's files.
+fn folder(tag: &str) -> PathBuf {
+    let dir =
+        std::env::temp_dir().join(format!("slideroute-recfiles-{tag}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// The level paper-like block with no water, its `[seismic]` table `seismic`, in `dir`.
+fn scene(dir: &Path, seismic: &str) -> Result<Scene, String> {
+    let text = crate::common::paper_like_on_level_planes()
+        .replace("hydraulic_force_n = 8.0e6", "hydraulic_force_n = 0.0")
+        .replace("mu_k = 0.40", "mu_k = 0.15")
+        .replace("t_end_s = 20.0", "t_end_s = 4.0")
+        + "\n[seismic]\n"
+        + seismic;
+    let path = dir.join("scene.toml");
+    std::fs::write(&path, text).unwrap();
+    Scene::from_file(&path).map_err(|e| e.to_string())
+}
+
+/// The same motion as one three-component file, each acceleration times `k`.
+fn as_one_file(dir: &Path, k: f64) -> Route {
+    let mut csv = String::from("t_s,ax_g,ay_g,az_g\n");
+    for (t, x, z) in motion() {
+        csv += &format!("{t},{},0,{}\n", k * x, k * z);
+    }
+    std::fs::write(dir.join("three.csv"), csv).unwrap();
+    slideroute::run(&scene(dir, "record = \"three.csv\"\n").unwrap()).unwrap()
+}
+
+fn at2(values: &[f64]) -> String {
+    let mut s = String::from(
+        "PEER NGA STRONG MOTION DATABASE RECORD\nA test, 11/27/2026, here, 000\n\
+         ACCELERATION TIME SERIES IN UNITS OF G\n",
+    );
+    s += &format!("NPTS= {:5}, DT=   .0100 SEC\n", values.len());
+    for row in values.chunks(5) {
+        for v in row {
+            s += &format!("{v:15.7E}");
+        }
+        s.push('\n');
+    }
+    s
+}
+
+fn same_route(a: &Route, b: &Route, tol: f64) {
+    assert_eq!(a.rows.len(), b.rows.len());
+    assert_eq!(a.termination.reason, b.termination.reason);
+    for (p, q) in a.rows.iter().zip(&b.rows) {
+        for (u, v) in [(p.x_m, q.x_m), (p.z_m, q.z_m), (p.theta_deg, q.theta_deg)] {
+            assert!((u - v).abs() <= tol * (1.0 + v.abs()), "{p:?}\n{q:?}");
+        }
+    }
+}
+
+#[test]
+fn an_at2_component_and_a_two_column_one_route_as_the_same_record_in_one_file() {
+    let dir = folder("at2");
+    let m = motion();
+    let x: Vec<f64> = m.iter().map(|p| p.1).collect();
+    std::fs::write(dir.join("RSN1_X.AT2"), at2(&x)).unwrap();
+    let mut two = String::from("time (s)  acceleration (g)\n");
+    for (t, _, z) in &m {
+        two += &format!("{t} {z}\n");
+    }
+    std::fs::write(dir.join("z.txt"), two).unwrap();
+    let parts = scene(&dir, "record_x = \"RSN1_X.AT2\"\nrecord_z = \"z.txt\"\n").unwrap();
+    let route = slideroute::run(&parts).unwrap();
+    let whole = as_one_file(&dir, 1.0);
+    assert!(
+        whole.rows.last().unwrap().x_m.abs() > 1e-3,
+        "the record slides the block"
+    );
+    same_route(&route, &whole, 0.0);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn a_column_in_cm_s2_scaled_to_a_target_pga_routes_as_the_record_in_g_at_that_pga() {
+    let dir = folder("pga");
+    let m = motion();
+    // One column along X in cm/s² at the scene's g (9.81 m/s²), its step in the scene.
+    let mut one = String::new();
+    for (_, x, _) in &m {
+        one += &format!("{}\n", x * 981.0);
+    }
+    std::fs::write(dir.join("x.txt"), one).unwrap();
+    let target = 0.45;
+    let given = scene(
+        &dir,
+        &format!("record_x = \"x.txt\"\ndt_s = 0.01\nunits = \"cm/s2\"\ntarget_pga_g = {target}\n"),
+    )
+    .unwrap();
+    let pga = m.iter().map(|p| p.1.abs()).fold(0.0, f64::max);
+    let route = slideroute::run(&given).unwrap();
+    // The scene as used names the file and the keys that made the record of it.
+    let echo = toml::to_string(&given.as_used()).unwrap();
+    for key in [
+        "record_x = \"x.txt\"",
+        "dt_s = 0.01",
+        "units = \"cm/s2\"",
+        "target_pga_g = 0.45",
+    ] {
+        assert!(echo.contains(key), "{key} in {echo}");
+    }
+    // The same along X only, in g, scaled by hand.
+    let mut csv = String::from("t_s,ax_g,ay_g,az_g\n");
+    for (t, x, _) in &m {
+        csv += &format!("{t},{},0,0\n", x * target / pga);
+    }
+    std::fs::write(dir.join("three.csv"), csv).unwrap();
+    let whole = slideroute::run(&scene(&dir, "record = \"three.csv\"\n").unwrap()).unwrap();
+    let last = whole.rows.last().unwrap();
+    assert!(
+        last.x_m.abs() > 1e-2,
+        "the record slides the block: {last:?} {:?}",
+        whole.termination
+    );
+    same_route(&route, &whole, 1e-9);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn a_reversed_or_scaled_record_routes_as_its_accelerations_negated_or_scaled() {
+    let dir = folder("polarity");
+    let reversed = as_one_file(&dir, -1.0);
+    let given = scene(&dir, "record = \"three.csv\"\npolarity = \"reversed\"\n").unwrap();
+    // three.csv now holds the negated motion: reversed again, it is the motion itself.
+    let twice = slideroute::run(&given).unwrap();
+    let plain = as_one_file(&dir, 1.0);
+    same_route(&twice, &plain, 0.0);
+    assert!((reversed.rows.last().unwrap().x_m - plain.rows.last().unwrap().x_m).abs() > 1e-3);
+    let doubled = as_one_file(&dir, 2.0);
+    as_one_file(&dir, 1.0);
+    let scaled = scene(&dir, "record = \"three.csv\"\nscale = 2.0\n").unwrap();
+    same_route(&slideroute::run(&scaled).unwrap(), &doubled, 0.0);
+    // Edited by a key, the scene reads its record again and scales it once, not twice.
+    let edited = scaled.with("solver.t_end_s", 4.0).unwrap();
+    same_route(&slideroute::run(&edited).unwrap(), &doubled, 0.0);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn a_record_given_two_ways_or_with_keys_it_cannot_use_is_refused_naming_the_key() {
+    let dir = folder("refused");
+    let m = motion();
+    let x: Vec<f64> = m.iter().map(|p| p.1).collect();
+    std::fs::write(dir.join("x.AT2"), at2(&x)).unwrap();
+    std::fs::write(
+        dir.join("three.csv"),
+        "t_s,ax_g,ay_g,az_g\n0,0,0,0\n1,0.1,0,0\n",
+    )
+    .unwrap();
+    let cm: String = x.iter().map(|v| format!("{}\n", v * 981.0)).collect();
+    std::fs::write(dir.join("cm.txt"), cm).unwrap();
+    for (seismic, key, words) in [
+        (
+            "record = \"three.csv\"\nrecord_x = \"x.AT2\"\n",
+            "seismic.record",
+            "not both",
+        ),
+        (
+            "record_x = \"x.AT2\"\nunits = \"cm/s2\"\n",
+            "seismic.record_x",
+            "the file is in g",
+        ),
+        (
+            "record_x = \"x.AT2\"\nunits = \"ft/s2\"\n",
+            "seismic.units",
+            "`ft/s2`",
+        ),
+        (
+            "record_x = \"cm.txt\"\n",
+            "seismic.record_x",
+            "seismic.dt_s",
+        ),
+        (
+            "record_x = \"cm.txt\"\ndt_s = 0.01\n",
+            "seismic.record_x",
+            "seismic.units",
+        ),
+        (
+            "record_x = \"x.AT2\"\npolarity = \"both\"\n",
+            "seismic.polarity",
+            "not built yet",
+        ),
+        (
+            "record_x = \"x.AT2\"\npolarity = \"up\"\n",
+            "seismic.polarity",
+            "`up`",
+        ),
+        (
+            "record_x = \"x.AT2\"\nscale = 2.0\ntarget_pga_g = 0.3\n",
+            "seismic.scale",
+            "not both",
+        ),
+        (
+            "record = \"three.csv\"\ndt_s = 0.01\n",
+            "seismic.dt_s",
+            "one file a component",
+        ),
+        ("kh = 0.1\nscale = 2.0\n", "seismic.scale", "has none"),
+        (
+            "record_x = \"missing.AT2\"\n",
+            "seismic.record_x",
+            "missing.AT2",
+        ),
+    ] {
+        let e = scene(&dir, seismic).unwrap_err();
+        assert!(e.contains(key) && e.contains(words), "{seismic}: {e}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn a_sweep_over_record_files_runs_each_record_as_a_scene_naming_it_would() {
+    let dir = folder("sweep");
+    let m = motion();
+    for (name, k) in [("a.AT2", 1.0), ("b.AT2", 1.5)] {
+        let x: Vec<f64> = m.iter().map(|p| k * p.1).collect();
+        std::fs::write(dir.join(name), at2(&x)).unwrap();
+    }
+    let base = scene(&dir, "record_x = \"a.AT2\"\n").unwrap();
+    let vary: Vary = "seismic.record_x=a.AT2,b.AT2".parse().unwrap();
+    let sweep = Sweep::new(&base, vec![vary]).unwrap();
+    let rows = sweep.run(|| {}, || false);
+    assert_eq!(rows.len(), 2);
+    for (row, name) in rows.iter().zip(["a.AT2", "b.AT2"]) {
+        let alone =
+            slideroute::run(&scene(&dir, &format!("record_x = \"{name}\"\n")).unwrap()).unwrap();
+        let r = row.outcome.route().unwrap();
+        assert_eq!(r.x_m, alone.rows.last().unwrap().x_m, "{name}");
+    }
+    let (a, b) = (
+        rows[0].outcome.route().unwrap(),
+        rows[1].outcome.route().unwrap(),
+    );
+    assert!(b.x_m > a.x_m + 1e-3, "{} {}", a.x_m, b.x_m);
+    // A word that names no file is that combination's reason, naming the key.
+    let vary: Vary = "seismic.record_x=a.AT2,none.AT2".parse().unwrap();
+    let rows = Sweep::new(&base, vec![vary]).unwrap().run(|| {}, || false);
+    match &rows[1].outcome {
+        Outcome::Invalid { reason } => assert!(reason.contains("seismic.record_x"), "{reason}"),
+        other => panic!("{other:?}"),
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
