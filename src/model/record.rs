@@ -95,6 +95,11 @@ impl Record {
             .fold(0.0, f64::max)
     }
 
+    /// The samples: their times (s) and the accelerations (g) along X, Y, Z.
+    pub fn samples(&self) -> (&[f64], &[[f64; 3]]) {
+        (&self.t, &self.a)
+    }
+
     /// The last sample's time (s): after it the ground is still.
     pub fn end(&self) -> f64 {
         self.t[self.t.len() - 1]

@@ -33,6 +33,8 @@ pub(super) struct Logbook<'s> {
     keep_every: usize,
     pushed: usize,
     last: Option<Row>,
+    /// The first row pushed.
+    first: Option<Row>,
     pub termination: Termination,
     /// The factor of safety at the start (the friction cones' definition).
     pub fs: Option<FactorOfSafety>,
@@ -58,6 +60,7 @@ impl<'s> Logbook<'s> {
             keep_every: keep_every.max(1),
             pushed: 0,
             last: None,
+            first: None,
             termination: Termination {
                 reason: Reason::TimeLimit,
                 t_s: 0.0,
@@ -92,6 +95,12 @@ impl<'s> Logbook<'s> {
         }
         self.pushed += 1;
         self.last = Some(row);
+        self.first.get_or_insert(row);
+    }
+
+    /// The first row pushed.
+    pub fn first_row(&self) -> Option<Row> {
+        self.first
     }
 
     /// The last row pushed.

@@ -24,7 +24,7 @@ pub use simulate::{Runner, simulate};
 pub use termination::{Reason, Termination};
 
 use crate::mechanics::static_friction::FactorOfSafety;
-use crate::model::{DynamicsModel, Integrator, Mode};
+use crate::model::{DynamicsModel, Integrator, Intensity, Mode};
 use serde::Serialize;
 
 /// A computed route: the recorded rows, how it ended and what it came to. Two routes of one
@@ -72,6 +72,14 @@ pub struct Route {
     /// (degrees; the tilts are the foundation's).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub permanent_rotation_deg: Option<f64>,
+    /// With a ground-motion record, the permanent displacement as a signed vector, its X and
+    /// Z (m): the CM's at the route's end less its start's, relative to the foundation.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub permanent_displacement_xz_m: Option<[f64; 2]>,
+    /// With a ground-motion record, what its shaking measures (`model::Intensity`): PGA, PGV,
+    /// Arias intensity, D5–95, along X, Y, Z.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub record_intensity: Option<Intensity>,
     /// A block on its base (`contacts = "base"`): where it rested before any load, what carried
     /// it, and the deepest its base went into the ground.
     #[serde(skip_serializing_if = "Option::is_none")]

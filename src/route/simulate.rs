@@ -10,7 +10,7 @@ use super::pose_finder::{PoseFinder, PoseMethod};
 use super::rigid::RigidBody;
 use super::row::Row;
 use super::{Computed, Diagnostics, Route};
-use crate::model::{Contacts, DynamicsModel, Simulation};
+use crate::model::{Contacts, DynamicsModel, Intensity, Simulation};
 use std::ops::ControlFlow;
 use std::time::Instant;
 
@@ -101,10 +101,12 @@ impl<'a> Runner<'a> {
             }
         };
         // Newmark's permanent displacement and rotation, when the foundation was shaken.
+        let start = o.first_row().map_or((0.0, 0.0), |r| (r.x_m, r.z_m));
         let permanent = o
             .last_row()
             .filter(|_| sim.record().is_some())
-            .map(|r| (r.x_m.hypot(r.z_m), r.theta_deg));
+            .map(|r| ([r.x_m - start.0, r.z_m - start.1], r.theta_deg));
+        let intensity = sim.record().map(|r| Intensity::of(r, sim.loads().gravity));
         let route = Route {
             scene: sim.name().to_string(),
             mode: settings.mode,
@@ -118,8 +120,10 @@ impl<'a> Runner<'a> {
             travel_m: o.travel,
             increments: o.increments,
             energy: o.energy,
-            permanent_displacement_m: permanent.map(|p| p.0),
+            permanent_displacement_m: permanent.map(|p| p.0[0].hypot(p.0[1])),
             permanent_rotation_deg: permanent.map(|p| p.1),
+            permanent_displacement_xz_m: permanent.map(|p| p.0),
+            record_intensity: intensity,
             base: o.base.take(),
         };
         Computed {

@@ -96,6 +96,16 @@ fn an_at2_component_and_a_two_column_one_route_as_the_same_record_in_one_file() 
         "the record slides the block"
     );
     same_route(&route, &whole, 0.0);
+    // The permanent displacement as a signed vector: forward along X, as the record pushes it;
+    // its length the displacement.
+    let (first, last) = (route.rows[0], *route.rows.last().unwrap());
+    let [dx, dz] = route.permanent_displacement_xz_m.unwrap();
+    assert_eq!([dx, dz], [last.x_m - first.x_m, last.z_m - first.z_m]);
+    assert!(dx > 1e-2, "{dx}");
+    assert_eq!(route.permanent_displacement_m, Some(dx.hypot(dz)));
+    // And what the record measures: its PGA along X is the largest sample.
+    let pga = motion().iter().map(|p| p.1.abs()).fold(0.0, f64::max);
+    assert_eq!(route.record_intensity.unwrap().pga_g[0], pga);
     std::fs::remove_dir_all(&dir).ok();
 }
 

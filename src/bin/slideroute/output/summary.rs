@@ -44,11 +44,27 @@ impl fmt::Display for RouteSummary<'_> {
             )?;
         }
         if let (Some(d), Some(rot)) = (r.permanent_displacement_m, r.permanent_rotation_deg) {
+            let xz = r.permanent_displacement_xz_m.unwrap_or([0.0; 2]);
             writeln!(
                 f,
-                "  permanent displacement {} m, rotation {}° (relative to the shaken foundation)",
+                "  permanent displacement {} m (X {} m, Z {} m), rotation {}° (relative to the \
+                 shaken foundation)",
                 fixed(d, 3),
+                fixed(xz[0], 3),
+                fixed(xz[1], 3),
                 fixed(rot, 3)
+            )?;
+        }
+        if let Some(m) = &r.record_intensity {
+            let three =
+                |v: [f64; 3], places: usize| v.map(|x| fixed(x, places).to_string()).join(" / ");
+            writeln!(
+                f,
+                "  record (X / Y / Z): PGA {} g, PGV {} m/s, Arias intensity {} m/s, D5–95 {} s",
+                three(m.pga_g, 3),
+                three(m.pgv_m_s, 3),
+                three(m.arias_m_s, 3),
+                three(m.d5_95_s, 2)
             )?;
         }
         if let Some(fs) = r.factor_of_safety {
