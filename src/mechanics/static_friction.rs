@@ -31,6 +31,7 @@ use clarabel::solver::{
     DefaultSettings, DefaultSolver, IPSolver, SolverStatus, SupportedConeT::NonnegativeConeT,
     SupportedConeT::SecondOrderConeT, SupportedConeT::ZeroConeT,
 };
+use nalgebra::Vector3;
 
 /// Why the static check has no answer.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -271,6 +272,93 @@ pub fn check(
         lowest: lo.0,
         normal: hi.1.map(|l| l * w),
     })
+}
+
+/// The yield acceleration of a block at rest (`derivations/11-dam-loads.md` §7): the least
+/// horizontal ground acceleration, in any direction, that static friction within the cones
+/// cannot hold with the loads as given.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct YieldAcceleration {
+    /// k_y (g): zero where the loads as given already start the block.
+    pub ky_g: f64,
+    /// Where the block is then pushed, its inertial force's direction in plan (degrees from
+    /// X towards Z); the ground accelerates the other way.
+    pub push_deg: f64,
+}
+
+/// The step of the scan of directions for the yield acceleration (degrees).
+const SCAN_DEG: f64 = 4.0;
+
+/// [`YieldAcceleration`] at the pose of `geom` under `applied`, the block's weight m g (N) at
+/// its centre of mass `arm` from the frame's origin (m), with the coefficients of `friction`
+/// at the normal forces `statics` (N). The most ground acceleration held with the block pushed
+/// along u, k(u), is one cone program (the driving loads are those of one g along u, all
+/// else held); k_y is its least over u, found on a scan every [`SCAN_DEG`] and then by golden
+/// section to 1e-9 rad about the least. None where no horizontal acceleration starts the
+/// block. k(u) is the radial extent of a convex set about the origin, smooth between the
+/// directions of its corners; a minimum narrower than the scan's step could be missed.
+pub fn yield_acceleration(
+    geom: &ContactGeometry,
+    applied: &Applied,
+    (weight, arm): (f64, Vector3<f64>),
+    friction: &Strength,
+    statics: &[f64; 3],
+) -> Result<Option<YieldAcceleration>, StaticError> {
+    let mu = friction.coefficients(statics);
+    let cohesion = &friction.cohesion_n;
+    let pushed = |angle: f64| -> Result<f64, StaticError> {
+        let u = Vector3::new(angle.cos(), 0.0, angle.sin()) * weight;
+        let unit = Applied {
+            force: u,
+            moment: arm.cross(&u),
+            weight: applied.weight,
+            held_force: applied.held_force + applied.force,
+            held_moment: applied.held_moment + applied.moment,
+        };
+        let (t, _) = extreme_t(geom, &unit, &mu, cohesion, -1.0)?;
+        // Infeasible at every multiple: not held even unshaken.
+        Ok(if t.is_nan() { 0.0 } else { t.max(0.0) })
+    };
+    let steps = (360.0 / SCAN_DEG).round() as usize;
+    let scan: Vec<f64> = (0..steps)
+        .map(|k| pushed((k as f64 * SCAN_DEG).to_radians()))
+        .collect::<Result<_, _>>()?;
+    let (best, &k) = scan
+        .iter()
+        .enumerate()
+        .min_by(|a, b| a.1.total_cmp(b.1))
+        .expect("a scan of directions");
+    if k.is_infinite() {
+        return Ok(None);
+    }
+    // Golden section on the step either side.
+    let at = best as f64 * SCAN_DEG;
+    let (mut lo, mut hi) = ((at - SCAN_DEG).to_radians(), (at + SCAN_DEG).to_radians());
+    let ratio = (5f64.sqrt() - 1.0) / 2.0;
+    let (mut a, mut b) = (hi - ratio * (hi - lo), lo + ratio * (hi - lo));
+    let (mut fa, mut fb) = (pushed(a)?, pushed(b)?);
+    while hi - lo > 1e-9 {
+        if fa <= fb {
+            hi = b;
+            (b, fb) = (a, fa);
+            a = hi - ratio * (hi - lo);
+            fa = pushed(a)?;
+        } else {
+            lo = a;
+            (a, fa) = (b, fb);
+            b = lo + ratio * (hi - lo);
+            fb = pushed(b)?;
+        }
+    }
+    let (angle, ky) = if fa.min(fb) < k {
+        if fa <= fb { (a, fa) } else { (b, fb) }
+    } else {
+        (at.to_radians(), k)
+    };
+    Ok(Some(YieldAcceleration {
+        ky_g: ky,
+        push_deg: angle.to_degrees().rem_euclid(360.0),
+    }))
 }
 
 #[cfg(test)]

@@ -10,7 +10,8 @@ use super::termination::Reason;
 use crate::mechanics::ContactGeometry;
 use crate::mechanics::loads::Applied;
 use crate::mechanics::static_friction;
-use crate::model::Simulation;
+use crate::mechanics::statics::frictionless_normals;
+use crate::model::{Contacts, Simulation};
 use std::ops::ControlFlow;
 
 /// The number of increments of dt that reach `t_end`: the last may be shorter, so that the route
@@ -47,6 +48,20 @@ pub(super) fn drive<'a, 's, M: Dynamics<'a>>(
             static_friction::at_rest(&geom, &applied, &strength)
                 .ok()
                 .map(|c| c.factor_of_safety())
+        });
+    }
+    if sim.record().is_some() && sim.settings().contacts == Contacts::Frame {
+        // What a Newmark user reports first: the yield acceleration at the start.
+        o.yield_acceleration = start_pose.and_then(|pose| {
+            let geom = ContactGeometry::new(sim.normals(), &pose);
+            let applied = Applied::new(sim.loads(), sim.block(), &geom.frame);
+            let strength = sim.strength(faces_of(sim.site()), true);
+            let statics = frictionless_normals(&geom, &applied).unwrap_or([1.0; 3]);
+            let weight = sim.block().mass * sim.loads().gravity;
+            let arm = geom.frame.j * sim.loads().cm_height;
+            static_friction::yield_acceleration(&geom, &applied, (weight, arm), &strength, &statics)
+                .ok()
+                .flatten()
         });
     }
     M::explain_end(&mut o);

@@ -3,7 +3,7 @@
 
 use super::row::Row;
 use super::termination::{Reason, Termination};
-use crate::mechanics::static_friction::FactorOfSafety;
+use crate::mechanics::static_friction::{FactorOfSafety, YieldAcceleration};
 use serde::Serialize;
 
 /// Energy bookkeeping of a rigid-body route (J), from the start to its last state.
@@ -40,6 +40,9 @@ pub(super) struct Logbook<'s> {
     pub fs: Option<FactorOfSafety>,
     /// The paper's resisting-over-driving ratio at the start (paper's dynamics).
     pub paper_ratio: Option<f64>,
+    /// With a ground-motion record on the three-point frame, the yield acceleration at the
+    /// start.
+    pub yield_acceleration: Option<YieldAcceleration>,
     pub travel: f64,
     pub increments: usize,
     /// How often the paper's frictional solution was chosen afresh (paper's dynamics).
@@ -67,6 +70,7 @@ impl<'s> Logbook<'s> {
                 detail: String::new(),
             },
             fs: None,
+            yield_acceleration: None,
             paper_ratio: None,
             travel: 0.0,
             increments: 0,

@@ -23,7 +23,7 @@ pub use row::Row;
 pub use simulate::{Runner, simulate};
 pub use termination::{Reason, Termination};
 
-use crate::mechanics::static_friction::FactorOfSafety;
+use crate::mechanics::static_friction::{FactorOfSafety, YieldAcceleration};
 use crate::model::{DynamicsModel, Integrator, Intensity, Mode};
 use serde::Serialize;
 
@@ -80,6 +80,10 @@ pub struct Route {
     /// Arias intensity, D5–95, along X, Y, Z.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub record_intensity: Option<Intensity>,
+    /// With a ground-motion record on the three-point frame, the yield acceleration k_y at the
+    /// start and the direction it pushes the block (`static_friction::yield_acceleration`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub yield_acceleration: Option<YieldAcceleration>,
     /// A block on its base (`contacts = "base"`): where it rested before any load, what carried
     /// it, and the deepest its base went into the ground.
     #[serde(skip_serializing_if = "Option::is_none")]

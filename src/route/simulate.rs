@@ -124,6 +124,7 @@ impl<'a> Runner<'a> {
             permanent_rotation_deg: permanent.map(|p| p.1),
             permanent_displacement_xz_m: permanent.map(|p| p.0),
             record_intensity: intensity,
+            yield_acceleration: o.yield_acceleration,
             base: o.base.take(),
         };
         Computed {

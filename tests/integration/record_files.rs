@@ -279,3 +279,79 @@ fn a_sweep_over_record_files_runs_each_record_as_a_scene_naming_it_would() {
     }
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn the_yield_acceleration_of_a_block_on_level_planes_is_mu_less_its_push_along_the_push() {
+    // Level planes (0.01° dips), μ = 0.5, pushed along X by 0.3 W at its base: the ground must
+    // accelerate it by (μ − 0.3) g more along X, the least of any direction (its push and the
+    // inertial force add as vectors within the cone μ W).
+    let dir = folder("ky");
+    std::fs::write(
+        dir.join("quiet.csv"),
+        "t_s,ax_g,ay_g,az_g\n0,0,0,0\n0.01,0,0,0\n",
+    )
+    .unwrap();
+    let text = crate::common::paper_like_on_level_planes()
+        .replace("hydraulic_force_n = 8.0e6", "hydraulic_force_n = 2.943e6")
+        .replace("mu_k = 0.40", "mu_k = 0.5")
+        .replace("t_end_s = 20.0", "t_end_s = 0.1")
+        + "\n[seismic]\nrecord = \"quiet.csv\"\n";
+    let path = dir.join("scene.toml");
+    std::fs::write(&path, &text).unwrap();
+    let scene = Scene::from_file(&path).unwrap();
+    let route = slideroute::run(&scene).unwrap();
+    let y = route.yield_acceleration.unwrap();
+    // The planes' 0.01° dips move it by about 2e-4.
+    assert!((y.ky_g - 0.2).abs() < 1e-3, "{y:?}");
+    assert!(y.push_deg.min(360.0 - y.push_deg) < 1.0, "{y:?}");
+    // No push: μ in any direction.
+    let still = scene.with("loads.hydraulic_force_n", 0.0).unwrap();
+    let y = slideroute::run(&still).unwrap().yield_acceleration.unwrap();
+    assert!((y.ky_g - 0.5).abs() < 1e-3, "{y:?}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn a_ground_acceleration_just_under_the_yield_acceleration_holds_the_block_and_just_over_slides_it()
+{
+    // scenes/shaken.toml (the paper's planes, a water push 2 m off the centre of mass): its
+    // yield acceleration and direction, then a steady ground acceleration of 0.99 and 1.01
+    // k_y the other way for 0.5 s.
+    let dir = folder("ky-route");
+    let text =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/shaken.toml"))
+            .unwrap()
+            .replace("shaken-motion.csv", "steady.csv");
+    let write = |k: f64, push_deg: f64| {
+        let (c, s) = (push_deg.to_radians().cos(), push_deg.to_radians().sin());
+        let (ax, az) = (-k * c, -k * s);
+        std::fs::write(
+            dir.join("steady.csv"),
+            format!("t_s,ax_g,ay_g,az_g\n0,{ax},0,{az}\n0.5,{ax},0,{az}\n"),
+        )
+        .unwrap();
+        let path = dir.join("scene.toml");
+        std::fs::write(&path, &text).unwrap();
+        slideroute::run(&Scene::from_file(&path).unwrap()).unwrap()
+    };
+    let y = write(0.0, 0.0).yield_acceleration.unwrap();
+    assert!(y.ky_g > 0.05 && y.ky_g < 0.5, "{y:?}");
+    let held = write(0.99 * y.ky_g, y.push_deg);
+    assert!(
+        held.travel_m < 1e-9,
+        "{} {:?}",
+        held.travel_m,
+        held.termination
+    );
+    let slid = write(1.01 * y.ky_g, y.push_deg);
+    assert!(
+        slid.travel_m > 1e-5,
+        "{} {:?}",
+        slid.travel_m,
+        slid.termination
+    );
+    // Along another direction 1.01 k_y is held: k_y is the least.
+    let aside = write(1.01 * y.ky_g, y.push_deg + 30.0);
+    assert!(aside.travel_m < 1e-9, "{}", aside.travel_m);
+    std::fs::remove_dir_all(&dir).ok();
+}

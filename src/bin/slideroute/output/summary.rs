@@ -55,6 +55,15 @@ impl fmt::Display for RouteSummary<'_> {
                 fixed(rot, 3)
             )?;
         }
+        if let Some(y) = &r.yield_acceleration {
+            writeln!(
+                f,
+                "  yield acceleration ky {} g at the start (the block pushed along {}° from X \
+                 towards Z, the ground accelerating the other way)",
+                fixed(y.ky_g, 4),
+                fixed(y.push_deg, 1)
+            )?;
+        }
         if let Some(m) = &r.record_intensity {
             let three =
                 |v: [f64; 3], places: usize| v.map(|x| fixed(x, places).to_string()).join(" / ");
