@@ -214,6 +214,11 @@ fn a_record_given_two_ways_or_with_keys_it_cannot_use_is_refused_naming_the_key(
             "seismic.units",
         ),
         (
+            "record_z = \"cm.txt\"\ndt_s = 0.01\n",
+            "seismic.record_z",
+            "over 10 g",
+        ),
+        (
             "record_x = \"x.AT2\"\npolarity = \"both\"\n",
             "seismic.polarity",
             "not built yet",

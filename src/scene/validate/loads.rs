@@ -185,17 +185,26 @@ impl Reader<'_> {
                 let read = read_component(&path, s.dt_s)
                     .and_then(|c| c.in_g(units, gravity))
                     .map_err(|why| self.invalid(key, format!("{}: {why}", path.display())))?;
+                if let Some(k) = read.a.iter().position(|a| a.abs() > 10.0) {
+                    let hint = if units.is_none() {
+                        " (is it in cm/s2 or m/s2? say so with seismic.units)"
+                    } else {
+                        ""
+                    };
+                    return Err(self.invalid(
+                        key,
+                        format!(
+                            "{}: the sample at t = {} s is {} g, over 10 g{hint}",
+                            path.display(),
+                            read.t[k],
+                            read.a[k]
+                        ),
+                    ));
+                }
                 *part = Some(read);
             }
         }
-        Record::new(combine(&parts)).map_err(|e| {
-            let hint = if e.reason.contains("over 10 g") && units.is_none() {
-                " (is it in cm/s2 or m/s2? say so with seismic.units)"
-            } else {
-                ""
-            };
-            self.invalid("seismic.record_x", format!("{}{hint}", e.reason))
-        })
+        Record::new(combine(&parts)).map_err(|e| self.invalid("seismic.record_x", e.reason))
     }
 
     /// `record` scaled by `scale` or to `target_pga_g`, and reversed by `polarity`.
