@@ -11,6 +11,7 @@
 //! exactly when it is held by forces at the area's corners, since a force inside the hull of
 //! points on one plane splits among them within their cones with the same resultant and moment.
 
+use super::impulses::tangents;
 use super::static_friction::StaticError;
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::{
@@ -58,8 +59,7 @@ pub fn held(
     };
     for (i, s) in supports.iter().enumerate() {
         let (cone, floor) = (p.cone(i), p.floor(i));
-        let t1 = tangent(&s.normal);
-        let t2 = s.normal.cross(&t1);
+        let (t1, t2) = tangents(&s.normal);
         for (k, dir) in [s.normal, t1, t2].into_iter().enumerate() {
             let col = 3 * i + k;
             on_equations(&mut p, col, &s.arm, dir);
@@ -148,16 +148,6 @@ impl Program {
             other => Err(StaticError::Solver(format!("{other:?}"))),
         }
     }
-}
-
-/// A unit tangent to `n`.
-fn tangent(n: &Vector3<f64>) -> Vector3<f64> {
-    let helper = if n.x.abs() < 0.9 {
-        Vector3::x()
-    } else {
-        Vector3::z()
-    };
-    n.cross(&helper).normalize()
 }
 
 #[cfg(test)]

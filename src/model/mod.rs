@@ -32,6 +32,7 @@ pub use loads::Loads;
 pub use monolith::{MassProperties, Monolith, Section};
 pub use names::UnknownName;
 pub use record::Record;
+pub(crate) use record::bracket;
 pub use settings::{Contacts, DynamicsModel, Integrator, MAX_INCREMENTS, Mode, RunSettings};
 pub use simulation::{Simulation, SimulationBuilder};
 pub(crate) use simulation::{check_ratios, check_rigid_only, face_count};

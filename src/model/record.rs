@@ -53,17 +53,12 @@ impl Record {
     /// The ground's acceleration (g) at time t, linear between samples; none before the first
     /// sample or after the last (the ground at rest).
     pub fn at(&self, t: f64) -> [f64; 3] {
-        let (first, last) = (self.t[0], self.t[self.t.len() - 1]);
-        if !(first..=last).contains(&t) {
-            return [0.0; 3];
+        match bracket(&self.t, t) {
+            Some((k, f)) => {
+                std::array::from_fn(|c| self.a[k - 1][c] + f * (self.a[k][c] - self.a[k - 1][c]))
+            }
+            None => [0.0; 3],
         }
-        let k = self
-            .t
-            .partition_point(|&s| s <= t)
-            .clamp(1, self.t.len() - 1);
-        let (t0, t1) = (self.t[k - 1], self.t[k]);
-        let f = (t - t0) / (t1 - t0);
-        std::array::from_fn(|c| self.a[k - 1][c] + f * (self.a[k][c] - self.a[k - 1][c]))
     }
 
     /// The first sample's time after t (s), beyond round-off of t: where the record's slope
@@ -104,6 +99,19 @@ impl Record {
     pub fn end(&self) -> f64 {
         self.t[self.t.len() - 1]
     }
+}
+
+/// Where `t` falls among the increasing `times` (at least two): the sample k ≥ 1 that ends its
+/// interval and the fraction of the interval from sample k − 1; none before the first or after
+/// the last.
+pub(crate) fn bracket(times: &[f64], t: f64) -> Option<(usize, f64)> {
+    let n = times.len();
+    if n < 2 || !(times[0]..=times[n - 1]).contains(&t) {
+        return None;
+    }
+    let k = times.partition_point(|&s| s <= t).clamp(1, n - 1);
+    let (t0, t1) = (times[k - 1], times[k]);
+    Some((k, (t - t0) / (t1 - t0)))
 }
 
 #[cfg(test)]

@@ -1,5 +1,5 @@
 //! One component of a ground-motion record as strong-motion files come
-//! (`seismic.record_x`, `record_y`, `record_z`; `derivations/11-dam-loads.md` §3): a PEER NGA
+//! (`seismic.record_x`, `record_y`, `record_z`; `derivations/11-dam-loads.md` §7): a PEER NGA
 //! `.AT2` file, two columns (time, acceleration) or one column of accelerations at a step
 //! `seismic.dt_s`; and the three components put together on one time line.
 //!
@@ -12,6 +12,7 @@
 
 use super::files::MAX_RECORD_BYTES;
 use super::input::read_bounded;
+use crate::model::bracket;
 use std::path::Path;
 
 /// The units of a record's accelerations.
@@ -68,14 +69,9 @@ pub struct Component {
 impl Component {
     /// The acceleration at `t`, linear between samples, zero outside them.
     fn at(&self, t: f64) -> f64 {
-        let n = self.t.len();
-        if n == 0 || t < self.t[0] || t > self.t[n - 1] {
-            return 0.0;
-        }
-        let k = self.t.partition_point(|&s| s <= t).clamp(1, n - 1);
-        let (t0, t1) = (self.t[k - 1], self.t[k]);
-        let f = if t1 > t0 { (t - t0) / (t1 - t0) } else { 0.0 };
-        self.a[k - 1] + f * (self.a[k] - self.a[k - 1])
+        bracket(&self.t, t).map_or(0.0, |(k, f)| {
+            self.a[k - 1] + f * (self.a[k] - self.a[k - 1])
+        })
     }
 
     /// The same component in fractions of g: `units` the scene gives, checked against what
