@@ -221,7 +221,7 @@ fn words_of(key: &str) -> Option<Vec<&'static str>> {
         "solver.mode" => Mode::ALL.map(Mode::as_str).to_vec(),
         "friction.model" => Friction::MODELS.to_vec(),
         "seismic.units" => vec!["g", "m/s2", "cm/s2"],
-        "seismic.polarity" => vec!["normal", "reversed"],
+        "seismic.polarity" => vec!["normal", "reversed", "both"],
         _ => return None,
     })
 }

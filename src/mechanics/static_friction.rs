@@ -274,6 +274,21 @@ pub fn check(
     })
 }
 
+/// The largest multiple t of the driving loads of `applied` that static friction within the
+/// cones holds, the held loads (and the weight) as they are: ∞ when every multiple is, none
+/// when no multiple is (with no driving loads: whether the held loads alone are held). With the driving loads a change of the loads along one direction,
+/// how far along it the block stays held (`route/rigid/held_region.rs`). Constant coefficients
+/// (a stress-dependent criterion's cones move with the normal forces).
+pub fn reach(
+    geom: &ContactGeometry,
+    applied: &Applied,
+    friction: &Strength,
+) -> Result<Option<f64>, StaticError> {
+    let mu = friction.coefficients(&[1.0; 3]);
+    let (t, _) = extreme_t(geom, applied, &mu, &friction.cohesion_n, -1.0)?;
+    Ok((!t.is_nan()).then_some(t))
+}
+
 /// The yield acceleration of a block at rest (`derivations/11-dam-loads.md` §7): the least
 /// horizontal ground acceleration, in any direction, that static friction within the cones
 /// cannot hold with the loads as given.

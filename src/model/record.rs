@@ -50,6 +50,11 @@ impl Record {
         Ok(Record { t, a })
     }
 
+    /// Along which of X, Y, Z the ground moves at all (some sample not zero).
+    pub fn moves(&self) -> [bool; 3] {
+        std::array::from_fn(|c| self.a.iter().any(|a| a[c] != 0.0))
+    }
+
     /// The ground's acceleration (g) at time t, linear between samples; none before the first
     /// sample or after the last (the ground at rest).
     pub fn at(&self, t: f64) -> [f64; 3] {

@@ -28,6 +28,8 @@ pub struct Simulation {
     settings: RunSettings,
     initial: Initial,
     record: Option<Arc<Record>>,
+    /// The record run as it is and reversed (`seismic.polarity = "both"`).
+    both_polarities: bool,
     /// The base the block touches the ground with (`contacts = "base"`).
     base: Option<Base>,
     /// The upward unit normals of the planes under contacts 0, 1, 2, computed once.
@@ -63,6 +65,7 @@ pub struct SimulationBuilder {
     settings: Option<RunSettings>,
     initial: Initial,
     record: Option<Arc<Record>>,
+    both_polarities: bool,
     base: Option<Base>,
 }
 
@@ -79,6 +82,7 @@ impl Simulation {
             settings: None,
             initial: Initial::default(),
             record: None,
+            both_polarities: false,
             base: None,
         }
     }
@@ -132,6 +136,26 @@ impl Simulation {
     /// The ground-motion record, when the foundation is shaken.
     pub fn record(&self) -> Option<&Record> {
         self.record.as_deref()
+    }
+
+    /// Whether the record is to be run as it is and reversed, the larger permanent
+    /// displacement reported (`seismic.polarity = "both"`).
+    pub fn both_polarities(&self) -> bool {
+        self.both_polarities
+    }
+
+    /// The same simulation under one polarity of its record: reversed (every acceleration
+    /// negated) or as it is, run once.
+    pub fn one_polarity(&self, reversed: bool) -> Result<Simulation, ModelError> {
+        let record = match (&self.record, reversed) {
+            (Some(r), true) => Some(Arc::new(r.scaled(-1.0)?)),
+            (r, _) => r.clone(),
+        };
+        Ok(Simulation {
+            record,
+            both_polarities: false,
+            ..self.clone()
+        })
     }
 
     /// The foundation's acceleration (g, along X, Y, Z) at time t: the record's, or none.
@@ -214,6 +238,13 @@ impl SimulationBuilder {
         self
     }
 
+    /// The record run as it is and reversed, the larger permanent displacement reported
+    /// (`seismic.polarity = "both"`; `route::Runner::run`).
+    pub fn both_polarities(mut self) -> Self {
+        self.both_polarities = true;
+        self
+    }
+
     /// The base the block touches the ground with under `contacts = "base"` (without one, the
     /// bounding rectangle of the frame's contacts at the centre of mass's height).
     pub fn base(mut self, base: Base) -> Self {
@@ -272,6 +303,7 @@ impl SimulationBuilder {
             strengths: self.strengths,
             settings,
             initial: self.initial,
+            both_polarities: self.both_polarities && self.record.is_some(),
             record: self.record,
         })
     }

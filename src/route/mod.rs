@@ -84,10 +84,26 @@ pub struct Route {
     /// start and the direction it pushes the block (`static_friction::yield_acceleration`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub yield_acceleration: Option<YieldAcceleration>,
+    /// With `seismic.polarity = "both"`: the permanent displacement under the record as it is
+    /// and reversed; the route is the one of the longer.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub polarities: Option<Polarities>,
     /// A block on its base (`contacts = "base"`): where it rested before any load, what carried
     /// it, and the deepest its base went into the ground.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub base: Option<BaseReport>,
+}
+
+/// The permanent displacements (X, Z, m) of a record run as it is and reversed
+/// (`seismic.polarity = "both"`), and which the route reports: the longer (the first on a tie).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Polarities {
+    /// "normal" or "reversed": the route's.
+    pub reported: &'static str,
+    /// Under the record as it is.
+    pub normal_xz_m: [f64; 2],
+    /// Under the record reversed.
+    pub reversed_xz_m: [f64; 2],
 }
 
 /// A route and how its computation went ([`Runner::run`]): written side by side (summary.json

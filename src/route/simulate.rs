@@ -9,7 +9,7 @@ use super::paper::Paper;
 use super::pose_finder::{PoseFinder, PoseMethod};
 use super::rigid::RigidBody;
 use super::row::Row;
-use super::{Computed, Diagnostics, Route};
+use super::{Computed, Diagnostics, Polarities, Route};
 use crate::model::{Contacts, DynamicsModel, Intensity, Simulation};
 use std::ops::ControlFlow;
 use std::time::Instant;
@@ -82,8 +82,72 @@ impl<'a> Runner<'a> {
         self
     }
 
-    /// The route and how its computation went.
-    pub fn run(mut self) -> Computed {
+    /// The route and how its computation went. A record to be run under both polarities
+    /// (`seismic.polarity = "both"`) is run as it is and reversed, each keeping no rows, then
+    /// the one of the longer permanent displacement again as asked (three routes; progress
+    /// counts a third for each).
+    pub fn run(self) -> Computed {
+        if self.sim.both_polarities() {
+            self.both()
+        } else {
+            self.one()
+        }
+    }
+
+    /// [`Runner::run`] under both polarities.
+    fn both(self) -> Computed {
+        let Runner {
+            sim,
+            method,
+            mut progress,
+            sink,
+            keep_every,
+        } = self;
+        let (Ok(normal), Ok(reversed)) = (sim.one_polarity(false), sim.one_polarity(true)) else {
+            // A record that cannot be reversed was refused when read: run it as it is.
+            return Runner {
+                sim,
+                method,
+                progress,
+                sink,
+                keep_every,
+            }
+            .one();
+        };
+        let mut measured = Vec::with_capacity(2);
+        for (k, s) in [&normal, &reversed].into_iter().enumerate() {
+            let share = k as f64 / 3.0;
+            let done = Runner::new(s)
+                .pose_method(method)
+                .progress(|f| progress(share + f / 3.0))
+                .stream(usize::MAX, |_| {})
+                .run();
+            if done.route.termination.reason == super::Reason::Interrupted {
+                return done;
+            }
+            measured.push(done.route.permanent_displacement_xz_m.unwrap_or([0.0; 2]));
+        }
+        let length = |d: [f64; 2]| d[0].hypot(d[1]);
+        let back = length(measured[1]) > length(measured[0]);
+        let chosen = if back { &reversed } else { &normal };
+        let mut done = Runner {
+            sim: chosen,
+            method,
+            progress: Box::new(|f| progress(2.0 / 3.0 + f / 3.0)),
+            sink,
+            keep_every,
+        }
+        .one();
+        done.route.polarities = Some(Polarities {
+            reported: if back { "reversed" } else { "normal" },
+            normal_xz_m: measured[0],
+            reversed_xz_m: measured[1],
+        });
+        done
+    }
+
+    /// One route.
+    fn one(mut self) -> Computed {
         let started = Instant::now();
         let sim = self.sim;
         let settings = *sim.settings();
@@ -125,6 +189,7 @@ impl<'a> Runner<'a> {
             permanent_displacement_xz_m: permanent.map(|p| p.0),
             record_intensity: intensity,
             yield_acceleration: o.yield_acceleration,
+            polarities: None,
             base: o.base.take(),
         };
         Computed {

@@ -54,6 +54,9 @@ pub struct Scene {
     pub(crate) cases: Vec<LoadCase>,
     /// `seismic.record`: the foundation's acceleration in time.
     pub(crate) record: Option<std::sync::Arc<Record>>,
+    /// `seismic.polarity = "both"`: the record run as it is and reversed, the larger
+    /// permanent displacement reported.
+    pub(crate) both_polarities: bool,
     /// `[friction]`'s cohesion and `[[friction.face]]`.
     pub(crate) strengths: Strengths,
     /// `[uncertain]`: the distributions of a probabilistic analysis, by key name.
@@ -76,7 +79,7 @@ impl PartialEq for Scene {
             &self.settings,
             &self.initial,
             &self.strengths,
-            self.record.as_deref(),
+            (self.record.as_deref(), self.both_polarities),
             &self.uncertain,
             &self.base,
         ) == (
@@ -89,7 +92,7 @@ impl PartialEq for Scene {
             &other.settings,
             &other.initial,
             &other.strengths,
-            other.record.as_deref(),
+            (other.record.as_deref(), other.both_polarities),
             &other.uncertain,
             &other.base,
         )

@@ -33,6 +33,9 @@ impl Scene {
             .initial(self.initial);
         if let Some(record) = &self.record {
             builder = builder.record(record.clone());
+            if self.both_polarities {
+                builder = builder.both_polarities();
+            }
         }
         if let Some(base) = &self.base {
             builder = builder.base(base.clone());

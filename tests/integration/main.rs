@@ -21,6 +21,7 @@ mod faces;
 mod general_pose;
 mod ground_motion;
 mod memory;
+mod newmark_exact;
 mod paper_misprints;
 mod reactions_paper;
 mod record_files;

@@ -175,6 +175,34 @@ fn a_reversed_or_scaled_record_routes_as_its_accelerations_negated_or_scaled() {
 }
 
 #[test]
+fn both_polarities_report_the_longer_route_and_each_ones_displacement() {
+    // The motion slides the block forward (+X); reversed, back (−X) and, its weights differing
+    // with the turn of a_z, by another length. "both" runs each: the route is the longer's,
+    // row for row, and each displacement is as its own run gives it.
+    let dir = folder("both");
+    let reversed = as_one_file(&dir, -1.0);
+    let plain = as_one_file(&dir, 1.0);
+    let both = scene(&dir, "record = \"three.csv\"\npolarity = \"both\"\n").unwrap();
+    let route = slideroute::run(&both).unwrap();
+    let p = route.polarities.expect("both polarities");
+    let xz = |r: &Route| r.permanent_displacement_xz_m.unwrap();
+    assert_eq!(p.normal_xz_m, xz(&plain));
+    assert_eq!(p.reversed_xz_m, xz(&reversed));
+    let length = |d: [f64; 2]| d[0].hypot(d[1]);
+    let (longer, name) = if length(xz(&reversed)) > length(xz(&plain)) {
+        (&reversed, "reversed")
+    } else {
+        (&plain, "normal")
+    };
+    assert_eq!(p.reported, name);
+    same_route(&route, longer, 0.0);
+    assert!((length(xz(&reversed)) - length(xz(&plain))).abs() > 1e-6);
+    // One polarity as given reports none.
+    assert!(plain.polarities.is_none());
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
 fn a_record_given_two_ways_or_with_keys_it_cannot_use_is_refused_naming_the_key() {
     let dir = folder("refused");
     let m = motion();
@@ -217,11 +245,6 @@ fn a_record_given_two_ways_or_with_keys_it_cannot_use_is_refused_naming_the_key(
             "record_z = \"cm.txt\"\ndt_s = 0.01\n",
             "seismic.record_z",
             "over 10 g",
-        ),
-        (
-            "record_x = \"x.AT2\"\npolarity = \"both\"\n",
-            "seismic.polarity",
-            "not built yet",
         ),
         (
             "record_x = \"x.AT2\"\npolarity = \"up\"\n",

@@ -27,6 +27,7 @@ mod energy;
 mod evaluate;
 mod events;
 mod ground;
+mod held_region;
 mod hold;
 mod rest;
 mod state;
@@ -65,6 +66,11 @@ pub(super) struct RigidBody<'a> {
     anchor: Option<Anchor>,
     /// The largest kinetic energy so far (the energy balance's scale).
     ke_max: f64,
+    /// The largest kinetic energy since the block last slipped from rest: the scale against
+    /// which a slip is settling (`substep.rs`'s `SETTLED`).
+    slip_peak: f64,
+    /// The last event, when it was a pivot: the contact and the moment.
+    pivoted: Option<(usize, f64)>,
     /// The substep: dt, halved where the energy balance says RK4 does not resolve the motion,
     /// grown back by doubling.
     h: f64,
@@ -79,6 +85,9 @@ pub(super) struct RigidBody<'a> {
     /// increment checks the friction cones again, and the block slips when they no longer hold
     /// it (`rest.rs`).
     resting: bool,
+    /// While resting: the ground accelerations it is certainly held under where it rests
+    /// (`held_region.rs`), found at its first increment at rest.
+    region: Option<held_region::HeldRegion>,
 }
 
 impl<'a> RigidBody<'a> {
@@ -99,10 +108,13 @@ impl<'a> RigidBody<'a> {
             anchor: Anchor::after(&ev, None),
             ev,
             ke_max: 0.0,
+            slip_peak: 0.0,
+            pivoted: None,
             h: sim.settings().dt,
             energy,
             round_off: 64.0 * f64::EPSILON * mass * sim.loads().gravity * sim.l(),
             resting,
+            region: None,
         }
     }
 

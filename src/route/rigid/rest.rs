@@ -4,13 +4,14 @@
 
 use super::RigidBody;
 use super::evaluate::{Eval, Hold, body_geometry, cm_y, evaluate, stop_of};
+use super::held_region::{self, HeldRegion};
 use super::hold::Anchor;
 use super::state::RigidState;
 use crate::geometry::Pose;
 use crate::mechanics::ContactGeometry;
 use crate::mechanics::loads::Applied;
 use crate::mechanics::rigid_body::{self, Creases, Motion};
-use crate::mechanics::static_friction::{self, HoldingRange};
+use crate::mechanics::static_friction::{self, HoldingRange, StaticError};
 use crate::model::Simulation;
 use crate::route::dynamics::Flow;
 use crate::route::logbook::Logbook;
@@ -41,11 +42,16 @@ pub(super) fn static_check(
 ) -> Result<HoldingRange, Stop> {
     let applied = Applied::shaken(sim.loads(), sim.block(), &geom.frame, sim.ground(t));
     let strength = sim.strength(faces, bonded);
-    static_friction::at_rest(geom, &applied, &strength).map_err(|err| Stop {
+    static_friction::at_rest(geom, &applied, &strength).map_err(static_stop)
+}
+
+/// A static check without an answer: the route ends there.
+fn static_stop(err: StaticError) -> Stop {
+    Stop {
         contact: None,
         reason: Reason::ContactForcesUndetermined,
         detail: err.to_string(),
-    })
+    }
 }
 
 /// A row at rest (velocities zero; reactions not computed: static friction is indeterminate).
@@ -119,6 +125,17 @@ pub(super) enum Rest {
 }
 
 impl RigidBody<'_> {
+    /// Whether static friction within the cones could hold the block at rest at state `y` (at
+    /// its time, with the loads then; no cohesion): a contact's slip passing through zero there
+    /// while the block settles is its stop.
+    pub(super) fn holds_at(&self, finder: &PoseFinder<'_>, y: &RigidState) -> bool {
+        let Ok(pose) = finder.clone().pose_at(y.displacement()) else {
+            return false;
+        };
+        let geom = ContactGeometry::new(&finder.site().normals(), &pose);
+        static_check(self.sim, &geom, y.t, self.ev.faces, false).is_ok_and(|c| c.holds())
+    }
+
     /// Where the motion stops, at `t_event` of increment `k`: the block at rest at `stopped`
     /// (the state just before the stop, its rates zeroed; the step started from the present
     /// evaluation). Held there by static friction, the route ends "stopped"; not held, it slips
@@ -211,43 +228,66 @@ impl RigidBody<'_> {
         let (faces, bonded) = (self.ev.faces, o.travel == 0.0);
         let check_at = |t: f64| static_check(sim, &geom, t, faces, bonded);
         let holds = |t: f64| check_at(t).map(|c| c.holds());
-        // The record's samples within the increment, where its loads turn: the cones are
-        // checked at each (between them the loads are linear in time), the last at t_target.
+        if self.region.is_none() {
+            // Where it came to rest: the ground accelerations it is certainly held under (a
+            // failed cone program leaves every sample to the static check).
+            let strength = sim.strength(faces, bonded);
+            self.region = HeldRegion::at(sim, &geom, &strength, sim.ground(self.t))
+                .ok()
+                .flatten();
+        }
+        let region = self.region.as_ref();
+        // Held at time t: inside the region, or by the static check.
+        let held = |t: f64| match region {
+            Some(r) if r.holds(sim.ground(t)) => Ok(true),
+            _ => holds(t),
+        };
+        // The record's samples within the increment, where its loads turn: the block is held
+        // at each (between them the loads are linear in time, and held by convexity), the last
+        // at t_target.
         let mut at = self.t;
         let mut slips = None;
-        let mut last = None;
         while at < t_target {
             let next = match sim.record().and_then(|r| r.next_sample(at)) {
                 Some(s) if s < t_target => s,
                 _ => t_target,
             };
-            match check_at(next) {
-                Ok(c) if c.holds() => {
-                    at = next;
-                    last = Some(c);
-                }
-                Ok(_) => {
+            match held(next) {
+                Ok(true) => at = next,
+                Ok(false) => {
                     slips = Some((at, next));
                     break;
                 }
                 Err(s) => return Flow::Ended(self.fail(o, s)),
             }
         }
-        if let Some((mut lo, mut hi)) = slips {
-            // Held at lo, not at hi: the onset of slip to a millionth of the interval.
-            for _ in 0..20 {
-                let mid = 0.5 * (lo + hi);
-                match holds(mid) {
-                    Ok(true) => lo = mid,
-                    Ok(false) => hi = mid,
-                    Err(s) => return Flow::Ended(self.fail(o, s)),
+        if let Some((lo, hi)) = slips {
+            // Held at lo, not at hi, the record linear between: where the segment of its
+            // accelerations leaves the held set, by one cone program (for a stress-dependent
+            // criterion, by bisection to a millionth of the interval).
+            let strength = sim.strength(faces, bonded);
+            let exit = held_region::exit(sim, &geom, &strength, sim.ground(lo), sim.ground(hi));
+            let onset = match exit {
+                Ok(Some(s)) => lo + s.clamp(0.0, 1.0) * (hi - lo),
+                Ok(None) => {
+                    let (mut held, mut not) = (lo, hi);
+                    for _ in 0..20 {
+                        let mid = 0.5 * (held + not);
+                        match holds(mid) {
+                            Ok(true) => held = mid,
+                            Ok(false) => not = mid,
+                            Err(s) => return Flow::Ended(self.fail(o, s)),
+                        }
+                    }
+                    not
                 }
-            }
+                Err(e) => return Flow::Ended(self.fail(o, static_stop(e))),
+            };
             // Just past the onset the loads exceed the cones by the cone program's tolerance,
             // too little for a consistent direction of slip: the start is sought a little later,
-            // at lengths doubling from the bisection's, within the increment.
-            let mut late = hi - lo;
-            let mut tried = hi;
+            // at lengths doubling from a billionth of the interval, within the increment.
+            let mut late = 1e-9 * (hi - lo);
+            let mut tried = onset;
             loop {
                 let y = self.y.at(tried);
                 match evaluate(sim, finder, &y, Hold::default()) {
@@ -256,6 +296,8 @@ impl RigidBody<'_> {
                         self.t = tried;
                         self.ev = e;
                         self.resting = false;
+                        self.slip_peak = 0.0;
+                        self.region = None;
                         self.anchor = Anchor::after(&self.ev, None);
                         self.h = sim.settings().dt;
                         return Flow::Go(o);
@@ -272,7 +314,7 @@ impl RigidBody<'_> {
                         return Flow::Ended(self.fail(o, s));
                     }
                     Err(_) => {
-                        tried = (hi + late).min(t_target);
+                        tried = (onset + late).min(t_target);
                         late *= 2.0;
                     }
                 }
@@ -280,39 +322,31 @@ impl RigidBody<'_> {
         }
         self.t = t_target;
         self.y.t = t_target;
-        // Held through the increment: the check at its end (made above unless the increment
-        // was empty).
-        let check = match last.map_or_else(|| check_at(t_target), Ok) {
+        if sim.record().is_some_and(|r| t_target < r.end()) {
+            return Flow::Go(o);
+        }
+        // Held through the record's end: the route ends, with the factor of safety there.
+        let check = match check_at(t_target) {
             Ok(c) => c,
             Err(s) => return Flow::Ended(self.fail(o, s)),
         };
-        let over = sim.record().is_none_or(|r| t_target >= r.end());
-        if over {
-            let moved = o.travel > 0.0;
-            o.push(rest_row(self.t, &self.y, &self.ev.pose, self.ev.faces));
-            o.energy = Some(self.balance(&self.y, &self.ev));
-            let (reason, what) = if moved {
-                (Reason::Stopped, "the block came to rest")
-            } else {
-                (Reason::DoesNotSlide, "the block never slid")
-            };
-            return Flow::Ended(o.end(
-                reason,
-                self.t,
-                format!(
-                    "the ground-motion record ended at {:.6} s; {what} and static friction \
-                     holds it (factor of safety {})",
-                    sim.record().map_or(0.0, |r| r.end()),
-                    check.factor_of_safety()
-                ),
-            ));
-        }
-        match rest_eval(sim, finder, self.ev.pose, &check) {
-            Ok(e) => {
-                self.ev = e;
-                Flow::Go(o)
-            }
-            Err(s) => Flow::Ended(self.fail(o, s)),
-        }
+        let moved = o.travel > 0.0;
+        o.push(rest_row(self.t, &self.y, &self.ev.pose, self.ev.faces));
+        o.energy = Some(self.balance(&self.y, &self.ev));
+        let (reason, what) = if moved {
+            (Reason::Stopped, "the block came to rest")
+        } else {
+            (Reason::DoesNotSlide, "the block never slid")
+        };
+        Flow::Ended(o.end(
+            reason,
+            self.t,
+            format!(
+                "the ground-motion record ended at {:.6} s; {what} and static friction \
+                 holds it (factor of safety {})",
+                sim.record().map_or(0.0, |r| r.end()),
+                check.factor_of_safety()
+            ),
+        ))
     }
 }

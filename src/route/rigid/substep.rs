@@ -25,6 +25,11 @@ const REST: f64 = 1e-9;
 /// moments damp the rotation at a rate ∝ μ N r² / (I |v|) — or a slip swings round near zero.
 const ENERGY_TOLERANCE: f64 = 1e-9;
 
+/// The fraction of the largest kinetic energy since the block last slipped from rest below
+/// which a slip is settling: a contact's slip passing through zero there, with the loads within
+/// the friction cones, is the stop (see `RigidBody::cut_at_event`).
+const SETTLED: f64 = 1e-6;
+
 /// The most events (stops that restart, pivots) resolved within one increment.
 const MAX_EVENTS: usize = 16;
 
@@ -128,9 +133,9 @@ impl RigidBody<'_> {
     ) -> Result<Substep, Ending> {
         let mass = self.sim.block().mass;
         let motion = self.ev.motion;
-        self.ke_max = self
-            .ke_max
-            .max(motion.twist.kinetic_energy(mass, &motion.inertia));
+        let ke = motion.twist.kinetic_energy(mass, &motion.inertia);
+        self.ke_max = self.ke_max.max(ke);
+        self.slip_peak = self.slip_peak.max(ke);
         let heading = Heading {
             before: &motion,
             mass,
@@ -311,12 +316,27 @@ impl RigidBody<'_> {
         let ke = (self.ev.motion.twist).kinetic_energy(mass, &self.ev.motion.inertia);
         let event = match found.or(at_end).or(trial.crossed).unwrap_or(Event::Stop) {
             Event::Pivot(_) if ke <= REST * self.ke_max => Event::Stop,
+            // The same pivot again at the same moment: the block cannot move on consistently.
+            Event::Pivot(i)
+                if self.pivoted.is_some_and(|(j, at)| {
+                    i == j && (self.t + lo - at).abs() <= 1e-9 * self.sim.settings().dt
+                }) =>
+            {
+                Event::Stop
+            }
+            Event::Pivot(_) if ke <= SETTLED * self.slip_peak && self.holds_at(finder, &y_lo) => {
+                Event::Stop
+            }
             e => e,
         };
         // A release goes on from just past the moment (the contact then slips, in the
         // direction `rigid_body::accelerations` gives); a pivot from just before it, the
         // contact's remaining slip (of the bisection's size) projected out, stuck while its
         // cone allows.
+        self.pivoted = match event {
+            Event::Pivot(i) => Some((i, self.t + lo)),
+            _ => None,
+        };
         let (y_at, len, stick) = match event {
             Event::Release(_) => (y_hi, hi, None),
             Event::Pivot(i) => (y_lo, lo, Some(i)),
@@ -443,6 +463,7 @@ impl RigidBody<'_> {
                 self.t = at;
                 self.anchor = None;
                 self.resting = true;
+                self.region = None;
                 Ok(Substep::Event)
             }
             Rest::Ended(reason, at, detail) => Err(Ending::At(reason, at, detail)),

@@ -233,17 +233,12 @@ impl Reader<'_> {
         match s.polarity.as_deref() {
             None | Some("normal") => {}
             Some("reversed") => k = -k,
-            Some("both") => {
-                return Err(self.invalid(
-                    "seismic.polarity",
-                    "\"both\" is not built yet: run the scene with \"normal\" and with \
-                     \"reversed\"",
-                ));
-            }
+            // Run as it is and reversed (`Simulation::both_polarities`).
+            Some("both") => {}
             Some(other) => {
                 return Err(self.invalid(
                     "seismic.polarity",
-                    format!("`{other}` is not a polarity: \"normal\" or \"reversed\""),
+                    format!("`{other}` is not a polarity: \"normal\", \"reversed\" or \"both\""),
                 ));
             }
         }

@@ -107,6 +107,11 @@ impl Reader<'_> {
             folder: self.folder.to_path_buf(),
             guideline,
             cases,
+            both_polarities: record.is_some()
+                && raw
+                    .seismic
+                    .as_ref()
+                    .is_some_and(|s| s.polarity.as_deref() == Some("both")),
             record,
             strengths,
             uncertain,

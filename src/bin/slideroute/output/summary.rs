@@ -55,6 +55,16 @@ impl fmt::Display for RouteSummary<'_> {
                 fixed(rot, 3)
             )?;
         }
+        if let Some(p) = &r.polarities {
+            let length = |d: [f64; 2]| fixed(d[0].hypot(d[1]), 3);
+            writeln!(
+                f,
+                "  both polarities: {} m as recorded, {} m reversed; this route is the {} one",
+                length(p.normal_xz_m),
+                length(p.reversed_xz_m),
+                p.reported
+            )?;
+        }
         if let Some(y) = &r.yield_acceleration {
             writeln!(
                 f,
