@@ -342,10 +342,11 @@ def summarise(
     rows: Mapping[str, Any],
     travel_limit_m: Optional[float] = None,
     rotation_limit_deg: Optional[float] = None,
+    displacement_limit_m: Optional[float] = None,
 ) -> Dict[str, Any]:
     """What the rows of one design come to: the summary ``probabilistic.json`` has (the
-    probability of sliding with its 95 % interval, exceedance probabilities, percentiles,
-    rank correlations)."""
+    probability of sliding with its 95 % interval — under a ground-motion record, that the
+    record displaces the block —, exceedance probabilities, percentiles, rank correlations)."""
     return _native.summarise_samples(
         scene._s,
         distributions(scene, dists),
@@ -355,6 +356,7 @@ def summarise(
         dict(rows),
         travel_limit_m,
         rotation_limit_deg,
+        displacement_limit_m,
     )
 
 
@@ -367,7 +369,8 @@ class Probabilistic:
 
     @property
     def probability_of_sliding(self) -> float:
-        """The fraction of samples whose factor of safety is below 1."""
+        """The fraction of samples whose factor of safety is below 1 (under a ground-motion
+        record, whose block the record displaces)."""
         return self.summary["probability_of_sliding"]["value"]
 
 
@@ -380,17 +383,28 @@ def probabilistic(
     travel_limit_m: Optional[float] = None,
     rotation_limit_deg: Optional[float] = None,
     progress: Progress = None,
+    displacement_limit_m: Optional[float] = None,
 ) -> Probabilistic:
     """The probabilistic analysis, as ``slideroute probabilistic`` runs it: each uncertain
     key's distribution (``{"friction.mu_k": "normal:0.40:0.05"}``; the scene's
     ``[uncertain]`` table too), ``samples`` samples from ``seed`` by ``sampling`` (``"lhs"``
     or ``"mc"``), every route on every core; the same numbers as the command line's.
     ``progress(done, total)`` is told how many samples are done (``tqdm``'s ``update`` fits);
-    Ctrl-C stops it at its next route with ``KeyboardInterrupt``."""
+    Ctrl-C stops it at its next route with ``KeyboardInterrupt``. Under a ground-motion
+    record, ``displacement_limit_m`` asks for the probability that the permanent displacement
+    exceeds it."""
     dist = distributions(scene, dists)
     values = sample_values(scene, dist, samples, seed, sampling)
     rows = run_samples(scene, dist, values, progress=progress)
     summary = summarise(
-        scene, dist, samples, seed, sampling, rows, travel_limit_m, rotation_limit_deg
+        scene,
+        dist,
+        samples,
+        seed,
+        sampling,
+        rows,
+        travel_limit_m,
+        rotation_limit_deg,
+        displacement_limit_m,
     )
     return Probabilistic(samples=rows, summary=summary)

@@ -51,7 +51,7 @@ pub fn columns_of<'py>(
             .map(|s| s.outcome.route().map_or(f64::NAN, f))
             .collect()
     };
-    let float_columns: [Column; 8] = [
+    let float_columns: [Column; 10] = [
         ("factor_of_safety", &|r| {
             r.factor_of_safety_value().unwrap_or(f64::NAN)
         }),
@@ -62,6 +62,8 @@ pub fn columns_of<'py>(
         ("final_z_m", &|r| r.z_m),
         ("max_alpha_deg", &|r| r.max_alpha_deg),
         ("max_beta_deg", &|r| r.max_beta_deg),
+        ("permanent_x_m", &|r| r.permanent_xz_m.map_or(f64::NAN, |d| d[0])),
+        ("permanent_z_m", &|r| r.permanent_xz_m.map_or(f64::NAN, |d| d[1])),
     ];
     for (name, f) in float_columns {
         out.set_item(name, PyArray1::from_vec(py, route(f)))?;
@@ -107,6 +109,15 @@ pub fn samples_from<'py>(
     let z = floats("final_z_m")?;
     let max_alpha = floats("max_alpha_deg")?;
     let max_beta = floats("max_beta_deg")?;
+    // Older tables have no permanent displacement: none.
+    let permanent: Vec<Option<[f64; 2]>> = match (floats("permanent_x_m"), floats("permanent_z_m")) {
+        (Ok(px), Ok(pz)) if px.len() == n && pz.len() == n => px
+            .iter()
+            .zip(&pz)
+            .map(|(&a, &b)| (!a.is_nan() && !b.is_nan()).then_some([a, b]))
+            .collect(),
+        _ => vec![None; n],
+    };
     let reason: Vec<String> = get("reason")?.extract()?;
     let detail: Vec<String> = get("detail")?.extract()?;
     let lengths = [
@@ -149,6 +160,7 @@ pub fn samples_from<'py>(
                     yaw_deg: yaw[k],
                     max_alpha_deg: max_alpha[k],
                     max_beta_deg: max_beta[k],
+                    permanent_xz_m: permanent[k],
                     cm_path_m: vec![],
                 }),
             };

@@ -117,7 +117,7 @@ pub fn run_samples<'py>(
 /// What the samples (columns, from [`run_samples`] of one design, in order) come to: the
 /// summary `probabilistic.json` has.
 #[pyfunction]
-#[pyo3(signature = (scene, uncertain, samples, seed, sampling, columns, travel_limit_m = None, rotation_limit_deg = None))]
+#[pyo3(signature = (scene, uncertain, samples, seed, sampling, columns, travel_limit_m = None, rotation_limit_deg = None, displacement_limit_m = None))]
 #[allow(clippy::too_many_arguments)]
 pub fn summarise_samples<'py>(
     py: Python<'py>,
@@ -129,6 +129,7 @@ pub fn summarise_samples<'py>(
     columns: &Bound<'py, PyDict>,
     travel_limit_m: Option<f64>,
     rotation_limit_deg: Option<f64>,
+    displacement_limit_m: Option<f64>,
 ) -> PyResult<Bound<'py, PyAny>> {
     let (u, sampling) = design_of(py, scene, &uncertain, samples, sampling)?;
     let keys: Vec<String> = u.iter().map(|x| x.key.clone()).collect();
@@ -140,13 +141,15 @@ pub fn summarise_samples<'py>(
         seed,
         sampling,
     };
-    let limits = Limits::new(travel_limit_m, rotation_limit_deg).map_err(|(name, l)| {
-        input_error(
-            py,
-            name,
-            format!("{name} {l}: a finite number, zero or more"),
-        )
-    })?;
+    let limits = Limits::new(travel_limit_m, rotation_limit_deg)
+        .and_then(|l| l.with_displacement(displacement_limit_m))
+        .map_err(|(name, l)| {
+            input_error(
+                py,
+                name,
+                format!("{name} {l}: a finite number, zero or more"),
+            )
+        })?;
     json(py, &summarise(&design, limits, &rows))
 }
 

@@ -35,6 +35,10 @@ pub struct RouteResult {
     pub max_alpha_deg: f64,
     /// The largest tilt β along the route (degrees).
     pub max_beta_deg: f64,
+    /// Under a ground-motion record, the permanent displacement relative to the foundation, X
+    /// and Z (m; `Route::permanent_displacement_xz_m`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub permanent_xz_m: Option<[f64; 2]>,
     /// The CM path in plan, (X, Z) in m, thinned evenly to at most [`RouteResult::PATH_POINTS`]
     /// points (the
     /// first and last kept).
@@ -64,6 +68,7 @@ impl RouteResult {
             yaw_deg: last.map_or(0.0, |l| l.theta_deg),
             max_alpha_deg: max(|r| r.alpha_deg),
             max_beta_deg: max(|r| r.beta_deg),
+            permanent_xz_m: route.permanent_displacement_xz_m,
             cm_path_m: thin(
                 &route
                     .rows
@@ -73,6 +78,11 @@ impl RouteResult {
                 RouteResult::PATH_POINTS,
             ),
         }
+    }
+
+    /// The permanent displacement's length (m), under a ground-motion record.
+    pub fn permanent_m(&self) -> Option<f64> {
+        self.permanent_xz_m.map(|d| d[0].hypot(d[1]))
     }
 
     /// The factor of safety as a number: +∞ where no multiple of the driving loads starts the

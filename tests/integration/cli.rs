@@ -1520,6 +1520,15 @@ fn probabilistic_inputs_it_cannot_use_are_named() {
             ],
             vec!["--travel-limit-m"],
         ),
+        (
+            vec![
+                "--dist",
+                "friction.mu_k=normal:0.4:0.05",
+                "--displacement-limit-m",
+                "0.1",
+            ],
+            vec!["--displacement-limit-m", "no ground-motion record"],
+        ),
     ] {
         let mut all = vec!["probabilistic", "--out", o, "--quiet"];
         all.extend(args);
@@ -1540,6 +1549,83 @@ fn probabilistic_inputs_it_cannot_use_are_named() {
     let csv = std::fs::read_to_string(out.join("samples.csv")).unwrap();
     assert!(csv.contains("invalid scene"), "{csv}");
     assert!(csv.contains("friction.mu_k"), "{csv}");
+}
+
+#[test]
+fn a_sweep_under_a_record_tables_each_combinations_permanent_displacement() {
+    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/shaken.toml");
+    let csv = sweep_csv(
+        &temp_dir("sweep-shaken"),
+        &["--scene", scene, "--vary", "friction.mu_k=0.4,0.42"],
+    );
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    let (px, pz) = (col("permanent_x_m"), col("permanent_z_m"));
+    for (line, mu) in lines.zip(["0.4", "0.42"]) {
+        let cells: Vec<&str> = line.split(',').collect();
+        let out = temp_dir(&format!("sweep-shaken-{mu}"));
+        let doc = std::fs::read_to_string(scene)
+            .unwrap()
+            .replace(
+                "record = \"shaken-motion.csv\"",
+                &format!(
+                    "record = \"{}/scenes/shaken-motion.csv\"",
+                    env!("CARGO_MANIFEST_DIR")
+                ),
+            )
+            .replace("mu_k = 0.40", &format!("mu_k = {mu}"));
+        let file = temp_file(&format!("shaken-{mu}.toml"), &doc);
+        let o = run(&[
+            "run",
+            "--scene",
+            file.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let summary: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap())
+                .unwrap();
+        let want = &summary["permanent_displacement_xz_m"];
+        assert_eq!(cells[px].parse::<f64>().unwrap(), want[0].as_f64().unwrap());
+        assert_eq!(cells[pz].parse::<f64>().unwrap(), want[1].as_f64().unwrap());
+    }
+}
+
+#[test]
+fn probabilistic_under_a_record_reports_the_chance_of_a_permanent_displacement_over_a_limit() {
+    let out = temp_dir("prob-shaken");
+    let scene = concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/shaken.toml");
+    let o = run(&[
+        "probabilistic",
+        "--scene",
+        scene,
+        "--out",
+        out.to_str().unwrap(),
+        "--samples",
+        "6",
+        "--dist",
+        "friction.mu_k=uniform:0.38:0.42",
+        "--displacement-limit-m",
+        "0.5",
+        "--no-plots",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        text.contains("probability the record displaces the block 1.0000")
+            && text.contains("probability the permanent displacement exceeds 0.5 m"),
+        "{text}"
+    );
+    assert!(!text.contains("factor of safety below 1"), "{text}");
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("probabilistic.json")).unwrap())
+            .unwrap();
+    assert_eq!(json["shaken"], true);
+    assert_eq!(json["displacement_limit_m"], 0.5);
+    // scenes/shaken.toml's block moves 0.80 m: every sample over 0.5 m.
+    assert_eq!(json["probability_displacement_exceeds_limit"]["value"], 1.0);
 }
 
 #[test]

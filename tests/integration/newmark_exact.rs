@@ -44,6 +44,21 @@ fn the_exact_solution_gives_a_trapezoidal_pulse_by_hand() {
 /// The block on one level face, three points of the frame, pushed by `push` of its weight along
 /// X through its centre of mass, friction `mu`, the record `a` along X at `dt`.
 fn pushed(name: &str, a: &[f64], dt: f64, mu: f64, push: f64) -> Scene {
+    let (s, dir) = pushed_in(name, a, dt, mu, push, "frame");
+    std::fs::remove_dir_all(&dir).ok();
+    s
+}
+
+/// [`pushed`] on `contacts` (`frame` or `base`), its folder (with the record's file) kept for
+/// the caller to remove: a scene edited by key reads a component file again.
+fn pushed_in(
+    name: &str,
+    a: &[f64],
+    dt: f64,
+    mu: f64,
+    push: f64,
+    contacts: &str,
+) -> (Scene, std::path::PathBuf) {
     let dir = std::env::temp_dir().join(format!("slideroute-exact-{name}-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let column: String = a.iter().map(|v| format!("{v:.9}\n")).collect();
@@ -73,7 +88,7 @@ model = "coulomb"
 mu_k = {mu}
 [solver]
 mode = "exact"
-contacts = "frame"
+contacts = "{contacts}"
 dt_s = 1.0e-3
 t_end_s = {t_end}
 [seismic]
@@ -86,8 +101,7 @@ dt_s = {dt}
     let path = dir.join("scene.toml");
     std::fs::write(&path, text).unwrap();
     let s = Scene::from_file(&path).unwrap_or_else(|e| panic!("{e}"));
-    std::fs::remove_dir_all(&dir).ok();
-    s
+    (s, dir)
 }
 
 /// How closely the energy balance closes, as a fraction of the work. At μ = 1 it closes to
@@ -149,4 +163,88 @@ fn other_frictions_and_yield_accelerations_slide_the_exact_distance() {
     agrees("mu60-p50", 1, 0.4, 0.6, 0.5);
     agrees("mu50-p45", 7, 0.3, 0.5, 0.45);
     agrees("mu30-p25", 5, 0.5, 0.3, 0.25);
+}
+
+#[test]
+fn under_a_record_the_probabilistic_analysis_gives_the_chance_of_a_displacement_over_a_limit() {
+    use slideroute::internals::analysis::probabilistic::{Design, Limits, summarise};
+    use slideroute::probabilistic::{Sampling, Uncertain};
+    // No push, −0.5 g for 0.2 s (a trapezoid, by hand as above) and μ uniform on (0.1, 0.5):
+    // every block slides, though no static load pushes it (its factor of safety is unbounded,
+    // which called none of them sliding), and the displacement falls with μ, so it exceeds the
+    // displacement at μ = 0.3 exactly when μ < 0.3: half the Latin hypercube's strata.
+    let dt = 0.01;
+    let mut a = vec![-0.5; 21];
+    a.extend(std::iter::repeat_n(0.0, 200));
+    let limit = exact(&a, dt, 0.3, 0.0);
+    let (scene, dir) = pushed_in("probabilistic", &a, dt, 0.3, 0.0, "frame");
+    let uncertain: Vec<Uncertain> = vec!["friction.mu_k=uniform:0.1:0.5".parse().unwrap()];
+    let design = Design {
+        scene: &scene,
+        uncertain: &uncertain,
+        samples: 40,
+        seed: 5,
+        sampling: Sampling::LatinHypercube,
+    };
+    let rows = design.run(|| {}, || false);
+    std::fs::remove_dir_all(&dir).ok();
+    let limits = Limits::default().with_displacement(Some(limit)).unwrap();
+    let s = summarise(&design, limits, &rows);
+    assert!(s.shaken);
+    assert_eq!(s.routes, 40);
+    assert_eq!(s.probability_of_sliding.value, 1.0);
+    let over = s.probability_displacement_exceeds_limit.unwrap().value;
+    assert_eq!(over, 0.5, "limit {limit} m");
+    // Each sample's displacement is the exact one for its μ, so its count is the closed form's.
+    for r in &rows {
+        let mu = r.values[0];
+        let d = r.outcome.route().unwrap().permanent_m().unwrap();
+        let want = exact(&a, dt, mu, 0.0);
+        assert!(
+            (d - want).abs() <= 1e-6 * want + 1e-9,
+            "μ = {mu}: {d} m against {want} m"
+        );
+    }
+}
+
+#[test]
+fn a_block_on_its_base_rests_while_the_record_holds_it_and_stops_where_the_exact_block_does() {
+    // The same block on its whole base (contacts = "base", impulses at its touches, steps of
+    // dt): it rested only without a record, and under one crept on at 1e-11 m/s to the time
+    // limit. Now it rests while a step from rest leaves it slow, and its displacement is the
+    // exact one to the step's first order (2e-4 at dt = 1 ms).
+    let dt = 0.005;
+    let a = record(1, 12.0, dt, 0.4);
+    let want = exact(&a, dt, 1.0, 0.9);
+    let (scene, dir) = pushed_in("base", &a, dt, 1.0, 0.9, "base");
+    let route = slideroute::run(&scene).unwrap();
+    let x = route.permanent_displacement_xz_m.unwrap()[0];
+    assert_eq!(
+        route.termination.reason,
+        Reason::Stopped,
+        "{}",
+        route.termination.detail
+    );
+    assert!(
+        (x - want).abs() <= 1e-3 * want,
+        "{x} m against the exact {want} m"
+    );
+    // A record under the yield acceleration (0.05 g against 0.1 g): it never moves.
+    let weak = record(2, 6.0, dt, 0.05);
+    let (scene, dir2) = pushed_in("base-weak", &weak, dt, 1.0, 0.9, "base");
+    let route = slideroute::run(&scene).unwrap();
+    std::fs::remove_dir_all(&dir).ok();
+    std::fs::remove_dir_all(&dir2).ok();
+    assert_eq!(
+        route.termination.reason,
+        Reason::DoesNotSlide,
+        "{}",
+        route.termination.detail
+    );
+    assert_eq!(route.permanent_displacement_xz_m, Some([0.0, 0.0]));
+    assert!(
+        (route.termination.t_s - 6.0).abs() < 1e-9,
+        "{:?}",
+        route.termination
+    );
 }

@@ -1,5 +1,6 @@
-//! What the samples come to: the probability of sliding (factor of safety below 1)
-//! with its 95 % interval, the probabilities that travel and rotation exceed the limits given,
+//! What the samples come to: the probability of sliding (factor of safety below 1; under a
+//! ground-motion record, a permanent displacement) with its 95 % interval, the probabilities that
+//! travel, rotation and a record's permanent displacement exceed the limits given,
 //! percentiles, and each input's rank correlations — `probabilistic.json`.
 
 use super::{Design, Sample, Sampling, Sensitivity, proportion, sensitivities};
@@ -91,6 +92,8 @@ pub struct Limits {
     pub travel_m: Option<f64>,
     /// Size of the final yaw (degrees).
     pub rotation_deg: Option<f64>,
+    /// The permanent displacement's length under a ground-motion record (m).
+    pub displacement_m: Option<f64>,
 }
 
 impl Limits {
@@ -111,7 +114,20 @@ impl Limits {
         Ok(Limits {
             travel_m,
             rotation_deg,
+            displacement_m: None,
         })
+    }
+
+    /// The same limits with one on the permanent displacement under a record (m): finite and
+    /// zero or more, else `displacement_limit_m` and its value.
+    pub fn with_displacement(self, limit: Option<f64>) -> Result<Limits, (&'static str, f64)> {
+        match limit {
+            Some(l) if !(l.is_finite() && l >= 0.0) => Err(("displacement_limit_m", l)),
+            _ => Ok(Limits {
+                displacement_m: limit,
+                ..self
+            }),
+        }
     }
 }
 
@@ -134,8 +150,21 @@ pub struct Summary {
     pub invalid_samples: usize,
     /// Samples not run (the analysis was stopped first).
     pub not_run: usize,
-    /// Factor of safety below 1, over the samples whose route ran.
+    /// Whether the scene is shaken by a ground-motion record: then the block slides when the
+    /// record moves it, whatever its static factor of safety.
+    pub shaken: bool,
+    /// Unshaken, the factor of safety below 1; under a record, a permanent displacement (the
+    /// block slid and stayed off where it was); over the samples whose route ran.
     pub probability_of_sliding: Probability,
+    /// The permanent displacement limit asked about (m), under a record.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub displacement_limit_m: Option<f64>,
+    /// The permanent displacement's length over it, over the samples whose route ran.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub probability_displacement_exceeds_limit: Option<Probability>,
+    /// Of the permanent displacement's length (m), under a record.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub permanent_displacement_m: Option<Percentiles>,
     /// The travel limit asked about (m).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub travel_limit_m: Option<f64>,
@@ -167,6 +196,8 @@ pub fn summarise(design: &Design, limits: Limits, samples: &[Sample]) -> Summary
     // A failed cone program counts as not sliding (its row says so).
     let fs = |r: &RouteResult| r.factor_of_safety_value().unwrap_or(f64::NAN);
     let keys: Vec<String> = design.uncertain.iter().map(|u| u.key.clone()).collect();
+    let shaken = design.scene.record().is_some();
+    let displaced = |r: &RouteResult| r.permanent_m().unwrap_or(0.0);
     Summary {
         scene: design.scene.name().to_string(),
         samples: design.samples,
@@ -189,7 +220,20 @@ pub fn summarise(design: &Design, limits: Limits, samples: &[Sample]) -> Summary
             .iter()
             .filter(|s| matches!(s.outcome, Outcome::NotRun))
             .count(),
-        probability_of_sliding: probability(count(&|r| fs(r) < 1.0), n),
+        shaken,
+        probability_of_sliding: if shaken {
+            probability(count(&|r| displaced(r) > 0.0), n)
+        } else {
+            probability(count(&|r| fs(r) < 1.0), n)
+        },
+        displacement_limit_m: limits.displacement_m.filter(|_| shaken),
+        probability_displacement_exceeds_limit: limits
+            .displacement_m
+            .filter(|_| shaken)
+            .map(|l| probability(count(&|r| displaced(r) > l), n)),
+        permanent_displacement_m: shaken
+            .then(|| percentiles(routes.iter().map(|r| displaced(r)).collect()))
+            .flatten(),
         travel_limit_m: limits.travel_m,
         probability_travel_exceeds_limit: limits
             .travel_m

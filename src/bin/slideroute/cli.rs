@@ -170,6 +170,10 @@ pub struct ProbabilisticArgs {
     /// Report the probability that the final yaw exceeds this in size (degrees).
     #[arg(long, value_name = "DEGREES", allow_negative_numbers = true)]
     pub rotation_limit_deg: Option<f64>,
+    /// Under a ground-motion record: report the probability that the permanent displacement
+    /// exceeds this (m).
+    #[arg(long, value_name = "M", allow_negative_numbers = true)]
+    pub displacement_limit_m: Option<f64>,
     /// Dynamics model for every sample, overriding the scene's `[solver] dynamics`.
     #[arg(long, value_name = "MODEL", value_parser = named::<DynamicsModel, _>(DynamicsModel::ALL.map(DynamicsModel::as_str)))]
     pub dynamics: Option<DynamicsModel>,

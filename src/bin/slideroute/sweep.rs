@@ -19,6 +19,9 @@ pub struct SweepRow {
     pub final_theta_deg: Option<f64>,
     pub max_alpha_deg: Option<f64>,
     pub max_beta_deg: Option<f64>,
+    /// Under a ground-motion record, the permanent displacement along X and Z (m).
+    pub permanent_x_m: Option<f64>,
+    pub permanent_z_m: Option<f64>,
     /// The factor of safety at the start (friction cones), whatever the dynamics.
     pub factor_of_safety: Option<FactorOfSafety>,
     pub detail: String,
@@ -36,6 +39,8 @@ impl From<&slideroute::sweep::SweepRow> for SweepRow {
             final_theta_deg: of(|r| r.yaw_deg),
             max_alpha_deg: of(|r| r.max_alpha_deg),
             max_beta_deg: of(|r| r.max_beta_deg),
+            permanent_x_m: route.and_then(|r| r.permanent_xz_m).map(|d| d[0]),
+            permanent_z_m: route.and_then(|r| r.permanent_xz_m).map(|d| d[1]),
             factor_of_safety: route.and_then(|r| r.factor_of_safety),
             detail: match &row.outcome {
                 Outcome::Route(r) => r.detail.clone(),

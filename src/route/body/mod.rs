@@ -80,6 +80,9 @@ pub(super) struct OnBase<'a> {
     origin: (f64, f64),
     /// The deepest the base went into the ground in any recorded row (m).
     deepest: Cell<f64>,
+    /// At rest under a ground-motion record: each increment is a step from rest, kept only if
+    /// it moves the block (`derivations/13-base-contact.md` §6).
+    resting: bool,
 }
 
 impl<'a> OnBase<'a> {
@@ -144,6 +147,25 @@ impl<'a> OnBase<'a> {
         };
         converged.step(&mut trial, t, h, &self.last);
         self.slow(&trial, h)
+    }
+
+    /// At rest under a record: the route goes on while the record does, and ends once it is
+    /// over — "stopped" if the block moved, else it never slid.
+    fn rest_until_the_record_ends<'s>(&self, o: Logbook<'s>) -> Flow<'s> {
+        let over = self.sim.record().is_none_or(|r| self.t >= r.end());
+        if !over {
+            return Flow::Go(o);
+        }
+        let (reason, what) = if o.travel > 0.0 {
+            (Reason::Stopped, "the block came to rest on its base")
+        } else {
+            (Reason::DoesNotSlide, "the block never slid")
+        };
+        let detail = format!(
+            "the ground-motion record ended at {:.6} s; {what} and static friction holds it",
+            self.sim.record().map_or(0.0, |r| r.end())
+        );
+        self.end(o, reason, detail)
     }
 
     /// The base's tilt from level (degrees).
@@ -215,6 +237,7 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
             last: Stepped::default(),
             origin: (flat.cm.y, 0.0),
             deepest: Cell::new(f64::NEG_INFINITY),
+            resting: false,
         };
         let rest = match set_down(&body.ground, footprint(base), flat, 1e-10 * size) {
             Ok(r) => r,
@@ -285,6 +308,8 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
                 "static friction holds the block where it rests on its base".into(),
             ));
         }
+        // Shaken from rest: at rest until the record moves it.
+        body.resting = init.at_rest() && shaken;
         Start::Moving(body, o)
     }
 
@@ -298,6 +323,10 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
         let h = t_to - self.t;
         let before = self.under_cm();
         let mut s = self.s;
+        if self.resting {
+            s.v = Vector3::zeros();
+            s.w = Vector3::zeros();
+        }
         let stepped = self.ctx().step(&mut s, self.t, h, &self.last);
         if !(s.v.iter().chain(s.w.iter()).all(|x| x.is_finite())) {
             return self.end(
@@ -306,6 +335,13 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
                 format!("the step from t = {} s gave no finite velocity", self.t),
             );
         }
+        if self.resting && self.slow(&s, h) {
+            // Held under the record's loads now: it stays where it rests.
+            self.t = t_to;
+            self.last = stepped;
+            return self.rest_until_the_record_ends(o);
+        }
+        self.resting = false;
         self.s = s;
         self.t = t_to;
         self.last = stepped;
@@ -330,6 +366,17 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
             );
         }
         let shaken = self.sim.record().is_some();
+        if shaken && self.slow(&self.s, h) {
+            // Come to rest (or at rest for an instant as its motion turns): at rest from here,
+            // its last kinetic energy (under 1e-6 of the weight's over a step) booked with
+            // the contacts' work; the next step from rest says whether it stays.
+            let mass = self.sim.block().mass;
+            self.s.work_contacts -= self.s.kinetic(mass, &self.inertia);
+            self.s.v = Vector3::zeros();
+            self.s.w = Vector3::zeros();
+            self.resting = true;
+            return self.rest_until_the_record_ends(o);
+        }
         if !shaken && self.slow(&self.s, h) && self.held(self.t, h) {
             self.s.v = Vector3::zeros();
             self.s.w = Vector3::zeros();

@@ -21,13 +21,21 @@ pub fn probabilistic(args: &ProbabilisticArgs) -> Result<(), CliError> {
             args.samples
         )));
     }
-    let limits =
-        Limits::new(args.travel_limit_m, args.rotation_limit_deg).map_err(|(name, l)| {
+    let limits = Limits::new(args.travel_limit_m, args.rotation_limit_deg)
+        .and_then(|l| l.with_displacement(args.displacement_limit_m))
+        .map_err(|(name, l)| {
             bad_input(format!(
                 "--{} {l}: a finite number, zero or more",
                 name.replace('_', "-")
             ))
         })?;
+    if args.displacement_limit_m.is_some() && base.record().is_none() {
+        return Err(bad_input(format!(
+            "--displacement-limit-m: {} has no ground-motion record ([seismic] record) to \
+             displace the block",
+            base.origin()
+        )));
+    }
     let uncertain = uncertain(&base, &args.dist)?;
     let mut folder = Folder::open(&args.out).map_err(failed)?;
     let bar = progress_bar(args.quiet, args.samples as u64, "samples");
@@ -133,10 +141,38 @@ fn print_summary(
         summary.routes,
         summary.invalid_samples
     );
-    outln!(
-        "  probability of sliding (factor of safety below 1) {}",
-        summary.probability_of_sliding
-    );
+    if summary.shaken {
+        // Under a record the static factor of safety does not say whether the block slides.
+        outln!(
+            "  probability the record displaces the block {}",
+            summary.probability_of_sliding
+        );
+        match (
+            summary.displacement_limit_m,
+            summary.probability_displacement_exceeds_limit,
+        ) {
+            (Some(l), Some(q)) => {
+                outln!("  probability the permanent displacement exceeds {l} m {q}")
+            }
+            _ => outln!(
+                "  (name a permanent displacement limit with --displacement-limit-m for its \
+                 probability)"
+            ),
+        }
+        if let Some(p) = summary.permanent_displacement_m {
+            outln!(
+                "  permanent displacement 5 / 50 / 95 %: {:.4} / {:.4} / {:.4} m",
+                p.p5,
+                p.p50,
+                p.p95
+            );
+        }
+    } else {
+        outln!(
+            "  probability of sliding (factor of safety below 1) {}",
+            summary.probability_of_sliding
+        );
+    }
     for (what, prob) in [
         (
             "travel over the limit",

@@ -1,16 +1,19 @@
-//! `sweep.csv`: one row per combination.
+//! `sweep.csv`: one row per combination (under a ground-motion record, with its permanent
+//! displacement: a sweep over records, `--vary seismic.record_x=a.AT2,b.AT2`, is a table of them).
 
 use crate::sweep::{SweepRow, Vary};
 use std::io::Write;
 
 /// Columns after the varied keys.
-pub const SWEEP_COLUMNS: [&str; 8] = [
+pub const SWEEP_COLUMNS: [&str; 10] = [
     "reason",
     "t_end_s",
     "travel_m",
     "final_theta_deg",
     "max_alpha_deg",
     "max_beta_deg",
+    "permanent_x_m",
+    "permanent_z_m",
     "factor_of_safety",
     "detail",
 ];
@@ -38,6 +41,8 @@ pub fn write_csv(out: impl Write, varies: &[Vary], rows: &[SweepRow]) -> Result<
                 r.final_theta_deg,
                 r.max_alpha_deg,
                 r.max_beta_deg,
+                r.permanent_x_m,
+                r.permanent_z_m,
             ]
             .map(opt),
         );

@@ -81,10 +81,7 @@ pub fn route_fan(
             ),
         ));
     }
-    notes.push(Entry::new(
-        Mark::None,
-        format!("probability of sliding {}", summary.probability_of_sliding),
-    ));
+    notes.push(Entry::new(Mark::None, sliding(summary)));
     if let Some(t) = summary.travel_m {
         notes.push(Entry::new(
             Mark::None,
@@ -251,10 +248,7 @@ impl Histogram {
             Entry::new(Mark::Swatch(BELOW), "factor of safety below 1: slides"),
             Entry::new(Mark::Swatch(ABOVE), "1 or more: held"),
             Entry::new(Mark::Dashed(BLACK), "factor of safety 1"),
-            Entry::new(
-                Mark::None,
-                format!("probability of sliding {}", summary.probability_of_sliding),
-            ),
+            Entry::new(Mark::None, sliding(summary)),
             Entry::new(
                 Mark::None,
                 format!(
@@ -433,4 +427,17 @@ pub fn write_probabilistic_plots(
     let t = dir.join("sensitivity.svg");
     tornado(&t, summary)?;
     Ok(vec![fan, fs, t])
+}
+
+/// The probability of sliding as the legend says it: under a ground-motion record, that the
+/// record displaces the block (its static factor of safety does not decide it).
+fn sliding(summary: &Summary) -> String {
+    if summary.shaken {
+        format!(
+            "probability the record displaces the block {}",
+            summary.probability_of_sliding
+        )
+    } else {
+        format!("probability of sliding {}", summary.probability_of_sliding)
+    }
 }

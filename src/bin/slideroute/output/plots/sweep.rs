@@ -529,6 +529,8 @@ mod tests {
             final_theta_deg: Some(0.0),
             max_alpha_deg: Some(0.0),
             max_beta_deg: Some(0.0),
+            permanent_x_m: None,
+            permanent_z_m: None,
             factor_of_safety: None,
             detail: String::new(),
         }
