@@ -39,46 +39,12 @@ fn long_record() -> Vec<f64> {
 
 fn scene(a: &[f64], stride: usize) -> Scene {
     let dir = std::env::temp_dir().join(format!("slideroute-bench-records-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let column: String = a.iter().map(|v| format!("{v:.9}\n")).collect();
-    std::fs::write(dir.join("x.txt"), column).unwrap();
-    let text = format!(
-        r#"name = "long-record"
-[frame]
-l1x = 6.0
-l2x = 4.0
-l1z = 5.0
-l2z = 5.0
-[foundation]
-[[foundation.plane]]
-dip_deg = 0.0
-dip_direction_deg = 0.0
-point_m = [0.0, 0.0, 0.0]
-[block]
-mass_kg = 1.0e6
-inertia_kg_m2 = 1.1e7
-[loads]
-hydraulic_force_n = {force}
-eccentricity_m = 0.0
-gravity_m_s2 = 9.81
-[friction]
-model = "coulomb"
-mu_k = 1.0
-[solver]
-mode = "exact"
-contacts = "frame"
-dt_s = {DT}
-t_end_s = {t_end}
-stride = {stride}
-[seismic]
-record_x = "x.txt"
-dt_s = {DT}
-"#,
-        force = 0.9e6 * 9.81,
-        t_end = SAMPLES as f64 * DT + 5.0,
-    );
-    let path = dir.join("scene.toml");
-    std::fs::write(&path, text).unwrap();
+    let run = newmark::Run {
+        contacts: "frame",
+        dt_s: DT,
+        stride,
+    };
+    let path = newmark::write_pushed(&dir, "long-record", a, DT, (1.0, 0.9), run);
     let s = Scene::from_file(&path).unwrap();
     std::fs::remove_dir_all(&dir).ok();
     s

@@ -7,7 +7,7 @@
 //! route (three points of the paper's frame, Newton–Euler in three dimensions) must give the
 //! same permanent displacement, stop there, and keep its energy balance.
 
-use crate::common::newmark::{G, exact, record};
+use crate::common::newmark::{G, Run, exact, record, write_pushed};
 use slideroute::{Reason, Route, Scene};
 
 /// The closed forms' own check, by hand: a pulse of −A g for T then a ramp to zero over r
@@ -60,46 +60,12 @@ fn pushed_in(
     contacts: &str,
 ) -> (Scene, std::path::PathBuf) {
     let dir = std::env::temp_dir().join(format!("slideroute-exact-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let column: String = a.iter().map(|v| format!("{v:.9}\n")).collect();
-    std::fs::write(dir.join("x.txt"), column).unwrap();
-    let length = (a.len() - 1) as f64 * dt;
-    let text = format!(
-        r#"name = "{name}"
-[frame]
-l1x = 6.0
-l2x = 4.0
-l1z = 5.0
-l2z = 5.0
-[foundation]
-[[foundation.plane]]
-dip_deg = 0.0
-dip_direction_deg = 0.0
-point_m = [0.0, 0.0, 0.0]
-[block]
-mass_kg = 1.0e6
-inertia_kg_m2 = 1.1e7
-[loads]
-hydraulic_force_n = {force}
-eccentricity_m = 0.0
-gravity_m_s2 = {G}
-[friction]
-model = "coulomb"
-mu_k = {mu}
-[solver]
-mode = "exact"
-contacts = "{contacts}"
-dt_s = 1.0e-3
-t_end_s = {t_end}
-[seismic]
-record_x = "x.txt"
-dt_s = {dt}
-"#,
-        force = push * 1.0e6 * G,
-        t_end = length + 10.0,
-    );
-    let path = dir.join("scene.toml");
-    std::fs::write(&path, text).unwrap();
+    let run = Run {
+        contacts,
+        dt_s: 1e-3,
+        stride: 1,
+    };
+    let path = write_pushed(&dir, name, a, dt, (mu, push), run);
     let s = Scene::from_file(&path).unwrap_or_else(|e| panic!("{e}"));
     (s, dir)
 }

@@ -127,3 +127,69 @@ fn quadratic(a: f64, b: f64, c: f64) -> Vec<f64> {
         vec![q / a, c / q]
     }
 }
+
+/// How a pushed block on a level face is run: its contacts (`frame` or `base`), the route's
+/// increment (s) and its row stride.
+pub struct Run<'a> {
+    pub contacts: &'a str,
+    pub dt_s: f64,
+    pub stride: usize,
+}
+
+/// Writes into `dir` the scene of a block on one level face, three points of the paper's frame
+/// (or its base), pushed along X by `push` of its weight through its centre of mass, friction
+/// `mu`, shaken along X by the record `a` (g) at `record_dt` (a one-column file), its time limit
+/// 10 s past the record; the scene file's path.
+pub fn write_pushed(
+    dir: &std::path::Path,
+    name: &str,
+    a: &[f64],
+    record_dt: f64,
+    (mu, push): (f64, f64),
+    run: Run<'_>,
+) -> std::path::PathBuf {
+    std::fs::create_dir_all(dir).unwrap();
+    let column: String = a.iter().map(|v| format!("{v:.9}\n")).collect();
+    std::fs::write(dir.join("x.txt"), column).unwrap();
+    let text = format!(
+        r#"name = "{name}"
+[frame]
+l1x = 6.0
+l2x = 4.0
+l1z = 5.0
+l2z = 5.0
+[foundation]
+[[foundation.plane]]
+dip_deg = 0.0
+dip_direction_deg = 0.0
+point_m = [0.0, 0.0, 0.0]
+[block]
+mass_kg = 1.0e6
+inertia_kg_m2 = 1.1e7
+[loads]
+hydraulic_force_n = {force}
+eccentricity_m = 0.0
+gravity_m_s2 = {G}
+[friction]
+model = "coulomb"
+mu_k = {mu}
+[solver]
+mode = "exact"
+contacts = "{contacts}"
+dt_s = {dt}
+t_end_s = {t_end}
+stride = {stride}
+[seismic]
+record_x = "x.txt"
+dt_s = {record_dt}
+"#,
+        force = push * 1.0e6 * G,
+        contacts = run.contacts,
+        dt = run.dt_s,
+        stride = run.stride,
+        t_end = (a.len() - 1) as f64 * record_dt + 10.0,
+    );
+    let path = dir.join("scene.toml");
+    std::fs::write(&path, text).unwrap();
+    path
+}
