@@ -62,8 +62,12 @@ pub fn columns_of<'py>(
         ("final_z_m", &|r| r.z_m),
         ("max_alpha_deg", &|r| r.max_alpha_deg),
         ("max_beta_deg", &|r| r.max_beta_deg),
-        ("permanent_x_m", &|r| r.permanent_xz_m.map_or(f64::NAN, |d| d[0])),
-        ("permanent_z_m", &|r| r.permanent_xz_m.map_or(f64::NAN, |d| d[1])),
+        ("permanent_x_m", &|r| {
+            r.permanent_xz_m.map_or(f64::NAN, |d| d[0])
+        }),
+        ("permanent_z_m", &|r| {
+            r.permanent_xz_m.map_or(f64::NAN, |d| d[1])
+        }),
     ];
     for (name, f) in float_columns {
         out.set_item(name, PyArray1::from_vec(py, route(f)))?;
@@ -110,7 +114,8 @@ pub fn samples_from<'py>(
     let max_alpha = floats("max_alpha_deg")?;
     let max_beta = floats("max_beta_deg")?;
     // Older tables have no permanent displacement: none.
-    let permanent: Vec<Option<[f64; 2]>> = match (floats("permanent_x_m"), floats("permanent_z_m")) {
+    let permanent: Vec<Option<[f64; 2]>> = match (floats("permanent_x_m"), floats("permanent_z_m"))
+    {
         (Ok(px), Ok(pz)) if px.len() == n && pz.len() == n => px
             .iter()
             .zip(&pz)
