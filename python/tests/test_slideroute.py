@@ -256,6 +256,33 @@ def test_the_probabilistic_analysis_equals_the_command_lines(tmp_path):
     assert p.summary == want
 
 
+def test_under_a_record_the_probabilistic_analysis_names_a_displacement_limit_as_the_command_line(
+    tmp_path,
+):
+    scene_file = SCENES / "shaken.toml"
+    out = tmp_path / "prob"
+    subprocess.run(
+        [cli(), "probabilistic", "--scene", str(scene_file), "--samples", "6", "--seed", "3",
+         "--dist", "friction.mu_k=uniform:0.38:0.42", "--displacement-limit-m", "0.5",
+         "--out", str(out), "--quiet", "--no-plots"],
+        check=True,
+    )
+    p = slideroute.probabilistic(
+        slideroute.Scene.from_file(scene_file),
+        {"friction.mu_k": "uniform:0.38:0.42"},
+        samples=6,
+        seed=3,
+        displacement_limit_m=0.5,
+    )
+    want = json.loads((out / "probabilistic.json").read_text(encoding="utf-8"))
+    want.pop("manifest")
+    assert p.summary == want
+    assert p.summary["shaken"] is True
+    assert p.summary["displacement_limit_m"] == 0.5
+    assert p.probability_of_sliding == 1.0
+    assert not math.isnan(p.samples["permanent_x_m"][0])
+
+
 def test_the_probability_of_sliding_is_phi_of_the_margin():
     # Dips of 0.01°, the push through the centre of mass: it slides when μ W < H.
     s = slideroute.Scene.default().with_keys(
