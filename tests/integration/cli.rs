@@ -1609,7 +1609,6 @@ fn probabilistic_under_a_record_reports_the_chance_of_a_permanent_displacement_o
         "friction.mu_k=uniform:0.38:0.42",
         "--displacement-limit-m",
         "0.5",
-        "--no-plots",
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
     let text = String::from_utf8_lossy(&o.stdout);
@@ -1626,6 +1625,12 @@ fn probabilistic_under_a_record_reports_the_chance_of_a_permanent_displacement_o
     assert_eq!(json["displacement_limit_m"], 0.5);
     // scenes/shaken.toml's block moves 0.80 m: every sample over 0.5 m.
     assert_eq!(json["probability_displacement_exceeds_limit"]["value"], 1.0);
+    // Its histogram does not call a static factor of safety over 1 held.
+    let svg = std::fs::read_to_string(out.join("factor-of-safety.svg")).unwrap();
+    assert!(
+        svg.contains("held without the record") && !svg.contains("1 or more: held"),
+        "the legend"
+    );
 }
 
 #[test]

@@ -245,8 +245,23 @@ impl Histogram {
     /// number of routes and bars, and the percentiles of the factor of safety.
     fn entries(&self, summary: &Summary) -> Vec<Entry> {
         let mut entries = vec![
-            Entry::new(Mark::Swatch(BELOW), "factor of safety below 1: slides"),
-            Entry::new(Mark::Swatch(ABOVE), "1 or more: held"),
+            // Under a record the static factor of safety does not decide whether it slides.
+            Entry::new(
+                Mark::Swatch(BELOW),
+                if summary.shaken {
+                    "factor of safety below 1"
+                } else {
+                    "factor of safety below 1: slides"
+                },
+            ),
+            Entry::new(
+                Mark::Swatch(ABOVE),
+                if summary.shaken {
+                    "1 or more (held without the record)"
+                } else {
+                    "1 or more: held"
+                },
+            ),
             Entry::new(Mark::Dashed(BLACK), "factor of safety 1"),
             Entry::new(Mark::None, sliding(summary)),
             Entry::new(
