@@ -14,6 +14,12 @@ rotation, its energy residual against the work, how it ended and the wall time.
     crosscheck/.venv/bin/python crosscheck/newmark_exact.py --seeds 1 11 \
         --bin target/release/slideroute --out /tmp/newmark
 
+With `--records DIR`, real records instead (two columns, time s and acceleration g, as SLAMMER's
+samples come; `crosscheck/setup.sh` puts eighteen in crosscheck/.records), each at ky = 0.05,
+0.1 and 0.2 g along X and along Z without a push, and along X with μ = 1 and a push of 1 − ky:
+
+    crosscheck/.venv/bin/python crosscheck/newmark_exact.py --records crosscheck/.records
+
 (numpy only; `tests/integration/common/newmark.rs` is the same solution in Rust, for the tests.)
 """
 
@@ -55,7 +61,7 @@ contacts = "frame"
 dt_s = {dt}
 t_end_s = {t_end}
 [seismic]
-record_x = "record.txt"
+record_{axis} = "record.txt"
 dt_s = {record_dt}
 """
 
@@ -135,14 +141,30 @@ def exact(t, a, mu, push):
     return u
 
 
-def case(binary, out, seed, mu, push, pga, dt):
+def read_record(path):
+    """A record as it comes: two columns (time s, acceleration g) or one, `#` comments and a
+    header line skipped."""
+    rows = []
+    for line in open(path):
+        parts = line.replace(",", " ").split()
+        try:
+            rows.append([float(p) for p in parts])
+        except ValueError:
+            continue
+    rows = np.array([r for r in rows if r])
+    return rows[:, 0] - rows[0, 0], rows[:, 1]
+
+
+def case(binary, out, seed, mu, push, pga, dt, given=None, axis="x"):
     name = f"s{seed}-mu{mu}-push{push}"
+    if given:
+        name = f"{os.path.splitext(os.path.basename(given))[0]}-{axis}-mu{mu}-push{push}"
     d = os.path.join(out, name)
     os.makedirs(d, exist_ok=True)
-    t, a = record(seed, pga=pga)
-    np.savetxt(os.path.join(d, "record.txt"), a, fmt="%.9f")
+    t, a = read_record(given) if given else record(seed, pga=pga)
+    np.savetxt(os.path.join(d, "record.txt"), a, fmt="%.17g")
     with open(os.path.join(d, "scene.toml"), "w") as f:
-        f.write(SCENE.format(name=name, force=push * 1e6 * G, mu=mu, dt=dt,
+        f.write(SCENE.format(name=name, force=push * 1e6 * G, mu=mu, dt=dt, axis=axis,
                              t_end=t[-1] + 10, record_dt=t[1] - t[0]))
     start = time.time()
     run = subprocess.run([binary, "run", "--scene", os.path.join(d, "scene.toml"),
@@ -154,12 +176,13 @@ def case(binary, out, seed, mu, push, pga, dt):
         return
     s = json.load(open(os.path.join(d, "out", "summary.json")))
     want = exact(t, a, mu, push)
-    got = s["permanent_displacement_xz_m"][0]
+    got = s["permanent_displacement_xz_m"][0 if axis == "x" else 1]
     e = s["energy"]
     work = max(abs(e["work_hydraulic_j"]), abs(e["work_friction_j"]))
-    print(f"{name:28s} exact {want:.6f} m  route {got:.6f} m  {(got - want) / abs(want):+.1e}  "
-          f"turned {s['permanent_rotation_deg']:+.1e}°  residual {e['residual_j'] / work:+.1e} "
-          f"of the work  {s['termination']['reason']}  {wall:.2f} s")
+    balance = f"{e['residual_j'] / work:+.1e} of the work" if work else f"{e['residual_j']:+.1e} J"
+    off = (got - want) / abs(want) if abs(want) > 1e-6 else got - want
+    print(f"{name:28s} exact {want:.6f} m  route {got:.6f} m  {off:+.1e}  "
+          f"turned {s['permanent_rotation_deg']:+.1e}°  residual {balance}  {s['termination']['reason']}  {wall:.2f} s")
 
 
 def main():
@@ -168,7 +191,16 @@ def main():
     p.add_argument("--out", default="/tmp/slideroute-newmark")
     p.add_argument("--seeds", nargs=2, type=int, default=[1, 4])
     p.add_argument("--dt", type=float, default=1e-3)
+    p.add_argument("--records", help="a folder of records (time s, acceleration g), each run at "
+                   "ky = 0.05, 0.1, 0.2 g without a push and with one (μ = 1), along X and Z")
     args = p.parse_args()
+    if args.records:
+        for f in sorted(os.listdir(args.records)):
+            for ky in (0.05, 0.1, 0.2):
+                for mu, push, axis in [(ky, 0.0, "x"), (ky, 0.0, "z"), (1.0, 1.0 - ky, "x")]:
+                    case(args.bin, args.out, 0, mu, round(push, 2), 0, args.dt,
+                         os.path.join(args.records, f), axis)
+        return
     for seed in range(*args.seeds):
         for mu, push in [(1.0, 0.9), (1.0, 0.95), (1.0, 0.8), (0.6, 0.5), (0.3, 0.25)]:
             case(args.bin, args.out, seed, mu, push, 0.3 + 0.1 * (seed % 5), args.dt)

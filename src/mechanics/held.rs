@@ -44,39 +44,60 @@ pub fn held(
     if supports.is_empty() {
         return Ok(false);
     }
-    if !(weight > 0.0 && weight.is_finite() && size > 0.0 && size.is_finite()) {
-        return Err(StaticError::Solver(format!(
-            "the scales must be positive and finite (weight {weight} N, size {size} m)"
-        )));
-    }
-    let mut p = Program::new(supports.len());
-    // A force `dir` (in weights) at `arm` on the six equations, in column `col`.
-    let on_equations = |p: &mut Program, col: usize, arm: &Vector3<f64>, dir: Vector3<f64>| {
-        let lever = (arm / size).cross(&dir);
-        for (r, v) in dir.iter().chain(lever.iter()).enumerate() {
-            p.put(r, col, *v);
-        }
-    };
-    for (i, s) in supports.iter().enumerate() {
-        let (cone, floor) = (p.cone(i), p.floor(i));
-        let (t1, t2) = tangents(&s.normal);
-        for (k, dir) in [s.normal, t1, t2].into_iter().enumerate() {
-            let col = 3 * i + k;
-            on_equations(&mut p, col, &s.arm, dir);
-            // The cone's rows: s = (μ λ, a, b) = −A x; and λ ≥ 0 (the cone alone lets a
-            // frictionless contact pull).
-            p.put(cone + k, col, if k == 0 { -s.mu } else { -1.0 });
-            if k == 0 {
-                p.put(floor, col, -1.0);
-            }
-        }
-    }
-    let mut b = vec![0.0; p.rows()];
-    for k in 0..3 {
-        b[k] = -force[k] / weight;
-        b[3 + k] = -moment[k] / (weight * size);
-    }
+    check_scales(weight, size)?;
+    let (p, b) = Program::of(supports, force, moment, weight, size);
     p.feasible(&b)
+}
+
+/// The most of a further load the `supports` hold: the largest s ≥ 0 for which the force
+/// `force` + s `extra.0` and the moment `moment` + s `extra.1` (N, N·m about the centre of
+/// mass) are held (`derivations/13-base-contact.md` §6, one cone program maximising s). Zero
+/// where the loads as given are not held; None where any multiple up to [`FAR`] is.
+pub fn reach(
+    supports: &[Support],
+    force: Vector3<f64>,
+    moment: Vector3<f64>,
+    extra: (Vector3<f64>, Vector3<f64>),
+    weight: f64,
+    size: f64,
+) -> Result<Option<f64>, StaticError> {
+    if supports.is_empty() {
+        return Ok(Some(0.0));
+    }
+    check_scales(weight, size)?;
+    let (mut p, mut b) = Program::of(supports, force, moment, weight, size);
+    // Column s: the further load on the six equations; s ≥ 0 and s ≤ FAR as two more rows.
+    let col = p.columns.len();
+    p.columns.push(Vec::new());
+    for (r, v) in (extra.0 / weight)
+        .iter()
+        .chain((extra.1 / (weight * size)).iter())
+        .enumerate()
+    {
+        p.put(r, col, *v);
+    }
+    let (low, high) = (p.rows(), p.rows() + 1);
+    p.put(low, col, -1.0);
+    p.put(high, col, 1.0);
+    b.extend([0.0, FAR]);
+    match p.maximise_last(&b, 2)? {
+        None => Ok(Some(0.0)),
+        Some(s) if s >= FAR * (1.0 - 1e-6) => Ok(None),
+        Some(s) => Ok(Some(s.max(0.0))),
+    }
+}
+
+/// The largest further load [`reach`] looks for (in units of the further load).
+pub const FAR: f64 = 100.0;
+
+fn check_scales(weight: f64, size: f64) -> Result<(), StaticError> {
+    if weight > 0.0 && weight.is_finite() && size > 0.0 && size.is_finite() {
+        Ok(())
+    } else {
+        Err(StaticError::Solver(format!(
+            "the scales must be positive and finite (weight {weight} N, size {size} m)"
+        )))
+    }
 }
 
 /// The feasibility program's matrix, assembled by column: the six equations, then each
@@ -87,6 +108,45 @@ struct Program {
 }
 
 impl Program {
+    /// The program of the loads `force` and `moment` on `supports` (in weights and
+    /// weight·sizes): its matrix and right-hand side.
+    fn of(
+        supports: &[Support],
+        force: Vector3<f64>,
+        moment: Vector3<f64>,
+        weight: f64,
+        size: f64,
+    ) -> (Program, Vec<f64>) {
+        let mut p = Program::new(supports.len());
+        // A force `dir` (in weights) at `arm` on the six equations, in column `col`.
+        let on_equations = |p: &mut Program, col: usize, arm: &Vector3<f64>, dir: Vector3<f64>| {
+            let lever = (arm / size).cross(&dir);
+            for (r, v) in dir.iter().chain(lever.iter()).enumerate() {
+                p.put(r, col, *v);
+            }
+        };
+        for (i, s) in supports.iter().enumerate() {
+            let (cone, floor) = (p.cone(i), p.floor(i));
+            let (t1, t2) = tangents(&s.normal);
+            for (k, dir) in [s.normal, t1, t2].into_iter().enumerate() {
+                let col = 3 * i + k;
+                on_equations(&mut p, col, &s.arm, dir);
+                // The cone's rows: s = (μ λ, a, b) = −A x; and λ ≥ 0 (the cone alone lets a
+                // frictionless contact pull).
+                p.put(cone + k, col, if k == 0 { -s.mu } else { -1.0 });
+                if k == 0 {
+                    p.put(floor, col, -1.0);
+                }
+            }
+        }
+        let mut b = vec![0.0; p.rows()];
+        for k in 0..3 {
+            b[k] = -force[k] / weight;
+            b[3 + k] = -moment[k] / (weight * size);
+        }
+        (p, b)
+    }
+
     /// The program of `m` supports: three columns each.
     fn new(m: usize) -> Program {
         Program {
@@ -116,7 +176,19 @@ impl Program {
     }
 
     /// Whether A x + s = b has a solution with s in the cones (Clarabel, no objective).
-    fn feasible(mut self, b: &[f64]) -> Result<bool, StaticError> {
+    fn feasible(self, b: &[f64]) -> Result<bool, StaticError> {
+        Ok(self.solve(b, 0, false)?.is_some())
+    }
+
+    /// The largest last variable of A x + s = b with s in the cones, where the last `more` rows
+    /// are further non-negative ones; None where there is no solution.
+    fn maximise_last(self, b: &[f64], more: usize) -> Result<Option<f64>, StaticError> {
+        self.solve(b, more, true)
+    }
+
+    /// Solves the program (Clarabel), minimising −(last variable) if `maximise`: that variable
+    /// at the solution (zero without an objective), None where it is infeasible.
+    fn solve(mut self, b: &[f64], more: usize, maximise: bool) -> Result<Option<f64>, StaticError> {
         let n = self.columns.len();
         let mut colptr = Vec::with_capacity(n + 1);
         let (mut rowval, mut nzval) = (Vec::new(), Vec::new());
@@ -129,12 +201,15 @@ impl Program {
             }
             colptr.push(rowval.len());
         }
-        let a = CscMatrix::new(self.rows(), n, colptr, rowval, nzval);
+        let a = CscMatrix::new(self.rows() + more, n, colptr, rowval, nzval);
         let mut cones = vec![ZeroConeT(6)];
         cones.extend(std::iter::repeat_n(SecondOrderConeT(3), self.m));
-        cones.push(NonnegativeConeT(self.m));
+        cones.push(NonnegativeConeT(self.m + more));
         let p = CscMatrix::<f64>::zeros((n, n));
-        let q = vec![0.0; n];
+        let mut q = vec![0.0; n];
+        if maximise {
+            q[n - 1] = -1.0;
+        }
         let settings = DefaultSettings {
             verbose: false,
             ..DefaultSettings::default()
@@ -143,8 +218,12 @@ impl Program {
             .map_err(|e| StaticError::Solver(e.to_string()))?;
         solver.solve();
         match solver.solution.status {
-            SolverStatus::Solved | SolverStatus::AlmostSolved => Ok(true),
-            SolverStatus::PrimalInfeasible | SolverStatus::AlmostPrimalInfeasible => Ok(false),
+            SolverStatus::Solved | SolverStatus::AlmostSolved => Ok(Some(if maximise {
+                solver.solution.x[n - 1]
+            } else {
+                0.0
+            })),
+            SolverStatus::PrimalInfeasible | SolverStatus::AlmostPrimalInfeasible => Ok(None),
             other => Err(StaticError::Solver(format!("{other:?}"))),
         }
     }
@@ -234,5 +313,31 @@ mod tests {
         let s = corners(1.0, 0.5, 0.5);
         assert!(held(&s, down, Vector3::zeros(), 0.0, 1.0).is_err());
         assert!(held(&s, down, Vector3::zeros(), W, f64::NAN).is_err());
+    }
+
+    #[test]
+    fn the_reach_of_a_push_on_level_ground_is_mu_times_the_weight_or_its_tipping_load() {
+        // μ W before it tips (CM 0.5 m above a base 1 m either side: tips at W·1/0.5 = 2 W).
+        let s = corners(1.0, 0.5, 0.6);
+        let push = (Vector3::new(W, 0.0, 0.0), Vector3::zeros());
+        let r = reach(&s, -Vector3::y() * W, Vector3::zeros(), push, W, 2.0).unwrap();
+        assert!((r.unwrap() - 0.6).abs() < 1e-6, "{r:?}");
+        // Rough ground: it tips first, at 2 W.
+        let s = corners(1.0, 0.5, 10.0);
+        let r = reach(&s, -Vector3::y() * W, Vector3::zeros(), push, W, 2.0).unwrap();
+        assert!((r.unwrap() - 2.0).abs() < 1e-6, "{r:?}");
+        // Already pushed by 0.7 W on μ = 0.6: nothing more is held.
+        let s = corners(1.0, 0.5, 0.6);
+        let f = Vector3::new(0.7 * W, -W, 0.0);
+        assert_eq!(
+            reach(&s, f, Vector3::zeros(), push, W, 2.0).unwrap(),
+            Some(0.0)
+        );
+        // A load along the normal is held whatever its size.
+        let down = (-Vector3::y() * W, Vector3::zeros());
+        assert_eq!(
+            reach(&s, -Vector3::y() * W, Vector3::zeros(), down, W, 2.0).unwrap(),
+            None
+        );
     }
 }

@@ -334,6 +334,15 @@ pub fn yield_acceleration(
         // Infeasible at every multiple: not held even unshaken.
         Ok(if t.is_nan() { 0.0 } else { t.max(0.0) })
     };
+    least_over_directions(pushed)
+}
+
+/// The least of `pushed(u)` (g) over the horizontal directions u (rad from X towards Z): a
+/// scan every [`SCAN_DEG`], then golden section to 1e-9 rad about the least. None where it is
+/// infinite everywhere (nothing starts the block).
+pub(crate) fn least_over_directions<E>(
+    mut pushed: impl FnMut(f64) -> Result<f64, E>,
+) -> Result<Option<YieldAcceleration>, E> {
     let steps = (360.0 / SCAN_DEG).round() as usize;
     let scan: Vec<f64> = (0..steps)
         .map(|k| pushed((k as f64 * SCAN_DEG).to_radians()))

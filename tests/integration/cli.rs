@@ -1733,3 +1733,46 @@ fn probabilistic_with_no_valid_sample_says_there_is_no_probability() {
     let fs = std::fs::read_to_string(out.join("factor-of-safety.svg")).unwrap();
     assert!(fs.contains("No sample has a finite factor of safety"));
 }
+
+#[test]
+fn a_record_along_x_alone_prints_its_measures_and_dashes_for_the_components_it_lacks() {
+    // The shaken scene's record along X alone, as one column 5 ms apart.
+    let motion = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/scenes/shaken-motion.csv"
+    ))
+    .unwrap();
+    let column: String = motion
+        .lines()
+        .skip(1)
+        .map(|l| format!("{}\n", l.split(',').nth(1).unwrap()))
+        .collect();
+    let dir = temp_dir("record-x-alone");
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("x.txt"), column).unwrap();
+    let doc = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/shaken.toml"))
+        .unwrap()
+        .replace(
+            "record = \"shaken-motion.csv\"",
+            "record_x = \"x.txt\"\ndt_s = 0.005",
+        );
+    let file = dir.join("scene.toml");
+    std::fs::write(&file, doc).unwrap();
+    let out = dir.join("out");
+    let o = run(&[
+        "run",
+        "--scene",
+        file.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--no-plots",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = String::from_utf8_lossy(&o.stdout);
+    // 0.7 g at its peak (an envelope of 1 from 0.5 s to 2 s over a 1.5 Hz sine).
+    assert!(text.contains("PGA 0.700 / — / — g"), "{text}");
+    assert!(
+        text.contains("D5–95 ") && !text.contains("0.00 s"),
+        "{text}"
+    );
+}

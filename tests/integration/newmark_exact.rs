@@ -7,7 +7,7 @@
 //! route (three points of the paper's frame, Newton–Euler in three dimensions) must give the
 //! same permanent displacement, stop there, and keep its energy balance.
 
-use crate::common::newmark::{G, Run, exact, record, write_pushed};
+use crate::common::newmark::{G, Run, exact, record, write_pushed, write_shaken};
 use slideroute::{Reason, Route, Scene};
 
 /// The closed forms' own check, by hand: a pulse of −A g for T then a ramp to zero over r
@@ -213,4 +213,132 @@ fn a_block_on_its_base_rests_while_the_record_holds_it_and_stops_where_the_exact
         "{:?}",
         route.termination
     );
+}
+
+/// The real records `crosscheck/setup.sh` fetches into `crosscheck/.records`: the eighteen
+/// strong-motion records SLAMMER's Python port ships (pyslammer 0.2.2 from PyPI, its
+/// `sample_ground_motions`: Cape Mendocino, Chi-Chi, Kobe, Loma Prieta, Northridge and others,
+/// 0.005–0.02 s apart, PGA 0.1–1.3 g), as they come: a `#` comment, a header line, then time (s)
+/// and acceleration (g).
+fn real_records() -> Vec<std::path::PathBuf> {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("crosscheck/.records");
+    let mut files: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap_or_else(|e| panic!("{}: {e} (run crosscheck/setup.sh)", dir.display()))
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "csv"))
+        .collect();
+    files.sort();
+    assert_eq!(files.len(), 18, "{}: the eighteen records", dir.display());
+    files
+}
+
+/// A record file read here, apart from the library's reader: the lines that are two numbers,
+/// their accelerations (g) and their common step (s).
+fn two_columns(path: &std::path::Path) -> (Vec<f64>, f64) {
+    let text = std::fs::read_to_string(path).unwrap();
+    let rows: Vec<(f64, f64)> = text
+        .lines()
+        .filter_map(|l| {
+            let (t, a) = l.split_once(',')?;
+            Some((t.trim().parse().ok()?, a.trim().parse().ok()?))
+        })
+        .collect();
+    let dt = rows[1].0 - rows[0].0;
+    for w in rows.windows(2) {
+        assert!(
+            (w[1].0 - w[0].0 - dt).abs() < 1e-9,
+            "{}: uneven",
+            path.display()
+        );
+    }
+    (rows.iter().map(|r| r.1).collect(), dt)
+}
+
+/// Real records, as they come, at ky = 0.2 g along X and along Z, at 0.1 g along X, and at
+/// 0.1 and 0.05 g under a push of 0.9 and 0.95 of friction (μ = 1): every permanent displacement is the exact one to 0.1 %
+/// (or 1e-6 m), the block ends at rest (or never slid, where the exact block does not), nothing
+/// moves across, and the energy balance closes to
+/// [`BALANCE`] of the work (90 routes, two at a time).
+#[test]
+#[ignore = "needs the real records (crosscheck/setup.sh); run by .ci/run"]
+fn real_records_as_they_come_slide_the_block_the_exact_distance() {
+    let cases: Vec<_> = real_records()
+        .into_iter()
+        .flat_map(|f| {
+            [
+                (f.clone(), "x", 0.2, 0.0),
+                (f.clone(), "z", 0.2, 0.0),
+                (f.clone(), "x", 0.1, 0.0),
+                (f.clone(), "x", 1.0, 0.9),
+                (f, "x", 1.0, 0.95),
+            ]
+        })
+        .collect();
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    let failures = std::sync::Mutex::new(Vec::new());
+    std::thread::scope(|s| {
+        for _ in 0..2 {
+            s.spawn(|| {
+                while let Some((file, axis, mu, push)) =
+                    cases.get(next.fetch_add(1, std::sync::atomic::Ordering::Relaxed))
+                {
+                    if let Err(e) = real_case(file, axis, *mu, *push) {
+                        failures.lock().unwrap().push(e);
+                    }
+                }
+            });
+        }
+    });
+    let failures = failures.into_inner().unwrap();
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// One real record along `axis`: the route against the exact solution, or what is wrong.
+fn real_case(file: &std::path::Path, axis: &str, mu: f64, push: f64) -> Result<(), String> {
+    let stem = file.file_stem().unwrap().to_string_lossy();
+    let name = format!("{stem}-{axis}-{mu}-{push}");
+    let dir = std::env::temp_dir().join(format!("slideroute-real-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::copy(file, dir.join(file.file_name().unwrap())).unwrap();
+    let (a, dt) = two_columns(file);
+    let seismic = format!(
+        "record_{axis} = \"{}\"\n",
+        file.file_name().unwrap().to_string_lossy()
+    );
+    let run = Run {
+        contacts: "frame",
+        dt_s: 1e-3,
+        stride: 1000,
+    };
+    let t_end = (a.len() - 1) as f64 * dt + 10.0;
+    let path = write_shaken(&dir, &name, &seismic, t_end, (mu, push), run);
+    let route = Scene::from_file(&path).map(|s| slideroute::run(&s));
+    std::fs::remove_dir_all(&dir).ok();
+    let route: Route = route
+        .map_err(|e| format!("{name}: {e}"))?
+        .map_err(|e| format!("{name}: {e}"))?;
+    let want = exact(&a, dt, mu, push);
+    let [x, z] = route
+        .permanent_displacement_xz_m
+        .ok_or(format!("{name}: none"))?;
+    let (along, across) = if axis == "x" { (x, z) } else { (z, x) };
+    let tolerance = 1e-3 * want.abs() + 1e-6;
+    let e = route.energy.ok_or(format!("{name}: no energy balance"))?;
+    let scale = e.work_hydraulic_j.abs().max(e.work_friction_j.abs());
+    let end = &route.termination;
+    if (along - want).abs() > tolerance || across.abs() > tolerance {
+        Err(format!(
+            "{name}: ({along}, {across}) m against the exact {want} m"
+        ))
+    } else if end.reason != Reason::Stopped && !(want == 0.0 && end.reason == Reason::DoesNotSlide)
+    {
+        Err(format!("{name}: {}", end.detail))
+    } else if e.residual_j.abs() > BALANCE * scale {
+        Err(format!(
+            "{name}: energy residual {} J of {scale} J",
+            e.residual_j
+        ))
+    } else {
+        Ok(())
+    }
 }

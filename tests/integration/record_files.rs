@@ -383,3 +383,43 @@ fn a_ground_acceleration_just_under_the_yield_acceleration_holds_the_block_and_j
     assert!(aside.travel_m < 1e-9, "{}", aside.travel_m);
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn the_yield_acceleration_of_a_monolith_on_its_base_is_mu_or_its_base_over_its_height() {
+    // A rectangular monolith (B × 10 m × H, CM at H/2) on level rock, no water, on its base: the
+    // ground slides it at μ g, or tips it about an edge at (B/2)/(H/2) g, whichever is less.
+    let dir = folder("ky-base");
+    std::fs::write(
+        dir.join("quiet.csv"),
+        "t_s,ax_g,ay_g,az_g\n0,0,0,0\n0.01,0,0,0\n",
+    )
+    .unwrap();
+    let monolith = |b: f64, h: f64, mu: f64| {
+        let text = format!(
+            "name = \"ky-base\"\n[frame]\nl1x = 1.0\nl2x = 1.0\nl1z = 1.0\nl2z = 1.0\n\
+             [foundation]\n[[foundation.plane]]\ndip_deg = 0.0\ndip_direction_deg = 0.0\n\
+             point_m = [0.0, 0.0, 0.0]\n[monolith]\nbase_length_m = {b}\nwidth_m = 10.0\n\
+             height_m = {h}\ncrest_length_m = {b}\ndensity_kg_m3 = 2400.0\n[loads]\n\
+             hydraulic_force_n = 0.0\neccentricity_m = 0.0\ngravity_m_s2 = 9.81\n[friction]\n\
+             model = \"coulomb\"\nmu_k = {mu}\n[solver]\nmode = \"exact\"\ndt_s = 1.0e-3\n\
+             t_end_s = 0.1\n[seismic]\nrecord = \"quiet.csv\"\n"
+        );
+        let path = dir.join("scene.toml");
+        std::fs::write(&path, text).unwrap();
+        let route = slideroute::run(&Scene::from_file(&path).unwrap()).unwrap();
+        route.yield_acceleration.expect("a yield acceleration")
+    };
+    // Stocky: friction first, in any direction.
+    let y = monolith(20.0, 15.0, 0.45);
+    assert!((y.ky_g - 0.45).abs() < 1e-6, "{y:?}");
+    // Slender on rough rock: it tips about its heel or toe, B/H = 5/20, before about its sides
+    // (10/20).
+    let y = monolith(5.0, 20.0, 2.0);
+    assert!((y.ky_g - 0.25).abs() < 1e-6, "{y:?}");
+    let along_x = y
+        .push_deg
+        .min((y.push_deg - 180.0).abs())
+        .min(360.0 - y.push_deg);
+    assert!(along_x < 0.5, "{y:?}");
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -52,8 +52,13 @@ impl Ctx<'_> {
 
     /// Unit direction of the rates (Ẋ, Ż, L θ̇) of an acceleration (a, ω̇).
     pub(super) fn generalized(&self, s: &Solved) -> Vector3<f64> {
+        unit(self.generalized_acceleration(s))
+    }
+
+    /// The rates (Ẋ, Ż, L θ̇) of an acceleration (a, ω̇): (m/s²).
+    pub(super) fn generalized_acceleration(&self, s: &Solved) -> Vector3<f64> {
         let row = theta_rate_row(&self.geom.frame.i);
-        unit(Vector3::new(s.a.x, s.a.z, self.arm * row.dot(&s.e)))
+        Vector3::new(s.a.x, s.a.z, self.arm * row.dot(&s.e))
     }
 
     pub(super) fn tangential_accel(&self, i: usize, s: &Solved) -> Vector3<f64> {

@@ -299,6 +299,10 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
         };
         o.push(body.row());
         let shaken = sim.record().is_some_and(|r| r.end() > 0.0);
+        if sim.record().is_some() {
+            // What a Newmark user reports first: the yield acceleration where it rests.
+            o.yield_acceleration = body.ctx().yield_acceleration(&rest.pose).ok().flatten();
+        }
         if init.at_rest() && !shaken && body.held(0.0, h) {
             body.seal(&mut o);
             o.energy = Some(EnergyBalance::default());

@@ -7,10 +7,10 @@ use crate::geometry::{
     BodyPose, Feature, Footprint, Ground, LocalFrame, Relief, Touch, Touches, relief_touches,
     touches,
 };
-use crate::mechanics::held::{Support, held};
+use crate::mechanics::held::{Support, held, reach};
 use crate::mechanics::impulses::{self, Body, ContactRow, Patch};
 use crate::mechanics::loads::Applied;
-use crate::mechanics::static_friction::StaticError;
+use crate::mechanics::static_friction::{StaticError, YieldAcceleration, least_over_directions};
 use crate::model::Simulation;
 use nalgebra::{Matrix3, Vector3};
 
@@ -189,13 +189,9 @@ impl Ctx<'_> {
     /// The loads at `pose` and time `t`: the force (N) and the moment about the CM (N·m), and
     /// the force without the weight.
     pub fn loads(&self, pose: &BodyPose, t: f64) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>) {
-        let r = pose.rotation;
-        let frame = LocalFrame::from_axes(r.column(0).into_owned(), r.column(2).into_owned());
-        let sim = self.sim;
-        let applied = Applied::shaken(sim.loads(), sim.block(), &frame, sim.ground(t))
-            .about(&(frame.j * self.base.depth));
-        let force = applied.total_force();
-        (force, applied.total_moment(), force - applied.weight)
+        let (force, moment) = self.loads_under(pose, self.sim.ground(t));
+        let weight = Vector3::new(0.0, -self.sim.block().mass * self.sim.loads().gravity, 0.0);
+        (force, moment, force - weight)
     }
 
     /// μ of face `face`: its Coulomb coefficient (a base takes no stress-dependent criterion;
@@ -213,9 +209,16 @@ impl Ctx<'_> {
     /// hold it, whatever the law that shares the pressure over a flush base (§9 of
     /// `derivations/13-base-contact.md`); whether that law holds it too is the step's to say.
     pub fn equilibrium(&self, pose: &BodyPose, t: f64) -> Result<bool, StaticError> {
+        let (force, moment, _) = self.loads(pose, t);
+        let weight = self.sim.block().mass * self.sim.loads().gravity;
+        held(&self.supports(pose), force, moment, weight, self.size)
+    }
+
+    /// The touches within [`SUPPORT_GAP`] of the base's size at `pose`, as supports free to
+    /// carry any force within their cones.
+    fn supports(&self, pose: &BodyPose) -> Vec<Support> {
         let reach = SUPPORT_GAP * self.size;
-        let supports: Vec<Support> = self
-            .touches(pose, reach, 0.0)
+        self.touches(pose, reach, 0.0)
             .touches
             .iter()
             .filter(|c| c.gap <= reach)
@@ -224,10 +227,39 @@ impl Ctx<'_> {
                 normal: c.normal,
                 mu: self.mu(c.face),
             })
-            .collect();
-        let (force, moment, _) = self.loads(pose, t);
+            .collect()
+    }
+
+    /// The yield acceleration of the block at rest at `pose` (`derivations/11-dam-loads.md`
+    /// §7, `derivations/13-base-contact.md` §6): the least horizontal ground acceleration, in
+    /// any direction, that its supports cannot hold with the scene's loads — one cone program
+    /// per direction (`mechanics::held::reach`), the least found as the frame's is
+    /// (`static_friction::least_over_directions`). Sliding or tipping, whichever comes first.
+    pub fn yield_acceleration(
+        &self,
+        pose: &BodyPose,
+    ) -> Result<Option<YieldAcceleration>, StaticError> {
+        let supports = self.supports(pose);
         let weight = self.sim.block().mass * self.sim.loads().gravity;
-        held(&supports, force, moment, weight, self.size)
+        let (force, moment) = self.loads_under(pose, [0.0; 3]);
+        least_over_directions(|angle: f64| {
+            // The ground accelerating along −u pushes the block along u.
+            let (f, m) = self.loads_under(pose, [-angle.cos(), 0.0, -angle.sin()]);
+            let extra = (f - force, m - moment);
+            Ok::<_, StaticError>(
+                reach(&supports, force, moment, extra, weight, self.size)?.unwrap_or(f64::INFINITY),
+            )
+        })
+    }
+
+    /// The loads at `pose` with the ground accelerating at `ground` (g along X, Y, Z): the force
+    /// (N) and the moment about the CM (N·m).
+    fn loads_under(&self, pose: &BodyPose, ground: [f64; 3]) -> (Vector3<f64>, Vector3<f64>) {
+        let r = pose.rotation;
+        let frame = LocalFrame::from_axes(r.column(0).into_owned(), r.column(2).into_owned());
+        let applied = Applied::shaken(self.sim.loads(), self.sim.block(), &frame, ground)
+            .about(&(frame.j * self.base.depth));
+        (applied.total_force(), applied.total_moment())
     }
 
     /// The weight's impulse over a step `h` (N·s): the scale of a step's impulses.

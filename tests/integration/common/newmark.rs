@@ -151,6 +151,21 @@ pub fn write_pushed(
     std::fs::create_dir_all(dir).unwrap();
     let column: String = a.iter().map(|v| format!("{v:.9}\n")).collect();
     std::fs::write(dir.join("x.txt"), column).unwrap();
+    let seismic = format!("record_x = \"x.txt\"\ndt_s = {record_dt}\n");
+    let t_end = (a.len() - 1) as f64 * record_dt + 10.0;
+    write_shaken(dir, name, &seismic, t_end, (mu, push), run)
+}
+
+/// Writes into `dir` the scene of [`write_pushed`] with `seismic` as its `[seismic]` table
+/// (the record's files already in `dir`) and the time limit `t_end` (s); the scene file's path.
+pub fn write_shaken(
+    dir: &std::path::Path,
+    name: &str,
+    seismic: &str,
+    t_end: f64,
+    (mu, push): (f64, f64),
+    run: Run<'_>,
+) -> std::path::PathBuf {
     let text = format!(
         r#"name = "{name}"
 [frame]
@@ -180,14 +195,11 @@ dt_s = {dt}
 t_end_s = {t_end}
 stride = {stride}
 [seismic]
-record_x = "x.txt"
-dt_s = {record_dt}
-"#,
+{seismic}"#,
         force = push * 1.0e6 * G,
         contacts = run.contacts,
         dt = run.dt_s,
         stride = run.stride,
-        t_end = (a.len() - 1) as f64 * record_dt + 10.0,
     );
     let path = dir.join("scene.toml");
     std::fs::write(&path, text).unwrap();

@@ -75,8 +75,17 @@ impl fmt::Display for RouteSummary<'_> {
             )?;
         }
         if let Some(m) = &r.record_intensity {
-            let three =
-                |v: [f64; 3], places: usize| v.map(|x| fixed(x, places).to_string()).join(" / ");
+            // A component without shaking (none given, or all zero) is a dash, not a duration
+            // of 0 s.
+            let three = |v: [f64; 3], places: usize| {
+                (0..3)
+                    .map(|c| match m.pga_g[c] > 0.0 {
+                        true => fixed(v[c], places).to_string(),
+                        false => "—".to_string(),
+                    })
+                    .collect::<Vec<_>>()
+                    .join(" / ")
+            };
             writeln!(
                 f,
                 "  record (X / Y / Z): PGA {} g, PGV {} m/s, Arias intensity {} m/s, D5–95 {} s",
