@@ -12,7 +12,7 @@ use super::{Ending, RigidBody};
 use crate::route::dynamics::Flow;
 use crate::route::logbook::Logbook;
 use crate::route::pose_finder::PoseFinder;
-use crate::route::termination::Stop;
+use crate::route::termination::{Reason, Stop};
 
 /// The fraction of the largest kinetic energy of the route below which the block counts as at
 /// rest when a contact's slip passes through zero (see `RigidBody::cut_at_event`).
@@ -32,6 +32,13 @@ const SETTLED: f64 = 1e-6;
 
 /// The most events (stops that restart, pivots) resolved within one increment.
 const MAX_EVENTS: usize = 16;
+
+/// Events at one moment, the route not moving on between them, past which the route ends
+/// there ("the contact forces are not determined"): a contact that leaves a crease and meets
+/// the crease's other face again at once would otherwise loop for ever (issue #27, a record on
+/// faces). Three events at one moment are the most a consistent motion takes (an impact that
+/// lifts a contact off its face and puts it on the next, `crease_event`), so 64 is none of them.
+const EVENTS_AT_ONE_MOMENT: usize = 64;
 
 /// The shortest substep, as a fraction of dt (then the step is taken as it is).
 const MIN_SUBSTEP: f64 = 1e-3;
@@ -90,6 +97,8 @@ impl RigidBody<'_> {
         mut o: Logbook<'s>,
     ) -> Flow<'s> {
         let mut events = 0usize;
+        // Events met at one moment without the route moving on: (the moment, how many).
+        let mut at_one_moment = (f64::NAN, 0usize);
         while self.t < t_target * (1.0 - 1e-15) {
             if self.resting {
                 o = match self.rest(finder, t_target, o) {
@@ -108,8 +117,29 @@ impl RigidBody<'_> {
                 Some(s) if s < t_target => s,
                 _ => t_target,
             };
+            let before = self.t;
             match self.substep(finder, k, until - self.t, resolve, &mut o) {
-                Ok(Substep::Event) => events += 1,
+                Ok(Substep::Event) => {
+                    events += 1;
+                    at_one_moment = match at_one_moment {
+                        (t, n) if t == before && self.t == before => (t, n + 1),
+                        _ => (self.t, 1),
+                    };
+                    if at_one_moment.1 > EVENTS_AT_ONE_MOMENT {
+                        let detail = format!(
+                            "at t = {:.6} s the route met {} events at one moment without moving on \
+                             (a contact that leaves a crease meets the crease's other face again \
+                             at once, or a slip turning round and round): no consistent \
+                             motion on from here",
+                            self.t, EVENTS_AT_ONE_MOMENT
+                        );
+                        return Flow::Ended(o.end(
+                            Reason::ContactForcesUndetermined,
+                            self.t,
+                            detail,
+                        ));
+                    }
+                }
                 Ok(Substep::Retry | Substep::Moved) => {}
                 Err(Ending::Failed(stop)) => return Flow::Ended(self.fail(o, stop)),
                 Err(Ending::At(reason, t, detail)) => {
