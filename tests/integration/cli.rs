@@ -10,6 +10,18 @@ fn run(args: &[&str]) -> Output {
         .expect("run slideroute")
 }
 
+/// `run --scene SCENE --out OUT --no-plots`.
+fn run_scene(scene: &std::path::Path, out: &std::path::Path) -> Output {
+    run(&[
+        "run",
+        "--scene",
+        scene.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--no-plots",
+    ])
+}
+
 fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
@@ -1388,14 +1400,7 @@ fn check_prints_the_load_case_table_and_routes_the_case_that_fails() {
 fn a_shaken_scene_reports_newmarks_permanent_displacement_and_rotation() {
     let dir = temp_dir("shaken");
     let scene = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/shaken.toml");
-    let o = run(&[
-        "run",
-        "--scene",
-        scene.to_str().unwrap(),
-        "--out",
-        dir.to_str().unwrap(),
-        "--no-plots",
-    ]);
+    let o = run_scene(&scene, &dir);
     assert!(o.status.success(), "{}", stderr(&o));
     let out = String::from_utf8_lossy(&o.stdout);
     assert!(out.contains("permanent displacement 0.806 m"), "{out}");
@@ -1759,14 +1764,7 @@ fn a_record_along_x_alone_prints_its_measures_and_dashes_for_the_components_it_l
     let file = dir.join("scene.toml");
     std::fs::write(&file, doc).unwrap();
     let out = dir.join("out");
-    let o = run(&[
-        "run",
-        "--scene",
-        file.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--no-plots",
-    ]);
+    let o = run_scene(&file, &out);
     assert!(o.status.success(), "{}", stderr(&o));
     let text = String::from_utf8_lossy(&o.stdout);
     // 0.7 g at its peak (an envelope of 1 from 0.5 s to 2 s over a 1.5 Hz sine).
