@@ -57,6 +57,60 @@ impl Vary {
         }
     }
 
+    /// For a key that names a file: each word that names a folder (from `folder`, the base
+    /// scene's) replaced by the files in it, `word/name` in the order of their names (hidden
+    /// files and sub-folders left out), so that `seismic.record_x=records/` runs every record
+    /// of a folder. A folder without files is an error naming the key.
+    fn with_folders_listed(self, folder: &std::path::Path) -> Result<Vary, KeyError> {
+        let Some(words) = self
+            .words
+            .as_ref()
+            .filter(|_| FILE_KEYS.contains(&self.key.as_str()))
+        else {
+            return Ok(self);
+        };
+        let mut listed = Vec::new();
+        for w in words {
+            let dir = folder.join(w);
+            if !dir.is_dir() {
+                listed.push(w.clone());
+                continue;
+            }
+            let unreadable =
+                |e: std::io::Error| KeyError::new(&self.key, format!("the folder `{w}`: {e}"));
+            let mut names: Vec<String> = std::fs::read_dir(&dir)
+                .map_err(unreadable)?
+                .filter_map(Result::ok)
+                .filter(|e| e.file_type().is_ok_and(|t| t.is_file()))
+                .filter_map(|e| e.file_name().into_string().ok())
+                .filter(|n| !n.starts_with('.'))
+                .collect();
+            if names.is_empty() {
+                return Err(KeyError::new(
+                    &self.key,
+                    format!("the folder `{w}` has no files"),
+                ));
+            }
+            names.sort();
+            let stem = w.trim_end_matches(['/', '\\']);
+            listed.extend(names.into_iter().map(|n| format!("{stem}/{n}")));
+        }
+        if listed.len() > MAX_VALUES {
+            return Err(KeyError::new(
+                &self.key,
+                format!(
+                    "{} files, more than the {MAX_VALUES} values one key may take",
+                    listed.len()
+                ),
+            ));
+        }
+        Ok(Vary {
+            key: self.key,
+            values: (0..listed.len()).map(|k| k as f64).collect(),
+            words: Some(listed),
+        })
+    }
+
     /// Value `x` of this key as a table cell: the number, or the word it stands for.
     pub fn cell(&self, x: f64) -> String {
         match &self.words {
@@ -330,6 +384,10 @@ impl<'a> Sweep<'a> {
                 "the key is given twice (each key varies once; put all its values in one range)",
             ));
         }
+        let varies = varies
+            .into_iter()
+            .map(|v| v.with_folders_listed(base.folder()))
+            .collect::<Result<Vec<_>, _>>()?;
         for v in &varies {
             if v.values.is_empty() {
                 return Err(KeyError::new(&v.key, "no values"));

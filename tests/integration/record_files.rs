@@ -423,3 +423,45 @@ fn the_yield_acceleration_of_a_monolith_on_its_base_is_mu_or_its_base_over_its_h
     assert!(along_x < 0.5, "{y:?}");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn a_sweep_over_a_folder_of_records_runs_every_file_in_it_as_the_list_of_them_would() {
+    let dir = folder("sweep-folder");
+    std::fs::create_dir_all(dir.join("records")).unwrap();
+    let m = motion();
+    for (name, k) in [("b.AT2", 1.5), ("a.AT2", 1.0)] {
+        let x: Vec<f64> = m.iter().map(|p| k * p.1).collect();
+        std::fs::write(dir.join("records").join(name), at2(&x)).unwrap();
+    }
+    // Hidden files and sub-folders are not records.
+    std::fs::write(dir.join("records/.notes"), "not a record").unwrap();
+    std::fs::create_dir_all(dir.join("records/old")).unwrap();
+    let base = scene(&dir, "record_x = \"records/a.AT2\"\n").unwrap();
+    let run = |vary: &str| {
+        let vary: Vary = vary.parse().unwrap();
+        let sweep = Sweep::new(&base, vec![vary]).unwrap();
+        let names: Vec<String> = (0..sweep.varies()[0].values.len())
+            .map(|k| sweep.varies()[0].cell(k as f64))
+            .collect();
+        let rows = sweep.run(|| {}, || false);
+        let x: Vec<f64> = rows
+            .iter()
+            .map(|r| r.outcome.route().unwrap().x_m)
+            .collect();
+        (names, x)
+    };
+    let (names, x) = run("seismic.record_x=records/");
+    assert_eq!(names, ["records/a.AT2", "records/b.AT2"]);
+    let (_, listed) = run("seismic.record_x=records/a.AT2,records/b.AT2");
+    assert_eq!(x, listed);
+    assert!(x[1] > x[0] + 1e-3, "{x:?}");
+    // An empty folder is refused, naming the key.
+    std::fs::create_dir_all(dir.join("none")).unwrap();
+    let vary: Vary = "seismic.record_x=none".parse().unwrap();
+    let e = Sweep::new(&base, vec![vary]).unwrap_err().to_string();
+    assert!(
+        e.contains("seismic.record_x") && e.contains("no files"),
+        "{e}"
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
