@@ -226,14 +226,25 @@ def test_a_sweep_equals_the_command_lines_row_for_row(tmp_path):
     assert list(sw["reason"]).count("invalid scene") == 2
 
 
+def cli_probabilistic(scene_file, out, args):
+    """`slideroute probabilistic` on `scene_file` into `out` with `args`: its summary
+    (probabilistic.json without the manifest)."""
+    subprocess.run(
+        [cli(), "probabilistic", "--scene", str(scene_file), *args,
+         "--out", str(out), "--quiet", "--no-plots"],
+        check=True,
+    )
+    want = json.loads((out / "probabilistic.json").read_text(encoding="utf-8"))
+    want.pop("manifest")
+    return want
+
+
 def test_the_probabilistic_analysis_equals_the_command_lines(tmp_path):
     scene_file = short(SCENES / "paper-like-uncertain.toml", tmp_path, "0.5")
     out = tmp_path / "prob"
-    subprocess.run(
-        [cli(), "probabilistic", "--scene", str(scene_file), "--samples", "40", "--seed", "5",
-         "--dist", "block.mass_kg=uniform:0.9e6:1.1e6", "--travel-limit-m", "0.1",
-         "--out", str(out), "--quiet", "--no-plots"],
-        check=True,
+    want = cli_probabilistic(
+        scene_file, out, ["--samples", "40", "--seed", "5", "--dist",
+                          "block.mass_kg=uniform:0.9e6:1.1e6", "--travel-limit-m", "0.1"]
     )
     header, rows = read_csv(out / "samples.csv")
     p = slideroute.probabilistic(
@@ -251,8 +262,6 @@ def test_the_probabilistic_analysis_equals_the_command_lines(tmp_path):
                 assert col[j] == row[k]
             else:
                 assert same(float(col[j]), as_float(row[k])), (name, j)
-    want = json.loads((out / "probabilistic.json").read_text(encoding="utf-8"))
-    want.pop("manifest")
     assert p.summary == want
 
 
@@ -260,12 +269,10 @@ def test_under_a_record_the_probabilistic_analysis_names_a_displacement_limit_as
     tmp_path,
 ):
     scene_file = SCENES / "shaken.toml"
-    out = tmp_path / "prob"
-    subprocess.run(
-        [cli(), "probabilistic", "--scene", str(scene_file), "--samples", "6", "--seed", "3",
-         "--dist", "friction.mu_k=uniform:0.38:0.42", "--displacement-limit-m", "0.5",
-         "--out", str(out), "--quiet", "--no-plots"],
-        check=True,
+    want = cli_probabilistic(
+        scene_file, tmp_path / "prob", ["--samples", "6", "--seed", "3", "--dist",
+                                        "friction.mu_k=uniform:0.38:0.42",
+                                        "--displacement-limit-m", "0.5"]
     )
     p = slideroute.probabilistic(
         slideroute.Scene.from_file(scene_file),
@@ -274,8 +281,6 @@ def test_under_a_record_the_probabilistic_analysis_names_a_displacement_limit_as
         seed=3,
         displacement_limit_m=0.5,
     )
-    want = json.loads((out / "probabilistic.json").read_text(encoding="utf-8"))
-    want.pop("manifest")
     assert p.summary == want
     assert p.summary["shaken"] is True
     assert p.summary["displacement_limit_m"] == 0.5
