@@ -44,7 +44,7 @@ fn scene(a: &[f64], stride: usize) -> Scene {
         dt_s: DT,
         stride,
     };
-    let path = newmark::write_pushed(&dir, "long-record", a, DT, (1.0, 0.9), run);
+    let path = newmark::write_along(&dir, "long-record", (a, DT, "x"), (1.0, 0.9), run);
     let s = Scene::from_file(&path).unwrap();
     std::fs::remove_dir_all(&dir).ok();
     s

@@ -1403,7 +1403,9 @@ fn a_shaken_scene_reports_newmarks_permanent_displacement_and_rotation() {
     let o = run_scene(&scene, &dir);
     assert!(o.status.success(), "{}", stderr(&o));
     let out = String::from_utf8_lossy(&o.stdout);
-    assert!(out.contains("permanent displacement 0.806 m"), "{out}");
+    // 0.80544 m (0.80544 at dt 0.25 ms; before a slow block's directions were settled together,
+    // 0.80560, and 0.80550 at 0.25 ms).
+    assert!(out.contains("permanent displacement 0.805 m"), "{out}");
     let v: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
     let d = v["permanent_displacement_m"].as_f64().unwrap();

@@ -394,14 +394,16 @@ fn a_ground_of_planes_written_as_a_triangulated_surface_gives_the_same_route() {
 #[test]
 fn a_contact_chattering_at_a_crease_under_a_record_ends_the_route_there_instead_of_looping() {
     // scenes/paper-like-faces.toml held by friction (water 6 MN), its three points, shaken by
-    // 1.9 s of filtered noise (tests/reference/records/crease-chatter.csv, 0.6 g): at 1.7806 s
-    // contact 2 leaves the crease of its face and the paper's plane 1 and meets plane 1 again at
-    // once. The route looped there for ever (and Ctrl-C could not stop it); it ends, saying so.
+    // 1.9 s of filtered noise (tests/reference/records/crease-chatter.csv, 0.6 g), dt 2.5 ms: at
+    // 1.7791 s contact 2 leaves the crease of its face and the paper's plane 1 and meets plane 1
+    // again at once. The route looped there for ever (and Ctrl-C could not stop it); it ends,
+    // saying so. (Where it meets this depends on dt: the crease under a record is not resolved.
+    // At dt 2 ms it met it at 1.7806 s until a slow block's directions were settled together.)
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
     let text = std::fs::read_to_string(dir.join("scenes/paper-like-faces.toml"))
         .unwrap()
         .replace("hydraulic_force_n = 8.0e6", "hydraulic_force_n = 6.0e6")
-        .replace("dt_s = 1.0e-3", "dt_s = 2.0e-3\ncontacts = \"frame\"")
+        .replace("dt_s = 1.0e-3", "dt_s = 2.5e-3\ncontacts = \"frame\"")
         .replace("t_end_s = 20.0", "t_end_s = 1.9")
         + &format!(
             "\n[seismic]\nrecord = \"{}\"\n",
@@ -422,5 +424,5 @@ fn a_contact_chattering_at_a_crease_under_a_record_ends_the_route_there_instead_
         "{}",
         end.detail
     );
-    assert!((end.t_s - 1.780587).abs() < 1e-5, "{}", end.t_s);
+    assert!((end.t_s - 1.779136).abs() < 1e-5, "{}", end.t_s);
 }

@@ -29,13 +29,16 @@ fn settled_across(off: f64, size: f64) -> bool {
 }
 
 /// Solves ŝ(ŷ) = ŷ on the unit sphere by Newton's method (finite-difference Jacobian, halving
-/// steps while |ŝ − ŷ| does not fall), from `y`; `a(ŷ)` is the generalized acceleration whose
-/// direction is ŝ. Settled where |ŝ − ŷ| < 1e-14, or where the acceleration across ŷ,
-/// |a| |ŝ − ŷ|, is below [`SETTLED_ACROSS`].
+/// steps while |ŝ − ŷ| does not fall), from `y`, within `within` of it (a step that leaves
+/// that ball gives up); `a(ŷ)` is the generalized acceleration whose direction is ŝ. Settled
+/// where |ŝ − ŷ| < 1e-14, or where the acceleration across ŷ, |a| |ŝ − ŷ|, is below
+/// [`SETTLED_ACROSS`].
 pub(super) fn settle_direction(
     mut y: Vector3<f64>,
+    within: f64,
     a: impl Fn(&Vector3<f64>) -> Result<Vector3<f64>, RigidError>,
 ) -> Result<Vector3<f64>, RigidError> {
+    let y0 = y;
     let both = |y: &Vector3<f64>| a(y).map(|v| (unit(v) - y, v.norm()));
     let residual = |y: &Vector3<f64>| both(y).map(|(f, _)| f);
     let (mut f, mut size) = both(&y)?;
@@ -57,6 +60,9 @@ pub(super) fn settle_direction(
             let cand = (y + step * t).normalize();
             let (fc, sc) = both(&cand)?;
             if fc.norm() < f.norm() || t < 1e-6 {
+                if (cand - y0).norm() > within {
+                    return Err(RigidError::SlipFromRest);
+                }
                 y = cand;
                 (f, size) = (fc, sc);
                 break;
@@ -226,6 +232,37 @@ pub(super) fn slip_start(
     Err(no_direction)
 }
 
+/// The whole block slipping, every contact along the slip that the rates ŷ = (Ẋ, Ż, L θ̇)
+/// give it, with ŷ the direction whose friction accelerates the block along `sense` × ŷ
+/// (`sense` 1: the consistent slip-start problem for the whole block; −1: the block slowing
+/// straight down to rest along ŷ): [`settle_direction`] from `y0`, within `within` of it. A
+/// stress-dependent criterion's coefficients, from `mu`, are settled by a fixed point around it.
+pub(super) fn all_slipping(
+    ctx: &Ctx<'_>,
+    y0: Vector3<f64>,
+    (sense, within): (f64, f64),
+    mut mu: [f64; 3],
+    coefficients: &dyn Fn(&[f64; 3]) -> [f64; 3],
+) -> Result<Solved, RigidError> {
+    let solve = |y: &Vector3<f64>, mu: &[f64; 3]| {
+        let t = twist(ctx.geom, [y.x, y.y, y.z / ctx.arm])?;
+        ctx.solve(&ctx.slip_of(&t).map(unit), mu)
+    };
+    let mut y = y0;
+    for _ in 0..MAX_FIXED_POINT / 10 {
+        y = settle_direction(y, within, |y| {
+            Ok(ctx.generalized_acceleration(&solve(y, &mu)?) * sense)
+        })?;
+        let s = solve(&y, &mu)?;
+        let new_mu = coefficients(&s.lambda);
+        if (0..3).all(|i| (new_mu[i] - mu[i]).abs() < 1e-13) {
+            return Ok(s);
+        }
+        mu = new_mu;
+    }
+    Err(RigidError::SlipFromRest)
+}
+
 /// Slip from rest (the block is not held; `mechanics::static_friction` decided that). The
 /// modes, tried in order, the first consistent one taken:
 ///
@@ -246,25 +283,9 @@ pub(super) fn from_rest(
         let s = ctx.solve(&dir, mu)?;
         Ok::<_, RigidError>((ctx.generalized(&s), s))
     };
-    let acceleration = |y: &Vector3<f64>, mu: &[f64; 3]| {
-        let t = twist(ctx.geom, [y.x, y.y, y.z / ctx.arm])?;
-        let dir = ctx.slip_of(&t).map(unit);
-        Ok::<_, RigidError>(ctx.generalized_acceleration(&ctx.solve(&dir, mu)?))
-    };
-    let all_slip = |y0: Vector3<f64>| -> Result<Solved, RigidError> {
-        let mut mu = coefficients(&frictionless.lambda);
-        let mut y = y0;
-        for _ in 0..MAX_FIXED_POINT / 10 {
-            y = settle_direction(y, |y| acceleration(y, &mu))?;
-            let (_, s) = direction(&y, &mu)?;
-            let new_mu = coefficients(&s.lambda);
-            if (0..3).all(|i| (new_mu[i] - mu[i]).abs() < 1e-13) {
-                return Ok(s);
-            }
-            mu = new_mu;
-        }
-        Err(RigidError::SlipFromRest)
-    };
+    let mu0 = coefficients(&frictionless.lambda);
+    let all_slip =
+        |y0: Vector3<f64>| all_slipping(ctx, y0, (1.0, f64::INFINITY), mu0, coefficients);
     let positive = |s: &Solved| s.lambda.iter().all(|&l| l > 0.0);
     if let Some(s) = all_slip(ctx.generalized(frictionless))
         .ok()
@@ -273,7 +294,6 @@ pub(super) fn from_rest(
         return Ok((s, None));
     }
     // A spread of starting directions (Fibonacci sphere), best residual first.
-    let mu0 = coefficients(&frictionless.lambda);
     let mut seeds: Vec<(f64, Vector3<f64>)> = (0..200)
         .filter_map(|k| {
             let z = 1.0 - (2.0 * k as f64 + 1.0) / 200.0;
@@ -335,22 +355,34 @@ mod tests {
     #[test]
     fn a_slip_direction_whose_acceleration_across_it_is_negligible_is_settled() {
         // A block 1e-6 m/s² past its onset: 3e-7 of that across ŷ is 3e-13 m/s².
-        let y = settle_direction(Vector3::new(-1.0, 0.0, 0.0), flipping(1e-6)).unwrap();
+        let y = settle_direction(Vector3::new(-1.0, 0.0, 0.0), 1.0, flipping(1e-6)).unwrap();
         assert!((y - Vector3::new(-1.0, 0.0, 0.0)).norm() < 1e-12, "{y:?}");
     }
 
     #[test]
     fn a_slip_direction_the_acceleration_leaves_by_more_than_round_off_is_refused() {
         // The same map at 1 m/s²: 3e-7 m/s² across ŷ is a direction that does not settle.
-        let r = settle_direction(Vector3::new(-1.0, 0.0, 0.0), flipping(1.0));
+        let r = settle_direction(Vector3::new(-1.0, 0.0, 0.0), 1.0, flipping(1.0));
         assert!(matches!(r, Err(RigidError::SlipFromRest)), "{r:?}");
+    }
+
+    #[test]
+    fn a_consistent_direction_farther_than_asked_is_given_up() {
+        // a = diag(2, 1, 0.5) ŷ is consistent along X only, 20° from the start: within 0.1
+        // of it nothing is found; within 1, X.
+        let a = |y: &Vector3<f64>| Ok(Vector3::new(2.0 * y.x, y.y, 0.5 * y.z));
+        let start = Vector3::new(1.0, 0.3, 0.2).normalize();
+        let r = settle_direction(start, 0.1, a);
+        assert!(matches!(r, Err(RigidError::SlipFromRest)), "{r:?}");
+        let y = settle_direction(start, 1.0, a).unwrap();
+        assert!((y - Vector3::new(1.0, 0.0, 0.0)).norm() < 1e-12, "{y:?}");
     }
 
     #[test]
     fn a_smooth_map_settles_on_its_consistent_direction() {
         // a = diag(2, 1, 0.5) ŷ: consistent along X, found from 20° away.
         let a = |y: &Vector3<f64>| Ok(Vector3::new(2.0 * y.x, y.y, 0.5 * y.z));
-        let y = settle_direction(Vector3::new(1.0, 0.3, 0.2).normalize(), a).unwrap();
+        let y = settle_direction(Vector3::new(1.0, 0.3, 0.2).normalize(), 1.0, a).unwrap();
         assert!((y - Vector3::new(1.0, 0.0, 0.0)).norm() < 1e-12, "{y:?}");
     }
 }

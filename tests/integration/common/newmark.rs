@@ -138,25 +138,25 @@ pub struct Run<'a> {
 
 /// Writes into `dir` the scene of a block on one level face, three points of the paper's frame
 /// (or its base), pushed along X by `push` of its weight through its centre of mass, friction
-/// `mu`, shaken along X by the record `a` (g) at `record_dt` (a one-column file), its time limit
+/// `mu`, shaken along `axis` ("x" or "z") by the record `a` (g) at `record_dt` (a one-column
+/// file, every digit kept, so that the exact solution of `a` is the route's), its time limit
 /// 10 s past the record; the scene file's path.
-pub fn write_pushed(
+pub fn write_along(
     dir: &std::path::Path,
     name: &str,
-    a: &[f64],
-    record_dt: f64,
+    (a, record_dt, axis): (&[f64], f64, &str),
     (mu, push): (f64, f64),
     run: Run<'_>,
 ) -> std::path::PathBuf {
     std::fs::create_dir_all(dir).unwrap();
-    let column: String = a.iter().map(|v| format!("{v:.9}\n")).collect();
-    std::fs::write(dir.join("x.txt"), column).unwrap();
-    let seismic = format!("record_x = \"x.txt\"\ndt_s = {record_dt}\n");
+    let column: String = a.iter().map(|v| format!("{v:?}\n")).collect();
+    std::fs::write(dir.join("record.txt"), column).unwrap();
+    let seismic = format!("record_{axis} = \"record.txt\"\ndt_s = {record_dt}\n");
     let t_end = (a.len() - 1) as f64 * record_dt + 10.0;
     write_shaken(dir, name, &seismic, t_end, (mu, push), run)
 }
 
-/// Writes into `dir` the scene of [`write_pushed`] with `seismic` as its `[seismic]` table
+/// Writes into `dir` the scene of [`write_along`] with `seismic` as its `[seismic]` table
 /// (the record's files already in `dir`) and the time limit `t_end` (s); the scene file's path.
 pub fn write_shaken(
     dir: &std::path::Path,
