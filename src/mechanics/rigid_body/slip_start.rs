@@ -28,9 +28,15 @@ fn settled_across(off: f64, size: f64) -> bool {
     off * size < SETTLED_ACROSS
 }
 
+/// Newton steps from a direction near its root (a `within` that is finite): where it has not
+/// settled in this many, it is not near.
+const NEAR_NEWTON: usize = 10;
+
 /// Solves ŝ(ŷ) = ŷ on the unit sphere by Newton's method (finite-difference Jacobian, halving
-/// steps while |ŝ − ŷ| does not fall), from `y`, within `within` of it (a step that leaves
-/// that ball gives up); `a(ŷ)` is the generalized acceleration whose direction is ŝ. Settled
+/// steps while |ŝ − ŷ| does not fall), from `y`, within `within` of it (it gives up where a
+/// step leaves that ball, Newton's estimate of the root lies beyond twice it, or, the ball
+/// finite, [`NEAR_NEWTON`] steps have not settled it); `a(ŷ)` is the generalized acceleration
+/// whose direction is ŝ. Settled
 /// where |ŝ − ŷ| < 1e-14, or where the acceleration across ŷ, |a| |ŝ − ŷ|, is below
 /// [`SETTLED_ACROSS`].
 pub(super) fn settle_direction(
@@ -42,7 +48,12 @@ pub(super) fn settle_direction(
     let both = |y: &Vector3<f64>| a(y).map(|v| (unit(v) - y, v.norm()));
     let residual = |y: &Vector3<f64>| both(y).map(|(f, _)| f);
     let (mut f, mut size) = both(&y)?;
-    for _ in 0..MAX_FIXED_POINT {
+    let most = if within.is_finite() {
+        NEAR_NEWTON
+    } else {
+        MAX_FIXED_POINT
+    };
+    for _ in 0..most {
         if f.norm() < 1e-14 || settled_across(f.norm(), size) {
             return Ok(y);
         }
@@ -55,6 +66,10 @@ pub(super) fn settle_direction(
         }
         // ŝ does not depend on |ŷ|, so J = Dŝ − I has −1 along ŷ: it is regular there.
         let step = j.lu().solve(&(-f)).ok_or(RigidError::SlipFromRest)?;
+        if ((y + step).normalize() - y0).norm() > 2.0 * within {
+            // Newton's estimate of the root lies well outside the ball.
+            return Err(RigidError::SlipFromRest);
+        }
         let mut t = 1.0;
         loop {
             let cand = (y + step * t).normalize();
