@@ -14,6 +14,9 @@ rotation, its energy residual against the work, how it ended and the wall time.
     crosscheck/.venv/bin/python crosscheck/newmark_exact.py --seeds 1 11 \
         --bin target/release/slideroute --out /tmp/newmark
 
+With `--both-ways`, the same records without a push (μ = 0.1 and 0.2, along X and along Z): the
+block slides back and forth, stopping and starting from rest at each reversal.
+
 With `--records DIR`, real records instead (two columns, time s and acceleration g, as SLAMMER's
 samples come; `crosscheck/setup.sh` puts eighteen in crosscheck/.records), each at ky = 0.05,
 0.1 and 0.2 g along X and along Z without a push, and along X with μ = 1 and a push of 1 − ky:
@@ -156,7 +159,7 @@ def read_record(path):
 
 
 def case(binary, out, seed, mu, push, pga, dt, given=None, axis="x"):
-    name = f"s{seed}-mu{mu}-push{push}"
+    name = f"s{seed}-{axis}-mu{mu}-push{push}"
     if given:
         name = f"{os.path.splitext(os.path.basename(given))[0]}-{axis}-mu{mu}-push{push}"
     d = os.path.join(out, name)
@@ -191,6 +194,9 @@ def main():
     p.add_argument("--out", default="/tmp/slideroute-newmark")
     p.add_argument("--seeds", nargs=2, type=int, default=[1, 4])
     p.add_argument("--dt", type=float, default=1e-3)
+    p.add_argument("--both-ways", action="store_true",
+                   help="the synthetic records without a push (μ = 0.1 and 0.2, along X and Z): "
+                   "the block slides both ways, stopping and starting from rest")
     p.add_argument("--records", help="a folder of records (time s, acceleration g), each run at "
                    "ky = 0.05, 0.1, 0.2 g without a push and with one (μ = 1), along X and Z")
     args = p.parse_args()
@@ -200,6 +206,12 @@ def main():
                 for mu, push, axis in [(ky, 0.0, "x"), (ky, 0.0, "z"), (1.0, 1.0 - ky, "x")]:
                     case(args.bin, args.out, 0, mu, round(push, 2), 0, args.dt,
                          os.path.join(args.records, f), axis)
+        return
+    if args.both_ways:
+        for seed in range(*args.seeds):
+            for mu in (0.1, 0.2):
+                for axis in "xz":
+                    case(args.bin, args.out, seed, mu, 0.0, 0.4, args.dt, axis=axis)
         return
     for seed in range(*args.seeds):
         for mu, push in [(1.0, 0.9), (1.0, 0.95), (1.0, 0.8), (0.6, 0.5), (0.3, 0.25)]:
