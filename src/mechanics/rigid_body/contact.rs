@@ -4,7 +4,7 @@
 
 use super::RigidError;
 use super::creases::Creases;
-use super::kinematics::{Inertia, Twist, pivot_direction, theta_rate_row, unit};
+use super::kinematics::{Inertia, Twist, pivot_direction, theta_rate_row, twist, unit};
 use crate::mechanics::ContactGeometry;
 use nalgebra::{SMatrix, SVector, Vector3};
 
@@ -48,6 +48,15 @@ impl Ctx<'_> {
 
     pub(super) fn slip_of(&self, t: &Twist) -> [Vector3<f64>; 3] {
         [0, 1, 2].map(|i| self.tangential(i, t.at(&self.geom.r[i])))
+    }
+
+    /// Each contact's slip direction when the block moves at the rates (Ẋ, Ż, L θ̇) along `y`.
+    pub(super) fn directions_along(
+        &self,
+        y: &Vector3<f64>,
+    ) -> Result<[Vector3<f64>; 3], RigidError> {
+        let t = twist(self.geom, [y.x, y.y, y.z / self.arm])?;
+        Ok(self.slip_of(&t).map(unit))
     }
 
     /// Unit direction of the rates (Ẋ, Ż, L θ̇) of an acceleration (a, ω̇).

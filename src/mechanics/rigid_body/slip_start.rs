@@ -5,7 +5,7 @@
 
 use super::RigidError;
 use super::contact::{Ctx, MAX_FIXED_POINT, Solved, in_cone};
-use super::kinematics::{twist, unit};
+use super::kinematics::unit;
 use nalgebra::{Matrix3, Vector3};
 
 /// The generalized acceleration (m/s², of the rates (Ẋ, Ż, L θ̇)) across ŷ below which a
@@ -259,10 +259,7 @@ pub(super) fn all_slipping(
     mut mu: [f64; 3],
     coefficients: &dyn Fn(&[f64; 3]) -> [f64; 3],
 ) -> Result<Solved, RigidError> {
-    let solve = |y: &Vector3<f64>, mu: &[f64; 3]| {
-        let t = twist(ctx.geom, [y.x, y.y, y.z / ctx.arm])?;
-        ctx.solve(&ctx.slip_of(&t).map(unit), mu)
-    };
+    let solve = |y: &Vector3<f64>, mu: &[f64; 3]| ctx.solve(&ctx.directions_along(y)?, mu);
     let mut y = y0;
     for _ in 0..MAX_FIXED_POINT / 10 {
         y = settle_direction(y, within, |y| {
@@ -293,9 +290,7 @@ pub(super) fn from_rest(
     coefficients: &dyn Fn(&[f64; 3]) -> [f64; 3],
 ) -> Result<(Solved, Option<usize>), RigidError> {
     let direction = |y: &Vector3<f64>, mu: &[f64; 3]| {
-        let t = twist(ctx.geom, [y.x, y.y, y.z / ctx.arm])?;
-        let dir = ctx.slip_of(&t).map(unit);
-        let s = ctx.solve(&dir, mu)?;
+        let s = ctx.solve(&ctx.directions_along(y)?, mu)?;
         Ok::<_, RigidError>((ctx.generalized(&s), s))
     };
     let mu0 = coefficients(&frictionless.lambda);
@@ -330,8 +325,7 @@ pub(super) fn from_rest(
         let yi = ctx.pivot_direction(i)?;
         for sign in [1.0, -1.0] {
             let y = yi * sign;
-            let t = twist(ctx.geom, [y.x, y.y, y.z / ctx.arm])?;
-            let dir = ctx.slip_of(&t).map(unit);
+            let dir = ctx.directions_along(&y)?;
             let mut mu = coefficients(&frictionless.lambda);
             let mut s = ctx.solve_stick(&dir, &mu, i)?;
             for _ in 0..MAX_FIXED_POINT {

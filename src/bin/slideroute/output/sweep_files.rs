@@ -1,5 +1,6 @@
 //! `sweep.csv`: one row per combination (under a ground-motion record, with its permanent
-//! displacement: a sweep over records, `--vary seismic.record_x=a.AT2,b.AT2` or a folder's, `records/`, is a table of them).
+//! displacement: a sweep over records, `--vary seismic.record_x=a.AT2,b.AT2` or a folder's,
+//! `records/`, is a table of them).
 
 use crate::sweep::{SweepRow, Vary};
 use std::io::Write;
