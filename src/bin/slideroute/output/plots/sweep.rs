@@ -1,5 +1,6 @@
-//! The sweep picture: the CM's travel and the factor of safety against the
-//! first varied key, one line per combination of the other keys. Legends are in numeric order
+//! The sweep picture: the CM's travel (under a record, the permanent displacement) and the
+//! factor of safety against the first varied key, one line per combination of the other keys
+//! (markers alone across a key of words, such as records). Legends are in numeric order
 //! with units; past a handful of groups the colour follows the second key on a scale with a
 //! colour bar; a block that did not slide, a route that ended at once and one that slid are
 //! marked apart.
@@ -15,6 +16,10 @@ use slideroute::FactorOfSafety;
 use std::path::Path;
 
 const SIZE: (u32, u32) = (1200, 820);
+/// The most words of a numbered axis the panel lists.
+const LISTED: usize = 20;
+/// The width of the charts' x axes (px): the sheet's chart area less the y labels.
+const AXIS_WIDTH: u32 = 800;
 /// The sweep's reason for a block that did not slide (the route's own word).
 const DID_NOT_SLIDE: &str = slideroute::Reason::DoesNotSlide.as_str();
 
@@ -99,7 +104,12 @@ pub fn sweep(path: &Path, varies: &[Vary], rows: &[SweepRow]) -> Res<()> {
     };
     let plot = SweepPlot::new(path, varies, rows);
     let title = format!(
-        "sweep: travel of the centre of mass and factor of safety against {}",
+        "sweep: {} and factor of safety against {}",
+        if plot.shaken {
+            "permanent displacement"
+        } else {
+            "travel of the centre of mass"
+        },
         first.key
     );
     let sheet = Sheet::new(path, SIZE, &title)?;
@@ -109,26 +119,51 @@ pub fn sweep(path: &Path, varies: &[Vary], rows: &[SweepRow]) -> Res<()> {
     plot.draw_factors_of_safety(&bottom)?;
     let mut y = plot.draw_group_key(&sheet.panel)?;
     y = plot.draw_markers(&sheet.panel, y)?;
-    plot.draw_counts(&sheet.panel, y)?;
+    y = plot.draw_counts(&sheet.panel, y)?;
+    plot.draw_numbered(&sheet.panel, y)?;
     sheet.root.present().map_err(err(path))
 }
 
 /// The tick labels of the x axis over `(x0, x1)`: numbers, or the words of a word key at 0,
-/// 1, … (none between).
-fn x_labels(first: &Vary, (x0, x1): (f64, f64)) -> impl Fn(&f64) -> String {
+/// 1, … (none between; `numbered`, their numbers from 1, which the panel lists).
+fn x_labels(first: &Vary, (x0, x1): (f64, f64), numbered: bool) -> impl Fn(&f64) -> String {
     let words = first.words.clone();
     let numbers = sheet::ticks(x0, x1);
     move |v: &f64| match &words {
         Some(w) => {
             let k = v.round();
-            if (v - k).abs() < 1e-6 && k >= 0.0 {
-                w.get(k as usize).cloned().unwrap_or_default()
+            if (v - k).abs() < 1e-6 && k >= 0.0 && (k as usize) < w.len() {
+                if numbered {
+                    format!("{}", k as usize + 1)
+                } else {
+                    word_label(&w[k as usize])
+                }
             } else {
                 String::new()
             }
         }
         None => numbers(v),
     }
+}
+
+/// A word as an axis shows it: a file's name without its folder (a sweep over a folder of
+/// records names each by its path).
+fn word_label(word: &str) -> String {
+    Path::new(word)
+        .file_name()
+        .and_then(|n| n.to_str())
+        .unwrap_or(word)
+        .to_string()
+}
+
+/// Whether the words of a word key, side by side under an axis `width` pixels wide, would run
+/// into each other (at about 7 pixels a character): then the axis numbers them and the panel
+/// lists them.
+fn words_crowd(words: &[String], width: u32) -> bool {
+    let room = f64::from(width) / words.len().max(1) as f64;
+    words
+        .iter()
+        .any(|w| 7.0 * word_label(w).chars().count() as f64 + 10.0 > room)
 }
 
 /// A chart of the sweep: the first varied key across, travel or factor of safety up.
@@ -147,6 +182,12 @@ struct SweepPlot<'a> {
     second_range: (f64, f64),
     /// The x axis's range: the first key's values, or its words at 0, 1, ….
     x_range: (f64, f64),
+    /// Under a ground-motion record (some row has a permanent displacement): the upper chart
+    /// is the permanent displacement, not the travel.
+    shaken: bool,
+    /// The first key's words are too long to stand side by side under the axis: it numbers
+    /// them from 1, and the panel lists them.
+    numbered: bool,
 }
 
 impl<'a> SweepPlot<'a> {
@@ -170,6 +211,29 @@ impl<'a> SweepPlot<'a> {
             groups: groups(rows),
             second_range,
             x_range,
+            shaken: rows.iter().any(|r| r.permanent_x_m.is_some()),
+            numbered: varies[0]
+                .words
+                .as_ref()
+                .is_some_and(|w| words_crowd(w, AXIS_WIDTH)),
+        }
+    }
+
+    /// Whether the first key is a word key (records, files): its values are categories, so
+    /// the markers stand alone, no line joining one to the next.
+    fn categorical(&self) -> bool {
+        self.first().words.is_some()
+    }
+
+    /// What the upper chart shows of row `r`: its permanent displacement's length under a
+    /// record, else its travel (m).
+    fn upper_value(&self, r: &SweepRow) -> Option<f64> {
+        if self.shaken {
+            r.permanent_x_m
+                .zip(r.permanent_z_m)
+                .map(|(x, z)| x.hypot(z))
+        } else {
+            r.travel_m
         }
     }
 
@@ -215,7 +279,7 @@ impl<'a> SweepPlot<'a> {
         let first = self.first();
         let (x0, x1) = self.x_range;
         let (y0, y1) = y_range;
-        let x_label = x_labels(first, self.x_range);
+        let x_label = x_labels(first, self.x_range, self.numbered);
         let x_count = first.words.as_ref().map_or(10, |w| w.len());
         let mut chart = ChartBuilder::on(area)
             .margin(10)
@@ -237,22 +301,37 @@ impl<'a> SweepPlot<'a> {
         Ok(chart)
     }
 
-    /// The upper chart: the CM's travel against the first key, a line for each group and
-    /// each combination's outcome marked (slid, did not slide, ended at once).
+    /// The upper chart: the CM's travel (under a record, the permanent displacement) against
+    /// the first key, a line for each group (none across words) and each combination's
+    /// outcome marked (slid, did not slide, ended at once).
     fn draw_travel(&self, area: &Area) -> Res<()> {
-        let y_range = sheet::ranges(self.rows.iter().filter_map(|r| r.travel_m).chain([0.0]));
-        let mut chart = self.axes(area, y_range, "travel of the CM (m)")?;
+        let y_range = sheet::ranges(
+            self.rows
+                .iter()
+                .filter_map(|r| self.upper_value(r))
+                .chain([0.0]),
+        );
+        let y_desc = if self.shaken {
+            "permanent displacement (m)"
+        } else {
+            "travel of the CM (m)"
+        };
+        let mut chart = self.axes(area, y_range, y_desc)?;
         for (k, (key, members)) in self.groups.iter().enumerate() {
             let color = self.color_of(k, key);
-            let pts: Vec<(f64, f64)> = members
-                .iter()
-                .filter_map(|r| r.travel_m.map(|t| (r.values[0], t)))
-                .collect();
-            chart
-                .draw_series(LineSeries::new(pts, color.mix(0.8).stroke_width(2)))
-                .map_err(err(self.path))?;
+            if !self.categorical() {
+                let pts: Vec<(f64, f64)> = members
+                    .iter()
+                    .filter_map(|r| self.upper_value(r).map(|t| (r.values[0], t)))
+                    .collect();
+                chart
+                    .draw_series(LineSeries::new(pts, color.mix(0.8).stroke_width(2)))
+                    .map_err(err(self.path))?;
+            }
             for r in members {
-                let Some(t) = r.travel_m else { continue };
+                let Some(t) = self.upper_value(r) else {
+                    continue;
+                };
                 let at = (r.values[0], t);
                 let mark = match outcome(r) {
                     Outcome::Slid => Mark::Dot(color),
@@ -291,9 +370,11 @@ impl<'a> SweepPlot<'a> {
                         .map(|f| (r.values[0], f))
                 })
                 .collect();
-            chart
-                .draw_series(LineSeries::new(pts.clone(), color.mix(0.8).stroke_width(2)))
-                .map_err(err(self.path))?;
+            if !self.categorical() {
+                chart
+                    .draw_series(LineSeries::new(pts, color.mix(0.8).stroke_width(2)))
+                    .map_err(err(self.path))?;
+            }
             for r in members {
                 let (at, mark) = match r.factor_of_safety {
                     Some(FactorOfSafety::Finite { value }) => {
@@ -320,7 +401,12 @@ impl<'a> SweepPlot<'a> {
         let (path, varies) = (self.path, self.varies);
         let mut y = 0;
         if self.groups.len() > 1 && self.few() {
-            y = sheet::heading(path, panel, "Lines", y)?;
+            let heading = if self.categorical() {
+                "Colours"
+            } else {
+                "Lines"
+            };
+            y = sheet::heading(path, panel, heading, y)?;
             let entries: Vec<Entry> = self
                 .groups
                 .iter()
@@ -376,7 +462,11 @@ impl<'a> SweepPlot<'a> {
                 has(Outcome::Slid) || !self.finite_factors().is_empty(),
                 Entry::new(
                     Mark::Dot(marker),
-                    "the block slid (its travel), or a factor of safety",
+                    if self.shaken {
+                        "the block slid (its permanent displacement), or a factor of safety"
+                    } else {
+                        "the block slid (its travel), or a factor of safety"
+                    },
                 ),
             ),
             (
@@ -417,6 +507,29 @@ impl<'a> SweepPlot<'a> {
         ];
         let marks: Vec<Entry> = marks.into_iter().filter(|m| m.0).map(|m| m.1).collect();
         sheet::legend(self.path, panel, &marks, y)
+    }
+
+    /// The first key's words as the axis numbers them, under its name from `y` in the panel
+    /// (nothing where the axis shows the words themselves); returns the y below. Past
+    /// `LISTED` words, the rest are counted.
+    fn draw_numbered(&self, panel: &Area, y: i32) -> Res<i32> {
+        let Some(words) = self.first().words.as_ref().filter(|_| self.numbered) else {
+            return Ok(y);
+        };
+        let y = sheet::heading(self.path, panel, &self.first().key, y + 6)?;
+        let mut lines: Vec<Entry> = words
+            .iter()
+            .take(LISTED)
+            .enumerate()
+            .map(|(k, w)| Entry::new(Mark::None, format!("{}: {}", k + 1, word_label(w))))
+            .collect();
+        if words.len() > LISTED {
+            lines.push(Entry::new(
+                Mark::None,
+                format!("… and {} more (see sweep.csv)", words.len() - LISTED),
+            ));
+        }
+        sheet::legend(self.path, panel, &lines, y)
     }
 
     /// How many combinations slid, did not slide, ended at once or had no route, under the
@@ -648,6 +761,56 @@ mod tests {
             .filter_map(|p| p.split("stroke=\"").nth(1)?.split('"').next())
             .collect();
         assert!(lines.len() >= 8, "{lines:?}");
+    }
+
+    #[test]
+    fn a_sweep_over_records_marks_each_records_permanent_displacement_unjoined_and_numbers_long_names()
+     {
+        let names = [
+            "Coalinga_1983_PVB-045.csv",
+            "Kobe_1995_TAK-090.csv",
+            "Loma_Prieta_1989_HSP-000.csv",
+            "Nisqually_2001_UNR-058.csv",
+            "Northridge_1994_PAC-175.csv",
+        ];
+        let first = Vary {
+            key: "seismic.record_x".into(),
+            values: (0..5).map(f64::from).collect(),
+            words: Some(names.iter().map(|n| format!("records/{n}")).collect()),
+        };
+        // Travel 9 m each; permanent displacement (0.3 k, 0.4 k) m, k = 0…4: 0.5 k m long.
+        let rows: Vec<SweepRow> = (0..5)
+            .map(|k| SweepRow {
+                travel_m: Some(9.0),
+                permanent_x_m: Some(0.3 * f64::from(k)),
+                permanent_z_m: Some(0.4 * f64::from(k)),
+                ..row(vec![f64::from(k)])
+            })
+            .collect();
+        let svg = draw("records", &[first], &rows);
+        let t: Vec<String> = texts(&svg).into_iter().map(|t| t.1).collect();
+        assert!(t.iter().any(|t| t == "permanent displacement (m)"), "{t:?}");
+        assert!(!t.iter().any(|t| t.contains("travel of the CM")));
+        // The upper axis reaches 2 m (the longest, 0.5 × 4), not the travel's 9 m.
+        let ticks: Vec<f64> = t.iter().filter_map(|t| t.parse().ok()).collect();
+        assert!(
+            ticks.contains(&2.0) && !ticks.iter().any(|&v| v >= 9.0),
+            "{ticks:?}"
+        );
+        // The names do not fit side by side: the axis numbers them, the panel lists them by
+        // file name.
+        for k in 1..=5 {
+            assert!(t.iter().any(|t| *t == k.to_string()), "tick {k}: {t:?}");
+        }
+        assert!(t.iter().any(|t| t == "2: Kobe_1995_TAK-090.csv"), "{t:?}");
+        assert!(!t.iter().any(|t| t.contains("records/")), "{t:?}");
+        // Records are categories: no line joins one record's marker to the next.
+        let coloured = svg
+            .split("<polyline")
+            .skip(1)
+            .filter(|p| !p.contains("stroke=\"#000000\""))
+            .count();
+        assert_eq!(coloured, 0);
     }
 
     #[test]
