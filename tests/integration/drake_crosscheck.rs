@@ -293,6 +293,32 @@ const REFINED_FINE: [&str; 8] = [
     "50",
 ];
 
+/// Our route against Drake's path over our rows (every 1 ms; Drake's every `dt`): both
+/// travels, the largest CM gap (m) and the largest yaw gap (°).
+struct Gaps {
+    t_ours: f64,
+    t_drake: f64,
+    pos_err: f64,
+    yaw_err: f64,
+}
+
+fn gaps(rows: &[Row], drake: &[Vec<f64>], dt: f64) -> Gaps {
+    let at = |t: f64| &drake[((t / dt).round() as usize).min(drake.len() - 1)];
+    let pairs: Vec<(&Row, &Vec<f64>)> = rows.iter().map(|w| (w, at(w.t_s))).collect();
+    let (mut pos_err, mut yaw_err) = (0.0f64, 0.0f64);
+    for (w, d) in &pairs {
+        let e = ((w.x_m - d[1]).powi(2) + (w.y_m - d[2]).powi(2) + (w.z_m - d[3]).powi(2)).sqrt();
+        pos_err = pos_err.max(e);
+        yaw_err = yaw_err.max((w.theta_deg - d[4]).abs());
+    }
+    Gaps {
+        t_ours: travel(pairs.iter().map(|(w, _)| [w.x_m, w.y_m, w.z_m])),
+        t_drake: travel(pairs.iter().map(|(_, d)| [d[1], d[2], d[3]])),
+        pos_err,
+        yaw_err,
+    }
+}
+
 /// A faceted scene's route against refined Drake (`drake`: its settings, `--dt` first):
 /// within 1 % of travel and of CM position and 0.5° of yaw at every millisecond until
 /// our route ends, where the impact of a contact on a face lifts contact `lifted` off (our
@@ -323,17 +349,12 @@ fn faceted_agrees_with_refined_drake(
         "{name}: {}",
         r.termination.detail
     );
-    // Drake's rows every dt; ours every 1 ms.
-    let at = |t: f64| &drake[((t / dt).round() as usize).min(drake.len() - 1)];
-    let pairs: Vec<(&Row, &Vec<f64>)> = r.rows.iter().map(|w| (w, at(w.t_s))).collect();
-    let t_ours = travel(pairs.iter().map(|(w, _)| [w.x_m, w.y_m, w.z_m]));
-    let t_drake = travel(pairs.iter().map(|(_, d)| [d[1], d[2], d[3]]));
-    let (mut pos_err, mut yaw_err) = (0.0f64, 0.0f64);
-    for (w, d) in &pairs {
-        let e = ((w.x_m - d[1]).powi(2) + (w.y_m - d[2]).powi(2) + (w.z_m - d[3]).powi(2)).sqrt();
-        pos_err = pos_err.max(e);
-        yaw_err = yaw_err.max((w.theta_deg - d[4]).abs());
-    }
+    let Gaps {
+        t_ours,
+        t_drake,
+        pos_err,
+        yaw_err,
+    } = gaps(&r.rows, &drake, dt);
     let (ground, _) = scene.site().ground().expect("a ground of faces");
     let (x, y, z) = (5 + 3 * lifted, 6 + 3 * lifted, 7 + 3 * lifted);
     let lift = drake
@@ -429,6 +450,45 @@ fn rigid_body_climbs_a_ramp_beside_a_flank_as_in_refined_drake() {
         ],
         "the faces under the contacts, in turn"
     );
+}
+
+#[test]
+#[ignore = "needs pydrake (crosscheck/setup.sh); run by .ci/run"]
+fn rigid_body_shaken_at_a_crease_of_faces_slides_and_stops_as_on_refined_drakes_moving_ground() {
+    // The paper's planes as faces, held by friction, shaken by 1.9 s of filtered noise
+    // (`common::crease_chatter_text`): contact 2 crosses between planes 1 and 2 and rides their
+    // crease while the record starts and stops the block. Our route ran on only at short steps
+    // (it looped at one moment at 2 to 3 ms) and, where it ran, ended 13 % short of Drake's X:
+    // meeting plane 2 at 7 mm/s, the impact held the crease and took the block's 20 mm/s
+    // across it. Now it goes to the record's end as Drake's does.
+    // Measured: travel 0.08 %, CM 0.32 % of travel, yaw 0.0012°; Drake refined further
+    // (REFINED_FINE) moves its own path by 2 % of the travel.
+    let dir = root().join("target/crosscheck");
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("crease-chatter.toml");
+    std::fs::write(&file, crate::common::crease_chatter_text("1.0e-3", "1.9")).unwrap();
+    let drake = drake_path_with(&file, 1.9, &REFINED);
+    let r = slideroute::run(&Scene::from_file(&file).unwrap()).unwrap();
+    assert_eq!(
+        r.termination.reason,
+        Reason::TimeLimit,
+        "{}",
+        r.termination.detail
+    );
+    let g = gaps(&r.rows, &drake, REFINED[1].parse().unwrap());
+    println!(
+        "crease-chatter: travel {:.5} m (Drake {:.5} m, {:.2} %), largest CM gap {:.5} m ({:.2} % \
+         of travel), largest yaw gap {:.4}°",
+        g.t_ours,
+        g.t_drake,
+        100.0 * (g.t_ours - g.t_drake).abs() / g.t_drake,
+        g.pos_err,
+        100.0 * g.pos_err / g.t_drake,
+        g.yaw_err
+    );
+    assert!((g.t_ours - g.t_drake).abs() < 0.01 * g.t_drake, "travel");
+    assert!(g.pos_err < 0.01 * g.t_drake, "CM gap {} m", g.pos_err);
+    assert!(g.yaw_err < 0.01, "yaw gap {}°", g.yaw_err);
 }
 
 /// A block on its base against Drake with the same base (`drake_route.py --base`): a 17 × 17

@@ -74,7 +74,8 @@ pub struct State<'a> {
 ///
 /// The direction of a *young, slow* slip — slower than 4 μ λ / m × `step` (the speed friction
 /// takes away in four steps) while its tangential acceleration is under a tenth of μ λ / m — is
-/// slaved to its quasi-static value instead of being read off the slip velocity.
+/// slaved to its quasi-static value instead of being read off the slip velocity (not while a
+/// contact rides a crease: `derivations/08-rigid-body.md` §3).
 ///
 /// Why: a slip s of a contact turns towards the direction its friction allows at a rate of
 /// order μ λ (e·A e) / |s| (A the contact's tangential inverse mass), which grows without bound
@@ -312,7 +313,12 @@ impl Moving<'_> {
         let zero_pivot = pivot;
         for j in (0..3).filter(|&j| Some(j) != zero_pivot) {
             let friction_accel = mu[j] * sol.lambda[j].abs() / ctx.mass;
-            if slip[j].norm() >= 4.0 * friction_accel * step {
+            // A block riding a crease has two degrees of freedom (one with two creases): one
+            // contact's quasi-static direction, sought in its own tangent plane with the
+            // others' fixed, is no motion it can take (81° off the slip on a record at a
+            // crease, whose friction then had the crease's second face pull while the
+            // contact, let go, went back into it). Its slow slips are followed as they are.
+            if slip[j].norm() >= 4.0 * friction_accel * step || !ctx.creases.is_empty() {
                 continue;
             }
             if let Some((d, a)) = slaved_direction(ctx, dir, mu, j, &dir[j])? {

@@ -146,11 +146,13 @@ pub(super) fn after_impact(
 const HOP: f64 = 1e-4;
 
 /// The slowest release, as a fraction of √(g L), with which a crease's face lets its contact
-/// go at an impact (1 cm/s on a 10 m block): a contact meeting a face at a crease it is about to
-/// ride leaves the other face at some 10⁻⁴ m/s (a graze; letting go would start a chatter of
-/// impacts along the crease), one that climbs onto the face it met at a tenth of a metre per
-/// second or more (holding the crease would stop its whole motion across it).
-const GRAZE: f64 = 1e-3;
+/// go at an impact (1 mm/s on a 10 m block): a contact meeting a face at a crease it is about to
+/// ride leaves the other face at some 10⁻⁵ to 10⁻⁴ m/s (a graze; letting go would start a
+/// chatter of impacts along the crease), one that climbs onto the face it met faster (holding
+/// the crease would stop its whole motion across it: at 7 mm/s, from the paper's plane 1 onto
+/// plane 2 under a record, 20 mm/s of it that refined Drake's block keeps;
+/// `derivations/10-faces.md` §6).
+const GRAZE: f64 = 1e-4;
 
 /// What a failure `stop` at `y` changes in what the contacts are held to (`held`), if it is an
 /// event of the ground (see `RigidBody::crease_event`), and the contact whose change makes an

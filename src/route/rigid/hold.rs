@@ -67,22 +67,11 @@ pub(super) fn hold_anchor(
         }
         let m = [(d * r[0] - b * r[1]) / det, (a * r[1] - b * r[0]) / det];
         let delta: [f64; 3] = std::array::from_fn(|c| j[0][c] * m[0] + j[1][c] * m[1]);
-        let mut moved = y;
-        moved.x += delta[0];
-        moved.z += delta[1];
-        moved.theta += delta[2] / l;
-        let mut f = finder.clone();
-        match evaluate(sim, &mut f, &moved, Hold::of(&ev.motion).sticking(Some(i))) {
-            Ok(e) => {
-                *finder = f;
-                y = e.accept(&moved);
-                ev = e;
-            }
-            // The correction is of the integrator's error's size: where the state it gives is
-            // off the model (the contact's cone let go of it there, and a crease with it), the
-            // step's state stands and the next step meets the event.
-            Err(_) => break,
-        }
+        y.x += delta[0];
+        y.z += delta[1];
+        y.theta += delta[2] / l;
+        ev = evaluate(sim, finder, &y, Hold::of(&ev.motion).sticking(Some(i)))?;
+        y = ev.accept(&y);
     }
     Ok((y, ev))
 }

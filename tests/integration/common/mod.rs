@@ -229,3 +229,25 @@ pub fn paper_like_on_level_planes() -> String {
     .replace("kappa_deg = 30.0", "kappa_deg = 0.0")
     .replace("eccentricity_m = 1.0", "eccentricity_m = 0.0")
 }
+
+/// `scenes/paper-like-faces.toml` held by friction (water 6 MN), its three points (the frame's
+/// contacts), shaken by 1.9 s of filtered noise (`tests/reference/records/crease-chatter.csv`,
+/// 0.6 g; the record's path absolute), at `dt_s` until `t_end_s`: contact 2 crosses between
+/// the paper's planes 1 and 2 (12° between their normals), meets each again and again, and
+/// rides their crease, while the record starts and stops the block.
+pub fn crease_chatter_text(dt_s: &str, t_end_s: &str) -> String {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    std::fs::read_to_string(dir.join("scenes/paper-like-faces.toml"))
+        .unwrap()
+        .replace("hydraulic_force_n = 8.0e6", "hydraulic_force_n = 6.0e6")
+        .replace(
+            "dt_s = 1.0e-3",
+            &format!("dt_s = {dt_s}\ncontacts = \"frame\""),
+        )
+        .replace("t_end_s = 20.0", &format!("t_end_s = {t_end_s}"))
+        + &format!(
+            "\n[seismic]\nrecord = \"{}\"\n",
+            dir.join("tests/reference/records/crease-chatter.csv")
+                .display()
+        )
+}
