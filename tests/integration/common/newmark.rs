@@ -111,6 +111,124 @@ pub fn exact(a: &[f64], dt: f64, mu: f64, push: f64) -> f64 {
     u
 }
 
+/// The permanent displacement (m; X, Z) of a block on a level plane of friction `mu`, from
+/// rest, the ground accelerating by `ax` and `az` (g, along X and Z) linear between samples `dt`
+/// apart and zero after the last: Newmark's block in two directions, a point mass whose
+/// friction μ g opposes its slip u relative to the ground, u′ = −A(t) − μ g u/|u|, held while
+/// |A| ≤ μ g. (The frame's block is that point: its load passes through its centre of mass in
+/// the base plane, so its friction has no moment and it does not turn.) Not closed form: RK4
+/// in `per_sample` steps a sample, each onset located within its step by bisection on
+/// |A| = μ g, a slow slip (within ten steps' friction of zero, where its direction turns fast)
+/// in 256 substeps, each stop taken where the slip is under what friction stops in one substep
+/// and A within the cone; converged in the step, which the test checks by halving it.
+pub fn two_way(ax: &[f64], az: &[f64], dt: f64, mu: f64, per_sample: usize) -> [f64; 2] {
+    let h = dt / per_sample as f64;
+    let n = ax.len().min(az.len());
+    // The ground's acceleration (m/s²) at time t.
+    let ground = |t: f64| -> [f64; 2] {
+        let k = (t / dt).floor();
+        if k < 0.0 || k as usize + 1 >= n {
+            return [0.0, 0.0];
+        }
+        let (k, r) = (k as usize, t / dt - k);
+        [
+            G * (ax[k] + r * (ax[k + 1] - ax[k])),
+            G * (az[k] + r * (az[k + 1] - az[k])),
+        ]
+    };
+    let norm = |v: [f64; 2]| v[0].hypot(v[1]);
+    let cone = mu * G;
+    let slip_rate = |t: f64, u: [f64; 2]| -> [f64; 2] {
+        let a = ground(t);
+        let s = norm(u);
+        [-a[0] - cone * u[0] / s, -a[1] - cone * u[1] / s]
+    };
+    let (mut d, mut u, mut sliding) = ([0.0f64; 2], [0.0f64; 2], false);
+    // Step k spans [k h, (k + 1) h]: the samples fall on step ends, so that RK4 never steps
+    // over a kink of the record. Past the record, until the block stops.
+    let last = (n - 1) * per_sample;
+    let mut k = 0usize;
+    while k < last || sliding {
+        let (t, t1) = (k as f64 * h, (k + 1) as f64 * h);
+        k += 1;
+        if !sliding {
+            if norm(ground(t1)) <= cone {
+                continue;
+            }
+            // The onset: where |A| first exceeds μ g within the step.
+            let (mut lo, mut hi) = (t, t1);
+            for _ in 0..60 {
+                let mid = 0.5 * (lo + hi);
+                if norm(ground(mid)) > cone {
+                    hi = mid;
+                } else {
+                    lo = mid;
+                }
+            }
+            // From rest the slip starts against the ground's acceleration.
+            let a = ground(hi);
+            let e = 1e-300_f64.max(1e-14 * h * (norm(a) - cone));
+            let (next, moved) = rk4_slip(
+                &slip_rate,
+                hi,
+                [-e * a[0] / norm(a), -e * a[1] / norm(a)],
+                t1 - hi,
+            );
+            d = [d[0] + moved[0], d[1] + moved[1]];
+            u = next;
+            sliding = true;
+            continue;
+        }
+        // A slow slip turns fast (at μ g / |u|): within ten steps' friction of zero the step
+        // is taken in SLOW substeps. Slower than friction stops in a substep, where the cone
+        // holds: the stop, the rest of the step held.
+        let parts = if norm(u) < 10.0 * cone * h { SLOW } else { 1 };
+        let hs = h / parts as f64;
+        for p in 0..parts {
+            let ts = t + p as f64 * hs;
+            if norm(u) <= cone * hs && norm(ground(ts)) <= cone {
+                u = [0.0, 0.0];
+                sliding = false;
+                break;
+            }
+            let (next, moved) = rk4_slip(&slip_rate, ts, u, hs);
+            d = [d[0] + moved[0], d[1] + moved[1]];
+            u = next;
+        }
+    }
+    d
+}
+
+/// The substeps of a step of [`two_way`] whose slip is slow.
+const SLOW: usize = 256;
+
+/// One RK4 step of length `h` of the slip u′ = `f`(t, u) from (t, u): the slip after it and the
+/// displacement over it (∫ u, by the same stages).
+fn rk4_slip(
+    f: &dyn Fn(f64, [f64; 2]) -> [f64; 2],
+    t: f64,
+    u: [f64; 2],
+    h: f64,
+) -> ([f64; 2], [f64; 2]) {
+    let add = |a: [f64; 2], b: [f64; 2], s: f64| [a[0] + s * b[0], a[1] + s * b[1]];
+    let k1 = f(t, u);
+    let u2 = add(u, k1, 0.5 * h);
+    let k2 = f(t + 0.5 * h, u2);
+    let u3 = add(u, k2, 0.5 * h);
+    let k3 = f(t + 0.5 * h, u3);
+    let u4 = add(u, k3, h);
+    let k4 = f(t + h, u4);
+    let next = [
+        u[0] + h / 6.0 * (k1[0] + 2.0 * k2[0] + 2.0 * k3[0] + k4[0]),
+        u[1] + h / 6.0 * (k1[1] + 2.0 * k2[1] + 2.0 * k3[1] + k4[1]),
+    ];
+    let moved = [
+        h / 6.0 * (u[0] + 2.0 * u2[0] + 2.0 * u3[0] + u4[0]),
+        h / 6.0 * (u[1] + 2.0 * u2[1] + 2.0 * u3[1] + u4[1]),
+    ];
+    (next, moved)
+}
+
 /// The real roots of A x² + B x + C (one for A = 0).
 fn quadratic(a: f64, b: f64, c: f64) -> Vec<f64> {
     if a == 0.0 {
