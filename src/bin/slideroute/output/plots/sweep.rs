@@ -29,17 +29,27 @@ enum Outcome {
     Slid,
     DidNotSlide,
     EndedAtOnce,
+    /// Under a record, a route that ended before the record did and the block came to rest
+    /// (a contact left its plane, lifted off, …): its displacement is only what it had moved.
+    Cut,
     /// No route (an invalid scene): not drawn, counted.
     NoRoute,
 }
 
-fn outcome(r: &SweepRow) -> Outcome {
+/// How row `r` came out; `shaken`: under a ground-motion record.
+fn outcome(r: &SweepRow, shaken: bool) -> Outcome {
+    let rested = [
+        slideroute::Reason::Stopped.as_str(),
+        slideroute::Reason::TimeLimit.as_str(),
+    ];
     if r.travel_m.is_none() {
         Outcome::NoRoute
     } else if r.reason == DID_NOT_SLIDE {
         Outcome::DidNotSlide
     } else if r.t_end_s == Some(0.0) {
         Outcome::EndedAtOnce
+    } else if shaken && !rested.contains(&r.reason.as_str()) {
+        Outcome::Cut
     } else {
         Outcome::Slid
     }
@@ -72,7 +82,7 @@ fn groups(rows: &[SweepRow]) -> Vec<(Vec<f64>, Vec<&SweepRow>)> {
 /// A varied value for people: the word, or the number short with the key's unit.
 fn value_text(v: &Vary, x: f64) -> String {
     match &v.words {
-        Some(_) => format!("{} = {}", v.key, v.cell(x)),
+        Some(_) => format!("{} = {}", v.key, word_label(&v.cell(x))),
         None => sheet::key_value(&v.key, &sheet::short(x)),
     }
 }
@@ -333,8 +343,9 @@ impl<'a> SweepPlot<'a> {
                     continue;
                 };
                 let at = (r.values[0], t);
-                let mark = match outcome(r) {
+                let mark = match outcome(r, self.shaken) {
                     Outcome::Slid => Mark::Dot(color),
+                    Outcome::Cut => Mark::Ring(color),
                     Outcome::DidNotSlide => Mark::Square(color),
                     Outcome::EndedAtOnce => Mark::Cross(color),
                     Outcome::NoRoute => continue,
@@ -455,7 +466,7 @@ impl<'a> SweepPlot<'a> {
             BLACK
         };
         let y = sheet::heading(self.path, panel, "Markers", y + 6)?;
-        let has = |o: Outcome| rows.iter().any(|r| outcome(r) == o);
+        let has = |o: Outcome| rows.iter().any(|r| outcome(r, self.shaken) == o);
         let has_fs = |f: FactorOfSafety| rows.iter().any(|r| r.factor_of_safety == Some(f));
         let marks = [
             (
@@ -481,6 +492,14 @@ impl<'a> SweepPlot<'a> {
                 Entry::new(
                     Mark::Cross(marker),
                     "ended at once (t = 0) for another reason: see sweep.csv",
+                ),
+            ),
+            (
+                has(Outcome::Cut),
+                Entry::new(
+                    Mark::Ring(marker),
+                    "the route ended before the record did (a contact left its plane, …): \
+                     its displacement so far, see sweep.csv",
                 ),
             ),
             (
@@ -536,7 +555,7 @@ impl<'a> SweepPlot<'a> {
     /// heading "Sweep" from `y` in the panel; returns the y below.
     fn draw_counts(&self, panel: &Area, y: i32) -> Res<i32> {
         let rows = self.rows;
-        let count = |o: Outcome| rows.iter().filter(|r| outcome(r) == o).count();
+        let count = |o: Outcome| rows.iter().filter(|r| outcome(r, self.shaken) == o).count();
         let plural = if rows.len() == 1 { "" } else { "s" };
         let mut counts = format!(
             "{} combination{plural}: {} slid, {} did not slide, {} ended at once",
@@ -545,6 +564,12 @@ impl<'a> SweepPlot<'a> {
             count(Outcome::DidNotSlide),
             count(Outcome::EndedAtOnce)
         );
+        if count(Outcome::Cut) > 0 {
+            counts.push_str(&format!(
+                ", {} ended before the record did",
+                count(Outcome::Cut)
+            ));
+        }
         if count(Outcome::NoRoute) > 0 {
             counts.push_str(&format!(
                 ", {} had no route (not drawn; see sweep.csv)",
@@ -671,10 +696,10 @@ mod tests {
         at_once.travel_m = Some(0.0);
         let mut invalid = row(vec![0.1]);
         invalid.travel_m = None;
-        assert_eq!(outcome(&held), Outcome::DidNotSlide);
-        assert_eq!(outcome(&at_once), Outcome::EndedAtOnce);
-        assert_eq!(outcome(&invalid), Outcome::NoRoute);
-        assert_eq!(outcome(&row(vec![0.1])), Outcome::Slid);
+        assert_eq!(outcome(&held, false), Outcome::DidNotSlide);
+        assert_eq!(outcome(&at_once, false), Outcome::EndedAtOnce);
+        assert_eq!(outcome(&invalid, false), Outcome::NoRoute);
+        assert_eq!(outcome(&row(vec![0.1]), false), Outcome::Slid);
     }
 
     fn vary(key: &str, values: &[f64]) -> Vary {
@@ -761,6 +786,45 @@ mod tests {
             .filter_map(|p| p.split("stroke=\"").nth(1)?.split('"').next())
             .collect();
         assert!(lines.len() >= 8, "{lines:?}");
+    }
+
+    #[test]
+    fn under_a_record_a_route_that_ended_before_the_record_is_marked_apart() {
+        // "a contact left its plane" at 2.15 s under a 40 s record: its displacement is only
+        // what it had moved, not a permanent one; without a record the same end is a route's.
+        let mut cut = row(vec![0.1]);
+        cut.reason = slideroute::Reason::ContactLeftPlane.as_str().into();
+        cut.permanent_x_m = Some(4e-4);
+        cut.permanent_z_m = Some(5e-4);
+        let mut stopped = row(vec![0.2]);
+        stopped.permanent_x_m = Some(0.1);
+        stopped.permanent_z_m = Some(0.0);
+        assert_eq!(outcome(&cut, true), Outcome::Cut);
+        assert_eq!(outcome(&cut, false), Outcome::Slid);
+        assert_eq!(outcome(&stopped, true), Outcome::Slid);
+        let mut limit = stopped.clone();
+        limit.reason = slideroute::Reason::TimeLimit.as_str().into();
+        assert_eq!(outcome(&limit, true), Outcome::Slid);
+        let svg = draw(
+            "cut",
+            &[vary("friction.mu_k", &[0.1, 0.2])],
+            &[cut, stopped],
+        );
+        let t: Vec<String> = texts(&svg).into_iter().map(|t| t.1).collect();
+        let words = t.join(" ");
+        assert!(words.contains("ended before the record did"), "{words}");
+        assert!(words.contains("1 slid"), "{words}");
+        // The cut route's marker is a ring (an unfilled circle), the stopped one's a dot.
+        let rings = svg
+            .split("<circle")
+            .skip(1)
+            .filter(|c| {
+                c.split("/>")
+                    .next()
+                    .is_some_and(|c| c.contains("fill=\"none\""))
+            })
+            .count();
+        assert_eq!(rings, 2, "one on the chart, one in the legend");
     }
 
     #[test]
