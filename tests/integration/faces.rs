@@ -407,9 +407,13 @@ fn a_block_shaken_at_a_crease_runs_to_the_records_end_alike_at_every_step() {
     // before the 64-events guard): contact 0's slow slip, its direction slaved in its own
     // tangent plane while contact 2 rode the crease, made the crease's second face pull, and
     // contact 2, let go, went back into that face at once. A block in a crease has no slip
-    // slaved now (`derivations/08-rigid-body.md` §3). It runs to the record's end at every
-    // step from 0.25 to 5 ms, where the finest ends (measured: x within 1.0e-3 of it; against
-    // refined Drake in `drake_crosscheck.rs`).
+    // slaved now (`derivations/08-rigid-body.md` §3). With young slips no longer slaved, at
+    // 2 to 6 ms contact 2 grazed plane 1 at 0.7214 s, just after the block began to slip, and
+    // at the crease could neither stay nor slip consistently: the route ended "the contact
+    // forces are not determined". It leaves one of the crease's faces there, the one it moves
+    // off (`derivations/10-faces.md` §6). It runs to the record's end at every step from 0.25
+    // to 6 ms, where the finest ends (measured: x within 1.2e-3 of it; against refined Drake
+    // in `drake_crosscheck.rs`).
     let end = |dt: &str| {
         let route = slideroute::run(&crease_chatter(dt, "1.9")).unwrap();
         let end = &route.termination;
@@ -424,7 +428,7 @@ fn a_block_shaken_at_a_crease_runs_to_the_records_end_alike_at_every_step() {
         (w.x_m, w.z_m, w.theta_deg)
     };
     let fine = end("2.5e-4");
-    for dt in ["5.0e-3", "3.0e-3", "2.5e-3", "2.0e-3", "1.0e-3"] {
+    for dt in ["6.0e-3", "5.0e-3", "3.0e-3", "2.5e-3", "2.0e-3", "1.0e-3"] {
         let (x, z, theta) = end(dt);
         assert!(
             (x - fine.0).abs() < 2e-3 * fine.0,

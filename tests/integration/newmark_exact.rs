@@ -198,67 +198,111 @@ fn the_two_directional_reference_shaken_along_one_axis_is_the_closed_form_block(
 
 /// Shaken along X and Z at once, the block slides in the plane: its slip turns with the ground's
 /// acceleration, stops wherever it comes to rest within the cone and starts again from rest
-/// against the record. Its permanent displacement must be the two-directional Newmark block's
-/// ([`two_way`]; converged: halving its step moves it by under 1e-4 of itself) to within 1 % of
-/// its length in each component, with no turning beyond 1e-4° (its load passes through the
-/// centre of mass in the base plane, so friction has no moment) and its balance within 1e-4
-/// of the work.
+/// against the record; with a constant push along X of up to 0.95 of its friction too (the
+/// push, m g p, is the reference's ground acceleration less p g along X, its record padded with
+/// rest until the block stops). Its permanent displacement must be the two-directional Newmark
+/// block's ([`two_way`]; converged: halving its step moves it by under 1e-4 of itself) to 0.1 %
+/// of its length in each component (the issue's bound), with no turning beyond 1e-4° (its load
+/// passes through the centre of mass in the base plane, so friction has no moment) and its
+/// balance within 1e-6 of the work.
 ///
-/// Measured at dt 1 ms: 2.6e-4, 5.3e-3 and 5.3e-4 of the length off (the issue asks 1e-3),
-/// turned by up to 1.5e-5°, balance up to 1.7e-5 of the work; first order in dt. The young
-/// slips' slaved directions (`derivations/08-rigid-body.md` §3) cause it: with them slaved only
-/// where a slip is under a tenth of the block's own speed, the three are 2.5e-6 to 4e-5 off,
-/// turned by 1e-7°, at a quarter of the cost, but the crease-chatter record's contact 2 then
-/// meets plane 1 at its start where the site cannot put it on that face (issue #27, left open).
+/// Measured at dt 1 ms: 2.9e-6, 3.0e-5 and 9.3e-5 of the length off without a push, 7.9e-6
+/// and 2.1e-5 with 0.95 and 0.8 of friction; balance under 1e-7 of the work
+/// (`derivations/11-dam-loads.md` §7). Before a young slip's direction was slaved only where
+/// it is slow beside the block's own speed (`derivations/08-rigid-body.md` §3), 5.3e-3.
 #[test]
-fn a_block_shaken_along_x_and_z_at_once_slides_within_a_percent_of_the_two_directional_newmark_distance()
- {
+fn a_block_shaken_along_x_and_z_at_once_slides_to_the_two_directional_newmark_distance() {
     let dt = 0.005;
-    for (seed, mu) in [(1, 0.1), (2, 0.15), (6, 0.2)] {
-        let name = format!("two-way-{seed}-{mu}");
+    let cases = [
+        (1, 0.1, 0.0),
+        (2, 0.15, 0.0),
+        (6, 0.2, 0.0),
+        (3, 0.2, 0.19),
+        (4, 0.3, 0.24),
+    ];
+    for (seed, mu, push) in cases {
         let (ax, az) = (
             record(seed, 12.0, dt, 0.4),
             record(seed + 100, 12.0, dt, 0.3),
         );
-        let want = two_way(&ax, &az, dt, mu, 1000);
-        let finer = two_way(&ax, &az, dt, mu, 2000);
-        let size = want[0].hypot(want[1]);
-        assert!(
-            (want[0] - finer[0]).hypot(want[1] - finer[1]) < 1e-4 * size,
+        let name = format!("two-way-{seed}-{mu}-{push}");
+        if let Err(e) = two_way_case(&name, (&ax, &az, dt), mu, push, 1000) {
+            panic!("{e}");
+        }
+    }
+}
+
+/// One block shaken along X by `ax` and along Z by `az` (g, `dt` apart), pushed along X by
+/// `push` of its weight, against [`two_way`] in `per_sample` steps a sample (and half that
+/// step, which must agree to 1e-4): the permanent displacement to 0.1 % of its length in each
+/// component (or 1e-6 m), turned by under 1e-4°, at rest, the balance within 1e-6 of the work.
+fn two_way_case(
+    name: &str,
+    (ax, az, dt): (&[f64], &[f64], f64),
+    mu: f64,
+    push: f64,
+    per_sample: usize,
+) -> Result<(), String> {
+    let n = ax.len().min(az.len());
+    let (ax, az) = (&ax[..n], &az[..n]);
+    // The reference: the push as the ground accelerating the other way, to the block's rest.
+    let rest = (40.0 / dt) as usize;
+    let padded = |a: &[f64], by: f64| -> Vec<f64> {
+        a.iter()
+            .chain(std::iter::repeat_n(&0.0, rest))
+            .map(|v| v - by)
+            .collect()
+    };
+    let (px, pz) = (padded(ax, push), padded(az, 0.0));
+    let want = two_way(&px, &pz, dt, mu, per_sample);
+    let finer = two_way(&px, &pz, dt, mu, 2 * per_sample);
+    let size = want[0].hypot(want[1]);
+    if (want[0] - finer[0]).hypot(want[1] - finer[1]) > 1e-4 * size {
+        return Err(format!(
             "{name}: the reference {want:?} against {finer:?} at half its step"
-        );
-        let dir = std::env::temp_dir().join(format!("slideroute-{name}-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        for (file, a) in [("x.txt", &ax), ("z.txt", &az)] {
-            let column: String = a.iter().map(|v| format!("{v:?}\n")).collect();
-            std::fs::write(dir.join(file), column).unwrap();
-        }
-        let seismic = format!("record_x = \"x.txt\"\nrecord_z = \"z.txt\"\ndt_s = {dt}\n");
-        let run = Run {
-            contacts: "frame",
-            dt_s: 1e-3,
-            stride: 1000,
-        };
-        let path = write_shaken(&dir, &name, &seismic, 22.0, (mu, 0.0), run);
-        let route: Route = slideroute::run(&Scene::from_file(&path).unwrap()).unwrap();
-        std::fs::remove_dir_all(&dir).ok();
-        let got = route.permanent_displacement_xz_m.expect("a displacement");
-        for k in 0..2 {
-            assert!(
-                (got[k] - want[k]).abs() <= 1e-2 * size,
-                "{name}: {got:?} m against the two-directional block's {want:?} m"
-            );
-        }
-        let turned = route.permanent_rotation_deg.expect("a rotation");
-        assert!(turned.abs() < 1e-4, "{name}: turned {turned}°");
-        assert_eq!(route.termination.reason, Reason::Stopped, "{name}");
-        let e = route.energy.expect("an energy balance");
-        assert!(
-            e.residual_j.abs() <= 1e-4 * e.work_friction_j.abs(),
+        ));
+    }
+    let dir = std::env::temp_dir().join(format!("slideroute-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for (file, a) in [("x.txt", ax), ("z.txt", az)] {
+        let column: String = a.iter().map(|v| format!("{v:?}\n")).collect();
+        std::fs::write(dir.join(file), column).unwrap();
+    }
+    let seismic = format!("record_x = \"x.txt\"\nrecord_z = \"z.txt\"\ndt_s = {dt}\n");
+    let run = Run {
+        contacts: "frame",
+        dt_s: 1e-3,
+        stride: 1000,
+    };
+    let t_end = n as f64 * dt + 40.0;
+    let path = write_shaken(&dir, name, &seismic, t_end, (mu, push), run);
+    let route = Scene::from_file(&path).map(|s| slideroute::run(&s));
+    std::fs::remove_dir_all(&dir).ok();
+    let route: Route = route
+        .map_err(|e| format!("{name}: {e}"))?
+        .map_err(|e| format!("{name}: {e}"))?;
+    let got = route
+        .permanent_displacement_xz_m
+        .ok_or(format!("{name}: no displacement"))?;
+    let turned = route.permanent_rotation_deg.unwrap_or(f64::NAN);
+    let e = route.energy.ok_or(format!("{name}: no energy balance"))?;
+    let end = &route.termination;
+    if (0..2).any(|k| (got[k] - want[k]).abs() > 1e-3 * size + 1e-6) {
+        Err(format!(
+            "{name}: {got:?} m against the two-directional block's {want:?} m"
+        ))
+    } else if turned.abs() >= 1e-4 {
+        Err(format!("{name}: turned {turned}°"))
+    } else if end.reason != Reason::Stopped && !(size == 0.0 && end.reason == Reason::DoesNotSlide)
+    {
+        Err(format!("{name}: {}", end.detail))
+    } else if e.residual_j.abs() > 1e-6 * e.work_friction_j.abs() {
+        Err(format!(
             "{name}: energy residual {} J of {} J",
-            e.residual_j,
-            e.work_friction_j
-        );
+            e.residual_j, e.work_friction_j
+        ))
+    } else {
+        Ok(())
     }
 }
 
@@ -414,6 +458,50 @@ fn real_records_as_they_come_slide_the_block_the_exact_distance() {
                     cases.get(next.fetch_add(1, std::sync::atomic::Ordering::Relaxed))
                 {
                     if let Err(e) = real_case(file, axis, *mu, *push) {
+                        failures.lock().unwrap().push(e);
+                    }
+                }
+            });
+        }
+    });
+    let failures = failures.into_inner().unwrap();
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// Real records two at a time, each along X with the next of the same sample step along Z
+/// (cut to the shorter), at μ = 0.15 without a push and μ = 0.2 pushed along X by 0.9 of it:
+/// every permanent displacement is the two-directional Newmark block's ([`two_way_case`]) to
+/// 0.1 % (36 routes, two at a time).
+#[test]
+#[ignore = "needs the real records (crosscheck/setup.sh); run by .ci/run"]
+fn real_records_two_at_a_time_slide_the_block_the_two_directional_distance() {
+    let records: Vec<_> = real_records()
+        .into_iter()
+        .map(|f| {
+            let (a, dt) = two_columns(&f);
+            (f.file_stem().unwrap().to_string_lossy().into_owned(), a, dt)
+        })
+        .collect();
+    let mut cases = Vec::new();
+    for (i, (x, ax, dt)) in records.iter().enumerate() {
+        let same: Vec<_> = records.iter().filter(|r| (r.2 - dt).abs() < 1e-9).collect();
+        let at = same.iter().position(|r| r.0 == *x).unwrap();
+        let (z, az, _) = same[(at + 1) % same.len()];
+        for (mu, push) in [(0.15, 0.0), (0.2, 0.18)] {
+            cases.push((i, format!("{x}+{z}-{mu}-{push}"), ax, az, *dt, mu, push));
+        }
+    }
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    let failures = std::sync::Mutex::new(Vec::new());
+    std::thread::scope(|s| {
+        for _ in 0..2 {
+            s.spawn(|| {
+                while let Some((_, name, ax, az, dt, mu, push)) =
+                    cases.get(next.fetch_add(1, std::sync::atomic::Ordering::Relaxed))
+                {
+                    // The reference's step 25 µs.
+                    let per_sample = (dt / 2.5e-5).round() as usize;
+                    if let Err(e) = two_way_case(name, (ax, az, *dt), *mu, *push, per_sample) {
                         failures.lock().unwrap().push(e);
                     }
                 }

@@ -317,8 +317,12 @@ impl Moving<'_> {
             // contact's quasi-static direction, sought in its own tangent plane with the
             // others' fixed, is no motion it can take (81° off the slip on a record at a
             // crease, whose friction then had the crease's second face pull while the
-            // contact, let go, went back into it). Its slow slips are followed as they are.
-            if slip[j].norm() >= 4.0 * friction_accel * step || !ctx.creases.is_empty() {
+            // contact, let go, went back into it). Its slow slips are followed as they are,
+            // as is a slip that is the block's own slow sliding ([`YOUNG`]).
+            if slip[j].norm() >= 4.0 * friction_accel * step
+                || slip[j].norm() > YOUNG * scale
+                || !ctx.creases.is_empty()
+            {
                 continue;
             }
             if let Some((d, a)) = slaved_direction(ctx, dir, mu, j, &dir[j])? {
@@ -397,3 +401,10 @@ const NEARBY: f64 = 1e-2;
 /// A young slip this small a fraction of the block's speed, that friction stops within the
 /// step, is a pivot (see [`accelerations`]).
 const PIVOTING: f64 = 1e-3;
+
+/// A slow slip has its direction slaved only where it is at most this fraction of the block's
+/// own speed, |v| + |ω| L: a contact near a pivot of a turning block. A slip as fast as the
+/// block is the block sliding slowly as a whole, followed as it is (slaved, a block shaken
+/// along X and Z at once slid 5.3e-3 off the two-directional Newmark distance;
+/// `derivations/08-rigid-body.md` §3).
+const YOUNG: f64 = 0.1;

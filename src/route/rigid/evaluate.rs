@@ -72,10 +72,10 @@ pub(super) fn stop_of(e: RigidError) -> Stop {
         RigidError::CreaseLetsGo { contact, .. } => (Reason::CreaseLetsGo, Some(contact)),
         RigidError::CreaseTakesOver { contact, .. } => (Reason::CreaseTakesOver, Some(contact)),
         RigidError::Wedged => (Reason::Wedged, None),
-        RigidError::Singular(_)
-        | RigidError::SlipFromRest
-        | RigidError::SlipStart { .. }
-        | RigidError::StickSingular { .. } => (Reason::ContactForcesUndetermined, None),
+        RigidError::SlipStart { contact } => (Reason::ContactForcesUndetermined, Some(contact)),
+        RigidError::Singular(_) | RigidError::SlipFromRest | RigidError::StickSingular { .. } => {
+            (Reason::ContactForcesUndetermined, None)
+        }
     };
     Stop {
         reason,

@@ -13,6 +13,7 @@ use crate::route::dynamics::Flow;
 use crate::route::logbook::Logbook;
 use crate::route::pose_finder::PoseFinder;
 use crate::route::termination::{Reason, Stop};
+use nalgebra::Vector3;
 
 /// The fraction of the largest kinetic energy of the route below which the block counts as at
 /// rest when a contact's slip passes through zero (see `RigidBody::cut_at_event`).
@@ -421,26 +422,72 @@ impl RigidBody<'_> {
                 return Err(self.end_at_failure(finder, k, bracket, lift, o));
             }
         };
+        // The state just after: evaluated there, each crease's contact put back on its second
+        // face (which may itself call for the next event).
+        let settle = |finder: &mut PoseFinder<'_>, hold: Hold| {
+            let at = evaluate(sim, finder, &y_lo, hold)?;
+            hold_on_creases(sim, finder, at.accept(&y_lo), at)
+        };
+        // A contact riding a crease that can neither stay at it nor slip from it along a
+        // direction consistent with its friction: it leaves one of the two faces, the first
+        // (its own, then the crease's second) that it moves off rather than into.
+        let leave_a_face = |finder: &mut PoseFinder<'_>, hold: Hold, next: &Stop| {
+            let c = next
+                .contact
+                .filter(|_| next.reason == Reason::ContactForcesUndetermined)
+                .and_then(|i| hold.creases.at(i))?;
+            let own = finder.site().normals()[c.contact];
+            [
+                (Reason::CreaseTakesOver, own),
+                (Reason::CreaseLetsGo, c.normal),
+            ]
+            .into_iter()
+            .find_map(|(reason, left)| {
+                let stop = Stop {
+                    reason,
+                    detail: String::new(),
+                    contact: Some(c.contact),
+                };
+                let mut f = finder.clone();
+                let (h, _) = ground_event(sim, &mut f, &y_lo, &stop, hold)?;
+                let (y, e) = settle(&mut f, h).ok()?;
+                let m = &e.motion;
+                let r = e.pose.vertices[c.contact] - e.pose.cm;
+                let (w, v) = (m.twist.w, m.twist.v + m.twist.w.cross(&r));
+                let a = m.accel + m.ang_accel.cross(&r) + w.cross(&w.cross(&r));
+                // Off it, or along it to round-off on the block's scale.
+                let g = sim.loads().gravity;
+                let off = |u: Vector3<f64>, scale: f64| left.dot(&u) >= -1e-9 * scale;
+                if !(off(v, (g * sim.l()).sqrt()) && off(a, g)) {
+                    return None;
+                }
+                *finder = f;
+                Some((y, e))
+            })
+        };
         let mut hold = hold;
-        let mut at = None;
+        let mut after = None;
         for _ in 0..3 {
-            match evaluate(sim, finder, &y_lo, hold) {
+            match settle(finder, hold) {
                 Ok(e) => {
-                    at = Some(e);
+                    after = Some(e);
                     break;
                 }
                 Err(next) => {
+                    if let Some(e) = leave_a_face(finder, hold, &next) {
+                        after = Some(e);
+                        break;
+                    }
                     hold = ground_event(sim, finder, &y_lo, &next, hold)
                         .ok_or(Ending::Failed(next))?
                         .0;
                 }
             }
         }
-        let at = match at {
+        let (y, at) = match after {
             Some(e) => e,
-            None => evaluate(sim, finder, &y_lo, hold).map_err(Ending::Failed)?,
+            None => settle(finder, hold).map_err(Ending::Failed)?,
         };
-        let (y, at) = hold_on_creases(sim, finder, at.accept(&y_lo), at).map_err(Ending::Failed)?;
         self.go_to(o, y, at);
         self.anchor = Anchor::after(&self.ev, self.anchor);
         self.t += bracket.lo;
