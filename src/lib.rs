@@ -97,6 +97,9 @@ pub mod poses {
 /// Load cases checked against the sliding factor of safety their guideline requires.
 pub mod check {
     pub use crate::analysis::check::{CaseResult, check_cases, meets};
+    pub use crate::analysis::gravity_method::{
+        GravityCase, GravityVerdict, gravity_method, required_compression,
+    };
     pub use crate::model::{Category, Guideline, LoadCase, SiteInformation, Structure};
 }
 

@@ -1,9 +1,12 @@
-//! `slideroute check`: each load case's factor of safety at the start against the
-//! factor its guideline requires, and the route of each case, so that a case that fails shows
-//! where the monolith would go (`derivations/11-dam-loads.md` §5).
+//! `slideroute check`: each load case by its guideline — on a monolith with its water, the
+//! gravity method's sliding factor of safety, resultant and base pressures (with a cracked
+//! base); on any block, the load multiple friction holds at the start — and the route of each
+//! case, so that a case that fails shows where the monolith would go
+//! (`derivations/11-dam-loads.md` §5, §9).
 
+use super::gravity_method::{GravityCase, GravityVerdict, gravity_method};
 use crate::mechanics::static_friction::FactorOfSafety;
-use crate::model::{Category, LoadCase};
+use crate::model::{Category, Guideline, LoadCase};
 use crate::route::{Computed, Runner};
 use crate::scene::{LoadsUsed, Scene, SceneError};
 
@@ -12,9 +15,19 @@ use crate::scene::{LoadsUsed, Scene, SceneError};
 pub struct CaseResult {
     /// The load case.
     pub case: LoadCase,
-    /// The guideline factor of safety at the start (`None` where the start has no pose).
+    /// The load multiple at the start: the largest multiple of the driving loads the three
+    /// contacts' friction cones hold (`None` where the start has no pose). The three-dimensional
+    /// measure of how far the loads are from starting any motion, sliding or tipping; the
+    /// verdict where the scene has no monolith with its water.
     pub factor_of_safety: Option<FactorOfSafety>,
-    /// Whether it is at least the case's requirement.
+    /// The gravity method's verdicts, on a monolith with `[water]` (flattened into the case in
+    /// `check.json`).
+    #[serde(flatten)]
+    pub gravity: Option<GravityVerdict>,
+    /// Whether the case meets its guideline: on a monolith with its water, the sliding factor
+    /// at least the requirement, the resultant within its limit and the base pressures within
+    /// the allowable bearing stress (where one is given); otherwise the load multiple at least
+    /// the requirement.
     pub passes: bool,
     /// The loads the case used.
     pub loads: Option<LoadsUsed>,
@@ -58,10 +71,16 @@ pub fn check_cases(
         let s = scene.for_case(case)?;
         let run = Runner::new(&s.simulation()?).run();
         let fs = run.route.factor_of_safety;
+        let gravity = gravity_case(&s, case.category).map(|c| gravity_method(&c));
+        let passes = match &gravity {
+            Some(g) => verdict(g, case.required_fs, scene.guideline()),
+            None => meets(fs, case.required_fs),
+        };
         let result = CaseResult {
             case: case.clone(),
             factor_of_safety: fs,
-            passes: meets(fs, case.required_fs),
+            gravity,
+            passes,
             loads: s.loads_used(),
             run,
         };
@@ -69,4 +88,34 @@ pub fn check_cases(
         out.push(result);
     }
     Ok(out)
+}
+
+/// The gravity method's case of scene `s` (one load case's), where it has a monolith, its
+/// water and a friction criterion.
+fn gravity_case(s: &Scene, category: Category) -> Option<GravityCase> {
+    let (m, loads, friction) = (s.monolith()?, s.loads()?, s.friction()?);
+    let water = loads.water?;
+    Some(GravityCase {
+        section: m.section,
+        cm: [m.props.cm_from_heel, m.props.cm_height],
+        weight_n: m.props.mass * loads.gravity,
+        levels: water.levels,
+        gravity: loads.gravity,
+        kh: loads.kh,
+        kv: loads.kv,
+        friction: *friction,
+        cohesion_pa: s.strengths().cohesion_pa,
+        crack: water.levels.crack,
+        category,
+    })
+}
+
+/// Whether the gravity method's verdicts meet the case's requirement `required` and the
+/// guideline's allowable bearing stress.
+fn verdict(g: &GravityVerdict, required: f64, guideline: &Guideline) -> bool {
+    let sliding = g.sliding_fs.is_none_or(|fs| fs >= required);
+    let bearing = guideline
+        .allowable_bearing_pa
+        .is_none_or(|q| g.heel_pressure_pa.max(g.toe_pressure_pa) <= q);
+    sliding && g.resultant_passes && bearing
 }

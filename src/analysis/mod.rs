@@ -5,6 +5,7 @@
 
 pub mod check;
 pub mod compare;
+pub mod gravity_method;
 pub mod probabilistic;
 mod run;
 pub mod runner;

@@ -51,12 +51,15 @@ named!(
 
 /// The table the required sliding factors of safety come from. Default: a normal structure,
 /// ordinary site information.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct Guideline {
     /// The structure's class.
     pub structure: Structure,
     /// How well the site is known.
     pub site_information: SiteInformation,
+    /// The foundation's allowable bearing stress (Pa), if the case's base pressures are to be
+    /// checked against one (`[check] allowable_bearing_pa`).
+    pub allowable_bearing_pa: Option<f64>,
 }
 
 impl Default for Guideline {
@@ -64,6 +67,7 @@ impl Default for Guideline {
         Guideline {
             structure: Structure::Normal,
             site_information: SiteInformation::Ordinary,
+            allowable_bearing_pa: None,
         }
     }
 }
@@ -117,6 +121,7 @@ mod tests {
         let g = |structure, site_information| Guideline {
             structure,
             site_information,
+            allowable_bearing_pa: None,
         };
         assert_eq!(Guideline::default().required(Category::Usual), 1.5);
         assert_eq!(

@@ -36,4 +36,5 @@ pub(crate) use record::bracket;
 pub use settings::{Contacts, DynamicsModel, Integrator, MAX_INCREMENTS, Mode, RunSettings};
 pub use simulation::{Simulation, SimulationBuilder};
 pub(crate) use simulation::{check_ratios, check_rigid_only, face_count};
+pub(crate) use water::water_loads_cracked;
 pub use water::{Levels, Resultant, WaterLoads};

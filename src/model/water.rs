@@ -19,6 +19,10 @@ pub struct Levels {
     pub drain_efficiency: f64,
     /// X: the line of drains from the heel along x′ (m).
     pub drain_position: f64,
+    /// Whether the guideline's analysis lets the base crack where it would be in tension, the
+    /// reservoir's full head entering the crack (`[water] crack`, true by default; the route's
+    /// uplift is the uncracked base's).
+    pub crack: bool,
 }
 
 impl Levels {
@@ -109,6 +113,17 @@ pub struct WaterLoads {
 ///   US Army Corps of Engineers' rule for drains near the heel, EM 1110-2-2100 (Stability
 ///   Analysis of Concrete Structures, 2005), chapter 3. E = 0 gives the linear distribution.
 pub fn water_loads(section: &Section, levels: &Levels, g: f64) -> WaterLoads {
+    water_loads_cracked(section, levels, g, 0.0)
+}
+
+/// [`water_loads`] with the base cracked from the heel over `crack` (m, 0 ≤ crack < b): the
+/// reservoir's full head H1 in the crack, then, from its tip T, the head falls as on an
+/// uncracked base of length b − T: linearly to H2 at the toe where there are no drains or the
+/// crack reaches past them (they no longer relieve it), else to H3 = H2 + (1 − E)(H1 − H2)
+/// (b − X)/(b − T) at the drains and on to H2 — the US Army Corps of Engineers' rules for a
+/// cracked base (EM 1110-2-2100 chapter 3; `derivations/11-dam-loads.md` §9). T = 0 is the
+/// uncracked base.
+pub fn water_loads_cracked(section: &Section, levels: &Levels, g: f64, crack: f64) -> WaterLoads {
     let (b, w, h) = (section.base_length, section.width, section.height);
     let gamma = levels.density * g;
     // The reservoir: ∫_0^a (H1 − y) dy and ∫_0^a y (H1 − y) dy with a = min(H1, h).
@@ -132,19 +147,29 @@ pub fn water_loads(section: &Section, levels: &Levels, g: f64) -> WaterLoads {
     };
     // Uplift: the head along the base as a polyline of (x, head), integrated piece by piece.
     let h2 = levels.tailwater;
-    let linear = |x: f64| h1 + (h2 - h1) * x / b;
+    let t = crack.clamp(0.0, b);
+    let linear = |x: f64| {
+        if b > t {
+            h1 + (h2 - h1) * (x - t).max(0.0) / (b - t)
+        } else {
+            h1
+        }
+    };
     let x_d = levels.drain_position;
-    let drained = levels.drain_efficiency > 0.0;
+    let drained = levels.drain_efficiency > 0.0 && x_d > t;
     let h3 = if drained {
-        h2 + (1.0 - levels.drain_efficiency) * (h1 - h2) * (b - x_d) / b
+        h2 + (1.0 - levels.drain_efficiency) * (h1 - h2) * (b - x_d) / (b - t)
     } else {
         linear(x_d)
     };
-    let points: Vec<[f64; 2]> = if drained {
-        vec![[0.0, h1], [x_d, h3], [b, h2]]
-    } else {
-        vec![[0.0, h1], [b, h2]]
-    };
+    let mut points: Vec<[f64; 2]> = vec![[0.0, h1]];
+    if t > 0.0 {
+        points.push([t, h1]);
+    }
+    if drained {
+        points.push([x_d, h3]);
+    }
+    points.push([b, h2]);
     let (mut area, mut first) = (0.0, 0.0);
     for pair in points.windows(2) {
         let ([x0, p0], [x1, p1]) = (pair[0], pair[1]);
@@ -179,6 +204,7 @@ mod tests {
             density: 1000.0,
             drain_efficiency: e,
             drain_position: 2.0,
+            crack: false,
         }
     }
 
@@ -217,6 +243,35 @@ mod tests {
         // Fully efficient drains leave the tailwater's head from the drains on.
         let full = water_loads(&s, &levels(12.0, 3.0, 1.0), g);
         assert!((full.drain_head_m - 3.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_cracked_base_takes_the_reservoir_s_head_in_the_crack_and_loses_its_drains_past_them() {
+        let s = section();
+        let g = 9.81;
+        let gamma_w = 1000.0 * g * 10.0;
+        // b = 20, H1 = 12, H2 = 3, drains at 2 m, 50 %. Cracked to 1 m (short of the drains):
+        // 12 m over the crack, H3 = 3 + 0.5 · 9 · 18/19 at the drains, then down to 3 m.
+        let short = water_loads_cracked(&s, &levels(12.0, 3.0, 0.5), g, 1.0);
+        let h3 = 3.0 + 0.5 * 9.0 * 18.0 / 19.0;
+        assert!((short.drain_head_m - h3).abs() < 1e-12);
+        let area = 12.0 + (12.0 + h3) / 2.0 + 18.0 * (h3 + 3.0) / 2.0;
+        assert!((short.uplift.force_n - gamma_w * area).abs() < 1e-9 * gamma_w * area);
+        // Cracked to 5 m (past the drains): 12 m over the crack, then linear to 3 m.
+        let past = water_loads_cracked(&s, &levels(12.0, 3.0, 0.5), g, 5.0);
+        let area = 5.0 * 12.0 + 15.0 * (12.0 + 3.0) / 2.0;
+        assert!((past.uplift.force_n - gamma_w * area).abs() < 1e-9 * gamma_w * area);
+        let first = 12.0 * 12.5 + 15.0 * (12.0 * (2.0 * 5.0 + 20.0) + 3.0 * (5.0 + 40.0)) / 6.0;
+        assert!((past.uplift.at_m - first / area).abs() < 1e-12);
+        // Through the base: the reservoir's head under all of it.
+        let through = water_loads_cracked(&s, &levels(12.0, 3.0, 0.5), g, 20.0);
+        assert!((through.uplift.force_n - gamma_w * 240.0).abs() < 1e-9 * gamma_w * 240.0);
+        assert!(through.drain_head_m.is_finite());
+        // Uncracked, as before.
+        assert_eq!(
+            water_loads_cracked(&s, &levels(12.0, 3.0, 0.5), g, 0.0),
+            water_loads(&s, &levels(12.0, 3.0, 0.5), g)
+        );
     }
 
     #[test]

@@ -111,6 +111,7 @@ impl Scene {
                 if v.drain_efficiency > 0.0 {
                     water.push(("drain_position_m", f(v.drain_position)));
                 }
+                water.push(("crack", Value::Boolean(v.crack)));
                 t.insert("water".into(), table(&water));
             }
             None => loads.insert(0, ("hydraulic_force_n", f(l.hydraulic_force))),

@@ -63,6 +63,8 @@ pub struct Scene {
     pub(crate) uncertain: Vec<crate::numeric::Uncertain>,
     /// `[base]`, or a monolith's base rectangle: the footprint under `contacts = "base"`.
     pub(crate) base: Option<crate::model::Base>,
+    /// `[monolith]`: the section the block's mass and the water's loads come from.
+    pub(crate) monolith: Option<crate::model::Monolith>,
 }
 
 /// Two scenes are equal when their values are (the documents may differ in how they wrote
@@ -95,7 +97,7 @@ impl PartialEq for Scene {
             (other.record.as_deref(), other.both_polarities),
             &other.uncertain,
             &other.base,
-        )
+        ) && self.monolith == other.monolith
     }
 }
 
@@ -281,7 +283,12 @@ impl Scene {
         &self.strengths
     }
 
-    /// `[block]`, when given.
+    /// `[monolith]`, when given.
+    pub fn monolith(&self) -> Option<&crate::model::Monolith> {
+        self.monolith.as_ref()
+    }
+
+    /// `[block]`, or the monolith's mass properties.
     pub fn block(&self) -> Option<&Block> {
         self.block.as_ref()
     }

@@ -35,6 +35,7 @@ pub struct RawScene {
 pub struct RawCheck {
     pub structure: Option<String>,
     pub site_information: Option<String>,
+    pub allowable_bearing_pa: Option<f64>,
 }
 
 /// One `[[case]]`: a load combination, its levels and seismic inputs, and its requirement.
@@ -71,6 +72,7 @@ pub struct RawWater {
     pub density_kg_m3: Option<f64>,
     pub drain_efficiency: Option<f64>,
     pub drain_position_m: Option<f64>,
+    pub crack: Option<bool>,
 }
 
 /// `[seismic]`: pseudo-static coefficients, and a ground-motion record.

@@ -1370,10 +1370,12 @@ fn check_prints_the_load_case_table_and_routes_the_case_that_fails() {
     for needle in [
         "EM 1110-2-2100, normal structure, ordinary site information",
         "normal pool",
-        "1.50    pass",
-        "1.30    pass",
-        "1.10    FAIL",
-        "earthquake at normal pool fails and slides",
+        "1.622      1.50          1.582    pass",
+        "1.30          1.349    pass",
+        "1.10          0.776    FAIL",
+        "earthquake at normal pool fails: sliding",
+        "earthquake at normal pool slides",
+        "resultant from heel m",
     ] {
         assert!(text.contains(needle), "{needle:?} in {text}");
     }
@@ -1384,6 +1386,21 @@ fn check_prints_the_load_case_table_and_routes_the_case_that_fails() {
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("check.json")).unwrap()).unwrap();
     assert_eq!(json["cases"][2]["passes"], false);
+    for key in [
+        "sliding_fs",
+        "resultant_from_heel_m",
+        "base_in_compression_pct",
+        "heel_pressure_pa",
+        "toe_pressure_pa",
+        "crack_length_m",
+        "uplift_n",
+    ] {
+        assert!(
+            json["cases"][0][key].is_number(),
+            "{key} in {}",
+            json["cases"][0]
+        );
+    }
     assert_eq!(json["guideline"]["structure"], "normal");
     assert!(json["manifest"]["loads"]["uplift_n"].as_f64().unwrap() > 0.0);
     let _ = std::fs::remove_dir_all(out);

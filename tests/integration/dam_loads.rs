@@ -449,3 +449,132 @@ fn a_monolith_turning_about_its_raised_centre_of_mass_keeps_its_energy_balance()
         "{e:?}"
     );
 }
+
+#[test]
+fn check_gives_the_gravity_method_s_verdicts_of_a_hand_calculation_with_tailwater_drains_and_kh() {
+    // scenes/monolith.toml by hand: a 5 m × 15 m rectangle (A 75 m², centroid 2.5, 7.5) and a
+    // 15 m × 15 m triangle (A 112.5 m², centroid 10, 5): x̄ = 7 m, ȳ = 6 m, W = ρ g A w. Its
+    // earthquake case: H1 = 14, H2 = 2, drains at 2 m 50 % efficient, kh 0.2, kv 0.05, μ 0.45.
+    let s = Scene::from_toml(&monolith(), "monolith").unwrap();
+    let r = slideroute::check::check_cases(&s, |_| ()).unwrap();
+    let gamma = 1000.0 * 9.81 * 10.0;
+    let (b, kh, kv) = (20.0, 0.2, 0.05);
+    let p1 = 0.5 * gamma * 196.0;
+    let p2 = 0.5 * gamma * 4.0;
+    // The tailwater over the 1:1 downstream face: a triangle of legs 2 and 2, 2/3 m from the toe.
+    let wt = 0.5 * gamma * 4.0;
+    let h3 = 2.0 + 0.5 * 12.0 * 18.0 / 20.0;
+    let (u1, u2) = (
+        gamma * 2.0 * (14.0 + h3) / 2.0,
+        gamma * 18.0 * (h3 + 2.0) / 2.0,
+    );
+    // Each trapezoid's centroid from the toe.
+    let c1 = 20.0 - 2.0 * (14.0 + 2.0 * h3) / (3.0 * (14.0 + h3));
+    let c2 = 18.0 - 18.0 * (h3 + 2.0 * 2.0) / (3.0 * (h3 + 2.0));
+    let u = u1 + u2;
+    let n = W * (1.0 - kv) + wt - u;
+    let t = p1 - p2 + kh * W;
+    let m = W * (1.0 - kv) * 13.0 - kh * W * 6.0 + wt * 2.0 / 3.0 + p2 * 2.0 / 3.0
+        - p1 * 14.0 / 3.0
+        - u1 * c1
+        - u2 * c2;
+    let a = m / n;
+    let g = r[2]
+        .gravity
+        .expect("the gravity method on a monolith with its water");
+    let close = |got: f64, want: f64, what: &str| {
+        assert!(
+            (got - want).abs() <= 1e-9 * want.abs(),
+            "{what}: {got} against {want}"
+        )
+    };
+    close(g.uplift_n, u, "U");
+    close(g.normal_n, n, "N");
+    close(g.shear_n, t, "T");
+    close(g.sliding_fs.unwrap(), 0.45 * n / t, "sliding FS");
+    close(g.resultant_from_heel_m.unwrap(), b - a, "resultant");
+    assert!(a > b / 3.0, "uncracked: {a}");
+    let e = b / 2.0 - a;
+    close(
+        g.heel_pressure_pa,
+        n / (b * 10.0) * (1.0 - 6.0 * e / b),
+        "heel",
+    );
+    close(
+        g.toe_pressure_pa,
+        n / (b * 10.0) * (1.0 + 6.0 * e / b),
+        "toe",
+    );
+    assert_eq!((g.crack_length_m, g.base_in_compression_pct), (0.0, 100.0));
+    assert!(!r[2].passes && r[0].passes);
+    // An allowable bearing stress under the usual case's heel pressure fails it.
+    let heel = r[0].gravity.unwrap().heel_pressure_pa;
+    let strict = edit(
+        &monolith(),
+        &[(
+            "site_information = \"ordinary\" #",
+            &format!(
+                "allowable_bearing_pa = {}\nsite_information = \"ordinary\" #",
+                0.9 * heel
+            ),
+        )],
+    );
+    let r = slideroute::check::check_cases(&Scene::from_toml(&strict, "strict").unwrap(), |_| ())
+        .unwrap();
+    assert!(!r[0].passes);
+    // The sliding factor is linear in tan φ at any φ, never capped by tipping.
+    let at = |mu: f64| {
+        let text = edit(&monolith(), &[("mu_k = 0.45", &format!("mu_k = {mu}"))]);
+        let r = slideroute::check::check_cases(&Scene::from_toml(&text, "mu").unwrap(), |_| ())
+            .unwrap();
+        r[0].gravity.unwrap().sliding_fs.unwrap()
+    };
+    let base = at(0.4);
+    for mu in [0.8, 1.2, 2.0] {
+        close(at(mu), base * mu / 0.4, "linear in tan φ");
+    }
+}
+
+#[test]
+fn the_base_may_crack_unless_water_crack_is_false() {
+    // `[water] crack`: true unless the scene says otherwise; false keeps the uncracked base.
+    let levels = |text: &str| {
+        Scene::from_toml(text, "dam")
+            .unwrap()
+            .loads()
+            .unwrap()
+            .water
+            .unwrap()
+            .levels
+    };
+    assert!(levels(&monolith()).crack);
+    let off = edit(
+        &monolith(),
+        &[(
+            "drain_position_m = 2.0 ",
+            "drain_position_m = 2.0\ncrack = false ",
+        )],
+    );
+    assert!(!levels(&off).crack);
+    // The earthquake case at kh 0.7 puts the heel in tension: it cracks with the key, not
+    // without it.
+    let shaken = |crack: &str| {
+        edit(
+            &off,
+            &[("crack = false", crack), ("kh = 0.2 ", "kh = 0.7 ")],
+        )
+    };
+    let verdict = |text: &str| {
+        let s = Scene::from_toml(text, "shaken").unwrap();
+        slideroute::check::check_cases(&s, |_| ()).unwrap()[2]
+            .gravity
+            .unwrap()
+    };
+    let (open, shut) = (
+        verdict(&shaken("crack = true")),
+        verdict(&shaken("crack = false")),
+    );
+    assert!(open.crack_length_m > 0.0, "{open:?}");
+    assert_eq!(shut.crack_length_m, 0.0);
+    assert!(open.uplift_n > shut.uplift_n);
+}

@@ -20,9 +20,22 @@ impl Reader<'_> {
             None => SiteInformation::Ordinary,
             Some(w) => self.named("check.site_information", w)?,
         };
+        let allowable_bearing_pa = c
+            .allowable_bearing_pa
+            .map(|v| {
+                crate::model::check(
+                    "check.allowable_bearing_pa",
+                    v,
+                    v.is_finite() && v > 0.0,
+                    "a positive stress (Pa)",
+                )
+                .map_err(|e| self.model(e))
+            })
+            .transpose()?;
         Ok(Guideline {
             structure,
             site_information,
+            allowable_bearing_pa,
         })
     }
 

@@ -97,6 +97,7 @@ impl Reader<'_> {
             density: w.density_kg_m3.unwrap_or(1000.0),
             drain_efficiency: efficiency,
             drain_position: w.drain_position_m.unwrap_or(0.0),
+            crack: w.crack.unwrap_or(true),
         };
         levels.check(&m.section).map_err(|e| self.model(e))?;
         Ok(Loads::from_water(m, &levels, eccentricity, gravity))

@@ -116,6 +116,7 @@ impl Reader<'_> {
             strengths,
             uncertain,
             base,
+            monolith,
         })
     }
 

@@ -2,7 +2,7 @@
 //! coefficients, water loads, factor of safety, requirement and verdict, as an engineer would
 //! file it; and the same as CSV.
 
-use slideroute::check::CaseResult;
+use slideroute::check::{CaseResult, GravityVerdict};
 use slideroute::internals::numeric::{fixed, seconds};
 use std::fmt;
 
@@ -13,7 +13,7 @@ fn level(r: &CaseResult, f: impl Fn(&slideroute::LoadsUsed) -> f64) -> String {
         .map_or("—".into(), |l| fixed(f(l), 2).to_string())
 }
 
-/// The factor of safety as a cell: three decimals, or the word.
+/// The load multiple as a cell: three decimals, or the word.
 fn fs_cell(r: &CaseResult) -> String {
     match r.factor_of_safety {
         Some(slideroute::FactorOfSafety::Finite { value }) => fixed(value, 3).to_string(),
@@ -22,102 +22,222 @@ fn fs_cell(r: &CaseResult) -> String {
     }
 }
 
-/// The table, headed by the scene and the guideline.
+/// A number of the gravity method's verdict, scaled and to `digits` decimals, or a dash.
+fn gravity_cell(
+    r: &CaseResult,
+    f: impl Fn(&GravityVerdict) -> Option<f64>,
+    digits: usize,
+) -> String {
+    r.gravity
+        .as_ref()
+        .and_then(f)
+        .map_or("—".into(), |v| fixed(v, digits).to_string())
+}
+
+/// The horizontal load along the base (N): the gravity method's T, or the water's push and
+/// kh W.
+fn horizontal(r: &CaseResult) -> Option<f64> {
+    match (&r.gravity, &r.loads) {
+        (Some(g), _) => Some(g.shear_n),
+        (None, Some(l)) => Some(l.hydraulic_force_n + l.kh * l.weight_n),
+        _ => None,
+    }
+}
+
+/// The tables, headed by the scene and the guideline.
 pub struct CheckTable<'a> {
     pub scene: &'a str,
     pub guideline: String,
     pub results: &'a [CaseResult],
 }
 
-const COLUMNS: [&str; 11] = [
+const LOADS: [&str; 13] = [
     "case",
     "category",
     "headwater m",
     "tailwater m",
     "kh",
     "kv",
+    "W MN",
     "H MN",
     "U MN",
-    "FS",
+    "sliding FS",
     "required",
+    "load multiple",
     "result",
 ];
 
+const BASE: [&str; 8] = [
+    "case",
+    "resultant from heel m",
+    "in compression %",
+    "required %",
+    "heel kPa",
+    "toe kPa",
+    "crack m",
+    "tips",
+];
+
 impl CheckTable<'_> {
-    fn cells(r: &CaseResult) -> [String; 11] {
+    fn loads(r: &CaseResult) -> Vec<String> {
         let water = |f: fn(&slideroute::WaterLoads) -> f64| {
             r.loads
                 .as_ref()
                 .and_then(|l| l.water.as_ref())
                 .map_or("—".into(), |w| fixed(f(w), 2).to_string())
         };
-        [
+        let uplift = r
+            .gravity
+            .map(|g| g.uplift_n)
+            .or(r.loads.map(|l| l.uplift_n));
+        let mn = |v: Option<f64>| v.map_or("—".into(), |v| fixed(v / 1e6, 2).to_string());
+        let sliding = match r.gravity {
+            Some(g) => g
+                .sliding_fs
+                .map_or("unbounded".into(), |v| fixed(v, 3).to_string()),
+            None => "—".into(),
+        };
+        vec![
             r.case.name.clone(),
             r.case.category.as_str().to_string(),
             water(|w| w.levels.headwater),
             water(|w| w.levels.tailwater),
             level(r, |l| l.kh),
             level(r, |l| l.kv),
-            level(r, |l| l.hydraulic_force_n / 1e6),
-            level(r, |l| l.uplift_n / 1e6),
-            fs_cell(r),
+            mn(r.loads.map(|l| l.weight_n)),
+            mn(horizontal(r)),
+            mn(uplift),
+            sliding,
             fixed(r.case.required_fs, 2).to_string(),
+            fs_cell(r),
             if r.passes { "pass" } else { "FAIL" }.to_string(),
+        ]
+    }
+
+    fn base(r: &CaseResult) -> Vec<String> {
+        let kpa = |f: fn(&GravityVerdict) -> f64| gravity_cell(r, |g| Some(f(g) / 1e3), 1);
+        vec![
+            r.case.name.clone(),
+            gravity_cell(r, |g| g.resultant_from_heel_m, 3),
+            gravity_cell(r, |g| Some(g.base_in_compression_pct), 1),
+            gravity_cell(r, |g| Some(g.required_compression_pct), 0),
+            kpa(|g| g.heel_pressure_pa),
+            kpa(|g| g.toe_pressure_pa),
+            gravity_cell(r, |g| Some(g.crack_length_m), 3),
+            r.gravity
+                .map_or("—", |g| if g.overturns { "yes" } else { "no" })
+                .to_string(),
         ]
     }
 }
 
+/// A table of `rows` under `head`, the first `left` columns aligned left.
+fn table(
+    f: &mut fmt::Formatter<'_>,
+    head: &[&str],
+    rows: &[Vec<String>],
+    left: usize,
+) -> fmt::Result {
+    let width = |k: usize| {
+        rows.iter()
+            .map(|r| r[k].chars().count())
+            .chain([head[k].chars().count()])
+            .max()
+            .unwrap_or(0)
+    };
+    let widths: Vec<usize> = (0..head.len()).map(width).collect();
+    let line = |cells: &[String]| {
+        let parts: Vec<String> = cells
+            .iter()
+            .zip(&widths)
+            .enumerate()
+            .map(|(k, (c, w))| {
+                if k < left {
+                    format!("{c:<w$}")
+                } else {
+                    format!("{c:>w$}")
+                }
+            })
+            .collect();
+        format!("  {}", parts.join("  "))
+    };
+    let head: Vec<String> = head.iter().map(|c| c.to_string()).collect();
+    writeln!(f, "{}", line(&head))?;
+    for r in rows {
+        writeln!(f, "{}", line(r))?;
+    }
+    Ok(())
+}
+
 impl fmt::Display for CheckTable<'_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        writeln!(f, "check {}: sliding, {}", self.scene, self.guideline)?;
-        let rows: Vec<[String; 11]> = self.results.iter().map(Self::cells).collect();
-        let width = |k: usize| {
-            rows.iter()
-                .map(|r| r[k].chars().count())
-                .chain([COLUMNS[k].chars().count()])
-                .max()
-                .unwrap_or(0)
-        };
-        let widths: Vec<usize> = (0..COLUMNS.len()).map(width).collect();
-        let line = |cells: &[String]| {
-            let parts: Vec<String> = cells
-                .iter()
-                .zip(&widths)
-                .enumerate()
-                .map(|(k, (c, w))| {
-                    if k < 2 {
-                        format!("{c:<w$}")
-                    } else {
-                        format!("{c:>w$}")
-                    }
-                })
-                .collect();
-            format!("  {}", parts.join("  "))
-        };
-        let head: Vec<String> = COLUMNS.iter().map(|c| c.to_string()).collect();
-        writeln!(f, "{}", line(&head))?;
-        for r in &rows {
-            writeln!(f, "{}", line(r))?;
+        writeln!(f, "check {}: {}", self.scene, self.guideline)?;
+        let rows: Vec<Vec<String>> = self.results.iter().map(Self::loads).collect();
+        table(f, &LOADS, &rows, 2)?;
+        let gravity: Vec<&CaseResult> = self
+            .results
+            .iter()
+            .filter(|r| r.gravity.is_some())
+            .collect();
+        if !gravity.is_empty() {
+            writeln!(
+                f,
+                "  sliding FS: (N tan φ + c L w)/T on the base, L its part in compression (the \
+                 guideline's gravity method{})",
+                if gravity.iter().any(|r| r
+                    .loads
+                    .and_then(|l| l.water)
+                    .is_some_and(|w| w.levels.crack))
+                {
+                    ", a crack let open where the base would be in tension"
+                } else {
+                    ""
+                }
+            )?;
+            writeln!(
+                f,
+                "  resultant and base pressures (effective, compression positive):"
+            )?;
+            let rows: Vec<Vec<String>> = gravity.iter().map(|r| Self::base(r)).collect();
+            table(f, &BASE, &rows, 1)?;
         }
         writeln!(
             f,
-            "  FS: the driving loads' multiple friction holds (H and its couples, kh W), with W, \
-             U and kv W as they are"
+            "  load multiple: the driving loads' multiple the three contacts' friction cones hold \
+             (H and its couples, kh W), with W, U and kv W as they are: sliding or tipping"
         )?;
         for r in self.results.iter().filter(|r| !r.passes) {
+            if let Some(g) = &r.gravity {
+                let mut why = Vec::new();
+                if g.sliding_fs.is_some_and(|v| v < r.case.required_fs) {
+                    why.push("sliding".to_string());
+                }
+                if g.overturns {
+                    why.push("its resultant leaves the base: it tips".to_string());
+                } else if !g.resultant_passes {
+                    why.push(format!(
+                        "{:.1} % of its base in compression, {} % asked",
+                        g.base_in_compression_pct, g.required_compression_pct
+                    ));
+                }
+                if why.is_empty() {
+                    why.push("its base pressure exceeds the allowable bearing stress".to_string());
+                }
+                writeln!(f, "  {} fails: {}", r.case.name, why.join("; "))?;
+            }
             let t = &r.run.route.termination;
             let last = r.run.route.rows.last();
             if r.run.route.increments == 0 {
                 writeln!(
                     f,
-                    "  {} fails its requirement, but static friction holds the block: {}",
+                    "  {}: static friction holds the block at the start: {}",
                     r.case.name, t.reason
                 )?;
                 continue;
             }
             writeln!(
                 f,
-                "  {} fails and slides: {} at t = {} s, travel {} m, yaw θ = {}°",
+                "  {} slides: {} at t = {} s, travel {} m, yaw θ = {}°",
                 r.case.name,
                 t.reason,
                 seconds(t.t_s),
@@ -142,7 +262,14 @@ pub fn write_csv(out: impl std::io::Write, results: &[CaseResult]) -> Result<(),
         "hydraulic_force_n",
         "uplift_n",
         "weight_n",
-        "factor_of_safety",
+        "horizontal_n",
+        "sliding_fs",
+        "resultant_from_heel_m",
+        "base_in_compression_pct",
+        "heel_pressure_pa",
+        "toe_pressure_pa",
+        "crack_length_m",
+        "load_multiple",
         "required_fs",
         "passes",
         "route_end",
@@ -160,8 +287,18 @@ pub fn write_csv(out: impl std::io::Write, results: &[CaseResult]) -> Result<(),
             num(l.map(|l| l.kh)),
             num(l.map(|l| l.kv)),
             num(l.map(|l| l.hydraulic_force_n)),
-            num(l.map(|l| l.uplift_n)),
+            num(r.gravity.map(|g| g.uplift_n).or(l.map(|l| l.uplift_n))),
             num(l.map(|l| l.weight_n)),
+            num(horizontal(r)),
+            match r.gravity {
+                Some(g) => g.sliding_fs.map_or("unbounded".into(), |v| v.to_string()),
+                None => String::new(),
+            },
+            num(r.gravity.and_then(|g| g.resultant_from_heel_m)),
+            num(r.gravity.map(|g| g.base_in_compression_pct)),
+            num(r.gravity.map(|g| g.heel_pressure_pa)),
+            num(r.gravity.map(|g| g.toe_pressure_pa)),
+            num(r.gravity.map(|g| g.crack_length_m)),
             r.factor_of_safety.map_or(String::new(), |f| f.cell()),
             r.case.required_fs.to_string(),
             r.passes.to_string(),

@@ -1,0 +1,366 @@
+//! The guideline's gravity method on a monolith's section (`derivations/11-dam-loads.md` §9):
+//! the loads of a load case resolved on the base plane, the sliding factor of safety
+//! (N tan φ + c L w)/T, the resultant's place on the base with the part of the base in
+//! compression, the heel and toe pressures, and a base that cracks where it would be in
+//! tension, its uplift raised in the crack, found by iteration — what EM 1110-2-2100 asks of a
+//! gravity dam and CADAM computes. Two-dimensional by design: the section's plane, the base
+//! level, the loads through the section (the route is the three-dimensional answer).
+
+use crate::model::{Category, Friction, Levels, Section, WaterLoads, water_loads_cracked};
+
+/// What the gravity method needs of a case: the monolith, its water and coefficients, the
+/// base's strength.
+#[derive(Debug, Clone, Copy)]
+pub struct GravityCase {
+    /// The monolith's section.
+    pub section: Section,
+    /// Its centre of mass from the heel along the base and above it (m).
+    pub cm: [f64; 2],
+    /// Its weight m g (N).
+    pub weight_n: f64,
+    /// The case's water levels and drains.
+    pub levels: Levels,
+    /// g (m/s²).
+    pub gravity: f64,
+    /// Pseudo-static coefficients (fractions of g): kh downstream, kv up.
+    pub kh: f64,
+    /// kv, up.
+    pub kv: f64,
+    /// The base's friction criterion (tan φ, at the mean stress on the part in compression for a
+    /// stress-dependent one).
+    pub friction: Friction,
+    /// The base's cohesion c (Pa), on the part in compression.
+    pub cohesion_pa: f64,
+    /// Whether the base may crack where it would be in tension.
+    pub crack: bool,
+    /// The case's category (the resultant's limit).
+    pub category: Category,
+}
+
+/// The gravity method's verdicts on one case.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct GravityVerdict {
+    /// N: the resultant normal to the base, W (1 − kv) + the tailwater's weight − U (N).
+    pub normal_n: f64,
+    /// T: the resultant along the base, downstream: the pushes and kh W (N).
+    pub shear_n: f64,
+    /// U: the uplift (N), with the crack's.
+    pub uplift_n: f64,
+    /// (N tan φ + c L w)/T, L the base in compression; `None` where T ≤ 0 (nothing drives the
+    /// block downstream), 0 where N ≤ 0 (it floats).
+    pub sliding_fs: Option<f64>,
+    /// tan φ used.
+    pub tan_phi: f64,
+    /// Where the resultant meets the base, from the heel (m); `None` where N ≤ 0.
+    pub resultant_from_heel_m: Option<f64>,
+    /// The part of the base in compression (%): 100 with the resultant in the middle third,
+    /// 3 a / b below it (a its distance from the toe), 0 outside the base.
+    pub base_in_compression_pct: f64,
+    /// What the case's category asks (%): usual 100, unusual 75, extreme a resultant within the
+    /// base (any part in compression).
+    pub required_compression_pct: f64,
+    /// Whether the resultant meets its limit.
+    pub resultant_passes: bool,
+    /// The effective normal pressure at the heel and at the toe (Pa, compression positive).
+    pub heel_pressure_pa: f64,
+    /// At the toe.
+    pub toe_pressure_pa: f64,
+    /// The crack's length from the heel (m); 0 uncracked. The base's whole length where the
+    /// resultant leaves the base (it would tip).
+    pub crack_length_m: f64,
+    /// True where the resultant leaves the base (or N ≤ 0): the monolith tips (or floats).
+    pub overturns: bool,
+}
+
+/// The part of the base in compression a category asks for (%, EM 1110-2-2100's resultant
+/// location: usual the whole base, unusual 75 %, extreme the resultant within the base).
+pub fn required_compression(category: Category) -> f64 {
+    match category {
+        Category::Usual => 100.0,
+        Category::Unusual => 75.0,
+        Category::Extreme => 0.0,
+    }
+}
+
+/// tan φ of `friction` at the mean normal stress `sigma` (Pa): μ for Coulomb; Barton–Choubey's
+/// JRC log10(JCS/σ) + φ_r (capped as in the route).
+fn tan_phi(friction: &Friction, sigma: f64) -> f64 {
+    match *friction {
+        Friction::BartonChoubey {
+            contact_area_m2, ..
+        } => friction.coefficient(sigma.max(f64::MIN_POSITIVE) * contact_area_m2),
+        _ => friction.coefficient(1.0),
+    }
+}
+
+/// The loads resolved at a crack of length `t`: (N, T, U, the moment about the toe of every
+/// load, resisting positive, N·m).
+fn resolve(c: &GravityCase, t: f64) -> (f64, f64, f64, f64) {
+    let s = &c.section;
+    let b = s.base_length;
+    let wl: WaterLoads = water_loads_cracked(s, &c.levels, c.gravity, t);
+    let w = c.weight_n;
+    let (xw, yw) = (c.cm[0], c.cm[1]);
+    let normal = w * (1.0 - c.kv) + wl.tailwater_weight.force_n - wl.uplift.force_n;
+    let shear = wl.headwater.force_n - wl.tailwater.force_n + c.kh * w;
+    let moment = w * (1.0 - c.kv) * (b - xw) - c.kh * w * yw
+        + wl.tailwater_weight.force_n * (b - wl.tailwater_weight.at_m)
+        + wl.tailwater.force_n * wl.tailwater.at_m
+        - wl.headwater.force_n * wl.headwater.at_m
+        - wl.uplift.force_n * (b - wl.uplift.at_m);
+    (normal, shear, wl.uplift.force_n, moment)
+}
+
+/// The gravity method on case `c` (`derivations/11-dam-loads.md` §9).
+///
+/// Uncracked, the resultant N meets the base a = M_toe / N from the toe; the pressures are
+/// N/(b w) (1 ± 6 e/b), e = b/2 − a, where a ≥ b/3, and 2 N/(3 a w) at the toe over 3 a where
+/// not. Cracking, where a < b/3 the base opens from the heel to T with 3 a(T) = b − T (the
+/// pressure at the crack's tip zero), the reservoir's full head in the crack: the smallest such
+/// T, found by a scan and bisection; none below b (the resultant leaves the base) is a monolith
+/// that tips.
+pub fn gravity_method(c: &GravityCase) -> GravityVerdict {
+    let (b, width) = (c.section.base_length, c.section.width);
+    let at = |t: f64| {
+        let (n, shear, u, m) = resolve(c, t);
+        (n, shear, u, if n > 0.0 { m / n } else { f64::NEG_INFINITY })
+    };
+    let (n0, _, _, a0) = at(0.0);
+    // The crack: 3 a(T) − (b − T) changes sign from negative at T = 0.
+    let gap = |t: f64| 3.0 * at(t).3 - (b - t);
+    let mut t = 0.0;
+    let mut through = false;
+    if c.crack && n0 > 0.0 && a0 < b / 3.0 {
+        const SCAN: usize = 1000;
+        let mut lo = 0.0;
+        let hi = (1..SCAN).map(|k| b * k as f64 / SCAN as f64).find(|&x| {
+            let found = gap(x) >= 0.0;
+            if !found {
+                lo = x;
+            }
+            found
+        });
+        match hi {
+            Some(mut hi) => {
+                for _ in 0..100 {
+                    let mid = 0.5 * (lo + hi);
+                    if gap(mid) >= 0.0 {
+                        hi = mid;
+                    } else {
+                        lo = mid;
+                    }
+                }
+                t = hi;
+            }
+            None => {
+                // No crack short of the toe holds the resultant: cracked through, the
+                // reservoir's head under the whole base.
+                through = true;
+                t = b;
+            }
+        }
+    }
+    let (n, shear, uplift, a) = at(t);
+    let floats = n <= 0.0;
+    let overturns = floats || through || a <= 0.0 || a >= b;
+    // The base in compression: L from the toe.
+    let compressed = if overturns {
+        0.0
+    } else if t > 0.0 {
+        b - t
+    } else {
+        (3.0 * a).min(b).min(3.0 * (b - a))
+    };
+    let (heel, toe) = if overturns {
+        (0.0, 0.0)
+    } else if compressed >= b {
+        let e = b / 2.0 - a;
+        let mean = n / (b * width);
+        (mean * (1.0 - 6.0 * e / b), mean * (1.0 + 6.0 * e / b))
+    } else if a <= b / 2.0 {
+        (0.0, 2.0 * n / (3.0 * a * width))
+    } else {
+        (2.0 * n / (3.0 * (b - a) * width), 0.0)
+    };
+    let sigma = if compressed > 0.0 {
+        n / (compressed * width)
+    } else {
+        0.0
+    };
+    let tan_phi = tan_phi(&c.friction, sigma);
+    let sliding_fs = if shear <= 0.0 {
+        None
+    } else if floats {
+        Some(0.0)
+    } else {
+        Some((n * tan_phi + c.cohesion_pa * compressed * width) / shear)
+    };
+    let pct = 100.0 * compressed / b;
+    let required = required_compression(c.category);
+    GravityVerdict {
+        normal_n: n,
+        shear_n: shear,
+        uplift_n: uplift,
+        sliding_fs,
+        tan_phi,
+        resultant_from_heel_m: (!floats).then_some(b - a),
+        base_in_compression_pct: pct,
+        required_compression_pct: required,
+        resultant_passes: !overturns && pct >= required - 1e-9,
+        heel_pressure_pa: heel,
+        toe_pressure_pa: toe,
+        crack_length_m: t,
+        overturns,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const G: f64 = 9.81;
+    const GAMMA: f64 = 1000.0 * G;
+
+    /// A rectangle b × h of width w (crest = base), of density 2400, under `head` and no tailwater.
+    fn rect(b: f64, h: f64, head: f64, crack: bool, category: Category) -> GravityCase {
+        let section = Section {
+            base_length: b,
+            width: 1.0,
+            height: h,
+            crest_length: b,
+            density: 2400.0,
+        };
+        GravityCase {
+            section,
+            cm: [b / 2.0, h / 2.0],
+            weight_n: 2400.0 * b * h * G,
+            levels: Levels {
+                headwater: head,
+                tailwater: 0.0,
+                density: 1000.0,
+                drain_efficiency: 0.0,
+                drain_position: 0.0,
+                crack,
+            },
+            gravity: G,
+            kh: 0.0,
+            kv: 0.0,
+            friction: Friction::coulomb(0.7),
+            cohesion_pa: 0.0,
+            crack,
+            category,
+        }
+    }
+
+    #[test]
+    fn an_uncracked_rectangle_has_the_hand_calculated_resultant_pressures_and_sliding_factor() {
+        // b = 15, h = 20, H1 = 18, no tailwater, no drains, 1 m wide: W = 2400·300·g at 7.5 m,
+        // P = ½γ·18² at 6 m up, U = ½γ·18·15 at 5 m from the heel (10 m from the toe).
+        let c = rect(15.0, 20.0, 18.0, false, Category::Usual);
+        let v = gravity_method(&c);
+        let w = 2400.0 * 300.0 * G;
+        let p = 0.5 * GAMMA * 324.0;
+        let u = 0.5 * GAMMA * 18.0 * 15.0;
+        let n = w - u;
+        let m_toe = w * 7.5 - p * 6.0 - u * 10.0;
+        let a = m_toe / n;
+        assert!((v.normal_n - n).abs() < 1e-9 * n);
+        assert!((v.shear_n - p).abs() < 1e-9 * p);
+        assert!((v.sliding_fs.unwrap() - 0.7 * n / p).abs() < 1e-12);
+        assert!((v.resultant_from_heel_m.unwrap() - (15.0 - a)).abs() < 1e-9);
+        // a = 5.26 m ≥ b/3: all in compression, e = b/2 − a.
+        assert!(a > 5.0 && a < 7.5, "{a}");
+        let e = 7.5 - a;
+        let mean = n / 15.0;
+        let (heel, toe) = (mean * (1.0 - 6.0 * e / 15.0), mean * (1.0 + 6.0 * e / 15.0));
+        assert!((v.heel_pressure_pa - heel).abs() < 1e-9 * mean);
+        assert!((v.toe_pressure_pa - toe).abs() < 1e-9 * mean);
+        assert_eq!(v.base_in_compression_pct, 100.0);
+        assert!(v.resultant_passes && !v.overturns);
+        assert_eq!(v.crack_length_m, 0.0);
+        // The same with the crack allowed: nothing cracks.
+        assert_eq!(
+            gravity_method(&rect(15.0, 20.0, 18.0, true, Category::Usual)),
+            v
+        );
+    }
+
+    #[test]
+    fn the_sliding_factor_is_linear_in_tan_phi_and_in_cohesion() {
+        let v = |mu: f64, c: f64| {
+            let mut case = rect(15.0, 20.0, 18.0, false, Category::Usual);
+            case.friction = Friction::coulomb(mu);
+            case.cohesion_pa = c;
+            gravity_method(&case).sliding_fs.unwrap()
+        };
+        let (f1, f2, f4) = (v(0.4, 0.0), v(0.8, 0.0), v(1.6, 0.0));
+        assert!((f2 - 2.0 * f1).abs() < 1e-12 && (f4 - 4.0 * f1).abs() < 1e-12);
+        let p = 0.5 * GAMMA * 324.0;
+        assert!((v(0.4, 1e5) - f1 - 1e5 * 15.0 / p).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_cracked_base_opens_until_the_pressure_at_its_tip_is_zero_under_full_uplift_in_it() {
+        // b = 10, h = 20, H1 = 18: uncracked the resultant is 2.12 m from the toe, under b/3.
+        let plain = gravity_method(&rect(10.0, 20.0, 18.0, false, Category::Usual));
+        assert!(
+            plain.base_in_compression_pct < 100.0 && !plain.overturns,
+            "{plain:?}"
+        );
+        assert_eq!(plain.heel_pressure_pa, 0.0);
+        let v = gravity_method(&rect(10.0, 20.0, 18.0, true, Category::Usual));
+        let t = v.crack_length_m;
+        assert!(t > 4.0 && t < 5.0, "{v:?}");
+        // By hand at that T: uplift 18 m over the crack, then linear to 0 at the toe.
+        let w = 2400.0 * 200.0 * G;
+        let p = 0.5 * GAMMA * 324.0;
+        let u_crack = GAMMA * 18.0 * t;
+        let u_rest = 0.5 * GAMMA * 18.0 * (10.0 - t);
+        let u = u_crack + u_rest;
+        let m_toe =
+            w * 5.0 - p * 6.0 - u_crack * (10.0 - t / 2.0) - u_rest * (2.0 * (10.0 - t) / 3.0);
+        let n = w - u;
+        assert!((v.uplift_n - u).abs() < 1e-9 * u);
+        let a = m_toe / n;
+        // The crack's tip at the compressed part's end: 3 a = b − T.
+        assert!((3.0 * a - (10.0 - t)).abs() < 1e-9, "a {a}, T {t}");
+        assert!((v.toe_pressure_pa - 2.0 * n / (3.0 * a)).abs() < 1e-9 * v.toe_pressure_pa);
+        assert_eq!(v.heel_pressure_pa, 0.0);
+        assert!((v.base_in_compression_pct - 100.0 * (10.0 - t) / 10.0).abs() < 1e-9);
+        // The crack's uplift lowers the sliding factor below the uncracked one.
+        assert!(v.sliding_fs.unwrap() < plain.sliding_fs.unwrap());
+        assert!(!v.resultant_passes);
+    }
+
+    #[test]
+    fn a_monolith_whose_resultant_leaves_the_base_tips_and_says_so() {
+        // b = 4 under 20 m of water on a 20 m block: the crack runs through.
+        let v = gravity_method(&rect(4.0, 20.0, 20.0, true, Category::Extreme));
+        assert!(v.overturns && !v.resultant_passes, "{v:?}");
+        assert_eq!(v.crack_length_m, 4.0);
+        assert_eq!(v.base_in_compression_pct, 0.0);
+    }
+
+    #[test]
+    fn the_category_sets_the_part_of_the_base_in_compression_it_asks() {
+        assert_eq!(required_compression(Category::Usual), 100.0);
+        assert_eq!(required_compression(Category::Unusual), 75.0);
+        assert_eq!(required_compression(Category::Extreme), 0.0);
+        // 80 % in compression passes unusual, not usual.
+        let mut c = rect(10.0, 20.0, 18.0, false, Category::Unusual);
+        let pct = |c: &GravityCase| gravity_method(c).base_in_compression_pct;
+        // Lower the water until the uncracked base is 75–100 % in compression.
+        let head = (100..190)
+            .map(|k| k as f64 / 10.0)
+            .find(|&h| {
+                c.levels.headwater = h;
+                let p = pct(&c);
+                (80.0..100.0).contains(&p)
+            })
+            .unwrap();
+        c.levels.headwater = head;
+        assert!(gravity_method(&c).resultant_passes);
+        c.category = Category::Usual;
+        assert!(!gravity_method(&c).resultant_passes);
+    }
+}
