@@ -102,11 +102,14 @@ fn resolve(c: &GravityCase, t: f64) -> (f64, f64, f64, f64) {
     let w = c.weight_n;
     let (xw, yw) = (c.cm[0], c.cm[1]);
     let normal = w * (1.0 - c.kv) + wl.tailwater_weight.force_n - wl.uplift.force_n;
-    let shear = wl.headwater.force_n - wl.tailwater.force_n + c.kh * w;
+    let shear =
+        wl.headwater.force_n - wl.tailwater.force_n + wl.silt.force_n + wl.ice.force_n + c.kh * w;
     let moment = w * (1.0 - c.kv) * (b - xw) - c.kh * w * yw
         + wl.tailwater_weight.force_n * (b - wl.tailwater_weight.at_m)
         + wl.tailwater.force_n * wl.tailwater.at_m
         - wl.headwater.force_n * wl.headwater.at_m
+        - wl.silt.force_n * wl.silt.at_m
+        - wl.ice.force_n * wl.ice.at_m
         - wl.uplift.force_n * (b - wl.uplift.at_m);
     (normal, shear, wl.uplift.force_n, moment)
 }
@@ -241,6 +244,8 @@ mod tests {
                 drain_efficiency: 0.0,
                 drain_position: 0.0,
                 crack,
+                silt: None,
+                ice: None,
             },
             gravity: G,
             kh: 0.0,

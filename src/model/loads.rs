@@ -70,13 +70,15 @@ impl Loads {
         let x_cm = monolith.props.cm_from_heel;
         Loads {
             hydraulic_pitch: -(l.headwater.force_n * l.headwater.at_m
-                - l.tailwater.force_n * l.tailwater.at_m),
+                - l.tailwater.force_n * l.tailwater.at_m
+                + l.silt.force_n * l.silt.at_m
+                + l.ice.force_n * l.ice.at_m),
             held_normal: l.uplift.force_n - l.tailwater_weight.force_n,
             held_pitch: l.uplift.force_n * (l.uplift.at_m - x_cm)
                 - l.tailwater_weight.force_n * (l.tailwater_weight.at_m - x_cm),
             water: Some(l),
             ..Loads::plain(
-                l.headwater.force_n - l.tailwater.force_n,
+                l.headwater.force_n - l.tailwater.force_n + l.silt.force_n + l.ice.force_n,
                 eccentricity,
                 gravity,
             )

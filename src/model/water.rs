@@ -23,6 +23,33 @@ pub struct Levels {
     /// reservoir's full head entering the crack (`[water] crack`, true by default; the route's
     /// uplift is the uncracked base's).
     pub crack: bool,
+    /// The reservoir's sediment against the upstream face, if any.
+    pub silt: Option<Silt>,
+    /// An ice sheet's thrust, if any.
+    pub ice: Option<Ice>,
+}
+
+/// Sediment against the upstream face (`[silt]`): its depth above the base (m), its submerged
+/// unit weight γ′ (N/m³) and its friction angle φ (rad). It pushes at rest, K0 = 1 − sin φ:
+/// ½ K0 γ′ d² w at d/3 (the water over it is the reservoir's own push).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct Silt {
+    /// d (m).
+    pub depth: f64,
+    /// γ′ (N/m³).
+    pub unit_weight: f64,
+    /// φ (rad).
+    pub friction_angle: f64,
+}
+
+/// An ice sheet's thrust on the upstream face (`[ice]`): a force per metre of the monolith's
+/// width (N/m) at its height above the base (m).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct Ice {
+    /// N/m of width.
+    pub force_per_m: f64,
+    /// Its height above the base (m).
+    pub elevation: f64,
 }
 
 impl Levels {
@@ -67,6 +94,39 @@ impl Levels {
                 &format!("within the base, between 0 and {b} m from the heel"),
             )?;
         }
+        if let Some(s) = &self.silt {
+            let d = non_negative("silt.depth_m", s.depth)?;
+            check(
+                "silt.depth_m",
+                d,
+                d <= headwater.min(section.height),
+                &format!(
+                    "at most the headwater and the monolith's height ({} m): silt lies under the \
+                     reservoir",
+                    headwater.min(section.height)
+                ),
+            )?;
+            positive("silt.unit_weight_n_m3", s.unit_weight)?;
+            let phi = s.friction_angle.to_degrees();
+            check(
+                "silt.friction_angle_deg",
+                phi,
+                (0.0..90.0).contains(&phi),
+                "from 0 to under 90°",
+            )?;
+        }
+        if let Some(i) = &self.ice {
+            non_negative("ice.force_n_m", i.force_per_m)?;
+            check(
+                "ice.elevation_m",
+                i.elevation,
+                i.elevation >= 0.0 && i.elevation <= section.height,
+                &format!(
+                    "on the upstream face, from 0 to {} m above the base",
+                    section.height
+                ),
+            )?;
+        }
         Ok(())
     }
 }
@@ -93,6 +153,10 @@ pub struct WaterLoads {
     pub tailwater_weight: Resultant,
     /// Uplift on the base, along +y′, at its distance from the heel.
     pub uplift: Resultant,
+    /// The silt's push on the upstream face, along +x′, at its height (zero without silt).
+    pub silt: Resultant,
+    /// The ice's thrust, along +x′, at its height (zero without ice).
+    pub ice: Resultant,
     /// The uplift head at the line of drains (m; the linear head there without drains).
     pub drain_head_m: f64,
     /// The levels these come from.
@@ -182,11 +246,33 @@ pub fn water_loads_cracked(section: &Section, levels: &Levels, g: f64, crack: f6
         force_n: gamma * w * area,
         at_m: if area > 0.0 { first / area } else { b / 2.0 },
     };
+    let silt = levels.silt.map_or(
+        Resultant {
+            force_n: 0.0,
+            at_m: 0.0,
+        },
+        |s| Resultant {
+            force_n: 0.5 * (1.0 - s.friction_angle.sin()) * s.unit_weight * s.depth * s.depth * w,
+            at_m: s.depth / 3.0,
+        },
+    );
+    let ice = levels.ice.map_or(
+        Resultant {
+            force_n: 0.0,
+            at_m: 0.0,
+        },
+        |i| Resultant {
+            force_n: i.force_per_m * w,
+            at_m: i.elevation,
+        },
+    );
     WaterLoads {
         headwater,
         tailwater,
         tailwater_weight,
         uplift,
+        silt,
+        ice,
         drain_head_m: h3,
         levels: *levels,
     }
@@ -205,6 +291,8 @@ mod tests {
             drain_efficiency: e,
             drain_position: 2.0,
             crack: false,
+            silt: None,
+            ice: None,
         }
     }
 

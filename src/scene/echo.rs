@@ -113,6 +113,21 @@ impl Scene {
                 }
                 water.push(("crack", Value::Boolean(v.crack)));
                 t.insert("water".into(), table(&water));
+                if let Some(s) = v.silt {
+                    let silt = [
+                        ("depth_m", f(s.depth)),
+                        ("unit_weight_n_m3", f(s.unit_weight)),
+                        ("friction_angle_deg", f(s.friction_angle.to_degrees())),
+                    ];
+                    t.insert("silt".into(), table(&silt));
+                }
+                if let Some(i) = v.ice {
+                    let ice = [
+                        ("force_n_m", f(i.force_per_m)),
+                        ("elevation_m", f(i.elevation)),
+                    ];
+                    t.insert("ice".into(), table(&ice));
+                }
             }
             None => loads.insert(0, ("hydraulic_force_n", f(l.hydraulic_force))),
         }

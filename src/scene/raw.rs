@@ -20,6 +20,8 @@ pub struct RawScene {
     pub initial: Option<RawInitial>,
     pub monolith: Option<RawMonolith>,
     pub water: Option<RawWater>,
+    pub silt: Option<RawSilt>,
+    pub ice: Option<RawIce>,
     pub seismic: Option<RawSeismic>,
     pub check: Option<RawCheck>,
     pub base: Option<RawBase>,
@@ -48,6 +50,9 @@ pub struct RawCase {
     pub tailwater_m: Option<f64>,
     pub kh: Option<f64>,
     pub kv: Option<f64>,
+    pub drain_efficiency: Option<f64>,
+    pub silt_depth_m: Option<f64>,
+    pub ice_force_n_m: Option<f64>,
     pub required_fs: Option<f64>,
 }
 
@@ -73,6 +78,23 @@ pub struct RawWater {
     pub drain_efficiency: Option<f64>,
     pub drain_position_m: Option<f64>,
     pub crack: Option<bool>,
+}
+
+/// `[silt]`: the reservoir's sediment against the upstream face (needs `[water]`).
+#[derive(Debug, Default, Deserialize)]
+#[serde(expecting = "the table [silt]")]
+pub struct RawSilt {
+    pub depth_m: Option<f64>,
+    pub unit_weight_n_m3: Option<f64>,
+    pub friction_angle_deg: Option<f64>,
+}
+
+/// `[ice]`: an ice sheet's thrust on the upstream face (needs `[water]`).
+#[derive(Debug, Default, Deserialize)]
+#[serde(expecting = "the table [ice]")]
+pub struct RawIce {
+    pub force_n_m: Option<f64>,
+    pub elevation_m: Option<f64>,
 }
 
 /// `[seismic]`: pseudo-static coefficients, and a ground-motion record.
@@ -289,6 +311,8 @@ pub fn keys_of(section: &str) -> &'static [&'static str] {
         "initial" => fields::<RawInitial>(),
         "monolith" => fields::<RawMonolith>(),
         "water" => fields::<RawWater>(),
+        "silt" => fields::<RawSilt>(),
+        "ice" => fields::<RawIce>(),
         "seismic" => fields::<RawSeismic>(),
         "check" => fields::<RawCheck>(),
         "base" => fields::<RawBase>(),

@@ -578,3 +578,73 @@ fn the_base_may_crack_unless_water_crack_is_false() {
     assert_eq!(shut.crack_length_m, 0.0);
     assert!(open.uplift_n > shut.uplift_n);
 }
+
+#[test]
+fn silt_and_ice_push_on_the_upstream_face_as_computed_by_hand() {
+    // Silt 5 m deep, γ′ 8000 N/m³, φ 30°: at rest K0 = 1 − sin 30° = ½, ½ K0 γ′ d² w =
+    // 500 kN at 5/3 m. Ice 150 kN/m at 13.5 m over the 10 m width: 1.5 MN.
+    let text = monolith()
+        + "\n[silt]\ndepth_m = 5.0\nunit_weight_n_m3 = 8000.0\nfriction_angle_deg = 30.0\n\
+           [ice]\nforce_n_m = 150.0e3\nelevation_m = 13.5\n";
+    let s = Scene::from_toml(&text, "silted").unwrap();
+    let w = s.loads().unwrap().water.unwrap();
+    let close = |got: f64, want: f64, what: &str| {
+        assert!(
+            (got - want).abs() <= 1e-9 * want.abs(),
+            "{what}: {got} against {want}"
+        )
+    };
+    close(w.silt.force_n, 500e3, "silt");
+    close(w.silt.at_m, 5.0 / 3.0, "silt's height");
+    close(w.ice.force_n, 1.5e6, "ice");
+    let gamma = 1000.0 * 9.81 * 10.0;
+    let water = 0.5 * gamma * (196.0 - 4.0);
+    // The route's push is the water's, the silt's and the ice's.
+    close(
+        s.loads().unwrap().hydraulic_force,
+        water + 2.0e6,
+        "the route's push",
+    );
+    let r = slideroute::check::check_cases(&s, |_| ()).unwrap();
+    let plain =
+        slideroute::check::check_cases(&Scene::from_toml(&monolith(), "m").unwrap(), |_| ())
+            .unwrap();
+    let (g, g0) = (r[0].gravity.unwrap(), plain[0].gravity.unwrap());
+    close(g.shear_n, g0.shear_n + 2.0e6, "T");
+    close(g.normal_n, g0.normal_n, "N");
+    close(
+        g.sliding_fs.unwrap(),
+        0.45 * g.normal_n / g.shear_n,
+        "sliding FS",
+    );
+    // Their moments about the toe move the resultant downstream by (S d/3 + I y)/N.
+    let shift = (500e3 * 5.0 / 3.0 + 1.5e6 * 13.5) / g.normal_n;
+    close(
+        g.resultant_from_heel_m.unwrap() - g0.resultant_from_heel_m.unwrap(),
+        shift,
+        "the resultant's shift",
+    );
+    // A case may set them: no ice in the first.
+    let cased = text.replace(
+        "name = \"normal pool\"",
+        "name = \"normal pool\"\nice_force_n_m = 0.0\nsilt_depth_m = 0.0",
+    );
+    let r =
+        slideroute::check::check_cases(&Scene::from_toml(&cased, "c").unwrap(), |_| ()).unwrap();
+    close(r[0].gravity.unwrap().shear_n, g0.shear_n, "no ice, no silt");
+    // Refused: silt without water, silt over the reservoir.
+    let dry = "[silt]\ndepth_m = 1.0\nunit_weight_n_m3 = 8000.0\nfriction_angle_deg = 30.0\n";
+    let paper = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/paper-like.toml"),
+    )
+    .unwrap();
+    assert_eq!(
+        Scene::from_toml(&(paper + dry), "d").unwrap_err().key,
+        "silt"
+    );
+    let deep = text.replace("depth_m = 5.0", "depth_m = 20.0");
+    assert_eq!(
+        Scene::from_toml(&deep, "d").unwrap_err().key,
+        "silt.depth_m"
+    );
+}

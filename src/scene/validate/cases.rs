@@ -64,6 +64,13 @@ impl Reader<'_> {
                     ("tailwater_m", "water.tailwater_m", c.tailwater_m),
                     ("kh", "seismic.kh", c.kh),
                     ("kv", "seismic.kv", c.kv),
+                    (
+                        "drain_efficiency",
+                        "water.drain_efficiency",
+                        c.drain_efficiency,
+                    ),
+                    ("silt_depth_m", "silt.depth_m", c.silt_depth_m),
+                    ("ice_force_n_m", "ice.force_n_m", c.ice_force_n_m),
                 ] {
                     if let Some(v) = v {
                         self.finite(&key(name), v)?;

@@ -1,10 +1,11 @@
-//! `[loads]`, `[water]` and `[seismic]`: the loads, from a force as given or from the water's
-//! levels on a monolith, with the pseudo-static coefficients; and a ground-motion record.
+//! `[loads]`, `[water]` (with `[silt]` and `[ice]`) and `[seismic]`: the loads, from a force
+//! as given or from the water's levels on a monolith, with the pseudo-static coefficients; and
+//! a ground-motion record.
 
 use super::Reader;
-use crate::model::{Levels, Loads, Monolith, Record};
+use crate::model::{Ice, Levels, Loads, Monolith, Record, Silt};
 use crate::scene::SceneError;
-use crate::scene::raw::{RawLoads, RawScene, RawSeismic, RawWater};
+use crate::scene::raw::{RawIce, RawLoads, RawScene, RawSeismic, RawSilt, RawWater};
 use crate::scene::record_files::{Component, Units, combine, read_component};
 use std::sync::Arc;
 
@@ -35,8 +36,18 @@ impl Reader<'_> {
             }
             return Ok((None, record));
         };
+        if raw.water.is_none() {
+            for (present, name) in [(raw.silt.is_some(), "silt"), (raw.ice.is_some(), "ice")] {
+                if present {
+                    return Err(self.invalid(
+                        name,
+                        format!("[{name}] is a load of the reservoir: it needs [water]"),
+                    ));
+                }
+            }
+        }
         let loads = match &raw.water {
-            Some(w) => self.water(w, l, monolith)?,
+            Some(w) => self.water(w, (raw.silt.as_ref(), raw.ice.as_ref()), l, monolith)?,
             None => self.plain(l, monolith)?,
         }
         .with_pseudo_static(kh, kv);
@@ -67,6 +78,7 @@ impl Reader<'_> {
     fn water(
         &self,
         w: &RawWater,
+        (silt, ice): (Option<&RawSilt>, Option<&RawIce>),
         l: &RawLoads,
         monolith: Option<&Monolith>,
     ) -> Result<Loads, SceneError> {
@@ -98,6 +110,25 @@ impl Reader<'_> {
             drain_efficiency: efficiency,
             drain_position: w.drain_position_m.unwrap_or(0.0),
             crack: w.crack.unwrap_or(true),
+            silt: silt
+                .map(|s| {
+                    Ok::<_, SceneError>(Silt {
+                        depth: self.need("silt.depth_m", s.depth_m)?,
+                        unit_weight: self.need("silt.unit_weight_n_m3", s.unit_weight_n_m3)?,
+                        friction_angle: self
+                            .need("silt.friction_angle_deg", s.friction_angle_deg)?
+                            .to_radians(),
+                    })
+                })
+                .transpose()?,
+            ice: ice
+                .map(|i| {
+                    Ok::<_, SceneError>(Ice {
+                        force_per_m: self.need("ice.force_n_m", i.force_n_m)?,
+                        elevation: self.need("ice.elevation_m", i.elevation_m)?,
+                    })
+                })
+                .transpose()?,
         };
         levels.check(&m.section).map_err(|e| self.model(e))?;
         Ok(Loads::from_water(m, &levels, eccentricity, gravity))
