@@ -105,6 +105,10 @@ impl Scene {
     /// The scene compiled into the library: the paper-like scene of `scenes/paper-like.toml`.
     pub const DEFAULT_TOML: &'static str = include_str!("../../scenes/paper-like.toml");
 
+    /// A commented gravity-dam scene to start from (`scenes/dam.toml`, `slideroute scene
+    /// --template dam`): a monolith with its water, silt, ice, guideline and load cases.
+    pub const DAM_TOML: &'static str = include_str!("../../scenes/dam.toml");
+
     /// The origin named in errors about the embedded default scene.
     pub const DEFAULT_ORIGIN: &'static str = "<embedded default scene>";
 

@@ -448,6 +448,38 @@ fn print_default_is_the_embedded_scene_and_loads() {
 }
 
 #[test]
+fn the_dam_template_is_a_commented_scene_with_every_dam_section_that_checks() {
+    let o = run(&["scene", "--template", "dam"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = String::from_utf8_lossy(&o.stdout);
+    for section in [
+        "[monolith]",
+        "[water]",
+        "[silt]",
+        "[ice]",
+        "[friction]",
+        "[check]",
+        "[[case]]",
+    ] {
+        assert!(text.contains(section), "{section} in the template");
+    }
+    let s = slideroute::internals::scene::Scene::from_toml(&text, "dam").unwrap();
+    let w = s.loads().unwrap().water.unwrap();
+    assert!(w.levels.crack && w.levels.silt.is_some() && w.levels.ice.is_some());
+    assert!(
+        s.cases()
+            .iter()
+            .any(|c| c.keys.iter().any(|k| k.0 == "water.drain_efficiency"))
+    );
+    let p = temp_file("dam-template.toml", &text);
+    let o = run(&["scene", "--check", p.to_str().unwrap()]);
+    assert!(o.status.success() && String::from_utf8_lossy(&o.stdout).contains("all sections"));
+    let paper = run(&["scene", "--template", "paper"]);
+    assert_eq!(paper.stdout, run(&["scene", "--print-default"]).stdout);
+    assert_bad_input(&run(&["scene", "--template", "arch"]), &["arch"]);
+}
+
+#[test]
 fn sweep_of_200_combinations_has_a_row_for_each() {
     let dir = temp_dir("sweep");
     let o = run(&[

@@ -222,11 +222,24 @@ pub struct ReportArgs {
 #[derive(Args)]
 pub struct SceneFileArgs {
     /// Print the embedded default (paper-like) scene.
-    #[arg(long, conflicts_with = "check")]
+    #[arg(long, conflicts_with_all = ["check", "template"])]
     pub print_default: bool,
+    /// Print a commented scene to start from: `paper` (the default scene) or `dam` (a gravity
+    /// monolith with its water, silt, ice, guideline and load cases).
+    #[arg(long, value_name = "KIND", conflicts_with = "check")]
+    pub template: Option<Template>,
     /// Check this scene file: prints `ok` or one line naming the key and the reason.
     #[arg(long, value_name = "FILE")]
     pub check: Option<PathBuf>,
+}
+
+/// A scene template (`slideroute scene --template`).
+#[derive(Clone, Copy, Debug, clap::ValueEnum)]
+pub enum Template {
+    /// The paper-like default scene.
+    Paper,
+    /// A gravity-dam monolith with every section a dam analysis may use.
+    Dam,
 }
 
 /// `slideroute coeffs`.

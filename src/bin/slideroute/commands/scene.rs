@@ -1,11 +1,22 @@
-//! `slideroute scene`: the embedded default scene to start from, or a scene file checked.
+//! `slideroute scene`: the embedded default scene or a template to start from, or a scene file
+//! checked.
 
-use crate::cli::SceneFileArgs;
+use crate::cli::{SceneFileArgs, Template};
 use crate::exit::{CliError, bad_input, out, outln};
 use slideroute::{Scene, SceneErrorKind};
 
 /// Runs `slideroute scene`.
 pub fn scene(args: &SceneFileArgs) -> Result<(), CliError> {
+    if let Some(t) = args.template {
+        out!(
+            "{}",
+            match t {
+                Template::Paper => Scene::DEFAULT_TOML,
+                Template::Dam => Scene::DAM_TOML,
+            }
+        );
+        return Ok(());
+    }
     match (args.print_default, &args.check) {
         (true, _) => {
             out!("{}", slideroute::Scene::DEFAULT_TOML);
@@ -24,6 +35,8 @@ pub fn scene(args: &SceneFileArgs) -> Result<(), CliError> {
             outln!("{}: ok ({sections})", p.display());
             Ok(())
         }
-        (false, None) => Err(bad_input("scene: say --print-default or --check FILE")),
+        (false, None) => Err(bad_input(
+            "scene: say --print-default, --template paper|dam or --check FILE",
+        )),
     }
 }
