@@ -1825,3 +1825,63 @@ fn a_record_along_x_alone_prints_its_measures_and_dashes_for_the_components_it_l
         "{text}"
     );
 }
+
+#[test]
+fn set_changes_a_scene_key_without_editing_the_file_and_names_what_is_wrong() {
+    let root = env!("CARGO_MANIFEST_DIR");
+    let monolith = format!("{root}/scenes/monolith.toml");
+    let out = std::env::temp_dir().join(format!("slideroute-cli-set-{}", std::process::id()));
+    // A word in quotes and a number: the guideline's table and a level.
+    let o = run(&[
+        "check",
+        "--scene",
+        &monolith,
+        "--set",
+        "check.structure=\"critical\"",
+        "--set",
+        "friction.mu_k=0.5",
+        "--no-plots",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("check.json")).unwrap()).unwrap();
+    assert_eq!(json["guideline"]["structure"], "critical");
+    assert_eq!(json["cases"][0]["case"]["required_fs"], 2.0);
+    assert_eq!(json["cases"][0]["tan_phi"], 0.5);
+    let _ = std::fs::remove_dir_all(&out);
+    for (set, needles) in [
+        ("friction.mu_k", vec!["--set friction.mu_k", "KEY=VALUE"]),
+        ("friction.mu_k=abc", vec!["friction.mu_k", "expected f64"]),
+        ("friction.mu_k=-1", vec!["friction.mu_k"]),
+        ("nonsense.key=1", vec!["nonsense", "unknown key"]),
+    ] {
+        let o = run(&[
+            "run",
+            "--set",
+            set,
+            "--quiet",
+            "--no-plots",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert_bad_input(&o, &needles);
+    }
+    // A bare word is a string.
+    let o = run(&[
+        "run",
+        "--set",
+        "solver.t_end_s=0.01",
+        "--set",
+        "solver.dynamics=paper",
+        "--quiet",
+        "--no-plots",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let summary = std::fs::read_to_string(out.join("summary.json")).unwrap();
+    assert!(summary.contains("\"paper\""), "{summary}");
+    let _ = std::fs::remove_dir_all(&out);
+}

@@ -33,6 +33,11 @@ pub struct SceneArg {
     /// Scene file (TOML). Without it, the embedded default (paper-like) scene.
     #[arg(long, value_name = "FILE")]
     pub scene: Option<PathBuf>,
+    /// Change one key of the scene without editing its file, in the file's units:
+    /// `--set water.headwater_m=14.5`, `--set solver.mode=small-angle`; repeatable. The value
+    /// is read as TOML (a number, true/false, a quoted string, an array), else as a word.
+    #[arg(long = "set", value_name = "KEY=VALUE")]
+    pub set: Vec<String>,
 }
 
 /// A displacement of the block (X, Z, θ).

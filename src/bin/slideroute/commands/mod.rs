@@ -25,10 +25,44 @@ pub fn load(arg: &SceneArg) -> Result<Scene, CliError> {
         Some(p) => Scene::from_file(p).map_err(bad_input)?,
         None => Scene::default_scene(),
     };
+    let scene = if arg.set.is_empty() {
+        scene
+    } else {
+        let keys = arg
+            .set
+            .iter()
+            .map(|s| setting(s))
+            .collect::<Result<Vec<_>, _>>()?;
+        scene.with_keys(keys).map_err(bad_input)?
+    };
     for w in scene.warnings() {
         eprintln!("slideroute: warning: {w}");
     }
     Ok(scene)
+}
+
+/// One `--set KEY=VALUE`: the key, and the value read as TOML (`14.5`, `true`, `"a b"`,
+/// `[1, 2]`), else as a word (`small-angle`).
+fn setting(s: &str) -> Result<(String, toml::Value), CliError> {
+    let Some((key, value)) = s.split_once('=') else {
+        return Err(bad_input(format!(
+            "--set {s}: say KEY=VALUE, e.g. --set water.headwater_m=14.5"
+        )));
+    };
+    let (key, value) = (key.trim(), value.trim());
+    if key.is_empty() || value.is_empty() {
+        return Err(bad_input(format!(
+            "--set {s}: say KEY=VALUE, e.g. --set water.headwater_m=14.5"
+        )));
+    }
+    let parsed = format!("v = {value}")
+        .parse::<toml::Table>()
+        .ok()
+        .and_then(|mut t| t.remove("v"));
+    Ok((
+        key.to_string(),
+        parsed.unwrap_or_else(|| toml::Value::String(value.to_string())),
+    ))
 }
 
 /// [`load`], with its dynamics model overridden when `dynamics` says.
