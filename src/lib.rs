@@ -100,6 +100,7 @@ pub mod check {
     pub use crate::analysis::gravity_method::{
         GravityCase, GravityVerdict, gravity_method, required_compression,
     };
+    pub use crate::model::uplift_heads;
     pub use crate::model::{Category, Guideline, LoadCase, SiteInformation, Structure};
 }
 

@@ -37,4 +37,4 @@ pub use settings::{Contacts, DynamicsModel, Integrator, MAX_INCREMENTS, Mode, Ru
 pub use simulation::{Simulation, SimulationBuilder};
 pub(crate) use simulation::{check_ratios, check_rigid_only, face_count};
 pub(crate) use water::water_loads_cracked;
-pub use water::{Ice, Levels, Resultant, Silt, WaterLoads};
+pub use water::{Ice, Levels, Resultant, Silt, WaterLoads, uplift_heads};

@@ -180,6 +180,38 @@ pub fn water_loads(section: &Section, levels: &Levels, g: f64) -> WaterLoads {
     water_loads_cracked(section, levels, g, 0.0)
 }
 
+/// The uplift head along the base (m of water) as a polyline of (x from the heel, head), heel
+/// to toe, with the base cracked from the heel over `crack` (m; see [`water_loads_cracked`]),
+/// and the head at the line of drains (the linear head there without them, or past the crack).
+pub fn uplift_heads(section: &Section, levels: &Levels, crack: f64) -> (Vec<[f64; 2]>, f64) {
+    let b = section.base_length;
+    let (h1, h2) = (levels.headwater, levels.tailwater);
+    let t = crack.clamp(0.0, b);
+    let linear = |x: f64| {
+        if b > t {
+            h1 + (h2 - h1) * (x - t).max(0.0) / (b - t)
+        } else {
+            h1
+        }
+    };
+    let x_d = levels.drain_position;
+    let drained = levels.drain_efficiency > 0.0 && x_d > t;
+    let h3 = if drained {
+        h2 + (1.0 - levels.drain_efficiency) * (h1 - h2) * (b - x_d) / (b - t)
+    } else {
+        linear(x_d)
+    };
+    let mut points: Vec<[f64; 2]> = vec![[0.0, h1]];
+    if t > 0.0 {
+        points.push([t, h1]);
+    }
+    if drained {
+        points.push([x_d, h3]);
+    }
+    points.push([b, h2]);
+    (points, h3)
+}
+
 /// [`water_loads`] with the base cracked from the heel over `crack` (m, 0 ≤ crack < b): the
 /// reservoir's full head H1 in the crack, then, from its tip T, the head falls as on an
 /// uncracked base of length b − T: linearly to H2 at the toe where there are no drains or the
@@ -210,30 +242,7 @@ pub fn water_loads_cracked(section: &Section, levels: &Levels, g: f64, crack: f6
         at_m: b - slope * h2 / 3.0,
     };
     // Uplift: the head along the base as a polyline of (x, head), integrated piece by piece.
-    let h2 = levels.tailwater;
-    let t = crack.clamp(0.0, b);
-    let linear = |x: f64| {
-        if b > t {
-            h1 + (h2 - h1) * (x - t).max(0.0) / (b - t)
-        } else {
-            h1
-        }
-    };
-    let x_d = levels.drain_position;
-    let drained = levels.drain_efficiency > 0.0 && x_d > t;
-    let h3 = if drained {
-        h2 + (1.0 - levels.drain_efficiency) * (h1 - h2) * (b - x_d) / (b - t)
-    } else {
-        linear(x_d)
-    };
-    let mut points: Vec<[f64; 2]> = vec![[0.0, h1]];
-    if t > 0.0 {
-        points.push([t, h1]);
-    }
-    if drained {
-        points.push([x_d, h3]);
-    }
-    points.push([b, h2]);
+    let (points, h3) = uplift_heads(section, levels, crack);
     let (mut area, mut first) = (0.0, 0.0);
     for pair in points.windows(2) {
         let ([x0, p0], [x1, p1]) = (pair[0], pair[1]);

@@ -1433,6 +1433,34 @@ fn check_prints_the_load_case_table_and_routes_the_case_that_fails() {
             json["cases"][0]
         );
     }
+    // The page to hand in: the section drawn per case, each case's verdicts as check.json has
+    // them, the scene and the manifest.
+    let page = std::fs::read_to_string(out.join("report.html")).unwrap();
+    assert_eq!(page.matches("<svg").count(), 3, "one drawing a case");
+    assert_eq!(page.matches("<svg").count(), page.matches("</svg>").count());
+    for (k, case) in json["cases"].as_array().unwrap().iter().enumerate() {
+        let name = case["case"]["name"].as_str().unwrap();
+        assert!(page.contains(&format!("Case {k}: {name}")), "{name}");
+        let fs = format!("{:.3}", case["sliding_fs"].as_f64().unwrap());
+        assert!(page.contains(&fs), "{name}'s sliding FS {fs}");
+        let at = format!(
+            "{:.2} m from the heel",
+            case["resultant_from_heel_m"].as_f64().unwrap()
+        );
+        assert!(page.contains(&at), "{name}'s resultant {at}");
+    }
+    for needle in [
+        "EM 1110-2-2100",
+        "The scene as used",
+        "slideroute_version",
+        "FAILS",
+    ] {
+        assert!(page.contains(needle), "{needle}");
+    }
+    assert!(
+        !page.contains("NaN") && !page.contains("inf<") && !page.contains("inf "),
+        "no number is not one"
+    );
     assert_eq!(json["guideline"]["structure"], "normal");
     assert!(json["manifest"]["loads"]["uplift_n"].as_f64().unwrap() > 0.0);
     let _ = std::fs::remove_dir_all(out);

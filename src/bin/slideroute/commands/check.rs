@@ -1,11 +1,12 @@
-//! `slideroute check`: each load case against the factor of safety its guideline requires —
-//! the table, `check.csv`, `check.json`, and the route of every case that fails in `case-N/`.
+//! `slideroute check`: each load case against its guideline — the tables, `check.csv`,
+//! `check.json`, `report.html` (a page to hand in), and the route of every case that fails in
+//! `case-N/`.
 
 use super::{load, write_route_folder};
 use crate::cli::CheckArgs;
 use crate::exit::{CliError, bad_input, failed, out, outln};
 use crate::output::folder::Folder;
-use crate::output::{check_files, route_files};
+use crate::output::{check_files, check_report, route_files};
 use slideroute::Scene;
 use slideroute::check::{CaseResult, Guideline, check_cases};
 use std::path::PathBuf;
@@ -39,6 +40,19 @@ pub fn check(args: &CheckArgs) -> Result<(), CliError> {
     };
     written.push(
         route_files::write_json_with_manifest(&mut folder, "check.json", &json, &manifest)
+            .map_err(failed)?,
+    );
+    let page = check_report::report(
+        scene.name(),
+        scene.guideline(),
+        scene.monolith().map(|m| &m.section),
+        &results,
+        &toml::to_string(&manifest.scene).unwrap_or_default(),
+        &serde_json::to_string_pretty(&manifest).unwrap_or_default(),
+    );
+    written.push(
+        folder
+            .write_bytes("report.html", page.as_bytes())
             .map_err(failed)?,
     );
     folder.finish().map_err(failed)?;

@@ -3,6 +3,8 @@
 
 #[cfg(feature = "cli")]
 pub mod check_files;
+#[cfg(feature = "cli")]
+pub mod check_report;
 pub mod coeffs_report;
 #[cfg(feature = "cli")]
 pub mod compare_files;
