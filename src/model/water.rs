@@ -181,8 +181,9 @@ pub fn water_loads(section: &Section, levels: &Levels, g: f64) -> WaterLoads {
 }
 
 /// The uplift head along the base (m of water) as a polyline of (x from the heel, head), heel
-/// to toe, with the base cracked from the heel over `crack` (m; see [`water_loads_cracked`]),
-/// and the head at the line of drains (the linear head there without them, or past the crack).
+/// to toe, with the base cracked from the heel over `crack` (m; the rules of
+/// `water_loads_cracked`), and the head at the line of drains (the linear head there without
+/// them, or past the crack).
 pub fn uplift_heads(section: &Section, levels: &Levels, crack: f64) -> (Vec<[f64; 2]>, f64) {
     let b = section.base_length;
     let (h1, h2) = (levels.headwater, levels.tailwater);
