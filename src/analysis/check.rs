@@ -97,15 +97,12 @@ fn gravity_case(s: &Scene, category: Category) -> Option<GravityCase> {
     let water = loads.water?;
     Some(GravityCase {
         section: m.section,
-        cm: [m.props.cm_from_heel, m.props.cm_height],
-        weight_n: m.props.mass * loads.gravity,
         levels: water.levels,
         gravity: loads.gravity,
         kh: loads.kh,
         kv: loads.kv,
         friction: *friction,
         cohesion_pa: s.strengths().cohesion_pa,
-        crack: water.levels.crack,
         category,
     })
 }

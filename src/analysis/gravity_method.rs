@@ -6,19 +6,17 @@
 //! gravity dam and CADAM computes. Two-dimensional by design: the section's plane, the base
 //! level, the loads through the section (the route is the three-dimensional answer).
 
-use crate::model::{Category, Friction, Levels, Section, WaterLoads, water_loads_cracked};
+use crate::model::{
+    Category, Friction, Levels, MassProperties, Section, WaterLoads, water_loads_cracked,
+};
 
 /// What the gravity method needs of a case: the monolith, its water and coefficients, the
 /// base's strength.
 #[derive(Debug, Clone, Copy)]
 pub struct GravityCase {
-    /// The monolith's section.
+    /// The monolith's section (its weight and centre of mass follow from it).
     pub section: Section,
-    /// Its centre of mass from the heel along the base and above it (m).
-    pub cm: [f64; 2],
-    /// Its weight m g (N).
-    pub weight_n: f64,
-    /// The case's water levels and drains.
+    /// The case's water levels, drains, silt and ice, and whether the base may crack.
     pub levels: Levels,
     /// g (m/s²).
     pub gravity: f64,
@@ -31,8 +29,6 @@ pub struct GravityCase {
     pub friction: Friction,
     /// The base's cohesion c (Pa), on the part in compression.
     pub cohesion_pa: f64,
-    /// Whether the base may crack where it would be in tension.
-    pub crack: bool,
     /// The case's category (the resultant's limit).
     pub category: Category,
 }
@@ -95,12 +91,12 @@ fn tan_phi(friction: &Friction, sigma: f64) -> f64 {
 
 /// The loads resolved at a crack of length `t`: (N, T, U, the moment about the toe of every
 /// load, resisting positive, N·m).
-fn resolve(c: &GravityCase, t: f64) -> (f64, f64, f64, f64) {
+fn resolve(c: &GravityCase, props: &MassProperties, t: f64) -> (f64, f64, f64, f64) {
     let s = &c.section;
     let b = s.base_length;
     let wl: WaterLoads = water_loads_cracked(s, &c.levels, c.gravity, t);
-    let w = c.weight_n;
-    let (xw, yw) = (c.cm[0], c.cm[1]);
+    let w = props.mass * c.gravity;
+    let (xw, yw) = (props.cm_from_heel, props.cm_height);
     let normal = w * (1.0 - c.kv) + wl.tailwater_weight.force_n - wl.uplift.force_n;
     let shear =
         wl.headwater.force_n - wl.tailwater.force_n + wl.silt.force_n + wl.ice.force_n + c.kh * w;
@@ -124,8 +120,9 @@ fn resolve(c: &GravityCase, t: f64) -> (f64, f64, f64, f64) {
 /// that tips.
 pub fn gravity_method(c: &GravityCase) -> GravityVerdict {
     let (b, width) = (c.section.base_length, c.section.width);
+    let props = c.section.mass_properties();
     let at = |t: f64| {
-        let (n, shear, u, m) = resolve(c, t);
+        let (n, shear, u, m) = resolve(c, &props, t);
         (n, shear, u, if n > 0.0 { m / n } else { f64::NEG_INFINITY })
     };
     let (n0, _, _, a0) = at(0.0);
@@ -133,7 +130,7 @@ pub fn gravity_method(c: &GravityCase) -> GravityVerdict {
     let gap = |t: f64| 3.0 * at(t).3 - (b - t);
     let mut t = 0.0;
     let mut through = false;
-    if c.crack && n0 > 0.0 && a0 < b / 3.0 {
+    if c.levels.crack && n0 > 0.0 && a0 < b / 3.0 {
         const SCAN: usize = 1000;
         let mut lo = 0.0;
         let hi = (1..SCAN).map(|k| b * k as f64 / SCAN as f64).find(|&x| {
@@ -235,8 +232,6 @@ mod tests {
         };
         GravityCase {
             section,
-            cm: [b / 2.0, h / 2.0],
-            weight_n: 2400.0 * b * h * G,
             levels: Levels {
                 headwater: head,
                 tailwater: 0.0,
@@ -252,7 +247,6 @@ mod tests {
             kv: 0.0,
             friction: Friction::coulomb(0.7),
             cohesion_pa: 0.0,
-            crack,
             category,
         }
     }
@@ -302,6 +296,22 @@ mod tests {
         assert!((f2 - 2.0 * f1).abs() < 1e-12 && (f4 - 4.0 * f1).abs() < 1e-12);
         let p = 0.5 * GAMMA * 324.0;
         assert!((v(0.4, 1e5) - f1 - 1e5 * 15.0 / p).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_stress_dependent_criterion_takes_its_tan_phi_at_the_mean_stress_on_the_base() {
+        // Barton–Choubey: tan(JRC log10(JCS/σ) + φ_r) at σ = N/(L w), by hand.
+        let mut c = rect(15.0, 20.0, 18.0, false, Category::Usual);
+        c.friction = Friction::barton_choubey(10.0, 50e6, 30f64.to_radians(), 2.0);
+        let v = gravity_method(&c);
+        let sigma = v.normal_n / 15.0;
+        let want = (10.0 * (50e6 / sigma).log10() + 30.0).to_radians().tan();
+        assert!(
+            (v.tan_phi - want).abs() < 1e-12,
+            "{} against {want}",
+            v.tan_phi
+        );
+        assert!((v.sliding_fs.unwrap() - want * v.normal_n / v.shear_n).abs() < 1e-12);
     }
 
     #[test]
