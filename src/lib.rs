@@ -71,15 +71,16 @@ mod scene;
 pub use analysis::runner::{NOT_RUN, Outcome, RouteResult};
 pub use analysis::{run, run_observed};
 pub use geometry::{BodyPose, Displacement, Foundation, Frame, Ground, Plane, Pose, Site};
-pub use mechanics::static_friction::FactorOfSafety;
+pub use mechanics::static_friction::{FactorOfSafety, Limit};
 pub use model::{
     Base, Block, Contacts, DynamicsModel, FaceStrength, Friction, Initial, Integrator, Levels,
     Loads, MAX_INCREMENTS, MassProperties, Mode, ModelError, Monolith, Record, Resultant,
-    RunSettings, Section, Simulation, SimulationBuilder, Strengths, UnknownName, WaterLoads,
+    RockAnchor, RunSettings, STRAND_MODULUS_PA, Section, Simulation, SimulationBuilder, Strengths,
+    Tendon, UnknownName, WaterLoads,
 };
 pub use route::{
-    BaseReport, Carrying, Computed, Diagnostics, EnergyBalance, OVERTURN_DEG, PoseMethod, Reason,
-    Resting, Route, Row, Runner, Termination, pose_of_row, simulate,
+    AnchorBreak, BaseReport, Carrying, Computed, Diagnostics, EnergyBalance, OVERTURN_DEG,
+    PoseMethod, Reason, Resting, Route, Row, Runner, Termination, pose_of_row, simulate,
 };
 pub use scene::{LoadsUsed, Scene, SceneError, SceneErrorKind};
 
@@ -96,6 +97,7 @@ pub mod poses {
 
 /// Load cases checked against the sliding factor of safety their guideline requires.
 pub mod check {
+    pub use crate::analysis::anchor_design::{AnchorDesign, design_anchors};
     pub use crate::analysis::check::{CaseResult, check_cases, meets};
     pub use crate::analysis::gravity_method::{
         GravityCase, GravityVerdict, gravity_method, required_compression,

@@ -4,11 +4,17 @@
 //! case, so that a case that fails shows where the monolith would go
 //! (`derivations/11-dam-loads.md` §5, §9).
 
-use super::gravity_method::{GravityCase, GravityVerdict, gravity_method};
+use super::gravity_method::{BaseFace, GravityCase, GravityVerdict, gravity_method};
 use crate::mechanics::static_friction::FactorOfSafety;
+use crate::model::Friction;
+use crate::model::Mode;
 use crate::model::{Category, Guideline, LoadCase};
-use crate::route::{Computed, Runner};
+use crate::route::PoseMethod;
+use crate::route::faces_of;
+use crate::route::pose_finder::PoseFinder;
+use crate::route::{Computed, Route, Runner};
 use crate::scene::{LoadsUsed, Scene, SceneError};
+use nalgebra::Vector3;
 
 /// One load case checked.
 #[derive(Debug, Clone, serde::Serialize)]
@@ -54,24 +60,13 @@ pub fn check_cases(
     scene: &Scene,
     mut each: impl FnMut(&CaseResult),
 ) -> Result<Vec<CaseResult>, SceneError> {
-    let as_written;
-    let cases = if scene.cases().is_empty() {
-        as_written = [LoadCase {
-            name: "as written".to_string(),
-            category: Category::Usual,
-            required_fs: scene.guideline().required(Category::Usual),
-            keys: Vec::new(),
-        }];
-        &as_written[..]
-    } else {
-        scene.cases()
-    };
+    let cases = cases_of(scene);
     let mut out = Vec::with_capacity(cases.len());
-    for case in cases {
+    for case in cases.iter() {
         let s = scene.for_case(case)?;
         let run = Runner::new(&s.simulation()?).run();
         let fs = run.route.factor_of_safety;
-        let gravity = gravity_case(&s, case.category).map(|c| gravity_method(&c));
+        let gravity = gravity_case(&s, case.category, &run.route).map(|c| gravity_method(&c));
         let passes = match &gravity {
             Some(g) => verdict(g, case.required_fs, scene.guideline()),
             None => meets(fs, case.required_fs),
@@ -90,11 +85,37 @@ pub fn check_cases(
     Ok(out)
 }
 
-/// The gravity method's case of scene `s` (one load case's), where it has a monolith, its
-/// water and a friction criterion.
-fn gravity_case(s: &Scene, category: Category) -> Option<GravityCase> {
+/// The load cases of `scene`: its `[[case]]`s, or one usual case, the scene as written.
+pub(super) fn cases_of(scene: &Scene) -> std::borrow::Cow<'_, [LoadCase]> {
+    if scene.cases().is_empty() {
+        std::borrow::Cow::Owned(vec![LoadCase {
+            name: "as written".to_string(),
+            category: Category::Usual,
+            required_fs: scene.guideline().required(Category::Usual),
+            keys: Vec::new(),
+        }])
+    } else {
+        std::borrow::Cow::Borrowed(scene.cases())
+    }
+}
+
+/// The gravity method's case of the scene `s` (a case's), on a monolith with its water and a
+/// friction criterion: in the axes of its base where it starts — where `route` set it down on
+/// its base (`contacts = "base"`), else the three-point frame's start — on the faces under it.
+pub(super) fn gravity_case(s: &Scene, category: Category, route: &Route) -> Option<GravityCase> {
     let (m, loads, friction) = (s.monolith()?, s.loads()?, s.friction()?);
     let water = loads.water?;
+    let (axes, under) = match &route.base {
+        Some(b) => {
+            let r = b.resting.rotation;
+            let col = |k: usize| Vector3::new(r[0][k], r[1][k], r[2][k]);
+            let mut faces: Vec<u32> = b.resting.carrying.iter().map(|c| c.face).collect();
+            faces.sort_unstable();
+            faces.dedup();
+            ([col(0), col(1), col(2)], faces)
+        }
+        None => (start_axes(s), faces_of(s.site()).to_vec()),
+    };
     Some(GravityCase {
         section: m.section,
         levels: water.levels,
@@ -104,12 +125,60 @@ fn gravity_case(s: &Scene, category: Category) -> Option<GravityCase> {
         friction: *friction,
         cohesion_pa: s.strengths().cohesion_pa,
         category,
+        anchors: s.anchors().to_vec(),
+        faces: faces_under(s, friction, &axes, &under),
+        up: axes.map(|e| e.y),
+        downstream: axes.map(|e| e.x),
     })
+}
+
+/// The base's axes i′, j′, k′ at the start (the scene's axes, where the start has no pose).
+fn start_axes(s: &Scene) -> [Vector3<f64>; 3] {
+    match PoseFinder::new(s.site(), Mode::Exact, PoseMethod::Continuation).pose() {
+        Some(p) => [p.frame.i, p.frame.j, p.frame.k],
+        None => [Vector3::x(), Vector3::y(), Vector3::z()],
+    }
+}
+
+/// The faces `under` the monolith, each once, with its normal in the base's axes `axes` at
+/// the start and its own criterion or `friction`.
+fn faces_under(
+    s: &Scene,
+    friction: &Friction,
+    axes: &[Vector3<f64>; 3],
+    under: &[u32],
+) -> Vec<BaseFace> {
+    let site = s.site();
+    let mut faces: Vec<BaseFace> = Vec::new();
+    for &face in under.iter().take(3) {
+        if faces.iter().any(|f| f.face == face) {
+            continue;
+        }
+        let normal = match site.ground() {
+            Some((g, _)) => g.faces().get(face as usize).map(|p| p.normal()),
+            None => site.planes().get(face as usize).map(|p| p.normal()),
+        };
+        let Some(normal) = normal else {
+            continue;
+        };
+        let own = s
+            .strengths()
+            .faces
+            .iter()
+            .find(|f| f.faces.contains(&face))
+            .map_or(*friction, |f| f.friction);
+        faces.push(BaseFace {
+            face,
+            normal: axes.map(|e| e.dot(&normal)),
+            friction: own,
+        });
+    }
+    faces
 }
 
 /// Whether the gravity method's verdicts meet the case's requirement `required` and the
 /// guideline's allowable bearing stress.
-fn verdict(g: &GravityVerdict, required: f64, guideline: &Guideline) -> bool {
+pub(super) fn verdict(g: &GravityVerdict, required: f64, guideline: &Guideline) -> bool {
     let sliding = g.sliding_fs.is_none_or(|fs| fs >= required);
     let bearing = guideline
         .allowable_bearing_pa

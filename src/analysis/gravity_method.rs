@@ -6,13 +6,17 @@
 //! gravity dam and CADAM computes. Two-dimensional by design: the section's plane, the base
 //! level, the loads through the section (the route is the three-dimensional answer).
 
+use nalgebra::Vector3;
+use std::cmp::Ordering;
+
 use crate::model::{
-    Category, Friction, Levels, MassProperties, Section, WaterLoads, water_loads_cracked,
+    Category, Friction, Levels, MassProperties, RockAnchor, Section, WaterLoads,
+    water_loads_cracked,
 };
 
 /// What the gravity method needs of a case: the monolith, its water and coefficients, the
-/// base's strength.
-#[derive(Debug, Clone, Copy)]
+/// base's strength, its anchors.
+#[derive(Debug, Clone)]
 pub struct GravityCase {
     /// The monolith's section (its weight and centre of mass follow from it).
     pub section: Section,
@@ -31,6 +35,56 @@ pub struct GravityCase {
     pub cohesion_pa: f64,
     /// The case's category (the resultant's limit).
     pub category: Category,
+    /// Post-tensioned anchors, each at its prestress (`derivations/11-dam-loads.md` §10).
+    pub anchors: Vec<RockAnchor>,
+    /// The faces of the foundation under the monolith's contacts (at most three), each a plane
+    /// it could slide on; none is the level base alone, with `friction`.
+    pub faces: Vec<BaseFace>,
+    /// The scene's axes in the base's at the start: the upward vertical Y and the downstream
+    /// horizontal X, each as (x′, y′, z′). (0, 1, 0) and (1, 0, 0) for a level base; on a base
+    /// that slopes the weight and k_h W have parts along and across it.
+    pub up: [f64; 3],
+    /// X in the base's axes.
+    pub downstream: [f64; 3],
+}
+
+/// A face of the foundation under the monolith's contacts: its number, its upward unit normal
+/// in the axes of the monolith's base at the start (x′ downstream, y′ up, z′ across) and its
+/// friction criterion.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BaseFace {
+    /// The face's number (`Row::faces`).
+    pub face: u32,
+    /// Its upward unit normal.
+    pub normal: [f64; 3],
+    /// Its friction criterion.
+    pub friction: Friction,
+}
+
+/// Sliding on one face of a faceted base: the case's loads resolved on the face's plane, the
+/// whole base on it (`derivations/11-dam-loads.md` §9).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct FaceSliding {
+    /// The face's number.
+    pub face: u32,
+    /// Its dip (degrees) and dip direction (degrees, from x′ towards z′).
+    pub dip_deg: f64,
+    /// Its dip direction.
+    pub dip_direction_deg: f64,
+    /// The loads' part pressing on the face (N).
+    pub normal_n: f64,
+    /// Their part along it (N).
+    pub shear_n: f64,
+    /// tan φ of the face's criterion.
+    pub tan_phi: f64,
+    /// (N tan φ + c A)/T on the face, A the base's part in compression over the face; `None`
+    /// where nothing drives the block along it.
+    pub sliding_fs: Option<f64>,
+    /// Which way the loads push the block along the face: the trend of their part along it
+    /// (degrees, from x′ towards z′) and its plunge (degrees below the horizontal).
+    pub slide_trend_deg: f64,
+    /// The plunge.
+    pub slide_plunge_deg: f64,
 }
 
 /// The gravity method's verdicts on one case.
@@ -42,6 +96,9 @@ pub struct GravityVerdict {
     pub shear_n: f64,
     /// U: the uplift (N), with the crack's.
     pub uplift_n: f64,
+    /// The anchors' prestress, all of them (N; their parts along and across the base are in N
+    /// and T).
+    pub anchor_force_n: f64,
     /// (N tan φ + c L w)/T, L the base in compression; `None` where T ≤ 0 (nothing drives the
     /// block downstream), 0 where N ≤ 0 (it floats).
     pub sliding_fs: Option<f64>,
@@ -52,6 +109,9 @@ pub struct GravityVerdict {
     /// The part of the base in compression (%): 100 with the resultant in the middle third,
     /// 3 a / b below it (a its distance from the toe), 0 outside the base.
     pub base_in_compression_pct: f64,
+    /// Sliding on each face under the contacts (a faceted base), where the scene has them; the
+    /// least of theirs is `sliding_fs`.
+    pub faces: [Option<FaceSliding>; 3],
     /// What the case's category asks (%): usual 100, unusual 75, extreme a resultant within the
     /// base (any part in compression).
     pub required_compression_pct: f64,
@@ -97,16 +157,30 @@ fn resolve(c: &GravityCase, props: &MassProperties, t: f64) -> (f64, f64, f64, f
     let wl: WaterLoads = water_loads_cracked(s, &c.levels, c.gravity, t);
     let w = props.mass * c.gravity;
     let (xw, yw) = (props.cm_from_heel, props.cm_height);
-    let normal = w * (1.0 - c.kv) + wl.tailwater_weight.force_n - wl.uplift.force_n;
-    let shear =
-        wl.headwater.force_n - wl.tailwater.force_n + wl.silt.force_n + wl.ice.force_n + c.kh * w;
-    let moment = w * (1.0 - c.kv) * (b - xw) - c.kh * w * yw
+    // The weight less k_v W, down, and k_h W, downstream, at the centre of mass, in the base's
+    // axes: (F_x, F_y) in the section's plane.
+    let body = |k: usize| -w * (1.0 - c.kv) * c.up[k] + c.kh * w * c.downstream[k];
+    let (fx, fy) = (body(0), body(1));
+    let normal = -fy + wl.tailwater_weight.force_n - wl.uplift.force_n;
+    let shear = wl.headwater.force_n - wl.tailwater.force_n + wl.silt.force_n + wl.ice.force_n + fx;
+    let moment = (xw - b) * fy - yw * fx
         + wl.tailwater_weight.force_n * (b - wl.tailwater_weight.at_m)
         + wl.tailwater.force_n * wl.tailwater.at_m
         - wl.headwater.force_n * wl.headwater.at_m
         - wl.silt.force_n * wl.silt.at_m
         - wl.ice.force_n * wl.ice.at_m
         - wl.uplift.force_n * (b - wl.uplift.at_m);
+    // Each anchor pulls its prestress P along its tendon d from the head (x, y): P (−d_y) on
+    // N, P d_x on T, and (x − b) P d_y − y P d_x about the toe. Its part across the section
+    // (trend off the section's plane) is not the two-dimensional method's.
+    let (mut normal, mut shear, mut moment) = (normal, shear, moment);
+    for a in &c.anchors {
+        let d = a.direction() * a.prestress;
+        let [x, y, _] = a.head;
+        normal -= d.y;
+        shear += d.x;
+        moment += (x - b) * d.y - y * d.x;
+    }
     (normal, shear, wl.uplift.force_n, moment)
 }
 
@@ -187,20 +261,52 @@ pub fn gravity_method(c: &GravityCase) -> GravityVerdict {
     } else {
         0.0
     };
-    let tan_phi = tan_phi(&c.friction, sigma);
-    let sliding_fs = if shear <= 0.0 {
+    let mut tan_phi = tan_phi(&c.friction, sigma);
+    let mut sliding_fs = if shear <= 0.0 {
         None
     } else if floats {
         Some(0.0)
     } else {
         Some((n * tan_phi + c.cohesion_pa * compressed * width) / shear)
     };
+    // A faceted base: the loads on each face's plane, the least factor governing.
+    let lateral: f64 = c
+        .anchors
+        .iter()
+        .map(|a| a.prestress * a.direction().z)
+        .sum::<f64>()
+        + props.mass * c.gravity * (-(1.0 - c.kv) * c.up[2] + c.kh * c.downstream[2]);
+    let mut faces = [None; 3];
+    for (slot, f) in faces.iter_mut().zip(&c.faces) {
+        *slot = Some(on_face(
+            f,
+            [shear, -n, lateral],
+            compressed * width,
+            c.cohesion_pa,
+        ));
+    }
+    if !c.faces.is_empty() {
+        let least = faces
+            .iter()
+            .flatten()
+            .filter(|f| f.sliding_fs.is_some())
+            .min_by(|a, b| {
+                a.sliding_fs
+                    .partial_cmp(&b.sliding_fs)
+                    .unwrap_or(Ordering::Equal)
+            });
+        sliding_fs = least.and_then(|f| f.sliding_fs);
+        if let Some(f) = least {
+            tan_phi = f.tan_phi;
+        }
+    }
     let pct = 100.0 * compressed / b;
     let required = required_compression(c.category);
     GravityVerdict {
         normal_n: n,
         shear_n: shear,
         uplift_n: uplift,
+        anchor_force_n: c.anchors.iter().map(|a| a.prestress).sum(),
         sliding_fs,
         tan_phi,
         resultant_from_heel_m: (!floats).then_some(b - a),
@@ -211,6 +317,54 @@ pub fn gravity_method(c: &GravityCase) -> GravityVerdict {
         toe_pressure_pa: toe,
         crack_length_m: t,
         overturns,
+        faces,
+    }
+}
+
+/// The loads `r` (N: the resultant on the monolith other than its supports', in the base's
+/// axes) on face `f`'s plane, the whole base on it: N_f = −r·n, T_f = |r − (r·n) n|, the
+/// base's area in compression `area` (m²) over the face A = area / n_y, and
+/// FS = (N_f tan φ + c A)/T_f (`derivations/11-dam-loads.md` §9).
+fn on_face(f: &BaseFace, r: [f64; 3], area: f64, cohesion: f64) -> FaceSliding {
+    let n = Vector3::from(f.normal);
+    let r = Vector3::from(r);
+    let normal = -r.dot(&n);
+    let along = r + n * normal;
+    let shear = along.norm();
+    let face_area = area / n.y.max(f64::MIN_POSITIVE);
+    let tan_phi = tan_phi(
+        &f.friction,
+        if face_area > 0.0 {
+            normal / face_area
+        } else {
+            0.0
+        },
+    );
+    let sliding_fs = if shear <= 1e-12 * r.norm() {
+        None
+    } else if normal <= 0.0 {
+        Some(0.0)
+    } else {
+        Some((normal * tan_phi + cohesion * face_area) / shear)
+    };
+    FaceSliding {
+        face: f.face,
+        dip_deg: n.y.clamp(-1.0, 1.0).acos().to_degrees(),
+        dip_direction_deg: if n.x.hypot(n.z) > 1e-12 {
+            n.z.atan2(n.x).to_degrees()
+        } else {
+            0.0
+        },
+        normal_n: normal,
+        shear_n: shear,
+        tan_phi,
+        sliding_fs,
+        slide_trend_deg: along.z.atan2(along.x).to_degrees(),
+        slide_plunge_deg: if shear > 0.0 {
+            (-along.y / shear).clamp(-1.0, 1.0).asin().to_degrees()
+        } else {
+            0.0
+        },
     }
 }
 
@@ -248,7 +402,114 @@ mod tests {
             friction: Friction::coulomb(0.7),
             cohesion_pa: 0.0,
             category,
+            anchors: Vec::new(),
+            faces: Vec::new(),
+            up: [0.0, 1.0, 0.0],
+            downstream: [1.0, 0.0, 0.0],
         }
+    }
+
+    #[test]
+    fn on_a_face_dipping_downstream_the_loads_resolve_as_on_an_inclined_plane_by_hand() {
+        // The level base's N and T on a face dipping δ towards +x′ (upward normal
+        // (sin δ, cos δ, 0)): N_f = N cos δ − T sin δ, T_f = T cos δ + N sin δ, and the least
+        // factor governs.
+        let level = gravity_method(&rect(15.0, 20.0, 18.0, false, Category::Usual));
+        let delta = 10f64.to_radians();
+        let mut c = rect(15.0, 20.0, 18.0, false, Category::Usual);
+        let flat = BaseFace {
+            face: 0,
+            normal: [0.0, 1.0, 0.0],
+            friction: Friction::coulomb(0.7),
+        };
+        let dipping = BaseFace {
+            face: 3,
+            normal: [delta.sin(), delta.cos(), 0.0],
+            friction: Friction::coulomb(0.8),
+        };
+        c.faces = vec![flat, dipping];
+        let v = gravity_method(&c);
+        let (n, t) = (level.normal_n, level.shear_n);
+        let f0 = v.faces[0].unwrap();
+        assert!((f0.sliding_fs.unwrap() - level.sliding_fs.unwrap()).abs() < 1e-12);
+        let f1 = v.faces[1].unwrap();
+        let nf = n * delta.cos() - t * delta.sin();
+        let tf = t * delta.cos() + n * delta.sin();
+        assert!((f1.normal_n - nf).abs() < 1e-9 * n && (f1.shear_n - tf).abs() < 1e-9 * n);
+        let want = 0.8 * nf / tf;
+        assert!((f1.sliding_fs.unwrap() - want).abs() < 1e-12, "{f1:?}");
+        assert!((f1.dip_deg - 10.0).abs() < 1e-12 && f1.dip_direction_deg.abs() < 1e-12);
+        // The block would slide down the dip: trend 0°, plunging below δ.
+        assert!(f1.slide_trend_deg.abs() < 1e-9 && f1.slide_plunge_deg > 0.0);
+        let least = want.min(level.sliding_fs.unwrap());
+        assert!((v.sliding_fs.unwrap() - least).abs() < 1e-12);
+        assert!(v.faces[2].is_none());
+    }
+
+    #[test]
+    fn on_a_base_that_slopes_the_weight_has_parts_along_and_across_it_by_hand() {
+        // A base rising downstream by α (i′ = (cos α, sin α, 0), j′ = (−sin α, cos α, 0)): Y in
+        // its axes (sin α, cos α, 0), X (cos α, −sin α, 0). N = W cos α − U, T = P − W sin α,
+        // M_toe with the weight's parts at the CM.
+        let alpha = 8f64.to_radians();
+        let mut c = rect(15.0, 20.0, 18.0, false, Category::Usual);
+        c.up = [alpha.sin(), alpha.cos(), 0.0];
+        c.downstream = [alpha.cos(), -alpha.sin(), 0.0];
+        let v = gravity_method(&c);
+        let w = 2400.0 * 300.0 * G;
+        let p = 0.5 * GAMMA * 324.0;
+        let u = 0.5 * GAMMA * 18.0 * 15.0;
+        let (n, t) = (w * alpha.cos() - u, p - w * alpha.sin());
+        assert!((v.normal_n - n).abs() < 1e-9 * n && (v.shear_n - t).abs() < 1e-9 * n);
+        assert!((v.sliding_fs.unwrap() - 0.7 * n / t).abs() < 1e-12);
+        // About the toe: W cos α at 7.5 m, W sin α (upstream) at 10 m up resists.
+        let m = w * alpha.cos() * 7.5 + w * alpha.sin() * 10.0 - p * 6.0 - u * 10.0;
+        assert!((v.resultant_from_heel_m.unwrap() - (15.0 - m / n)).abs() < 1e-9);
+    }
+
+    #[test]
+    fn anchors_add_their_prestress_to_n_t_and_the_moment_about_the_toe_by_hand() {
+        // The rectangle b = 15, h = 20 under 18 m, with a vertical anchor of 2 MN at the heel's
+        // crest (x 1 m, y 20 m) and one of 1 MN from the base 2 m from the heel, plunging 60°
+        // upstream: P (cos 60°·(−1), −sin 60°).
+        let mut c = rect(15.0, 20.0, 18.0, false, Category::Usual);
+        let vertical = RockAnchor {
+            head: [1.0, 20.0, 0.0],
+            plunge: std::f64::consts::FRAC_PI_2,
+            trend: 0.0,
+            prestress: 2.0e6,
+            capacity: 3.0e6,
+            free_length: 30.0,
+            steel_area: 2.0e-3,
+            modulus: 1.95e11,
+        };
+        let inclined = RockAnchor {
+            head: [2.0, 0.0, 0.0],
+            plunge: 60f64.to_radians(),
+            trend: std::f64::consts::PI,
+            prestress: 1.0e6,
+            ..vertical
+        };
+        c.anchors = vec![vertical, inclined];
+        let v = gravity_method(&c);
+        let w = 2400.0 * 300.0 * G;
+        let p = 0.5 * GAMMA * 324.0;
+        let u = 0.5 * GAMMA * 18.0 * 15.0;
+        let s3 = 3f64.sqrt();
+        let n = w - u + 2.0e6 + 1.0e6 * s3 / 2.0;
+        let t = p - 1.0e6 * 0.5;
+        // About the toe: the vertical one's arm 14 m, the inclined one's line through (2, 0):
+        // (x − b) F_y − y F_x = (−13)(−√3/2 MN).
+        let m_toe = w * 7.5 - p * 6.0 - u * 10.0 + 2.0e6 * 14.0 + 13.0 * 1.0e6 * s3 / 2.0;
+        assert!(
+            (v.normal_n - n).abs() < 1e-9 * n,
+            "{} against {n}",
+            v.normal_n
+        );
+        assert!((v.shear_n - t).abs() < 1e-9 * t);
+        assert!((v.sliding_fs.unwrap() - 0.7 * n / t).abs() < 1e-12);
+        assert!((v.resultant_from_heel_m.unwrap() - (15.0 - m_toe / n)).abs() < 1e-9);
+        assert_eq!(v.anchor_force_n, 3.0e6);
     }
 
     #[test]

@@ -3,6 +3,7 @@
 //! (`probabilistic/`), a check of load cases against their guideline (`check.rs`), and the two
 //! dynamics side by side (`compare.rs`). The command line and Python call these alike.
 
+pub mod anchor_design;
 pub mod check;
 pub mod compare;
 pub mod gravity_method;

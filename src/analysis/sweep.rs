@@ -283,7 +283,19 @@ fn words_of(key: &str) -> Option<Vec<&'static str>> {
 /// The base scene's own value of `key` (`section.key`), if its file gives one.
 fn document_value<'a>(base: &'a Scene, key: &str) -> Option<&'a toml::Value> {
     let (section, name) = key.split_once('.')?;
-    base.document().get(section)?.as_table()?.get(name)
+    section_of(base.document(), section)?.get(name)
+}
+
+/// A section of the document: a table (`water`), or an item of a list of tables (`anchor[1]`,
+/// from 0).
+fn section_of<'a>(doc: &'a toml::Table, section: &str) -> Option<&'a toml::Table> {
+    match section.split_once('[') {
+        Some((list, rest)) => {
+            let k: usize = rest.strip_suffix(']')?.parse().ok()?;
+            doc.get(list)?.as_array()?.get(k)?.as_table()
+        }
+        None => doc.get(section)?.as_table(),
+    }
 }
 
 /// Whether `key` can take `values` (numbers, or words where `words`) in `base`: a key the base
@@ -292,12 +304,24 @@ pub fn check_key(base: &Scene, key: &str, words: bool, values: &[f64]) -> Result
     let table = base.document();
     let (section, name) = key.split_once('.').unwrap_or(("", ""));
     let empty = toml::Table::new();
-    let optional = OPTIONAL_KEYS.contains(&key);
-    let sec = table
-        .get(section)
-        .and_then(|t| t.as_table())
-        .or_else(|| optional.then_some(&empty))
+    // An item of a list of tables takes any of its list's keys (those it leaves out have
+    // defaults, or the scene's check names them).
+    let list = section.split_once('[').map(|(list, _)| list);
+    let optional = OPTIONAL_KEYS.contains(&key)
+        || list.is_some_and(|l| crate::scene::keys_of(l).contains(&name));
+    let sec = section_of(table, section)
+        .or_else(|| (OPTIONAL_KEYS.contains(&key)).then_some(&empty))
         .ok_or_else(|| {
+            if let Some(list) = list {
+                let count = table
+                    .get(list)
+                    .and_then(toml::Value::as_array)
+                    .map_or(0, Vec::len);
+                return KeyError::new(
+                    key,
+                    format!("the scene has {count} [[{list}]] (numbered from 0)"),
+                );
+            }
             let names: Vec<&str> = table
                 .iter()
                 .filter(|(_, v)| v.is_table())

@@ -1,7 +1,8 @@
 //! The loads in global coordinates at one pose (`derivations/11-dam-loads.md`).
 
+use super::ContactGeometry;
 use crate::geometry::LocalFrame;
-use crate::model::{Block, Loads};
+use crate::model::{Block, Loads, Simulation, Tendon};
 use nalgebra::Vector3;
 
 /// The loads on the block at one pose (N, N·m; moments about the base point under the CM, the
@@ -50,6 +51,35 @@ impl Applied {
             held_force: frame.j * loads.held_normal + vertical,
             held_moment: frame.k * loads.held_pitch + arm.cross(&(vertical + weight)),
         }
+    }
+
+    /// The loads of `sim` on its block at the contacts `geom`, the foundation accelerating at
+    /// `ground` (g): [`Applied::shaken`] and the anchors' tendons' pull at the pose.
+    pub fn of(sim: &Simulation, geom: &ContactGeometry, ground: [f64; 3]) -> Self {
+        Applied::shaken(sim.loads(), sim.block(), &geom.frame, ground).with_tendons(
+            sim.tendons(),
+            &geom.frame,
+            &geom.origin,
+        )
+    }
+
+    /// The same loads with the pull of `tendons` where the block's frame is `frame` and its
+    /// base point under the centre of mass (the moments' point) at `origin`: held loads, not
+    /// scaled by a factor of safety (`derivations/11-dam-loads.md` §10).
+    pub fn with_tendons(
+        self,
+        tendons: &[Tendon],
+        frame: &LocalFrame,
+        origin: &Vector3<f64>,
+    ) -> Applied {
+        tendons.iter().fold(self, |a, t| {
+            let (arm, force) = t.pull(origin, frame);
+            Applied {
+                held_force: a.held_force + force,
+                held_moment: a.held_moment + arm.cross(&force),
+                ..a
+            }
+        })
     }
 
     /// The same loads with their moments about the point `offset` from the frame's origin

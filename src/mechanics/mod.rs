@@ -31,6 +31,9 @@ pub struct ContactGeometry {
     /// it) to the point the arms `r` are from: zero, or the centre of mass itself
     /// ([`ContactGeometry::centred`]).
     pub cm_offset: Vector3<f64>,
+    /// Where the frame's origin is (global): the pose's base point under the centre of mass,
+    /// from which an anchor's head is placed.
+    pub origin: Vector3<f64>,
 }
 
 impl ContactGeometry {
@@ -42,6 +45,7 @@ impl ContactGeometry {
             r: pose.vertices.map(|v| v - pose.cm),
             n: *normals,
             cm_offset: Vector3::zeros(),
+            origin: pose.cm,
         }
     }
 

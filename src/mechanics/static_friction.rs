@@ -137,6 +137,44 @@ impl HoldingRange {
     pub fn holds(&self) -> bool {
         self.lowest <= 1.0 && 1.0 <= self.factor_of_safety
     }
+
+    /// What limits the load multiple t_hi, where it is finite: a contact that unloads there
+    /// (its normal force under 1e-6 of theirs all: the loads' multiple tips the block onto the
+    /// other two) or none (every contact presses and friction gives: it slides). The cone
+    /// program's interior-point solution lies inside the set of optimal states, so a normal
+    /// force is zero there only where every state at t_hi has it zero.
+    pub fn limit(&self) -> Option<Limit> {
+        if !self.factor_of_safety.is_finite() || self.normal.iter().any(|n| !n.is_finite()) {
+            return None;
+        }
+        let total: f64 = self.normal.iter().map(|n| n.abs()).sum();
+        let least = self.normal.iter().copied().fold(f64::INFINITY, f64::min);
+        Some(if least <= 1e-6 * total {
+            Limit::Tips
+        } else {
+            Limit::Slides
+        })
+    }
+}
+
+/// What limits the load multiple (`HoldingRange::limit`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Limit {
+    /// Every contact presses at the limit: friction gives, the block slides.
+    Slides,
+    /// A contact unloads at the limit: the block tips onto the other two.
+    Tips,
+}
+
+impl Limit {
+    /// In words: "slides" or "tips".
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Limit::Slides => "slides",
+            Limit::Tips => "tips",
+        }
+    }
 }
 
 const N_VAR: usize = 10;

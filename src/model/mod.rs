@@ -5,6 +5,7 @@
 //! (the errors name each value as a scene file does), and put together in a [`Simulation`].
 //! No file format lives here: the scene reader (`scene/`) builds these from a scene file.
 
+mod anchor;
 mod base;
 mod block;
 mod error;
@@ -20,6 +21,7 @@ mod settings;
 mod simulation;
 mod water;
 
+pub use anchor::{RockAnchor, STRAND_MODULUS_PA, Tendon};
 pub use base::{Base, triangle_quadrature};
 pub use block::Block;
 pub use error::ModelError;
@@ -35,6 +37,6 @@ pub use record::Record;
 pub(crate) use record::bracket;
 pub use settings::{Contacts, DynamicsModel, Integrator, MAX_INCREMENTS, Mode, RunSettings};
 pub use simulation::{Simulation, SimulationBuilder};
-pub(crate) use simulation::{check_ratios, check_rigid_only, face_count};
+pub(crate) use simulation::{check_anchored, check_ratios, check_rigid_only, face_count};
 pub(crate) use water::water_loads_cracked;
 pub use water::{Ice, Levels, Resultant, Silt, WaterLoads, uplift_heads};

@@ -1,14 +1,16 @@
 //! A simulation: the physical model and how it is run, checked once when it is built.
 
+use super::anchor::{RockAnchor, Tendon};
 use super::base::Base;
 use super::block::Block;
 use super::error::ModelError;
 use super::friction::{Friction, Strength, Strengths};
 use super::initial::Initial;
 use super::loads::Loads;
+use super::monolith::Monolith;
 use super::record::Record;
 use super::settings::{Contacts, DynamicsModel, RunSettings};
-use crate::geometry::Site;
+use crate::geometry::{LocalFrame, Site};
 use nalgebra::Vector3;
 use std::sync::Arc;
 
@@ -34,6 +36,8 @@ pub struct Simulation {
     base: Option<Base>,
     /// The upward unit normals of the planes under contacts 0, 1, 2, computed once.
     normals: [Vector3<f64>; 3],
+    /// `[[anchor]]`: post-tensioned anchors through a monolith into the rock.
+    tendons: Vec<Tendon>,
 }
 
 /// The parts of a [`Simulation`], set one by one and checked together by
@@ -67,6 +71,9 @@ pub struct SimulationBuilder {
     record: Option<Arc<Record>>,
     both_polarities: bool,
     base: Option<Base>,
+    tendons: Vec<Tendon>,
+    /// The first anchor that is not on the monolith, found when the anchors were given.
+    anchor_fault: Option<ModelError>,
 }
 
 impl Simulation {
@@ -84,6 +91,8 @@ impl Simulation {
             record: None,
             both_polarities: false,
             base: None,
+            tendons: Vec::new(),
+            anchor_fault: None,
         }
     }
 
@@ -187,6 +196,37 @@ impl Simulation {
     pub fn l(&self) -> f64 {
         self.site.l()
     }
+
+    /// The anchors' tendons, as the route has them (fixed in the rock, broken) or, before, as
+    /// given.
+    pub fn tendons(&self) -> &[Tendon] {
+        &self.tendons
+    }
+
+    /// The same simulation with every tendon fixed in the rock where the block is at
+    /// (`origin`, `frame`): the route's start.
+    pub fn tendons_fixed_at(&self, origin: &Vector3<f64>, frame: &LocalFrame) -> Simulation {
+        Simulation {
+            tendons: self
+                .tendons
+                .iter()
+                .map(|t| t.fixed_at(origin, frame))
+                .collect(),
+            ..self.clone()
+        }
+    }
+
+    /// The same simulation with tendon `k` broken.
+    pub fn tendon_broken(&self, k: usize) -> Simulation {
+        let mut tendons = self.tendons.clone();
+        if let Some(t) = tendons.get_mut(k) {
+            t.broken = true;
+        }
+        Simulation {
+            tendons,
+            ..self.clone()
+        }
+    }
 }
 
 impl SimulationBuilder {
@@ -252,6 +292,18 @@ impl SimulationBuilder {
         self
     }
 
+    /// Post-tensioned anchors through `monolith` into the rock (`[[anchor]]`; only the
+    /// rigid body's dynamics on three contacts follows them), each checked against its
+    /// section when built.
+    pub fn anchors(mut self, monolith: &Monolith, anchors: &[RockAnchor]) -> Self {
+        self.anchor_fault = anchors
+            .iter()
+            .enumerate()
+            .find_map(|(k, a)| a.check(k, &monolith.section).err());
+        self.tendons = anchors.iter().map(|a| Tendon::on(monolith, *a)).collect();
+        self
+    }
+
     /// The simulation, or the first fault: a part missing, a value out of its range, or parts
     /// that do not go together.
     pub fn build(self) -> Result<Simulation, ModelError> {
@@ -282,6 +334,10 @@ impl SimulationBuilder {
             self.record.is_some(),
             self.strengths.has_cohesion(),
         )?;
+        if let Some(e) = self.anchor_fault {
+            return Err(e);
+        }
+        check_anchored(&settings, !self.tendons.is_empty())?;
         let base = match settings.contacts {
             Contacts::Frame => None,
             Contacts::Base => {
@@ -305,8 +361,26 @@ impl SimulationBuilder {
             initial: self.initial,
             both_polarities: self.both_polarities && self.record.is_some(),
             record: self.record,
+            tendons: self.tendons,
         })
     }
+}
+
+/// Anchors are followed by the rigid body, on its three contacts or its base (the tendon's
+/// pull is a load on the body at its pose, `derivations/11-dam-loads.md` §10); the paper's
+/// dynamics takes none.
+pub(crate) fn check_anchored(settings: &RunSettings, anchored: bool) -> Result<(), ModelError> {
+    if anchored
+        && settings.dynamics != DynamicsModel::RigidBody
+        && settings.contacts == Contacts::Frame
+    {
+        return Err(ModelError::new(
+            "anchor",
+            "anchors are followed by the rigid body's dynamics: they need solver.dynamics = \
+             \"rigid-body\"",
+        ));
+    }
+    Ok(())
 }
 
 /// What a base's contacts take for now: Coulomb friction on every face, no cohesion (a

@@ -53,11 +53,23 @@ pub struct Ice {
 }
 
 impl Levels {
-    /// Levels on `section`: none negative, the tailwater at most the headwater (the water
-    /// pushes the monolith downstream) and the monolith's height, a positive density, drains'
-    /// efficiency from 0 to 1 and their line within the base.
+    /// Levels on `section`: none negative, the headwater at most the crest (the loads of water
+    /// over the crest are not the guideline's: an overtopped monolith needs the nappe's), the
+    /// tailwater at most the headwater (the water pushes the monolith downstream), a positive
+    /// density, drains' efficiency from 0 to 1 and their line within the base.
     pub fn check(&self, section: &Section) -> Result<(), ModelError> {
         let headwater = non_negative("water.headwater_m", self.headwater)?;
+        if headwater > section.height {
+            return Err(ModelError::new(
+                "water.headwater_m",
+                format!(
+                    "must be at most the crest, the monolith's height ({} m), got {headwater} m \
+                     (water over the crest pushes and lifts as a nappe, which the guideline's \
+                     loads are not)",
+                    section.height
+                ),
+            ));
+        }
         let tailwater = non_negative("water.tailwater_m", self.tailwater)?;
         if tailwater > headwater {
             return Err(ModelError::new(

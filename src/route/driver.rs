@@ -41,20 +41,20 @@ pub(super) fn drive<'a, 's, M: Dynamics<'a>>(
     let mut o = increments_of::<M>(sim, finder, progress, log);
     if o.fs.is_none() {
         // One factor of safety whatever the dynamics: the friction cones' at the start.
-        o.fs = start_pose.and_then(|pose| {
+        let check = start_pose.and_then(|pose| {
             let geom = ContactGeometry::new(sim.normals(), &pose);
-            let applied = Applied::new(sim.loads(), sim.block(), &geom.frame);
+            let applied = Applied::of(sim, &geom, [0.0; 3]);
             let strength = sim.strength(faces_of(sim.site()), true);
-            static_friction::at_rest(&geom, &applied, &strength)
-                .ok()
-                .map(|c| c.factor_of_safety())
+            static_friction::at_rest(&geom, &applied, &strength).ok()
         });
+        o.fs = check.as_ref().map(|c| c.factor_of_safety());
+        o.fs_limit = check.and_then(|c| c.limit());
     }
     if sim.record().is_some() && sim.settings().contacts == Contacts::Frame {
         // What a Newmark user reports first: the yield acceleration at the start.
         o.yield_acceleration = start_pose.and_then(|pose| {
             let geom = ContactGeometry::new(sim.normals(), &pose);
-            let applied = Applied::new(sim.loads(), sim.block(), &geom.frame);
+            let applied = Applied::of(sim, &geom, [0.0; 3]);
             let strength = sim.strength(faces_of(sim.site()), true);
             let statics = frictionless_normals(&geom, &applied).unwrap_or([1.0; 3]);
             let weight = sim.block().mass * sim.loads().gravity;

@@ -38,6 +38,8 @@ pub(super) struct Logbook<'s> {
     pub termination: Termination,
     /// The factor of safety at the start (the friction cones' definition).
     pub fs: Option<FactorOfSafety>,
+    /// What limits it: sliding or tipping.
+    pub fs_limit: Option<crate::mechanics::static_friction::Limit>,
     /// The paper's resisting-over-driving ratio at the start (paper's dynamics).
     pub paper_ratio: Option<f64>,
     /// With a ground-motion record on the three-point frame, the yield acceleration at the
@@ -51,6 +53,8 @@ pub(super) struct Logbook<'s> {
     pub energy: Option<EnergyBalance>,
     /// A block on its base: where it rested, what carried it, how deep its base went.
     pub base: Option<super::body::report::BaseReport>,
+    /// The anchors' tendons broken so far.
+    pub anchors_broken: Vec<super::AnchorBreak>,
 }
 
 impl<'s> Logbook<'s> {
@@ -77,6 +81,8 @@ impl<'s> Logbook<'s> {
             switches: 0,
             energy: None,
             base: None,
+            anchors_broken: Vec::new(),
+            fs_limit: None,
         }
     }
 

@@ -19,7 +19,7 @@ pub mod termination;
 pub use body::{BaseReport, Carrying, OVERTURN_DEG, Resting, pose_of_row};
 pub use logbook::EnergyBalance;
 pub use pose_finder::PoseMethod;
-pub use row::Row;
+pub use row::{Row, faces_of};
 pub use simulate::{Runner, simulate};
 pub use termination::{Reason, Termination};
 
@@ -53,6 +53,10 @@ pub struct Route {
     /// program failed.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub factor_of_safety: Option<FactorOfSafety>,
+    /// What limits the factor of safety where it is a number: the loads' multiple makes the
+    /// block slide, or tips it onto two contacts.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub factor_of_safety_limit: Option<crate::mechanics::static_friction::Limit>,
     /// The paper's dynamics only: its resisting capacity over driving force along x' at the start
     /// (`mechanics::onset`), a different quantity (absent where nothing drives the block along x').
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -92,6 +96,18 @@ pub struct Route {
     /// it, and the deepest its base went into the ground.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub base: Option<BaseReport>,
+    /// The anchors' tendons that broke at their capacity, in the order they broke.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub anchors_broken: Vec<AnchorBreak>,
+}
+
+/// An anchor's tendon broken at its capacity: which (`[[anchor]]`'s order, from 0) and when.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct AnchorBreak {
+    /// The anchor, from 0.
+    pub anchor: usize,
+    /// When (s).
+    pub t_s: f64,
 }
 
 /// The permanent displacements (X, Z, m) of a record run as it is and reversed

@@ -180,6 +180,7 @@ impl<'a> Runner<'a> {
             rows: o.take_rows(),
             termination: o.termination,
             factor_of_safety: o.fs,
+            factor_of_safety_limit: o.fs_limit,
             paper_ratio: o.paper_ratio,
             travel_m: o.travel,
             increments: o.increments,
@@ -191,6 +192,7 @@ impl<'a> Runner<'a> {
             yield_acceleration: o.yield_acceleration,
             polarities: None,
             base: o.base.take(),
+            anchors_broken: std::mem::take(&mut o.anchors_broken),
         };
         Computed {
             route,

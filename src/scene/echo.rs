@@ -74,6 +74,29 @@ impl Scene {
         let f = Value::Float;
         if let Some(m) = self.source.get("monolith") {
             t.insert("monolith".into(), m.clone());
+            if !self.anchors.is_empty() {
+                // As the file wrote each (its degrees as written), with the defaults it left out.
+                let given = self.source.get("anchor").and_then(Value::as_array);
+                let f = Value::Float;
+                let anchors = self.anchors.iter().enumerate().map(|(k, a)| {
+                    let mut one = given
+                        .and_then(|g| g.get(k))
+                        .and_then(Value::as_table)
+                        .cloned()
+                        .unwrap_or_default();
+                    for (key, v) in [
+                        ("y_m", f(a.head[1])),
+                        ("z_m", f(a.head[2])),
+                        ("plunge_deg", f(a.plunge.to_degrees())),
+                        ("trend_deg", f(a.trend.to_degrees())),
+                        ("modulus_pa", f(a.modulus)),
+                    ] {
+                        one.entry(key).or_insert(v);
+                    }
+                    Value::Table(one)
+                });
+                t.insert("anchor".into(), Value::Array(anchors.collect()));
+            }
         } else if let Some(b) = &self.block {
             t.insert(
                 "block".into(),

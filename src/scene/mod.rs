@@ -17,6 +17,7 @@ mod validate;
 
 pub use echo::LoadsUsed;
 pub use error::{SceneError, SceneErrorKind};
+pub(crate) use raw::keys_of;
 
 use crate::geometry::Site;
 use crate::model::{
@@ -65,6 +66,8 @@ pub struct Scene {
     pub(crate) base: Option<crate::model::Base>,
     /// `[monolith]`: the section the block's mass and the water's loads come from.
     pub(crate) monolith: Option<crate::model::Monolith>,
+    /// `[[anchor]]`: post-tensioned anchors through the monolith.
+    pub(crate) anchors: Vec<crate::model::RockAnchor>,
 }
 
 /// Two scenes are equal when their values are (the documents may differ in how they wrote
@@ -98,6 +101,7 @@ impl PartialEq for Scene {
             &other.uncertain,
             &other.base,
         ) && self.monolith == other.monolith
+            && self.anchors == other.anchors
     }
 }
 
@@ -179,20 +183,37 @@ impl Scene {
                 Some((section, name)) => (Some(section), name),
                 None => (None, key),
             };
-            let table = match section {
-                None => &mut doc,
-                Some(section) => doc
+            // A list item's section, `anchor[1]`: the item of that list the file gave.
+            let item = section.and_then(|s| {
+                let (list, rest) = s.split_once('[')?;
+                Some((list, rest.strip_suffix(']')?.parse::<usize>().ok()?))
+            });
+            let not_table = |section: &str, what: &str| {
+                SceneError::of(
+                    SceneErrorKind::WrongType,
+                    &self.origin,
+                    section,
+                    what.to_string(),
+                )
+            };
+            let table = match (section, item) {
+                (None, _) => &mut doc,
+                (Some(section), Some((list, k))) => doc
+                    .get_mut(list)
+                    .and_then(toml::Value::as_array_mut)
+                    .and_then(|a| a.get_mut(k))
+                    .and_then(toml::Value::as_table_mut)
+                    .ok_or_else(|| {
+                        not_table(
+                            section,
+                            &format!("the scene has no [[{list}]] number {k} (from 0) to change"),
+                        )
+                    })?,
+                (Some(section), None) => doc
                     .entry(section)
                     .or_insert_with(|| toml::Value::Table(toml::Table::new()))
                     .as_table_mut()
-                    .ok_or_else(|| {
-                        SceneError::of(
-                            SceneErrorKind::WrongType,
-                            &self.origin,
-                            section,
-                            "is not a table of keys",
-                        )
-                    })?,
+                    .ok_or_else(|| not_table(section, "is not a table of keys"))?,
             };
             table.insert(name.to_string(), value.into());
         }
@@ -272,7 +293,14 @@ impl Scene {
     /// The same scene with load case `case`'s levels and coefficients set (its origin names
     /// the case).
     pub fn for_case(&self, case: &LoadCase) -> Result<Scene, SceneError> {
-        let mut s = self.with_keys(case.keys.iter().map(|(k, v)| (k.as_str(), *v)))?;
+        let mut s = self
+            .with_keys(case.keys.iter().map(|(k, v)| (k.as_str(), *v)))
+            .map_err(|mut e| {
+                if case.keys.iter().any(|(k, _)| *k == e.key) {
+                    e.reason = format!("in case \"{}\": {}", case.name, e.reason);
+                }
+                e
+            })?;
         s.name = format!("{}: {}", self.name, case.name);
         Ok(s)
     }
@@ -290,6 +318,11 @@ impl Scene {
     /// `[monolith]`, when given.
     pub fn monolith(&self) -> Option<&crate::model::Monolith> {
         self.monolith.as_ref()
+    }
+
+    /// `[[anchor]]`: the anchors through the monolith, as given.
+    pub fn anchors(&self) -> &[crate::model::RockAnchor] {
+        &self.anchors
     }
 
     /// `[block]`, or the monolith's mass properties.

@@ -26,6 +26,7 @@ pub struct RawScene {
     pub check: Option<RawCheck>,
     pub base: Option<RawBase>,
     pub case: Option<Vec<RawCase>>,
+    pub anchor: Option<Vec<RawAnchor>>,
     /// `[uncertain]`: `"section.key" = "name:p1:p2…"`, the distributions of a probabilistic
     /// analysis.
     pub uncertain: Option<std::collections::BTreeMap<String, String>>,
@@ -95,6 +96,23 @@ pub struct RawSilt {
 pub struct RawIce {
     pub force_n_m: Option<f64>,
     pub elevation_m: Option<f64>,
+}
+
+/// One `[[anchor]]`: a post-tensioned anchor through the monolith into the rock (needs
+/// `[monolith]`).
+#[derive(Debug, Default, Deserialize)]
+#[serde(expecting = "a table [[anchor]]")]
+pub struct RawAnchor {
+    pub x_m: Option<f64>,
+    pub y_m: Option<f64>,
+    pub z_m: Option<f64>,
+    pub plunge_deg: Option<f64>,
+    pub trend_deg: Option<f64>,
+    pub prestress_n: Option<f64>,
+    pub capacity_n: Option<f64>,
+    pub free_length_m: Option<f64>,
+    pub steel_area_m2: Option<f64>,
+    pub modulus_pa: Option<f64>,
 }
 
 /// `[seismic]`: pseudo-static coefficients, and a ground-motion record.
@@ -317,6 +335,7 @@ pub fn keys_of(section: &str) -> &'static [&'static str] {
         "check" => fields::<RawCheck>(),
         "base" => fields::<RawBase>(),
         "case" => fields::<RawCase>(),
+        "anchor" => fields::<RawAnchor>(),
         "foundation.plane" => fields::<RawPlane>(),
         "friction.face" => fields::<RawFaceFriction>(),
         _ => &[],

@@ -40,6 +40,9 @@ impl Scene {
         if let Some(base) = &self.base {
             builder = builder.base(base.clone());
         }
+        if let (Some(m), false) = (&self.monolith, self.anchors.is_empty()) {
+            builder = builder.anchors(m, &self.anchors);
+        }
         builder
             .build()
             .map_err(|e| SceneError::new(&self.origin, e.key, e.reason))

@@ -1402,9 +1402,9 @@ fn check_prints_the_load_case_table_and_routes_the_case_that_fails() {
     for needle in [
         "EM 1110-2-2100, normal structure, ordinary site information",
         "normal pool",
-        "1.622      1.50          1.582    pass",
-        "1.30          1.349    pass",
-        "1.10          0.776    FAIL",
+        "1.622      1.50   1.582 slides    pass",
+        "1.30   1.349 slides    pass",
+        "1.10   0.776 slides    FAIL",
         "earthquake at normal pool fails: sliding",
         "earthquake at normal pool slides",
         "resultant from heel m",
@@ -1912,4 +1912,91 @@ fn set_changes_a_scene_key_without_editing_the_file_and_names_what_is_wrong() {
     let summary = std::fs::read_to_string(out.join("summary.json")).unwrap();
     assert!(summary.contains("\"paper\""), "{summary}");
     let _ = std::fs::remove_dir_all(&out);
+}
+
+#[test]
+fn check_design_anchors_prints_each_cases_prestress_and_writes_it_into_check_json() {
+    let dir = std::env::temp_dir().join(format!("slideroute-design-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let bare = dir.join("bare.toml");
+    std::fs::write(&bare, slideroute::Scene::DAM_TOML).unwrap();
+    let out = dir.join("out");
+    let args = |scene: &std::path::Path| {
+        run(&[
+            "check",
+            "--scene",
+            scene.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--no-plots",
+            "--design-anchors",
+        ])
+    };
+    // Without an anchor: one line naming the key, exit 2.
+    assert_bad_input(
+        &args(&bare),
+        &["anchor: designing anchors needs at least one"],
+    );
+    let anchored = dir.join("anchored.toml");
+    std::fs::write(
+        &anchored,
+        format!(
+            "{}\n[[anchor]]\nx_m = 2.0\ny_m = 15.0\nprestress_n = 1.0e6\ncapacity_n = 2.0e7\n\
+             free_length_m = 30.0\nsteel_area_m2 = 4.0e-3\n",
+            slideroute::Scene::DAM_TOML
+        ),
+    )
+    .unwrap();
+    let o = args(&anchored);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(text.contains("for sliding MN"), "{text}");
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("check.json")).unwrap()).unwrap();
+    let design = json["anchor_design"].as_array().unwrap();
+    assert_eq!(design.len(), json["cases"].as_array().unwrap().len());
+    // The earthquake fails without anchors and needs some; the usual case none.
+    assert_eq!(design[0]["for_sliding_n"].as_f64(), Some(0.0));
+    let quake = design[3]["for_sliding_n"].as_f64().unwrap();
+    assert!(quake > 1.0e6, "{quake}");
+    assert_eq!(json["cases"][0]["anchor_force_n"].as_f64(), Some(1.0e6));
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_reservoir_above_the_crest_is_refused_naming_the_key_and_the_case() {
+    let dir = std::env::temp_dir().join(format!("slideroute-crest-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = dir.join("dam.toml");
+    let text = slideroute::Scene::DAM_TOML.replacen("headwater_m = 15.0", "headwater_m = 15.5", 1);
+    std::fs::write(&scene, text).unwrap();
+    let out = dir.join("out");
+    let o = run(&[
+        "check",
+        "--scene",
+        scene.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_bad_input(
+        &o,
+        &[
+            "water.headwater_m",
+            "in case \"flood to the crest\"",
+            "at most the crest",
+        ],
+    );
+    let o = run(&[
+        "run",
+        "--scene",
+        scene.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--set",
+        "water.headwater_m=15.01",
+    ]);
+    assert_bad_input(&o, &["water.headwater_m", "at most the crest"]);
+    let _ = std::fs::remove_dir_all(&dir);
 }

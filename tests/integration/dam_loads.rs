@@ -648,3 +648,81 @@ fn silt_and_ice_push_on_the_upstream_face_as_computed_by_hand() {
         "silt.depth_m"
     );
 }
+
+#[test]
+fn the_load_multiple_says_the_block_slides_under_low_friction_and_tips_under_high_with_its_closed_forms()
+ {
+    // On a level base, no tailwater, drains or couple: sliding gives μ (W − U)/H; tipping about
+    // the line of contacts 1 and 2 (x' = +4 m, 11 m from the heel) gives
+    // t = (W·4 − U (11 − b/3)) / (H·H1/3), U triangular from the heel.
+    let gamma = 1000.0 * 9.81;
+    let (b, w, h1) = (20.0, 10.0, 14.0);
+    let h = 0.5 * gamma * h1 * h1 * w;
+    let u = 0.5 * gamma * h1 * b * w;
+    let tips = (W * 4.0 - u * (11.0 - b / 3.0)) / (h * h1 / 3.0);
+    for (mu, want, limit) in [
+        (0.45, 0.45 * (W - u) / h, slideroute::Limit::Slides),
+        (1.2, tips, slideroute::Limit::Tips),
+    ] {
+        let text = edit(
+            &monolith(),
+            &[
+                ("eccentricity_m = 1.0 ", "eccentricity_m = 0.0 "),
+                ("tailwater_m = 2.0 ", "tailwater_m = 0.0 "),
+                ("drain_efficiency = 0.5 ", "drain_efficiency = 0.0 "),
+                ("mu_k = 0.45", &format!("mu_k = {mu}")),
+            ],
+        );
+        let s = Scene::from_toml(&text, "dam")
+            .unwrap()
+            .with("solver.t_end_s", 0.01)
+            .unwrap();
+        let r = slideroute::run(&s).unwrap();
+        let got = r.factor_of_safety.and_then(|f| f.value()).unwrap();
+        assert!(
+            (got - want).abs() < 1e-6 * want,
+            "μ {mu}: {got} against {want}"
+        );
+        assert_eq!(r.factor_of_safety_limit, Some(limit), "μ {mu}");
+    }
+}
+
+#[test]
+fn on_a_base_sloping_up_downstream_the_sliding_factor_is_mu_w_cos_minus_u_over_h_minus_w_sin() {
+    // One joint dipping α upstream: the monolith's base rises downstream by α. The water pushes
+    // along the base (the section stands on it); the weight presses W cos α and resists
+    // W sin α: FS = μ (W cos α − U)/(H − W sin α), uncracked, no tailwater or drains.
+    let gamma = 1000.0 * 9.81;
+    let (b, w, mu, h1) = (20.0, 10.0, 0.45, 14.0);
+    for alpha_deg in [0.0f64, 5.0, 8.0] {
+        let text = edit(
+            &monolith(),
+            &[
+                ("tailwater_m = 2.0 ", "tailwater_m = 0.0 "),
+                ("drain_efficiency = 0.5 ", "drain_efficiency = 0.0 "),
+                (
+                    "dip_deg = 0.0\ndip_direction_deg = 0.0",
+                    &format!("dip_deg = {alpha_deg}\ndip_direction_deg = 180.0"),
+                ),
+            ],
+        ) + "\n";
+        let text = text.replace("[water]\n", "[water]\ncrack = false\n");
+        // The scene as written, without its load cases.
+        let text = &text[..text.find("[[case]]").unwrap()];
+        let s = Scene::from_toml(text, "sloping").unwrap();
+        let results = slideroute::check::check_cases(&s, |_| ()).unwrap();
+        let g = results[0].gravity.unwrap();
+        let a = alpha_deg.to_radians();
+        let h = 0.5 * gamma * h1 * h1 * w;
+        let u = 0.5 * gamma * h1 * b * w;
+        let want = mu * (W * a.cos() - u) / (h - W * a.sin());
+        let got = g.sliding_fs.unwrap();
+        assert!(
+            (got - want).abs() < 1e-9 * want,
+            "α {alpha_deg}°: {got} against {want}"
+        );
+        // One face, its plane the base's.
+        let f = g.faces[0].unwrap();
+        assert!(g.faces[1].is_none() && f.dip_deg.abs() < 1e-9, "{f:?}");
+    }
+}

@@ -8,6 +8,7 @@
 
 mod common;
 
+mod anchors;
 mod architecture;
 mod base_contact;
 mod cast_base;
@@ -25,6 +26,7 @@ mod newmark_exact;
 mod paper_misprints;
 mod reactions_paper;
 mod record_files;
+mod report_browser;
 mod rigid_body;
 mod roots_against_direct;
 mod roots_completeness;

@@ -207,6 +207,11 @@ pub struct CheckArgs {
     /// No pictures for the failing cases' routes.
     #[arg(long)]
     pub no_plots: bool,
+    /// Also give the least total prestress of the scene's [[anchor]]s (shared as their
+    /// prestresses are, equally where none is given) for each case to meet its guideline: for
+    /// sliding alone and for every verdict (in the table and check.json's anchor_design).
+    #[arg(long)]
+    pub design_anchors: bool,
 }
 
 /// `slideroute report`.

@@ -26,6 +26,7 @@ mod step;
 
 pub use report::{BaseReport, Carrying, Resting, pose_of_row};
 
+use super::AnchorBreak;
 use super::dynamics::{Dynamics, Flow, Start};
 use super::logbook::{EnergyBalance, Logbook};
 use super::pose_finder::PoseFinder;
@@ -33,9 +34,9 @@ use super::row::Row;
 use super::termination::Reason;
 use crate::geometry::penetration::{deepest_of, samples};
 use crate::geometry::{
-    BodyPose, CastError, Footprint, Ground, Relief, SettleError, cast, set_down,
+    BodyPose, CastError, Footprint, Ground, LocalFrame, Relief, SettleError, cast, set_down,
 };
-use crate::model::{Base, Simulation};
+use crate::model::{Base, Simulation, Tendon};
 use flush::Quadrature;
 use nalgebra::{Matrix3, Vector3};
 use state::BodyState;
@@ -83,6 +84,9 @@ pub(super) struct OnBase<'a> {
     /// At rest under a ground-motion record: each increment is a step from rest, kept only if
     /// it moves the block (`derivations/13-base-contact.md` §6).
     resting: bool,
+    /// The anchors' tendons: fixed in the rock where the block rests, each let go when it
+    /// reaches its capacity at the end of a step (`derivations/11-dam-loads.md` §10).
+    tendons: Vec<Tendon>,
 }
 
 impl<'a> OnBase<'a> {
@@ -96,6 +100,7 @@ impl<'a> OnBase<'a> {
             size: self.size,
             quadrature: &self.quadrature,
             solve: STEP_SOLVE,
+            tendons: &self.tendons,
         }
     }
 
@@ -168,6 +173,23 @@ impl<'a> OnBase<'a> {
         self.end(o, reason, detail)
     }
 
+    /// Lets go every tendon whose force has reached its capacity at the present pose, each
+    /// booked in the logbook (located to the step: the block on its base steps at dt).
+    fn break_tendons(&mut self, o: &mut Logbook<'_>) {
+        let r = self.s.pose.rotation;
+        let frame = LocalFrame::from_axes(r.column(0).into_owned(), r.column(2).into_owned());
+        let origin = self.under_cm();
+        for (k, t) in self.tendons.iter_mut().enumerate() {
+            if !t.broken && t.tension(&origin, &frame) >= t.anchor.capacity {
+                t.broken = true;
+                o.anchors_broken.push(AnchorBreak {
+                    anchor: k,
+                    t_s: self.t,
+                });
+            }
+        }
+    }
+
     /// The base's tilt from level (degrees).
     fn tilt_deg(&self) -> f64 {
         self.s.pose.up().y.clamp(-1.0, 1.0).acos().to_degrees()
@@ -238,6 +260,7 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
             origin: (flat.cm.y, 0.0),
             deepest: Cell::new(f64::NEG_INFINITY),
             resting: false,
+            tendons: Vec::new(),
         };
         let rest = match set_down(&body.ground, footprint(base), flat, 1e-10 * size) {
             Ok(r) => r,
@@ -253,6 +276,14 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
             }
         };
         body.s = BodyState::at_rest(rest.pose);
+        // Anchors: each tendon's bond fixed in the rock where the block rests.
+        let r = rest.pose.rotation;
+        let frame = LocalFrame::from_axes(r.column(0).into_owned(), r.column(2).into_owned());
+        body.tendons = sim
+            .tendons()
+            .iter()
+            .map(|t| t.fixed_at(&body.under_cm(), &frame))
+            .collect();
         if base.is_cast() {
             match cast(&body.ground, &base.triangles(), &rest.pose) {
                 Ok(relief) => {
@@ -349,6 +380,7 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
         self.s = s;
         self.t = t_to;
         self.last = stepped;
+        self.break_tendons(&mut o);
         o.travel += (self.under_cm() - before).norm();
         if let Some(&k) = self.last.off_ground.first() {
             let point = match self.relief {

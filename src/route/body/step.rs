@@ -11,7 +11,7 @@ use crate::mechanics::held::{Support, held, reach};
 use crate::mechanics::impulses::{self, Body, ContactRow, Patch};
 use crate::mechanics::loads::Applied;
 use crate::mechanics::static_friction::{StaticError, YieldAcceleration, least_over_directions};
-use crate::model::Simulation;
+use crate::model::{Simulation, Tendon};
 use nalgebra::{Matrix3, Vector3};
 
 /// What a step is taken with: the simulation, the ground, the base, the body's inertia.
@@ -31,6 +31,9 @@ pub(super) struct Ctx<'a> {
     pub quadrature: &'a Quadrature,
     /// The impulse solve's tolerance (a fraction of the largest impulse) and its most sweeps.
     pub solve: (f64, usize),
+    /// The anchors' tendons as the route has them (fixed in the rock where the block rests,
+    /// broken).
+    pub tendons: &'a [Tendon],
 }
 
 /// What one step found.
@@ -257,7 +260,9 @@ impl Ctx<'_> {
     fn loads_under(&self, pose: &BodyPose, ground: [f64; 3]) -> (Vector3<f64>, Vector3<f64>) {
         let r = pose.rotation;
         let frame = LocalFrame::from_axes(r.column(0).into_owned(), r.column(2).into_owned());
+        let origin = pose.point(&Vector3::new(0.0, -self.base.depth, 0.0));
         let applied = Applied::shaken(self.sim.loads(), self.sim.block(), &frame, ground)
+            .with_tendons(self.tendons, &frame, &origin)
             .about(&(frame.j * self.base.depth));
         (applied.total_force(), applied.total_moment())
     }

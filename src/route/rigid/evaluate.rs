@@ -120,8 +120,7 @@ pub(super) fn evaluate(
     let stuck = hold.stuck;
     let pose = finder.pose_at(y.displacement())?;
     let geom = body_geometry(sim, &finder.site().normals(), &pose);
-    let applied = Applied::shaken(sim.loads(), sim.block(), &geom.frame, sim.ground(y.t))
-        .about(&geom.cm_offset);
+    let applied = Applied::of(sim, &geom, sim.ground(y.t)).about(&geom.cm_offset);
     let mut rates = y.rates();
     let mut removed = 0.0;
     if let Some(i) = stuck {

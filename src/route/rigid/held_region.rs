@@ -65,7 +65,7 @@ impl HeldRegion {
         if strength.is_stress_dependent() {
             return Ok(None);
         }
-        let loads = |a: [f64; 3]| Applied::shaken(sim.loads(), sim.block(), &geom.frame, a);
+        let loads = |a: [f64; 3]| Applied::of(sim, geom, a);
         let zero = [0.0; 3];
         let centre = if reach(geom, &loads, strength, zero, [1.0, 0.0, 0.0])?.is_some() {
             zero
@@ -177,7 +177,7 @@ pub(super) fn exit(
     if strength.is_stress_dependent() {
         return Ok(None);
     }
-    let loads = |a: [f64; 3]| Applied::shaken(sim.loads(), sim.block(), &geom.frame, a);
+    let loads = |a: [f64; 3]| Applied::of(sim, geom, a);
     let along = change(&loads, from, std::array::from_fn(|c| to[c] - from[c]));
     Ok(Some(
         static_friction::reach(geom, &along, strength)?.map_or(0.0, |s| s.max(0.0)),

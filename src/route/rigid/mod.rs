@@ -32,6 +32,7 @@ mod hold;
 mod rest;
 mod state;
 mod substep;
+mod tendons;
 
 use super::dynamics::{Dynamics, Flow, Start};
 use super::logbook::{EnergyBalance, Logbook};
@@ -39,12 +40,34 @@ use super::pose_finder::PoseFinder;
 use super::row::{Row, faces_of};
 use super::termination::{Reason, Stop};
 use crate::mechanics::ContactGeometry;
+use crate::mechanics::static_friction::Limit;
 use crate::model::Simulation;
 use energy::EnergyOrigin;
 use evaluate::{Eval, Hold, cm_y, evaluate};
 use hold::Anchor;
 use rest::{rest_eval, rest_row, static_check};
 use state::RigidState;
+use std::ops::Deref;
+use std::rc::Rc;
+
+/// The simulation a route follows: the one given, or the route's own once the route has changed
+/// it — its anchors' tendons fixed in the rock where it starts, one of them broken
+/// (`derivations/11-dam-loads.md` §10). Cloned for nothing either way.
+#[derive(Clone)]
+pub(super) enum Model<'a> {
+    Given(&'a Simulation),
+    Own(Rc<Simulation>),
+}
+
+impl Deref for Model<'_> {
+    type Target = Simulation;
+    fn deref(&self) -> &Simulation {
+        match self {
+            Model::Given(s) => s,
+            Model::Own(s) => s,
+        }
+    }
+}
 
 /// How a route ends within a substep.
 enum Ending {
@@ -58,7 +81,7 @@ enum Ending {
 /// The rigid body under way: the state and the evaluation at it, the substep and what the
 /// energy balance and the stick hold need. A [`Dynamics`] the driver (`driver.rs`) runs.
 pub(super) struct RigidBody<'a> {
-    sim: &'a Simulation,
+    sim: Model<'a>,
     y: RigidState,
     t: f64,
     ev: Eval,
@@ -93,14 +116,12 @@ pub(super) struct RigidBody<'a> {
 impl<'a> RigidBody<'a> {
     /// At the start, in state `y` evaluated as `ev`, the energy measured from `energy`; resting
     /// while a record's loads change, or moving.
-    fn new(
-        sim: &'a Simulation,
-        y: RigidState,
-        ev: Eval,
-        energy: EnergyOrigin,
-        resting: bool,
-    ) -> Self {
+    fn new(sim: Model<'a>, y: RigidState, ev: Eval, energy: EnergyOrigin, resting: bool) -> Self {
         let mass = sim.block().mass;
+        let (h, round_off) = (
+            sim.settings().dt,
+            64.0 * f64::EPSILON * mass * sim.loads().gravity * sim.l(),
+        );
         RigidBody {
             sim,
             y,
@@ -110,9 +131,9 @@ impl<'a> RigidBody<'a> {
             ke_max: 0.0,
             slip_peak: 0.0,
             pivoted: None,
-            h: sim.settings().dt,
+            h,
             energy,
-            round_off: 64.0 * f64::EPSILON * mass * sim.loads().gravity * sim.l(),
+            round_off,
             resting,
             region: None,
         }
@@ -124,7 +145,7 @@ impl<'a> RigidBody<'a> {
         self.energy.balance(
             y,
             e.motion.twist.kinetic_energy(mass, &e.motion.inertia),
-            cm_y(self.sim, &e.pose),
+            cm_y(&self.sim, &e.pose),
         )
     }
 
@@ -155,8 +176,16 @@ impl<'a> Dynamics<'a> for RigidBody<'a> {
                 "the flat start pose has no root to follow".into(),
             ));
         };
+        // Anchors: each tendon's bond fixed in the rock where the block starts.
+        let sim = if sim.tendons().is_empty() {
+            Model::Given(sim)
+        } else {
+            Model::Own(Rc::new(
+                sim.tendons_fixed_at(&start_pose.cm, &start_pose.frame),
+            ))
+        };
         let geom = ContactGeometry::new(sim.normals(), &start_pose);
-        let check = match static_check(sim, &geom, 0.0, faces, true) {
+        let check = match static_check(&sim, &geom, 0.0, faces, true) {
             Ok(c) => c,
             Err(Stop { reason, detail, .. }) => {
                 o.push(rest_row(0.0, &y, &start_pose, faces));
@@ -164,17 +193,20 @@ impl<'a> Dynamics<'a> for RigidBody<'a> {
             }
         };
         o.fs = Some(check.factor_of_safety());
+        o.fs_limit = check.limit();
         let shaken = sim.record().is_some_and(|r| r.end() > 0.0);
+        let start_cm_y = cm_y(&sim, &start_pose);
+        let gravity = sim.loads().gravity;
         let origin = |kinetic: f64| EnergyOrigin {
             kinetic,
-            cm_y: cm_y(sim, &start_pose),
+            cm_y: start_cm_y,
             mass,
-            gravity: sim.loads().gravity,
+            gravity,
         };
         if init.at_rest() && check.holds() && shaken {
             // Held for now: it rests while the record's loads change.
             o.push(rest_row(0.0, &y, &start_pose, faces));
-            let ev = match rest_eval(sim, finder, start_pose, &check) {
+            let ev = match rest_eval(&sim, finder, start_pose, &check) {
                 Ok(e) => e,
                 Err(Stop { reason, detail, .. }) => {
                     return Start::Ended(o.end(reason, 0.0, detail));
@@ -195,10 +227,21 @@ impl<'a> Dynamics<'a> for RigidBody<'a> {
             done.energy = Some(EnergyBalance::default());
             return Start::Ended(done);
         }
-        let ev = match evaluate(sim, finder, &y, Hold::default()) {
+        let ev = match evaluate(&sim, finder, &y, Hold::default()) {
             Ok(e) => e,
             Err(Stop { reason, detail, .. }) => {
                 o.push(rest_row(0.0, &y, &start_pose, faces));
+                if init.at_rest() && check.limit() == Some(Limit::Tips) {
+                    // No motion on three contacts: the loads tip the block, which the frame
+                    // cannot follow (its base can).
+                    let detail = format!(
+                        "the loads tip the block onto two contacts at the start (the load \
+                         multiple {} is limited by tipping; on three contacts: {detail}); the \
+                         block on its base follows it (solver.contacts = \"base\")",
+                        check.factor_of_safety()
+                    );
+                    return Start::Ended(o.end(Reason::Overturned, 0.0, detail));
+                }
                 return Start::Ended(o.end(reason, 0.0, detail));
             }
         };

@@ -40,7 +40,7 @@ pub(super) fn static_check(
     faces: [u32; 3],
     bonded: bool,
 ) -> Result<HoldingRange, Stop> {
-    let applied = Applied::shaken(sim.loads(), sim.block(), &geom.frame, sim.ground(t));
+    let applied = Applied::of(sim, geom, sim.ground(t));
     let strength = sim.strength(faces, bonded);
     static_friction::at_rest(geom, &applied, &strength).map_err(static_stop)
 }
@@ -133,7 +133,7 @@ impl RigidBody<'_> {
             return false;
         };
         let geom = ContactGeometry::new(&finder.site().normals(), &pose);
-        static_check(self.sim, &geom, y.t, self.ev.faces, false).is_ok_and(|c| c.holds())
+        static_check(&self.sim, &geom, y.t, self.ev.faces, false).is_ok_and(|c| c.holds())
     }
 
     /// Where the motion stops, at `t_event` of increment `k`: the block at rest at `stopped`
@@ -149,7 +149,8 @@ impl RigidBody<'_> {
         t_event: f64,
         o: &mut Logbook<'_>,
     ) -> Rest {
-        let (sim, from) = (self.sim, &self.ev);
+        let model = self.sim.clone();
+        let (sim, from): (&Simulation, _) = (&model, &self.ev);
         let stop_pose = match finder.pose_at(stopped.displacement()) {
             Ok(p) => p,
             Err(e) => return Rest::Failed(e),
@@ -222,7 +223,8 @@ impl RigidBody<'_> {
         t_target: f64,
         mut o: Logbook<'s>,
     ) -> Flow<'s> {
-        let sim = self.sim;
+        let model = self.sim.clone();
+        let sim: &Simulation = &model;
         let geom = ContactGeometry::new(&finder.site().normals(), &self.ev.pose);
         // The joint's cohesion holds until the block first slides.
         let (faces, bonded) = (self.ev.faces, o.travel == 0.0);

@@ -8,7 +8,9 @@ use super::ground::{BeforeImpact, after_impact, ground_event};
 use super::hold::{Anchor, hold_anchor, hold_on_creases};
 use super::rest::Rest;
 use super::state::{RigidState, VALUES};
+use super::tendons::AT_CAPACITY;
 use super::{Ending, RigidBody};
+use crate::model::Simulation;
 use crate::route::dynamics::Flow;
 use crate::route::logbook::Logbook;
 use crate::route::pose_finder::PoseFinder;
@@ -162,6 +164,9 @@ impl RigidBody<'_> {
         resolve: bool,
         o: &mut Logbook<'_>,
     ) -> Result<Substep, Ending> {
+        if self.break_tendons(finder, o)? {
+            return Ok(Substep::Event);
+        }
         let mass = self.sim.block().mass;
         let motion = self.ev.motion;
         let ke = motion.twist.kinetic_energy(mass, &motion.inertia);
@@ -202,7 +207,8 @@ impl RigidBody<'_> {
         resolve: bool,
         heading: &Heading<'_>,
     ) -> Trial<'f> {
-        let sim = self.sim;
+        let model = self.sim.clone();
+        let sim: &Simulation = &model;
         let hold = Hold::of(&self.ev.motion);
         let k1 = self.y.derivative(&self.ev.motion);
         let mut at_next = finder.clone();
@@ -261,19 +267,24 @@ impl RigidBody<'_> {
             at_next,
             ..
         } = trial;
-        if self.unresolved(resolve, h, &next, &next_ev) {
+        if self.unresolved(resolve, h, &next, &next_ev)
+            || (self.past_capacity(&next_ev, AT_CAPACITY).is_some()
+                && h > MIN_SUBSTEP * self.sim.settings().dt)
+        {
+            // Too long to resolve the motion, or carrying a tendon past its capacity: the break
+            // is located as the substep shortens (`tendons.rs`).
             self.h = 0.5 * h;
             return Ok(Substep::Retry);
         }
         *finder = at_next;
         let (next, next_ev) = match self.anchor {
             Some(a) if next_ev.motion.stuck == Some(a.contact) => {
-                hold_anchor(self.sim, finder, next, next_ev, a).map_err(Ending::Failed)?
+                hold_anchor(&self.sim, finder, next, next_ev, a).map_err(Ending::Failed)?
             }
             _ => (next, next_ev),
         };
         let (next, next_ev) =
-            hold_on_creases(self.sim, finder, next, next_ev).map_err(Ending::Failed)?;
+            hold_on_creases(&self.sim, finder, next, next_ev).map_err(Ending::Failed)?;
         self.go_to(o, next, next_ev);
         self.anchor = Anchor::after(&self.ev, self.anchor);
         self.t += h;
@@ -304,7 +315,8 @@ impl RigidBody<'_> {
         heading: &Heading<'_>,
         o: &mut Logbook<'_>,
     ) -> Result<Substep, Ending> {
-        let sim = self.sim;
+        let model = self.sim.clone();
+        let sim: &Simulation = &model;
         let hold = Hold::of(&self.ev.motion);
         let span = Span {
             y: &self.y,
@@ -404,7 +416,8 @@ impl RigidBody<'_> {
         stop: &Stop,
         o: &mut Logbook<'_>,
     ) -> Result<Option<Substep>, Ending> {
-        let sim = self.sim;
+        let model = self.sim.clone();
+        let sim: &Simulation = &model;
         let held = Hold::of(&self.ev.motion);
         let before = BeforeImpact {
             normal_n: self.ev.motion.normal,
@@ -506,7 +519,7 @@ impl RigidBody<'_> {
     ) -> Ending {
         let (lo, y_lo) = (bracket.lo, bracket.y_lo);
         if lo > 0.0 {
-            match evaluate(self.sim, finder, &y_lo, Hold::of(&self.ev.motion)) {
+            match evaluate(&self.sim, finder, &y_lo, Hold::of(&self.ev.motion)) {
                 Ok(e) => self.go_to(o, e.accept(&y_lo), e),
                 Err(e) => return Ending::Failed(e),
             }

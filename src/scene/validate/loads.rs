@@ -3,9 +3,9 @@
 //! a ground-motion record.
 
 use super::Reader;
-use crate::model::{Ice, Levels, Loads, Monolith, Record, Silt};
+use crate::model::{Ice, Levels, Loads, Monolith, Record, RockAnchor, STRAND_MODULUS_PA, Silt};
 use crate::scene::SceneError;
-use crate::scene::raw::{RawIce, RawLoads, RawScene, RawSeismic, RawSilt, RawWater};
+use crate::scene::raw::{RawAnchor, RawIce, RawLoads, RawScene, RawSeismic, RawSilt, RawWater};
 use crate::scene::record_files::{Component, Units, combine, read_component};
 use std::sync::Arc;
 
@@ -53,6 +53,48 @@ impl Reader<'_> {
         .with_pseudo_static(kh, kv);
         loads.check().map_err(|e| self.model(e))?;
         Ok((Some(loads), record))
+    }
+
+    /// `[[anchor]]` on the monolith (`derivations/11-dam-loads.md` §10): the head at `x_m`
+    /// from the heel, `y_m` above the base (0) and `z_m` across (0), plunging `plunge_deg`
+    /// (90, vertical) towards `trend_deg` (0, downstream), its prestress, capacity, free
+    /// length, steel area and modulus (that of strand when not given).
+    pub(super) fn anchors(
+        &self,
+        raw: &[RawAnchor],
+        monolith: Option<&Monolith>,
+    ) -> Result<Vec<RockAnchor>, SceneError> {
+        if raw.is_empty() {
+            return Ok(Vec::new());
+        }
+        let Some(m) = monolith else {
+            return Err(self.invalid(
+                "anchor",
+                "[[anchor]] is placed on a monolith's section: it needs [monolith]",
+            ));
+        };
+        raw.iter()
+            .enumerate()
+            .map(|(k, a)| {
+                let key = |name: &str| format!("anchor[{k}].{name}");
+                let anchor = RockAnchor {
+                    head: [
+                        self.need(&key("x_m"), a.x_m)?,
+                        a.y_m.unwrap_or(0.0),
+                        a.z_m.unwrap_or(0.0),
+                    ],
+                    plunge: a.plunge_deg.unwrap_or(90.0).to_radians(),
+                    trend: a.trend_deg.unwrap_or(0.0).to_radians(),
+                    prestress: self.need(&key("prestress_n"), a.prestress_n)?,
+                    capacity: self.need(&key("capacity_n"), a.capacity_n)?,
+                    free_length: self.need(&key("free_length_m"), a.free_length_m)?,
+                    steel_area: self.need(&key("steel_area_m2"), a.steel_area_m2)?,
+                    modulus: a.modulus_pa.unwrap_or(STRAND_MODULUS_PA),
+                };
+                anchor.check(k, &m.section).map_err(|e| self.model(e))?;
+                Ok(anchor)
+            })
+            .collect()
     }
 
     /// The eccentricity c and gravity g of `[loads]`.

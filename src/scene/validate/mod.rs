@@ -93,6 +93,10 @@ impl Reader<'_> {
             None => Default::default(),
         };
         let cases = self.cases(&guideline, raw.case.as_deref().unwrap_or(&[]))?;
+        let anchors = self.anchors(raw.anchor.as_deref().unwrap_or(&[]), monolith.as_ref())?;
+        if let Some(s) = &settings {
+            model::check_anchored(s, !anchors.is_empty()).map_err(|e| self.model(e))?;
+        }
         let uncertain = self.uncertain(raw.uncertain.as_ref())?;
         Ok(Scene {
             name: raw.name.unwrap_or_else(|| "unnamed".to_string()),
@@ -117,6 +121,7 @@ impl Reader<'_> {
             uncertain,
             base,
             monolith,
+            anchors,
         })
     }
 

@@ -8,7 +8,7 @@ use crate::exit::{CliError, bad_input, failed, out, outln};
 use crate::output::folder::Folder;
 use crate::output::{check_files, check_report, route_files};
 use slideroute::Scene;
-use slideroute::check::{CaseResult, Guideline, check_cases};
+use slideroute::check::{AnchorDesign, CaseResult, Guideline, check_cases, design_anchors};
 use std::path::PathBuf;
 
 /// `check.json`: the guideline and every case.
@@ -16,6 +16,9 @@ use std::path::PathBuf;
 struct CheckJson<'a> {
     guideline: &'a Guideline,
     cases: &'a [CaseResult],
+    /// With `--design-anchors`: each case's prestress.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    anchor_design: Option<&'a [AnchorDesign]>,
 }
 
 /// Runs `slideroute check`.
@@ -23,6 +26,11 @@ pub fn check(args: &CheckArgs) -> Result<(), CliError> {
     let scene = load(&args.scene)?;
     let mut folder = Folder::open(&args.out).map_err(failed)?;
     let results = check_cases(&scene, |_| ()).map_err(bad_input)?;
+    let design = if args.design_anchors {
+        Some(design_anchors(&scene).map_err(bad_input)?)
+    } else {
+        None
+    };
     let mut written = failing_routes(&scene, &results, args)?;
     written.push(
         folder
@@ -37,6 +45,7 @@ pub fn check(args: &CheckArgs) -> Result<(), CliError> {
     let json = CheckJson {
         guideline: scene.guideline(),
         cases: &results,
+        anchor_design: design.as_deref(),
     };
     written.push(
         route_files::write_json_with_manifest(&mut folder, "check.json", &json, &manifest)
@@ -46,6 +55,7 @@ pub fn check(args: &CheckArgs) -> Result<(), CliError> {
         scene.name(),
         scene.guideline(),
         scene.monolith().map(|m| &m.section),
+        scene.anchors(),
         &results,
         &toml::to_string(&manifest.scene).unwrap_or_default(),
         &serde_json::to_string_pretty(&manifest).unwrap_or_default(),
@@ -63,6 +73,9 @@ pub fn check(args: &CheckArgs) -> Result<(), CliError> {
             results: &results,
         };
         out!("{table}");
+        if let Some(d) = &design {
+            out!("{}", check_files::AnchorTable(d));
+        }
         let names: Vec<String> = written.iter().map(|p| p.display().to_string()).collect();
         outln!("  wrote {}", names.join(", "));
     }

@@ -16,7 +16,12 @@ fn level(r: &CaseResult, f: impl Fn(&slideroute::LoadsUsed) -> f64) -> String {
 /// The load multiple as a cell: three decimals, or the word.
 fn fs_cell(r: &CaseResult) -> String {
     match r.factor_of_safety {
-        Some(slideroute::FactorOfSafety::Finite { value }) => fixed(value, 3).to_string(),
+        Some(slideroute::FactorOfSafety::Finite { value }) => {
+            match r.run.route.factor_of_safety_limit {
+                Some(limit) => format!("{} {}", fixed(value, 3), limit.as_str()),
+                None => fixed(value, 3).to_string(),
+            }
+        }
         Some(other) => other.cell(),
         None => "—".into(),
     }
@@ -169,6 +174,59 @@ fn table(
     Ok(())
 }
 
+/// `check --design-anchors`: each case's least total prestress, for sliding and for every
+/// verdict, and each anchor's share.
+pub struct AnchorTable<'a>(pub &'a [slideroute::check::AnchorDesign]);
+
+impl fmt::Display for AnchorTable<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        writeln!(
+            f,
+            "  anchors: the least total prestress for each case to meet its guideline (shared \
+             among the [[anchor]]s as their prestresses are)"
+        )?;
+        let mn = |v: Option<f64>| v.map_or("none".to_string(), |v| fixed(v / 1e6, 3).to_string());
+        let rows: Vec<Vec<String>> = self
+            .0
+            .iter()
+            .map(|d| {
+                vec![
+                    d.case.clone(),
+                    fixed(d.required_fs, 2).to_string(),
+                    mn(d.for_sliding_n),
+                    mn(d.for_every_verdict_n),
+                    d.per_anchor_n
+                        .iter()
+                        .map(|p| fixed(p / 1e6, 3).to_string())
+                        .collect::<Vec<_>>()
+                        .join(" "),
+                    if d.for_every_verdict_n.is_none() {
+                        "—"
+                    } else if d.within_capacity {
+                        "yes"
+                    } else {
+                        "NO"
+                    }
+                    .to_string(),
+                ]
+            })
+            .collect();
+        table(
+            f,
+            &[
+                "case",
+                "required",
+                "for sliding MN",
+                "for every verdict MN",
+                "per anchor MN",
+                "within capacity",
+            ],
+            &rows,
+            1,
+        )
+    }
+}
+
 impl fmt::Display for CheckTable<'_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         writeln!(f, "check {}: {}", self.scene, self.guideline)?;
@@ -194,6 +252,42 @@ impl fmt::Display for CheckTable<'_> {
                     ""
                 }
             )?;
+            // A faceted or sloping base: the factor on each face under the monolith.
+            for r in &gravity {
+                let Some(g) = r.gravity else { continue };
+                let faces: Vec<_> = g.faces.iter().flatten().collect();
+                if faces.len() < 2 && faces.iter().all(|f| f.dip_deg.abs() < 1e-9) {
+                    continue;
+                }
+                let each: Vec<String> = faces
+                    .iter()
+                    .map(|f| {
+                        format!(
+                            "face {} (dip {}° towards {}°) {}{}",
+                            f.face,
+                            fixed(f.dip_deg, 1),
+                            fixed(f.dip_direction_deg, 1),
+                            f.sliding_fs
+                                .map_or("unbounded".to_string(), |v| fixed(v, 3).to_string()),
+                            if f.sliding_fs.is_some() {
+                                format!(
+                                    ", pushed towards {}° plunging {}°",
+                                    fixed(f.slide_trend_deg, 1),
+                                    fixed(f.slide_plunge_deg, 1)
+                                )
+                            } else {
+                                String::new()
+                            }
+                        )
+                    })
+                    .collect();
+                writeln!(
+                    f,
+                    "  {} slides on each face (the least governs): {}",
+                    r.case.name,
+                    each.join("; ")
+                )?;
+            }
             writeln!(
                 f,
                 "  resultant and base pressures (effective, compression positive):"
@@ -204,7 +298,8 @@ impl fmt::Display for CheckTable<'_> {
         writeln!(
             f,
             "  load multiple: the driving loads' multiple the three contacts' friction cones hold \
-             (H and its couples, kh W), with W, U and kv W as they are: sliding or tipping"
+             (H and its couples, kh W), with W, U and kv W as they are, and what gives there: \
+             the block slides, or tips onto two contacts"
         )?;
         for r in self.results.iter().filter(|r| !r.passes) {
             if let Some(g) = &r.gravity {
@@ -228,11 +323,19 @@ impl fmt::Display for CheckTable<'_> {
             let t = &r.run.route.termination;
             let last = r.run.route.rows.last();
             if r.run.route.increments == 0 {
-                writeln!(
-                    f,
-                    "  {}: static friction holds the block at the start: {}",
-                    r.case.name, t.reason
-                )?;
+                if t.reason == slideroute::Reason::DoesNotSlide {
+                    writeln!(
+                        f,
+                        "  {}: static friction holds the block at the start",
+                        r.case.name
+                    )?;
+                } else {
+                    writeln!(
+                        f,
+                        "  {}: the route ends at the start: {}: {}",
+                        r.case.name, t.reason, t.detail
+                    )?;
+                }
                 continue;
             }
             writeln!(
@@ -244,6 +347,14 @@ impl fmt::Display for CheckTable<'_> {
                 fixed(r.run.route.travel_m, 3),
                 fixed(last.map_or(0.0, |l| l.theta_deg), 3)
             )?;
+            for b in &r.run.route.anchors_broken {
+                writeln!(
+                    f,
+                    "    anchor {} broke at its capacity at t = {} s",
+                    b.anchor,
+                    seconds(b.t_s)
+                )?;
+            }
         }
         Ok(())
     }
@@ -270,6 +381,8 @@ pub fn write_csv(out: impl std::io::Write, results: &[CaseResult]) -> Result<(),
         "toe_pressure_pa",
         "crack_length_m",
         "load_multiple",
+        "load_multiple_limit",
+        "anchor_force_n",
         "required_fs",
         "passes",
         "route_end",
@@ -300,6 +413,12 @@ pub fn write_csv(out: impl std::io::Write, results: &[CaseResult]) -> Result<(),
             num(r.gravity.map(|g| g.toe_pressure_pa)),
             num(r.gravity.map(|g| g.crack_length_m)),
             r.factor_of_safety.map_or(String::new(), |f| f.cell()),
+            r.run
+                .route
+                .factor_of_safety_limit
+                .map_or("", |l| l.as_str())
+                .to_string(),
+            num(r.gravity.map(|g| g.anchor_force_n)),
             r.case.required_fs.to_string(),
             r.passes.to_string(),
             r.run.route.termination.reason.to_string(),

@@ -3,6 +3,7 @@
 //! uplift under the base, the crack and the resultant; the loads and the verdicts with the
 //! guideline each comes from; then the scene as used and the manifest.
 
+use slideroute::RockAnchor;
 use slideroute::Section;
 use slideroute::check::{CaseResult, GravityVerdict, Guideline, uplift_heads};
 use std::fmt::Write;
@@ -26,6 +27,7 @@ pub fn report(
     scene: &str,
     guideline: &Guideline,
     section: Option<&Section>,
+    anchors: &[RockAnchor],
     results: &[CaseResult],
     scene_toml: &str,
     manifest_json: &str,
@@ -54,8 +56,8 @@ pub fn report(
             verdict = if r.passes { "passes" } else { "FAILS" },
         );
         if let (Some(s), Some(g)) = (section, r.gravity.as_ref()) {
-            h.push_str(&drawing(s, r, g));
-            h.push_str(&loads_table(r, g));
+            h.push_str(&drawing(s, anchors, r, g));
+            h.push_str(&loads_table(r, g, anchors));
             h.push_str(&verdict_table(r, g, guideline));
         } else {
             let _ = write!(
@@ -76,8 +78,8 @@ pub fn report(
     h
 }
 
-/// The arrows' colours: water, weight, pseudo-static, resultant.
-const COLOURS: [&str; 4] = ["#1f5f99", "#333333", "#8e44ad", "#c62828"];
+/// The arrows' colours: water, weight, pseudo-static, resultant, anchors.
+const COLOURS: [&str; 5] = ["#1f5f99", "#333333", "#8e44ad", "#c62828", "#2e7d32"];
 
 const CSS: &str = "body{font-family:system-ui,sans-serif;margin:2em;color:#222;max-width:60em}\
 h1{font-size:1.5em}h2{font-size:1.15em;margin-top:1.5em}.sub{color:#555}\
@@ -109,7 +111,10 @@ fn summary_table(results: &[CaseResult]) -> String {
             g.map_or("—".into(), |g| n(g.base_in_compression_pct, 1)),
             g.map_or("—".into(), required_pct),
             r.factor_of_safety.map_or("—".into(), |f| match f.value() {
-                Some(v) => n(v, 3),
+                Some(v) => match r.run.route.factor_of_safety_limit {
+                    Some(limit) => format!("{} {}", n(v, 3), limit.as_str()),
+                    None => n(v, 3),
+                },
                 None => f.cell(),
             }),
             if r.passes { "pass" } else { "fail" },
@@ -130,7 +135,7 @@ fn required_pct(g: &GravityVerdict) -> String {
 }
 
 /// The case's loads: size, and where each acts.
-fn loads_table(r: &CaseResult, g: &GravityVerdict) -> String {
+fn loads_table(r: &CaseResult, g: &GravityVerdict, anchors: &[RockAnchor]) -> String {
     let mut t = String::from("<table><tr><th>load</th><th>MN</th><th>acts</th></tr>\n");
     let mut row = |name: &str, f: f64, at: String| {
         let _ = writeln!(
@@ -187,6 +192,21 @@ fn loads_table(r: &CaseResult, g: &GravityVerdict) -> String {
             }
         }
     }
+    for (k, a) in anchors.iter().enumerate() {
+        let [x, y, z] = a.head;
+        row(
+            &format!("anchor {k} (prestress)"),
+            a.prestress,
+            format!(
+                "from ({}, {}) m, {} m across, plunging {}° towards {}°",
+                n(x, 2),
+                n(y, 2),
+                n(z, 2),
+                n(a.plunge.to_degrees(), 1),
+                n(a.trend.to_degrees(), 1)
+            ),
+        );
+    }
     row(
         "uplift U",
         g.uplift_n,
@@ -225,6 +245,22 @@ fn verdict_table(r: &CaseResult, g: &GravityVerdict, guideline: &Guideline) -> S
         ok(sliding_ok),
         r.case.category.as_str()
     );
+    // A faceted or sloping base: each face it could slide on, the least governing.
+    let faces: Vec<_> = g.faces.iter().flatten().collect();
+    if faces.len() > 1 || faces.iter().any(|f| f.dip_deg.abs() > 1e-9) {
+        for f in faces {
+            let _ = writeln!(
+                t,
+                "<tr><td>… on face {} (dip {}° towards {}°), pushed towards {}°</td><td>{}</td>\
+                 <td></td><td></td><td>the whole base on the face's plane</td></tr>",
+                f.face,
+                n(f.dip_deg, 1),
+                n(f.dip_direction_deg, 1),
+                n(f.slide_trend_deg, 1),
+                f.sliding_fs.map_or("unbounded".into(), |v| n(v, 3)),
+            );
+        }
+    }
     let _ = writeln!(
         t,
         "<tr><td>base in compression (resultant {} m from the heel)</td><td>{} %</td>\
@@ -265,7 +301,7 @@ fn verdict_table(r: &CaseResult, g: &GravityVerdict, guideline: &Guideline) -> S
 
 /// The section to scale with its water, loads, uplift, crack and resultant (SVG, metres to
 /// pixels at one scale for the whole drawing).
-fn drawing(s: &Section, r: &CaseResult, g: &GravityVerdict) -> String {
+fn drawing(s: &Section, anchors: &[RockAnchor], r: &CaseResult, g: &GravityVerdict) -> String {
     let (b, h, c) = (s.base_length, s.height, s.crest_length);
     let water = r.loads.as_ref().and_then(|l| l.water.as_ref());
     let (h1, h2) = water.map_or((0.0, 0.0), |w| (w.levels.headwater, w.levels.tailwater));
@@ -464,6 +500,44 @@ fn drawing(s: &Section, r: &CaseResult, g: &GravityVerdict) -> String {
                 "#8e44ad",
             ));
         }
+    }
+    // Each anchor: its tendon from the head down into the rock (dashed past the base), its pull
+    // an arrow at the head along the tendon.
+    for (k, a) in anchors.iter().enumerate() {
+        let [x, y, _] = a.head;
+        let dir = a.direction();
+        let (dx, dy) = (dir.x, dir.y);
+        let across = dy.abs().max(1e-9);
+        let to_base = y / across;
+        let into_rock = (uplift_depth / across)
+            .min(a.free_length - to_base)
+            .max(0.0);
+        let (xb, yb) = (x + dx * to_base, 0.0);
+        let (xr, yr) = (xb + dx * into_rock, -dy.abs() * into_rock);
+        let _ = write!(
+            d,
+            "<line x1=\"{:.1}\" y1=\"{:.1}\" x2=\"{:.1}\" y2=\"{:.1}\" stroke=\"#2e7d32\" \
+             stroke-width=\"1.5\"/><line x1=\"{:.1}\" y1=\"{:.1}\" x2=\"{:.1}\" y2=\"{:.1}\" \
+             stroke=\"#2e7d32\" stroke-width=\"1.5\" stroke-dasharray=\"5 3\"/>",
+            px(x),
+            py(y),
+            px(xb),
+            py(yb),
+            px(xb),
+            py(yb),
+            px(xr),
+            py(yr)
+        );
+        let l = len(a.prestress).max(30.0);
+        let norm = dx.hypot(dy).max(1e-12);
+        d.push_str(&arrow(
+            px(x),
+            py(y),
+            px(x) + l * dx / norm,
+            py(y) - l * dy / norm,
+            format!("A{k} {} MN", n(a.prestress / 1e6, 2)),
+            "#2e7d32",
+        ));
     }
     // The resultant where it meets the base.
     if let Some(at) = g.resultant_from_heel_m.filter(|a| a.is_finite()) {

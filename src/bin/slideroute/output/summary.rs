@@ -43,6 +43,14 @@ impl fmt::Display for RouteSummary<'_> {
                 fixed(last.gamma_deg, 3)
             )?;
         }
+        for b in &r.anchors_broken {
+            writeln!(
+                f,
+                "  anchor {} broke at its capacity at t = {} s",
+                b.anchor,
+                seconds(b.t_s)
+            )?;
+        }
         if let (Some(d), Some(rot)) = (r.permanent_displacement_m, r.permanent_rotation_deg) {
             let xz = r.permanent_displacement_xz_m.unwrap_or([0.0; 2]);
             writeln!(

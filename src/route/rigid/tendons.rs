@@ -1,0 +1,50 @@
+//! Anchors' tendons along the route (`derivations/11-dam-loads.md` §10): each pulls with its
+//! prestress and E A / L times its stretch as the block moves (a load on the body at its pose,
+//! `mechanics::loads::Applied::of`), and breaks when its force reaches its capacity. A substep
+//! that would carry a tendon past its capacity is halved, down to the shortest substep, so that
+//! the break falls where the force reaches the capacity; there the tendon is let go and the
+//! state evaluated again without it.
+
+use super::evaluate::{Eval, Hold, evaluate};
+use super::{Ending, Model, RigidBody};
+use crate::route::AnchorBreak;
+use crate::route::logbook::Logbook;
+use crate::route::pose_finder::PoseFinder;
+use std::rc::Rc;
+
+/// A tendon within this fraction of its capacity has reached it; a substep that carries one
+/// further past is too long (down to the shortest substep).
+pub(super) const AT_CAPACITY: f64 = 1e-9;
+
+impl RigidBody<'_> {
+    /// Whether a tendon left whole is past its capacity by more than `margin` (a fraction of it)
+    /// at the evaluation `e`.
+    pub(super) fn past_capacity(&self, e: &Eval, margin: f64) -> Option<usize> {
+        self.sim.tendons().iter().position(|t| {
+            !t.broken && t.tension(&e.pose.cm, &e.pose.frame) > t.anchor.capacity * (1.0 + margin)
+        })
+    }
+
+    /// Breaks every tendon that has reached its capacity at the current state, each booked in
+    /// the logbook, and evaluates the state again without them. Whether any broke.
+    pub(super) fn break_tendons(
+        &mut self,
+        finder: &mut PoseFinder<'_>,
+        o: &mut Logbook<'_>,
+    ) -> Result<bool, Ending> {
+        let mut broke = false;
+        while let Some(k) = self.past_capacity(&self.ev, -AT_CAPACITY) {
+            self.sim = Model::Own(Rc::new(self.sim.tendon_broken(k)));
+            o.anchors_broken.push(AnchorBreak {
+                anchor: k,
+                t_s: self.t,
+            });
+            broke = true;
+        }
+        if broke {
+            let hold = Hold::of(&self.ev.motion);
+            self.ev = evaluate(&self.sim, finder, &self.y, hold).map_err(Ending::Failed)?;
+        }
+        Ok(broke)
+    }
+}
