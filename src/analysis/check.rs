@@ -5,7 +5,7 @@
 //! (`derivations/11-dam-loads.md` §5, §9).
 
 use super::gravity_method::{BaseFace, GravityCase, GravityVerdict, gravity_method};
-use crate::mechanics::static_friction::FactorOfSafety;
+use crate::mechanics::static_friction::{FactorOfSafety, Limit};
 use crate::model::Friction;
 use crate::model::Mode;
 use crate::model::{Category, Guideline, LoadCase};
@@ -26,6 +26,11 @@ pub struct CaseResult {
     /// measure of how far the loads are from starting any motion, sliding or tipping; the
     /// verdict where the scene has no monolith with its water.
     pub factor_of_safety: Option<FactorOfSafety>,
+    /// What limits the load multiple: the loads' multiple slides the block, or tips it.
+    pub load_multiple_limit: Option<Limit>,
+    /// The sliding factor the case's guideline requires (the case's own, repeated flat for a
+    /// program reading `check.json`).
+    pub required_fs: f64,
     /// The gravity method's verdicts, on a monolith with `[water]` (flattened into the case in
     /// `check.json`).
     #[serde(flatten)]
@@ -74,6 +79,8 @@ pub fn check_cases(
         let result = CaseResult {
             case: case.clone(),
             factor_of_safety: fs,
+            load_multiple_limit: run.route.factor_of_safety_limit,
+            required_fs: case.required_fs,
             gravity,
             passes,
             loads: s.loads_used(),
@@ -161,16 +168,19 @@ fn faces_under(
         let Some(normal) = normal else {
             continue;
         };
-        let own = s
-            .strengths()
+        let strengths = s.strengths();
+        let (own, cohesion_pa) = strengths
             .faces
             .iter()
             .find(|f| f.faces.contains(&face))
-            .map_or(*friction, |f| f.friction);
+            .map_or((*friction, strengths.cohesion_pa), |f| {
+                (f.friction, f.cohesion_pa)
+            });
         faces.push(BaseFace {
             face,
             normal: axes.map(|e| e.dot(&normal)),
             friction: own,
+            cohesion_pa,
         });
     }
     faces

@@ -59,6 +59,8 @@ pub struct BaseFace {
     pub normal: [f64; 3],
     /// Its friction criterion.
     pub friction: Friction,
+    /// Its cohesion (Pa).
+    pub cohesion_pa: f64,
 }
 
 /// Sliding on one face of a faceted base: the case's loads resolved on the face's plane, the
@@ -278,12 +280,7 @@ pub fn gravity_method(c: &GravityCase) -> GravityVerdict {
         + props.mass * c.gravity * (-(1.0 - c.kv) * c.up[2] + c.kh * c.downstream[2]);
     let mut faces = [None; 3];
     for (slot, f) in faces.iter_mut().zip(&c.faces) {
-        *slot = Some(on_face(
-            f,
-            [shear, -n, lateral],
-            compressed * width,
-            c.cohesion_pa,
-        ));
+        *slot = Some(on_face(f, [shear, -n, lateral], compressed * width));
     }
     if !c.faces.is_empty() {
         let least = faces
@@ -324,8 +321,8 @@ pub fn gravity_method(c: &GravityCase) -> GravityVerdict {
 /// The loads `r` (N: the resultant on the monolith other than its supports', in the base's
 /// axes) on face `f`'s plane, the whole base on it: N_f = −r·n, T_f = |r − (r·n) n|, the
 /// base's area in compression `area` (m²) over the face A = area / n_y, and
-/// FS = (N_f tan φ + c A)/T_f (`derivations/11-dam-loads.md` §9).
-fn on_face(f: &BaseFace, r: [f64; 3], area: f64, cohesion: f64) -> FaceSliding {
+/// FS = (N_f tan φ + c A)/T_f with the face's c (`derivations/11-dam-loads.md` §9).
+fn on_face(f: &BaseFace, r: [f64; 3], area: f64) -> FaceSliding {
     let n = Vector3::from(f.normal);
     let r = Vector3::from(r);
     let normal = -r.dot(&n);
@@ -345,7 +342,7 @@ fn on_face(f: &BaseFace, r: [f64; 3], area: f64, cohesion: f64) -> FaceSliding {
     } else if normal <= 0.0 {
         Some(0.0)
     } else {
-        Some((normal * tan_phi + cohesion * face_area) / shear)
+        Some((normal * tan_phi + f.cohesion_pa * face_area) / shear)
     };
     FaceSliding {
         face: f.face,
@@ -421,11 +418,13 @@ mod tests {
             face: 0,
             normal: [0.0, 1.0, 0.0],
             friction: Friction::coulomb(0.7),
+            cohesion_pa: 0.0,
         };
         let dipping = BaseFace {
             face: 3,
             normal: [delta.sin(), delta.cos(), 0.0],
             friction: Friction::coulomb(0.8),
+            cohesion_pa: 0.0,
         };
         c.faces = vec![flat, dipping];
         let v = gravity_method(&c);

@@ -1418,6 +1418,9 @@ fn check_prints_the_load_case_table_and_routes_the_case_that_fails() {
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("check.json")).unwrap()).unwrap();
     assert_eq!(json["cases"][2]["passes"], false);
+    assert_eq!(json["cases"][2]["required_fs"], 1.1);
+    assert_eq!(json["cases"][0]["load_multiple_limit"], "slides");
+    assert_eq!(json["cases"][0]["faces"][0]["face"], 0);
     for key in [
         "sliding_fs",
         "resultant_from_heel_m",
@@ -1426,6 +1429,8 @@ fn check_prints_the_load_case_table_and_routes_the_case_that_fails() {
         "toe_pressure_pa",
         "crack_length_m",
         "uplift_n",
+        "required_fs",
+        "anchor_force_n",
     ] {
         assert!(
             json["cases"][0][key].is_number(),

@@ -726,3 +726,174 @@ fn on_a_base_sloping_up_downstream_the_sliding_factor_is_mu_w_cos_minus_u_over_h
         assert!(g.faces[1].is_none() && f.dip_deg.abs() < 1e-9, "{f:?}");
     }
 }
+
+/// The uplift's force (N) and its moment about the toe (N·m) of a head profile linear between
+/// `points` (x from the heel, head in m), over a base `b` long and `w` wide: trapezoid by
+/// trapezoid.
+fn uplift_by_hand(points: &[(f64, f64)], b: f64, w: f64) -> (f64, f64) {
+    let gamma = 1000.0 * 9.81;
+    points.windows(2).fold((0.0, 0.0), |(f, m), p| {
+        let ((x0, h0), (x1, h1)) = (p[0], p[1]);
+        let len = x1 - x0;
+        if len <= 0.0 || h0 + h1 <= 0.0 {
+            return (f, m);
+        }
+        let force = gamma * w * (h0 + h1) / 2.0 * len;
+        let centroid = x0 + len * (h0 + 2.0 * h1) / (3.0 * (h0 + h1));
+        (f + force, m + force * (b - centroid))
+    })
+}
+
+#[test]
+fn a_cracked_anchored_section_with_drains_tailwater_silt_ice_and_kh_meets_its_hand_calculation() {
+    // A slender section nobody here had run: b = 16, h = 30, crest 4, 10 m wide; H1 26 m, H2 3 m,
+    // drains of 50 % at 4 m, 5 m of silt (γ' 9 kN/m³, φ 30°), 100 kN/m of ice at 25.5 m,
+    // k_h 0.1, k_v 0.05, one vertical anchor of 12 MN from the crest 1.5 m from the heel.
+    // Its base cracks; everything below is the guideline's arithmetic, written out again.
+    let (b, h, c, w) = (16.0, 30.0, 4.0, 10.0);
+    let (h1, h2, e, xd) = (26.0, 3.0, 0.5, 4.0);
+    let (kh, kv, mu) = (0.1, 0.05, 0.65);
+    let (p_anchor, x_anchor) = (12.0e6, 1.5);
+    let g = 9.81;
+    let gamma = 1000.0 * g;
+    let text = format!(
+        r#"name = "slender"
+[frame]
+contacts_m = [[-5.0, 4.0], [9.0, 4.0], [9.0, -4.0]]
+[foundation]
+[[foundation.plane]]
+dip_deg = 0.0
+dip_direction_deg = 0.0
+point_m = [0.0, 0.0, 0.0]
+[monolith]
+base_length_m = {b}
+width_m = {w}
+height_m = {h}
+crest_length_m = {c}
+density_kg_m3 = 2400.0
+[water]
+headwater_m = {h1}
+tailwater_m = {h2}
+density_kg_m3 = 1000.0
+drain_efficiency = {e}
+drain_position_m = {xd}
+[silt]
+depth_m = 5.0
+unit_weight_n_m3 = 9000.0
+friction_angle_deg = 30.0
+[ice]
+force_n_m = 100.0e3
+elevation_m = 25.5
+[seismic]
+kh = {kh}
+kv = {kv}
+[loads]
+eccentricity_m = 0.0
+gravity_m_s2 = {g}
+[friction]
+model = "coulomb"
+mu_k = {mu}
+[solver]
+mode = "exact"
+dt_s = 1.0e-3
+t_end_s = 0.01
+[[anchor]]
+x_m = {x_anchor}
+y_m = {h}
+prestress_n = {p_anchor}
+capacity_n = 2.0e7
+free_length_m = 40.0
+steel_area_m2 = 8.0e-3
+"#
+    );
+    let s = Scene::from_toml(&text, "slender").unwrap();
+    let v = slideroute::check::check_cases(&s, |_| ()).unwrap()[0]
+        .gravity
+        .unwrap();
+
+    // The section: a 4 × 30 rectangle and a 12 × 30 triangle.
+    let (a1, a2) = (c * h, 0.5 * (b - c) * h);
+    let weight = 2400.0 * g * w * (a1 + a2);
+    let x_cm = (a1 * c / 2.0 + a2 * (c + (b - c) / 3.0)) / (a1 + a2);
+    let y_cm = (a1 * h / 2.0 + a2 * h / 3.0) / (a1 + a2);
+    // The pushes, the tailwater's wedge on the 12:30 face, silt at rest, ice.
+    let p1 = 0.5 * gamma * h1 * h1 * w;
+    let p2 = 0.5 * gamma * h2 * h2 * w;
+    let slope = (b - c) / h;
+    let v_tw = gamma * w * 0.5 * slope * h2 * h2;
+    let x_tw = b - slope * h2 / 3.0;
+    let k0 = 1.0 - 30f64.to_radians().sin();
+    let silt = 0.5 * k0 * 9000.0 * 25.0 * w;
+    let ice = 100.0e3 * w;
+    let t_drive = p1 - p2 + silt + ice + kh * weight;
+    // The loads but the uplift, about the toe (resisting positive), and their N.
+    let n_rest = weight * (1.0 - kv) + v_tw + p_anchor;
+    let m_rest =
+        weight * (1.0 - kv) * (b - x_cm) - kh * weight * y_cm + v_tw * (b - x_tw) + p2 * h2 / 3.0
+            - p1 * h1 / 3.0
+            - silt * 5.0 / 3.0
+            - ice * 25.5
+            + p_anchor * (b - x_anchor);
+    // The uplift with a crack `t` long from the heel: the reservoir's head in it, then the
+    // drains' rule short of them (H3 over the uncracked b − t), linear to the toe past them.
+    let uplift = |t: f64| {
+        let points = if t < xd {
+            let h3 = h2 + (1.0 - e) * (h1 - h2) * (b - xd) / (b - t);
+            vec![(0.0, h1), (t, h1), (xd, h3), (b, h2)]
+        } else {
+            vec![(0.0, h1), (t, h1), (b, h2)]
+        };
+        uplift_by_hand(&points, b, w)
+    };
+    let at = |t: f64| {
+        let (u, mu_toe) = uplift(t);
+        let n = n_rest - u;
+        (n, (m_rest - mu_toe) / n, u)
+    };
+    // Uncracked the resultant falls short of the middle third: the base cracks.
+    assert!(at(0.0).1 < b / 3.0, "{:?}", at(0.0));
+    // The crack's tip where 3 a = b − T: the first sign change on a fine scan, then bisection.
+    let gap = |t: f64| 3.0 * at(t).1 - (b - t);
+    let mut hi = (1..100_000)
+        .map(|k| b * k as f64 / 100_000.0)
+        .find(|&t| gap(t) >= 0.0)
+        .expect("the crack stops short of the toe");
+    let mut lo = hi - b / 100_000.0;
+    for _ in 0..100 {
+        let mid = 0.5 * (lo + hi);
+        if gap(mid) >= 0.0 {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    let t = hi;
+    let (n, a, u) = at(t);
+    let close = |got: f64, want: f64, what: &str| {
+        assert!(
+            (got - want).abs() <= 1e-6 * want.abs().max(1.0),
+            "{what}: {got} against {want} by hand"
+        );
+    };
+    close(v.crack_length_m, t, "crack length");
+    close(v.uplift_n, u, "uplift");
+    close(v.normal_n, n, "N");
+    close(v.shear_n, t_drive, "T");
+    close(v.sliding_fs.unwrap(), mu * n / t_drive, "sliding FS");
+    close(
+        v.resultant_from_heel_m.unwrap(),
+        b - a,
+        "resultant from the heel",
+    );
+    close(
+        v.base_in_compression_pct,
+        100.0 * (b - t) / b,
+        "base in compression",
+    );
+    close(v.toe_pressure_pa, 2.0 * n / (3.0 * a * w), "toe pressure");
+    assert_eq!(v.heel_pressure_pa, 0.0);
+    assert!(
+        t > 0.5 && t < xd,
+        "the crack {t} m stops short of the drains"
+    );
+}
