@@ -42,6 +42,9 @@ pub struct CaseResult {
     pub passes: bool,
     /// The loads the case used.
     pub loads: Option<LoadsUsed>,
+    /// The anchors as the case has them (a case may change their keys).
+    #[serde(skip)]
+    pub anchors: Vec<crate::model::RockAnchor>,
     /// Its route and how it was computed (a block held at the start has a route of no
     /// increments).
     #[serde(skip)]
@@ -84,6 +87,7 @@ pub fn check_cases(
             gravity,
             passes,
             loads: s.loads_used(),
+            anchors: s.anchors().to_vec(),
             run,
         };
         each(&result);
@@ -116,9 +120,16 @@ pub(super) fn gravity_case(s: &Scene, category: Category, route: &Route) -> Opti
         Some(b) => {
             let r = b.resting.rotation;
             let col = |k: usize| Vector3::new(r[0][k], r[1][k], r[2][k]);
-            let mut faces: Vec<u32> = b.resting.carrying.iter().map(|c| c.face).collect();
-            faces.sort_unstable();
-            faces.dedup();
+            // The faces carrying it, the most loaded first (the method takes three).
+            let mut share: Vec<(u32, f64)> = Vec::new();
+            for c in &b.resting.carrying {
+                match share.iter_mut().find(|(f, _)| *f == c.face) {
+                    Some((_, s)) => *s += c.share,
+                    None => share.push((c.face, c.share)),
+                }
+            }
+            share.sort_by(|a, b| b.1.total_cmp(&a.1).then(a.0.cmp(&b.0)));
+            let faces: Vec<u32> = share.iter().map(|(f, _)| *f).collect();
             ([col(0), col(1), col(2)], faces)
         }
         None => (start_axes(s), faces_of(s.site()).to_vec()),

@@ -101,8 +101,10 @@ pub struct GravityVerdict {
     /// The anchors' prestress, all of them (N; their parts along and across the base are in N
     /// and T).
     pub anchor_force_n: f64,
-    /// (N tan φ + c L w)/T, L the base in compression; `None` where T ≤ 0 (nothing drives the
-    /// block downstream), 0 where N ≤ 0 (it floats).
+    /// (N tan φ + c L w)/T, L the base in compression: the least of the faces' (`faces`) where
+    /// the case has them (T then the loads' part along each face, whichever way it points: an
+    /// anchor pulling upstream hard enough drives the block upstream); else on the level base,
+    /// `None` where T ≤ 0 (nothing drives the block downstream). 0 where N ≤ 0 (it floats).
     pub sliding_fs: Option<f64>,
     /// tan φ used.
     pub tan_phi: f64,
@@ -174,7 +176,7 @@ fn resolve(c: &GravityCase, props: &MassProperties, t: f64) -> (f64, f64, f64, f
         - wl.uplift.force_n * (b - wl.uplift.at_m);
     // Each anchor pulls its prestress P along its tendon d from the head (x, y): P (−d_y) on
     // N, P d_x on T, and (x − b) P d_y − y P d_x about the toe. Its part across the section
-    // (trend off the section's plane) is not the two-dimensional method's.
+    // (trend off the section's plane) enters only the faces' resultant (`on_face`).
     let (mut normal, mut shear, mut moment) = (normal, shear, moment);
     for a in &c.anchors {
         let d = a.direction() * a.prestress;
@@ -278,8 +280,10 @@ pub fn gravity_method(c: &GravityCase) -> GravityVerdict {
         .map(|a| a.prestress * a.direction().z)
         .sum::<f64>()
         + props.mass * c.gravity * (-(1.0 - c.kv) * c.up[2] + c.kh * c.downstream[2]);
+    // A face that does not face up (a wall, an overhang) carries no base.
     let mut faces = [None; 3];
-    for (slot, f) in faces.iter_mut().zip(&c.faces) {
+    let upward = c.faces.iter().filter(|f| f.normal[1] > 1e-6);
+    for (slot, f) in faces.iter_mut().zip(upward) {
         *slot = Some(on_face(f, [shear, -n, lateral], compressed * width));
     }
     if !c.faces.is_empty() {
@@ -328,7 +332,7 @@ fn on_face(f: &BaseFace, r: [f64; 3], area: f64) -> FaceSliding {
     let normal = -r.dot(&n);
     let along = r + n * normal;
     let shear = along.norm();
-    let face_area = area / n.y.max(f64::MIN_POSITIVE);
+    let face_area = area / n.y;
     let tan_phi = tan_phi(
         &f.friction,
         if face_area > 0.0 {
@@ -342,7 +346,12 @@ fn on_face(f: &BaseFace, r: [f64; 3], area: f64) -> FaceSliding {
     } else if normal <= 0.0 {
         Some(0.0)
     } else {
-        Some((normal * tan_phi + f.cohesion_pa * face_area) / shear)
+        let cohesion = if f.cohesion_pa > 0.0 {
+            f.cohesion_pa * face_area
+        } else {
+            0.0
+        };
+        Some((normal * tan_phi + cohesion) / shear)
     };
     FaceSliding {
         face: f.face,

@@ -112,3 +112,74 @@ impl Applied {
         (self.force + self.held_force).dot(v) + self.total_moment().dot(w)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::{Monolith, RockAnchor, Section};
+
+    #[test]
+    fn a_tendons_pull_acts_at_its_head_with_the_moment_of_its_arm_from_the_base_point() {
+        // A 20 × 10 m base, 15 m high with a 5 m crest (x̄ = 7 m): a head at x 9, y 4, z 3 is
+        // (2, 4, 3) from the base point under the centre of mass. Unfixed, the tendon pulls its
+        // prestress along its direction; fixed where it stands, the same.
+        let m = Monolith::new(Section {
+            base_length: 20.0,
+            width: 10.0,
+            height: 15.0,
+            crest_length: 5.0,
+            density: 2400.0,
+        })
+        .unwrap();
+        let anchor = RockAnchor {
+            head: [9.0, 4.0, 3.0],
+            plunge: 60f64.to_radians(),
+            trend: 30f64.to_radians(),
+            prestress: 2.0e6,
+            capacity: 5.0e6,
+            free_length: 20.0,
+            steel_area: 1.0e-3,
+            modulus: 2.0e11,
+        };
+        let tendon = Tendon::on(&m, anchor);
+        let frame = LocalFrame::from_axes(Vector3::x(), Vector3::z());
+        let origin = Vector3::new(10.0, 1.0, -2.0);
+        let (s60, c60) = 60f64.to_radians().sin_cos();
+        let (s30, c30) = 30f64.to_radians().sin_cos();
+        let force = Vector3::new(c60 * c30, -s60, c60 * s30) * 2.0e6;
+        let arm = Vector3::new(2.0, 4.0, 3.0);
+        let moment = Vector3::new(
+            arm.y * force.z - arm.z * force.y,
+            arm.z * force.x - arm.x * force.z,
+            arm.x * force.y - arm.y * force.x,
+        );
+        for t in [tendon, tendon.fixed_at(&origin, &frame)] {
+            let zero = Applied {
+                force: Vector3::zeros(),
+                moment: Vector3::zeros(),
+                weight: Vector3::zeros(),
+                held_force: Vector3::zeros(),
+                held_moment: Vector3::zeros(),
+            };
+            let a = zero.with_tendons(&[t], &frame, &origin);
+            assert!((a.held_force - force).norm() < 1e-6, "{:?}", a.held_force);
+            assert!(
+                (a.held_moment - moment).norm() < 1e-5,
+                "{:?}",
+                a.held_moment
+            );
+            assert_eq!(a.force, Vector3::zeros());
+        }
+        // Moved 0.1 m upstream, away from its bond (which lies downstream of the head), the
+        // fixed tendon stretches.
+        let fixed = tendon.fixed_at(&origin, &frame);
+        let moved = origin - Vector3::new(0.1, 0.0, 0.0);
+        let rock = fixed.rock.unwrap();
+        let head = moved + arm;
+        let ell = (rock - head).norm();
+        let want = (rock - head) / ell * (2.0e6 + 1.0e7 * (ell - 20.0));
+        let (_, f) = fixed.pull(&moved, &frame);
+        assert!((f - want).norm() < 1e-6, "{f:?} against {want:?}");
+        assert!(f.norm() > 2.0e6);
+    }
+}

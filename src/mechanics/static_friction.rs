@@ -148,6 +148,9 @@ impl HoldingRange {
             return None;
         }
         let total: f64 = self.normal.iter().map(|n| n.abs()).sum();
+        if total <= 0.0 {
+            return None;
+        }
         let least = self.normal.iter().copied().fold(f64::INFINITY, f64::min);
         Some(if least <= 1e-6 * total {
             Limit::Tips

@@ -12,14 +12,18 @@ use nalgebra::Vector3;
 /// 195 GPa (ASTM A416's typical value; bars are about 200 GPa).
 pub const STRAND_MODULUS_PA: f64 = 195.0e9;
 
+/// The longest free length taken (m): a rock anchor's is tens of metres; beyond this the
+/// tendon's geometry is lost in round-off against its length.
+pub const MAX_FREE_LENGTH_M: f64 = 1.0e4;
+
 /// One post-tensioned anchor (SI units, radians).
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct RockAnchor {
     /// The head, where the tendon bears on the monolith: x′ from the heel, y′ above the base,
     /// z′ across from the middle of the width (m).
     pub head: [f64; 3],
-    /// The plunge: the tendon's angle below the horizontal, from the head into the rock
-    /// (rad; π/2 vertical).
+    /// The plunge: the tendon's angle below the base's plane (x′z′), from the head into the
+    /// rock (rad; π/2 along −y′, vertical on a level base; the section stands on its base).
     pub plunge: f64,
     /// The trend of its horizontal part, from the head into the rock: from x′ (downstream)
     /// towards z′ (rad; π points upstream).
@@ -110,14 +114,27 @@ impl RockAnchor {
         check(
             &key("free_length_m"),
             self.free_length,
-            self.free_length >= reach * (1.0 - 1e-12) && self.free_length > 0.0,
+            self.free_length >= reach * (1.0 - 1e-12)
+                && self.free_length > 0.0
+                && self.free_length <= MAX_FREE_LENGTH_M,
             &format!(
-                "positive and at least the tendon's length through the monolith ({reach} m from \
-                 the head down to the base)"
+                "positive, at least the tendon's length through the monolith ({reach} m from the \
+                 head down to the base) and at most {MAX_FREE_LENGTH_M} m"
             ),
         )?;
         positive(&key("steel_area_m2"), self.steel_area)?;
         positive(&key("modulus_pa"), self.modulus)?;
+        let k = self.stiffness();
+        check(
+            &key("steel_area_m2"),
+            self.steel_area,
+            k.is_normal(),
+            &format!(
+                "such that the tendon's stiffness E A / L is a usable number (E {} Pa, L {} m \
+                 give {k:e} N/m)",
+                self.modulus, self.free_length
+            ),
+        )?;
         Ok(())
     }
 }
@@ -185,14 +202,21 @@ impl Tendon {
     /// force (N) along the tendon towards the rock.
     pub fn pull(&self, origin: &Vector3<f64>, frame: &LocalFrame) -> (Vector3<f64>, Vector3<f64>) {
         let head = self.head_at(origin, frame);
+        let tension = self.tension(origin, frame);
+        if !tension.is_finite() {
+            return (head - origin, Vector3::zeros());
+        }
         let toward = match self.rock {
-            Some(rock) => (rock - head).normalize(),
+            // A head on its bond (a tendon of no length) pulls no way.
+            Some(rock) => (rock - head)
+                .try_normalize(f64::MIN_POSITIVE)
+                .unwrap_or_else(Vector3::zeros),
             None => {
                 let d = self.anchor.direction();
                 frame.i * d.x + frame.j * d.y + frame.k * d.z
             }
         };
-        (head - origin, toward * self.tension(origin, frame))
+        (head - origin, toward * tension)
     }
 }
 

@@ -292,9 +292,9 @@ impl SimulationBuilder {
         self
     }
 
-    /// Post-tensioned anchors through `monolith` into the rock (`[[anchor]]`; only the
-    /// rigid body's dynamics on three contacts follows them), each checked against its
-    /// section when built.
+    /// Post-tensioned anchors through `monolith` into the rock (`[[anchor]]`; the rigid body
+    /// follows them, on its three contacts or its base, the paper's dynamics not), each checked
+    /// against its section when built.
     pub fn anchors(mut self, monolith: &Monolith, anchors: &[RockAnchor]) -> Self {
         self.anchor_fault = anchors
             .iter()
@@ -337,6 +337,7 @@ impl SimulationBuilder {
         if let Some(e) = self.anchor_fault {
             return Err(e);
         }
+        check_anchor_ratios(&block, &loads, &self.tendons)?;
         check_anchored(&settings, !self.tendons.is_empty())?;
         let base = match settings.contacts {
             Contacts::Frame => None,
@@ -364,6 +365,36 @@ impl SimulationBuilder {
             tendons: self.tendons,
         })
     }
+}
+
+/// Each anchor's prestress within [`MAX_RATIO`] of the weight, and its E A within
+/// [`MAX_RATIO`]² of it (a strain of 10⁻⁶ then pulls at most [`MAX_RATIO`] weights): a
+/// tendon's pull is a number the contact problem can take.
+fn check_anchor_ratios(b: &Block, l: &Loads, tendons: &[Tendon]) -> Result<(), ModelError> {
+    let weight = b.mass * l.gravity;
+    for (k, t) in tendons.iter().enumerate() {
+        let a = &t.anchor;
+        if a.prestress > MAX_RATIO * weight {
+            return Err(ModelError::new(
+                format!("anchor[{k}].prestress_n"),
+                format!(
+                    "{:e} N is more than {MAX_RATIO:e} times the weight ({weight:e} N)",
+                    a.prestress
+                ),
+            ));
+        }
+        let ea = a.modulus * a.steel_area;
+        if ea > MAX_RATIO * MAX_RATIO * weight {
+            return Err(ModelError::new(
+                format!("anchor[{k}].steel_area_m2"),
+                format!(
+                    "E A = {ea:e} N is more than {:e} times the weight ({weight:e} N)",
+                    MAX_RATIO * MAX_RATIO
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Anchors are followed by the rigid body, on its three contacts or its base (the tendon's

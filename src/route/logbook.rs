@@ -9,7 +9,8 @@ use serde::Serialize;
 /// Energy bookkeeping of a rigid-body route (J), from the start to its last state.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
 pub struct EnergyBalance {
-    /// Work of the hydraulic force and its couple.
+    /// Work of the applied loads other than gravity's pull: the water's force and its couples,
+    /// the pseudo-static and a record's inertial forces, the anchors' tendons.
     pub work_hydraulic_j: f64,
     /// Work of friction (≤ 0).
     pub work_friction_j: f64,

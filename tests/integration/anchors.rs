@@ -284,3 +284,26 @@ fn an_anchors_keys_are_changed_by_its_number_as_any_scene_key_and_swept() {
     let e = check_key(&s, "anchor[2].prestress_n", false, &[1.0]).unwrap_err();
     assert!(e.to_string().contains("has 1 [[anchor]]"), "{e}");
 }
+
+#[test]
+fn a_tendon_whose_force_reaches_its_capacity_as_the_block_stops_breaks_there() {
+    // Kicked at 1 m/s under 10 m of water (held by friction alone), the block slides about half
+    // a metre and stops, the tendon's force greatest there. A capacity just under that force
+    // breaks the tendon as the block stops; one just over it does not.
+    let kicked = |capacity: f64| {
+        let text = scene(1.0e6, capacity, "frame")
+            .replace("headwater_m = 14.0", "headwater_m = 10.0")
+            + "[initial]\nvx_m_s = 1.0\n";
+        slideroute::run(&Scene::from_toml(&text, "kicked").unwrap()).unwrap()
+    };
+    let whole = kicked(1.0e9);
+    assert_eq!(whole.termination.reason, slideroute::Reason::Stopped);
+    let last = whole.rows.last().unwrap();
+    let (l, k) = (20.0, 195.0e9 * 5.0e-3 / 20.0);
+    let at_stop = 1.0e6 + k * ((last.x_m * last.x_m + l * l).sqrt() - l);
+    assert!(at_stop > 1.2e6, "{at_stop}");
+    let r = kicked(at_stop * (1.0 - 1e-7));
+    assert_eq!(r.anchors_broken.len(), 1, "{:?}", r.termination);
+    assert!((r.anchors_broken[0].t_s - whole.termination.t_s).abs() < 1e-3);
+    assert!(kicked(at_stop * (1.0 + 1e-6)).anchors_broken.is_empty());
+}

@@ -897,3 +897,44 @@ steel_area_m2 = 8.0e-3
         "the crack {t} m stops short of the drains"
     );
 }
+
+#[test]
+fn an_inclined_anchor_above_the_base_adds_its_moment_about_the_tipping_line_to_the_load_multiple() {
+    // The tipping multiple of the previous test with an anchor of 5 MN from the crest, 2 m from
+    // the heel, plunging 60° upstream: its pull P (−cos 60°, −sin 60°) at (2, 15) m resists
+    // about the line x = 11 m by (2 − 11)(−P sin 60°) − 15 (−P cos 60°). (Off the middle, at
+    // z = 2 m, the contacts' friction gives first, a little earlier, sliding and turning.)
+    let gamma = 1000.0 * 9.81;
+    let (b, w, h1, p) = (20.0, 10.0, 14.0, 5.0e6);
+    let h = 0.5 * gamma * h1 * h1 * w;
+    let u = 0.5 * gamma * h1 * b * w;
+    let (sin, cos) = 60f64.to_radians().sin_cos();
+    let m_anchor = (2.0 - 11.0) * (-p * sin) - 15.0 * (-p * cos);
+    let want = (W * 4.0 - u * (11.0 - b / 3.0) + m_anchor) / (h * h1 / 3.0);
+    let text = edit(
+        &monolith(),
+        &[
+            ("eccentricity_m = 1.0 ", "eccentricity_m = 0.0 "),
+            ("tailwater_m = 2.0 ", "tailwater_m = 0.0 "),
+            ("drain_efficiency = 0.5 ", "drain_efficiency = 0.0 "),
+            ("mu_k = 0.45", "mu_k = 1.2"),
+        ],
+    ) + &format!(
+        "\n[[anchor]]\nx_m = 2.0\ny_m = 15.0\nz_m = 0.0\nplunge_deg = 60.0\ntrend_deg = 180.0\n\
+         prestress_n = {p}\ncapacity_n = 2.0e7\nfree_length_m = 40.0\nsteel_area_m2 = 4.0e-3\n"
+    );
+    let s = Scene::from_toml(&text, "dam")
+        .unwrap()
+        .with("solver.t_end_s", 0.01)
+        .unwrap();
+    for contacts in ["base", "frame"] {
+        let s = s.with("solver.contacts", contacts).unwrap();
+        let r = slideroute::run(&s).unwrap();
+        let got = r.factor_of_safety.and_then(|f| f.value()).unwrap();
+        assert!(
+            (got - want).abs() < 1e-6 * want,
+            "{contacts}: {got} against {want}"
+        );
+        assert_eq!(r.factor_of_safety_limit, Some(slideroute::Limit::Tips));
+    }
+}

@@ -1,12 +1,14 @@
 //! Anchors' tendons along the route (`derivations/11-dam-loads.md` §10): each pulls with its
 //! prestress and E A / L times its stretch as the block moves (a load on the body at its pose,
 //! `mechanics::loads::Applied::of`), and breaks when its force reaches its capacity. A substep
-//! that would carry a tendon past its capacity is halved, down to the shortest substep, so that
-//! the break falls where the force reaches the capacity; there the tendon is let go and the
-//! state evaluated again without it.
+//! that would carry a tendon past its capacity is halved, down to the shortest substep (10⁻³ dt),
+//! so that the break falls within the shortest substep of where the force reaches the
+//! capacity; there the tendon is let go and the state evaluated again without it. A stop checks
+//! the tendons before it asks whether friction holds the block (the force peaks there).
 
 use super::evaluate::{Eval, Hold, evaluate};
 use super::{Ending, Model, RigidBody};
+use crate::geometry::Pose;
 use crate::route::AnchorBreak;
 use crate::route::logbook::Logbook;
 use crate::route::pose_finder::PoseFinder;
@@ -25,6 +27,22 @@ impl RigidBody<'_> {
         })
     }
 
+    /// Breaks every tendon that has reached its capacity with the block at `pose` at time `t`,
+    /// each booked in the logbook (the caller evaluates the state again). Whether any broke.
+    pub(super) fn break_tendons_at(&mut self, pose: &Pose, t: f64, o: &mut Logbook<'_>) -> bool {
+        let mut broke = false;
+        while let Some(k) = self.sim.tendons().iter().position(|tendon| {
+            !tendon.broken
+                && tendon.tension(&pose.cm, &pose.frame)
+                    > tendon.anchor.capacity * (1.0 - AT_CAPACITY)
+        }) {
+            self.sim = Model::Own(Rc::new(self.sim.tendon_broken(k)));
+            o.anchors_broken.push(AnchorBreak { anchor: k, t_s: t });
+            broke = true;
+        }
+        broke
+    }
+
     /// Breaks every tendon that has reached its capacity at the current state, each booked in
     /// the logbook, and evaluates the state again without them. Whether any broke.
     pub(super) fn break_tendons(
@@ -32,15 +50,8 @@ impl RigidBody<'_> {
         finder: &mut PoseFinder<'_>,
         o: &mut Logbook<'_>,
     ) -> Result<bool, Ending> {
-        let mut broke = false;
-        while let Some(k) = self.past_capacity(&self.ev, -AT_CAPACITY) {
-            self.sim = Model::Own(Rc::new(self.sim.tendon_broken(k)));
-            o.anchors_broken.push(AnchorBreak {
-                anchor: k,
-                t_s: self.t,
-            });
-            broke = true;
-        }
+        let pose = self.ev.pose;
+        let broke = self.break_tendons_at(&pose, self.t, o);
         if broke {
             let hold = Hold::of(&self.ev.motion);
             self.ev = evaluate(&self.sim, finder, &self.y, hold).map_err(Ending::Failed)?;

@@ -55,7 +55,6 @@ pub fn check(args: &CheckArgs) -> Result<(), CliError> {
         scene.name(),
         scene.guideline(),
         scene.monolith().map(|m| &m.section),
-        scene.anchors(),
         &results,
         &toml::to_string(&manifest.scene).unwrap_or_default(),
         &serde_json::to_string_pretty(&manifest).unwrap_or_default(),

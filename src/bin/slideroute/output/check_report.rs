@@ -27,7 +27,6 @@ pub fn report(
     scene: &str,
     guideline: &Guideline,
     section: Option<&Section>,
-    anchors: &[RockAnchor],
     results: &[CaseResult],
     scene_toml: &str,
     manifest_json: &str,
@@ -56,8 +55,8 @@ pub fn report(
             verdict = if r.passes { "passes" } else { "FAILS" },
         );
         if let (Some(s), Some(g)) = (section, r.gravity.as_ref()) {
-            h.push_str(&drawing(s, anchors, r, g));
-            h.push_str(&loads_table(r, g, anchors));
+            h.push_str(&drawing(s, &r.anchors, r, g));
+            h.push_str(&loads_table(r, g, &r.anchors));
             h.push_str(&verdict_table(r, g, guideline));
         } else {
             let _ = write!(
