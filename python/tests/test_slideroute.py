@@ -463,3 +463,20 @@ def test_progress_is_told_how_far_the_work_is_and_may_stop_it():
     slow = slideroute.Scene.default()
     with pytest.raises(Enough):
         slideroute.probabilistic(slow, {"friction.mu_k": "normal:0.4:0.05"}, samples=2000, progress=give_up)
+
+
+def test_a_seed_gives_each_key_the_same_values_whatever_order_the_dict_gives_them():
+    # Issue #29: the scene's table was sampled in sorted key order, a dict in its own.
+    s = slideroute.Scene.from_file(SCENES / "paper-like.toml")
+    a = {"loads.eccentricity_m": "uniform:0:2", "friction.mu_k": "uniform:0.3:0.5"}
+    b = dict(reversed(list(a.items())))
+    pa = slideroute.probabilistic(s.with_keys({"solver.t_end_s": 0.05}), a, samples=12, seed=3)
+    pb = slideroute.probabilistic(s.with_keys({"solver.t_end_s": 0.05}), b, samples=12, seed=3)
+    for key in a:
+        np.testing.assert_array_equal(pa.samples[key], pb.samples[key])
+    # The same summary, its lists by key in the order given.
+    by_key = lambda rows: {r["key"]: r for r in rows}
+    for listed in ("distributions", "rank_correlations"):
+        assert by_key(pa.summary[listed]) == by_key(pb.summary[listed])
+    rest = lambda p: {k: v for k, v in p.summary.items() if k not in ("distributions", "rank_correlations")}
+    assert rest(pa) == rest(pb)

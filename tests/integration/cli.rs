@@ -2005,3 +2005,39 @@ fn a_reservoir_above_the_crest_is_refused_naming_the_key_and_the_case() {
     assert_bad_input(&o, &["water.headwater_m", "at most the crest"]);
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn run_then_sweep_with_their_default_folders_keep_each_others_files() {
+    // Issue #29: both wrote into `out/`, and the sweep removed the route's files.
+    let dir = temp_dir("defaults");
+    std::fs::create_dir_all(&dir).unwrap();
+    let at = |args: &[&str]| {
+        Command::new(env!("CARGO_BIN_EXE_slideroute"))
+            .args(args)
+            .current_dir(&dir)
+            .output()
+            .unwrap()
+    };
+    let o = at(&[
+        "run",
+        "--quiet",
+        "--no-plots",
+        "--set",
+        "solver.t_end_s=0.05",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = at(&[
+        "sweep",
+        "--quiet",
+        "--no-plots",
+        "--vary",
+        "solver.t_end_s=0.02,0.03",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    for file in ["out/route.csv", "out/summary.json", "sweep/sweep.csv"] {
+        assert!(dir.join(file).exists(), "{file} is gone");
+    }
+    // --no-plots: no picture.
+    assert!(!dir.join("sweep/sweep.svg").exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}

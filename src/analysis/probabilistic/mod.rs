@@ -29,19 +29,29 @@ pub fn merged(table: &[Uncertain], given: Vec<Uncertain>) -> Vec<Uncertain> {
     all
 }
 
-/// The values of each sample: the design's uniforms through each key's quantile function.
+/// The values of each sample, in the order of `uncertain`: the design's uniforms through each
+/// key's quantile function, the design's dimensions taken by the keys in their sorted order
+/// (by name), so that a seed gives each key the same values however the keys were given (a
+/// scene's table, the command line, Python, Dask).
 pub fn sample_values(
     uncertain: &[Uncertain],
     samples: usize,
     seed: u64,
     sampling: Sampling,
 ) -> Vec<Vec<f64>> {
+    let mut sorted: Vec<usize> = (0..uncertain.len()).collect();
+    sorted.sort_by(|&a, &b| uncertain[a].key.cmp(&uncertain[b].key));
+    let mut dimension = vec![0; uncertain.len()];
+    for (d, &k) in sorted.iter().enumerate() {
+        dimension[k] = d;
+    }
     design(samples, uncertain.len(), seed, sampling)
         .into_iter()
         .map(|row| {
-            row.iter()
-                .zip(uncertain)
-                .map(|(&u, k)| k.distribution.quantile(u))
+            uncertain
+                .iter()
+                .zip(&dimension)
+                .map(|(k, &d)| k.distribution.quantile(row[d]))
                 .collect()
         })
         .collect()
@@ -79,6 +89,24 @@ pub fn proportion(k: usize, n: usize) -> (f64, (f64, f64)) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_seed_gives_each_key_the_same_values_whatever_order_the_keys_come_in() {
+        // Issue #29: the scene's table (sorted), --dist and Python (as given) drew differently.
+        let u = |key: &str, lo: f64| Uncertain {
+            key: key.to_string(),
+            distribution: Distribution::Uniform { lo, hi: lo + 1.0 },
+        };
+        let ab = [u("loads.eccentricity_m", 0.0), u("friction.mu_k", 0.2)];
+        let ba = [ab[1].clone(), ab[0].clone()];
+        for sampling in [Sampling::MonteCarlo, Sampling::LatinHypercube] {
+            let x = sample_values(&ab, 50, 7, sampling);
+            let y = sample_values(&ba, 50, 7, sampling);
+            for (r, s) in x.iter().zip(&y) {
+                assert_eq!((r[0], r[1]), (s[1], s[0]));
+            }
+        }
+    }
 
     #[test]
     fn a_given_distribution_replaces_the_tables_and_the_others_follow_it() {

@@ -140,12 +140,16 @@ pub struct SweepArgs {
     /// Dynamics model for every combination, overriding the scene's `[solver] dynamics`.
     #[arg(long, value_name = "MODEL", value_parser = named::<DynamicsModel, _>(DynamicsModel::ALL.map(DynamicsModel::as_str)))]
     pub dynamics: Option<DynamicsModel>,
-    /// Output folder (created if needed).
-    #[arg(long, value_name = "DIR", default_value = "out")]
+    /// Output folder (created if needed): its own by default, so that a sweep never replaces
+    /// what `run` wrote in `out`.
+    #[arg(long, value_name = "DIR", default_value = "sweep")]
     pub out: PathBuf,
     /// No progress bar and no summary (errors are still reported).
     #[arg(long)]
     pub quiet: bool,
+    /// No picture (sweep.svg).
+    #[arg(long)]
+    pub no_plots: bool,
 }
 
 /// `slideroute probabilistic`.

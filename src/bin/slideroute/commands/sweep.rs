@@ -41,13 +41,15 @@ pub fn sweep(args: &SweepArgs) -> Result<(), CliError> {
     #[allow(unused_mut)]
     let mut written = vec![csv_path];
     #[cfg(feature = "plots")]
-    written.push(
-        folder
-            .write_with("sweep.svg", |tmp| {
-                crate::output::plots::sweep(tmp, varies, &rows)
-            })
-            .map_err(failed)?,
-    );
+    if !args.no_plots {
+        written.push(
+            folder
+                .write_with("sweep.svg", |tmp| {
+                    crate::output::plots::sweep(tmp, varies, &rows)
+                })
+                .map_err(failed)?,
+        );
+    }
     folder.finish().map_err(failed)?;
     if interrupted() {
         return Err(many_interrupted_after("combinations", &written));
