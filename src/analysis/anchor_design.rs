@@ -175,6 +175,12 @@ mod tests {
                     .unwrap()
             };
             assert!(at(got * (1.0 + 1e-9)) >= f && at(got * 0.999) < f);
+            // Every verdict asks at least what sliding does; the one anchor takes all of it,
+            // within its capacity.
+            let every = design[quake].for_every_verdict_n.unwrap();
+            assert!(every >= got * (1.0 - 1e-12), "{every} under {got}");
+            assert_eq!(design[quake].per_anchor_n, vec![every]);
+            assert_eq!(design[quake].within_capacity, every < 1.0e8);
         }
     }
 

@@ -28,6 +28,13 @@ pub struct BodyPose {
 }
 
 impl BodyPose {
+    /// Its axes x′, y′, z′ in world axes, as the three-point frame's (the loads are placed in
+    /// them).
+    pub fn frame(&self) -> super::LocalFrame {
+        let r = self.rotation;
+        super::LocalFrame::from_axes(r.column(0).into_owned(), r.column(2).into_owned())
+    }
+
     /// The world position of the body point `p` (body axes about the CM).
     pub fn point(&self, p: &Vector3<f64>) -> Vector3<f64> {
         self.cm + self.rotation * p

@@ -198,6 +198,12 @@ impl Tendon {
         }
     }
 
+    /// Whether the tendon, whole, pulls more than its capacity, by more than `margin` (a
+    /// fraction of it, negative for less), with the block at (`origin`, `frame`): it breaks.
+    pub fn past_capacity(&self, origin: &Vector3<f64>, frame: &LocalFrame, margin: f64) -> bool {
+        !self.broken && self.tension(origin, frame) > self.anchor.capacity * (1.0 + margin)
+    }
+
     /// The pull on the block at (`origin`, `frame`): the arm from `origin` to the head and the
     /// force (N) along the tendon towards the rock.
     pub fn pull(&self, origin: &Vector3<f64>, frame: &LocalFrame) -> (Vector3<f64>, Vector3<f64>) {

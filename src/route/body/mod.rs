@@ -34,7 +34,7 @@ use super::row::Row;
 use super::termination::Reason;
 use crate::geometry::penetration::{deepest_of, samples};
 use crate::geometry::{
-    BodyPose, CastError, Footprint, Ground, LocalFrame, Relief, SettleError, cast, set_down,
+    BodyPose, CastError, Footprint, Ground, Relief, SettleError, cast, set_down,
 };
 use crate::model::{Base, Simulation, Tendon};
 use flush::Quadrature;
@@ -176,11 +176,10 @@ impl<'a> OnBase<'a> {
     /// Lets go every tendon whose force has reached its capacity at the present pose, each
     /// booked in the logbook (located to the step: the block on its base steps at dt).
     fn break_tendons(&mut self, o: &mut Logbook<'_>) {
-        let r = self.s.pose.rotation;
-        let frame = LocalFrame::from_axes(r.column(0).into_owned(), r.column(2).into_owned());
+        let frame = self.s.pose.frame();
         let origin = self.under_cm();
         for (k, t) in self.tendons.iter_mut().enumerate() {
-            if !t.broken && t.tension(&origin, &frame) >= t.anchor.capacity {
+            if t.past_capacity(&origin, &frame, 0.0) {
                 t.broken = true;
                 o.anchors_broken.push(AnchorBreak {
                     anchor: k,
@@ -277,8 +276,7 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
         };
         body.s = BodyState::at_rest(rest.pose);
         // Anchors: each tendon's bond fixed in the rock where the block rests.
-        let r = rest.pose.rotation;
-        let frame = LocalFrame::from_axes(r.column(0).into_owned(), r.column(2).into_owned());
+        let frame = rest.pose.frame();
         body.tendons = sim
             .tendons()
             .iter()

@@ -4,8 +4,7 @@
 use super::flush::{Bed, Quadrature, Spot, flush};
 use super::state::BodyState;
 use crate::geometry::{
-    BodyPose, Feature, Footprint, Ground, LocalFrame, Relief, Touch, Touches, relief_touches,
-    touches,
+    BodyPose, Feature, Footprint, Ground, Relief, Touch, Touches, relief_touches, touches,
 };
 use crate::mechanics::held::{Support, held, reach};
 use crate::mechanics::impulses::{self, Body, ContactRow, Patch};
@@ -258,8 +257,7 @@ impl Ctx<'_> {
     /// The loads at `pose` with the ground accelerating at `ground` (g along X, Y, Z): the force
     /// (N) and the moment about the CM (N·m).
     fn loads_under(&self, pose: &BodyPose, ground: [f64; 3]) -> (Vector3<f64>, Vector3<f64>) {
-        let r = pose.rotation;
-        let frame = LocalFrame::from_axes(r.column(0).into_owned(), r.column(2).into_owned());
+        let frame = pose.frame();
         let origin = pose.point(&Vector3::new(0.0, -self.base.depth, 0.0));
         let applied = Applied::shaken(self.sim.loads(), self.sim.block(), &frame, ground)
             .with_tendons(self.tendons, &frame, &origin)

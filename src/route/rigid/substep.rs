@@ -545,7 +545,9 @@ impl RigidBody<'_> {
         let stopped = y_lo.stopped();
         // A tendon that reached its capacity as the block stopped breaks before the block is
         // found held (the force peaks as the motion stops).
-        if let Ok(pose) = finder.clone().pose_at(stopped.displacement()) {
+        if !self.sim.tendons().is_empty()
+            && let Ok(pose) = finder.clone().pose_at(stopped.displacement())
+        {
             self.break_tendons_at(&pose, t_event, o);
         }
         match self.come_to_rest(finder, &stopped, k, t_event, o) {

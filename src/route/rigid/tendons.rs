@@ -22,20 +22,22 @@ impl RigidBody<'_> {
     /// Whether a tendon left whole is past its capacity by more than `margin` (a fraction of it)
     /// at the evaluation `e`.
     pub(super) fn past_capacity(&self, e: &Eval, margin: f64) -> Option<usize> {
-        self.sim.tendons().iter().position(|t| {
-            !t.broken && t.tension(&e.pose.cm, &e.pose.frame) > t.anchor.capacity * (1.0 + margin)
-        })
+        self.sim
+            .tendons()
+            .iter()
+            .position(|t| t.past_capacity(&e.pose.cm, &e.pose.frame, margin))
     }
 
     /// Breaks every tendon that has reached its capacity with the block at `pose` at time `t`,
     /// each booked in the logbook (the caller evaluates the state again). Whether any broke.
     pub(super) fn break_tendons_at(&mut self, pose: &Pose, t: f64, o: &mut Logbook<'_>) -> bool {
         let mut broke = false;
-        while let Some(k) = self.sim.tendons().iter().position(|tendon| {
-            !tendon.broken
-                && tendon.tension(&pose.cm, &pose.frame)
-                    > tendon.anchor.capacity * (1.0 - AT_CAPACITY)
-        }) {
+        while let Some(k) = self
+            .sim
+            .tendons()
+            .iter()
+            .position(|t| t.past_capacity(&pose.cm, &pose.frame, -AT_CAPACITY))
+        {
             self.sim = Model::Own(Rc::new(self.sim.tendon_broken(k)));
             o.anchors_broken.push(AnchorBreak { anchor: k, t_s: t });
             broke = true;
