@@ -16,7 +16,15 @@ pub struct SceneError {
     pub position: Option<(usize, usize)>,
     /// What kind of fault it is, for callers that act on it (the reason is for people).
     pub kind: SceneErrorKind,
+    /// The scene's other faults found with this one (each with its own key; at most
+    /// [`MAX_FAULTS`] in all): sections that do not depend on each other are each checked, so
+    /// that a file with several mistakes is told of them together. Not shown by `Display`,
+    /// which is this fault's one line; [`SceneError::faults`] gives them all.
+    pub also: Box<[SceneError]>,
 }
+
+/// The most faults one [`SceneError`] reports (itself and [`SceneError::also`]).
+pub const MAX_FAULTS: usize = 10;
 
 /// The kinds of [`SceneError`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -53,7 +61,36 @@ impl SceneError {
             reason: one_line(&reason.into()),
             position: None,
             kind,
+            also: Box::default(),
         }
+    }
+
+    /// This fault and the others found with it ([`SceneError::also`]), in the order found.
+    pub fn faults(&self) -> impl Iterator<Item = &SceneError> {
+        std::iter::once(self).chain(self.also.iter())
+    }
+
+    /// This fault with `more` found besides: those of another key than every fault already
+    /// held, up to [`MAX_FAULTS`] in all.
+    pub(crate) fn with_also(mut self, more: impl IntoIterator<Item = SceneError>) -> Self {
+        let mut also = std::mem::take(&mut self.also).into_vec();
+        for e in more.into_iter().flat_map(|e| {
+            let nested = e.also.clone();
+            std::iter::once(SceneError {
+                also: Box::default(),
+                ..e
+            })
+            .chain(nested)
+        }) {
+            if also.len() + 1 >= MAX_FAULTS {
+                break;
+            }
+            if self.key != e.key && also.iter().all(|f| f.key != e.key) {
+                also.push(e);
+            }
+        }
+        self.also = also.into_boxed_slice();
+        self
     }
 }
 

@@ -260,8 +260,10 @@ pub struct RawBase {
 /// Why a document is not a [`RawScene`]: a key that is not a scene's, or a value of the wrong
 /// type. Both carry the key's dotted path.
 pub enum ReadError {
+    /// Keys no scene has (each key once, in the file's order), and the scene read without them.
     Unknown {
-        key: String,
+        keys: Vec<String>,
+        raw: Box<RawScene>,
     },
     WrongType {
         key: String,
@@ -270,17 +272,17 @@ pub enum ReadError {
     },
 }
 
-/// Reads a scene document from any deserializer (the TOML text's, or a table's), noting the
-/// first key no scene has.
+/// Reads a scene document from any deserializer (the TOML text's, or a table's), noting every
+/// key no scene has.
 pub fn read<'de, D>(document: D) -> Result<RawScene, ReadError>
 where
     D: Deserializer<'de, Error = toml::de::Error>,
 {
-    let mut unknown: Option<String> = None;
+    let mut unknown: Vec<String> = Vec::new();
     let mut note = |path: serde_ignored::Path<'_>| {
         // `Option` sections appear as a `?` step and list items as their index: the key is
         // the rest, an item written `plane[1]`.
-        unknown.get_or_insert_with(|| {
+        unknown.push({
             let path = path.to_string();
             let mut key = String::new();
             for step in path.split('.').filter(|s| *s != "?") {
@@ -306,10 +308,13 @@ where
             span: inner.span(),
         }
     });
-    match (raw, unknown) {
-        (Err(e), _) => Err(e),
-        (Ok(_), Some(key)) => Err(ReadError::Unknown { key }),
-        (Ok(raw), None) => Ok(raw),
+    match raw {
+        Err(e) => Err(e),
+        Ok(raw) if unknown.is_empty() => Ok(raw),
+        Ok(raw) => Err(ReadError::Unknown {
+            keys: unknown,
+            raw: Box::new(raw),
+        }),
     }
 }
 

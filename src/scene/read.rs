@@ -37,19 +37,18 @@ pub(super) fn from_toml(text: &str, origin: &str, folder: &Path) -> Result<Scene
                     format!("not a table of keys: {}", e.message()),
                 )
             })?;
-    let raw = raw::read(toml::Deserializer::from(doc.clone()))
-        .map_err(|e| located(read_error(e, origin, Some(text))))?;
     let files = Files::default();
-    validate(
-        raw,
-        origin,
-        table,
-        Sources {
-            folder,
-            files: &files,
-        },
-    )
-    .map_err(located)
+    let sources = Sources {
+        folder,
+        files: &files,
+    };
+    let located_all = |e: SceneError| {
+        let also = e.also.iter().cloned().map(located).collect();
+        SceneError { also, ..located(e) }
+    };
+    let raw = raw::read(toml::Deserializer::from(doc.clone()))
+        .map_err(|e| located_all(read_error(e, origin, Some(text), &table, &sources)))?;
+    validate(raw, origin, table, sources).map_err(located_all)
 }
 
 /// A document given as a table (a scene edited by key, [`Scene::with`]): errors name the key,
@@ -61,22 +60,28 @@ pub(super) fn from_table(
     origin: &str,
     sources: Sources,
 ) -> Result<Scene, SceneError> {
-    let raw =
-        raw::read(toml::Value::Table(table.clone())).map_err(|e| read_error(e, origin, None))?;
+    let raw = raw::read(toml::Value::Table(table.clone()))
+        .map_err(|e| read_error(e, origin, None, &table, &sources))?;
     validate(raw, origin, table, sources)
 }
 
-fn read_error(e: ReadError, origin: &str, text: Option<&str>) -> SceneError {
+/// The error of a document that is not a scene's: every unknown key, and the faults of the
+/// scene read without them (`table`, from `sources`).
+fn read_error(
+    e: ReadError,
+    origin: &str,
+    text: Option<&str>,
+    table: &toml::Table,
+    sources: &Sources,
+) -> SceneError {
     match e {
-        ReadError::Unknown { key } => {
-            let (section, name) = key.rsplit_once('.').unwrap_or(("", &key));
-            let known = raw::keys_of(section).join(", ");
-            let reason = if section.is_empty() {
-                format!("unknown key `{name}`; a scene's sections are {known}")
-            } else {
-                format!("unknown key `{name}`; the keys of [{section}] are {known}")
+        ReadError::Unknown { keys, raw } => {
+            let mut errors = keys.iter().map(|key| unknown_key(key, origin));
+            let Some(first) = errors.next() else {
+                return SceneError::of(SceneErrorKind::UnknownKey, origin, "", "unknown key");
             };
-            SceneError::of(SceneErrorKind::UnknownKey, origin, key.clone(), reason)
+            let rest = validate(*raw, origin, table.clone(), *sources).err();
+            first.with_also(errors.chain(rest))
         }
         ReadError::WrongType { key, message, span } => {
             let mut err = SceneError::of(SceneErrorKind::WrongType, origin, key, message);
@@ -86,6 +91,18 @@ fn read_error(e: ReadError, origin: &str, text: Option<&str>) -> SceneError {
             err
         }
     }
+}
+
+/// The fault of a key no scene has, listing the keys its section has.
+fn unknown_key(key: &str, origin: &str) -> SceneError {
+    let (section, name) = key.rsplit_once('.').unwrap_or(("", key));
+    let known = raw::keys_of(section).join(", ");
+    let reason = if section.is_empty() {
+        format!("unknown key `{name}`; a scene's sections are {known}")
+    } else {
+        format!("unknown key `{name}`; the keys of [{section}] are {known}")
+    };
+    SceneError::of(SceneErrorKind::UnknownKey, origin, key, reason)
 }
 
 /// Where `key` (`section.key`, dotted) is written: its name's offset, or its section's when the

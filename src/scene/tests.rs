@@ -897,3 +897,67 @@ fn a_bad_surface_is_named_with_its_file_and_reason() {
     assert_names(&both, "foundation.surface", "not more");
     let _ = std::fs::remove_dir_all(dir);
 }
+
+#[test]
+fn a_scene_without_solver_or_its_mode_runs_with_the_documented_defaults() {
+    // Issue #29: `[solver]` and `mode` were required although the README calls exact the
+    // default.
+    let without = GOOD.split("[solver]").next().unwrap();
+    let s = Scene::from_toml(without, "dam.toml").unwrap();
+    let settings = *s.settings().unwrap();
+    assert_eq!(settings.mode, Mode::Exact);
+    assert_eq!(settings.dynamics, DynamicsModel::RigidBody);
+    assert_eq!(settings.integrator, Integrator::Rk4);
+    assert_eq!(settings.dt, super::validate::DEFAULT_DT_S);
+    assert_eq!(settings.t_end, super::validate::DEFAULT_T_END_S);
+    assert_eq!((settings.dt, settings.t_end), (1e-3, 20.0));
+    // The same as the file that writes them out.
+    let written = Scene::from_toml(GOOD, "dam.toml").unwrap();
+    assert_eq!(s.simulation().unwrap(), written.simulation().unwrap());
+    let no_mode = Scene::from_toml(&with("mode = \"exact\"\n", ""), "dam.toml").unwrap();
+    assert_eq!(no_mode.settings().unwrap().mode, Mode::Exact);
+    // Other keys of [solver] still checked.
+    assert_names(&with("dt_s = 1.0e-3", "dt_s = -1.0"), "solver.dt_s", "");
+}
+
+#[test]
+fn a_scene_with_several_mistakes_is_told_of_each_at_once() {
+    // Issue #29: errors came one at a time where several keys were wrong.
+    let text = with("xi_deg = 20.0", "xi_deg = 95.0")
+        .replacen("mu_k = 0.40", "mu_k = -0.4", 1)
+        .replacen("dt_s = 1.0e-3", "dt_s = -1.0", 1)
+        .replacen("gravity_m_s2 = 9.81", "gravity_m_s2 = 9.81\ncolour = 3", 1);
+    let e = err(&text);
+    let keys: Vec<&str> = e.faults().map(|f| f.key.as_str()).collect();
+    assert_eq!(
+        keys,
+        [
+            "loads.colour",
+            "foundation.xi_deg",
+            "solver.dt_s",
+            "friction.mu_k"
+        ]
+    );
+    // Each at its own line of the file, each one line; Display is the first alone.
+    let lines: Vec<usize> = e.faults().map(|f| f.position.unwrap().0).collect();
+    for (f, line) in e.faults().zip(lines) {
+        let key = f.key.rsplit('.').next().unwrap();
+        assert!(text.lines().nth(line - 1).unwrap().starts_with(key), "{f}");
+        assert!(!f.to_string().contains('\n'));
+    }
+    assert!(!e.to_string().contains("mu_k"));
+    // A scene edited by key is told the same way, and never more than MAX_FAULTS.
+    let s = Scene::from_toml(GOOD, "dam.toml").unwrap();
+    let e = s
+        .with_keys([
+            ("friction.mu_k".to_string(), toml::Value::Float(-1.0)),
+            ("solver.dt_s".to_string(), toml::Value::Float(-1.0)),
+        ])
+        .unwrap_err();
+    assert_eq!(e.faults().count(), 2, "{:?}", e.also);
+    let mut many = GOOD.to_string();
+    for k in 0..30 {
+        many = many.replacen("[frame]", &format!("[frame]\nextra{k} = 1"), 1);
+    }
+    assert_eq!(err(&many).faults().count(), super::error::MAX_FAULTS);
+}

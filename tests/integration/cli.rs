@@ -969,6 +969,7 @@ fn a_run_replaces_every_output_of_an_earlier_run_and_nothing_else() {
     let mut names: Vec<String> = std::fs::read_dir(&dir)
         .unwrap()
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| !n.starts_with('.'))
         .collect();
     names.sort();
     assert_eq!(
@@ -983,6 +984,7 @@ fn a_run_replaces_every_output_of_an_earlier_run_and_nothing_else() {
     let mut names: Vec<String> = std::fs::read_dir(&dir)
         .unwrap()
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| !n.starts_with('.'))
         .collect();
     names.sort();
     assert_eq!(names, ["notes.txt", "route.csv", "summary.json"]);
@@ -2007,37 +2009,222 @@ fn a_reservoir_above_the_crest_is_refused_naming_the_key_and_the_case() {
 }
 
 #[test]
-fn run_then_sweep_with_their_default_folders_keep_each_others_files() {
+fn each_command_writes_its_own_default_folder_and_keeps_the_others_files() {
     // Issue #29: both wrote into `out/`, and the sweep removed the route's files.
     let dir = temp_dir("defaults");
     std::fs::create_dir_all(&dir).unwrap();
     let at = |args: &[&str]| {
-        Command::new(env!("CARGO_BIN_EXE_slideroute"))
+        let o = Command::new(env!("CARGO_BIN_EXE_slideroute"))
             .args(args)
             .current_dir(&dir)
             .output()
-            .unwrap()
+            .unwrap();
+        assert!(o.status.success(), "{args:?}: {}", stderr(&o));
     };
-    let o = at(&[
-        "run",
-        "--quiet",
-        "--no-plots",
-        "--set",
-        "solver.t_end_s=0.05",
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    let o = at(&[
+    let short = ["--quiet", "--no-plots", "--set", "solver.t_end_s=0.05"];
+    at(&[&["run"][..], &short].concat());
+    at(&[&["run", "--compare-dynamics"][..], &short].concat());
+    at(&[
         "sweep",
         "--quiet",
         "--no-plots",
         "--vary",
         "solver.t_end_s=0.02,0.03",
     ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    for file in ["out/route.csv", "out/summary.json", "sweep/sweep.csv"] {
+    at(&[
+        "probabilistic",
+        "--quiet",
+        "--no-plots",
+        "--samples",
+        "2",
+        "--dist",
+        "friction.mu_k=uniform:0.3:0.4",
+        "--set",
+        "solver.t_end_s=0.02",
+    ]);
+    for file in [
+        "out/run/route.csv",
+        "out/run/summary.json",
+        "out/compare/comparison.json",
+        "out/compare/paper/route.csv",
+        "out/sweep/sweep.csv",
+        "out/probabilistic/samples.csv",
+    ] {
         assert!(dir.join(file).exists(), "{file} is gone");
     }
     // --no-plots: no picture.
-    assert!(!dir.join("sweep/sweep.svg").exists());
+    assert!(!dir.join("out/sweep/sweep.svg").exists());
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn a_command_into_a_folder_removes_only_what_the_same_command_wrote_there() {
+    // Issue #29 (and #32 item 1): a sweep into a project folder deleted the person's own
+    // summary.json and plan.svg, and a run into a folder a sweep wrote deleted sweep.csv.
+    let dir = temp_dir("own-files");
+    std::fs::create_dir_all(&dir).unwrap();
+    for (name, text) in [("summary.json", "mine"), ("plan.svg", "mine")] {
+        std::fs::write(dir.join(name), text).unwrap();
+    }
+    let d = dir.to_str().unwrap();
+    let ok = |o: Output| assert!(o.status.success(), "{}", stderr(&o));
+    ok(run(&[
+        "sweep",
+        "--quiet",
+        "--out",
+        d,
+        "--vary",
+        "solver.t_end_s=0.02",
+    ]));
+    for name in ["summary.json", "plan.svg"] {
+        assert_eq!(std::fs::read_to_string(dir.join(name)).unwrap(), "mine");
+    }
+    assert!(dir.join("sweep.svg").exists());
+    // A run replaces the person's files it writes itself (their names are its outputs) but
+    // keeps the sweep's.
+    ok(run(&[
+        "run",
+        "--quiet",
+        "--out",
+        d,
+        "--set",
+        "solver.t_end_s=0.02",
+    ]));
+    assert!(dir.join("sweep.csv").exists() && dir.join("sweep.svg").exists());
+    assert!(dir.join("plan.svg").exists());
+    // A second sweep without pictures removes the sweep's own earlier picture only.
+    ok(run(&[
+        "sweep",
+        "--quiet",
+        "--no-plots",
+        "--out",
+        d,
+        "--vary",
+        "solver.t_end_s=0.02",
+    ]));
+    assert!(!dir.join("sweep.svg").exists());
+    for name in ["route.csv", "summary.json", "plan.svg", "sweep.csv"] {
+        assert!(dir.join(name).exists(), "{name} is gone");
+    }
+    // A run with --no-plots removes its own earlier pictures.
+    ok(run(&[
+        "run",
+        "--quiet",
+        "--no-plots",
+        "--out",
+        d,
+        "--set",
+        "solver.t_end_s=0.02",
+    ]));
+    assert!(!dir.join("plan.svg").exists());
+    assert!(dir.join("sweep.csv").exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn every_command_line_fault_is_one_line_in_the_one_style_naming_the_command_help() {
+    // Issue #29: clap's errors (`error: …`, a usage block) beside `slideroute: …`.
+    for (args, needle, help) in [
+        (
+            &["sweep"][..],
+            "--vary <KEY=VALUES>",
+            "slideroute sweep --help",
+        ),
+        (
+            &["coeffs", "--x", "1"][..],
+            "--z <METRES>",
+            "slideroute coeffs --help",
+        ),
+        (&["run", "--bogus"][..], "--bogus", "slideroute run --help"),
+        (&["runn"][..], "'run'", "slideroute --help"),
+        (
+            &["probabilistic", "--samples", "abc"][..],
+            "--samples <N>",
+            "slideroute probabilistic --help",
+        ),
+        (
+            &["run", "--dynamics", "foo"][..],
+            "paper, rigid-body",
+            "slideroute run --help",
+        ),
+    ] {
+        let o = run(args);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert_eq!(err.lines().count(), 1, "{args:?}: {err}");
+        assert!(err.starts_with("slideroute: "), "{err}");
+        assert!(!err.contains("error:") && !err.contains("Usage"), "{err}");
+        assert!(
+            err.contains(needle) && err.trim_end().ends_with(help),
+            "{err}"
+        );
+    }
+    // Help is still help, on standard output, exit 0; coeffs names its required flags.
+    let o = run(&["coeffs", "--help"]);
+    assert!(o.status.success());
+    let help = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        help.contains(
+            "Usage: slideroute coeffs [OPTIONS] --x <METRES> --z <METRES> --theta-deg <DEGREES>"
+        ),
+        "{help}"
+    );
+}
+
+#[test]
+fn the_same_value_has_the_same_metavar_in_every_command() {
+    // Issue #29: `<MODEL>` in one command and `<DYNAMICS>` in another; `<M>` beside `<METRES>`.
+    let mut seen: std::collections::BTreeMap<String, String> = Default::default();
+    for command in [
+        "run",
+        "sweep",
+        "probabilistic",
+        "check",
+        "report",
+        "coeffs",
+        "roots",
+    ] {
+        let o = run(&[command, "--help"]);
+        let help = String::from_utf8_lossy(&o.stdout).into_owned();
+        for line in help.lines().map(str::trim).filter(|l| l.starts_with("--")) {
+            let mut words = line.split_whitespace();
+            let flag = words.next().unwrap().to_string();
+            let Some(meta) = words.next().filter(|w| w.starts_with('<')) else {
+                continue;
+            };
+            let kind = if flag.ends_with("-m") || ["--x", "--z"].contains(&flag.as_str()) {
+                "a length".to_string()
+            } else if command == "roots" && flag == "--out" {
+                "a file".to_string() // the grid's rows, not a folder
+            } else {
+                flag.clone()
+            };
+            let previous = seen.entry(kind.clone()).or_insert_with(|| meta.to_string());
+            assert_eq!(previous, meta, "{command} {flag}: {kind}");
+        }
+        // Every command that draws can be told not to.
+        if ["run", "sweep", "probabilistic", "check", "report"].contains(&command) {
+            assert!(help.contains("--no-plots"), "{command}");
+        }
+    }
+    assert_eq!(seen["a length"], "<METRES>");
+}
+
+#[test]
+fn a_scene_with_several_faults_gets_a_line_for_each() {
+    let scene = temp_file(
+        "several-faults.toml",
+        &slideroute::Scene::DEFAULT_TOML
+            .replacen("mu_k = 0.40", "mu_k = -0.4", 1)
+            .replacen("xi_deg = 20.0", "xi_deg = 95.0", 1),
+    );
+    let o = run(&["scene", "--check", scene.to_str().unwrap()]);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert_eq!(err.lines().count(), 2, "{err}");
+    assert!(err.lines().all(|l| l.starts_with("slideroute: ")), "{err}");
+    assert!(
+        err.contains("foundation.xi_deg") && err.contains("friction.mu_k"),
+        "{err}"
+    );
 }

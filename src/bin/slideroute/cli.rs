@@ -40,22 +40,61 @@ pub struct SceneArg {
     pub set: Vec<String>,
 }
 
-/// A displacement of the block (X, Z, θ).
+/// A displacement of the block (X, Z, θ): every part, unless a grid of them is given.
 #[derive(Args)]
 pub struct PoseArgs {
     /// X: CM displacement along the global X axis (forward), in metres.
-    #[arg(long, value_name = "METRES", allow_negative_numbers = true)]
+    #[arg(
+        long,
+        value_name = "METRES",
+        allow_negative_numbers = true,
+        required_unless_present = "grid"
+    )]
     pub x: Option<f64>,
     /// Z: CM displacement along the global Z axis (lateral), in metres.
-    #[arg(long, value_name = "METRES", allow_negative_numbers = true)]
+    #[arg(
+        long,
+        value_name = "METRES",
+        allow_negative_numbers = true,
+        required_unless_present = "grid"
+    )]
     pub z: Option<f64>,
+    /// θ: yaw of side 01 from +X towards +Z, in degrees.
+    #[arg(
+        long = "theta-deg",
+        value_name = "DEGREES",
+        allow_negative_numbers = true,
+        required_unless_present = "grid"
+    )]
+    pub theta_deg: Option<f64>,
+}
+
+/// A displacement of the block (X, Z, θ), every part required.
+#[derive(Args)]
+pub struct RequiredPoseArgs {
+    /// X: CM displacement along the global X axis (forward), in metres.
+    #[arg(long, value_name = "METRES", allow_negative_numbers = true)]
+    pub x: f64,
+    /// Z: CM displacement along the global Z axis (lateral), in metres.
+    #[arg(long, value_name = "METRES", allow_negative_numbers = true)]
+    pub z: f64,
     /// θ: yaw of side 01 from +X towards +Z, in degrees.
     #[arg(
         long = "theta-deg",
         value_name = "DEGREES",
         allow_negative_numbers = true
     )]
-    pub theta_deg: Option<f64>,
+    pub theta_deg: f64,
+}
+
+impl From<&RequiredPoseArgs> for PoseArgs {
+    fn from(p: &RequiredPoseArgs) -> PoseArgs {
+        PoseArgs {
+            x: Some(p.x),
+            z: Some(p.z),
+            theta_deg: Some(p.theta_deg),
+        }
+    }
 }
 
 /// The commands.
@@ -88,7 +127,7 @@ pub enum Command {
     /// DIR/work-precision.csv, DIR/work-precision.svg and DIR/work-precision.md.
     Report(ReportArgs),
     /// Scene files: print the embedded default scene as a commented TOML file to start from,
-    /// or check a scene file and report the first problem.
+    /// or check a scene file and report its problems (up to ten).
     Scene(SceneFileArgs),
     /// Print the coefficients of the small-angle system (15) (f1–f12) and of the exact form
     /// at one displacement (X, Z, θ) of the centre of mass.
@@ -104,10 +143,11 @@ pub enum Command {
 pub struct RunArgs {
     #[command(flatten)]
     pub scene: SceneArg,
-    /// Output folder (created if needed): route.csv, summary.json and the pictures
-    /// plan.svg, profile.svg, angles.svg, reactions.svg.
-    #[arg(long, value_name = "DIR", default_value = "out")]
-    pub out: PathBuf,
+    /// Output folder (created if needed; default `out/run`, with --compare-dynamics
+    /// `out/compare`): route.csv, summary.json and the pictures plan.svg, profile.svg,
+    /// angles.svg, reactions.svg. A run replaces only what `run` wrote there before.
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
     /// No progress bar and no summary (errors are still reported).
     #[arg(long)]
     pub quiet: bool,
@@ -125,24 +165,39 @@ pub struct RunArgs {
     pub compare_dynamics: bool,
 }
 
+impl RunArgs {
+    /// The output folder: `--out`, else `out/run` (`out/compare` with --compare-dynamics).
+    pub fn out_dir(&self) -> PathBuf {
+        self.out.clone().unwrap_or_else(|| {
+            PathBuf::from(if self.compare_dynamics {
+                "out/compare"
+            } else {
+                "out/run"
+            })
+        })
+    }
+}
+
 /// `slideroute sweep`.
 #[derive(Args)]
 pub struct SweepArgs {
     #[command(flatten)]
     pub scene: SceneArg,
-    /// A scene key to vary, `section.key=START:STOP:COUNT` (COUNT evenly spaced values,
-    /// in the key's own units: e.g. `friction.mu_k=0.2:0.6:5`, `foundation.xi_deg=10:30:5`,
-    /// `loads.hydraulic_force_n=6e6:1e7:9`), `section.key=A,B,C` (a list of values, or of
-    /// words for a key that takes words: `solver.dynamics=paper,rigid-body`) or
-    /// `section.key=A` (one value). Repeat for more keys; every combination is run.
-    #[arg(long, value_name = "KEY=START:STOP:COUNT", required = true)]
+    /// A scene key and its values: `KEY=START:STOP:COUNT`, `KEY=A,B,C` or `KEY=A`.
+    ///
+    /// `START:STOP:COUNT` is COUNT evenly spaced values, STOP included, in the key's own
+    /// units (`friction.mu_k=0.2:0.6:5`, `foundation.xi_deg=10:30:5`,
+    /// `loads.hydraulic_force_n=6e6:1e7:9`); `A,B,C` a list of values, or of words for a key
+    /// that takes words (`solver.dynamics=paper,rigid-body`); `A` one value
+    /// (`solver.t_end_s=5`). Repeat for more keys; every combination is run.
+    #[arg(long, value_name = "KEY=VALUES", required = true)]
     pub vary: Vec<String>,
     /// Dynamics model for every combination, overriding the scene's `[solver] dynamics`.
     #[arg(long, value_name = "MODEL", value_parser = named::<DynamicsModel, _>(DynamicsModel::ALL.map(DynamicsModel::as_str)))]
     pub dynamics: Option<DynamicsModel>,
-    /// Output folder (created if needed): its own by default, so that a sweep never replaces
-    /// what `run` wrote in `out`.
-    #[arg(long, value_name = "DIR", default_value = "sweep")]
+    /// Output folder (created if needed). A sweep replaces only what a sweep wrote there
+    /// before.
+    #[arg(long, value_name = "DIR", default_value = "out/sweep")]
     pub out: PathBuf,
     /// No progress bar and no summary (errors are still reported).
     #[arg(long)]
@@ -158,10 +213,10 @@ pub struct ProbabilisticArgs {
     #[command(flatten)]
     pub scene: SceneArg,
     /// How many samples.
-    #[arg(long, default_value_t = 1000)]
+    #[arg(long, value_name = "N", default_value_t = 1000)]
     pub samples: usize,
     /// The seed the samples are drawn from.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, value_name = "S", default_value_t = 1)]
     pub seed: u64,
     /// An uncertain key and its distribution, `KEY=normal:MEAN:SD`,
     /// `KEY=truncnormal:MEAN:SD:LO:HI`, `KEY=lognormal:MEAN:SD`, `KEY=uniform:LO:HI` or
@@ -171,23 +226,23 @@ pub struct ProbabilisticArgs {
     #[arg(long = "dist", value_name = "KEY=DISTRIBUTION")]
     pub dist: Vec<String>,
     /// `lhs` (a Latin hypercube) or `mc` (plain Monte Carlo).
-    #[arg(long, default_value = "lhs", value_parser = named::<Sampling, _>(Sampling::ALL.map(Sampling::as_str)))]
+    #[arg(long, value_name = "SAMPLING", default_value = "lhs", value_parser = named::<Sampling, _>(Sampling::ALL.map(Sampling::as_str)))]
     pub sampling: Sampling,
     /// Report the probability that the travel exceeds this (m).
-    #[arg(long, value_name = "M", allow_negative_numbers = true)]
+    #[arg(long, value_name = "METRES", allow_negative_numbers = true)]
     pub travel_limit_m: Option<f64>,
     /// Report the probability that the final yaw exceeds this in size (degrees).
     #[arg(long, value_name = "DEGREES", allow_negative_numbers = true)]
     pub rotation_limit_deg: Option<f64>,
     /// Under a ground-motion record: report the probability that the permanent displacement
     /// exceeds this (m).
-    #[arg(long, value_name = "M", allow_negative_numbers = true)]
+    #[arg(long, value_name = "METRES", allow_negative_numbers = true)]
     pub displacement_limit_m: Option<f64>,
     /// Dynamics model for every sample, overriding the scene's `[solver] dynamics`.
     #[arg(long, value_name = "MODEL", value_parser = named::<DynamicsModel, _>(DynamicsModel::ALL.map(DynamicsModel::as_str)))]
     pub dynamics: Option<DynamicsModel>,
     /// Output folder (created if needed).
-    #[arg(long, value_name = "DIR", default_value = "probabilistic")]
+    #[arg(long, value_name = "DIR", default_value = "out/probabilistic")]
     pub out: PathBuf,
     /// No progress bar and no summary (errors are still reported).
     #[arg(long)]
@@ -203,7 +258,7 @@ pub struct CheckArgs {
     #[command(flatten)]
     pub scene: SceneArg,
     /// Output folder (created if needed).
-    #[arg(long, value_name = "DIR", default_value = "check")]
+    #[arg(long, value_name = "DIR", default_value = "out/check")]
     pub out: PathBuf,
     /// No progress bar and no summary (errors are still reported).
     #[arg(long)]
@@ -225,11 +280,14 @@ pub struct ReportArgs {
     #[arg(long)]
     pub quick: bool,
     /// Output folder (created if needed).
-    #[arg(long, value_name = "DIR", default_value = "report")]
+    #[arg(long, value_name = "DIR", default_value = "out/report")]
     pub out: PathBuf,
     /// No progress bar and no summary (errors are still reported).
     #[arg(long)]
     pub quiet: bool,
+    /// No picture (work-precision.svg).
+    #[arg(long)]
+    pub no_plots: bool,
 }
 
 /// `slideroute scene`.
@@ -242,7 +300,8 @@ pub struct SceneFileArgs {
     /// monolith with its water, silt, ice, guideline and load cases).
     #[arg(long, value_name = "KIND", conflicts_with = "check")]
     pub template: Option<Template>,
-    /// Check this scene file: prints `ok` or one line naming the key and the reason.
+    /// Check this scene file: prints `ok`, or a line for each fault naming the key and the
+    /// reason (up to ten).
     #[arg(long, value_name = "FILE")]
     pub check: Option<PathBuf>,
 }
@@ -262,7 +321,7 @@ pub struct CoeffsArgs {
     #[command(flatten)]
     pub scene: SceneArg,
     #[command(flatten)]
-    pub pose: PoseArgs,
+    pub pose: RequiredPoseArgs,
     /// Print JSON instead of a table.
     #[arg(long)]
     pub json: bool,
@@ -276,7 +335,7 @@ pub struct RootsArgs {
     #[command(flatten)]
     pub pose: PoseArgs,
     /// Which system: exact or small-angle. Default: the scene's [solver] mode, else exact.
-    #[arg(long, value_parser = named::<Mode, _>(Mode::ALL.map(Mode::as_str)))]
+    #[arg(long, value_name = "MODE", value_parser = named::<Mode, _>(Mode::ALL.map(Mode::as_str)))]
     pub mode: Option<Mode>,
     /// CSV of poses with header `x_m,z_m,theta_deg` (m, m, degrees); needs --out.
     #[arg(long, value_name = "POSES.csv", conflicts_with_all = ["x", "z", "theta_deg"], requires = "out")]

@@ -8,7 +8,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-/// How a command failed.
+/// How a command failed. Each message is one line (a scene's several faults, one line each).
 #[derive(Debug)]
 pub enum CliError {
     /// A scene, flag or input file that is wrong: exit 2.
@@ -27,6 +27,12 @@ pub fn bad_input(msg: impl ToString) -> CliError {
 /// An output that could not be written: exit 1.
 pub fn failed(msg: impl ToString) -> CliError {
     CliError::Failed(msg.to_string())
+}
+
+/// A scene that cannot be used: bad input, each of its faults on its own line.
+pub fn scene_faults(e: slideroute::SceneError) -> CliError {
+    let lines: Vec<String> = e.faults().map(ToString::to_string).collect();
+    CliError::BadInput(lines.join("\n"))
 }
 
 /// Writing to standard output failed: a closed pipe ends the command quietly, any other error
@@ -65,7 +71,10 @@ pub fn exit_code(result: Result<(), CliError>) -> ExitCode {
     match result {
         Ok(()) | Err(CliError::ClosedPipe) => ExitCode::SUCCESS,
         Err(CliError::BadInput(msg)) => {
-            eprintln!("slideroute: {msg}");
+            // Several faults (a scene's): one line each.
+            for line in msg.lines() {
+                eprintln!("slideroute: {line}");
+            }
             ExitCode::from(2)
         }
         Err(CliError::Failed(msg)) => {
@@ -73,6 +82,55 @@ pub fn exit_code(result: Result<(), CliError>) -> ExitCode {
             ExitCode::from(1)
         }
     }
+}
+
+/// How a command line that clap does not accept ends: help and the version printed as asked
+/// (exit 0), every other fault in the one style of every error, one line on standard error,
+/// `slideroute: REASON; see slideroute COMMAND --help`, exit 2.
+pub fn usage_error(e: &clap::Error) -> ExitCode {
+    use clap::error::ErrorKind;
+    match e.kind() {
+        ErrorKind::DisplayHelp | ErrorKind::DisplayVersion => {
+            let _ = e.print();
+            return ExitCode::SUCCESS;
+        }
+        ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
+            let _ = e.print();
+            return ExitCode::from(2);
+        }
+        _ => {}
+    }
+    // The command the line was for: the first word that names one.
+    let command = std::env::args()
+        .skip(1)
+        .find(|w| {
+            <crate::cli::Cli as clap::CommandFactory>::command()
+                .get_subcommands()
+                .any(|c| c.get_name() == w)
+        })
+        .map_or_else(|| "slideroute".to_string(), |c| format!("slideroute {c}"));
+    eprintln!(
+        "slideroute: {}; see {command} --help",
+        usage_reason(&e.render().to_string())
+    );
+    ExitCode::from(2)
+}
+
+/// The reason of clap's rendered error in one line: its lines before the usage, joined, without
+/// the `error:` prefix.
+fn usage_reason(rendered: &str) -> String {
+    let reason: Vec<&str> = rendered
+        .lines()
+        .take_while(|l| !l.starts_with("Usage:"))
+        .map(str::trim)
+        .filter(|l| !l.is_empty() && !l.starts_with("For more information"))
+        .collect();
+    reason
+        .join(" ")
+        .replace(" tip: ", "; ")
+        .trim_start_matches("error: ")
+        .trim_end_matches('.')
+        .to_string()
 }
 
 /// Set by Ctrl-C (SIGINT) and SIGTERM: a route stops at its next increment and writes what it

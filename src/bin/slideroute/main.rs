@@ -8,12 +8,15 @@ mod output;
 mod report;
 mod sweep;
 
-use clap::Parser;
+use clap::Parser as _;
 use cli::{Cli, Command};
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => return exit::usage_error(&e),
+    };
     exit::catch_interruptions();
     exit::exit_code(match &cli.command {
         Command::Run(args) => commands::run::run(args),

@@ -13,6 +13,9 @@ mod loads;
 mod site;
 mod solver;
 
+#[cfg(test)]
+pub(super) use solver::{DEFAULT_DT_S, DEFAULT_T_END_S};
+
 use super::error::SceneErrorKind;
 use super::files::{Files, Sources};
 use super::raw::RawScene;
@@ -46,16 +49,100 @@ pub(super) fn validate(
 }
 
 impl Reader<'_> {
-    /// Every section in turn, then what they must agree on.
+    /// The scene, or its faults: the first found, with the others its independent sections
+    /// have ([`Reader::other_faults`]).
     fn scene(&self, raw: RawScene, source: toml::Table) -> Result<Scene, SceneError> {
-        let contacts = self.contacts_of(&raw)?;
+        self.checked(&raw, source)
+            .map_err(|first| first.with_also(self.other_faults(&raw)))
+    }
+
+    /// The faults of each section that does not need another to be right: the contacts, the
+    /// site, the body, its loads, base, strengths and anchors where the site is right, the
+    /// friction, the run settings, the start, the guideline and its cases, the uncertain
+    /// values. (What sections must agree on is checked once each is right.)
+    fn other_faults(&self, raw: &RawScene) -> Vec<SceneError> {
+        let mut faults = Vec::new();
+        let mut keep = |r: Result<(), SceneError>| {
+            if let Err(e) = r {
+                faults.push(e);
+            }
+        };
+        let contacts = self.contacts_of(raw);
+        if let Ok(contacts) = &contacts {
+            keep(
+                self.solver(
+                    raw.solver.as_ref().unwrap_or(&Default::default()),
+                    *contacts,
+                )
+                .map(drop),
+            );
+        }
+        let site = (|| {
+            let contacts = contacts?;
+            self.site(
+                self.section("frame", &raw.frame)?,
+                self.section("foundation", &raw.foundation)?,
+                contacts == Contacts::Base,
+            )
+        })();
+        match site {
+            Ok(site) => keep((|| {
+                let (_, monolith) = self.body(raw, &site)?;
+                let loads = self.loads(raw, monolith.as_ref()).map(|(l, _)| l);
+                let cm_height = loads
+                    .as_ref()
+                    .ok()
+                    .and_then(Option::as_ref)
+                    .map_or(0.0, |l| l.cm_height);
+                let others = [
+                    loads.map(drop),
+                    self.base(raw.base.as_ref(), monolith.as_ref(), &site, cm_height)
+                        .map(drop),
+                    raw.friction.as_ref().map_or(Ok(()), |f| {
+                        self.strengths(f, &site, monolith.as_ref()).map(drop)
+                    }),
+                    self.anchors(raw.anchor.as_deref().unwrap_or(&[]), monolith.as_ref())
+                        .map(drop),
+                ];
+                match others
+                    .into_iter()
+                    .filter_map(Result::err)
+                    .reduce(|a, b| a.with_also([b]))
+                {
+                    Some(e) => Err(e),
+                    None => Ok(()),
+                }
+            })()),
+            Err(e) => keep(Err(e)),
+        }
+        keep(
+            raw.friction
+                .as_ref()
+                .map_or(Ok(()), |f| self.friction(f).map(drop)),
+        );
+        keep(self.initial(raw.initial.as_ref()).map(drop));
+        keep((|| {
+            let guideline = match &raw.check {
+                Some(c) => self.guideline(c)?,
+                None => Default::default(),
+            };
+            self.cases(&guideline, raw.case.as_deref().unwrap_or(&[]))
+                .map(drop)
+        })());
+        keep(self.uncertain(raw.uncertain.as_ref()).map(drop));
+        faults
+    }
+
+    /// Every section in turn, then what they must agree on.
+    fn checked(&self, raw: &RawScene, source: toml::Table) -> Result<Scene, SceneError> {
+        let contacts = self.contacts_of(raw)?;
         let site = self.site(
             self.section("frame", &raw.frame)?,
             self.section("foundation", &raw.foundation)?,
             contacts == Contacts::Base,
         )?;
-        let (block, monolith) = self.body(&raw, &site)?;
-        let (loads, record) = self.loads(&raw, monolith.as_ref())?;
+        let (block, monolith) = self.body(raw, &site)?;
+        let (loads, record) = self.loads(raw, monolith.as_ref())?;
         let cm_height = loads.as_ref().map_or(0.0, |l| l.cm_height);
         let base = self.base(raw.base.as_ref(), monolith.as_ref(), &site, cm_height)?;
         let cast = raw.base.as_ref().and_then(|b| b.cast).unwrap_or(false);
@@ -75,11 +162,9 @@ impl Reader<'_> {
             Some(f) => self.strengths(f, &site, monolith.as_ref())?,
             None => Default::default(),
         };
-        let settings = raw
-            .solver
-            .as_ref()
-            .map(|s| self.solver(s, contacts))
-            .transpose()?;
+        // `[solver]` is optional: without it, or without a key of it, the defaults.
+        let settings =
+            Some(self.solver(raw.solver.as_ref().unwrap_or(&Default::default()), contacts)?);
         let initial = self.initial(raw.initial.as_ref())?;
         if let Some(s) = &settings {
             model::check_rigid_only(s.dynamics, record.is_some(), strengths.has_cohesion())
@@ -99,7 +184,7 @@ impl Reader<'_> {
         }
         let uncertain = self.uncertain(raw.uncertain.as_ref())?;
         Ok(Scene {
-            name: raw.name.unwrap_or_else(|| "unnamed".to_string()),
+            name: raw.name.clone().unwrap_or_else(|| "unnamed".to_string()),
             origin: self.origin.to_string(),
             site,
             block,

@@ -1,9 +1,14 @@
 //! `[solver]` and `[initial]`: how the route is run, and the motion at its start.
 
 use super::Reader;
-use crate::model::{Contacts, DynamicsModel, Initial, RunSettings};
+use crate::model::{Contacts, DynamicsModel, Initial, Mode, RunSettings};
 use crate::scene::SceneError;
 use crate::scene::raw::{RawInitial, RawScene, RawSolver};
+
+/// The increment where `[solver]` gives no `dt_s` (s).
+pub(crate) const DEFAULT_DT_S: f64 = 1e-3;
+/// The time limit where `[solver]` gives no `t_end_s` (s).
+pub(crate) const DEFAULT_T_END_S: f64 = 20.0;
 
 impl Reader<'_> {
     /// Where the block touches the ground: `solver.contacts` as given, or by default its base
@@ -43,22 +48,26 @@ impl Reader<'_> {
         })
     }
 
-    /// The run settings, with each dynamics model's default integrator and the block touching
+    /// The run settings (each key's default where it is not given: `mode = "exact"`,
+    /// [`DEFAULT_DT_S`], [`DEFAULT_T_END_S`], the rigid body), with each dynamics model's default integrator and the block touching
     /// the ground by `contacts`.
     pub(super) fn solver(
         &self,
         s: &RawSolver,
         contacts: Contacts,
     ) -> Result<RunSettings, SceneError> {
-        let mode = self.named("solver.mode", self.need("solver.mode", s.mode.as_deref())?)?;
+        let mode = match s.mode.as_deref() {
+            None => Mode::Exact,
+            Some(w) => self.named("solver.mode", w)?,
+        };
         let dynamics: DynamicsModel = match s.dynamics.as_deref() {
             None => DynamicsModel::default(),
             Some(w) => self.named("solver.dynamics", w)?,
         };
         let mut settings = RunSettings::new(
             dynamics,
-            self.need("solver.dt_s", s.dt_s)?,
-            self.need("solver.t_end_s", s.t_end_s)?,
+            s.dt_s.unwrap_or(DEFAULT_DT_S),
+            s.t_end_s.unwrap_or(DEFAULT_T_END_S),
         )
         .with_mode(mode);
         if let Some(w) = s.integrator.as_deref() {

@@ -24,7 +24,7 @@ struct CheckJson<'a> {
 /// Runs `slideroute check`.
 pub fn check(args: &CheckArgs) -> Result<(), CliError> {
     let scene = load(&args.scene)?;
-    let mut folder = Folder::open(&args.out).map_err(failed)?;
+    let mut folder = Folder::open(&args.out, "check").map_err(failed)?;
     let results = check_cases(&scene, |_| ()).map_err(bad_input)?;
     let design = if args.design_anchors {
         Some(design_anchors(&scene).map_err(bad_input)?)
@@ -90,7 +90,7 @@ fn failing_routes(
     let mut written = Vec::new();
     for (k, r) in results.iter().enumerate().filter(|(_, r)| !r.passes) {
         let case_scene = scene.for_case(&r.case).map_err(bad_input)?;
-        let mut sub = Folder::open(&args.out.join(format!("case-{k}"))).map_err(failed)?;
+        let mut sub = Folder::open(&args.out.join(format!("case-{k}")), "check").map_err(failed)?;
         written.push(
             route_files::write_route_csv(&mut sub, "route.csv", &r.run.route.rows)
                 .map_err(failed)?,

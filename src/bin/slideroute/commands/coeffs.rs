@@ -9,14 +9,15 @@ use crate::output::CoeffReport;
 /// Runs `slideroute coeffs`.
 pub fn coeffs(args: &CoeffsArgs) -> Result<(), CliError> {
     let scene = load(&args.scene)?;
-    let report = CoeffReport::new(&scene, displacement(&args.pose)?).ok_or_else(|| {
-        bad_input(format!(
-            "{}: coeffs prints the paper's f1–f12 and exact (13), (14), which need the paper's \
+    let report =
+        CoeffReport::new(&scene, displacement(&(&args.pose).into())?).ok_or_else(|| {
+            bad_input(format!(
+                "{}: coeffs prints the paper's f1–f12 and exact (13), (14), which need the paper's \
              frame (l1x … l2z) and planes (xi_deg, zeta_deg, kappa_deg); this scene's pose comes \
              from the general system (derivations/09-general-pose.md)",
-            scene.origin()
-        ))
-    })?;
+                scene.origin()
+            ))
+        })?;
     if args.json {
         print_json(&report)
     } else {

@@ -10,7 +10,7 @@ use crate::output::summary::CompareSummary;
 /// Runs `slideroute run --compare-dynamics`.
 pub fn compare(args: &RunArgs) -> Result<(), CliError> {
     let scene = load(&args.scene)?;
-    let mut folder = Folder::open(&args.out).map_err(failed)?;
+    let mut folder = Folder::open(&args.out_dir(), "run").map_err(failed)?;
     let c =
         slideroute::compare::compare_dynamics_observed(&scene, interrupted).map_err(bad_input)?;
     #[allow(unused_mut)]

@@ -13,7 +13,7 @@ pub mod scene;
 pub mod sweep;
 
 use crate::cli::{PoseArgs, SceneArg};
-use crate::exit::{CliError, bad_input, failed, outln};
+use crate::exit::{CliError, bad_input, failed, outln, scene_faults};
 use crate::output::folder::Folder;
 use slideroute::{Computed, Displacement, DynamicsModel, Scene};
 use std::path::PathBuf;
@@ -22,7 +22,7 @@ use std::path::PathBuf;
 /// standard error.
 pub fn load(arg: &SceneArg) -> Result<Scene, CliError> {
     let scene = match &arg.scene {
-        Some(p) => Scene::from_file(p).map_err(bad_input)?,
+        Some(p) => Scene::from_file(p).map_err(scene_faults)?,
         None => Scene::default_scene(),
     };
     let scene = if arg.set.is_empty() {
@@ -33,7 +33,7 @@ pub fn load(arg: &SceneArg) -> Result<Scene, CliError> {
             .iter()
             .map(|s| setting(s))
             .collect::<Result<Vec<_>, _>>()?;
-        scene.with_keys(keys).map_err(bad_input)?
+        scene.with_keys(keys).map_err(scene_faults)?
     };
     for w in scene.warnings() {
         eprintln!("slideroute: warning: {w}");
@@ -74,15 +74,36 @@ pub fn load_with(arg: &SceneArg, dynamics: Option<DynamicsModel>) -> Result<Scen
     }
 }
 
-/// A progress bar of `len` steps labelled `what`, drawn on standard error only when it is a
-/// terminal; none when `quiet`.
-pub fn progress_bar(quiet: bool, len: u64, what: &str) -> indicatif::ProgressBar {
+/// A progress bar of `len` `units` (`combinations`, `samples`, …) labelled `what`, with the
+/// time elapsed and the time left at the pace so far, drawn on standard error only when it is
+/// a terminal; none when `quiet`.
+pub fn progress_bar(quiet: bool, len: u64, what: &str, units: &str) -> indicatif::ProgressBar {
+    styled_bar(
+        quiet,
+        len,
+        &format!("{what} [{{bar:30}}] {{pos}}/{{len}} {units}"),
+    )
+}
+
+/// A progress bar of a route to `t_end_s` of simulated time, in thousandths of it.
+pub fn route_bar(quiet: bool, t_end_s: f64) -> indicatif::ProgressBar {
+    styled_bar(
+        quiet,
+        ROUTE_STEPS,
+        &format!("route [{{bar:30}}] {{percent:>3}} % of {t_end_s} s simulated"),
+    )
+}
+
+/// The steps of [`route_bar`].
+pub const ROUTE_STEPS: u64 = 1000;
+
+fn styled_bar(quiet: bool, len: u64, head: &str) -> indicatif::ProgressBar {
     if quiet {
         return indicatif::ProgressBar::hidden();
     }
     let bar = indicatif::ProgressBar::new(len);
     let style = indicatif::ProgressStyle::with_template(&format!(
-        "{what} [{{bar:40}}] {{pos}}/{{len}} {{elapsed_precise}}"
+        "{head}, {{elapsed}} elapsed, about {{eta}} left"
     ))
     .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar());
     bar.set_style(style.progress_chars("=> "));

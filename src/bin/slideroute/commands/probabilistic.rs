@@ -37,8 +37,8 @@ pub fn probabilistic(args: &ProbabilisticArgs) -> Result<(), CliError> {
         )));
     }
     let uncertain = uncertain(&base, &args.dist)?;
-    let mut folder = Folder::open(&args.out).map_err(failed)?;
-    let bar = progress_bar(args.quiet, args.samples as u64, "samples");
+    let mut folder = Folder::open(&args.out, "probabilistic").map_err(failed)?;
+    let bar = progress_bar(args.quiet, args.samples as u64, "probabilistic", "samples");
     let design = Design {
         scene: &base,
         uncertain: &uncertain,

@@ -14,6 +14,7 @@ pub fn report(args: &ReportArgs) -> Result<(), CliError> {
         args.quiet,
         crate::report::point_count(quick) as u64,
         "report",
+        "routes",
     );
     let (points, references) = crate::report::work_precision(quick, || {
         bar.inc(1);
@@ -26,7 +27,7 @@ pub fn report(args: &ReportArgs) -> Result<(), CliError> {
     .map_err(failed)?;
     bar.finish_and_clear();
     let extreme = crate::report::extreme(if quick { 20 } else { 200 }).map_err(failed)?;
-    let mut folder = Folder::open(&args.out).map_err(failed)?;
+    let mut folder = Folder::open(&args.out, "report").map_err(failed)?;
     let csv_path = folder
         .write_with("work-precision.csv", |tmp| {
             let file = std::fs::File::create(tmp)
@@ -42,13 +43,15 @@ pub fn report(args: &ReportArgs) -> Result<(), CliError> {
     #[allow(unused_mut)]
     let mut written = vec![csv_path, md_path];
     #[cfg(feature = "plots")]
-    written.push(
-        folder
-            .write_with("work-precision.svg", |tmp| {
-                crate::output::plots::work_precision(tmp, &points)
-            })
-            .map_err(failed)?,
-    );
+    if !args.no_plots {
+        written.push(
+            folder
+                .write_with("work-precision.svg", |tmp| {
+                    crate::output::plots::work_precision(tmp, &points)
+                })
+                .map_err(failed)?,
+        );
+    }
     folder.finish().map_err(failed)?;
     if !args.quiet {
         for r in &references {

@@ -1,7 +1,7 @@
 //! `slideroute run`: one route, its rows streamed to route.csv as they are computed, then its
 //! pictures and summary.json; `--compare-dynamics` is `compare.rs`.
 
-use super::{load, progress_bar, write_route_folder};
+use super::{ROUTE_STEPS, load, route_bar, write_route_folder};
 use crate::cli::RunArgs;
 use crate::exit::{CliError, bad_input, failed, interrupted, interrupted_after, out};
 use crate::output::folder::Folder;
@@ -22,10 +22,10 @@ pub fn run(args: &RunArgs) -> Result<(), CliError> {
     let scene = with_dynamics(load(&args.scene)?, args)?;
     let sim = scene.simulation().map_err(bad_input)?;
     // Locked before the work, so that a second run into the same folder is refused at once.
-    let mut folder = Folder::open(&args.out).map_err(failed)?;
-    let bar = progress_bar(args.quiet, 1000, "route");
+    let mut folder = Folder::open(&args.out_dir(), "run").map_err(failed)?;
+    let bar = route_bar(args.quiet, sim.settings().t_end);
     let progress = |f: f64| {
-        bar.set_position((f * 1000.0) as u64);
+        bar.set_position((f * ROUTE_STEPS as f64) as u64);
         if interrupted() {
             ControlFlow::Break(())
         } else {

@@ -2,7 +2,7 @@
 //! checked.
 
 use crate::cli::{SceneFileArgs, Template};
-use crate::exit::{CliError, bad_input, out, outln};
+use crate::exit::{CliError, bad_input, out, outln, scene_faults};
 use slideroute::{Scene, SceneErrorKind};
 
 /// Runs `slideroute scene`.
@@ -23,7 +23,7 @@ pub fn scene(args: &SceneFileArgs) -> Result<(), CliError> {
             Ok(())
         }
         (false, Some(p)) => {
-            let s = Scene::from_file(p).map_err(bad_input)?;
+            let s = Scene::from_file(p).map_err(scene_faults)?;
             let sections = match s.simulation() {
                 Ok(_) => "all sections",
                 Err(e) if e.kind == SceneErrorKind::MissingSection => {

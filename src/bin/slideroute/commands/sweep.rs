@@ -21,8 +21,8 @@ pub fn sweep(args: &SweepArgs) -> Result<(), CliError> {
         .map_err(|e| bad_input(format!("--vary {e}")))?;
     let sweep = Sweep::new(&base, varies).map_err(|e| bad_input(format!("--vary {e}")))?;
     let n = sweep.count();
-    let mut folder = Folder::open(&args.out).map_err(failed)?;
-    let bar = progress_bar(args.quiet, n as u64, "sweep");
+    let mut folder = Folder::open(&args.out, "sweep").map_err(failed)?;
+    let bar = progress_bar(args.quiet, n as u64, "sweep", "combinations");
     let rows: Vec<SweepRow> = sweep
         .run(|| bar.inc(1), interrupted)
         .iter()

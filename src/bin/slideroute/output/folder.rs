@@ -1,48 +1,62 @@
 //! An output folder that a person can trust: whole files or none, one run at a
-//! time, and nothing left over from an earlier run.
+//! time, and nothing left over from the same command's earlier run.
 //!
 //! * Every file is written under a temporary name in the same folder and renamed into place
 //!   when complete, so a file is never seen half-written (a rename within a folder is atomic).
 //! * A run holds `.slideroute.lock` (its process id) while it writes; a second run into the same
 //!   folder is refused. A lock left by a run that no longer exists is taken over.
-//! * When the run is done, the files slideroute writes ([`KNOWN`]) that this run did not write
-//!   are removed, so the folder holds one run's outputs; nothing else in it is touched.
+//! * The folder keeps a record of what each command wrote into it ([`RECORD`]: the command and
+//!   the file, one per line). When a run is done, the files the same command wrote there before
+//!   and did not write this time are removed (say, the pictures after `--no-plots`); another
+//!   command's files, and files slideroute did not write, are never touched — whatever their
+//!   names. A file named in the record that is no longer a plain file (a link put in its place)
+//!   is left alone.
 
 use std::path::{Path, PathBuf};
 
-/// Every file a slideroute command writes into an output folder (relative paths).
-pub const KNOWN: [&str; 22] = [
-    "route.csv",
-    "summary.json",
-    "plan.svg",
-    "profile.svg",
-    "angles.svg",
-    "reactions.svg",
-    "comparison.json",
-    "compare-plan.svg",
-    "paper/route.csv",
-    "paper/summary.json",
-    "rigid-body/route.csv",
-    "rigid-body/summary.json",
-    "sweep.csv",
-    "sweep.svg",
-    "work-precision.csv",
-    "work-precision.svg",
-    "work-precision.md",
-    "samples.csv",
-    "probabilistic.json",
-    "route-fan.svg",
-    "factor-of-safety.svg",
-    "sensitivity.svg",
-];
+/// The record of what each command wrote into a folder: lines `COMMAND<TAB>FILE` (the file
+/// relative to the folder).
+pub const RECORD: &str = ".slideroute-outputs";
 
 const LOCK: &str = ".slideroute.lock";
 
-/// A locked output folder and the files written into it so far (relative name, bytes).
+/// A locked output folder, the command writing into it and the files written so far (relative
+/// name, bytes).
 #[derive(Debug)]
 pub struct Folder {
     dir: PathBuf,
+    command: &'static str,
     written: Vec<(String, u64)>,
+}
+
+/// The entries of a folder's [`RECORD`] (command, file): none where there is no record, or it
+/// is not a plain file.
+fn read_record(dir: &Path) -> Vec<(String, String)> {
+    let path = dir.join(RECORD);
+    let plain = std::fs::symlink_metadata(&path).is_ok_and(|m| m.file_type().is_file());
+    if !plain {
+        return Vec::new();
+    }
+    std::fs::read_to_string(&path)
+        .unwrap_or_default()
+        .lines()
+        .filter_map(|line| line.split_once('\t'))
+        .filter(|(_, file)| recordable(file))
+        .map(|(c, f)| (c.to_string(), f.to_string()))
+        .collect()
+}
+
+/// Whether `name` is a path a record may name: relative, inside the folder, no `..`.
+fn recordable(name: &str) -> bool {
+    let p = Path::new(name);
+    !name.is_empty()
+        && p.components()
+            .all(|c| matches!(c, std::path::Component::Normal(_)))
+}
+
+/// Whether `path` is a plain file (not a link, not a folder).
+fn plain_file(path: &Path) -> bool {
+    std::fs::symlink_metadata(path).is_ok_and(|m| m.file_type().is_file())
 }
 
 fn alive(pid: u32) -> bool {
@@ -51,8 +65,9 @@ fn alive(pid: u32) -> bool {
 }
 
 impl Folder {
-    /// Creates `dir` if needed and locks it; the error says why not, naming the folder.
-    pub fn open(dir: &Path) -> Result<Folder, String> {
+    /// Creates `dir` if needed and locks it for `command` (`run`, `sweep`, …: the name its
+    /// files are recorded under); the error says why not, naming the folder.
+    pub fn open(dir: &Path, command: &'static str) -> Result<Folder, String> {
         std::fs::create_dir_all(dir)
             .map_err(|e| format!("{}: cannot create: {e}", dir.display()))?;
         let lock = dir.join(LOCK);
@@ -67,6 +82,7 @@ impl Folder {
                     let _ = write!(f, "{}", std::process::id());
                     return Ok(Folder {
                         dir: dir.to_path_buf(),
+                        command,
                         written: Vec::new(),
                     });
                 }
@@ -169,27 +185,48 @@ impl Folder {
         &self.written
     }
 
-    /// Removes the [`KNOWN`] files this run did not write (an earlier run's), and their
-    /// folders if that leaves them empty; then unlocks.
+    /// Removes the files this command wrote here before ([`RECORD`]) that this run did not
+    /// write, and their folders if that leaves them empty; records what this run wrote beside
+    /// the other commands' files that are still there; then unlocks.
     pub fn finish(self) -> Result<(), String> {
-        for name in KNOWN {
-            if self.written.iter().any(|(n, _)| n == name) {
-                continue;
-            }
-            let path = self.dir.join(name);
-            if path.is_file() {
-                std::fs::remove_file(&path).map_err(|e| {
-                    format!(
-                        "{}: cannot remove an earlier run's file: {e}",
-                        path.display()
-                    )
-                })?;
-                if let Some(parent) = path.parent().filter(|p| *p != self.dir) {
-                    let _ = std::fs::remove_dir(parent); // only if empty
+        let wrote = |name: &str| self.written.iter().any(|(n, _)| n == name);
+        let mut kept: Vec<(String, String)> = Vec::new();
+        for (command, name) in read_record(&self.dir) {
+            let path = self.dir.join(&name);
+            if command == self.command {
+                if !wrote(&name) && plain_file(&path) {
+                    std::fs::remove_file(&path).map_err(|e| {
+                        format!(
+                            "{}: cannot remove this command's earlier file: {e}",
+                            path.display()
+                        )
+                    })?;
+                    if let Some(parent) = path.parent().filter(|p| *p != self.dir) {
+                        let _ = std::fs::remove_dir(parent); // only if empty
+                    }
                 }
+            } else if !wrote(&name) && plain_file(&path) && !kept.iter().any(|(_, n)| *n == name) {
+                kept.push((command, name));
             }
         }
-        Ok(())
+        let mut record = String::new();
+        for (command, name) in kept
+            .iter()
+            .map(|(c, n)| (c.as_str(), n.as_str()))
+            .chain(self.written.iter().map(|(n, _)| (self.command, n.as_str())))
+        {
+            record.push_str(&format!("{command}\t{name}\n"));
+        }
+        let path = self.dir.join(RECORD);
+        let tmp = self
+            .dir
+            .join(format!(".{RECORD}.{}.tmp", std::process::id()));
+        std::fs::write(&tmp, record)
+            .and_then(|()| std::fs::rename(&tmp, &path))
+            .map_err(|e| {
+                let _ = std::fs::remove_file(&tmp);
+                format!("{}: cannot write: {e}", path.display())
+            })
     }
 }
 
@@ -217,25 +254,38 @@ mod tests {
     #[test]
     fn a_second_run_into_a_locked_folder_is_refused_and_a_stale_lock_is_taken_over() {
         let d = temp("lock");
-        let first = Folder::open(&d).unwrap();
-        let e = Folder::open(&d).unwrap_err();
+        let first = Folder::open(&d, "run").unwrap();
+        let e = Folder::open(&d, "run").unwrap_err();
         assert!(e.contains("another slideroute run"), "{e}");
         drop(first);
-        assert!(Folder::open(&d).is_ok());
+        assert!(Folder::open(&d, "run").is_ok());
         // A lock whose process is gone (pid 0 is never a user process's).
         std::fs::write(d.join(LOCK), "4294967295").unwrap();
-        assert!(Folder::open(&d).is_ok());
+        assert!(Folder::open(&d, "run").is_ok());
         let _ = std::fs::remove_dir_all(&d);
     }
 
     #[test]
-    fn files_appear_whole_and_an_earlier_runs_files_are_removed_but_nothing_else() {
+    fn files_appear_whole_and_only_this_commands_earlier_files_are_removed() {
         let d = temp("replace");
         std::fs::create_dir_all(d.join("paper")).unwrap();
-        for old in ["plan.svg", "paper/route.csv", "notes.txt"] {
+        // An earlier run wrote plan.svg and paper/route.csv, a sweep sweep.csv; the person
+        // put notes.txt and a summary.json of their own.
+        for old in [
+            "plan.svg",
+            "paper/route.csv",
+            "sweep.csv",
+            "notes.txt",
+            "summary.json",
+        ] {
             std::fs::write(d.join(old), "old").unwrap();
         }
-        let mut f = Folder::open(&d).unwrap();
+        std::fs::write(
+            d.join(RECORD),
+            "run\tplan.svg\nrun\tpaper/route.csv\nsweep\tsweep.csv\nrun\t../outside\n",
+        )
+        .unwrap();
+        let mut f = Folder::open(&d, "run").unwrap();
         // A failed write leaves neither the file nor its temporary.
         assert!(f.write_with("route.csv", |_| Err("no".into())).is_err());
         assert!(!d.join("route.csv").exists());
@@ -247,7 +297,42 @@ mod tests {
             .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
             .collect();
         left.sort();
-        assert_eq!(left, ["notes.txt", "route.csv"]);
+        assert_eq!(
+            left,
+            [
+                RECORD,
+                "notes.txt",
+                "route.csv",
+                "summary.json",
+                "sweep.csv"
+            ]
+        );
+        assert_eq!(
+            std::fs::read_to_string(d.join(RECORD)).unwrap(),
+            "sweep\tsweep.csv\nrun\troute.csv\n"
+        );
+        // A sweep into the same folder keeps the run's route.
+        let mut f = Folder::open(&d, "sweep").unwrap();
+        f.write_bytes("sweep.csv", b"x\n").unwrap();
+        f.finish().unwrap();
+        assert!(d.join("route.csv").exists());
         let _ = std::fs::remove_dir_all(&d);
+    }
+
+    #[test]
+    fn a_recorded_file_replaced_by_a_link_is_left_alone() {
+        let d = temp("link");
+        let target = temp("link-target");
+        std::fs::create_dir_all(&d).unwrap();
+        std::fs::create_dir_all(&target).unwrap();
+        std::fs::write(target.join("theirs.csv"), "theirs").unwrap();
+        #[cfg(unix)]
+        std::os::unix::fs::symlink(target.join("theirs.csv"), d.join("route.csv")).unwrap();
+        std::fs::write(d.join(RECORD), "run\troute.csv\n").unwrap();
+        let f = Folder::open(&d, "run").unwrap();
+        f.finish().unwrap();
+        assert!(target.join("theirs.csv").exists());
+        let _ = std::fs::remove_dir_all(&d);
+        let _ = std::fs::remove_dir_all(&target);
     }
 }
