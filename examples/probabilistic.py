@@ -1,8 +1,8 @@
 # %% [markdown]
 # # Where would the monolith go? A probabilistic analysis from Python
 #
-# A notebook-sized walk through slideroute's Python package (`pip install ./python` from a
-# checkout; pandas for the tables). Each `# %%` is a cell: run it in Jupyter, VS Code, or as a
+# A notebook-sized walk through slideroute's Python package (`pip install "./python[pandas]"`
+# from a checkout; pandas for the tables). Each `# %%` is a cell: run it in Jupyter, VS Code, or as a
 # script (`python examples/probabilistic.py`). `SLIDEROUTE_SAMPLES` sets the number of samples
 # (400 unless said).
 
@@ -24,7 +24,8 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 # %%
 scene = slideroute.Scene.from_file(os.path.join(ROOT, "scenes", "paper-like-uncertain.toml"))
 route = scene.route()
-print(f"{route.reason} at t = {route.t_end_s:.3f} s after {route.travel_m:.3f} m")
+print(route)  # one line: how it ended, when, how far
+print(f"{route.reason_text} ({route.reason}) at t = {route.t_end_s:.3f} s after {route.travel_m:.3f} m")
 print(f"factor of safety {route.factor_of_safety:.4f}")
 last = {k: v[-1] for k, v in route.columns.items()}
 print(f"final CM X = {last['x_m']:.3f} m, Z = {last['z_m']:.3f} m, yaw {last['theta_deg']:.2f}°")

@@ -15,5 +15,8 @@ pip=("$here/.venv/bin/python" -m pip --disable-pip-version-check)
 if [ "${1:-}" = "--requirements" ]; then
     exit 0
 fi
-"${pip[@]}" install --quiet "$here"
+# The extension compiles for a few minutes the first time: said before, and shown as it goes
+# (`-v`: pip passes on maturin's and cargo's lines).
+echo "python/setup.sh: building the Rust extension and installing slideroute into $here/.venv; this takes a few minutes the first time (cargo's progress follows)…"
+"${pip[@]}" install -v "$here"
 "$here/.venv/bin/python" -c "import slideroute; print('slideroute', slideroute.__version__, 'ready:', slideroute.__file__)"

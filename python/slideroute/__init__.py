@@ -4,57 +4,171 @@ gravity-dam monolith) sliding on a three-plane foundation with three-point conta
     >>> import slideroute
     >>> scene = slideroute.Scene.default().with_keys({"friction.mu_k": 0.35})
     >>> route = scene.route()
-    >>> route.reason, round(route.travel_m, 3)            # doctest: +SKIP
+    >>> route.reason, route.reason_text, round(route.travel_m, 3)   # doctest: +SKIP
+    >>> scene.factor_of_safety(), scene.check()           # doctest: +SKIP
     >>> route.to_pandas()                                 # with pandas installed
 
 Units are SI; angles are in degrees wherever a person reads or writes them. Scene keys are the
 scene file's own (``friction.mu_k``, ``foundation.zeta_deg``, ``loads.eccentricity_m``; see
 ``slideroute scene --print-default``). Every error is a :class:`SlideRouteError`; a scene's
-names the key it is about (``err.key``).
+names the key it is about (``err.key``). Each is also the built-in a Python user expects: a
+file that does not exist raises :class:`SceneFileNotFoundError` (a ``FileNotFoundError``), a
+value of the wrong type :class:`SceneTypeError` or :class:`InputTypeError` (``TypeError``s
+whose message names Python's types), a value that cannot be used :class:`SceneError` or
+:class:`InputError` (``ValueError``s).
+
+How a route ends has two spellings, everywhere the same: ``reason``, a machine name
+(``contact0-reached-inclined-plane``), and ``reason_text``, a sentence (``contact 0 reached an
+inclined plane``); :data:`REASONS` lists them.
 
 The computations run in Rust (``slideroute._native``), on every core where there are many
-(sweeps, grids of poses, samples), without holding the interpreter's lock.
+(sweeps, grids of poses, samples), without holding the interpreter's lock. The long ones
+(:meth:`Scene.route`, :meth:`Scene.sweep`, :meth:`Scene.roots_grid`, :meth:`Scene.check`,
+:func:`probabilistic`) take ``progress=``: a callable told (done, total), or ``True`` for a
+bar (tqdm's where tqdm is installed, else a line on stderr).
 """
 
 from __future__ import annotations
 
-import json
-import os
-from dataclasses import dataclass, field
-from typing import Any, Callable, Dict, Iterable, List, Mapping, Optional, Sequence, Tuple, Union
+import collections as _collections
+import contextlib as _contextlib
+import json as _json
+import os as _os
+import sys as _sys
+import types as _types
+import typing as _t
+from dataclasses import dataclass as _dataclass
 
-import numpy as np
+import numpy as _np
 
 from . import _native
-from ._errors import InputError, RouteError, SceneError, SlideRouteError
+from ._errors import (
+    InputError,
+    InputTypeError,
+    RouteError,
+    SceneError,
+    SceneFileNotFoundError,
+    SceneTypeError,
+    SlideRouteError,
+)
+
+if _t.TYPE_CHECKING:  # names for the annotations only: not the package's
+    import os
+
+    import numpy as np
+    import numpy.typing
+    from typing import Any, Callable, Dict, Iterable, Iterator, List, Mapping, Optional
+    from typing import Sequence, Tuple, Union
 
 __all__ = [
     "Scene",
     "Route",
     "Samples",
+    "Check",
     "Probabilistic",
     "probabilistic",
     "sample_values",
     "run_samples",
     "summarise",
     "distributions",
+    "REASONS",
+    "Value",
+    "Distributions",
+    "Progress",
     "SlideRouteError",
     "SceneError",
+    "SceneTypeError",
+    "SceneFileNotFoundError",
     "InputError",
+    "InputTypeError",
     "RouteError",
     "__version__",
 ]
 
 __version__: str = _native.version()
 
-Value = Union[float, int, bool, str]
-Distributions = Union[Mapping[str, str], Sequence[Tuple[str, str]], None]
-#: Called with (done, total) as a sweep or an analysis goes on (about four times a second, and
-#: once at the end); an exception it raises stops the work and is raised to the caller.
-Progress = Optional[Callable[[int, int], Any]]
+#: A scene value: what a scene file's key takes.
+Value = _t.Union[float, int, bool, str]
+#: Uncertain keys' distributions: ``{"friction.mu_k": "normal:0.40:0.05"}`` or pairs.
+Distributions = _t.Union[_t.Mapping[str, str], _t.Sequence[_t.Tuple[str, str]], None]
+#: ``progress(done, total)``, called as a long computation goes on (about four times a second,
+#: and once at the end; an exception it raises stops the work and is raised to the caller);
+#: ``True`` for a bar (tqdm's where tqdm is installed, else a line on stderr); ``None`` or
+#: ``False`` for nothing.
+Progress = _t.Union[_t.Callable[[int, int], _t.Any], bool, None]
+
+#: How a route (or a row of many) ends: machine name → sentence. The machine name is what
+#: ``Route.reason`` and every table's ``reason`` column hold (``summary.json``'s
+#: ``termination.reason``: ``contact0-reached-inclined-plane``, ``time-limit``,
+#: ``invalid-scene``, ``not-run``); the sentence is ``Route.reason_text`` and the
+#: ``reason_text`` column (the command line's CSV tables' words: ``contact 0 reached an
+#: inclined plane``).
+REASONS: "Mapping[str, str]" = _types.MappingProxyType(dict(_native.reasons()))
 
 
-def _frame(columns: Mapping[str, Any]) -> Any:
+class _Bar:
+    """``progress=True``: tqdm's bar where tqdm is installed, else one line on stderr written
+    over as the count moves."""
+
+    def __init__(self, what: str) -> None:
+        self._what = what
+        self._bar: "Any" = None
+        self._shown = False
+        try:
+            from tqdm.auto import tqdm
+        except ImportError:
+            tqdm = None
+        self._tqdm = tqdm
+
+    def __call__(self, done: int, total: int) -> None:
+        if self._tqdm is not None:
+            if self._bar is None:
+                self._bar = self._tqdm(total=total, desc=self._what)
+            self._bar.update(done - self._bar.n)
+        else:
+            pct = 100.0 * done / total if total else 100.0
+            _sys.stderr.write(f"\r{self._what}: {done} of {total} ({pct:.0f} %)")
+            _sys.stderr.flush()
+            self._shown = True
+
+    def close(self) -> None:
+        if self._bar is not None:
+            self._bar.close()
+        elif self._shown:
+            _sys.stderr.write("\n")
+            _sys.stderr.flush()
+
+
+@_contextlib.contextmanager
+def _progress(progress: Progress, what: str) -> "Iterator[Optional[Callable[[int, int], Any]]]":
+    """The callable a computation is given for ``progress``, the bar closed at its end."""
+    if progress is None or progress is False:
+        yield None
+    elif progress is True:
+        bar = _Bar(what)
+        try:
+            yield bar
+        finally:
+            bar.close()
+    elif callable(progress):
+        yield progress
+    else:
+        raise InputTypeError(
+            f"progress: expected a callable(done, total), True or None, got {type(progress).__name__}",
+            "progress",
+        )
+
+
+def _factor(fs: "Optional[Dict[str, Any]]") -> "Optional[float]":
+    """A factor of safety as a number: +inf unbounded, -inf not holdable, None for none."""
+    if fs is None:
+        return None
+    if fs["kind"] == "finite":
+        return float(fs["value"])
+    return float("inf") if fs["kind"] == "unbounded" else float("-inf")
+
+
+def _frame(columns: "Mapping[str, Any]") -> "Any":
     """Columns as a pandas DataFrame (pandas is needed for this only)."""
     try:
         import pandas as pd
@@ -79,9 +193,12 @@ class Scene:
         return cls(_native.Scene.default())
 
     @classmethod
-    def from_file(cls, path: Union[str, "os.PathLike[str]"]) -> "Scene":
-        """A scene file (TOML); files it names are found beside it."""
-        return cls(_native.Scene.from_file(os.fspath(path)))
+    def from_file(cls, path: "Union[str, os.PathLike[str]]") -> "Scene":
+        """A scene file (TOML); files it names are found beside it. A file that does not exist
+        (the scene's, or one it names) raises :class:`SceneFileNotFoundError`, a
+        ``FileNotFoundError``; a value of the wrong type :class:`SceneTypeError`, a
+        ``TypeError``; a value it cannot take :class:`SceneError`, a ``ValueError``."""
+        return cls(_native.Scene.from_file(_os.fspath(path)))
 
     @classmethod
     def from_toml(cls, text: str, origin: str = "<string>") -> "Scene":
@@ -91,29 +208,36 @@ class Scene:
     @classmethod
     def from_dict(
         cls,
-        document: Mapping[str, Any],
+        document: "Mapping[str, Any]",
         origin: str = "<dict>",
-        folder: Union[str, "os.PathLike[str]"] = ".",
+        folder: "Union[str, os.PathLike[str]]" = ".",
     ) -> "Scene":
         """A scene from a dict of its tables and keys, as a scene file writes them
         (``{"frame": {"l1x": 6.0, ...}, "foundation": {...}, ...}``); files it names (a
         surface, a record) are found from ``folder``."""
         try:
-            text = json.dumps(document, allow_nan=False)
-        except (TypeError, ValueError) as e:
+            text = _json.dumps(document, allow_nan=False)
+        except TypeError as e:
+            raise InputTypeError(f"{origin}: not a scene's tables and keys: {e}", "scene") from e
+        except ValueError as e:
             raise InputError(f"{origin}: not a scene's tables and keys: {e}", "scene") from e
-        return cls(_native.Scene.from_json(text, origin, os.fspath(folder)))
+        return cls(_native.Scene.from_json(text, origin, _os.fspath(folder)))
 
     # Changing ------------------------------------------------------------------------------
-    def with_keys(self, keys: Mapping[str, Value]) -> "Scene":
+    def with_keys(self, keys: "Mapping[str, Value]") -> "Scene":
         """The same scene with keys set, in the file's own keys and units
         (``{"friction.mu_k": 0.3, "foundation.xi_deg": 18}``), validated as a file is: a key
-        that does not exist, or a value it cannot take, raises :class:`SceneError` naming it."""
-        if not isinstance(keys, Mapping):
-            raise InputError("give the keys as a dict: with_keys({'friction.mu_k': 0.3})", "keys")
+        that does not exist, or a value it cannot take, raises :class:`SceneError` naming it
+        (:class:`SceneTypeError` for a value of the wrong type)."""
+        if not isinstance(keys, _t.Mapping):
+            raise InputTypeError(
+                "keys: expected a dict like {'friction.mu_k': 0.3}, "
+                f"got {type(keys).__name__}",
+                "keys",
+            )
         return Scene(self._s.with_keys(dict(keys)))
 
-    def with_key(self, key: str, value: Value) -> "Scene":
+    def with_key(self, key: str, value: "Value") -> "Scene":
         """The same scene with one key set (see :meth:`with_keys`)."""
         return self.with_keys({key: value})
 
@@ -128,19 +252,19 @@ class Scene:
         """Where the scene came from: a path, ``<embedded default scene>``, ``<dict>``."""
         return self._s.origin
 
-    def to_dict(self) -> Dict[str, Any]:
+    def to_dict(self) -> "Dict[str, Any]":
         """The document as read, in the file's own keys and units (defaults not filled in)."""
         return self._s.document()
 
     @property
-    def uncertain(self) -> List[Tuple[str, str]]:
+    def uncertain(self) -> "List[Tuple[str, str]]":
         """The scene's ``[uncertain]`` table: (key, distribution) pairs, by key name."""
         return list(self._s.uncertain)
 
     def __repr__(self) -> str:
-        return f"Scene(name={self.name!r}, origin={self.origin!r})"
+        return f"<Scene {self.name} from {self.origin}>"
 
-    def __reduce__(self) -> Tuple[Any, Tuple[Any, ...]]:
+    def __reduce__(self) -> "Tuple[Any, Tuple[Any, ...]]":
         # Pickled as its document (a Dask worker, a process pool): rebuilt and validated where
         # it lands; files it names are read there from the same folder.
         return (_from_state, (self.to_dict(), self.origin, self._s.folder))
@@ -151,15 +275,38 @@ class Scene:
     __hash__ = None  # type: ignore[assignment]
 
     # Computing -----------------------------------------------------------------------------
-    def route(self, dynamics: Optional[str] = None) -> "Route":
+    def route(self, dynamics: "Optional[str]" = None, progress: "Progress" = None) -> "Route":
         """The route (``dynamics``: ``"rigid-body"`` or ``"paper"``, the scene's own by
-        default): the rows ``route.csv`` has, as NumPy arrays, and its summary."""
-        columns, summary = self._s.route(dynamics)
+        default): the rows ``route.csv`` has, as NumPy arrays, and its summary.
+        ``progress(done, total)`` is told how many increments of dt are done (``True``: a
+        bar); Ctrl-C stops it with ``KeyboardInterrupt``."""
+        with _progress(progress, f"route of {self.name}") as tell:
+            columns, summary = self._s.route(dynamics, tell)
         return Route(columns=columns, summary=summary)
 
+    def factor_of_safety(self, dynamics: "Optional[str]" = None) -> "Optional[float]":
+        """The factor of safety at the start, without the route after it (the largest multiple
+        of the driving loads the contacts' friction holds; below 1 the loads start the block):
+        the number :attr:`Route.factor_of_safety` gives — ``inf`` where no multiple of the
+        driving loads starts the block (unbounded), ``-inf`` where the weight alone does (not
+        holdable), ``None`` where the start has no pose."""
+        return _factor(self._s.factor_of_safety(dynamics))
+
+    def check(self, progress: "Progress" = None) -> "Check":
+        """The load cases (``[[case]]``; without any, the scene as written as one usual case)
+        checked by their guideline, as ``slideroute check`` does: per case the gravity
+        method's sliding factor, the resultant and base pressures on a monolith with its
+        water, the load multiple (the factor of safety), the requirement and whether it
+        passes — ``check.json``'s ``cases`` and, by :meth:`Check.to_pandas`, ``check.csv``'s
+        rows. Each case's route runs (a case that fails shows where the monolith would go).
+        ``progress(done, total)`` is told how many cases are done."""
+        with _progress(progress, f"check of {self.name}") as tell:
+            guideline, cases, columns = self._s.check(tell)
+        return Check(scene=self.name, guideline=guideline, cases=cases, columns=columns)
+
     def roots(
-        self, x_m: float, z_m: float, theta_deg: float, mode: Optional[str] = None
-    ) -> Dict[str, Any]:
+        self, x_m: float, z_m: float, theta_deg: float, mode: "Optional[str]" = None
+    ) -> "Dict[str, Any]":
         """Every root of the pose system at one displacement (``mode``: ``"exact"`` or
         ``"small-angle"``): the counts, each root (complex angles as (re, im) in degrees,
         residual, admissibility) and the selected pose (alpha, beta, gamma, psi in degrees,
@@ -168,18 +315,24 @@ class Scene:
 
     def roots_grid(
         self,
-        x_m: "np.typing.ArrayLike",
-        z_m: "np.typing.ArrayLike",
-        theta_deg: "np.typing.ArrayLike",
-        mode: Optional[str] = None,
-    ) -> Dict[str, np.ndarray]:
-        """The selected pose at many displacements, on every core: arrays ``alpha_deg``,
-        ``beta_deg``, ``gamma_deg``, ``cm_y_m`` (NaN where no root is admissible) and
-        ``finite_roots``."""
-        as_f64 = lambda a: np.ascontiguousarray(np.asarray(a, dtype=np.float64).ravel())
-        return self._s.roots_grid(as_f64(x_m), as_f64(z_m), as_f64(theta_deg), mode)
+        x_m: "numpy.typing.ArrayLike",
+        z_m: "numpy.typing.ArrayLike",
+        theta_deg: "numpy.typing.ArrayLike",
+        mode: "Optional[str]" = None,
+        progress: "Progress" = None,
+    ) -> "Dict[str, np.ndarray]":
+        """The selected pose at many displacements (arrays of one length, flattened), on
+        every core: arrays ``alpha_deg``, ``beta_deg``, ``gamma_deg``, ``cm_y_m`` (NaN where
+        no root is admissible) and ``finite_roots``. ``progress(done, total)`` is told how
+        many poses are done; Ctrl-C stops it with ``KeyboardInterrupt``."""
 
-    def pose(self, x_m: float, z_m: float, theta_deg: float) -> Dict[str, Any]:
+        def as_f64(a: "numpy.typing.ArrayLike") -> "np.ndarray":
+            return _np.ascontiguousarray(_np.asarray(a, dtype=_np.float64).ravel())
+
+        with _progress(progress, "poses") as tell:
+            return self._s.roots_grid(as_f64(x_m), as_f64(z_m), as_f64(theta_deg), mode, tell)
+
+    def pose(self, x_m: float, z_m: float, theta_deg: float) -> "Dict[str, Any]":
         """The pose by the direct solver (Newton on the contact conditions, independent of the
         polynomial systems): ``tilt_deg``, ``roll_deg``, ``cm_y_m``, ``vertices_m`` and
         ``residual_m``."""
@@ -187,35 +340,49 @@ class Scene:
 
     def sweep(
         self,
-        values: Mapping[str, Iterable[float]],
-        dynamics: Optional[str] = None,
-        progress: Progress = None,
+        values: "Mapping[str, Iterable[float]]",
+        dynamics: "Optional[str]" = None,
+        progress: "Progress" = None,
     ) -> "Samples":
         """Every combination of the values given (``{"friction.mu_k": [0.3, 0.35, 0.4]}``),
         each route on its own core, by the runner ``slideroute sweep`` uses: one row per
-        combination, in order (the last key varies fastest), the rows ``sweep.csv`` has.
-        ``progress(done, total)`` is told how far it is; Ctrl-C stops it with
-        ``KeyboardInterrupt``."""
+        combination, in order (the last key varies fastest), the rows ``sweep.csv`` has (see
+        :class:`Samples`). ``progress(done, total)`` is told how far it is (``True``: a bar);
+        Ctrl-C stops it with ``KeyboardInterrupt``."""
         given = [(k, [float(v) for v in vs]) for k, vs in values.items()]
-        return Samples(self._s.sweep(given, dynamics, progress))
+        with _progress(progress, "sweep") as tell:
+            return Samples(self._s.sweep(given, dynamics, tell))
 
 
-def _from_state(document: Dict[str, Any], origin: str, folder: str) -> Scene:
-    return Scene(_native.Scene.from_json(json.dumps(document), origin, folder))
+def _from_state(document: "Dict[str, Any]", origin: str, folder: str) -> Scene:
+    return Scene(_native.Scene.from_json(_json.dumps(document), origin, folder))
 
 
-@dataclass(frozen=True)
+@_dataclass(frozen=True, repr=False)
 class Route:
     """A route: ``columns`` (``t_s``, ``x_m``, ``z_m``, ``theta_deg``, … as ``route.csv`` has
     them; NaN where a value could not be had) and ``summary`` (as ``summary.json`` has it)."""
 
-    columns: Dict[str, np.ndarray]
-    summary: Dict[str, Any]
+    columns: "Dict[str, np.ndarray]"
+    summary: "Dict[str, Any]"
 
     @property
     def reason(self) -> str:
-        """How the route ended (``time-limit``, ``stopped``, …)."""
+        """How the route ended, as a machine name (``summary.json``'s ``termination.reason``:
+        ``contact0-reached-inclined-plane``, ``time-limit``, ``does-not-slide``, …; every one
+        in :data:`REASONS`)."""
         return self.summary["termination"]["reason"]
+
+    @property
+    def reason_text(self) -> str:
+        """How the route ended, as a sentence (``contact 0 reached an inclined plane``): the
+        words of the command line's tables and of the ``reason_text`` column."""
+        return REASONS.get(self.reason, self.reason)
+
+    @property
+    def detail(self) -> str:
+        """What exactly ended it, for people."""
+        return self.summary["termination"]["detail"]
 
     @property
     def t_end_s(self) -> float:
@@ -228,18 +395,14 @@ class Route:
         return self.summary["travel_m"]
 
     @property
-    def factor_of_safety(self) -> Optional[float]:
+    def factor_of_safety(self) -> "Optional[float]":
         """The factor of safety at the start (+inf where no multiple of the driving loads
-        starts the block, -inf where the weight alone does; None if its program failed)."""
-        fs = self.summary.get("factor_of_safety")
-        if fs is None:
-            return None
-        if fs["kind"] == "finite":
-            return float(fs["value"])
-        return float("inf") if fs["kind"] == "unbounded" else float("-inf")
+        starts the block, -inf where the weight alone does; None if its program failed);
+        :meth:`Scene.factor_of_safety` gives it without the route."""
+        return _factor(self.summary.get("factor_of_safety"))
 
     @property
-    def base(self) -> Optional[Dict[str, Any]]:
+    def base(self) -> "Optional[Dict[str, Any]]":
         """A block on its base (``contacts = "base"``): ``resting`` (where it rested before any
         load: the CM, yaw, tilt, rotation and the points that carried it with their shares),
         ``max_penetration_m`` (the deepest its base went into the ground) and ``outline_m``
@@ -250,7 +413,16 @@ class Route:
     def __len__(self) -> int:
         return len(self.columns["t_s"])
 
-    def to_pandas(self) -> Any:
+    def __repr__(self) -> str:
+        scene = self.summary.get("scene")
+        name = scene.get("name") if isinstance(scene, dict) else scene
+        named = f" {name}" if name else ""
+        return (
+            f"<Route{named}: {self.reason_text} at t = {self.t_end_s:.3f} s, "
+            f"travel {self.travel_m:.3f} m, {len(self)} rows>"
+        )
+
+    def to_pandas(self) -> "Any":
         """The rows as a pandas DataFrame."""
         return _frame(self.columns)
 
@@ -258,38 +430,102 @@ class Route:
 class Samples(dict):
     """Rows of samples (or of a sweep's combinations) as columns: ``sample``, each key's values,
     ``factor_of_safety`` (±inf where no multiple of the loads starts the block, or the weight
-    alone does), ``reason``, ``t_end_s``, ``travel_m``, ``final_yaw_deg``, ``final_x_m``,
-    ``final_z_m``, ``max_alpha_deg``, ``max_beta_deg`` and ``detail`` (what ended the route, or
-    why a sample's values made no valid scene) — the command line's ``samples.csv`` and
-    ``sweep.csv`` columns, from the same runner."""
+    alone does), ``t_end_s``, ``travel_m``, ``final_yaw_deg``, ``final_x_m``, ``final_z_m``,
+    ``max_alpha_deg``, ``max_beta_deg``, ``permanent_x_m``, ``permanent_z_m``, ``reason`` (how
+    the route ended, a machine name as :attr:`Route.reason`: ``time-limit``,
+    ``invalid-scene`` where a sample's values made no valid scene, ``not-run`` where a stopped
+    run did not start it), ``reason_text`` (the same as a sentence, as the command line's
+    ``samples.csv`` and ``sweep.csv`` write their ``reason`` column) and ``detail`` (what ended
+    the route, or why the values made no valid scene) — the command line's columns, from the
+    same runner."""
 
-    def to_pandas(self) -> Any:
+    def to_pandas(self) -> "Any":
         """The rows as a pandas DataFrame."""
         return _frame(self)
 
+    def keys_varied(self) -> "List[str]":
+        """The scene keys whose values the rows take (the columns after ``sample``)."""
+        names = list(self)
+        end = names.index("factor_of_safety") if "factor_of_safety" in names else len(names)
+        return [n for n in names[:end] if n != "sample"]
+
+    def __repr__(self) -> str:
+        n = len(self.get("sample", ()))
+        keys = ", ".join(self.keys_varied()) or "no keys"
+        ends = _collections.Counter(self.get("reason", ()))
+        told = ", ".join(f"{count} {code}" for code, count in ends.most_common(3))
+        more = ", …" if len(ends) > 3 else ""
+        return f"<Samples: {n} rows of {keys}; {told}{more}>"
+
     @staticmethod
-    def concat(parts: Sequence[Mapping[str, Any]]) -> "Samples":
+    def concat(parts: "Sequence[Mapping[str, Any]]") -> "Samples":
         """Chunks of one design's samples (from :func:`run_samples`) joined in sample order."""
         if not parts:
             raise InputError("no chunks to join", "parts")
-        parts = sorted(parts, key=lambda p: int(np.asarray(p["sample"])[0]) if len(p["sample"]) else 0)
+        parts = sorted(
+            parts, key=lambda p: int(_np.asarray(p["sample"])[0]) if len(p["sample"]) else 0
+        )
         out = Samples()
         for name in parts[0]:
             first = parts[0][name]
-            if isinstance(first, np.ndarray):
-                out[name] = np.concatenate([np.asarray(p[name]) for p in parts])
+            if isinstance(first, _np.ndarray):
+                out[name] = _np.concatenate([_np.asarray(p[name]) for p in parts])
             else:
                 out[name] = [x for p in parts for x in p[name]]
         return out
 
 
-def distributions(scene: Scene, dists: Distributions) -> List[Tuple[str, str]]:
+@_dataclass(frozen=True, repr=False)
+class Check:
+    """The load cases of a scene checked by their guideline (:meth:`Scene.check`):
+    ``guideline`` and ``cases`` as ``check.json`` has them — per case ``factor_of_safety`` (the
+    load multiple), ``load_multiple_limit``, ``required_fs``, on a monolith with its water the
+    gravity method's ``sliding_fs``, ``resultant_from_heel_m``, ``base_in_compression_pct``,
+    ``heel_pressure_pa``, ``toe_pressure_pa``, ``crack_length_m``, …, ``passes`` and ``loads``
+    — and ``columns``, ``check.csv``'s rows (numbers as floats, NaN where a case has none,
+    ``sliding_fs`` and ``load_multiple`` +inf where unbounded and -inf where not holdable; the
+    route's end as ``reason`` and ``reason_text``, as :class:`Samples` has them)."""
+
+    scene: str
+    guideline: "Dict[str, Any]"
+    cases: "List[Dict[str, Any]]"
+    columns: "Dict[str, Any]"
+
+    @property
+    def passes(self) -> bool:
+        """Whether every case meets its guideline."""
+        return all(c["passes"] for c in self.cases)
+
+    @property
+    def failing(self) -> "List[str]":
+        """The names of the cases that fail."""
+        return [c["case"]["name"] for c in self.cases if not c["passes"]]
+
+    def __len__(self) -> int:
+        return len(self.cases)
+
+    def __repr__(self) -> str:
+        n, failing = len(self.cases), self.failing
+        verdict = f"{n - len(failing)} pass"
+        if failing:
+            verdict += f", {len(failing)} fail{'s' if len(failing) == 1 else ''}: " + ", ".join(
+                failing
+            )
+        return f"<Check {self.scene}: {n} load case{'s' if n != 1 else ''}, {verdict}>"
+
+    def to_pandas(self) -> "Any":
+        """The cases as a pandas DataFrame, one row each (``check.csv``'s columns)."""
+        return _frame(self.columns)
+
+
+def distributions(scene: Scene, dists: "Distributions") -> "List[Tuple[str, str]]":
     """The uncertain keys of an analysis and their distributions: the scene's ``[uncertain]``
-    table, then ``dists`` (``{key: "name:p1:p2…"}`` or pairs; a key of both takes ``dists``)."""
-    given: List[Tuple[str, str]]
+    table, then ``dists`` (``{key: "name:p1:p2…"}`` or pairs; a key of both takes ``dists``).
+    Nothing uncertain raises :class:`InputError`."""
+    given: "List[Tuple[str, str]]"
     if dists is None:
         given = []
-    elif isinstance(dists, Mapping):
+    elif isinstance(dists, _t.Mapping):
         given = [(str(k), str(v)) for k, v in dists.items()]
     else:
         given = [(str(k), str(v)) for k, v in dists]
@@ -305,45 +541,49 @@ def distributions(scene: Scene, dists: Distributions) -> List[Tuple[str, str]]:
 
 def sample_values(
     scene: Scene,
-    dists: Distributions = None,
+    dists: "Distributions" = None,
     samples: int = 1000,
     seed: int = 1,
     sampling: str = "lhs",
-) -> np.ndarray:
+) -> "np.ndarray":
     """The values of every sample of a design (rows) of each uncertain key (columns), drawn
     whole from ``seed``: the same on any machine. ``dists`` as for :func:`probabilistic`."""
-    return _native.sample_values(scene._s, distributions(scene, dists), int(samples), int(seed), sampling)
+    return _native.sample_values(
+        scene._s, distributions(scene, dists), int(samples), int(seed), sampling
+    )
 
 
 def run_samples(
     scene: Scene,
-    dists: Distributions,
-    values: "np.typing.ArrayLike",
+    dists: "Distributions",
+    values: "numpy.typing.ArrayLike",
     first: int = 0,
-    progress: Progress = None,
+    progress: "Progress" = None,
 ) -> Samples:
     """The samples numbered ``first``, ``first + 1``, … with ``values`` (rows of
     :func:`sample_values`), on every core. A chunk run anywhere gives the rows the whole run
-    gives for it: this is what a Dask worker runs (see ``examples/dask_probabilistic.py``)."""
-    v = np.ascontiguousarray(np.asarray(values, dtype=np.float64))
+    gives for it: this is what a Dask worker runs (see ``examples/dask_probabilistic.py``).
+    ``progress`` as for :func:`probabilistic`."""
+    v = _np.ascontiguousarray(_np.asarray(values, dtype=_np.float64))
     if v.ndim != 2:
         raise InputError("values: a 2-D array, one row per sample", "values")
-    return Samples(
-        _native.run_samples(scene._s, distributions(scene, dists), v, int(first), progress)
-    )
+    with _progress(progress, "samples") as tell:
+        return Samples(
+            _native.run_samples(scene._s, distributions(scene, dists), v, int(first), tell)
+        )
 
 
 def summarise(
     scene: Scene,
-    dists: Distributions,
+    dists: "Distributions",
     samples: int,
     seed: int,
     sampling: str,
-    rows: Mapping[str, Any],
-    travel_limit_m: Optional[float] = None,
-    rotation_limit_deg: Optional[float] = None,
-    displacement_limit_m: Optional[float] = None,
-) -> Dict[str, Any]:
+    rows: "Mapping[str, Any]",
+    travel_limit_m: "Optional[float]" = None,
+    rotation_limit_deg: "Optional[float]" = None,
+    displacement_limit_m: "Optional[float]" = None,
+) -> "Dict[str, Any]":
     """What the rows of one design come to: the summary ``probabilistic.json`` has (the
     probability of sliding with its 95 % interval — under a ground-motion record, that the
     record displaces the block —, exceedance probabilities, percentiles, rank correlations)."""
@@ -360,12 +600,13 @@ def summarise(
     )
 
 
-@dataclass(frozen=True)
+@_dataclass(frozen=True, repr=False)
 class Probabilistic:
-    """A probabilistic analysis's result: ``samples`` (one row per sample) and ``summary``."""
+    """A probabilistic analysis's result: ``samples`` (one row per sample, a
+    :class:`Samples`) and ``summary`` (as ``probabilistic.json`` has it)."""
 
     samples: Samples
-    summary: Dict[str, Any] = field(repr=False)
+    summary: "Dict[str, Any]"
 
     @property
     def probability_of_sliding(self) -> float:
@@ -373,26 +614,37 @@ class Probabilistic:
         record, whose block the record displaces)."""
         return self.summary["probability_of_sliding"]["value"]
 
+    def __repr__(self) -> str:
+        p = self.summary.get("probability_of_sliding", {})
+        ci = p.get("ci95")
+        interval = f" (95 % interval {ci[0]:.3f} to {ci[1]:.3f})" if ci else ""
+        n = len(self.samples.get("sample", ()))
+        keys = ", ".join(self.samples.keys_varied())
+        return (
+            f"<Probabilistic: {n} samples of {keys}; probability of sliding "
+            f"{p.get('value', float('nan')):.3f}{interval}>"
+        )
+
 
 def probabilistic(
     scene: Scene,
-    dists: Distributions = None,
+    dists: "Distributions" = None,
     samples: int = 1000,
     seed: int = 1,
     sampling: str = "lhs",
-    travel_limit_m: Optional[float] = None,
-    rotation_limit_deg: Optional[float] = None,
-    progress: Progress = None,
-    displacement_limit_m: Optional[float] = None,
+    travel_limit_m: "Optional[float]" = None,
+    rotation_limit_deg: "Optional[float]" = None,
+    progress: "Progress" = None,
+    displacement_limit_m: "Optional[float]" = None,
 ) -> Probabilistic:
     """The probabilistic analysis, as ``slideroute probabilistic`` runs it: each uncertain
     key's distribution (``{"friction.mu_k": "normal:0.40:0.05"}``; the scene's
     ``[uncertain]`` table too), ``samples`` samples from ``seed`` by ``sampling`` (``"lhs"``
     or ``"mc"``), every route on every core; the same numbers as the command line's.
-    ``progress(done, total)`` is told how many samples are done (``tqdm``'s ``update`` fits);
-    Ctrl-C stops it at its next route with ``KeyboardInterrupt``. Under a ground-motion
-    record, ``displacement_limit_m`` asks for the probability that the permanent displacement
-    exceeds it."""
+    ``progress(done, total)`` is told how many samples are done; ``progress=True`` shows a bar
+    (tqdm's where it is installed, else a line on stderr). Ctrl-C stops it at its next route
+    with ``KeyboardInterrupt``. Under a ground-motion record, ``displacement_limit_m`` asks
+    for the probability that the permanent displacement exceeds it."""
     dist = distributions(scene, dists)
     values = sample_values(scene, dist, samples, seed, sampling)
     rows = run_samples(scene, dist, values, progress=progress)
@@ -408,3 +660,6 @@ def probabilistic(
         displacement_limit_m,
     )
     return Probabilistic(samples=rows, summary=summary)
+
+
+del annotations  # the __future__ import's name: not the package's

@@ -29,7 +29,9 @@ impl<'a> From<&'a Sample> for Row<'a> {
 type Column<'a> = (&'a str, &'a dyn Fn(&RouteResult) -> f64);
 
 /// Rows as columns: `sample`, each key's values, then what each route came to (NaN where no
-/// route ran; the factor of safety ±∞ where unbounded or not holdable), its reason and detail.
+/// route ran; the factor of safety ±∞ where unbounded or not holdable), how it ended —
+/// `reason`, a machine name ([`reason_code`]), and `reason_text`, the sentence the command
+/// line's tables write — and the detail.
 pub fn columns_of<'py>(
     py: Python<'py>,
     keys: &[&str],
@@ -72,7 +74,8 @@ pub fn columns_of<'py>(
     for (name, f) in float_columns {
         out.set_item(name, PyArray1::from_vec(py, route(f)))?;
     }
-    let reasons: Vec<&str> = rows.iter().map(|s| s.outcome.reason()).collect();
+    let codes: Vec<String> = rows.iter().map(|s| outcome_code(s.outcome)).collect();
+    let texts: Vec<&str> = rows.iter().map(|s| s.outcome.reason()).collect();
     let details: Vec<String> = rows
         .iter()
         .map(|s| match s.outcome {
@@ -81,9 +84,47 @@ pub fn columns_of<'py>(
             Outcome::NotRun => String::new(),
         })
         .collect();
-    out.set_item("reason", reasons)?;
+    out.set_item("reason", codes)?;
+    out.set_item("reason_text", texts)?;
     out.set_item("detail", details)?;
     Ok(out)
+}
+
+/// The machine name of an end: kebab-case, as `summary.json`'s `termination.reason` writes it
+/// (`contact0-reached-inclined-plane`, `time-limit`).
+pub fn reason_code(reason: Reason) -> String {
+    match serde_json::to_value(reason) {
+        Ok(serde_json::Value::String(s)) => s,
+        _ => reason.as_str().replace(' ', "-"),
+    }
+}
+
+/// The machine name of a row's end: its route's ([`reason_code`]), [`INVALID`] or
+/// [`NOT_RUN_CODE`].
+pub fn outcome_code(outcome: &Outcome) -> String {
+    match outcome {
+        Outcome::Route(r) => reason_code(r.reason),
+        Outcome::Invalid { .. } => INVALID.to_string(),
+        Outcome::NotRun => NOT_RUN_CODE.to_string(),
+    }
+}
+
+/// The machine name of a row whose values make no valid scene (its sentence `invalid scene`).
+pub const INVALID: &str = "invalid-scene";
+
+/// The machine name of a row a stopped run did not start (its sentence [`NOT_RUN`]).
+pub const NOT_RUN_CODE: &str = "not-run";
+
+/// Every end a row can have: (machine name, sentence), the routes' in the library's order.
+pub fn reasons() -> Vec<(String, &'static str)> {
+    Reason::ALL
+        .into_iter()
+        .map(|r| (reason_code(r), r.as_str()))
+        .chain([
+            (INVALID.to_string(), "invalid scene"),
+            (NOT_RUN_CODE.to_string(), NOT_RUN),
+        ])
+        .collect()
 }
 
 /// Samples back from their columns (as [`columns_of`] wrote them, gathered from anywhere).
@@ -146,17 +187,22 @@ pub fn samples_from<'py>(
     }
     (0..n)
         .map(|k| {
+            // The machine name, or the sentence (a table the command line wrote).
             let outcome = match reason[k].as_str() {
-                "invalid scene" => Outcome::Invalid {
+                INVALID | "invalid scene" => Outcome::Invalid {
                     reason: detail[k].clone(),
                 },
-                r if r == NOT_RUN => Outcome::NotRun,
+                r if r == NOT_RUN_CODE || r == NOT_RUN => Outcome::NotRun,
                 r => Outcome::Route(RouteResult {
                     factor_of_safety: (!fs[k].is_nan())
                         .then(|| FactorOfSafety::from_multiple(fs[k])),
-                    reason: Reason::parse(r).ok_or_else(|| {
-                        input_error(py, "reason", format!("`{r}` is no route's end"))
-                    })?,
+                    reason: Reason::ALL
+                        .into_iter()
+                        .find(|&e| reason_code(e) == r)
+                        .or_else(|| Reason::parse(r))
+                        .ok_or_else(|| {
+                            input_error(py, "reason", format!("`{r}` is no route's end"))
+                        })?,
                     t_s: t[k],
                     detail: detail[k].clone(),
                     travel_m: travel[k],

@@ -37,6 +37,12 @@ fn named<T: FromStr<Err = UnknownName>>(
     .transpose()
 }
 
+/// Every end a route (or a row of many) can have: (machine name, sentence) pairs.
+#[pyfunction]
+fn reasons() -> Vec<(String, &'static str)> {
+    columns::reasons()
+}
+
 /// The crate's version.
 #[pyfunction]
 fn version() -> &'static str {
@@ -54,6 +60,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(probabilistic::run_samples, m)?)?;
     m.add_function(wrap_pyfunction!(probabilistic::distributions, m)?)?;
     m.add_function(wrap_pyfunction!(probabilistic::summarise_samples, m)?)?;
+    m.add_function(wrap_pyfunction!(reasons, m)?)?;
     m.add_function(wrap_pyfunction!(version, m)?)?;
     Ok(())
 }

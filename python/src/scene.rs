@@ -1,8 +1,9 @@
 //! `Scene`: a scene read, changed by key, and run — its route, the roots and the direct pose at
-//! one displacement or many, and a sweep of its keys.
+//! one displacement or many, a sweep of its keys, the factor of safety at its start and its load
+//! cases checked by their guideline.
 
-use crate::columns::{Row, columns_of};
-use crate::errors::{input_error, key_error, scene_error};
+use crate::columns::{Row, columns_of, reason_code};
+use crate::errors::{input_error, input_type_error, key_error, scene_error};
 use crate::watch::interruptible;
 use crate::{json, named};
 use numpy::{PyArray1, PyReadonlyArray1};
@@ -10,7 +11,8 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use rayon::prelude::*;
 use slideroute::sweep::{Sweep, Vary};
-use slideroute::{Displacement, DynamicsModel, Mode, Runner};
+use slideroute::{Displacement, DynamicsModel, FactorOfSafety, Mode, Runner};
+use std::ops::ControlFlow;
 use std::path::Path;
 
 /// A scene: the contact frame, the foundation, the block, its loads and friction, the solver.
@@ -84,9 +86,16 @@ impl PyScene {
     fn with_keys(&self, py: Python<'_>, keys: &Bound<'_, PyDict>) -> PyResult<Self> {
         let mut pairs = Vec::new();
         for (k, v) in keys.iter() {
-            let key: String = k
-                .extract()
-                .map_err(|_| input_error(py, "keys", "keys are strings like \"friction.mu_k\""))?;
+            let key: String = k.extract().map_err(|_| {
+                input_type_error(
+                    py,
+                    "keys",
+                    format!(
+                        "keys: expected a string like \"friction.mu_k\", got {}",
+                        type_name(&k)
+                    ),
+                )
+            })?;
             let value = toml_value(py, &key, &v)?;
             pairs.push((key, value));
         }
@@ -130,16 +139,34 @@ impl PyScene {
     }
 
     /// The route: (columns, summary) with columns `Row::COLUMNS` as float arrays (NaN where a
-    /// value could not be had) and the summary as `summary.json` has it.
-    #[pyo3(signature = (dynamics = None))]
+    /// value could not be had) and the summary as `summary.json` has it. `progress(done,
+    /// total)` is told how many increments of dt are done; Ctrl-C stops the route with
+    /// `KeyboardInterrupt`.
+    #[pyo3(signature = (dynamics = None, progress = None))]
     fn route<'py>(
         &self,
         py: Python<'py>,
         dynamics: Option<&str>,
+        progress: Option<Bound<'py, PyAny>>,
     ) -> PyResult<(Bound<'py, PyDict>, Bound<'py, PyAny>)> {
         let scene = self.with_dynamics(py, dynamics)?;
         let sim = scene.simulation().map_err(|e| scene_error(py, &e))?;
-        let computed = py.detach(|| Runner::new(&sim).run());
+        let settings = sim.settings();
+        // As the route counts them (`src/route/driver.rs`): the last may be shorter.
+        let increments = ((settings.t_end / settings.dt - 1e-9).ceil()).max(1.0) as usize;
+        let progress = progress.as_ref().map(|f| (f, increments));
+        let computed = interruptible(py, progress, |watch| {
+            Runner::new(&sim)
+                .progress(|part| {
+                    watch.set((part * increments as f64).round() as usize);
+                    if watch.stopped() {
+                        ControlFlow::Break(())
+                    } else {
+                        ControlFlow::Continue(())
+                    }
+                })
+                .run()
+        })?;
         let columns = PyDict::new(py);
         // Each row's values once, then column by column.
         let rows = &computed.route.rows;
@@ -153,6 +180,42 @@ impl PyScene {
             columns.set_item(*name, PyArray1::from_vec(py, v))?;
         }
         Ok((columns, json(py, &computed)?))
+    }
+
+    /// The factor of safety at the start, as the route's summary has it (`{"kind": "finite",
+    /// "value": …}`, `{"kind": "unbounded"}`, `{"kind": "not-holdable"}`) or `None` where the
+    /// start has no pose: from the route's first increment, not the whole route.
+    #[pyo3(signature = (dynamics = None))]
+    fn factor_of_safety<'py>(
+        &self,
+        py: Python<'py>,
+        dynamics: Option<&str>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let scene = self.with_dynamics(py, dynamics)?;
+        let sim = scene.simulation().map_err(|e| scene_error(py, &e))?;
+        // The route computes it at its start whatever comes after: stopped at once.
+        let computed = py.detach(|| Runner::new(&sim).progress(|_| ControlFlow::Break(())).run());
+        json(py, &computed.route.factor_of_safety)
+    }
+
+    /// The load cases checked by their guideline, as `slideroute check` does: (guideline,
+    /// cases as `check.json` has them, columns as `check.csv` has them with the route's end as
+    /// `reason` and `reason_text`). `progress(done, total)` is told how many cases are done.
+    #[pyo3(signature = (progress = None))]
+    fn check<'py>(
+        &self,
+        py: Python<'py>,
+        progress: Option<Bound<'py, PyAny>>,
+    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>, Bound<'py, PyDict>)> {
+        let scene = &self.inner;
+        let total = scene.cases().len().max(1);
+        let progress = progress.as_ref().map(|f| (f, total));
+        let results = interruptible(py, progress, |watch| {
+            slideroute::check::check_cases(scene, |_| watch.tick())
+        })?
+        .map_err(|e| scene_error(py, &e))?;
+        let columns = check_columns(py, &results)?;
+        Ok((json(py, scene.guideline())?, json(py, &results)?, columns))
     }
 
     /// Every root of the pose system at one displacement (`mode`: "exact" or "small-angle",
@@ -214,7 +277,9 @@ impl PyScene {
 
     /// The selected pose at many displacements at once, on every core: arrays alpha_deg,
     /// beta_deg, gamma_deg, cm_y_m (NaN where no root is admissible) and finite_roots.
-    #[pyo3(signature = (x_m, z_m, theta_deg, mode = None))]
+    /// `progress(done, total)` is told how many poses are done; Ctrl-C stops it with
+    /// `KeyboardInterrupt`.
+    #[pyo3(signature = (x_m, z_m, theta_deg, mode = None, progress = None))]
     fn roots_grid<'py>(
         &self,
         py: Python<'py>,
@@ -222,6 +287,7 @@ impl PyScene {
         z_m: PyReadonlyArray1<'py, f64>,
         theta_deg: PyReadonlyArray1<'py, f64>,
         mode: Option<&str>,
+        progress: Option<Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let mode = self.mode(py, mode)?;
         let (x, z, t) = (x_m.as_slice()?, z_m.as_slice()?, theta_deg.as_slice()?);
@@ -238,10 +304,15 @@ impl PyScene {
             ));
         }
         let site = self.inner.site();
-        let rows: Vec<[f64; 5]> = py.detach(|| {
+        let progress = progress.as_ref().map(|f| (f, x.len()));
+        let rows: Vec<[f64; 5]> = interruptible(py, progress, |watch| {
             (0..x.len())
                 .into_par_iter()
                 .map(|k| {
+                    if watch.stopped() {
+                        return [f64::NAN; 5];
+                    }
+                    watch.tick();
                     let d = Displacement::new(x[k], z[k], t[k].to_radians());
                     let Ok(all) = slideroute::poses::solve_all(site, d, mode) else {
                         return [f64::NAN; 5];
@@ -264,7 +335,7 @@ impl PyScene {
                     }
                 })
                 .collect()
-        });
+        })?;
         let out = PyDict::new(py);
         for (k, name) in [
             "alpha_deg",
@@ -363,9 +434,138 @@ pub fn toml_value(py: Python<'_>, key: &str, v: &Bound<'_, PyAny>) -> PyResult<t
     if let Ok(s) = v.extract::<String>() {
         return Ok(toml::Value::String(s));
     }
-    Err(input_error(
+    Err(input_type_error(
         py,
         key,
-        format!("{key}: a number, a bool or a string, not {}", v.get_type()),
+        format!(
+            "{key}: expected a number, a bool or a string, got {}",
+            type_name(v)
+        ),
     ))
+}
+
+/// A Python value's type as Python names it (`list`, `NoneType`).
+fn type_name(v: &Bound<'_, PyAny>) -> String {
+    v.get_type()
+        .name()
+        .map_or_else(|_| "an unknown type".to_string(), |n| n.to_string())
+}
+
+/// The cases as `check.csv` has them, column by column: numbers as floats (NaN where the case
+/// has none; a sliding factor or load multiple ±∞ where unbounded or not holdable), the route's
+/// end as `reason` (its machine name) and `reason_text`.
+fn check_columns<'py>(
+    py: Python<'py>,
+    results: &[slideroute::check::CaseResult],
+) -> PyResult<Bound<'py, PyDict>> {
+    let out = PyDict::new(py);
+    let num = |f: &dyn Fn(&slideroute::check::CaseResult) -> Option<f64>| -> Vec<f64> {
+        results.iter().map(|r| f(r).unwrap_or(f64::NAN)).collect()
+    };
+    let water = |r: &slideroute::check::CaseResult| {
+        r.loads
+            .as_ref()
+            .and_then(|l| l.water.as_ref())
+            .map(|w| w.levels)
+    };
+    out.set_item(
+        "case",
+        results
+            .iter()
+            .map(|r| r.case.name.clone())
+            .collect::<Vec<_>>(),
+    )?;
+    out.set_item(
+        "category",
+        results
+            .iter()
+            .map(|r| r.case.category.as_str())
+            .collect::<Vec<_>>(),
+    )?;
+    type Column<'a> = (
+        &'a str,
+        &'a dyn Fn(&slideroute::check::CaseResult) -> Option<f64>,
+    );
+    let numbers: [Column; 16] = [
+        ("headwater_m", &|r| water(r).map(|w| w.headwater)),
+        ("tailwater_m", &|r| water(r).map(|w| w.tailwater)),
+        ("kh", &|r| r.loads.as_ref().map(|l| l.kh)),
+        ("kv", &|r| r.loads.as_ref().map(|l| l.kv)),
+        ("hydraulic_force_n", &|r| {
+            r.loads.as_ref().map(|l| l.hydraulic_force_n)
+        }),
+        ("uplift_n", &|r| {
+            r.gravity
+                .map(|g| g.uplift_n)
+                .or(r.loads.as_ref().map(|l| l.uplift_n))
+        }),
+        ("weight_n", &|r| r.loads.as_ref().map(|l| l.weight_n)),
+        ("horizontal_n", &|r| match (&r.gravity, &r.loads) {
+            (Some(g), _) => Some(g.shear_n),
+            (None, Some(l)) => Some(l.hydraulic_force_n + l.kh * l.weight_n),
+            _ => None,
+        }),
+        ("sliding_fs", &|r| {
+            r.gravity.map(|g| g.sliding_fs.unwrap_or(f64::INFINITY))
+        }),
+        ("resultant_from_heel_m", &|r| {
+            r.gravity.and_then(|g| g.resultant_from_heel_m)
+        }),
+        ("base_in_compression_pct", &|r| {
+            r.gravity.map(|g| g.base_in_compression_pct)
+        }),
+        ("heel_pressure_pa", &|r| {
+            r.gravity.map(|g| g.heel_pressure_pa)
+        }),
+        ("toe_pressure_pa", &|r| r.gravity.map(|g| g.toe_pressure_pa)),
+        ("crack_length_m", &|r| r.gravity.map(|g| g.crack_length_m)),
+        ("load_multiple", &|r| {
+            r.factor_of_safety.map(|f| match f {
+                FactorOfSafety::Finite { value } => value,
+                FactorOfSafety::Unbounded => f64::INFINITY,
+                FactorOfSafety::NotHoldable => f64::NEG_INFINITY,
+            })
+        }),
+        ("anchor_force_n", &|r| r.gravity.map(|g| g.anchor_force_n)),
+    ];
+    for (name, f) in numbers {
+        out.set_item(name, PyArray1::from_vec(py, num(f)))?;
+    }
+    out.set_item(
+        "load_multiple_limit",
+        results
+            .iter()
+            .map(|r| r.load_multiple_limit.map_or("", |l| l.as_str()))
+            .collect::<Vec<_>>(),
+    )?;
+    out.set_item(
+        "required_fs",
+        PyArray1::from_vec(py, results.iter().map(|r| r.required_fs).collect()),
+    )?;
+    out.set_item(
+        "passes",
+        results.iter().map(|r| r.passes).collect::<Vec<_>>(),
+    )?;
+    fn route(r: &slideroute::check::CaseResult) -> &slideroute::Route {
+        &r.run.route
+    }
+    out.set_item(
+        "reason",
+        results
+            .iter()
+            .map(|r| reason_code(route(r).termination.reason))
+            .collect::<Vec<_>>(),
+    )?;
+    out.set_item(
+        "reason_text",
+        results
+            .iter()
+            .map(|r| route(r).termination.reason.as_str())
+            .collect::<Vec<_>>(),
+    )?;
+    out.set_item(
+        "travel_m",
+        PyArray1::from_vec(py, results.iter().map(|r| route(r).travel_m).collect()),
+    )?;
+    Ok(out)
 }

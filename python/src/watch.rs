@@ -8,7 +8,7 @@ use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::time::Duration;
 
 /// What a long computation and the thread watching it share: whether to stop, and how many
-/// samples or combinations are done.
+/// samples, combinations, poses, cases or increments are done.
 pub struct Watch {
     stop: AtomicBool,
     done: AtomicUsize,
@@ -23,6 +23,11 @@ impl Watch {
     /// One more item done.
     pub fn tick(&self) {
         self.done.fetch_add(1, Ordering::Relaxed);
+    }
+
+    /// `done` items done (a route's increments).
+    pub fn set(&self, done: usize) {
+        self.done.store(done, Ordering::Relaxed);
     }
 }
 

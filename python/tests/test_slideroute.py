@@ -212,7 +212,8 @@ def test_a_sweep_equals_the_command_lines_row_for_row(tmp_path):
         {"friction.mu_k": [0.3, 0.45, -1.0], "loads.eccentricity_m": [0.0, 1.0]}
     )
     assert len(rows) == len(sw["sample"]) == 6
-    names = {"final_theta_deg": "final_yaw_deg"}
+    # The command line's `reason` column is the sentence: Python's `reason_text`.
+    names = {"final_theta_deg": "final_yaw_deg", "reason": "reason_text"}
     words = {"unbounded": math.inf, "not-holdable": -math.inf}
     for k, name in enumerate(header):
         col = sw[names.get(name, name)]
@@ -223,7 +224,7 @@ def test_a_sweep_equals_the_command_lines_row_for_row(tmp_path):
                 want = words.get(row[k], None) if name == "factor_of_safety" else None
                 want = as_float(row[k]) if want is None else want
                 assert same(float(col[j]), want), (name, j, col[j], row[k])
-    assert list(sw["reason"]).count("invalid scene") == 2
+    assert list(sw["reason"]).count("invalid-scene") == 2
 
 
 def cli_probabilistic(scene_file, out, args):
@@ -254,7 +255,7 @@ def test_the_probabilistic_analysis_equals_the_command_lines(tmp_path):
         seed=5,
         travel_limit_m=0.1,
     )
-    names = {"t_end_s": "t_end_s"}
+    names = {"reason": "reason_text"}
     for k, name in enumerate(header):
         col = p.samples[names.get(name, name)]
         for j, row in enumerate(rows):
@@ -369,10 +370,11 @@ def test_arguments_it_cannot_use_raise_an_input_error_naming_them(call, name):
 def test_a_sample_whose_values_make_no_scene_is_a_row_that_says_why():
     s = slideroute.Scene.default().with_keys({"solver.t_end_s": 0.01})
     rows = slideroute.run_samples(s, {"friction.mu_k": "uniform:-1:1"}, [[-0.5], [0.4], [math.nan]])
-    assert list(rows["reason"][:1]) == ["invalid scene"]
+    assert list(rows["reason"][:1]) == ["invalid-scene"]
+    assert rows["reason_text"][0] == "invalid scene"
     assert "friction.mu_k" in rows["detail"][0]
-    assert rows["reason"][1] != "invalid scene"
-    assert rows["reason"][2] == "invalid scene"
+    assert rows["reason"][1] != "invalid-scene"
+    assert rows["reason"][2] == "invalid-scene"
     summary = slideroute.summarise(s, {"friction.mu_k": "uniform:-1:1"}, 3, 1, "mc", rows)
     assert summary["invalid_samples"] == 2 and summary["routes"] == 1
 

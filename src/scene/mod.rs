@@ -320,6 +320,13 @@ impl Scene {
         self.monolith.as_ref()
     }
 
+    /// The block's own footprint (`[base] outline_m`, or a monolith's base rectangle; a cast
+    /// block's frame rectangle), when it has one; none for a flat block given only by its
+    /// frame, whose base is its frame's bounding rectangle where a base is needed.
+    pub fn base(&self) -> Option<&crate::model::Base> {
+        self.base.as_ref()
+    }
+
     /// `[[anchor]]`: the anchors through the monolith, as given.
     pub fn anchors(&self) -> &[crate::model::RockAnchor] {
         &self.anchors

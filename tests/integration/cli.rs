@@ -585,12 +585,13 @@ fn report_quick_writes_csv_markdown_and_picture() {
     let csv = std::fs::read_to_string(dir.join("work-precision.csv")).unwrap();
     assert_eq!(
         csv.lines().next().unwrap(),
-        "scene,method,mode,integrator,dt_s,increments,wall_s,error_m"
+        "scene,dynamics,method,mode,integrator,dt_s,increments,wall_s,error_m"
     );
     assert_eq!(
         csv.lines().count(),
-        // Quick: 2 scenes × 2 pose methods × 2 modes × 2 integrators × 3 steps of dt.
-        1 + 2 * 2 * 2 * 2 * 3
+        // Quick: 2 scenes × (the paper's dynamics' 2 pose methods × 2 modes × 2 integrators,
+        // and the rigid body) × 3 steps of dt.
+        1 + 2 * (2 * 2 * 2 + 1) * 3
     );
     let md = std::fs::read_to_string(dir.join("work-precision.md")).unwrap();
     assert!(md.contains("## Stiff and extreme cases") && md.contains("## References"));
@@ -2172,7 +2173,7 @@ fn every_command_line_fault_is_one_line_in_the_one_style_naming_the_command_help
 }
 
 #[test]
-fn the_same_value_has_the_same_metavar_in_every_command() {
+fn the_same_value_has_the_same_metavar_in_every_command_and_no_help_names_the_code() {
     // Issue #29: `<MODEL>` in one command and `<DYNAMICS>` in another; `<M>` beside `<METRES>`.
     let mut seen: std::collections::BTreeMap<String, String> = Default::default();
     for command in [
@@ -2202,6 +2203,11 @@ fn the_same_value_has_the_same_metavar_in_every_command() {
             let previous = seen.entry(kind.clone()).or_insert_with(|| meta.to_string());
             assert_eq!(previous, meta, "{command} {flag}: {kind}");
         }
+        // No name of the code's own (a module path, an issue number) in what a user reads.
+        assert!(
+            !help.contains("::") && !help.contains("issue #") && !help.contains(".rs"),
+            "{command}: {help}"
+        );
         // Every command that draws can be told not to.
         if ["run", "sweep", "probabilistic", "check", "report"].contains(&command) {
             assert!(help.contains("--no-plots"), "{command}");

@@ -25,6 +25,7 @@ mod memory;
 mod newmark_exact;
 mod paper_misprints;
 mod reactions_paper;
+mod readme;
 mod record_files;
 mod report_browser;
 mod rigid_body;

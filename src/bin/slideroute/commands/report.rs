@@ -56,8 +56,9 @@ pub fn report(args: &ReportArgs) -> Result<(), CliError> {
     if !args.quiet {
         for r in &references {
             outln!(
-                "reference {}: dt {:.4e} s, change at dt/2 {:.1e} m (bound {:.0e} m)",
+                "reference {}, {} dynamics: dt {:.4e} s, change at dt/2 {:.1e} m (bound {:.0e} m)",
                 r.scene,
+                r.dynamics,
                 r.dt_s,
                 r.change_m,
                 r.bound_m

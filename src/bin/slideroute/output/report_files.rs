@@ -4,8 +4,9 @@ use crate::report::{ExtremeRow, Point, Reference};
 use std::fmt::Write as _;
 use std::io::Write;
 
-pub const HEADER: [&str; 8] = [
+pub const HEADER: [&str; 9] = [
     "scene",
+    "dynamics",
     "method",
     "mode",
     "integrator",
@@ -21,6 +22,7 @@ pub fn write_csv(out: impl Write, points: &[Point]) -> Result<(), csv::Error> {
     for p in points {
         w.write_record([
             p.scene.clone(),
+            p.dynamics.as_str().to_string(),
             p.method.as_str().to_string(),
             p.mode.as_str().to_string(),
             p.integrator.as_str().to_string(),
@@ -53,24 +55,30 @@ pub fn markdown(
     );
     let _ = writeln!(
         s,
-        "## References\n\n| scene | horizon (s) | dt (s) | change at dt/2 (m) | bound 1e-9·L (m) |\n| --- | --- | --- | --- | --- |"
+        "## References\n\n| scene | dynamics | horizon (s) | dt (s) | change at dt/2 (m) | bound 1e-9·L (m) |\n| --- | --- | --- | --- | --- | --- |"
     );
     for r in references {
         let _ = writeln!(
             s,
-            "| {} | {} | {:.4e} | {:.2e} | {:.0e} |",
-            r.scene, r.horizon_s, r.dt_s, r.change_m, r.bound_m
+            "| {} | {} | {} | {:.4e} | {:.2e} | {:.0e} |",
+            r.scene,
+            r.dynamics.as_str(),
+            r.horizon_s,
+            r.dt_s,
+            r.change_m,
+            r.bound_m
         );
     }
     let _ = writeln!(
         s,
-        "\n## Error and time\n\n| scene | method | mode | integrator | dt (s) | increments | time (ms) | error (m) | µs / increment |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- |"
+        "\n## Error and time\n\nEach dynamics against its own reference.\n\n| scene | dynamics | method | mode | integrator | dt (s) | increments | time (ms) | error (m) | µs / increment |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"
     );
     for p in points {
         let _ = writeln!(
             s,
-            "| {} | {} | {} | {} | {} | {} | {:.3} | {:.2e} | {:.2} |",
+            "| {} | {} | {} | {} | {} | {} | {} | {:.3} | {:.2e} | {:.2} |",
             p.scene,
+            p.dynamics.as_str(),
             p.method.as_str(),
             p.mode.as_str(),
             p.integrator.as_str(),
@@ -83,7 +91,7 @@ pub fn markdown(
     }
     let _ = writeln!(
         s,
-        "\n## Continuation against all roots\n\nPer increment, at equal error (the same dt gives the same route by both: the error gap is round-off). All roots: the eigenvalue solve for the pose and all solutions of the frictional reactions at every increment; continuation: the tracker and Newton from the previous increment's reactions.\n\n| scene | mode | integrator | dt (s) | continuation (µs) | all roots (µs) | all roots / continuation | error gap (m) |\n| --- | --- | --- | --- | --- | --- | --- | --- |"
+        "\n## Continuation against all roots\n\nThe paper's dynamics, per increment, at equal error (the same dt gives the same route by both: the error gap is round-off). All roots: the eigenvalue solve for the pose and all solutions of the frictional reactions at every increment; continuation: the tracker and Newton from the previous increment's reactions.\n\n| scene | mode | integrator | dt (s) | continuation (µs) | all roots (µs) | all roots / continuation | error gap (m) |\n| --- | --- | --- | --- | --- | --- | --- | --- |"
     );
     for r in crate::report::speedups(points) {
         let _ = writeln!(

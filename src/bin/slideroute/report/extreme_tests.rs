@@ -3,7 +3,7 @@
 //! And the work–precision report's own claims.
 
 use crate::report;
-use slideroute::{Integrator, Mode};
+use slideroute::{DynamicsModel, Integrator, Mode};
 use slideroute::{PoseMethod, Reason};
 
 #[test]
@@ -70,6 +70,7 @@ fn quick_report_establishes_its_references_and_shows_the_orders() {
                 .iter()
                 .filter(|p| {
                     p.scene == scene
+                        && p.dynamics == DynamicsModel::Paper
                         && p.method == method
                         && p.mode == mode
                         && p.integrator == integrator
@@ -98,5 +99,20 @@ fn quick_report_establishes_its_references_and_shows_the_orders() {
             Integrator::Rk4,
         );
         assert!(s.iter().all(|&e| e > 1e-8), "{scene}: {s:?}");
+        // The rigid body, the default dynamics, against its own reference: a series of its
+        // own over the same ladder, its error falling as dt does.
+        let rigid: Vec<f64> = points
+            .iter()
+            .filter(|p| p.scene == scene && p.dynamics == DynamicsModel::RigidBody)
+            .map(|p| p.error_m)
+            .collect();
+        assert_eq!(rigid.len(), 3, "{scene}: {rigid:?}");
+        assert!(rigid.windows(2).all(|w| w[1] < w[0]), "{scene}: {rigid:?}");
+        assert!(rigid.iter().all(|&e| e < 1e-8), "{scene}: {rigid:?}");
     }
+    assert!(
+        references
+            .iter()
+            .any(|r| r.dynamics == DynamicsModel::RigidBody)
+    );
 }

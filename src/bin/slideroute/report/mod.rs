@@ -1,11 +1,12 @@
 //! The work–precision report: error of the route against run time for each method, mode and
-//! integrator over a ladder of increments, and the stiff and extreme cases.
+//! integrator of the paper's dynamics, and for the rigid body (the default dynamics: exact
+//! mode, RK4, continuation), over a ladder of increments; and the stiff and extreme cases.
 //!
-//! Reference: exact mode, RK4, continuation, dt_ref = 0.02 s / 512, over a horizon that ends
-//! before the route does (paper-like 1 s, shallow 0.5 s). Every dt of the ladder (0.02 s / 2^k)
-//! is an exact binary multiple of dt_ref, so rows match in time exactly. The reference is
-//! established by running it again at dt_ref / 2: the largest CM distance between the two must
-//! be below 1e-9·L (reported as `reference_change_m`).
+//! Reference: exact mode, RK4, continuation, dt_ref = 0.02 s / 512, of the same dynamics, over
+//! a horizon that ends before the route does (paper-like 1 s, shallow 0.5 s). Every dt of the
+//! ladder (0.02 s / 2^k) is an exact binary multiple of dt_ref, so rows match in time exactly.
+//! The reference is established by running it again at dt_ref / 2: the largest CM distance
+//! between the two must be below 1e-9·L (reported as `reference_change_m`).
 
 use serde::Serialize;
 use slideroute::{Computed, DynamicsModel, Integrator, Mode, PoseMethod, Route, Runner, Scene};
@@ -18,6 +19,7 @@ pub const SHALLOW_SCENE_TOML: &str = include_str!("../../../../scenes/shallow.to
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Point {
     pub scene: String,
+    pub dynamics: DynamicsModel,
     pub method: PoseMethod,
     pub mode: Mode,
     pub integrator: Integrator,
@@ -33,6 +35,7 @@ pub struct Point {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Reference {
     pub scene: String,
+    pub dynamics: DynamicsModel,
     pub horizon_s: f64,
     pub dt_s: f64,
     /// Largest CM distance between the reference and the same run at dt_ref / 2 (m).
@@ -43,16 +46,53 @@ pub struct Reference {
 
 const DT0: f64 = 0.02;
 
+/// How one series of the ladder runs: the dynamics, the pose method, the mode, the integrator.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Series {
+    dynamics: DynamicsModel,
+    method: PoseMethod,
+    mode: Mode,
+    integrator: Integrator,
+}
+
+/// The series of the ladder: every pose method, mode and integrator of the paper's dynamics,
+/// then the rigid body as it runs by default (continuation, exact mode, RK4; it takes no other
+/// mode or integrator).
+fn series() -> Vec<Series> {
+    let mut out = Vec::new();
+    for method in [PoseMethod::Continuation, PoseMethod::AllRoots] {
+        for mode in [Mode::Exact, Mode::SmallAngle] {
+            for integrator in [Integrator::Paper, Integrator::Rk4] {
+                out.push(Series {
+                    dynamics: DynamicsModel::Paper,
+                    method,
+                    mode,
+                    integrator,
+                });
+            }
+        }
+    }
+    out.push(Series {
+        dynamics: DynamicsModel::RigidBody,
+        method: PoseMethod::Continuation,
+        mode: Mode::Exact,
+        integrator: Integrator::Rk4,
+    });
+    out
+}
+
+/// `scene` under `dynamics` in `mode` with `integrator`, `dt` and `t_end` (s), every increment
+/// recorded.
 fn with_solver(
     scene: &Scene,
+    dynamics: DynamicsModel,
     mode: Mode,
     integrator: Integrator,
     dt: f64,
     t_end: f64,
 ) -> Result<Scene, String> {
-    // The ladder compares the paper's dynamics' integrators and modes.
     let keys: [(&str, toml::Value); 6] = [
-        ("dynamics", "paper".into()),
+        ("dynamics", dynamics.as_str().into()),
         ("mode", mode.as_str().into()),
         ("integrator", integrator.as_str().into()),
         ("dt_s", dt.into()),
@@ -112,50 +152,54 @@ pub fn work_precision(
     let mut points = Vec::new();
     let mut references = Vec::new();
     for (scene, horizon) in scenes()? {
-        let reference = run(
-            &with_solver(&scene, Mode::Exact, Integrator::Rk4, ref_dt, horizon)?,
-            PoseMethod::Continuation,
-        )?;
-        let check = run(
-            &with_solver(&scene, Mode::Exact, Integrator::Rk4, ref_dt / 2.0, horizon)?,
-            PoseMethod::Continuation,
-        )?;
-        references.push(Reference {
-            scene: scene.name().to_string(),
-            horizon_s: horizon,
-            dt_s: ref_dt,
-            change_m: max_distance(&reference, &check, 2),
-            bound_m: 1e-9 * scene.l(),
-        });
-        for method in [PoseMethod::Continuation, PoseMethod::AllRoots] {
-            for mode in [Mode::Exact, Mode::SmallAngle] {
-                for integrator in [Integrator::Paper, Integrator::Rk4] {
-                    for k in 0..levels {
-                        let dt = DT0 / f64::from(1u32 << k);
-                        let s = with_solver(&scene, mode, integrator, dt, horizon)?;
-                        let mut times = Vec::with_capacity(repeats);
-                        let mut last = None;
-                        for _ in 0..repeats {
-                            let t0 = Instant::now();
-                            let r = run(&s, method)?;
-                            times.push(t0.elapsed().as_secs_f64());
-                            last = Some(r);
-                        }
-                        times.sort_by(f64::total_cmp);
-                        let r = last.ok_or("no run")?;
-                        points.push(Point {
-                            scene: scene.name().to_string(),
-                            method,
-                            mode,
-                            integrator,
-                            dt_s: dt,
-                            increments: r.increments,
-                            wall_s: times[times.len() / 2],
-                            error_m: max_distance(&r, &reference, (dt / ref_dt).round() as usize),
-                        });
-                        if progress().is_break() {
-                            return Err(INTERRUPTED.into());
-                        }
+        for dynamics in [DynamicsModel::Paper, DynamicsModel::RigidBody] {
+            // Each dynamics against its own reference: the error is of the integration, not
+            // the difference between the models.
+            let exact =
+                |dt| with_solver(&scene, dynamics, Mode::Exact, Integrator::Rk4, dt, horizon);
+            let reference = run(&exact(ref_dt)?, PoseMethod::Continuation)?;
+            let check = run(&exact(ref_dt / 2.0)?, PoseMethod::Continuation)?;
+            references.push(Reference {
+                scene: scene.name().to_string(),
+                dynamics,
+                horizon_s: horizon,
+                dt_s: ref_dt,
+                change_m: max_distance(&reference, &check, 2),
+                bound_m: 1e-9 * scene.l(),
+            });
+            for series in series().into_iter().filter(|s| s.dynamics == dynamics) {
+                let Series {
+                    method,
+                    mode,
+                    integrator,
+                    ..
+                } = series;
+                for k in 0..levels {
+                    let dt = DT0 / f64::from(1u32 << k);
+                    let s = with_solver(&scene, dynamics, mode, integrator, dt, horizon)?;
+                    let mut times = Vec::with_capacity(repeats);
+                    let mut last = None;
+                    for _ in 0..repeats {
+                        let t0 = Instant::now();
+                        let r = run(&s, method)?;
+                        times.push(t0.elapsed().as_secs_f64());
+                        last = Some(r);
+                    }
+                    times.sort_by(f64::total_cmp);
+                    let r = last.ok_or("no run")?;
+                    points.push(Point {
+                        scene: scene.name().to_string(),
+                        dynamics,
+                        method,
+                        mode,
+                        integrator,
+                        dt_s: dt,
+                        increments: r.increments,
+                        wall_s: times[times.len() / 2],
+                        error_m: max_distance(&r, &reference, (dt / ref_dt).round() as usize),
+                    });
+                    if progress().is_break() {
+                        return Err(INTERRUPTED.into());
                     }
                 }
             }
@@ -191,6 +235,7 @@ pub fn speedups(points: &[Point]) -> Vec<Speedup> {
             let a = points.iter().find(|a| {
                 a.method == PoseMethod::AllRoots
                     && a.scene == c.scene
+                    && a.dynamics == c.dynamics
                     && a.mode == c.mode
                     && a.integrator == c.integrator
                     && a.dt_s == c.dt_s
@@ -210,10 +255,10 @@ pub fn speedups(points: &[Point]) -> Vec<Speedup> {
         .collect()
 }
 
-/// Number of points [`work_precision`] measures.
+/// Number of points [`work_precision`] measures: each series' ladder on each scene.
 pub fn point_count(quick: bool) -> usize {
     let levels = if quick { 3 } else { 6 };
-    2 * 2 * 2 * 2 * levels
+    2 * series().len() * levels
 }
 
 /// A named case of the stiff and extreme suite.
@@ -417,6 +462,7 @@ mod tests {
     fn point(method: PoseMethod, dt_s: f64, wall_s: f64, error_m: f64) -> Point {
         Point {
             scene: "s".into(),
+            dynamics: DynamicsModel::Paper,
             method,
             mode: Mode::Exact,
             integrator: Integrator::Paper,

@@ -114,9 +114,14 @@ fn still_words(route: &Route, what: &str) -> Vec<String> {
     let t = &route.termination;
     let first = if t.reason == Reason::DoesNotSlide {
         format!(
-            "{} does not slide: static friction within the three contacts' cones holds the \
-             block under its weight and the water load ({}).",
+            "{} does not slide: static friction {} holds the block under its weight and the \
+             water load ({}).",
             route.scene,
+            if route.base.is_some() {
+                "under its base"
+            } else {
+                "within the three contacts' cones"
+            },
             fs_words(route.factor_of_safety)
         )
     } else {
@@ -162,6 +167,7 @@ pub fn plan(path: &Path, scene: &Scene, route: &Route) -> Res<()> {
             title: &title,
             tracks: &[Track {
                 name: "path of the centre of mass (CM)".into(),
+                who: "the route".into(),
                 rows: &rows,
                 color: COLORS[0],
                 base: route.base.as_ref(),
@@ -194,12 +200,14 @@ pub fn compare_plan(path: &Path, scene: &Scene, c: &slideroute::compare::Compari
             tracks: &[
                 Track {
                     name: name("rigid body", &c.rigid_body.route),
+                    who: "rigid body".into(),
                     rows: &rigid,
                     color: COLORS[0],
                     base: c.rigid_body.route.base.as_ref(),
                 },
                 Track {
                     name: name("paper's dynamics", &c.paper.route),
+                    who: "paper's dynamics".into(),
                     rows: &paper,
                     color: COLORS[3],
                     base: c.paper.route.base.as_ref(),

@@ -99,6 +99,7 @@ pub fn route_fan(
                 "CM path of the scene as written (travel {} m)",
                 fixed(r.travel_m, 3)
             ),
+            who: "the scene as written".into(),
             rows: &rows,
             color: RGBColor(0, 0, 0),
             base: r.base.as_ref(),
@@ -161,50 +162,98 @@ fn factors_of_safety(samples: &[Sample]) -> Vec<Option<f64>> {
         .collect()
 }
 
-/// The bars of the factor of safety's histogram: the axis from `lo` to `hi` (half a bar wider
-/// than the values and 1 each side), the bars' width and counts from `lo` plus half a bar, and
-/// the top of the count axis.
+/// The bars of the factor of safety's histogram: their edges placed so that 1 is always one of
+/// them, so that every bar holds only samples below 1 (red: they slide) or only samples at 1 or
+/// more (blue: held), and is coloured by them. The axis runs from `lo` to `hi`, half a bar
+/// wider than the bars each side; the top of the count axis is `top`.
 struct Histogram {
     lo: f64,
     hi: f64,
     width: f64,
+    /// The left edge of the first bar.
+    first: f64,
     counts: Vec<usize>,
+    /// How many bars lie below 1 (the first ones).
+    below: usize,
     top: f64,
+}
+
+/// One bar as drawn: its edges, its count and its colour.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Bar {
+    x0: f64,
+    x1: f64,
+    count: usize,
+    color: RGBColor,
 }
 
 impl Histogram {
     /// The histogram of the `finite` factors of safety (not empty): about √n bars, from 10 to
-    /// 60, over the values and 1.
+    /// 60, of one width over the values and 1, an edge at 1.
     fn of(finite: &[f64]) -> Histogram {
         let (lo, hi) = sheet::ranges(finite.iter().copied().chain([1.0]));
-        let bins = (finite.len() as f64).sqrt().clamp(10.0, 60.0) as usize;
-        let width = (hi - lo) / bins as f64;
-        let mut counts = vec![0usize; bins];
-        for v in finite {
-            counts[(((v - lo) / width) as usize).min(bins - 1)] += 1;
+        let bins = (finite.len() as f64).sqrt().clamp(10.0, 60.0);
+        let width = (hi - lo) / bins;
+        // Whole bars from 1 down past `lo` and up past `hi`: 1 is an edge.
+        let below = ((1.0 - lo) / width).ceil().max(0.0) as usize;
+        let above = ((hi - 1.0) / width).ceil().max(1.0) as usize;
+        let first = 1.0 - below as f64 * width;
+        let mut counts = vec![0usize; below + above];
+        for &v in finite {
+            // Counted from 1, so that a value of exactly 1 starts the first bar held.
+            let k = below as f64 + ((v - 1.0) / width).floor();
+            counts[(k.max(0.0) as usize).min(below + above - 1)] += 1;
         }
         let top = counts.iter().copied().max().unwrap_or(1) as f64 * 1.08;
         Histogram {
-            lo: lo - 0.5 * width,
-            hi: hi + 0.5 * width,
+            lo: first - 0.5 * width,
+            hi: first + (below + above) as f64 * width + 0.5 * width,
             width,
+            first,
             counts,
+            below,
             top,
+        }
+    }
+
+    /// The bars that hold samples, each coloured by the side of 1 its samples are on.
+    fn bars(&self) -> Vec<Bar> {
+        self.counts
+            .iter()
+            .enumerate()
+            .filter(|(_, c)| **c > 0)
+            .map(|(k, &count)| Bar {
+                x0: self.edge(k),
+                x1: self.edge(k + 1),
+                count,
+                color: if k < self.below { BELOW } else { ABOVE },
+            })
+            .collect()
+    }
+
+    /// The left edge of bar `k` (1 exactly for the first bar held).
+    fn edge(&self, k: usize) -> f64 {
+        if k == self.below {
+            1.0
+        } else {
+            self.first + k as f64 * self.width
         }
     }
 
     /// Its axes on `area`, its bars (below 1 red, at or above blue) and a dashed line at 1.
     fn draw(&self, path: &Path, area: &Area) -> Res<()> {
-        let (lo, hi, width, top) = (self.lo, self.hi, self.width, self.top);
+        let (lo, hi, top) = (self.lo, self.hi, self.top);
         let mut chart = ChartBuilder::on(area)
             .margin(10)
-            .x_label_area_size(40)
-            .y_label_area_size(60)
+            .x_label_area_size(50)
+            .y_label_area_size(80)
             .build_cartesian_2d(lo..hi, 0.0..top)
             .map_err(err(path))?;
         let fx = sheet::ticks(lo, hi);
         chart
             .configure_mesh()
+            .label_style(sheet::label_font())
+            .axis_desc_style(sheet::label_font())
             .max_light_lines(1)
             .x_desc("factor of safety at the start")
             .y_desc("samples")
@@ -213,22 +262,13 @@ impl Histogram {
             .light_line_style(BLACK.mix(0.05))
             .draw()
             .map_err(err(path))?;
-        let start = lo + 0.5 * width;
         chart
-            .draw_series(
-                self.counts
-                    .iter()
-                    .enumerate()
-                    .filter(|(_, c)| **c > 0)
-                    .map(|(k, c)| {
-                        let x0 = start + k as f64 * width;
-                        let color = if x0 + 0.5 * width < 1.0 { BELOW } else { ABOVE };
-                        Rectangle::new(
-                            [(x0, 0.0), (x0 + width, *c as f64)],
-                            color.mix(0.6).filled(),
-                        )
-                    }),
-            )
+            .draw_series(self.bars().into_iter().map(|b| {
+                Rectangle::new(
+                    [(b.x0, 0.0), (b.x1, b.count as f64)],
+                    b.color.mix(0.6).filled(),
+                )
+            }))
             .map_err(err(path))?;
         chart
             .draw_series(DashedLineSeries::new(
@@ -257,7 +297,7 @@ impl Histogram {
             Entry::new(
                 Mark::Swatch(ABOVE),
                 if summary.shaken {
-                    "1 or more (held without the record)"
+                    "≥ 1: held without the record"
                 } else {
                     "1 or more: held"
                 },
@@ -330,12 +370,14 @@ pub fn tornado(path: &Path, summary: &Summary) -> Res<()> {
     let sheet = Sheet::new(path, (1200, height), &title)?;
     let mut chart = ChartBuilder::on(&sheet.chart)
         .margin(10)
-        .x_label_area_size(40)
+        .x_label_area_size(50)
         .y_label_area_size(10)
         .build_cartesian_2d(-1.0..1.0, n as f64..0.0)
         .map_err(err(path))?;
     chart
         .configure_mesh()
+        .label_style(sheet::label_font())
+        .axis_desc_style(sheet::label_font())
         .disable_y_mesh()
         .disable_y_axis()
         .max_light_lines(1)
@@ -353,7 +395,7 @@ pub fn tornado(path: &Path, summary: &Summary) -> Res<()> {
         .map_err(err(path))?;
     for (k, s) in rows.iter().enumerate() {
         let y = k as f64;
-        let name = ("sans-serif", 16)
+        let name = ("sans-serif", 20)
             .into_font()
             .color(&BLACK)
             .pos(Pos::new(HPos::Center, VPos::Center));
@@ -369,7 +411,7 @@ pub fn tornado(path: &Path, summary: &Summary) -> Res<()> {
             (s.with_travel, TRAVEL, (y + 0.63, y + 0.9)),
         ] {
             let Some(rho) = rho else {
-                let style = ("sans-serif", 13)
+                let style = ("sans-serif", sheet::FONT)
                     .into_font()
                     .color(&color)
                     .pos(Pos::new(HPos::Left, VPos::Center));
@@ -396,7 +438,7 @@ pub fn tornado(path: &Path, summary: &Summary) -> Res<()> {
                 (false, false) => (HPos::Right, rho - 0.02),
                 (false, true) => (HPos::Left, rho + 0.02),
             };
-            let style = ("sans-serif", 13)
+            let style = ("sans-serif", sheet::FONT)
                 .into_font()
                 .color(if inside { &WHITE } else { &BLACK })
                 .pos(Pos::new(anchor, VPos::Center));
@@ -454,5 +496,113 @@ fn sliding(summary: &Summary) -> String {
         )
     } else {
         format!("probability of sliding {}", summary.probability_of_sliding)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Factors of safety spread from 0.5 to 1.15 and packed about 1 (0.988 to 1.017, as the
+    /// paper-like uncertain scene's were), from a fixed sequence.
+    fn factors() -> Vec<f64> {
+        let mut seed = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut v: Vec<f64> = (0..189).map(|_| 0.5 + 0.65 * next()).collect();
+        v.extend([
+            0.988, 0.99, 0.992, 0.995, 0.997, 0.998, 0.999, 1.0, 1.004, 1.01, 1.017,
+        ]);
+        v
+    }
+
+    /// The value of attribute `name` of an SVG tag.
+    fn attr(tag: &str, name: &str) -> Option<f64> {
+        let key = format!(" {name}=\"");
+        let start = tag.find(&key)? + key.len();
+        tag[start..].split('"').next()?.parse().ok()
+    }
+
+    #[test]
+    fn histogram_bars_are_coloured_by_the_samples_they_hold() {
+        for values in [
+            factors(),
+            vec![0.988, 0.99, 0.999, 1.0, 1.01, 1.017, 0.7, 1.3],
+        ] {
+            let h = Histogram::of(&values);
+            let bars = h.bars();
+            // Every sample in one bar, and every bar's samples on its colour's side of 1.
+            let mut counted = 0;
+            for b in &bars {
+                let inside: Vec<f64> = values
+                    .iter()
+                    .copied()
+                    .filter(|&v| v >= b.x0 && v < b.x1)
+                    .collect();
+                assert_eq!(inside.len(), b.count, "{b:?}: {inside:?}");
+                let below = b.color == BELOW;
+                assert!(
+                    inside.iter().all(|&v| (v < 1.0) == below),
+                    "{b:?}: {inside:?}"
+                );
+                counted += b.count;
+            }
+            assert_eq!(counted, values.len());
+            // Drawn: every red bar ends at or left of the dashed line at 1, every blue bar
+            // starts at or right of it.
+            let path = std::env::temp_dir().join(format!(
+                "slideroute-fs-bars-{}-{}.svg",
+                values.len(),
+                std::process::id()
+            ));
+            let sheet = Sheet::new(&path, (1200, 600), "factor of safety").unwrap();
+            h.draw(&path, &sheet.chart).unwrap();
+            sheet.root.present().unwrap();
+            drop(sheet);
+            let svg = std::fs::read_to_string(&path).unwrap();
+            let _ = std::fs::remove_file(&path);
+            let line = svg
+                .split("<polyline")
+                .skip(1)
+                .filter(|p| p.contains("stroke-width=\"2\"") && p.contains("#000000"))
+                .find_map(|p| {
+                    let pts = p.split("points=\"").nth(1)?.split('"').next()?;
+                    let xs: Vec<f64> = pts
+                        .split_whitespace()
+                        .filter_map(|q| q.split(',').next()?.parse().ok())
+                        .collect();
+                    (xs.len() >= 2 && xs.iter().all(|x| (x - xs[0]).abs() < 0.5)).then(|| xs[0])
+                })
+                .expect("no dashed line at 1");
+            let hex = |c: RGBColor| format!("fill=\"#{:02X}{:02X}{:02X}\"", c.0, c.1, c.2);
+            let (red, blue) = (hex(BELOW), hex(ABOVE));
+            let mut drawn = 0;
+            for rect in svg.split("<rect").skip(1) {
+                let tag = rect.split("/>").next().unwrap_or("");
+                let (Some(x), Some(w)) = (attr(tag, "x"), attr(tag, "width")) else {
+                    continue;
+                };
+                if tag.contains(&red) {
+                    assert!(
+                        x + w <= line + 1.0,
+                        "a red bar {x}…{} past 1 at {line}",
+                        x + w
+                    );
+                    drawn += 1;
+                } else if tag.contains(&blue) {
+                    assert!(
+                        x >= line - 1.0,
+                        "a blue bar {x}…{} before 1 at {line}",
+                        x + w
+                    );
+                    drawn += 1;
+                }
+            }
+            assert_eq!(drawn, bars.len());
+        }
     }
 }

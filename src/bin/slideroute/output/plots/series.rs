@@ -36,13 +36,15 @@ pub(super) fn lines(
     let (y0, y1) = sheet::ranges(series.iter().flat_map(|s| s.values.iter().copied()));
     let mut chart = ChartBuilder::on(&sheet.chart)
         .margin(10)
-        .x_label_area_size(40)
-        .y_label_area_size(65)
+        .x_label_area_size(50)
+        .y_label_area_size(85)
         .build_cartesian_2d(x0..x1, y0..y1)
         .map_err(err(path))?;
     let (fx, fy) = (sheet::ticks(x0, x1), sheet::ticks(y0, y1));
     chart
         .configure_mesh()
+        .label_style(sheet::label_font())
+        .axis_desc_style(sheet::label_font())
         .max_light_lines(1)
         .x_desc(axes.x)
         .y_desc(axes.y)

@@ -16,12 +16,19 @@ pub(super) fn err<E: std::fmt::Display>(path: &Path) -> impl Fn(E) -> String + '
 }
 
 /// Width of the side panel (pixels).
-pub(super) const PANEL_W: u32 = 300;
-/// Font size of legends and notes, and the width a character of it takes, about.
-const FONT: f64 = 14.0;
-const CHAR_W: f64 = 0.5 * FONT;
+pub(super) const PANEL_W: u32 = 320;
+/// Font size of legends, notes, tick labels and axis names, the smallest text of any picture:
+/// plotters' SVG backend writes a font's size divided by 1.24, so this is 14.5 px in the
+/// picture (every text at least 14 px at the default size).
+pub(super) const FONT: f64 = 18.0;
+/// Font size of a picture's title: 17.7 px.
+const TITLE: f64 = 22.0;
+/// The width a character of [`FONT`] takes, about (pixels).
+const CHAR_W: f64 = 0.56 * FONT / 1.24;
 /// Height of one line of legend or notes.
-const LINE_H: i32 = 18;
+const LINE_H: i32 = 20;
+/// The width of a thick line (px): the plan's frame at the start.
+pub(super) const THICK: u32 = 3;
 /// Room left of a legend's text for its mark.
 const MARK_W: i32 = 34;
 
@@ -38,7 +45,9 @@ impl<'a> Sheet<'a> {
     pub fn new(path: &'a Path, (w, h): (u32, u32), title: &str) -> Res<Sheet<'a>> {
         let root = SVGBackend::new(path, (w, h)).into_drawing_area();
         root.fill(&WHITE).map_err(err(path))?;
-        let body = root.titled(title, ("sans-serif", 18)).map_err(err(path))?;
+        let body = root
+            .titled(title, ("sans-serif", TITLE))
+            .map_err(err(path))?;
         let (chart, panel) = body.split_horizontally(w - PANEL_W);
         let panel = panel.margin(8, 8, 6, 6);
         Ok(Sheet { root, chart, panel })
@@ -49,6 +58,8 @@ impl<'a> Sheet<'a> {
 #[derive(Debug, Clone, Copy)]
 pub(super) enum Mark {
     Line(RGBColor),
+    /// A line [`THICK`] px wide.
+    Thick(RGBColor),
     Dashed(RGBColor),
     Dot(RGBColor),
     Ring(RGBColor),
@@ -56,8 +67,46 @@ pub(super) enum Mark {
     Cross(RGBColor),
     Triangle(RGBColor, bool),
     Swatch(RGBColor),
+    /// A line through a filled marker, dashed or not: one series of a chart.
+    Series(RGBColor, Shape, bool),
     /// No mark: a heading or a note.
     None,
+}
+
+/// The shape of a filled marker of a series.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub(super) enum Shape {
+    Dot,
+    Square,
+    Triangle,
+    Diamond,
+}
+
+impl Shape {
+    /// Every shape, in the order series take them.
+    pub const ALL: [Shape; 4] = [Shape::Dot, Shape::Square, Shape::Triangle, Shape::Diamond];
+}
+
+/// Draws a filled `shape` of `color` centred at (x, y) of `area` (pixels).
+pub(super) fn draw_shape<DB: DrawingBackend>(
+    area: &DrawingArea<DB, Shift>,
+    shape: Shape,
+    color: RGBColor,
+    (x, y): (i32, i32),
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    let fill = color.filled();
+    match shape {
+        Shape::Dot => area.draw(&Circle::new((x, y), 4, fill)),
+        Shape::Square => area.draw(&Rectangle::new([(x - 4, y - 4), (x + 4, y + 4)], fill)),
+        Shape::Triangle => area.draw(&Polygon::new(
+            vec![(x, y - 6), (x + 5, y + 4), (x - 5, y + 4)],
+            fill,
+        )),
+        Shape::Diamond => area.draw(&Polygon::new(
+            vec![(x, y - 6), (x + 5, y), (x, y + 6), (x - 5, y)],
+            fill,
+        )),
+    }
 }
 
 /// One line of a legend.
@@ -96,6 +145,11 @@ fn wrap(text: &str, width: i32) -> Vec<String> {
     lines
 }
 
+/// The font of tick labels and axis names: [`FONT`], in black.
+pub(super) fn label_font<'b>() -> TextStyle<'b> {
+    ("sans-serif", FONT).into_font().color(&BLACK)
+}
+
 fn font<'b>(size: f64) -> TextStyle<'b> {
     ("sans-serif", size)
         .into_font()
@@ -113,6 +167,10 @@ pub(super) fn draw_mark<DB: DrawingBackend>(
         Mark::Line(c) => area.draw(&PathElement::new(
             vec![(x - 12, y), (x + 12, y)],
             c.stroke_width(2),
+        )),
+        Mark::Thick(c) => area.draw(&PathElement::new(
+            vec![(x - 12, y), (x + 12, y)],
+            c.stroke_width(THICK),
         )),
         Mark::Dashed(c) => {
             for k in 0..3 {
@@ -147,6 +205,14 @@ pub(super) fn draw_mark<DB: DrawingBackend>(
                 [(x - 12, y - 6), (x + 12, y + 6)],
                 c.mix(0.6),
             ))
+        }
+        Mark::Series(c, shape, dashed) => {
+            if dashed {
+                draw_mark(area, Mark::Dashed(c), (x, y))?;
+            } else {
+                draw_mark(area, Mark::Line(c), (x, y))?;
+            }
+            draw_shape(area, shape, c, (x, y))
         }
         Mark::None => Ok(()),
     }
@@ -192,7 +258,9 @@ pub(super) fn heading(path: &Path, panel: &Area, text: &str, y: i32) -> Res<i32>
 pub(super) fn message(path: &Path, size: (u32, u32), title: &str, lines: &[String]) -> Res<()> {
     let root = SVGBackend::new(path, size).into_drawing_area();
     root.fill(&WHITE).map_err(err(path))?;
-    let body = root.titled(title, ("sans-serif", 18)).map_err(err(path))?;
+    let body = root
+        .titled(title, ("sans-serif", TITLE))
+        .map_err(err(path))?;
     let (w, h) = body.dim_in_pixel();
     let (w, h) = (w as i32, h as i32);
     let width = (w - 160).max(200);

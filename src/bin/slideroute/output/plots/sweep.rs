@@ -1,6 +1,8 @@
 //! The sweep picture: the CM's travel (under a record, the permanent displacement) and the
 //! factor of safety against the first varied key, one line per combination of the other keys
-//! (markers alone across a key of words, such as records). Legends are in numeric order
+//! (markers alone across a key of words, such as records), the travel's broken where the route
+//! ends otherwise from one value to the next; a sweep where nothing moved says so over an axis
+//! from 0. Legends are in numeric order
 //! with units; past a handful of groups the colour follows the second key on a scale with a
 //! colour bar; a block that did not slide, a route that ended at once and one that slid are
 //! marked apart.
@@ -247,6 +249,22 @@ impl<'a> SweepPlot<'a> {
         }
     }
 
+    /// A group's rows (in the first key's order) cut where the route's end changes between
+    /// neighbours: its outcome (slid, did not slide, ended at once, …) or its reason.
+    fn regimes<'r>(&self, members: &[&'r SweepRow]) -> Vec<Vec<&'r SweepRow>> {
+        let mut runs: Vec<Vec<&SweepRow>> = Vec::new();
+        for &r in members {
+            let same = runs.last().and_then(|run| run.last()).is_some_and(|q| {
+                q.reason == r.reason && outcome(q, self.shaken) == outcome(r, self.shaken)
+            });
+            match runs.last_mut() {
+                Some(run) if same => run.push(r),
+                _ => runs.push(vec![r]),
+            }
+        }
+        runs
+    }
+
     /// The first varied key, across both charts.
     fn first(&self) -> &Vary {
         &self.varies[0]
@@ -293,13 +311,15 @@ impl<'a> SweepPlot<'a> {
         let x_count = first.words.as_ref().map_or(10, |w| w.len());
         let mut chart = ChartBuilder::on(area)
             .margin(10)
-            .x_label_area_size(40)
-            .y_label_area_size(65)
+            .x_label_area_size(50)
+            .y_label_area_size(85)
             .build_cartesian_2d(x0..x1, y0..y1)
             .map_err(err(self.path))?;
         let fy = sheet::ticks(y0, y1);
         chart
             .configure_mesh()
+            .label_style(sheet::label_font())
+            .axis_desc_style(sheet::label_font())
             .max_light_lines(1)
             .x_desc(axis_name(first))
             .y_desc(y_desc)
@@ -312,31 +332,62 @@ impl<'a> SweepPlot<'a> {
     }
 
     /// The upper chart: the CM's travel (under a record, the permanent displacement) against
-    /// the first key, a line for each group (none across words) and each combination's
-    /// outcome marked (slid, did not slide, ended at once).
+    /// the first key, a line for each group (none across words, broken where the route's end
+    /// changes) and each combination's outcome marked (slid, did not slide, ended at once).
+    /// Where nothing moved the axis runs from 0 to 1 m and says so.
     fn draw_travel(&self, area: &Area) -> Res<()> {
-        let y_range = sheet::ranges(
-            self.rows
-                .iter()
-                .filter_map(|r| self.upper_value(r))
-                .chain([0.0]),
-        );
+        let values: Vec<f64> = self
+            .rows
+            .iter()
+            .filter_map(|r| self.upper_value(r))
+            .collect();
+        // Nothing moved: the axis from 0 (a travel is never negative) to 1 m, said in words.
+        let still = values.iter().all(|&v| v == 0.0);
+        let y_range = if still {
+            (0.0, 1.0)
+        } else {
+            sheet::ranges(values.iter().copied().chain([0.0]))
+        };
         let y_desc = if self.shaken {
             "permanent displacement (m)"
         } else {
             "travel of the CM (m)"
         };
         let mut chart = self.axes(area, y_range, y_desc)?;
+        if still && !values.is_empty() {
+            let words = if self.shaken {
+                "no permanent displacement: the record moved no combination's block"
+            } else {
+                "nothing slid: every combination's travel is 0"
+            };
+            let (x0, x1) = self.x_range;
+            chart
+                .draw_series(std::iter::once(Text::new(
+                    words,
+                    (0.5 * (x0 + x1), 0.55),
+                    ("sans-serif", sheet::FONT)
+                        .into_font()
+                        .color(&BLACK)
+                        .pos(Pos::new(HPos::Center, VPos::Center)),
+                )))
+                .map_err(err(self.path))?;
+        }
         for (k, (key, members)) in self.groups.iter().enumerate() {
             let color = self.color_of(k, key);
             if !self.categorical() {
-                let pts: Vec<(f64, f64)> = members
-                    .iter()
-                    .filter_map(|r| self.upper_value(r).map(|t| (r.values[0], t)))
-                    .collect();
-                chart
-                    .draw_series(LineSeries::new(pts, color.mix(0.8).stroke_width(2)))
-                    .map_err(err(self.path))?;
+                // A line only between neighbours that ended alike: across a change of regime
+                // (slid at one μ, held at the next) a line would suggest travels between.
+                for run in self.regimes(members) {
+                    let pts: Vec<(f64, f64)> = run
+                        .iter()
+                        .filter_map(|r| self.upper_value(r).map(|t| (r.values[0], t)))
+                        .collect();
+                    if pts.len() > 1 {
+                        chart
+                            .draw_series(LineSeries::new(pts, color.mix(0.8).stroke_width(2)))
+                            .map_err(err(self.path))?;
+                    }
+                }
             }
             for r in members {
                 let Some(t) = self.upper_value(r) else {
@@ -638,7 +689,7 @@ fn colour_bar(path: &Path, panel: &Area, v: &Vary, (lo, hi): (f64, f64), y: i32)
             .draw(&Text::new(
                 label(value),
                 (x + bar_w + 9, yy),
-                ("sans-serif", 13)
+                ("sans-serif", sheet::FONT)
                     .into_font()
                     .color(&BLACK)
                     .pos(Pos::new(HPos::Left, VPos::Center)),
@@ -929,5 +980,93 @@ mod tests {
         assert!(svg.trim_end().ends_with("</svg>") && !svg.contains("NaN"));
         let words: String = texts(&svg).into_iter().map(|t| t.1 + " ").collect();
         assert!(words.contains("4 had no route"), "{words}");
+    }
+
+    /// The coloured polylines of an SVG with two points or more, as lists of points.
+    fn coloured_lines(svg: &str) -> Vec<Vec<(f64, f64)>> {
+        svg.split("<polyline")
+            .skip(1)
+            .filter_map(|p| p.split("/>").next())
+            .filter(|p| !p.contains("stroke=\"#000000\""))
+            .filter_map(|p| {
+                let pts = p.split("points=\"").nth(1)?.split('"').next()?;
+                let pts: Vec<(f64, f64)> = pts
+                    .split_whitespace()
+                    .filter_map(|q| {
+                        let (x, y) = q.split_once(',')?;
+                        Some((x.parse().ok()?, y.parse().ok()?))
+                    })
+                    .collect();
+                (pts.len() > 1).then_some(pts)
+            })
+            .collect()
+    }
+
+    #[test]
+    fn sweep_lines_do_not_join_across_a_change_of_how_the_route_ended() {
+        // 12.9 m of travel up to μ = 0.45, where contact 0 reaches an inclined plane; from 0.50
+        // the block does not slide. No line may join 12.9 m to 0 as if travels lay between.
+        let mu = [0.3, 0.35, 0.4, 0.45, 0.5, 0.55, 0.6];
+        let rows: Vec<SweepRow> = mu
+            .iter()
+            .map(|&m| {
+                let mut r = row(vec![m]);
+                if m < 0.47 {
+                    r.reason = "contact 0 reached an inclined plane".into();
+                    r.travel_m = Some(12.9);
+                } else {
+                    r.reason = DID_NOT_SLIDE.into();
+                    r.t_end_s = Some(0.0);
+                    r.travel_m = Some(0.0);
+                }
+                r
+            })
+            .collect();
+        let svg = draw("regimes", &[vary("friction.mu_k", &mu)], &rows);
+        // No factor of safety: every coloured line is the travel's, and each joins only
+        // neighbours that ended alike, so each is level.
+        let lines = coloured_lines(&svg);
+        assert_eq!(lines.len(), 2, "{lines:?}");
+        for line in &lines {
+            assert!(
+                line.iter().all(|p| (p.1 - line[0].1).abs() < 0.5),
+                "a line across a change of end: {line:?}"
+            );
+        }
+        // The end's reason alone also breaks the line, between two routes that both slid.
+        let mut two = rows.clone();
+        for r in &mut two[4..] {
+            r.reason = "stopped".into();
+            r.t_end_s = Some(3.0);
+            r.travel_m = Some(4.0);
+        }
+        let svg = draw("reasons", &[vary("friction.mu_k", &mu)], &two);
+        assert_eq!(coloured_lines(&svg).len(), 2);
+    }
+
+    #[test]
+    fn a_sweep_where_nothing_slid_has_a_travel_axis_from_zero_and_says_so() {
+        let mu = [0.5, 0.55, 0.6];
+        let rows: Vec<SweepRow> = mu
+            .iter()
+            .map(|&m| SweepRow {
+                reason: DID_NOT_SLIDE.into(),
+                t_end_s: Some(0.0),
+                travel_m: Some(0.0),
+                factor_of_safety: Some(FactorOfSafety::Finite { value: 2.0 * m }),
+                ..row(vec![m])
+            })
+            .collect();
+        let svg = draw("still", &[vary("friction.mu_k", &mu)], &rows);
+        let t = texts(&svg);
+        let words: Vec<&str> = t.iter().map(|t| t.1.as_str()).collect();
+        assert!(
+            words.iter().any(|w| w.contains("nothing slid")),
+            "{words:?}"
+        );
+        // The travel axis's ticks: from 0 up, none below.
+        let ticks: Vec<f64> = words.iter().filter_map(|w| w.parse().ok()).collect();
+        assert!(ticks.iter().all(|&v| v >= 0.0), "{ticks:?}");
+        assert!(ticks.contains(&0.0) && ticks.contains(&1.0), "{ticks:?}");
     }
 }

@@ -45,22 +45,23 @@ pub(super) fn draw_inset(
                 "CM path enlarged {}× (boxed on the plan)",
                 sheet::short(round_2(zoom))
             ),
-            ("sans-serif", 13),
+            ("sans-serif", sheet::FONT),
         )
         .margin(4)
-        .x_label_area_size(24)
-        .y_label_area_size(40)
+        .x_label_area_size(30)
+        .y_label_area_size(55)
         .build_cartesian_2d(x0..x1, z1..z0)
         .map_err(err(path))?;
     let (fx, fz) = (sheet::ticks(x0, x1), sheet::ticks(z0, z1));
     chart
         .configure_mesh()
+        .label_style(sheet::label_font())
+        .axis_desc_style(sheet::label_font())
         .max_light_lines(0)
         .x_labels(4)
         .y_labels(4)
         .x_label_formatter(&fx)
         .y_label_formatter(&fz)
-        .label_style(("sans-serif", 11))
         .draw()
         .map_err(err(path))?;
     for t in tracks {

@@ -18,6 +18,9 @@ pub(super) struct Drawn<'a> {
     /// The first route is a block on its base: its base's outline is drawn, its corners
     /// numbered.
     pub on_base: bool,
+    /// The first route rides its frame under a block with a footprint of its own: the
+    /// footprint is drawn about the frame's contacts.
+    pub footprint: bool,
     /// The corners that carried a block on its base are marked.
     pub touches: bool,
     /// What else carried a block on its base at rest is marked.
@@ -45,18 +48,45 @@ pub(super) fn entries(scene: &Scene, shown: &PlanView, drawn: &Drawn) -> Vec<Ent
         entries.push(Entry::new(Mark::Line(FAN), f.name.clone()));
         entries.push(Entry::new(Mark::Dot(FAN), "where each sampled route ended"));
     }
-    if drawn.on_base {
-        entries.push(Entry::new(
-            Mark::Dot(BLACK),
+    let several = shown.tracks.len() > 1;
+    let outline = match (drawn.on_base, drawn.footprint, several) {
+        (true, _, false) => {
             "corners of the base at the start (numbered as route.csv's corners_carrying); thick \
-             outline: start and end, thin: every 1/8 of the route",
-        ));
-    } else {
-        entries.push(Entry::new(
-            Mark::Dot(BLACK),
+             outline: start and end, thin: every 1/8 of the route"
+        }
+        (false, true, false) => {
+            "contacts 0, 1, 2 at the start; the base's outline (the block's footprint) about \
+             them, thick: start and end, thin: every 1/8 of the route"
+        }
+        (false, false, false) => {
             "contacts 0, 1, 2 at the start; thick frame: start and end, thin: every 1/8 of the \
-             route",
+             route"
+        }
+        (true, _, true) => "corners of the base at the start",
+        (false, _, true) => "contacts 0, 1, 2 at the start",
+    };
+    entries.push(Entry::new(Mark::Dot(BLACK), outline));
+    if several {
+        // Each route's frames in its own ink, and the one they start from over them.
+        let shape = if drawn.on_base || drawn.footprint {
+            "the base's outline"
+        } else {
+            "the frame"
+        };
+        entries.push(Entry::new(
+            Mark::Thick(BLACK),
+            format!("{shape} at the start, where the routes begin (drawn over the others)"),
         ));
+        for (k, t) in shown.tracks.iter().enumerate() {
+            let ink = if k == 0 { BLACK } else { t.color };
+            entries.push(Entry::new(
+                Mark::Line(ink),
+                format!(
+                    "{}: its frame at its end (thick) and every 1/8 of its route (thin)",
+                    t.who
+                ),
+            ));
+        }
     }
     if drawn.touches {
         entries.push(Entry::new(

@@ -37,19 +37,28 @@ pub(super) const TOUCH: RGBColor = RGBColor(230, 120, 0);
 /// The colour of a route fan.
 const FAN: RGBColor = RGBColor(200, 30, 30);
 
+/// The width of the frame's line at the start (px), over the others' 1 and 2: the legend's
+/// thick line.
+const START_W: u32 = sheet::THICK;
+/// Font size of the contacts' numbers (16 px in the picture, above the ticks' 14.5).
+const NUMBER: f64 = 20.0;
+/// Font size of the regions' names (16 px).
+const NAME: f64 = 20.0;
 /// Sheet size of a plan view (pixels).
-pub(super) const SIZE: (u32, u32) = (1200, 760);
+pub(super) const SIZE: (u32, u32) = (1200, 860);
 const MARGIN: u32 = 10;
-const X_LABELS: u32 = 40;
-const Y_LABELS: u32 = 55;
+const X_LABELS: u32 = 50;
+const Y_LABELS: u32 = 75;
 
 /// A point of the plan, (X, Z) in m.
 type P = (f64, f64);
 
-/// One route on a plan view: its name in the legend, its rows (thinned), its colour, and for
-/// a block on its base its base's report (where it rested and what carried it there).
+/// One route on a plan view: its name in the legend, who it is where several share the plan
+/// (its frames' legend says so: "rigid body"), its rows (thinned), its colour, and for a block
+/// on its base its base's report (where it rested and what carried it there).
 pub(super) struct Track<'r> {
     pub name: String,
+    pub who: String,
     pub rows: &'r [Row],
     pub color: RGBColor,
     pub base: Option<&'r BaseReport>,
@@ -101,6 +110,15 @@ impl View {
     }
 }
 
+/// Whether outlines `a` and `b` are one shape on the plan (each corner within half a pixel of
+/// `scale` metres).
+fn same_shape(a: &[P], b: &[P], scale: f64) -> bool {
+    a.len() == b.len()
+        && a.iter()
+            .zip(b)
+            .all(|(p, q)| (p.0 - q.0).hypot(p.1 - q.1) <= 0.5 * scale)
+}
+
 /// The chart of a plan view: data (X, Z) in metres on the sheet's left part.
 type Chart<'a, 'b> = ChartContext<'a, SVGBackend<'b>, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
 
@@ -137,6 +155,7 @@ pub(super) fn plan_view(path: &Path, scene: &Scene, shown: &PlanView) -> Res<()>
         force: plan.force,
         changes: &changes,
         on_base: plan.on_base,
+        footprint: plan.footprint,
         touches: !plan.touches.is_empty(),
         resting: !plan.resting.is_empty(),
     };
@@ -162,9 +181,14 @@ struct Plan<'a> {
     scene: &'a Scene,
     tracks: &'a [Track<'a>],
     fan: Option<&'a Fan<'a>>,
-    /// Each track's outlines ([`outlines_of`]): the frame's triangle, or a block on its base
-    /// its base's polygon.
+    /// Each track's outlines ([`outlines_of`]): the frame's triangle, or the block's footprint
+    /// where it has one (a block on its base: its base's polygon).
     outlines: Vec<Vec<Vec<P>>>,
+    /// Each track's numbered points at the same rows: the frame's contacts, or a block on its
+    /// base its base's corners.
+    points: Vec<Vec<Vec<P>>>,
+    /// Whether the first track's outlines are the block's footprint about a frame.
+    footprint: bool,
     /// Whether the first track is a block on its base (its outlines are its base's, its
     /// numbers its corners').
     on_base: bool,
@@ -195,6 +219,8 @@ impl<'a> Plan<'a> {
             .map(|t| outlines_of(scene, t.rows, t.base))
             .collect();
         let on_base = drawn.first().is_some_and(|o| o.on_base);
+        let footprint = drawn.first().is_some_and(|o| o.footprint);
+        let points: Vec<Vec<Vec<P>>> = drawn.iter().map(|o| o.points.clone()).collect();
         let touches: Vec<P> = drawn.iter().flat_map(|o| o.touches.clone()).collect();
         let resting: Vec<P> = drawn.iter().flat_map(|o| o.resting.clone()).collect();
         let outlines: Vec<Vec<Vec<P>>> = drawn.into_iter().map(|o| o.shapes).collect();
@@ -209,6 +235,8 @@ impl<'a> Plan<'a> {
             tracks,
             fan: shown.fan,
             outlines,
+            points,
+            footprint,
             on_base,
             touches,
             resting,
@@ -225,30 +253,66 @@ impl<'a> Plan<'a> {
             },
             scale: 0.0,
         };
-        let pts: Vec<P> = tracks
+        let mut pts: Vec<P> = tracks
             .iter()
             .flat_map(|t| t.rows.iter().map(|r| (r.x_m, r.z_m)))
             .chain(plan.outlines.iter().flatten().flatten().copied())
+            .chain(plan.points.iter().flatten().flatten().copied())
             .chain(force_tail)
             .chain(force.map(|f| f.at))
             .chain(plan.fan_points())
             .collect();
         let pad = 0.15 * l;
-        let (x0, x1) = sheet::ranges(pts.iter().map(|p| p.0));
-        let (z0, z1) = sheet::ranges(pts.iter().map(|p| p.1));
-        let (x0, x1, z0, z1) = (x0 - pad, x1 + pad, z0 - pad, z1 + pad);
         let plot_w = f64::from(cw - 2 * MARGIN - Y_LABELS);
         let plot_h = f64::from(ch - 2 * MARGIN - X_LABELS);
-        let scale = ((x1 - x0) / plot_w).max((z1 - z0) / plot_h) * 1.04;
-        let (cx, cz) = (0.5 * (x0 + x1), 0.5 * (z0 + z1));
-        plan.view = View {
-            x0: cx - 0.5 * scale * plot_w,
-            x1: cx + 0.5 * scale * plot_w,
-            z0: cz - 0.5 * scale * plot_h,
-            z1: cz + 0.5 * scale * plot_h,
-        };
-        plan.scale = scale;
+        // The force's label is as wide in pixels whatever the scale: the view grows until its
+        // box is inside, clear of the axes (a few rounds; the scale grows less each time).
+        for _ in 0..6 {
+            let (x0, x1) = sheet::ranges(pts.iter().map(|p| p.0));
+            let (z0, z1) = sheet::ranges(pts.iter().map(|p| p.1));
+            let (x0, x1, z0, z1) = (x0 - pad, x1 + pad, z0 - pad, z1 + pad);
+            let scale = ((x1 - x0) / plot_w).max((z1 - z0) / plot_h) * 1.04;
+            let (cx, cz) = (0.5 * (x0 + x1), 0.5 * (z0 + z1));
+            plan.view = View {
+                x0: cx - 0.5 * scale * plot_w,
+                x1: cx + 0.5 * scale * plot_w,
+                z0: cz - 0.5 * scale * plot_h,
+                z1: cz + 0.5 * scale * plot_h,
+            };
+            plan.scale = scale;
+            let Some((_, [a, b])) = plan.force_label() else {
+                break;
+            };
+            let room = 6.0 * scale;
+            let v = plan.view;
+            if a.0 - room >= v.x0 && b.0 + room <= v.x1 && a.1 - room >= v.z0 && b.1 + room <= v.z1
+            {
+                break;
+            }
+            pts.extend([(a.0 - room, a.1 - room), (b.0 + room, b.1 + room)]);
+        }
         plan
+    }
+
+    /// The force's label: its text, where it is anchored (its right end, at mid-height) and
+    /// its box's corners (least X and Z, greatest X and Z) at the current scale, about: its
+    /// characters at 0.62 of the font's size.
+    fn force_label(&self) -> Option<(String, [P; 2])> {
+        let (force, tail) = (self.force?, self.force_tail?);
+        let text = format!("F = {}", sheet::force(force.size));
+        let px = sheet::FONT / 1.24;
+        let (w, h) = (
+            0.62 * px * text.chars().count() as f64 * self.scale,
+            1.2 * px * self.scale,
+        );
+        let at = self.force_label_at(tail, force.dir);
+        Some((text, [(at.0 - w, at.1 - 0.5 * h), (at.0, at.1 + 0.5 * h)]))
+    }
+
+    /// Where the force's label is anchored: 8 px behind the arrow's tail.
+    fn force_label_at(&self, tail: P, d: P) -> P {
+        let gap = 8.0 * self.scale;
+        (tail.0 - gap * d.0, tail.1 - gap * d.1)
     }
 
     /// Every point of the route fan's paths.
@@ -270,6 +334,8 @@ impl<'a> Plan<'a> {
         let (fx, fz) = (sheet::ticks(x0, x1), sheet::ticks(z0, z1));
         chart
             .configure_mesh()
+            .label_style(sheet::label_font())
+            .axis_desc_style(sheet::label_font())
             .max_light_lines(1)
             .x_desc("X (m), forward")
             .y_desc("Z (m), lateral (down the page)")
@@ -354,21 +420,39 @@ impl<'a> Plan<'a> {
         Ok(())
     }
 
-    /// The frame along each route (thick at the start and end), then the CM paths with a dot
-    /// at the start and a ring at the end.
+    /// The frame along each route: thin every 1/8 of it, thick at its end, in the route's ink
+    /// (the first route's black); then the frame at the start over them all, thick, in black
+    /// (another route's own in its ink where it starts elsewhere); then the CM paths with a
+    /// dot at the start and a ring at the end.
     fn draw_routes(&self, chart: &mut Chart) -> Result<(), Drawing> {
-        for (k, (outlines, track)) in self.outlines.iter().zip(self.tracks).enumerate() {
-            let ink = if k == 0 { BLACK } else { track.color };
-            for (j, o) in outlines.iter().enumerate() {
-                let mut pts = o.clone();
-                pts.push(o[0]);
-                let style = if j == 0 || j + 1 == outlines.len() {
+        let closed = |o: &Vec<P>| {
+            let mut pts = o.clone();
+            pts.extend(o.first());
+            pts
+        };
+        for (k, outlines) in self.outlines.iter().enumerate() {
+            let ink = self.ink(k);
+            for (j, o) in outlines.iter().enumerate().skip(1) {
+                let style = if j + 1 == outlines.len() {
                     ink.stroke_width(2)
                 } else {
                     ink.mix(0.3).stroke_width(1)
                 };
-                chart.draw_series(std::iter::once(PathElement::new(pts, style)))?;
+                chart.draw_series(std::iter::once(PathElement::new(closed(o), style)))?;
             }
+        }
+        let first = self.outlines.first().and_then(|o| o.first());
+        for (k, outlines) in self.outlines.iter().enumerate().rev() {
+            let Some(start) = outlines.first() else {
+                continue;
+            };
+            if k > 0 && first.is_some_and(|f| same_shape(f, start, self.scale)) {
+                continue;
+            }
+            chart.draw_series(std::iter::once(PathElement::new(
+                closed(start),
+                self.ink(k).stroke_width(START_W),
+            )))?;
         }
         for track in self.tracks {
             chart.draw_series(LineSeries::new(
@@ -458,17 +542,29 @@ impl<'a> Plan<'a> {
                 FORCE.stroke_width(1),
             )))?;
         }
-        let label = ("sans-serif", 14)
+        let label = ("sans-serif", sheet::FONT)
             .into_font()
             .color(&FORCE)
             .pos(Pos::new(HPos::Right, VPos::Center));
         chart.draw_series(std::iter::once(Text::new(
             format!("F = {}", sheet::force(f)),
-            (tail.0 - 0.02 * l * d.0, tail.1 - 0.02 * l * d.1),
+            self.force_label_at(tail, d),
             label,
         )))?;
         obstacles.extend(along(tail, far, 20));
+        if let Some((_, [a, b])) = self.force_label() {
+            obstacles.extend(along(a, (b.0, a.1), 8));
+            obstacles.extend(along((a.0, b.1), b, 8));
+        }
         Ok(obstacles)
+    }
+
+    /// The ink of route `k`'s frames: the first route's black, another's its colour.
+    fn ink(&self, k: usize) -> RGBColor {
+        match (k, self.tracks.get(k)) {
+            (0, _) | (_, None) => BLACK,
+            (_, Some(t)) => t.color,
+        }
     }
 
     /// Contacts numbered at the start (dots, the first route's) and at the end (crosses) of
@@ -476,17 +572,17 @@ impl<'a> Plan<'a> {
     /// there), and below and to the left where a start number stands close by.
     fn number_contacts(&self, chart: &mut Chart) -> Result<(), Drawing> {
         let starts: Vec<P> = self
-            .outlines
+            .points
             .first()
             .and_then(|o| o.first())
             .map_or(vec![], |o| o.to_vec());
-        for (k, (outlines, track)) in self.outlines.iter().zip(self.tracks).enumerate() {
-            let ink = if k == 0 { BLACK } else { track.color };
+        for (k, (outlines, track)) in self.points.iter().zip(self.tracks).enumerate() {
+            let ink = self.ink(k);
             let number = |i: usize| {
                 Text::new(
                     format!("{i}"),
                     (7, -15),
-                    ("sans-serif", 15).into_font().color(&ink),
+                    ("sans-serif", NUMBER).into_font().color(&ink),
                 )
             };
             let moved = track.rows.len() > 1 && track.rows.first() != track.rows.last();
@@ -517,7 +613,7 @@ impl<'a> Plan<'a> {
                             + Text::new(
                                 format!("{i}"),
                                 at,
-                                ("sans-serif", 15).into_font().color(&ink),
+                                ("sans-serif", NUMBER).into_font().color(&ink),
                             )
                     }),
             )?;
@@ -564,7 +660,7 @@ impl<'a> Plan<'a> {
             if clear < label_room {
                 continue;
             }
-            let style = ("sans-serif", 15)
+            let style = ("sans-serif", NAME)
                 .into_font()
                 .color(&r.color)
                 .pos(Pos::new(HPos::Center, VPos::Bottom));

@@ -1,7 +1,8 @@
 //! What a route puts on the plan view besides its CM path: the contact frame's outline at its
-//! poses (a block on its base: its base's outline, and the corners that carried it), where a
-//! contact changed face or rode a crease, and the hydraulic force's line of action at the
-//! start.
+//! poses (a block on its base: its base's outline, and the corners that carried it; a frame
+//! under a block with a footprint of its own, a monolith or a `[base]` outline: that
+//! footprint), where a contact changed face or rode a crease, and the hydraulic force's line of
+//! action at the start.
 
 use super::P;
 use crate::output::plots::sheet;
@@ -53,14 +54,57 @@ fn base_corners(scene: &Scene, base: &Base, row: &Row) -> Option<(Vec<P>, Vec<P>
     Some((corners, touching))
 }
 
+/// The footprint of a block that has one of its own, its base's outline (x′, z′ about the
+/// centre of mass, m): a monolith's base rectangle or `[base] outline_m`, as the scene reads
+/// them ([`Scene::base`]); none for a block given only by its frame.
+pub(super) fn footprint(scene: &Scene) -> Option<Vec<[f64; 2]>> {
+    scene.base().map(|b| b.outline().to_vec())
+}
+
+/// The footprint `outline` (x′, z′ about the centre of mass) in plan where the frame's contacts
+/// (x′, z′ in `contacts`) stand at `at`: the plan's affine image of the contacts' plane, which
+/// is the base's.
+fn placed(outline: &[[f64; 2]], contacts: &[[f64; 2]; 3], at: &[P; 3]) -> Option<Vec<P>> {
+    let (c0, c1, c2) = (contacts[0], contacts[1], contacts[2]);
+    let (a, b) = (
+        [c1[0] - c0[0], c1[1] - c0[1]],
+        [c2[0] - c0[0], c2[1] - c0[1]],
+    );
+    let det = a[0] * b[1] - a[1] * b[0];
+    if det.abs() <= 1e-12 * (a[0].hypot(a[1]) * b[0].hypot(b[1])).max(f64::MIN_POSITIVE) {
+        return None;
+    }
+    let (u, v) = (
+        (at[1].0 - at[0].0, at[1].1 - at[0].1),
+        (at[2].0 - at[0].0, at[2].1 - at[0].1),
+    );
+    Some(
+        outline
+            .iter()
+            .map(|p| {
+                let d = [p[0] - c0[0], p[1] - c0[1]];
+                // (s, t): d = s·a + t·b.
+                let s = (d[0] * b[1] - d[1] * b[0]) / det;
+                let t = (a[0] * d[1] - a[1] * d[0]) / det;
+                (at[0].0 + s * u.0 + t * v.0, at[0].1 + s * u.1 + t * v.1)
+            })
+            .collect(),
+    )
+}
+
 /// What a route puts on the plan at its drawn rows (every 1/8 of them, and the last).
 #[derive(Debug, Clone, Default, PartialEq)]
 pub(super) struct Outlines {
-    /// The frame's triangle at each drawn row, or, for a block on its base, its base's
-    /// polygon.
+    /// The outline drawn at each drawn row: the frame's triangle, or the block's footprint
+    /// where it has one (a block on its base: its base's polygon).
     pub shapes: Vec<Vec<P>>,
+    /// The points numbered at each drawn row: the frame's contacts (a block on its base: its
+    /// base's corners).
+    pub points: Vec<Vec<P>>,
     /// Whether the route is a block on its base (its shapes are its base's).
     pub on_base: bool,
+    /// Whether a frame route's shapes are the block's footprint, not the frame's triangle.
+    pub footprint: bool,
     /// A block on its base: the corners that carried it at those rows.
     pub touches: Vec<P>,
     /// A block on its base: what else carried it at rest before any load (a ground vertex
@@ -82,11 +126,19 @@ pub(super) fn outlines_of(scene: &Scene, rows: &[Row], report: Option<&BaseRepor
         .map(|(_, r)| r);
     let on_base = report.is_some() || rows.first().is_some_and(|r| r.corners_carrying.is_some());
     if !on_base {
+        let frames: Vec<[P; 3]> = drawn.filter_map(|r| vertices(scene, r)).collect();
+        let points: Vec<Vec<P>> = frames.iter().map(|v| v.to_vec()).collect();
+        let contacts = scene.site().contacts();
+        let feet: Option<Vec<Vec<P>>> = footprint(scene).and_then(|outline| {
+            frames
+                .iter()
+                .map(|v| placed(&outline, contacts, v))
+                .collect()
+        });
         return Outlines {
-            shapes: drawn
-                .filter_map(|r| vertices(scene, r))
-                .map(|v| v.to_vec())
-                .collect(),
+            footprint: feet.is_some(),
+            shapes: feet.unwrap_or_else(|| points.clone()),
+            points,
             ..Outlines::default()
         };
     }
@@ -102,6 +154,7 @@ pub(super) fn outlines_of(scene: &Scene, rows: &[Row], report: Option<&BaseRepor
             out.touches.extend(touching);
         }
     }
+    out.points = out.shapes.clone();
     out
 }
 
@@ -262,6 +315,46 @@ mod tests {
         let framed = outlines_of(&scene, &frame_rows, None);
         assert!(!framed.on_base && framed.touches.is_empty());
         assert!(framed.shapes.iter().all(|s| s.len() == 3));
+    }
+
+    #[test]
+    fn a_monoliths_frame_is_drawn_as_the_base_it_stands_on() {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/monolith.toml");
+        let scene = Scene::from_file(&path).unwrap();
+        // The footprint is the base the block stands on when it runs on its base.
+        let sim = scene.simulation().unwrap();
+        let base = sim.base().unwrap().outline();
+        let foot = footprint(&scene).unwrap();
+        assert_eq!(foot.len(), base.len());
+        for (p, q) in foot.iter().zip(base) {
+            assert!((p[0] - q[0]).abs() < 1e-12 && (p[1] - q[1]).abs() < 1e-12);
+        }
+        // On its three contacts (the paper's dynamics), at rest where it starts: that
+        // footprint, 20 m by 10 m, drawn about them; the contacts numbered.
+        let frame = scene
+            .with_dynamics(slideroute::DynamicsModel::Paper)
+            .unwrap();
+        let drawn = outlines_of(&frame, &[Row::default()], None);
+        assert!(drawn.footprint && !drawn.on_base);
+        assert_eq!(drawn.points[0].len(), 3);
+        for (p, q) in drawn.shapes[0].iter().zip(base) {
+            assert!(
+                (p.0 - q[0]).abs() < 1e-9 && (p.1 - q[1]).abs() < 1e-9,
+                "{p:?} {q:?}"
+            );
+        }
+        // Turned by 90°, the footprint turns with the contacts.
+        let turned = Row {
+            theta_deg: 90.0,
+            ..Row::default()
+        };
+        let drawn = outlines_of(&frame, &[turned], None);
+        let xs: Vec<f64> = drawn.shapes[0].iter().map(|p| p.0).collect();
+        let width = xs.iter().copied().fold(f64::NEG_INFINITY, f64::max)
+            - xs.iter().copied().fold(f64::INFINITY, f64::min);
+        assert!((width - 10.0).abs() < 1e-6, "{width}");
+        // A block given only by its frame has none: its triangle is drawn.
+        assert!(footprint(&Scene::default_scene()).is_none());
     }
 
     #[test]
