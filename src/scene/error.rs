@@ -17,14 +17,14 @@ pub struct SceneError {
     /// What kind of fault it is, for callers that act on it (the reason is for people).
     pub kind: SceneErrorKind,
     /// The scene's other faults found with this one (each with its own key; at most
-    /// [`MAX_FAULTS`] in all): sections that do not depend on each other are each checked, so
+    /// ten in all): sections that do not depend on each other are each checked, so
     /// that a file with several mistakes is told of them together. Not shown by `Display`,
     /// which is this fault's one line; [`SceneError::faults`] gives them all.
     pub also: Box<[SceneError]>,
 }
 
 /// The most faults one [`SceneError`] reports (itself and [`SceneError::also`]).
-pub const MAX_FAULTS: usize = 10;
+pub(crate) const MAX_FAULTS: usize = 10;
 
 /// The kinds of [`SceneError`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
