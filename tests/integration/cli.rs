@@ -988,7 +988,16 @@ fn a_run_replaces_every_output_of_an_earlier_run_and_nothing_else() {
         .filter(|n| !n.starts_with('.'))
         .collect();
     names.sort();
-    assert_eq!(names, ["notes.txt", "route.csv", "summary.json"]);
+    assert_eq!(
+        names,
+        [
+            "notes.txt",
+            "route.csv",
+            "route.glb",
+            "route.html",
+            "summary.json"
+        ]
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -1022,7 +1031,11 @@ fn summary_json_is_a_manifest_of_what_produced_the_folder() {
     assert_eq!(m["scene"]["foundation"]["xi_deg"], 20.0);
     assert_eq!(m["scene"]["block"]["inertia_x_kg_m2"], 5.5e6);
     let files = m["files"].as_array().unwrap();
-    assert_eq!(files.len(), 5, "route.csv and four pictures: {files:?}");
+    assert_eq!(
+        files.len(),
+        7,
+        "route.csv, route.html, route.glb and four pictures: {files:?}"
+    );
     for f in files {
         let name = f["name"].as_str().unwrap();
         let size = std::fs::metadata(dir.join(name)).unwrap().len();

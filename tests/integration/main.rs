@@ -34,6 +34,7 @@ mod roots_completeness;
 mod roots_traps;
 mod route;
 mod route_reference;
+mod route_view;
 mod scene_fuzz;
 mod touches_against_parry;
 mod uncertainty;

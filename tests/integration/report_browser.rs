@@ -6,7 +6,7 @@
 //! Ignored by default (it needs Chromium); CI runs it with the Drake and record tests
 //! (`cargo test -- --ignored browser`).
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
 
 /// The dam template with two anchors: one vertical from the crest, one from the base plunging
@@ -30,24 +30,9 @@ free_length_m = 25.0
 steel_area_m2 = 4.0e-3
 ";
 
-/// The browser: `SLIDEROUTE_CHROMIUM`, else the first of the usual names on the PATH.
-fn chromium() -> PathBuf {
-    if let Some(p) = std::env::var_os("SLIDEROUTE_CHROMIUM") {
-        return PathBuf::from(p);
-    }
-    for name in ["chromium", "chromium-browser", "google-chrome"] {
-        if let Ok(o) = Command::new(name).arg("--version").output()
-            && o.status.success()
-        {
-            return PathBuf::from(name);
-        }
-    }
-    panic!("no Chromium on the PATH (apt-get install chromium, or set SLIDEROUTE_CHROMIUM)");
-}
-
 /// Chromium headless on `page` with `extra` arguments: its stdout and stderr.
 fn browse(page: &Path, profile: &Path, extra: &[&str]) -> (String, String) {
-    let o = Command::new(chromium())
+    let o = Command::new(crate::common::browser::chromium())
         .args([
             "--headless",
             "--no-sandbox",

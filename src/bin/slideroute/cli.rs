@@ -144,8 +144,9 @@ pub struct RunArgs {
     #[command(flatten)]
     pub scene: SceneArg,
     /// Output folder (created if needed; default `out/run`, with --compare-dynamics
-    /// `out/compare`): route.csv, summary.json and the pictures plan.svg, profile.svg,
-    /// angles.svg, reactions.svg. A run replaces only what `run` wrote there before.
+    /// `out/compare`): route.csv, summary.json, the pictures plan.svg, profile.svg,
+    /// angles.svg, reactions.svg, and the route in 3-D, route.html and route.glb. A run
+    /// replaces only what `run` wrote there before.
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
     /// No progress bar and no summary (errors are still reported).
@@ -154,6 +155,10 @@ pub struct RunArgs {
     /// Write only route.csv and summary.json, no pictures.
     #[arg(long)]
     pub no_plots: bool,
+    /// No route in 3-D: neither route.html (the route played in a browser) nor route.glb
+    /// (glTF).
+    #[arg(long)]
+    pub no_3d: bool,
     /// Dynamics model, overriding the scene's `[solver] dynamics`: `paper` (the paper's
     /// §5–7) or `rigid-body` (Newton–Euler with friction opposing each contact's slip).
     #[arg(long, value_name = "MODEL", value_parser = named::<DynamicsModel, _>(DynamicsModel::ALL.map(DynamicsModel::as_str)))]
@@ -266,6 +271,9 @@ pub struct CheckArgs {
     /// No pictures for the failing cases' routes.
     #[arg(long)]
     pub no_plots: bool,
+    /// No route in 3-D (route.html, route.glb) for the failing cases' routes.
+    #[arg(long)]
+    pub no_3d: bool,
     /// Also give the least total prestress of the scene's [[anchor]]s (shared as their
     /// prestresses are, equally where none is given) for each case to meet its guideline: for
     /// sliding alone and for every verdict (in the table and check.json's anchor_design).

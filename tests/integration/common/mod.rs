@@ -2,6 +2,7 @@
 //! `derivations/03-small-angle.md` and `derivations/04-exact.md`, and the paper's relations as
 //! printed (`relations.rs`).
 
+pub mod browser;
 pub mod newmark;
 pub mod relations;
 

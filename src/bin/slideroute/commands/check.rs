@@ -95,8 +95,10 @@ fn failing_routes(
             route_files::write_route_csv(&mut sub, "route.csv", &r.run.route.rows)
                 .map_err(failed)?,
         );
-        written
-            .extend(write_route_folder(sub, &case_scene, &r.run, args.no_plots).map_err(failed)?);
+        written.extend(
+            write_route_folder(sub, &case_scene, &r.run, args.no_plots, args.no_3d)
+                .map_err(failed)?,
+        );
     }
     Ok(written)
 }

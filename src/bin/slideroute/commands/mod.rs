@@ -134,17 +134,25 @@ pub fn print_json(value: &impl serde::Serialize) -> Result<(), CliError> {
     Ok(())
 }
 
-/// The pictures of `computed`'s route (unless `no_plots`) and summary.json (with the manifest,
-/// last) into the locked output folder, beside route.csv, each whole or absent, replacing an
-/// earlier run's outputs there.
+/// The pictures of `computed`'s route (unless `no_plots`), the route in 3-D, route.html and
+/// route.glb (unless `no_3d`), and summary.json (with the manifest, last) into the locked output
+/// folder, beside route.csv, each whole or absent, replacing an earlier run's outputs there.
 pub fn write_route_folder(
     mut folder: Folder,
     scene: &Scene,
     computed: &Computed,
     no_plots: bool,
+    no_3d: bool,
 ) -> Result<Vec<PathBuf>, String> {
     use crate::output::route_files;
     let mut files = Vec::new();
+    if !no_3d {
+        files.extend(crate::output::view::write_route_view(
+            &mut folder,
+            scene,
+            &computed.route,
+        )?);
+    }
     #[cfg(feature = "plots")]
     if !no_plots {
         let staging = folder.staging()?;

@@ -52,7 +52,9 @@ pub fn run(args: &RunArgs) -> Result<(), CliError> {
     let csv_path = csv_path.map_err(failed)?;
     let computed = computed.ok_or_else(|| failed("route.csv: no route"))?;
     let mut files = vec![csv_path];
-    files.extend(write_route_folder(folder, &scene, &computed, args.no_plots).map_err(failed)?);
+    files.extend(
+        write_route_folder(folder, &scene, &computed, args.no_plots, args.no_3d).map_err(failed)?,
+    );
     let route = &computed.route;
     if route.termination.reason == Reason::Interrupted {
         return Err(interrupted_after(&route.termination.detail, &files));

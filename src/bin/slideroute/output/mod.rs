@@ -25,6 +25,8 @@ pub mod samples_files;
 pub mod summary;
 #[cfg(feature = "cli")]
 pub mod sweep_files;
+#[cfg(feature = "cli")]
+pub mod view;
 
 pub use coeffs_report::CoeffReport;
 pub use roots_report::RootsReport;

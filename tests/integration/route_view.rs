@@ -1,0 +1,288 @@
+//! The route in 3-D that `slideroute run` writes beside route.csv: route.glb read back by the
+//! glTF project's reader and checked against route.csv, `--no-3d`, and route.html in a real
+//! browser (headless Chromium, as `report_browser.rs` drives it), checked against
+//! summary.json.
+//!
+//! The browser test is ignored by default (it needs Chromium); CI runs it with the Drake and
+//! record tests (`cargo test -- --ignored browser`).
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// A fresh folder for one test.
+fn temp(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!(
+        "slideroute-route-view-{name}-{}",
+        std::process::id()
+    ));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// `slideroute run ARGS --out OUT --quiet`, which must succeed.
+fn run(out: &Path, args: &[&str]) {
+    let o = Command::new(env!("CARGO_BIN_EXE_slideroute"))
+        .arg("run")
+        .args(args)
+        .arg("--quiet")
+        .arg("--out")
+        .arg(out)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
+/// route.csv's rows as (t, x, y, z, θ°).
+fn route_csv(dir: &Path) -> Vec<[f64; 5]> {
+    let mut r = csv::Reader::from_path(dir.join("route.csv")).unwrap();
+    let h = r.headers().unwrap().clone();
+    let col = |name: &str| h.iter().position(|c| c == name).unwrap();
+    let cols = ["t_s", "x_m", "y_m", "z_m", "theta_deg"].map(col);
+    r.records()
+        .map(|rec| {
+            let rec = rec.unwrap();
+            cols.map(|c| rec[c].parse::<f64>().unwrap())
+        })
+        .collect()
+}
+
+/// The value of linear keyframes (`times`, `values` of width N) at `t`.
+fn sample<const N: usize>(times: &[f32], values: &[[f32; N]], t: f64) -> [f64; N] {
+    let k = times
+        .partition_point(|&s| f64::from(s) <= t)
+        .clamp(1, times.len() - 1);
+    let (t0, t1) = (f64::from(times[k - 1]), f64::from(times[k]));
+    let f = if t1 > t0 {
+        ((t - t0) / (t1 - t0)).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    std::array::from_fn(|i| {
+        let (a, b) = (f64::from(values[k - 1][i]), f64::from(values[k][i]));
+        a + f * (b - a)
+    })
+}
+
+#[test]
+fn route_glb_animates_the_block_through_route_csvs_centre_of_mass_and_yaw() {
+    let dir = temp("glb");
+    run(&dir, &["--no-plots"]);
+    let bytes = std::fs::read(dir.join("route.glb")).unwrap();
+    let gltf = gltf::Gltf::from_slice(&bytes).expect("a valid binary glTF");
+    let blob = gltf.blob.as_deref().expect("a BIN chunk");
+    let block = gltf
+        .nodes()
+        .find(|n| n.name() == Some("block"))
+        .expect("a node named block");
+    assert!(gltf.nodes().any(|n| n.name() == Some("foundation")));
+    let animation = gltf.animations().next().expect("an animation");
+    let (mut times, mut at, mut turn) = (Vec::new(), Vec::new(), Vec::new());
+    for channel in animation.channels() {
+        assert_eq!(channel.target().node().index(), block.index());
+        let reader = channel.reader(|_| Some(blob));
+        times = reader.read_inputs().unwrap().collect();
+        match reader.read_outputs().unwrap() {
+            gltf::animation::util::ReadOutputs::Translations(v) => at = v.collect(),
+            gltf::animation::util::ReadOutputs::Rotations(v) => turn = v.into_f32().collect(),
+            _ => panic!("the block is only moved and turned"),
+        }
+    }
+    assert!(times.len() > 100 && times.len() <= 4000, "{}", times.len());
+    assert_eq!((at.len(), turn.len()), (times.len(), times.len()));
+    let rows = route_csv(&dir);
+    let t0 = rows[0][0];
+    // Three keyframes, the first, one inside and the last, each against route.csv's row at
+    // that time.
+    for k in [0, times.len() / 2 + 1, times.len() - 1] {
+        let t = f64::from(times[k]);
+        let row = rows
+            .iter()
+            .min_by(|a, b| (a[0] - t0 - t).abs().total_cmp(&(b[0] - t0 - t).abs()))
+            .unwrap();
+        assert!((row[0] - t0 - t).abs() < 1e-6, "no row at t = {t}");
+        let p = sample(&times, &at, t);
+        for i in 0..3 {
+            assert!(
+                (p[i] - row[1 + i]).abs() < 1e-6,
+                "t = {t}: the block's {} is {} m, route.csv's {} m",
+                ["X", "Y", "Z"][i],
+                p[i],
+                row[1 + i]
+            );
+        }
+        // The yaw: the block's x′ axis, turned by its rotation, from +X towards +Z.
+        let q = sample(&times, &turn, t);
+        let n = q.iter().map(|v| v * v).sum::<f64>().sqrt();
+        let [x, y, z, w] = q.map(|v| v / n);
+        let i_x = 1.0 - 2.0 * (y * y + z * z);
+        let i_z = 2.0 * (x * z - w * y);
+        let theta = i_z.atan2(i_x).to_degrees();
+        assert!(
+            (theta - row[4]).abs() < 1e-4,
+            "t = {t}: yaw {theta}° against route.csv's {}°",
+            row[4]
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn no_3d_writes_neither_route_html_nor_route_glb_and_removes_an_earlier_runs() {
+    let dir = temp("no-3d");
+    run(&dir, &["--no-plots", "--set", "solver.t_end_s=0.5"]);
+    let html = std::fs::read_to_string(dir.join("route.html")).unwrap();
+    assert!(html.len() < 10_000_000);
+    assert!(html.contains("<canvas") && html.contains("three"));
+    assert!(dir.join("route.glb").exists());
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
+    let files: Vec<&str> = summary["manifest"]["files"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|f| f["name"].as_str().unwrap())
+        .collect();
+    assert!(
+        files.contains(&"route.html") && files.contains(&"route.glb"),
+        "{files:?}"
+    );
+    run(
+        &dir,
+        &["--no-plots", "--no-3d", "--set", "solver.t_end_s=0.5"],
+    );
+    assert!(!dir.join("route.html").exists() && !dir.join("route.glb").exists());
+    assert!(dir.join("route.csv").exists() && dir.join("summary.json").exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Chromium headless, WebGL by SwiftShader (no GPU), on `page#hash` with `extra` arguments,
+/// three seconds of virtual time: its stdout and the console messages on its stderr.
+fn browse(page: &Path, hash: &str, profile: &Path, extra: &[&str]) -> (String, Vec<String>) {
+    let o = Command::new(crate::common::browser::chromium())
+        .args([
+            "--headless",
+            "--no-sandbox",
+            "--no-first-run",
+            "--use-angle=swiftshader",
+            "--enable-unsafe-swiftshader",
+            "--enable-logging=stderr",
+            "--v=0",
+            "--window-size=1200,800",
+            "--virtual-time-budget=3000",
+        ])
+        .arg(format!("--user-data-dir={}", profile.display()))
+        .args(extra)
+        .arg(format!("file://{}#{hash}", page.display()))
+        .output()
+        .expect("Chromium runs");
+    let log = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{log}");
+    let console = log
+        .lines()
+        .filter(|l| l.contains("CONSOLE"))
+        .map(str::to_string)
+        .collect();
+    (String::from_utf8_lossy(&o.stdout).into_owned(), console)
+}
+
+/// What the page says it shows: the JSON of its `#status` element.
+fn status(dom: &str) -> serde_json::Value {
+    let start = dom.find(r#"<pre id="status">"#).expect("a status element") + 17;
+    let end = start + dom[start..].find("</pre>").unwrap();
+    serde_json::from_str(&dom[start..end].replace("&quot;", "\""))
+        .unwrap_or_else(|e| panic!("the page wrote no status ({e}): {:?}", &dom[start..end]))
+}
+
+/// The screenshot's pixels (RGB).
+fn pixels(png_file: &Path) -> (u32, u32, Vec<[u8; 3]>) {
+    let decoder = png::Decoder::new(std::io::BufReader::new(
+        std::fs::File::open(png_file).expect("the screenshot was written"),
+    ));
+    let mut reader = decoder.read_info().unwrap();
+    let mut buf = vec![0; reader.output_buffer_size()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    let channels = info.color_type.samples();
+    let px = buf[..info.buffer_size()]
+        .chunks(channels)
+        .map(|c| match channels {
+            3 | 4 => [c[0], c[1], c[2]],
+            _ => [c[0], c[0], c[0]],
+        })
+        .collect();
+    (info.width, info.height, px)
+}
+
+#[test]
+#[ignore = "needs Chromium (CI installs it): cargo test -- --ignored browser"]
+fn browser_plays_the_route_in_3d_with_the_block_in_view_and_ends_at_summary_jsons_time_and_travel()
+{
+    let dir = temp("browser");
+    let out = dir.join("run");
+    run(&out, &["--no-plots"]);
+    let page = out.join("route.html");
+    let profile = dir.join("profile");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+
+    // Opened as it is: it plays from the start, drawing, the block in view.
+    let (dom, console) = browse(&page, "", &profile, &["--dump-dom"]);
+    assert!(console.is_empty(), "console: {console:?}");
+    let s = status(&dom);
+    assert_eq!(s["ready"], true, "{s}");
+    assert!(s["frames"].as_u64().unwrap() >= 1, "{s}");
+    assert_eq!(s["blockInView"], true, "{s}");
+    assert!(s["poses"].as_u64().unwrap() <= 4000, "{s}");
+
+    // The slider at the end: the time and travel summary.json gives, the block still in view.
+    let (dom, console) = browse(&page, "t=end", &profile, &["--dump-dom"]);
+    assert!(console.is_empty(), "console: {console:?}");
+    let s = status(&dom);
+    let t_end = summary["termination"]["t_s"].as_f64().unwrap();
+    let travel = summary["travel_m"].as_f64().unwrap();
+    assert!(
+        (s["time"].as_f64().unwrap() - t_end).abs() < 1e-3,
+        "{s} against {t_end} s"
+    );
+    assert!(
+        (s["travel"].as_f64().unwrap() - travel).abs() < 1e-3,
+        "{s} against {travel} m"
+    );
+    assert_eq!(s["blockInView"], true, "{s}");
+    assert_eq!(s["playing"], false, "{s}");
+    for shown in [format!("t = {t_end:.3} s"), format!("travel {travel:.3} m")] {
+        assert!(dom.contains(&shown), "the page does not show {shown:?}");
+    }
+
+    // Its picture, half-way: neither blank nor one colour; the ground, the water's blue arrow
+    // and the red CM path drawn.
+    let shot = dir.join("route.png");
+    let arg = format!("--screenshot={}", shot.display());
+    let (_, console) = browse(&page, "t=2", &profile, &[&arg]);
+    assert!(console.is_empty(), "console: {console:?}");
+    let (w, h, px) = pixels(&shot);
+    assert_eq!((w, h), (1200, 800));
+    let mut colours = px.clone();
+    colours.sort_unstable();
+    colours.dedup();
+    assert!(
+        colours.len() > 200,
+        "{} colours: a blank picture",
+        colours.len()
+    );
+    let background = px.iter().filter(|p| **p == [0xf4, 0xf1, 0xea]).count();
+    assert!(
+        background < px.len() * 3 / 4,
+        "{background} of {} pixels background",
+        px.len()
+    );
+    let near = |p: &[u8; 3], q: [u8; 3]| (0..3).all(|i| p[i].abs_diff(q[i]) <= 24);
+    for (what, rgb, least) in [
+        ("water force", [0x15, 0x65, 0xc0], 200),
+        ("CM path", [0xd0, 0x02, 0x1b], 20),
+    ] {
+        let n = px.iter().filter(|p| near(p, rgb)).count();
+        assert!(n >= least, "the {what}'s colour covers {n} pixels");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
