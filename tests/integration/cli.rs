@@ -281,6 +281,61 @@ fn roots_grid_writes_one_row_per_pose_in_order() {
 }
 
 #[test]
+fn a_grid_that_fails_part_way_leaves_an_earlier_output_whole_and_no_temporary() {
+    // Issue #32 item 9: `roots --grid --out FILE` wrote in place, so a fault (or a full disk)
+    // part way truncated an earlier good file.
+    let dir = temp_dir("grid-keep");
+    std::fs::create_dir_all(&dir).unwrap();
+    let out = dir.join("poses-out.csv");
+    std::fs::write(&out, "an earlier good file\n").unwrap();
+    let mut text = String::from("x_m,z_m,theta_deg\n");
+    for k in 0..5000 {
+        text.push_str(&format!("{},0,0\n", k as f64 * 1e-4));
+    }
+    text.push_str("1.0,abc,0\n");
+    let grid = dir.join("grid.csv");
+    std::fs::write(&grid, text).unwrap();
+    let o = run(&[
+        "roots",
+        "--grid",
+        grid.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_bad_input(&o, &["grid.csv", "line 5002", "z_m"]);
+    assert_eq!(
+        std::fs::read_to_string(&out).unwrap(),
+        "an earlier good file\n"
+    );
+    let names: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(names.len(), 2, "{names:?}");
+    // Given a device, it writes there (nothing renamed over /dev/null).
+    std::fs::write(&grid, "x_m,z_m,theta_deg\n0.5,0.1,2\n").unwrap();
+    let o = run(&[
+        "roots",
+        "--grid",
+        grid.to_str().unwrap(),
+        "--out",
+        "/dev/null",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        assert!(
+            std::fs::metadata("/dev/null")
+                .unwrap()
+                .file_type()
+                .is_char_device()
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
 fn bad_grid_files_name_the_line_and_column() {
     let grid = temp_file("bad.csv", "x_m,z_m,theta_deg\n0.5,0.1,2\n1.0,abc,0\n");
     let out = grid.with_file_name("o.csv");
@@ -975,7 +1030,13 @@ fn a_run_replaces_every_output_of_an_earlier_run_and_nothing_else() {
     names.sort();
     assert_eq!(
         names,
-        ["comparison.json", "notes.txt", "paper", "rigid-body"]
+        [
+            "compare.html",
+            "comparison.json",
+            "notes.txt",
+            "paper",
+            "rigid-body"
+        ]
     );
     assert!(
         run(&["run", "--quiet", "--no-plots", "--out", d])

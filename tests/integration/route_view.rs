@@ -286,3 +286,219 @@ fn browser_plays_the_route_in_3d_with_the_block_in_view_and_ends_at_summary_json
     }
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `slideroute ARGS --quiet --out OUT` (any command), which must succeed.
+fn slideroute(out: &Path, args: &[&str]) {
+    let o = Command::new(env!("CARGO_BIN_EXE_slideroute"))
+        .args(args)
+        .arg("--quiet")
+        .arg("--out")
+        .arg(out)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
+/// The scene with uncertain keys, for `probabilistic`.
+fn uncertain_scene() -> String {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("scenes/paper-like-uncertain.toml")
+        .display()
+        .to_string()
+}
+
+/// `command` (its arguments) writes `page`, a small self-contained page; with `--no-3d` it
+/// does not, and removes an earlier one.
+fn writes_its_page_unless_no_3d(name: &str, command: &[&str], page: &str) {
+    let dir = temp(name);
+    slideroute(&dir, command);
+    let html = std::fs::read_to_string(dir.join(page)).unwrap_or_else(|e| panic!("{page}: {e}"));
+    assert!(html.len() < 10_000_000, "{page}: {} bytes", html.len());
+    assert!(html.contains("<canvas") && html.contains("importmap"));
+    assert!(!html.contains("src=\"http"));
+    slideroute(&dir, &[command, &["--no-3d"]].concat());
+    assert!(!dir.join(page).exists(), "{page} after --no-3d");
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn compare_dynamics_writes_compare_html_unless_no_3d() {
+    writes_its_page_unless_no_3d(
+        "compare-no-3d",
+        &[
+            "run",
+            "--compare-dynamics",
+            "--no-plots",
+            "--set",
+            "solver.t_end_s=1",
+        ],
+        "compare.html",
+    );
+}
+
+#[test]
+fn sweep_writes_sweep_html_unless_no_3d() {
+    writes_its_page_unless_no_3d(
+        "sweep-no-3d",
+        &[
+            "sweep",
+            "--no-plots",
+            "--vary",
+            "friction.mu_k=0.3:0.5:3",
+            "--set",
+            "solver.t_end_s=1",
+        ],
+        "sweep.html",
+    );
+}
+
+#[test]
+fn probabilistic_writes_route_fan_html_unless_no_3d() {
+    let scene = uncertain_scene();
+    writes_its_page_unless_no_3d(
+        "probabilistic-no-3d",
+        &[
+            "probabilistic",
+            "--scene",
+            &scene,
+            "--no-plots",
+            "--samples",
+            "8",
+            "--set",
+            "solver.t_end_s=1",
+        ],
+        "route-fan.html",
+    );
+}
+
+/// How many of `px` are within 24 of `rgb` in each channel.
+fn count_near(px: &[[u8; 3]], rgb: [u8; 3]) -> usize {
+    px.iter()
+        .filter(|p| (0..3).all(|i| p[i].abs_diff(rgb[i]) <= 24))
+        .count()
+}
+
+/// The screenshot of `page#hash` is neither blank nor mostly background; returns its pixels.
+fn screenshot(page: &Path, hash: &str, profile: &Path, shot: &Path) -> Vec<[u8; 3]> {
+    let arg = format!("--screenshot={}", shot.display());
+    let (_, console) = browse(page, hash, profile, &[&arg]);
+    assert!(
+        console.is_empty(),
+        "{}: console: {console:?}",
+        page.display()
+    );
+    let (w, h, px) = pixels(shot);
+    assert_eq!((w, h), (1200, 800));
+    let mut colours = px.clone();
+    colours.sort_unstable();
+    colours.dedup();
+    assert!(
+        colours.len() > 200,
+        "{}: {} colours: a blank picture",
+        page.display(),
+        colours.len()
+    );
+    let background = px.iter().filter(|p| **p == [0xf4, 0xf1, 0xea]).count();
+    assert!(
+        background < px.len() * 3 / 4,
+        "{}: {background} of {} pixels background",
+        page.display(),
+        px.len()
+    );
+    px
+}
+
+#[test]
+#[ignore = "needs Chromium (CI installs it): cargo test -- --ignored browser"]
+fn browser_shows_both_dynamics_and_the_route_fan_in_3d() {
+    let dir = temp("browser-many");
+    let profile = dir.join("profile");
+
+    // compare.html: both routes, each ending at its own time (comparison.json's), both blocks
+    // in view at the end, both colours drawn.
+    let cmp = dir.join("compare");
+    slideroute(&cmp, &["run", "--compare-dynamics", "--no-plots"]);
+    let page = cmp.join("compare.html");
+    let c: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(cmp.join("comparison.json")).unwrap())
+            .unwrap();
+    let (dom, console) = browse(&page, "", &profile, &["--dump-dom"]);
+    assert!(console.is_empty(), "console: {console:?}");
+    let s = status(&dom);
+    assert_eq!(s["ready"], true, "{s}");
+    assert_eq!(s["mode"], "compare", "{s}");
+    assert!(s["frames"].as_u64().unwrap() >= 1, "{s}");
+    let (dom, console) = browse(&page, "t=end", &profile, &["--dump-dom"]);
+    assert!(console.is_empty(), "console: {console:?}");
+    let s = status(&dom);
+    let routes = s["routes"].as_array().unwrap();
+    assert_eq!(routes.len(), 2, "{s}");
+    for (r, key) in routes.iter().zip(["paper", "rigid_body"]) {
+        let travel = c[key]["travel_m"].as_f64().unwrap();
+        assert!(
+            (r["travel"].as_f64().unwrap() - travel).abs() < 1e-3,
+            "{key}: {r} against {travel} m"
+        );
+        assert_eq!(r["blockInView"], true, "{key}: {r}");
+        assert!(r["poses"].as_u64().unwrap() <= 4000, "{r}");
+    }
+    let ends: Vec<f64> = routes.iter().map(|r| r["end"].as_f64().unwrap()).collect();
+    assert!(
+        (ends[0] - ends[1]).abs() > 0.1,
+        "{ends:?}: each its own time"
+    );
+    for label in ["paper dynamics", "rigid-body dynamics"] {
+        assert!(dom.contains(label), "the legend does not name {label}");
+    }
+    let px = screenshot(&page, "t=2", &profile, &dir.join("compare.png"));
+    for (what, rgb) in [
+        ("paper's CM path", [0x7b, 0x1f, 0xa2]),
+        ("rigid body's CM path", [0x00, 0x89, 0x7b]),
+        ("water force", [0x15, 0x65, 0xc0]),
+    ] {
+        let n = count_near(&px, rgb);
+        assert!(n >= 20, "the {what}'s colour covers {n} pixels");
+    }
+
+    // route-fan.html: every sample's CM path drawn over the ground, the scene as written on
+    // them with its block in view.
+    let fan = dir.join("probabilistic");
+    let scene = uncertain_scene();
+    slideroute(
+        &fan,
+        &[
+            "probabilistic",
+            "--scene",
+            &scene,
+            "--no-plots",
+            "--samples",
+            "40",
+        ],
+    );
+    let page = fan.join("route-fan.html");
+    let p: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(fan.join("probabilistic.json")).unwrap())
+            .unwrap();
+    let (dom, console) = browse(&page, "", &profile, &["--dump-dom"]);
+    assert!(console.is_empty(), "console: {console:?}");
+    let s = status(&dom);
+    assert_eq!(s["ready"], true, "{s}");
+    assert_eq!(s["mode"], "fan", "{s}");
+    assert_eq!(s["fanPaths"], p["routes"], "{s}");
+    assert!(s["fanSegments"].as_u64().unwrap() > 40, "{s}");
+    assert_eq!(s["routes"].as_array().unwrap().len(), 1, "{s}");
+    assert_eq!(s["blockInView"], true, "{s}");
+    let px = screenshot(&page, "t=end", &profile, &dir.join("route-fan.png"));
+    // The fan's orange, a little transparent over the ground.
+    let orange = px
+        .iter()
+        .filter(|p| p[0] > 190 && p[0] as i32 - p[2] as i32 > 110 && p[1] < 175)
+        .count();
+    assert!(orange >= 300, "the fan's orange covers {orange} pixels");
+    if let Some(keep) = std::env::var_os("SLIDEROUTE_KEEP_SCREENSHOTS") {
+        for f in ["compare.png", "route-fan.png"] {
+            std::fs::copy(dir.join(f), Path::new(&keep).join(f)).unwrap();
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -156,7 +156,7 @@ pub struct RunArgs {
     #[arg(long)]
     pub no_plots: bool,
     /// No route in 3-D: neither route.html (the route played in a browser) nor route.glb
-    /// (glTF).
+    /// (glTF); with --compare-dynamics, no compare.html.
     #[arg(long)]
     pub no_3d: bool,
     /// Dynamics model, overriding the scene's `[solver] dynamics`: `paper` (the paper's
@@ -165,7 +165,8 @@ pub struct RunArgs {
     pub dynamics: Option<DynamicsModel>,
     /// Run both dynamics models: DIR/paper/ and DIR/rigid-body/ (route.csv, summary.json),
     /// DIR/comparison.json (both summaries and where the routes part) and
-    /// DIR/compare-plan.svg (both paths on one plan view).
+    /// DIR/compare-plan.svg (both paths on one plan view) and DIR/compare.html (both routes
+    /// in 3-D).
     #[arg(long, conflicts_with = "dynamics")]
     pub compare_dynamics: bool,
 }
@@ -210,6 +211,9 @@ pub struct SweepArgs {
     /// No picture (sweep.svg).
     #[arg(long)]
     pub no_plots: bool,
+    /// No sweep.html (every combination's CM path over the ground in 3-D, in a browser).
+    #[arg(long)]
+    pub no_3d: bool,
 }
 
 /// `slideroute probabilistic`.
@@ -255,6 +259,9 @@ pub struct ProbabilisticArgs {
     /// No pictures (route-fan.svg, factor-of-safety.svg, sensitivity.svg).
     #[arg(long)]
     pub no_plots: bool,
+    /// No route-fan.html (every sample's CM path over the ground in 3-D, in a browser).
+    #[arg(long)]
+    pub no_3d: bool,
 }
 
 /// `slideroute check`.

@@ -1,5 +1,6 @@
 //! `slideroute run --compare-dynamics`: the paper's route beside the rigid body's, each in its
-//! own folder, where they part, and both CM paths on one plan view.
+//! own folder, where they part, both CM paths on one plan view and both routes in 3-D
+//! (`compare.html`).
 
 use super::load;
 use crate::cli::RunArgs;
@@ -13,8 +14,18 @@ pub fn compare(args: &RunArgs) -> Result<(), CliError> {
     let mut folder = Folder::open(&args.out_dir(), "run").map_err(failed)?;
     let c =
         slideroute::compare::compare_dynamics_observed(&scene, interrupted).map_err(bad_input)?;
-    #[allow(unused_mut)]
     let mut files = crate::output::compare_files::write(&mut folder, &scene, &c).map_err(failed)?;
+    if !args.no_3d {
+        files.extend(
+            crate::output::view::many::write_compare_view(
+                &mut folder,
+                &scene,
+                &c.paper.route,
+                &c.rigid_body.route,
+            )
+            .map_err(failed)?,
+        );
+    }
     #[cfg(feature = "plots")]
     if !args.no_plots {
         let path = folder

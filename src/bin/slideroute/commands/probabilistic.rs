@@ -62,10 +62,15 @@ pub fn probabilistic(args: &ProbabilisticArgs) -> Result<(), CliError> {
         .map_err(failed)?;
     let summary = summarise(&design, limits, &rows);
     let mut written = vec![csv_path];
+    // The scene as written, drawn in black on the fan (route-fan.svg and route-fan.html).
+    let drawn_plots = cfg!(feature = "plots") && !args.no_plots;
+    let nominal = if (drawn_plots || !args.no_3d) && !interrupted() {
+        slideroute::run(&base).ok()
+    } else {
+        None
+    };
     #[cfg(feature = "plots")]
-    if !args.no_plots && !interrupted() {
-        // The scene as written, drawn in black on the fan.
-        let nominal = slideroute::run(&base).ok();
+    if drawn_plots && !interrupted() {
         let staging = folder.staging().map_err(failed)?;
         let staged = crate::output::plots::write_probabilistic_plots(
             &staging,
@@ -76,6 +81,31 @@ pub fn probabilistic(args: &ProbabilisticArgs) -> Result<(), CliError> {
         )
         .map_err(failed)?;
         written.extend(folder.adopt_all(staged).map_err(failed)?);
+    }
+    if !args.no_3d && !interrupted() {
+        let (paths, routes) = crate::output::view::many::cm_paths(rows.iter().map(|s| &s.outcome));
+        let mut notes = vec![format!(
+            "{} samples, seed {}; the foundation is drawn as the scene writes it",
+            summary.samples, summary.seed
+        )];
+        notes.extend(
+            summary
+                .distributions
+                .iter()
+                .map(|g| format!("{}: {}", g.key, g.distribution)),
+        );
+        let page = crate::output::view::many::fan_page(
+            &base,
+            nominal.as_ref(),
+            &paths,
+            routes,
+            "sampled routes",
+            notes,
+        );
+        written.extend(
+            crate::output::view::many::write_page(&mut folder, "route-fan.html", &page)
+                .map_err(failed)?,
+        );
     }
     let manifest = Manifest::new(&base, &folder);
     let json = write_json_with_manifest(&mut folder, "probabilistic.json", &summary, &manifest)

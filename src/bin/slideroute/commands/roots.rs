@@ -4,15 +4,12 @@
 
 use super::{displacement, load, print_json};
 use crate::cli::RootsArgs;
-use crate::exit::{CliError, bad_input, failed, out};
+use crate::exit::{CliError, bad_input, failed, interrupted, out};
 use crate::output::{RootsReport, grid_csv};
 use rayon::prelude::*;
 use slideroute::internals::scene::input::open_bounded;
 use slideroute::{Displacement, Mode, Scene};
 use std::path::Path;
-
-/// The largest grid of poses (bytes): some 300 000 rows.
-const MAX_GRID_BYTES: u64 = 16 << 20;
 
 /// Runs `slideroute roots`.
 pub fn roots(args: &RootsArgs) -> Result<(), CliError> {
@@ -40,21 +37,191 @@ fn report(scene: &Scene, mode: Mode, d: Displacement) -> Result<RootsReport, Str
         .map_err(|e| e.to_string())
 }
 
-/// The report of every pose of the file `grid`, written to `out`.
+/// The poses solved at a time: read, solved on every core, written, then the next; memory is
+/// bounded by this whatever the file's length.
+const CHUNK: usize = 4096;
+
+/// The report of every pose of the file `grid`, written to `out`: whole, under a temporary name
+/// beside it renamed into place when done, so that an earlier file there stays whole until then
+/// (a device or a pipe, such as /dev/null, is written to directly). Ctrl-C stops it at the next
+/// chunk, leaving no file.
 fn roots_grid(scene: &Scene, mode: Mode, grid: &Path, out: &Path) -> Result<(), CliError> {
     let name = grid.display().to_string();
-    let file = open_bounded(grid, MAX_GRID_BYTES).map_err(|e| bad_input(format!("{name}: {e}")))?;
-    let poses = grid_csv::read_poses(file, &name).map_err(bad_input)?;
-    // Every core, in the file's order.
-    let reports = poses
-        .par_iter()
-        .map(|p| report(scene, mode, p.displacement()))
-        .collect::<Result<Vec<_>, _>>()
-        .map_err(bad_input)?;
+    // Only a regular file, of any length (a line is bounded instead).
+    let file = open_bounded(grid, u64::MAX - 1).map_err(|e| bad_input(format!("{name}: {e}")))?;
+    let poses = grid_csv::PoseRows::new(std::io::BufReader::new(file), &name).map_err(bad_input)?;
     let out_name = out.display().to_string();
-    let file =
-        std::fs::File::create(out).map_err(|e| failed(format!("{out_name}: cannot write: {e}")))?;
-    grid_csv::write_rows(file, &poses, &reports).map_err(|e| failed(format!("{out_name}: {e}")))?;
-    eprintln!("slideroute: {} poses written to {out_name}", reports.len());
-    Ok(())
+    let target = Target::new(out).map_err(|e| failed(format!("{out_name}: {e}")))?;
+    let result = solve_grid(scene, mode, poses, target.writer(), CHUNK);
+    match result {
+        Ok(n) => {
+            target
+                .finish()
+                .map_err(|e| failed(format!("{out_name}: {e}")))?;
+            eprintln!("slideroute: {n} poses written to {out_name}");
+            Ok(())
+        }
+        Err(e) => {
+            target.abandon();
+            Err(e)
+        }
+    }
+}
+
+/// Every pose of `poses`, `chunk` at a time (on every core, in order), written to `out`; the
+/// number written.
+fn solve_grid<R: std::io::Read, W: std::io::Write>(
+    scene: &Scene,
+    mode: Mode,
+    mut poses: grid_csv::PoseRows<R>,
+    out: W,
+    chunk: usize,
+) -> Result<usize, CliError> {
+    let write_err = |e: csv::Error| failed(format!("cannot write: {e}"));
+    let mut w = grid_csv::RowWriter::new(out).map_err(write_err)?;
+    let mut batch = Vec::with_capacity(chunk);
+    let mut n = 0;
+    loop {
+        batch.clear();
+        for pose in poses.by_ref().take(chunk) {
+            batch.push(pose.map_err(bad_input)?);
+        }
+        if batch.is_empty() {
+            break;
+        }
+        if interrupted() {
+            return Err(failed(format!(
+                "interrupted after {n} poses; nothing written"
+            )));
+        }
+        let reports = batch
+            .par_iter()
+            .map(|p| report(scene, mode, p.displacement()))
+            .collect::<Result<Vec<_>, _>>()
+            .map_err(bad_input)?;
+        w.rows(&batch, &reports).map_err(write_err)?;
+        n += batch.len();
+    }
+    w.finish().map_err(write_err)?;
+    Ok(n)
+}
+
+/// Where the rows go: a temporary file beside `out` (made new, never through a link), renamed
+/// over it at the end; or `out` itself where it is a device or a pipe.
+struct Target {
+    out: std::path::PathBuf,
+    tmp: Option<std::path::PathBuf>,
+    file: std::fs::File,
+}
+
+impl Target {
+    fn new(out: &Path) -> Result<Target, String> {
+        let special = std::fs::metadata(out).is_ok_and(|m| !m.is_file() && !m.is_dir());
+        if special {
+            let file = std::fs::OpenOptions::new()
+                .write(true)
+                .open(out)
+                .map_err(|e| format!("cannot write: {e}"))?;
+            return Ok(Target {
+                out: out.to_path_buf(),
+                tmp: None,
+                file,
+            });
+        }
+        let file_name = out
+            .file_name()
+            .ok_or("not a file name")?
+            .to_string_lossy()
+            .into_owned();
+        let tmp = out.with_file_name(format!(".{file_name}.{}.tmp", std::process::id()));
+        let file = std::fs::OpenOptions::new()
+            .write(true)
+            .create_new(true)
+            .open(&tmp)
+            .map_err(|e| format!("cannot write {}: {e}", tmp.display()))?;
+        Ok(Target {
+            out: out.to_path_buf(),
+            tmp: Some(tmp),
+            file,
+        })
+    }
+
+    fn writer(&self) -> std::io::BufWriter<&std::fs::File> {
+        std::io::BufWriter::with_capacity(1 << 16, &self.file)
+    }
+
+    /// The rows in place: the temporary synced and renamed over `out`.
+    fn finish(self) -> Result<(), String> {
+        let Some(tmp) = &self.tmp else {
+            return Ok(());
+        };
+        let done = self
+            .file
+            .sync_all()
+            .and_then(|()| std::fs::rename(tmp, &self.out));
+        if let Err(e) = done {
+            let _ = std::fs::remove_file(tmp);
+            return Err(format!("cannot write: {e}"));
+        }
+        Ok(())
+    }
+
+    /// No file: the temporary removed, an earlier `out` left as it was.
+    fn abandon(self) {
+        if let Some(tmp) = &self.tmp {
+            let _ = std::fs::remove_file(tmp);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn rows(text: &str, chunk: usize) -> Result<String, CliError> {
+        let scene = Scene::default_scene();
+        let poses = grid_csv::PoseRows::new(text.as_bytes(), "g.csv").map_err(bad_input)?;
+        let mut out = Vec::new();
+        solve_grid(&scene, Mode::Exact, poses, &mut out, chunk)?;
+        Ok(String::from_utf8(out).unwrap())
+    }
+
+    #[test]
+    fn a_grid_solved_in_chunks_gives_the_rows_of_one_pose_at_a_time() {
+        let mut text = String::from("x_m,z_m,theta_deg\n");
+        for k in 0..11 {
+            text.push_str(&format!(
+                "{},{},{}\n",
+                0.1 * k as f64,
+                0.02 * k as f64,
+                k as f64 / 4.0
+            ));
+        }
+        let whole = rows(&text, 1000).unwrap();
+        for chunk in [1, 3, 4, 11] {
+            assert_eq!(rows(&text, chunk).unwrap(), whole, "chunk {chunk}");
+        }
+        assert_eq!(whole.lines().count(), 12);
+        // Row k is pose k's report, as `roots` gives it alone.
+        let third = report(
+            &Scene::default_scene(),
+            Mode::Exact,
+            Displacement::new(0.2, 0.04, 0.5f64.to_radians()),
+        )
+        .unwrap();
+        let alpha = third.selected.unwrap().alpha_deg.to_string();
+        assert!(whole.lines().nth(3).unwrap().contains(&alpha));
+    }
+
+    #[test]
+    fn a_line_longer_than_a_pose_can_be_is_refused_naming_its_line() {
+        let long = format!("x_m,z_m,theta_deg\n0.1,0,0\n0.2,0,{}\n", "1".repeat(5000));
+        let Err(CliError::BadInput(e)) = rows(&long, 4) else {
+            panic!("accepted")
+        };
+        assert!(
+            e.contains("g.csv: line 3") && e.contains("longer than 4096"),
+            "{e}"
+        );
+    }
 }

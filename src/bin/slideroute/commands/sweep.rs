@@ -1,5 +1,6 @@
 //! `slideroute sweep`: every combination of the varied keys, in parallel (the library's
-//! `slideroute::sweep`), written as `sweep.csv` and drawn as `sweep.svg`.
+//! `slideroute::sweep`), written as `sweep.csv`, drawn as `sweep.svg` and in 3-D as
+//! `sweep.html` (every combination's CM path over the ground).
 
 use super::{load_with, progress_bar};
 use crate::cli::SweepArgs;
@@ -23,11 +24,8 @@ pub fn sweep(args: &SweepArgs) -> Result<(), CliError> {
     let n = sweep.count();
     let mut folder = Folder::open(&args.out, "sweep").map_err(failed)?;
     let bar = progress_bar(args.quiet, n as u64, "sweep", "combinations");
-    let rows: Vec<SweepRow> = sweep
-        .run(|| bar.inc(1), interrupted)
-        .iter()
-        .map(SweepRow::from)
-        .collect();
+    let ran = sweep.run(|| bar.inc(1), interrupted);
+    let rows: Vec<SweepRow> = ran.iter().map(SweepRow::from).collect();
     bar.finish_and_clear();
     let varies = sweep.varies();
     let csv_path = folder
@@ -38,8 +36,24 @@ pub fn sweep(args: &SweepArgs) -> Result<(), CliError> {
                 .map_err(|e| format!("sweep.csv: {e}"))
         })
         .map_err(failed)?;
-    #[allow(unused_mut)]
     let mut written = vec![csv_path];
+    if !args.no_3d && !interrupted() {
+        let (paths, routes) = crate::output::view::many::cm_paths(ran.iter().map(|r| &r.outcome));
+        let mut notes: Vec<String> = varies
+            .iter()
+            .map(|v| {
+                let n = v.values.len();
+                format!("{}: {n} value{}", v.key, if n == 1 { "" } else { "s" })
+            })
+            .collect();
+        notes.push("the foundation is drawn as the base scene writes it".into());
+        let page =
+            crate::output::view::many::fan_page(&base, None, &paths, routes, "combinations", notes);
+        written.extend(
+            crate::output::view::many::write_page(&mut folder, "sweep.html", &page)
+                .map_err(failed)?,
+        );
+    }
     #[cfg(feature = "plots")]
     if !args.no_plots {
         written.push(

@@ -1,8 +1,10 @@
-//! `route.html`: one file that opens offline and plays the route in 3-D. three.js and its
+//! `route.html` (and `compare.html`, `route-fan.html`, `sweep.html`: `many.rs`): one file that
+//! opens offline and plays the route, or the routes, in 3-D. three.js and its
 //! OrbitControls (r170, `src/bin/slideroute/output/view/vendor/README.md`) are embedded whole as
 //! modules an import map names; the page's own script is `route.js`; the route is a JSON block
 //! in the page.
 
+use super::many::{FAN_ORANGE, Page3d, Shown};
 use super::{PoseAt, View3d};
 use base64::Engine;
 use serde_json::{Value, json};
@@ -29,8 +31,9 @@ fn flat<const N: usize>(items: &[[f64; N]], digits: i32) -> Vec<f64> {
         .collect()
 }
 
-/// The route as the page reads it (`route.js`): flat arrays, metres to 0.1 mm.
-pub fn data(view: &View3d) -> Value {
+/// One route as the page reads it (`route.js`): flat arrays, metres to 0.1 mm.
+fn route_data(shown: &Shown) -> Value {
+    let view = &shown.view;
     let poses = &view.poses;
     let col = |f: &dyn Fn(&PoseAt) -> f64, digits: i32| -> Vec<f64> {
         poses.iter().map(|p| round(f(p), digits)).collect()
@@ -45,14 +48,9 @@ pub fn data(view: &View3d) -> Value {
         })
         .collect();
     json!({
-        "name": view.name,
+        "label": shown.label,
+        "color": shown.color,
         "dynamics": view.dynamics,
-        "three": THREE_VERSION,
-        "L": view.l_m,
-        "ground": {
-            "positions": flat(&view.ground.positions, 4),
-            "colors": flat(&view.ground.colors, 3),
-        },
         "block": {
             "shape": view.shape,
             "positions": flat(&view.block.positions, 4),
@@ -86,6 +84,40 @@ pub fn data(view: &View3d) -> Value {
     })
 }
 
+/// A page's data as `route.js` reads it: its mode, the foundation, each route, and the fan's
+/// paths as one flat array of points with where each path starts.
+pub fn page_data(page: &Page3d) -> Value {
+    let fan = page.fan.as_ref().map(|f| {
+        let mut starts = Vec::with_capacity(f.paths.len());
+        let mut points = Vec::new();
+        for p in &f.paths {
+            starts.push(points.len() / 3);
+            points.extend(flat(p, 3));
+        }
+        json!({
+            "label": f.label,
+            "color": FAN_ORANGE,
+            "routes": f.routes,
+            "starts": starts,
+            "points": points,
+        })
+    });
+    json!({
+        "mode": page.mode,
+        "name": page.name,
+        "title": page.title,
+        "three": THREE_VERSION,
+        "L": page.l_m,
+        "ground": {
+            "positions": flat(&page.ground.positions, 4),
+            "colors": flat(&page.ground.colors, 3),
+        },
+        "routes": page.routes.iter().map(route_data).collect::<Vec<_>>(),
+        "fan": fan,
+        "notes": page.notes,
+    })
+}
+
 /// Text for inside an HTML element: `&`, `<` and `>` escaped.
 fn escape(s: &str) -> String {
     s.replace('&', "&amp;")
@@ -93,8 +125,13 @@ fn escape(s: &str) -> String {
         .replace('>', "&gt;")
 }
 
-/// The page.
+/// `route.html`: the page of one route.
 pub fn page(view: &View3d) -> Result<String, serde_json::Error> {
+    page_of(&Page3d::single(view.clone()))
+}
+
+/// Any page: one route, both dynamics, or a fan.
+pub fn page_of(page: &Page3d) -> Result<String, serde_json::Error> {
     let engine = base64::engine::general_purpose::STANDARD;
     let module = |src: &str| format!("data:text/javascript;base64,{}", engine.encode(src));
     let imports = serde_json::to_string(&json!({
@@ -103,9 +140,10 @@ pub fn page(view: &View3d) -> Result<String, serde_json::Error> {
             "three/addons/controls/OrbitControls.js": module(ORBIT_CONTROLS),
         }
     }))?;
-    // JSON inside <script>: "</" would end the element; "<\/" is the same string to JSON.
-    let data = serde_json::to_string(&data(view))?.replace("</", "<\\/");
-    let title = escape(&format!("{}: the route in 3-D (slideroute)", view.name));
+    // JSON inside <script>: "</script" would end the element and "<!--" change how it is
+    // read; `<` appears in JSON only within strings, where "\u003c" is the same character.
+    let data = serde_json::to_string(&page_data(page))?.replace('<', "\\u003c");
+    let title = escape(&format!("{} (slideroute)", page.title));
     Ok(format!(
         r#"<!DOCTYPE html>
 <html lang="en">

@@ -12,6 +12,7 @@
 
 pub mod glb;
 pub mod html;
+pub mod many;
 
 use crate::output::folder::Folder;
 use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector3};
@@ -153,6 +154,8 @@ pub struct View3d {
     pub l_m: f64,
     /// The foundation, in world axes, coloured by dip.
     pub ground: Mesh,
+    /// The plan extent the foundation covers, X from–to and Z from–to (m).
+    pub extent: [f64; 4],
     /// The block, in its node's axes (its base on y′ = 0).
     pub block: Mesh,
     pub shape: BlockShape,
@@ -318,12 +321,18 @@ pub fn view_of(scene: &Scene, route: &Route) -> Result<View3d, ViewError> {
         .collect();
 
     let force = force_arrow(scene, &placed[0], &block, l);
-    let ground = ground_mesh(scene, &placed, &block, l);
+    let extent = plan_extent(
+        placed.iter().map(|(row, _)| [row.x_m, row.z_m]),
+        reach_of(&block),
+        l,
+    );
+    let ground = ground_mesh(scene, extent);
     Ok(View3d {
         name: route.scene.clone(),
         dynamics: route.dynamics.to_string(),
         l_m: l,
         ground,
+        extent,
         block,
         shape,
         points,
@@ -479,23 +488,60 @@ fn dip_color(dip: f64) -> [f64; 3] {
     [shade(235.0, 110.0), shade(225.0, 80.0), shade(205.0, 50.0)]
 }
 
-/// The foundation over the route's extent (every pose's block, and L beyond): each plane where
-/// it is the highest, or a surface's triangles there (the nearest the route, at most
-/// [`MAX_GROUND_TRIANGLES`]).
-fn ground_mesh(scene: &Scene, placed: &[(Row, Matrix3<f64>)], block: &Mesh, l: f64) -> Mesh {
-    let (mut x0, mut x1, mut z0, mut z1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
+/// How far the block reaches from its node's origin (m): its mesh's farthest coordinate.
+pub fn reach_of(block: &Mesh) -> f64 {
     let (lo, hi) = block.bounds().unwrap_or(([0.0; 3], [0.0; 3]));
-    let reach = (0..3)
+    (0..3)
         .map(|k| lo[k].abs().max(hi[k].abs()))
-        .fold(0.0, f64::max);
-    for (row, _) in placed {
-        x0 = x0.min(row.x_m - reach);
-        x1 = x1.max(row.x_m + reach);
-        z0 = z0.min(row.z_m - reach);
-        z1 = z1.max(row.z_m + reach);
+        .fold(0.0, f64::max)
+}
+
+/// The plan extent, X from–to and Z from–to, of `points` (X, Z), `reach` round each and L
+/// beyond; round the origin where there are none.
+pub fn plan_extent(points: impl IntoIterator<Item = [f64; 2]>, reach: f64, l: f64) -> [f64; 4] {
+    let (mut x0, mut x1, mut z0, mut z1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
+    for [x, z] in points {
+        if !(x.is_finite() && z.is_finite()) {
+            continue;
+        }
+        x0 = x0.min(x - reach);
+        x1 = x1.max(x + reach);
+        z0 = z0.min(z - reach);
+        z1 = z1.max(z + reach);
     }
-    let margin = l;
-    let (x0, x1, z0, z1) = (x0 - margin, x1 + margin, z0 - margin, z1 + margin);
+    if x0 > x1 {
+        (x0, x1, z0, z1) = (-reach, reach, -reach, reach);
+    }
+    [x0 - l, x1 + l, z0 - l, z1 + l]
+}
+
+/// The union of two plan extents.
+pub fn union_extent(a: [f64; 4], b: [f64; 4]) -> [f64; 4] {
+    [
+        a[0].min(b[0]),
+        a[1].max(b[1]),
+        a[2].min(b[2]),
+        a[3].max(b[3]),
+    ]
+}
+
+/// The ground's height at (X, Z): the highest plane, or the surface's (none off it).
+pub fn ground_height(scene: &Scene, x: f64, z: f64) -> Option<f64> {
+    let site = scene.site();
+    match site.ground() {
+        Some((g, _)) => g.top(x, z).map(|(_, h)| h),
+        None => site
+            .planes()
+            .iter()
+            .map(|q| q.height(x, z))
+            .reduce(f64::max),
+    }
+    .filter(|h| h.is_finite())
+}
+
+/// The foundation over `extent` (X from–to, Z from–to): each plane where it is the highest,
+/// or a surface's triangles there (the nearest its middle, at most [`MAX_GROUND_TRIANGLES`]).
+pub fn ground_mesh(scene: &Scene, [x0, x1, z0, z1]: [f64; 4]) -> Mesh {
     let mut mesh = Mesh::default();
     let up = Vector3::y();
     let site = scene.site();

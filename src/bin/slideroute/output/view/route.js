@@ -1,4 +1,7 @@
-// route.html's own script: the route of the JSON block #route-data played in 3-D with three.js.
+// route.html's own script (and compare.html's, route-fan.html's, sweep.html's): the routes of the
+// JSON block #route-data played in 3-D with three.js, by its mode: "route" one route, "compare"
+// both dynamics, each its own colour, one time moving both, "fan" many CM paths over the ground
+// (with the scene as written, if it ran).
 // Axes as the scene's: X forward, Y up, Z lateral (right-handed, as three.js's). The block is a
 // group placed at each pose (its origin the row's point, its rotation a quaternion); between
 // poses the position is linear and the rotation spherical-linear in time.
@@ -13,11 +16,13 @@ const status = { ready: false, frames: 0 };
 const report = () => { statusEl.textContent = JSON.stringify(status); };
 window.addEventListener('error', (e) => { status.error = String(e.message); report(); });
 
-const P = D.poses;
-const n = P.t.length;
+// The routes (one on route.html, both dynamics on compare.html, the scene as written, if any,
+// on a fan page) and the fan's CM paths (route-fan.html, sweep.html).
+const R = D.routes;
 const L = D.L;
-const T0 = P.t[0];
-const T1 = P.t[n - 1];
+const hex = (c) => '#' + c.toString(16).padStart(6, '0');
+const T0 = R.length ? Math.min(...R.map((r) => r.poses.t[0])) : 0;
+const T1 = R.length ? Math.max(...R.map((r) => r.poses.t[r.poses.t.length - 1])) : 0;
 
 const hash = new URLSearchParams(location.hash.replace(/^#/, ''));
 const canvas = document.getElementById('view');
@@ -58,14 +63,25 @@ const srgb = (r, g, b) => new THREE.Color().setRGB(r, g, b, THREE.SRGBColorSpace
   scene.add(new THREE.LineSegments(creases, new THREE.LineBasicMaterial({ color: 0x6b5d45 })));
 }
 
-// The block: its mesh in its own axes, its base on y' = 0.
-function blockGroup(opacity) {
+// Each route: its block (its mesh in its own axes, its base on y' = 0), the block at the start
+// (pale), its contacts (or a base's corners) coloured by their state, its CM path and CM.
+// One route's CM path is red and its block grey; on compare.html each route takes its colour,
+// the block tinted by it.
+const TOUCH = {
+  1: { color: 0x1f5fbf, name: 'sticking' },
+  2: { color: 0xe07b00, name: 'slipping' },
+  3: { color: 0x2a9d3a, name: 'carrying' },
+};
+const dotGeometry = new THREE.SphereGeometry(0.03 * L, 16, 12);
+function blockGroup(route, opacity) {
   const g = new THREE.BufferGeometry();
-  g.setAttribute('position', new THREE.Float32BufferAttribute(D.block.positions, 3));
-  g.setIndex(D.block.triangles);
+  g.setAttribute('position', new THREE.Float32BufferAttribute(route.block.positions, 3));
+  g.setIndex(route.block.triangles);
   g.computeVertexNormals();
+  const color = new THREE.Color(0xbdb8ad);
+  if (D.mode === 'compare') color.lerp(new THREE.Color(route.color), 0.45);
   const m = new THREE.MeshStandardMaterial({
-    color: 0xbdb8ad, roughness: 0.85, metalness: 0.0,
+    color, roughness: 0.85, metalness: 0.0,
     transparent: opacity < 1, opacity, depthWrite: opacity >= 1,
   });
   const group = new THREE.Group();
@@ -75,44 +91,64 @@ function blockGroup(opacity) {
   group.add(edges);
   return group;
 }
-const block = blockGroup(1);
-scene.add(block);
-const ghost = blockGroup(0.22);
-scene.add(ghost);
-
-// The contacts (or a base's corners), coloured by their state.
-const TOUCH = {
-  1: { color: 0x1f5fbf, name: 'sticking' },
-  2: { color: 0xe07b00, name: 'slipping' },
-  3: { color: 0x2a9d3a, name: 'carrying' },
-};
-const dotGeometry = new THREE.SphereGeometry(0.03 * L, 16, 12);
-const dots = [];
-for (let k = 0; k < D.points.length / 3; k++) {
-  const dot = new THREE.Mesh(dotGeometry, new THREE.MeshBasicMaterial({ color: 0x1f5fbf }));
-  dot.position.set(D.points[3 * k], D.points[3 * k + 1], D.points[3 * k + 2]);
-  block.add(dot);
-  dots.push(dot);
-}
-
-// The CM path, and the CM: drawn over everything (the paper's CM lies in the base plane, on
-// the ground; a monolith's inside it).
-const cmDot = new THREE.Mesh(new THREE.SphereGeometry(0.02 * L, 12, 8),
-  new THREE.MeshBasicMaterial({ color: 0xd0021b, depthTest: false }));
-cmDot.renderOrder = 2;
-scene.add(cmDot);
-{
+const drawn = R.map((route, k) => {
+  const P = route.poses;
+  const block = blockGroup(route, 1);
+  scene.add(block);
+  let ghost = null;
+  if (k === 0) {
+    ghost = blockGroup(route, 0.22);
+    scene.add(ghost);
+  }
+  const dots = [];
+  for (let c = 0; c < route.points.length / 3; c++) {
+    const dot = new THREE.Mesh(dotGeometry, new THREE.MeshBasicMaterial({ color: 0x1f5fbf }));
+    dot.position.set(route.points[3 * c], route.points[3 * c + 1], route.points[3 * c + 2]);
+    block.add(dot);
+    dots.push(dot);
+  }
+  // The CM path, and the CM: drawn over everything (the paper's CM lies in the base plane, on
+  // the ground; a monolith's inside it).
+  const cmDot = new THREE.Mesh(new THREE.SphereGeometry(0.02 * L, 12, 8),
+    new THREE.MeshBasicMaterial({ color: route.color, depthTest: false }));
+  cmDot.renderOrder = 3;
+  scene.add(cmDot);
   const g = new THREE.BufferGeometry();
   g.setAttribute('position', new THREE.Float32BufferAttribute(P.cm, 3));
-  const line = new THREE.Line(g, new THREE.LineBasicMaterial({ color: 0xd0021b, depthTest: false }));
-  line.renderOrder = 2;
+  const line = new THREE.Line(g, new THREE.LineBasicMaterial({ color: route.color, depthTest: false }));
+  line.renderOrder = 3;
   scene.add(line);
+  return { route, P, n: P.t.length, block, ghost, dots, cmDot };
+});
+
+// The fan: every path's segments in one set of lines, over the ground.
+let fanSegments = 0;
+if (D.fan) {
+  const F = D.fan;
+  const pts = F.points;
+  const ends = F.starts.slice(1).concat([pts.length / 3]);
+  const seg = [];
+  F.starts.forEach((s, p) => {
+    for (let k = s; k + 1 < ends[p]; k++) {
+      seg.push(pts[3 * k], pts[3 * k + 1], pts[3 * k + 2], pts[3 * k + 3], pts[3 * k + 4], pts[3 * k + 5]);
+    }
+  });
+  fanSegments = seg.length / 6;
+  const g = new THREE.BufferGeometry();
+  g.setAttribute('position', new THREE.Float32BufferAttribute(seg, 3));
+  const lines = new THREE.LineSegments(g, new THREE.LineBasicMaterial({
+    color: F.color, transparent: true, opacity: 0.55, depthTest: false,
+  }));
+  lines.renderOrder = 2;
+  scene.add(lines);
 }
 
-// The water's push at the start, on its line of action.
-if (D.force) {
-  const tail = new THREE.Vector3(...D.force.tail);
-  const head = new THREE.Vector3(...D.force.head);
+// The water's push at the start, on its line of action (the first route's: every route here
+// starts from the same scene).
+const force = R.length ? R[0].force : null;
+if (force) {
+  const tail = new THREE.Vector3(...force.tail);
+  const head = new THREE.Vector3(...force.head);
   const dir = head.clone().sub(tail);
   const len = dir.length();
   dir.normalize();
@@ -130,28 +166,40 @@ if (D.force) {
 
 // Text.
 const fmt = (x, d) => (Math.abs(x) < 0.5 * 10 ** -d ? 0 : x).toFixed(d);
-document.getElementById('title').textContent = `${D.name}: the route in 3-D (${D.dynamics} dynamics)`;
+document.getElementById('title').textContent = D.title;
 {
-  const items = ['<span style="background:#d0021b"></span>CM path'];
-  if (D.force) {
-    items.push(`<span style="background:#1565c0"></span>water force ${fmt(D.force.size_n / 1e6, 2)} MN at the start, c = ${fmt(D.force.eccentricity_m, 2)} m`);
+  const swatch = (c, extra) => `<span style="background:${c}${extra || ''}"></span>`;
+  const items = [];
+  const esc = (t) => String(t).replace(/&/g, '&amp;').replace(/</g, '&lt;');
+  if (D.fan) items.push(`${swatch(hex(D.fan.color))}${esc(D.fan.label)}`);
+  for (const route of R) {
+    const what = D.mode === 'route' ? 'CM path' : `${esc(route.label)}: CM path${D.mode === 'compare' ? ' and block' : ''}`;
+    items.push(`${swatch(hex(route.color))}${what}`);
   }
-  const kinds = D.corners ? [3] : [1, 2];
-  for (const k of kinds) {
-    const c = '#' + TOUCH[k].color.toString(16).padStart(6, '0');
-    items.push(`<span style="background:${c}"></span>${D.corners ? 'corner' : 'contact'} ${TOUCH[k].name}`);
+  if (force) {
+    items.push(`${swatch('#1565c0')}water force ${fmt(force.size_n / 1e6, 2)} MN at the start, c = ${fmt(force.eccentricity_m, 2)} m`);
   }
-  items.push('<span style="background:#bdb8ad;opacity:0.5"></span>block at the start');
+  if (R.length) {
+    const corners = R[0].corners;
+    for (const k of (corners ? [3] : [1, 2])) {
+      items.push(`${swatch(hex(TOUCH[k].color))}${corners ? 'corner' : 'contact'} ${TOUCH[k].name}`);
+    }
+    items.push(`${swatch('#bdb8ad', ';opacity:0.5')}block at the start`);
+  }
   document.getElementById('legend').innerHTML = items.join(' ');
-  document.getElementById('end').textContent =
-    `The route ends at t = ${fmt(D.end.t_s, 3)} s after ${fmt(D.end.travel_m, 3)} m: ${D.end.detail || D.end.reason}`;
+  const ends = R.map((route) => {
+    const who = D.mode === 'route' ? 'The route' : route.label[0].toUpperCase() + route.label.slice(1);
+    return `${who} ends at t = ${fmt(route.end.t_s, 3)} s after ${fmt(route.end.travel_m, 3)} m: ${route.end.detail || route.end.reason}`;
+  });
+  document.getElementById('end').textContent = ends.concat(D.notes || []).join('. ');
 }
 const readout = document.getElementById('readout');
+if (!R.length) document.getElementById('controls').style.display = 'none';
 
-// The pose at time t.
+// The pose of route `d` at time t.
 const qa = new THREE.Quaternion();
 const qb = new THREE.Quaternion();
-function indexAt(t) {
+function indexAt(P, n, t) {
   let lo = 0;
   let hi = n - 1;
   if (t <= P.t[0]) return 0;
@@ -162,8 +210,9 @@ function indexAt(t) {
   }
   return lo;
 }
-function poseAt(t, group) {
-  const i = indexAt(t);
+function poseAt(d, t, group) {
+  const { P, n } = d;
+  const i = indexAt(P, n, t);
   const j = Math.min(i + 1, n - 1);
   const span = P.t[j] - P.t[i];
   const f = span > 0 ? Math.min(Math.max((t - P.t[i]) / span, 0), 1) : 0;
@@ -185,23 +234,30 @@ function poseAt(t, group) {
     beta: lerp(P.beta, 1),
   };
 }
-poseAt(T0, ghost);
+for (const d of drawn) if (d.ghost) poseAt(d, d.P.t[0], d.ghost);
 
-// The camera: the route's extent (every pose's CM, and the block's reach round it).
+// The camera: the routes' extent (every pose's CM, and the block's reach round it), and the
+// fan's.
 const extent = new THREE.Box3();
-{
+for (const d of drawn) {
   const reach = new THREE.Box3().setFromBufferAttribute(
-    new THREE.Float32BufferAttribute(D.block.positions, 3));
+    new THREE.Float32BufferAttribute(d.route.block.positions, 3));
   const r = Math.max(reach.min.length(), reach.max.length());
-  for (let k = 0; k < n; k++) {
-    const p = new THREE.Vector3(P.at[3 * k], P.at[3 * k + 1], P.at[3 * k + 2]);
+  for (let k = 0; k < d.n; k++) {
+    const p = new THREE.Vector3(d.P.at[3 * k], d.P.at[3 * k + 1], d.P.at[3 * k + 2]);
     extent.expandByPoint(p.clone().addScalar(r));
     extent.expandByPoint(p.clone().subScalar(r));
   }
-  if (D.force) {
-    extent.expandByPoint(new THREE.Vector3(...D.force.tail));
-  }
 }
+if (D.fan) {
+  const pts = D.fan.points;
+  for (let k = 0; k < pts.length; k += 3) extent.expandByPoint(new THREE.Vector3(pts[k], pts[k + 1], pts[k + 2]));
+}
+if (force) extent.expandByPoint(new THREE.Vector3(...force.tail));
+if (extent.isEmpty()) {
+  extent.setFromBufferAttribute(new THREE.Float32BufferAttribute(D.ground.positions, 3));
+}
+if (extent.isEmpty()) extent.set(new THREE.Vector3(-L, -L, -L), new THREE.Vector3(L, L, L));
 function look(kind) {
   const c = extent.getCenter(new THREE.Vector3());
   const size = extent.getSize(new THREE.Vector3());
@@ -239,7 +295,7 @@ const slider = document.getElementById('slider');
 const playButton = document.getElementById('play');
 const speedSelect = document.getElementById('speed');
 let time = T0;
-let playing = n > 1;
+let playing = T1 > T0;
 const asked = hash.get('t');
 if (asked !== null) {
   const t = asked === 'end' ? T1 : Number(asked);
@@ -263,7 +319,7 @@ document.getElementById('side').addEventListener('click', () => look('side'));
 window.addEventListener('resize', resize);
 window.addEventListener('hashchange', () => location.reload());
 
-function blockInView() {
+function blockInView(block) {
   const box = new THREE.Box3().setFromObject(block);
   const corners = [];
   for (const x of [box.min.x, box.max.x]) {
@@ -278,24 +334,48 @@ function blockInView() {
 }
 
 function draw() {
-  const s = poseAt(time, block);
-  cmDot.position.set(...s.cm);
-  const touch = P.touch[s.k];
-  for (let k = 0; k < dots.length; k++) {
-    const code = Number(touch[k] || 0);
-    dots[k].visible = code !== 0;
-    if (code) dots[k].material.color.setHex(TOUCH[code].color);
-  }
+  const shown = drawn.map((d) => {
+    const s = poseAt(d, time, d.block);
+    d.cmDot.position.set(...s.cm);
+    const touch = d.P.touch[s.k];
+    for (let k = 0; k < d.dots.length; k++) {
+      const code = Number(touch[k] || 0);
+      d.dots[k].visible = code !== 0;
+      if (code) d.dots[k].material.color.setHex(TOUCH[code].color);
+    }
+    return s;
+  });
   if (T1 > T0) slider.value = String(Math.round(1000 * (time - T0) / (T1 - T0)));
-  readout.textContent = `t = ${fmt(time, 3)} s · travel ${fmt(s.travel, 3)} m · yaw θ = ${fmt(s.theta, 2)}° · tilts α = ${fmt(s.alpha, 2)}°, β = ${fmt(s.beta, 2)}°`;
+  const angles = (s) => `travel ${fmt(s.travel, 3)} m · yaw θ = ${fmt(s.theta, 2)}° · tilts α = ${fmt(s.alpha, 2)}°, β = ${fmt(s.beta, 2)}°`;
+  if (D.mode === 'route' && shown.length) {
+    readout.textContent = `t = ${fmt(time, 3)} s · ${angles(shown[0])}`;
+  } else if (shown.length) {
+    readout.innerHTML = [`t = ${fmt(time, 3)} s`].concat(shown.map((s, k) =>
+      `<span style="color:${hex(R[k].color)}">${R[k].label}</span>: ${angles(s)}`)).join('<br>');
+  } else {
+    readout.textContent = '';
+  }
   renderer.render(scene, camera);
   status.frames += 1;
+  status.mode = D.mode;
   status.time = Number(fmt(time, 3));
-  status.travel = Number(fmt(s.travel, 3));
-  status.theta = Number(fmt(s.theta, 2));
   status.playing = playing;
-  status.poses = n;
-  status.blockInView = blockInView();
+  status.routes = shown.map((s, k) => ({
+    label: R[k].label,
+    travel: Number(fmt(s.travel, 3)),
+    theta: Number(fmt(s.theta, 2)),
+    poses: drawn[k].n,
+    end: R[k].poses.t[drawn[k].n - 1],
+    blockInView: blockInView(drawn[k].block),
+  }));
+  if (shown.length) {
+    status.travel = status.routes[0].travel;
+    status.theta = status.routes[0].theta;
+    status.poses = drawn[0].n;
+  }
+  status.blockInView = status.routes.every((r) => r.blockInView);
+  status.fanPaths = D.fan ? D.fan.starts.length : 0;
+  status.fanSegments = fanSegments;
   status.ready = true;
   report();
 }

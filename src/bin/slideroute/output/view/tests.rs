@@ -118,6 +118,8 @@ fn a_long_route_is_thinned_to_at_most_four_thousand_poses_and_its_page_stays_sma
     let start = page.find(r#"id="route-data">"#).unwrap() + r#"id="route-data">"#.len();
     let end = start + page[start..].find("</script>").unwrap();
     let data: serde_json::Value = serde_json::from_str(&page[start..end]).unwrap();
+    assert_eq!(data["mode"], "route");
+    let data = &data["routes"][0];
     assert_eq!(
         data["poses"]["t"].as_array().unwrap().len(),
         view.poses.len()
@@ -259,4 +261,165 @@ fn a_route_without_rows_or_with_a_number_not_finite_has_no_view_and_no_panic() {
     r.rows[2].beta_deg = -80.0;
     let view = view_of(&scene, &r).unwrap();
     assert_eq!(view.poses[2].rotation, view.poses[1].rotation);
+}
+
+#[test]
+fn compare_html_holds_both_dynamics_each_with_its_own_times_colour_and_end() {
+    let scene = Scene::default_scene();
+    let c = slideroute::compare::compare_dynamics_observed(&scene, || false).unwrap();
+    let (paper, rigid) = (&c.paper.route, &c.rigid_body.route);
+    let page = many::compare_page(&scene, paper, rigid).unwrap();
+    assert_eq!(page.mode, many::Mode::Compare);
+    assert_eq!(page.routes.len(), 2);
+    assert_ne!(page.routes[0].color, page.routes[1].color);
+    for (shown, route) in page.routes.iter().zip([paper, rigid]) {
+        let times: Vec<f64> = shown.view.poses.iter().map(|p| p.t_s).collect();
+        assert_eq!(times[0], route.rows[0].t_s);
+        assert_eq!(*times.last().unwrap(), route.rows.last().unwrap().t_s);
+        assert!(times.windows(2).all(|w| w[0] <= w[1]));
+        assert_eq!(shown.view.dynamics, route.dynamics.to_string());
+        assert!(shown.label.starts_with(&route.dynamics.to_string()));
+        assert_eq!(shown.view.end_t_s, route.termination.t_s);
+        // The one foundation covers this route too.
+        let (lo, hi) = page.ground.bounds().unwrap();
+        for p in &shown.view.poses {
+            assert!((lo[0]..=hi[0]).contains(&p.at[0]) && (lo[2]..=hi[2]).contains(&p.at[2]));
+        }
+    }
+    // The default scene's two dynamics end at different times: each keeps its own.
+    assert!((page.routes[0].view.end_t_s - page.routes[1].view.end_t_s).abs() > 0.1);
+    let data = html::page_data(&page);
+    assert_eq!(data["mode"], "compare");
+    let routes = data["routes"].as_array().unwrap();
+    assert_eq!(routes.len(), 2);
+    for (r, shown) in routes.iter().zip(&page.routes) {
+        assert_eq!(r["label"], shown.label.as_str());
+        assert_eq!(
+            r["poses"]["t"].as_array().unwrap().len(),
+            shown.view.poses.len()
+        );
+    }
+    let html = html::page_of(&page).unwrap();
+    assert!(html.len() < 10_000_000);
+    assert!(html.contains("paper dynamics") && html.contains("rigid-body dynamics"));
+}
+
+#[test]
+fn a_fan_draws_at_most_a_thousand_paths_of_at_most_two_hundred_points_each_on_the_ground() {
+    for name in ["paper-like.toml", "paper-like-faces.toml", "valley.toml"] {
+        let scene = scene(name).with("solver.t_end_s", 0.5).unwrap();
+        let nominal = route(&scene);
+        // 1500 paths of 500 points, fanning out from the start over 12 m.
+        let [x0, z0] = [nominal.rows[0].x_m, nominal.rows[0].z_m];
+        let paths: Vec<Vec<[f64; 2]>> = (0..1500)
+            .map(|k| {
+                let a = (k as f64 / 1500.0 - 0.5) * 1.2;
+                (0..500)
+                    .map(|i| {
+                        let s = 12.0 * i as f64 / 499.0;
+                        [x0 + s * a.cos(), z0 + s * a.sin()]
+                    })
+                    .collect()
+            })
+            .collect();
+        let refs: Vec<&[[f64; 2]]> = paths.iter().map(Vec::as_slice).collect();
+        let page = many::fan_page(&scene, Some(&nominal), &refs, 1500, "routes", vec![]);
+        assert_eq!(page.mode, many::Mode::Fan);
+        let fan = page.fan.as_ref().unwrap();
+        assert_eq!(fan.routes, 1500);
+        assert!(!fan.paths.is_empty() && fan.paths.len() <= many::MAX_FAN_PATHS);
+        assert!(
+            fan.label.contains("1000 drawn") || fan.paths.len() < 1000,
+            "{name}"
+        );
+        for p in &fan.paths {
+            assert!(
+                !p.is_empty() && p.len() <= many::MAX_FAN_POINTS,
+                "{}",
+                p.len()
+            );
+            for q in p {
+                let top = ground_height(&scene, q[0], q[2]).unwrap();
+                assert!((q[1] - top).abs() < 1e-9, "{name}: {q:?} against {top}");
+            }
+        }
+        // The scene as written in its own colour; the ground under every path.
+        assert_eq!(page.routes.len(), 1);
+        assert_ne!(page.routes[0].color, many::FAN_ORANGE);
+        let (lo, hi) = page.ground.bounds().unwrap();
+        for q in fan.paths.iter().flatten() {
+            assert!((lo[0]..=hi[0]).contains(&q[0]) && (lo[2]..=hi[2]).contains(&q[2]));
+        }
+        let data = html::page_data(&page);
+        let starts = data["fan"]["starts"].as_array().unwrap();
+        assert_eq!(starts.len(), fan.paths.len());
+        assert!(html::page_of(&page).unwrap().len() < 10_000_000);
+    }
+}
+
+#[test]
+fn the_fan_takes_the_first_thousand_routes_that_ran_as_route_fan_svg_does() {
+    let scene = Scene::default_scene().with("solver.t_end_s", 0.3).unwrap();
+    let result = slideroute::RouteResult::of(&route(&scene));
+    let mut outcomes = vec![slideroute::Outcome::Invalid {
+        reason: "no".into(),
+    }];
+    outcomes.extend((0..1200).map(|_| slideroute::Outcome::Route(result.clone())));
+    outcomes.push(slideroute::Outcome::NotRun);
+    let (paths, routes) = many::cm_paths(&outcomes);
+    assert_eq!((paths.len(), routes), (many::MAX_FAN_PATHS, 1200));
+    assert!(paths.iter().all(|p| *p == result.cm_path_m.as_slice()));
+    // A sweep with no nominal route: a page of the fan alone.
+    let page = many::fan_page(&scene, None, &paths, routes, "combinations", vec![]);
+    assert!(page.routes.is_empty());
+    assert_eq!(page.fan.as_ref().unwrap().paths.len(), 1000);
+    assert!(!page.ground.triangles.is_empty());
+}
+
+#[test]
+fn a_scene_name_of_markup_stays_data_and_reads_back_whole() {
+    // A scene file's name is the person's words: `</script>` or `<!--` in it must neither end
+    // the page's data nor change how the browser reads the script.
+    let name = "dam </script><script>alert(1)</script> <!-- x";
+    let scene = Scene::default_scene()
+        .with("name", name)
+        .unwrap()
+        .with("solver.t_end_s", 0.05)
+        .unwrap();
+    let page = html::page(&view_of(&scene, &route(&scene)).unwrap()).unwrap();
+    assert!(!page.contains("alert(1)</script>") && !page.contains("<!-- x"));
+    let start = page.find(r#"id="route-data">"#).unwrap() + r#"id="route-data">"#.len();
+    let end = start + page[start..].find("</script>").unwrap();
+    let data: serde_json::Value = serde_json::from_str(&page[start..end]).unwrap();
+    assert!(
+        data["title"].as_str().unwrap().contains(name),
+        "{}",
+        data["title"]
+    );
+}
+
+#[test]
+fn every_kept_pose_of_either_dynamics_stands_its_contacts_on_their_planes() {
+    // Two side elevations and a yaw leave two ways to roll the frame about side 0→1; the view
+    // must take the one the route is in, whatever the dynamics: each contact on its own plane.
+    for dynamics in [
+        slideroute::DynamicsModel::RigidBody,
+        slideroute::DynamicsModel::Paper,
+    ] {
+        let scene = Scene::default_scene().with_dynamics(dynamics).unwrap();
+        let route = route(&scene);
+        let view = view_of(&scene, &route).unwrap();
+        let planes = scene.site().planes();
+        for k in 0..view.poses.len() {
+            let c = contacts_at(&view, k);
+            for (j, p) in c.iter().enumerate() {
+                let gap = planes[j].signed_distance(p);
+                assert!(
+                    gap.abs() < 1e-6,
+                    "{dynamics}: pose {k} (t = {} s), contact {j} is {gap} m off its plane",
+                    view.poses[k].t_s
+                );
+            }
+        }
+    }
 }

@@ -1,0 +1,245 @@
+//! The pages of more than one route: `compare.html` (both dynamics' routes over one
+//! foundation, each its own colour, one time moving both) and `route-fan.html` / `sweep.html`
+//! (every sample's or combination's CM path over the ground, with the scene as written where
+//! there is one). One [`Page3d`] describes any page, a single route's too; `html.rs` writes it
+//! and `route.js` draws it by its [`Mode`].
+
+use super::{Mesh, View3d, ViewError, ground_height, ground_mesh, plan_extent, union_extent};
+use crate::output::folder::Folder;
+use slideroute::{Outcome, Route, Scene};
+use std::path::PathBuf;
+
+/// The most CM paths a fan page draws (the first that ran, in order: as `route-fan.svg`).
+pub const MAX_FAN_PATHS: usize = 1000;
+
+/// The most points a fan path keeps (thinned evenly, the first and last kept).
+pub const MAX_FAN_POINTS: usize = 200;
+
+/// What a page shows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Mode {
+    /// One route (`route.html`).
+    Route,
+    /// Both dynamics' routes (`compare.html`).
+    Compare,
+    /// Many routes' CM paths (`route-fan.html`, `sweep.html`).
+    Fan,
+}
+
+/// A route on a page, with its name in the legend and its colour (0xRRGGBB).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Shown {
+    pub label: String,
+    pub color: u32,
+    pub view: View3d,
+}
+
+/// Many routes' CM paths, each on the ground.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Fan3d {
+    /// What they are, for the legend.
+    pub label: String,
+    /// Each path's points (m), at most [`MAX_FAN_PATHS`] of at most [`MAX_FAN_POINTS`].
+    pub paths: Vec<Vec<[f64; 3]>>,
+    /// How many routes there were (drawn or not).
+    pub routes: usize,
+}
+
+/// One page: its foundation, its routes and its fan.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Page3d {
+    pub mode: Mode,
+    pub name: String,
+    pub title: String,
+    /// The frame's side L (m): the scale of the view.
+    pub l_m: f64,
+    pub ground: Mesh,
+    pub routes: Vec<Shown>,
+    pub fan: Option<Fan3d>,
+    /// Notes for the panel (what was varied, what the foundation is).
+    pub notes: Vec<String>,
+}
+
+/// The colour of the one route of `route.html`'s CM path.
+pub const ROUTE_RED: u32 = 0xd0021b;
+/// The paper's dynamics on `compare.html`.
+pub const PAPER_PURPLE: u32 = 0x7b1fa2;
+/// The rigid body's on `compare.html`.
+pub const RIGID_TEAL: u32 = 0x00897b;
+/// The fan's paths.
+pub const FAN_ORANGE: u32 = 0xe65100;
+/// The scene as written, on a fan (black, as on `route-fan.svg`).
+pub const NOMINAL_BLACK: u32 = 0x111111;
+
+impl Page3d {
+    /// `route.html`'s page: the one route.
+    pub fn single(view: View3d) -> Page3d {
+        Page3d {
+            mode: Mode::Route,
+            name: view.name.clone(),
+            title: format!(
+                "{}: the route in 3-D ({} dynamics)",
+                view.name, view.dynamics
+            ),
+            l_m: view.l_m,
+            ground: view.ground.clone(),
+            routes: vec![Shown {
+                label: "CM path".into(),
+                color: ROUTE_RED,
+                view,
+            }],
+            fan: None,
+            notes: Vec::new(),
+        }
+    }
+}
+
+/// `compare.html`'s page: the paper's route and the rigid body's over one foundation.
+pub fn compare_page(scene: &Scene, paper: &Route, rigid: &Route) -> Result<Page3d, ViewError> {
+    let a = super::view_of(scene, paper)?;
+    let b = super::view_of(scene, rigid)?;
+    let ground = ground_mesh(scene, union_extent(a.extent, b.extent));
+    let label = |v: &View3d| format!("{} dynamics", v.dynamics);
+    Ok(Page3d {
+        mode: Mode::Compare,
+        name: a.name.clone(),
+        title: format!("{}: both dynamics in 3-D", a.name),
+        l_m: a.l_m,
+        ground,
+        routes: vec![
+            Shown {
+                label: label(&a),
+                color: PAPER_PURPLE,
+                view: a,
+            },
+            Shown {
+                label: label(&b),
+                color: RIGID_TEAL,
+                view: b,
+            },
+        ],
+        fan: None,
+        notes: Vec::new(),
+    })
+}
+
+/// The CM paths of the outcomes that ran, the first [`MAX_FAN_PATHS`] in order (as
+/// `route-fan.svg` draws them), and how many ran.
+pub fn cm_paths<'a>(
+    outcomes: impl IntoIterator<Item = &'a Outcome>,
+) -> (Vec<&'a [[f64; 2]]>, usize) {
+    let mut paths = Vec::new();
+    let mut routes = 0;
+    for o in outcomes {
+        if let Outcome::Route(r) = o {
+            routes += 1;
+            if paths.len() < MAX_FAN_PATHS {
+                paths.push(r.cm_path_m.as_slice());
+            }
+        }
+    }
+    (paths, routes)
+}
+
+/// `items` thinned evenly to at most `n`, the first and last kept.
+fn thin<T: Copy>(items: &[T], n: usize) -> Vec<T> {
+    if items.len() <= n || n < 2 {
+        return items.to_vec();
+    }
+    (0..n)
+        .map(|i| items[(i * (items.len() - 1)).div_ceil(n - 1).min(items.len() - 1)])
+        .collect()
+}
+
+/// A fan page (`route-fan.html`, `sweep.html`): the foundation of `scene` under `paths` (X,
+/// Z; each thinned to [`MAX_FAN_POINTS`], at most [`MAX_FAN_PATHS`] drawn), each point on the
+/// ground (a point off a surface left out), of `routes` routes in all, with `nominal` (the
+/// scene as written) where there is one. `what` names the routes ("sampled routes").
+pub fn fan_page(
+    scene: &Scene,
+    nominal: Option<&Route>,
+    paths: &[&[[f64; 2]]],
+    routes: usize,
+    what: &str,
+    notes: Vec<String>,
+) -> Page3d {
+    let nominal = nominal.and_then(|r| super::view_of(scene, r).ok());
+    let l = scene.site().l();
+    let lifted: Vec<Vec<[f64; 3]>> = paths
+        .iter()
+        .take(MAX_FAN_PATHS)
+        .map(|p| {
+            thin(p, MAX_FAN_POINTS)
+                .into_iter()
+                .filter_map(|[x, z]| ground_height(scene, x, z).map(|y| [x, y, z]))
+                .collect::<Vec<_>>()
+        })
+        .filter(|p| !p.is_empty())
+        .collect();
+    let mut extent = plan_extent(lifted.iter().flatten().map(|p| [p[0], p[2]]), 0.0, l);
+    if let Some(v) = &nominal {
+        extent = if lifted.is_empty() {
+            v.extent
+        } else {
+            union_extent(extent, v.extent)
+        };
+    }
+    let ground = ground_mesh(scene, extent);
+    let drawn = if lifted.len() < routes {
+        format!(", {} drawn", lifted.len())
+    } else {
+        String::new()
+    };
+    let name = scene.name().to_string();
+    Page3d {
+        mode: Mode::Fan,
+        title: format!("{name}: CM paths of {routes} {what} in 3-D"),
+        name,
+        l_m: l,
+        ground,
+        routes: nominal
+            .into_iter()
+            .map(|v| Shown {
+                label: "the scene as written".into(),
+                color: NOMINAL_BLACK,
+                view: v,
+            })
+            .collect(),
+        fan: Some(Fan3d {
+            label: format!("CM paths of the {routes} {what}{drawn}"),
+            paths: lifted,
+            routes,
+        }),
+        notes,
+    }
+}
+
+/// Writes `page` as `name` into `folder`; a page that cannot be made is left out with a
+/// warning (the command's own files stand without it).
+pub fn write_page(folder: &mut Folder, name: &str, page: &Page3d) -> Result<Vec<PathBuf>, String> {
+    match super::html::page_of(page) {
+        Ok(html) => Ok(vec![folder.write_bytes(name, html.as_bytes())?]),
+        Err(e) => {
+            eprintln!("slideroute: warning: no {name}: {e}");
+            Ok(Vec::new())
+        }
+    }
+}
+
+/// Writes `compare.html` of both routes into `folder` (none, with a warning, where a route
+/// has nothing to show).
+pub fn write_compare_view(
+    folder: &mut Folder,
+    scene: &Scene,
+    paper: &Route,
+    rigid: &Route,
+) -> Result<Vec<PathBuf>, String> {
+    match compare_page(scene, paper, rigid) {
+        Ok(page) => write_page(folder, "compare.html", &page),
+        Err(e) => {
+            eprintln!("slideroute: warning: no compare.html: {e}");
+            Ok(Vec::new())
+        }
+    }
+}
