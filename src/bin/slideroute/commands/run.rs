@@ -39,8 +39,7 @@ pub fn run(args: &RunArgs) -> Result<(), CliError> {
     let csv_path = folder.write_with("route.csv", |tmp| {
         let file = std::fs::File::create(tmp)
             .map_err(|e| format!("{}: cannot write: {e}", tmp.display()))?;
-        let mut rows =
-            CsvRows::new(std::io::BufWriter::new(file)).map_err(|e| format!("route.csv: {e}"))?;
+        let mut rows = CsvRows::new(file).map_err(|e| format!("route.csv: {e}"))?;
         let run = Runner::new(&sim)
             .progress(progress)
             .stream(keep_every, |r| rows.push(r))
