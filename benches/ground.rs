@@ -2,6 +2,7 @@
 //!
 //! * the face under a point of a triangulated surface of 10⁴ triangles, through the R*-tree,
 //!   against a scan of every triangle (the tree's cost grows as log n, the scan's as n);
+//! * building the ground of a surface of 10⁵ triangles (checks, planes, the tree's bulk load);
 //! * one tracker step on the paper's site (the paper's system) and on the same contacts and
 //!   planes as a general site (the generated general system).
 
@@ -99,5 +100,15 @@ fn tracker_step(c: &mut Criterion) {
     }
 }
 
-criterion_group!(benches, face_lookup, tracker_step);
+/// Building the ground of a surface of 10⁵ triangles from its corners: the checks, the planes and
+/// the R*-tree's bulk load (the per-triangle figure of docs/performance.md).
+fn surface_load(c: &mut Criterion) {
+    let (tris, _) = surface(224);
+    c.bench_function(
+        &format!("build the ground of {} triangles", tris.len()),
+        |b| b.iter(|| Ground::surface(black_box(&tris)).expect("a valid surface")),
+    );
+}
+
+criterion_group!(benches, face_lookup, tracker_step, surface_load);
 criterion_main!(benches);

@@ -12,7 +12,7 @@
 use super::plane::Plane;
 use super::rock::Rock;
 use nalgebra::Vector3;
-use rstar::{AABB, PointDistance, RTree, RTreeObject};
+use rstar::{AABB, RTree, RTreeObject};
 use std::sync::{Arc, OnceLock};
 
 /// The ground: its faces and how to find the one over a point.
@@ -28,54 +28,83 @@ pub struct Ground {
 enum Kind {
     /// The upper envelope of the faces.
     Planes,
-    /// Triangles: the face over a point is a triangle containing its plan position (found in
-    /// the tree; `corners` by index).
+    /// Triangles: the face over a point is a triangle containing its plan position (the tree
+    /// gives the triangles whose plan extent may hold it, `corners` by index decides).
     Surface {
-        tree: RTree<Triangle>,
+        tree: RTree<Cell>,
         corners: Vec<[[f64; 2]; 3]>,
     },
 }
 
-/// One triangle of a surface in plan, for the R*-tree.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Triangle {
-    index: usize,
-    corners: [[f64; 2]; 3],
+/// One triangle of a surface in the R*-tree: its number and its plan extent, in single
+/// precision rounded outwards (so that it holds the triangle's exact extent). Small, and its
+/// envelope computed once rather than at each comparison of the bulk load; the exact tests are
+/// on the triangle's corners ([`contains_point`], [`distance_2`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Cell {
+    index: u32,
+    envelope: AABB<[f32; 2]>,
 }
 
-impl RTreeObject for Triangle {
-    type Envelope = AABB<[f64; 2]>;
+impl RTreeObject for Cell {
+    type Envelope = AABB<[f32; 2]>;
 
     fn envelope(&self) -> Self::Envelope {
-        AABB::from_points(self.corners.iter())
+        self.envelope
     }
 }
 
-impl PointDistance for Triangle {
-    fn distance_2(&self, point: &[f64; 2]) -> f64 {
-        if self.contains_point(point) {
-            return 0.0;
-        }
-        // To the nearest edge.
-        (0..3)
-            .map(|k| segment_distance_2(self.corners[k], self.corners[(k + 1) % 3], *point))
-            .fold(f64::INFINITY, f64::min)
-    }
+/// A plan box in single precision that holds the box from `lo` to `hi`.
+fn outward(lo: [f64; 2], hi: [f64; 2]) -> AABB<[f32; 2]> {
+    let down = |v: f64| {
+        let f = v as f32;
+        if f as f64 > v { f.next_down() } else { f }
+    };
+    let up = |v: f64| {
+        let f = v as f32;
+        if (f as f64) < v { f.next_up() } else { f }
+    };
+    AABB::from_corners([down(lo[0]), down(lo[1])], [up(hi[0]), up(hi[1])])
+}
 
-    fn contains_point(&self, point: &[f64; 2]) -> bool {
-        let [a, b, c] = self.corners;
-        let cross = |p: [f64; 2], q: [f64; 2]| {
-            (q[0] - p[0]) * (point[1] - p[1]) - (q[1] - p[1]) * (point[0] - p[0])
-        };
-        let (d1, d2, d3) = (cross(a, b), cross(b, c), cross(c, a));
-        // A point on a shared edge or corner, within round-off, is in both triangles: the
-        // surface has no cracks of rounding (its corners' coordinates differ in the last bits).
-        let side2 = |p: [f64; 2], q: [f64; 2]| (q[0] - p[0]).powi(2) + (q[1] - p[1]).powi(2);
-        let eps = 1e-12 * side2(a, b).max(side2(b, c)).max(side2(c, a));
-        let neg = d1 < -eps || d2 < -eps || d3 < -eps;
-        let pos = d1 > eps || d2 > eps || d3 > eps;
-        !(neg && pos)
+/// The plan extent of a triangle's corners.
+fn extent(c: &[[f64; 2]; 3]) -> ([f64; 2], [f64; 2]) {
+    let lo = [
+        c[0][0].min(c[1][0]).min(c[2][0]),
+        c[0][1].min(c[1][1]).min(c[2][1]),
+    ];
+    let hi = [
+        c[0][0].max(c[1][0]).max(c[2][0]),
+        c[0][1].max(c[1][1]).max(c[2][1]),
+    ];
+    (lo, hi)
+}
+
+/// The squared plan distance (m²) from `point` to the triangle with plan corners `c`: 0 inside.
+fn distance_2(c: &[[f64; 2]; 3], point: &[f64; 2]) -> f64 {
+    if contains_point(c, point) {
+        return 0.0;
     }
+    // To the nearest edge.
+    (0..3)
+        .map(|k| segment_distance_2(c[k], c[(k + 1) % 3], *point))
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// Whether the triangle with plan corners `c` holds `point`.
+fn contains_point(c: &[[f64; 2]; 3], point: &[f64; 2]) -> bool {
+    let [a, b, c] = *c;
+    let cross = |p: [f64; 2], q: [f64; 2]| {
+        (q[0] - p[0]) * (point[1] - p[1]) - (q[1] - p[1]) * (point[0] - p[0])
+    };
+    let (d1, d2, d3) = (cross(a, b), cross(b, c), cross(c, a));
+    // A point on a shared edge or corner, within round-off, is in both triangles: the
+    // surface has no cracks of rounding (its corners' coordinates differ in the last bits).
+    let side2 = |p: [f64; 2], q: [f64; 2]| (q[0] - p[0]).powi(2) + (q[1] - p[1]).powi(2);
+    let eps = 1e-12 * side2(a, b).max(side2(b, c)).max(side2(c, a));
+    let neg = d1 < -eps || d2 < -eps || d3 < -eps;
+    let pos = d1 > eps || d2 > eps || d3 > eps;
+    !(neg && pos)
 }
 
 /// The squared plan distance (m²) from `q` to the segment from `a` to `b`.
@@ -105,6 +134,9 @@ pub enum SurfaceError {
     /// A triangle (its number) so large that its normal overflows.
     #[error("triangle {0} is too large to compute with (its sides' products overflow)")]
     TooLarge(usize),
+    /// More triangles than a surface may have (2³² − 1); the number of the first too many.
+    #[error("the surface has more than 4 294 967 295 triangles (triangle {0})")]
+    TooMany(usize),
     /// A triangle that is vertical or overhangs: no ground a block slides on.
     #[error("triangle {index} is vertical or overhangs (its normal's Y part is {normal_y:.3e})")]
     Vertical {
@@ -134,7 +166,8 @@ impl Ground {
             return Err(SurfaceError::Empty);
         }
         let mut faces = Vec::with_capacity(triangles.len());
-        let mut tris = Vec::with_capacity(triangles.len());
+        let mut cells = Vec::with_capacity(triangles.len());
+        let mut corners = Vec::with_capacity(triangles.len());
         for (index, t) in triangles.iter().enumerate() {
             if t.iter().flatten().any(|v| !v.is_finite()) {
                 return Err(SurfaceError::NonFinite(index));
@@ -157,16 +190,18 @@ impl Ground {
                 });
             }
             faces.push(Plane::through(n, p[0]));
-            tris.push(Triangle {
-                index,
-                corners: t.map(|c| [c[0], c[2]]),
+            let c = t.map(|c| [c[0], c[2]]);
+            let (lo, hi) = extent(&c);
+            cells.push(Cell {
+                index: u32::try_from(index).map_err(|_| SurfaceError::TooMany(index))?,
+                envelope: outward(lo, hi),
             });
+            corners.push(c);
         }
-        let corners = tris.iter().map(|t| t.corners).collect();
         Ok(Ground {
             faces,
             kind: Kind::Surface {
-                tree: RTree::bulk_load(tris),
+                tree: RTree::bulk_load(cells),
                 corners,
             },
             rock: OnceLock::new(),
@@ -211,10 +246,7 @@ impl Ground {
         };
         match &self.kind {
             Kind::Planes => (0..self.faces.len()).fold(None, highest),
-            Kind::Surface { tree, .. } => tree
-                .locate_all_at_point(&[x, z])
-                .map(|t| t.index)
-                .fold(None, highest),
+            Kind::Surface { .. } => self.holding(x, z, 0.0).fold(None, highest),
         }
     }
 
@@ -254,11 +286,8 @@ impl Ground {
     pub fn faces_near(&self, x: f64, z: f64, tol: f64) -> Vec<usize> {
         match &self.kind {
             Kind::Planes => (0..self.faces.len()).collect(),
-            Kind::Surface { tree, .. } => {
-                let mut v: Vec<usize> = tree
-                    .locate_within_distance([x, z], tol * tol)
-                    .map(|t: &Triangle| t.index)
-                    .collect();
+            Kind::Surface { .. } => {
+                let mut v: Vec<usize> = self.holding(x, z, tol).collect();
                 v.sort_unstable();
                 v
             }
@@ -271,11 +300,14 @@ impl Ground {
     pub fn faces_by_distance(&self, x: f64, z: f64, tol: f64) -> Vec<(usize, f64)> {
         match &self.kind {
             Kind::Planes => (0..self.faces.len()).map(|k| (k, 0.0)).collect(),
-            Kind::Surface { tree, .. } => tree
-                .nearest_neighbor_iter_with_distance_2(&[x, z])
-                .take_while(|(_, d2)| *d2 <= tol * tol)
-                .map(|(t, d2)| (t.index, d2.sqrt()))
-                .collect(),
+            Kind::Surface { corners, .. } => {
+                let mut v: Vec<(usize, f64)> = self
+                    .holding(x, z, tol)
+                    .map(|k| (k, distance_2(&corners[k], &[x, z]).sqrt()))
+                    .collect();
+                v.sort_unstable_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)));
+                v
+            }
         }
     }
 
@@ -284,15 +316,48 @@ impl Ground {
     pub fn faces_in(&self, (x0, x1, z0, z1): (f64, f64, f64, f64)) -> Vec<usize> {
         match &self.kind {
             Kind::Planes => (0..self.faces.len()).collect(),
-            Kind::Surface { tree, .. } => {
+            Kind::Surface { tree, corners } => {
+                let meets = |k: &usize| {
+                    let (lo, hi) = extent(&corners[*k]);
+                    lo[0] <= x1.max(x0)
+                        && hi[0] >= x0.min(x1)
+                        && lo[1] <= z1.max(z0)
+                        && hi[1] >= z0.min(z1)
+                };
                 let mut v: Vec<usize> = tree
-                    .locate_in_envelope_intersecting(&AABB::from_corners([x0, z0], [x1, z1]))
-                    .map(|t| t.index)
+                    .locate_in_envelope_intersecting(&outward(
+                        [x0.min(x1), z0.min(z1)],
+                        [x0.max(x1), z0.max(z1)],
+                    ))
+                    .map(|c| c.index as usize)
+                    .filter(meets)
                     .collect();
                 v.sort_unstable();
                 v
             }
         }
+    }
+
+    /// The surface's triangles within `tol` (m, in plan) of (X, Z), 0 for those that hold it:
+    /// the tree's cells whose extent reaches that far, then each triangle's exact distance.
+    /// None for a ground of planes.
+    fn holding(&self, x: f64, z: f64, tol: f64) -> impl Iterator<Item = usize> + '_ {
+        let (tree, corners) = match &self.kind {
+            Kind::Surface { tree, corners } => (Some(tree), corners.as_slice()),
+            Kind::Planes => (None, &[][..]),
+        };
+        let reach = outward([x - tol, z - tol], [x + tol, z + tol]);
+        tree.into_iter()
+            .flat_map(move |t| t.locate_in_envelope_intersecting(&reach))
+            .map(|c| c.index as usize)
+            .filter(move |&k| {
+                let c = &corners[k];
+                if tol > 0.0 {
+                    distance_2(c, &[x, z]) <= tol * tol
+                } else {
+                    contains_point(c, &[x, z])
+                }
+            })
     }
 
     /// The plan corners of surface triangle `k` (none for a plane).
@@ -460,16 +525,70 @@ mod tests {
             let z = (seed >> 11) as f64 / (1u64 << 53) as f64 * n as f64;
             let (_, h) = g.top(x, z).unwrap();
             let scan = (0..tris.len())
-                .filter(|&k| {
-                    let t = Triangle {
-                        index: k,
-                        corners: tris[k].map(|c| [c[0], c[2]]),
-                    };
-                    t.contains_point(&[x, z])
-                })
+                .filter(|&k| contains_point(&tris[k].map(|c| [c[0], c[2]]), &[x, z]))
                 .map(|k| g.faces()[k].height(x, z))
                 .fold(f64::NEG_INFINITY, f64::max);
             assert!((h - scan).abs() < 1e-12, "{h} vs {scan}");
         }
+    }
+
+    #[test]
+    fn the_triangles_near_a_point_are_those_a_scan_of_every_triangle_finds() {
+        // The tree holds each triangle's extent in single precision, rounded outwards; the
+        // triangles it gives near a point, and their distances, must be a scan's of the exact
+        // corners, however near an edge or far from the origin the point is.
+        let (n, far) = (30, 1.0e5);
+        let mut tris = Vec::new();
+        for i in 0..n {
+            for j in 0..n {
+                let c = |a: usize, b: usize| {
+                    let (x, z) = (far + a as f64 * 0.7, -far + b as f64 * 0.7);
+                    [x, 0.01 * ((a * 3 + b * 5) % 7) as f64, z]
+                };
+                tris.push([c(i, j), c(i + 1, j), c(i + 1, j + 1)]);
+                tris.push([c(i, j), c(i + 1, j + 1), c(i, j + 1)]);
+            }
+        }
+        let g = Ground::surface(&tris).unwrap();
+        let plan: Vec<[[f64; 2]; 3]> = tris.iter().map(|t| t.map(|c| [c[0], c[2]])).collect();
+        let mut seed = 99u64;
+        let mut next = || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for k in 0..400 {
+            // Points on a grid line (an edge) every other time.
+            let mut x = far + next() * 0.7 * n as f64;
+            let z = -far + next() * 0.7 * n as f64;
+            if k % 2 == 0 {
+                x = far + (x - far).round().min(0.7 * n as f64 - 0.7) / 0.7 * 0.7;
+            }
+            let tol = [0.0, 1e-9, 0.05, 0.9][k % 4];
+            let near: Vec<usize> = (0..plan.len())
+                .filter(|&t| distance_2(&plan[t], &[x, z]) <= tol * tol)
+                .collect();
+            assert_eq!(g.faces_near(x, z, tol), near, "at ({x}, {z}), tol {tol}");
+            let mut by = g.faces_by_distance(x, z, tol);
+            by.sort_unstable_by_key(|p| p.0);
+            assert_eq!(by.iter().map(|p| p.0).collect::<Vec<_>>(), near);
+            for (t, d) in by {
+                assert_eq!(d, distance_2(&plan[t], &[x, z]).sqrt());
+            }
+            let holding: Vec<usize> = (0..plan.len())
+                .filter(|&t| contains_point(&plan[t], &[x, z]))
+                .collect();
+            assert_eq!(g.top(x, z).is_some(), !holding.is_empty());
+        }
+        // A rectangle's faces are those whose extent meets it, as a scan finds them.
+        let r = (far + 3.0, far + 5.2, -far + 1.0, -far + 1.4);
+        let meets: Vec<usize> = (0..plan.len())
+            .filter(|&t| {
+                let (lo, hi) = extent(&plan[t]);
+                lo[0] <= r.1 && hi[0] >= r.0 && lo[1] <= r.3 && hi[1] >= r.2
+            })
+            .collect();
+        assert_eq!(g.faces_in(r), meets);
     }
 }

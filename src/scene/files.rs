@@ -102,7 +102,7 @@ fn read_surface(path: &Path) -> Result<Ground, String> {
         Err(tobj::LoadError::OpenFileFailed)
     })
     .map_err(|e| format!("not a Wavefront OBJ surface: {e}"))?;
-    let mut triangles = Vec::new();
+    let mut triangles = Vec::with_capacity(models.iter().map(|m| m.mesh.indices.len() / 3).sum());
     for m in &models {
         let p = &m.mesh.positions;
         for t in m.mesh.indices.chunks_exact(3) {
@@ -115,6 +115,9 @@ fn read_surface(path: &Path) -> Result<Ground, String> {
             triangles.push([corner(t[0])?, corner(t[1])?, corner(t[2])?]);
         }
     }
+    // The file's mesh is not needed once its triangles are out: freed before the ground is
+    // built, so that the two are not held at once.
+    drop(models);
     Ground::surface(&triangles).map_err(|e| e.to_string())
 }
 
