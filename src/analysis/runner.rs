@@ -172,8 +172,9 @@ pub fn run_many<T: Sync>(
     }
 }
 
-/// At most `n` of `k` items, evenly spread, the first and last kept.
-fn thin<T: Copy>(items: &[T], n: usize) -> Vec<T> {
+/// At most `n` of the items, evenly spread, the first and last kept (a route's CM path for
+/// [`RouteResult::cm_path_m`]; the command line's fan pages too).
+pub fn thin<T: Copy>(items: &[T], n: usize) -> Vec<T> {
     if items.len() <= n || n < 2 {
         return items.to_vec();
     }

@@ -54,26 +54,6 @@ fn browse(page: &Path, profile: &Path, extra: &[&str]) -> (String, String) {
     )
 }
 
-/// The screenshot's pixels: width, height and RGBA.
-fn pixels(png_file: &Path) -> (u32, u32, Vec<[u8; 4]>) {
-    let decoder = png::Decoder::new(std::io::BufReader::new(
-        std::fs::File::open(png_file).expect("the screenshot was written"),
-    ));
-    let mut reader = decoder.read_info().unwrap();
-    let mut buf = vec![0; reader.output_buffer_size()];
-    let info = reader.next_frame(&mut buf).unwrap();
-    let channels = info.color_type.samples();
-    let px = buf[..info.buffer_size()]
-        .chunks(channels)
-        .map(|c| match channels {
-            4 => [c[0], c[1], c[2], c[3]],
-            3 => [c[0], c[1], c[2], 255],
-            _ => [c[0], c[0], c[0], 255],
-        })
-        .collect();
-    (info.width, info.height, px)
-}
-
 #[test]
 #[ignore = "needs Chromium (CI installs it): cargo test -- --ignored browser"]
 fn browser_shows_the_check_report_with_its_section_loads_and_verdicts_and_no_console_error() {
@@ -126,7 +106,7 @@ fn browser_shows_the_check_report_with_its_section_loads_and_verdicts_and_no_con
     let arg = format!("--screenshot={}", shot.display());
     let (_, log) = browse(&page, &profile, &[&arg]);
     assert!(!log.contains("CONSOLE"), "{log}");
-    let (w, h, px) = pixels(&shot);
+    let (w, h, px) = crate::common::browser::pixels(&shot);
     assert_eq!((w, h), (1200, 1600));
     let mut colours: Vec<[u8; 4]> = px.clone();
     colours.sort_unstable();

@@ -196,21 +196,8 @@ fn status(dom: &str) -> serde_json::Value {
 
 /// The screenshot's pixels (RGB).
 fn pixels(png_file: &Path) -> (u32, u32, Vec<[u8; 3]>) {
-    let decoder = png::Decoder::new(std::io::BufReader::new(
-        std::fs::File::open(png_file).expect("the screenshot was written"),
-    ));
-    let mut reader = decoder.read_info().unwrap();
-    let mut buf = vec![0; reader.output_buffer_size()];
-    let info = reader.next_frame(&mut buf).unwrap();
-    let channels = info.color_type.samples();
-    let px = buf[..info.buffer_size()]
-        .chunks(channels)
-        .map(|c| match channels {
-            3 | 4 => [c[0], c[1], c[2]],
-            _ => [c[0], c[0], c[0]],
-        })
-        .collect();
-    (info.width, info.height, px)
+    let (w, h, px) = crate::common::browser::pixels(png_file);
+    (w, h, px.into_iter().map(|[r, g, b, _]| [r, g, b]).collect())
 }
 
 #[test]

@@ -142,16 +142,6 @@ pub fn cm_paths<'a>(
     (paths, routes)
 }
 
-/// `items` thinned evenly to at most `n`, the first and last kept.
-fn thin<T: Copy>(items: &[T], n: usize) -> Vec<T> {
-    if items.len() <= n || n < 2 {
-        return items.to_vec();
-    }
-    (0..n)
-        .map(|i| items[(i * (items.len() - 1)).div_ceil(n - 1).min(items.len() - 1)])
-        .collect()
-}
-
 /// A fan page (`route-fan.html`, `sweep.html`): the foundation of `scene` under `paths` (X,
 /// Z; each thinned to [`MAX_FAN_POINTS`], at most [`MAX_FAN_PATHS`] drawn), each point on the
 /// ground (a point off a surface left out), of `routes` routes in all, with `nominal` (the
@@ -170,7 +160,7 @@ pub fn fan_page(
         .iter()
         .take(MAX_FAN_PATHS)
         .map(|p| {
-            thin(p, MAX_FAN_POINTS)
+            slideroute::internals::analysis::runner::thin(p, MAX_FAN_POINTS)
                 .into_iter()
                 .filter_map(|[x, z]| ground_height(scene, x, z).map(|y| [x, y, z]))
                 .collect::<Vec<_>>()
