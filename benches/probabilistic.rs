@@ -5,7 +5,9 @@
 //!   per core is its inverse);
 //! * the analysis's overhead over bare routes: the same scenes' routes run directly, against
 //!   [`Design::run`] with its sampling, scene edits, results and summary — on one thread, so
-//!   that the figure is the overhead and not the parallel speed-up.
+//!   that the figure is the overhead and not the parallel speed-up;
+//! * the default scene with μ and the eccentricity uncertain, 256 samples, the whole analysis on
+//!   one thread and on two (`docs/performance.md`: samples per CPU-second).
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use slideroute::internals::analysis::probabilistic::{
@@ -72,5 +74,44 @@ fn throughput(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, throughput);
+/// The default scene with μ and the eccentricity uncertain: the whole analysis of 256 samples
+/// on one thread and on two.
+fn mu_and_eccentricity(c: &mut Criterion) {
+    const SAMPLES: usize = 256;
+    let u: Vec<Uncertain> = [
+        "friction.mu_k=normal:0.4:0.04",
+        "loads.eccentricity_m=uniform:0.5:1.5",
+    ]
+    .iter()
+    .map(|s| s.parse().unwrap())
+    .collect();
+    let scene = Scene::default_scene();
+    let design = Design {
+        scene: &scene,
+        uncertain: &u,
+        samples: SAMPLES,
+        seed: 1,
+        sampling: Sampling::LatinHypercube,
+    };
+    let mut g = c.benchmark_group("probabilistic, mu and eccentricity");
+    g.sample_size(10);
+    g.throughput(Throughput::Elements(SAMPLES as u64));
+    for threads in [1, 2] {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        g.bench_function(BenchmarkId::new("threads", threads), |b| {
+            b.iter(|| {
+                pool.install(|| {
+                    let rows = design.run(|| {}, || false);
+                    black_box(summarise(&design, Limits::default(), &rows))
+                })
+            })
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, throughput, mu_and_eccentricity);
 criterion_main!(benches);

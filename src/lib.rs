@@ -73,14 +73,15 @@ pub use analysis::{run, run_observed};
 pub use geometry::{BodyPose, Displacement, Foundation, Frame, Ground, Plane, Pose, Site};
 pub use mechanics::static_friction::{FactorOfSafety, Limit};
 pub use model::{
-    Base, Block, Contacts, DynamicsModel, FaceStrength, Friction, Initial, Integrator, Levels,
-    Loads, MAX_INCREMENTS, MassProperties, Mode, ModelError, Monolith, Record, Resultant,
-    RockAnchor, RunSettings, STRAND_MODULUS_PA, Section, Simulation, SimulationBuilder, Strengths,
-    Tendon, UnknownName, WaterLoads,
+    Base, Block, Contacts, DEFAULT_TOLERANCE, DynamicsModel, FaceStrength, Friction, Initial,
+    Integrator, Levels, Loads, MAX_INCREMENTS, MAX_TOLERANCE, MIN_TOLERANCE, MassProperties, Mode,
+    ModelError, Monolith, REFERENCE_STEP, Record, Resultant, RockAnchor, RunSettings,
+    STRAND_MODULUS_PA, Section, Simulation, SimulationBuilder, Strengths, Tendon, UnknownName,
+    WaterLoads,
 };
 pub use route::{
     AnchorBreak, BaseReport, Carrying, Computed, Diagnostics, EnergyBalance, OVERTURN_DEG,
-    PoseMethod, Reason, Resting, Route, Row, Runner, Termination, pose_of_row, simulate,
+    PoseMethod, Reason, Resting, Route, Row, Runner, Steps, Termination, pose_of_row, simulate,
 };
 pub use scene::{LoadsUsed, Scene, SceneError, SceneErrorKind};
 
@@ -91,7 +92,8 @@ pub mod poses {
     pub use crate::geometry::DirectPose;
     pub use crate::geometry::direct::solve as direct_pose;
     pub use crate::roots::{
-        AllRoots, BranchPoint, Inadmissible, Root, TrackError, TrackStats, Tracker, solve_all,
+        AllRoots, BatchSolver, BranchPoint, Inadmissible, Root, TrackError, TrackStats, Tracker,
+        solve_all, solve_all_batch,
     };
 }
 

@@ -151,7 +151,10 @@ pub fn run_many<T: Sync>(
                     ControlFlow::Continue(())
                 }
             };
-            match scene_of(item).and_then(|scene| run_observed(&scene, observe)) {
+            match scene_of(item)
+                .and_then(|scene| with_rows_for_results(&scene))
+                .and_then(|scene| run_observed(&scene, observe))
+            {
                 Ok(route) => Outcome::Route(RouteResult::of(&route)),
                 Err(e) => Outcome::Invalid {
                     reason: e.to_string(),
@@ -170,6 +173,26 @@ pub fn run_many<T: Sync>(
     {
         items.iter().map(one).collect()
     }
+}
+
+/// The most rows a route of many keeps (every stride-th increment, the stride chosen so): what
+/// a [`RouteResult`] takes from them — the last row, the largest tilts, a CM path of
+/// [`RouteResult::PATH_POINTS`] — needs no more, and each row of a rigid-body route is the model
+/// evaluated where its steps pass (`route::rigid`), the most of a sample's cost at a fine dt.
+pub const ROWS_OF_MANY: usize = 4 * RouteResult::PATH_POINTS;
+
+/// `scene`, recording at most about [`ROWS_OF_MANY`] rows (its own stride where that records
+/// fewer); the route is the same, its steps its own (the rigid body's) or dt (the paper's).
+fn with_rows_for_results(scene: &Scene) -> Result<Scene, SceneError> {
+    let Some(s) = scene.settings() else {
+        return Ok(scene.clone());
+    };
+    let increments = (s.t_end / s.dt).ceil();
+    let stride = (increments / ROWS_OF_MANY as f64).ceil().max(1.0);
+    if stride <= s.stride as f64 || stride >= i64::MAX as f64 {
+        return Ok(scene.clone());
+    }
+    scene.with("solver.stride", stride as i64)
 }
 
 /// At most `n` of the items, evenly spread, the first and last kept (a route's CM path for

@@ -3,16 +3,17 @@
 //! * a list of planes: the ground at (X, Z) is the highest of them there, a valley of rock
 //!   faces, defined everywhere;
 //! * a triangulated surface (Wavefront OBJ, `[foundation] surface`): the ground at (X, Z) is the
-//!   triangle over it (the highest, where triangles overlap), found through an R*-tree of the
-//!   triangles' plan extents in O(log n); off the surface there is no ground. Ridges are allowed.
+//!   triangle over it (the highest, where triangles overlap), found through a packed R-tree of
+//!   the triangles' plan extents (`plan_tree.rs`) in O(log n); off the surface there is no
+//!   ground. Ridges are allowed.
 //!
 //! Faces are numbered from 0: the planes in the order the scene lists them, the triangles in the
 //! order of the file.
 
+use super::plan_tree::{self, PlanTree, outward};
 use super::plane::Plane;
 use super::rock::Rock;
 use nalgebra::Vector3;
-use rstar::{AABB, RTree, RTreeObject};
 use std::sync::{Arc, OnceLock};
 
 /// The ground: its faces and how to find the one over a point.
@@ -29,42 +30,29 @@ enum Kind {
     /// The upper envelope of the faces.
     Planes,
     /// Triangles: the face over a point is a triangle containing its plan position (the tree
-    /// gives the triangles whose plan extent may hold it, `corners` by index decides).
-    Surface {
-        tree: RTree<Cell>,
-        corners: Vec<[[f64; 2]; 3]>,
-    },
+    /// gives the triangles whose plan extent may hold it, their corners decide).
+    Surface(Mesh),
 }
 
-/// One triangle of a surface in the R*-tree: its number and its plan extent, in single
-/// precision rounded outwards (so that it holds the triangle's exact extent). Small, and its
-/// envelope computed once rather than at each comparison of the bulk load; the exact tests are
-/// on the triangle's corners ([`contains_point`], [`distance_2`]).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Cell {
-    index: u32,
-    envelope: AABB<[f32; 2]>,
+/// A triangulated surface as it is kept: each corner once (X, Y, Z), each triangle by its
+/// corners' numbers, and the packed R-tree of the triangles' plan extents (`plan_tree.rs`).
+/// With the faces' planes, 24 bytes a corner and 12 + 32 + about 21 a triangle; the exact
+/// tests are on the corners ([`contains_point`], [`distance_2`]).
+#[derive(Debug, Clone)]
+struct Mesh {
+    vertices: Vec<[f64; 3]>,
+    triangles: Vec<[u32; 3]>,
+    tree: PlanTree,
 }
 
-impl RTreeObject for Cell {
-    type Envelope = AABB<[f32; 2]>;
-
-    fn envelope(&self) -> Self::Envelope {
-        self.envelope
+impl Mesh {
+    /// The plan corners (X, Z) of triangle `k`.
+    fn corners(&self, k: usize) -> [[f64; 2]; 3] {
+        self.triangles[k].map(|v| {
+            let [x, _, z] = self.vertices[v as usize];
+            [x, z]
+        })
     }
-}
-
-/// A plan box in single precision that holds the box from `lo` to `hi`.
-fn outward(lo: [f64; 2], hi: [f64; 2]) -> AABB<[f32; 2]> {
-    let down = |v: f64| {
-        let f = v as f32;
-        if f as f64 > v { f.next_down() } else { f }
-    };
-    let up = |v: f64| {
-        let f = v as f32;
-        if (f as f64) < v { f.next_up() } else { f }
-    };
-    AABB::from_corners([down(lo[0]), down(lo[1])], [up(hi[0]), up(hi[1])])
 }
 
 /// The plan extent of a triangle's corners.
@@ -134,9 +122,20 @@ pub enum SurfaceError {
     /// A triangle (its number) so large that its normal overflows.
     #[error("triangle {0} is too large to compute with (its sides' products overflow)")]
     TooLarge(usize),
-    /// More triangles than a surface may have (2³² − 1); the number of the first too many.
-    #[error("the surface has more than 4 294 967 295 triangles (triangle {0})")]
+    /// More triangles than a surface may have: the most it may have.
+    #[error("the surface has more than {0} triangles")]
     TooMany(usize),
+    /// A triangle (its number) naming a corner (numbered from 0) that is not among the
+    /// `count` corners.
+    #[error("triangle {triangle} names corner {corner}, of {count} (numbered from 0)")]
+    NoCorner {
+        /// The triangle's number.
+        triangle: usize,
+        /// The corner it names.
+        corner: u32,
+        /// How many corners there are.
+        count: usize,
+    },
     /// A triangle that is vertical or overhangs: no ground a block slides on.
     #[error("triangle {index} is vertical or overhangs (its normal's Y part is {normal_y:.3e})")]
     Vertical {
@@ -158,21 +157,52 @@ impl Ground {
         }
     }
 
-    /// A triangulated surface from its triangles' corners (X, Y, Z). Each triangle must have
-    /// finite corners, an area, and face up: a normal whose Y part is at least 1e-6 (so a dip
-    /// below 90°; either winding is taken).
+    /// A triangulated surface from its triangles' corners (X, Y, Z), each triangle's its own:
+    /// [`Ground::mesh`] with no corner shared.
     pub fn surface(triangles: &[[[f64; 3]; 3]]) -> Result<Ground, SurfaceError> {
+        // Every corner numbered by a `u32`.
+        let most = u32::MAX as usize / 3;
+        if triangles.len() > most {
+            return Err(SurfaceError::TooMany(most));
+        }
+        let vertices = triangles.iter().flatten().copied().collect();
+        let indices = (0..triangles.len() as u32)
+            .map(|k| [3 * k, 3 * k + 1, 3 * k + 2])
+            .collect();
+        Ground::mesh(vertices, indices)
+    }
+
+    /// A triangulated surface from its corners (X, Y, Z) and its triangles, each by the
+    /// numbers of its three corners (from 0), both kept as they are (the spare capacity given
+    /// back). Each triangle must name corners there are, have finite corners and an area, and
+    /// face up: a normal whose Y part is at least 1e-6 (so a dip below 90°; either winding is
+    /// taken). Corners no triangle names are kept and not checked.
+    pub fn mesh(
+        mut vertices: Vec<[f64; 3]>,
+        mut triangles: Vec<[u32; 3]>,
+    ) -> Result<Ground, SurfaceError> {
         if triangles.is_empty() {
             return Err(SurfaceError::Empty);
         }
+        if triangles.len() > plan_tree::MAX_ITEMS {
+            return Err(SurfaceError::TooMany(plan_tree::MAX_ITEMS));
+        }
         let mut faces = Vec::with_capacity(triangles.len());
-        let mut cells = Vec::with_capacity(triangles.len());
-        let mut corners = Vec::with_capacity(triangles.len());
         for (index, t) in triangles.iter().enumerate() {
-            if t.iter().flatten().any(|v| !v.is_finite()) {
+            let mut p = [Vector3::zeros(); 3];
+            for (p, &corner) in p.iter_mut().zip(t) {
+                let Some(&[x, y, z]) = vertices.get(corner as usize) else {
+                    return Err(SurfaceError::NoCorner {
+                        triangle: index,
+                        corner,
+                        count: vertices.len(),
+                    });
+                };
+                *p = Vector3::new(x, y, z);
+            }
+            if p.iter().any(|c| c.iter().any(|v| !v.is_finite())) {
                 return Err(SurfaceError::NonFinite(index));
             }
-            let p = t.map(|c| Vector3::new(c[0], c[1], c[2]));
             let n = (p[1] - p[0]).cross(&(p[2] - p[0]));
             let size = (p[1] - p[0]).norm().max((p[2] - p[0]).norm());
             if !(n.norm() * size).is_finite() {
@@ -190,20 +220,34 @@ impl Ground {
                 });
             }
             faces.push(Plane::through(n, p[0]));
-            let c = t.map(|c| [c[0], c[2]]);
-            let (lo, hi) = extent(&c);
-            cells.push(Cell {
-                index: u32::try_from(index).map_err(|_| SurfaceError::TooMany(index))?,
-                envelope: outward(lo, hi),
-            });
-            corners.push(c);
         }
+        vertices.shrink_to_fit();
+        triangles.shrink_to_fit();
+        let plan = |k: usize| {
+            triangles[k].map(|v| {
+                let [x, _, z] = vertices[v as usize];
+                [x, z]
+            })
+        };
+        // Placed along the curve by the sum of its corners (three times its centroid).
+        let tree = PlanTree::new(
+            triangles.len(),
+            |k| {
+                let [a, b, c] = plan(k);
+                [a[0] + b[0] + c[0], a[1] + b[1] + c[1]]
+            },
+            |k| {
+                let (lo, hi) = extent(&plan(k));
+                outward(lo, hi)
+            },
+        );
         Ok(Ground {
             faces,
-            kind: Kind::Surface {
-                tree: RTree::bulk_load(cells),
-                corners,
-            },
+            kind: Kind::Surface(Mesh {
+                vertices,
+                triangles,
+                tree,
+            }),
             rock: OnceLock::new(),
         })
     }
@@ -219,11 +263,11 @@ impl Ground {
         self.rock.get_or_init(|| {
             Arc::new(match &self.kind {
                 Kind::Planes => Rock::planes(&self.faces),
-                Kind::Surface { corners, .. } => Rock::surface(
+                Kind::Surface(mesh) => Rock::surface(
                     self.faces
                         .iter()
-                        .zip(corners)
-                        .map(|(plane, c)| c.map(|[x, z]| [x, plane.height(x, z), z])),
+                        .enumerate()
+                        .map(|(k, plane)| mesh.corners(k).map(|[x, z]| [x, plane.height(x, z), z])),
                 ),
             })
         })
@@ -231,22 +275,23 @@ impl Ground {
 
     /// Whether the ground is a triangulated surface (else a list of planes).
     pub fn is_surface(&self) -> bool {
-        matches!(self.kind, Kind::Surface { .. })
+        matches!(self.kind, Kind::Surface(_))
     }
 
     /// The face the ground is made of over (X, Z) and its height there: the highest plane, or
     /// the highest triangle over the point; `None` off a surface.
     pub fn top(&self, x: f64, z: f64) -> Option<(usize, f64)> {
+        // Of faces equally high, the first by number, whatever order they come in.
         let highest = |best: Option<(usize, f64)>, k: usize| {
             let h = self.faces[k].height(x, z);
             match best {
-                Some((_, b)) if b >= h => best,
+                Some((j, b)) if b > h || (b == h && j < k) => best,
                 _ => Some((k, h)),
             }
         };
         match &self.kind {
             Kind::Planes => (0..self.faces.len()).fold(None, highest),
-            Kind::Surface { .. } => self.holding(x, z, 0.0).fold(None, highest),
+            Kind::Surface(_) => self.holding(x, z, 0.0).fold(None, highest),
         }
     }
 
@@ -286,7 +331,7 @@ impl Ground {
     pub fn faces_near(&self, x: f64, z: f64, tol: f64) -> Vec<usize> {
         match &self.kind {
             Kind::Planes => (0..self.faces.len()).collect(),
-            Kind::Surface { .. } => {
+            Kind::Surface(_) => {
                 let mut v: Vec<usize> = self.holding(x, z, tol).collect();
                 v.sort_unstable();
                 v
@@ -300,10 +345,10 @@ impl Ground {
     pub fn faces_by_distance(&self, x: f64, z: f64, tol: f64) -> Vec<(usize, f64)> {
         match &self.kind {
             Kind::Planes => (0..self.faces.len()).map(|k| (k, 0.0)).collect(),
-            Kind::Surface { corners, .. } => {
+            Kind::Surface(mesh) => {
                 let mut v: Vec<(usize, f64)> = self
                     .holding(x, z, tol)
-                    .map(|k| (k, distance_2(&corners[k], &[x, z]).sqrt()))
+                    .map(|k| (k, distance_2(&mesh.corners(k), &[x, z]).sqrt()))
                     .collect();
                 v.sort_unstable_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)));
                 v
@@ -316,20 +361,17 @@ impl Ground {
     pub fn faces_in(&self, (x0, x1, z0, z1): (f64, f64, f64, f64)) -> Vec<usize> {
         match &self.kind {
             Kind::Planes => (0..self.faces.len()).collect(),
-            Kind::Surface { tree, corners } => {
+            Kind::Surface(mesh) => {
                 let meets = |k: &usize| {
-                    let (lo, hi) = extent(&corners[*k]);
+                    let (lo, hi) = extent(&mesh.corners(*k));
                     lo[0] <= x1.max(x0)
                         && hi[0] >= x0.min(x1)
                         && lo[1] <= z1.max(z0)
                         && hi[1] >= z0.min(z1)
                 };
-                let mut v: Vec<usize> = tree
-                    .locate_in_envelope_intersecting(&outward(
-                        [x0.min(x1), z0.min(z1)],
-                        [x0.max(x1), z0.max(z1)],
-                    ))
-                    .map(|c| c.index as usize)
+                let mut v: Vec<usize> = mesh
+                    .tree
+                    .search(outward([x0.min(x1), z0.min(z1)], [x0.max(x1), z0.max(z1)]))
                     .filter(meets)
                     .collect();
                 v.sort_unstable();
@@ -342,29 +384,28 @@ impl Ground {
     /// the tree's cells whose extent reaches that far, then each triangle's exact distance.
     /// None for a ground of planes.
     fn holding(&self, x: f64, z: f64, tol: f64) -> impl Iterator<Item = usize> + '_ {
-        let (tree, corners) = match &self.kind {
-            Kind::Surface { tree, corners } => (Some(tree), corners.as_slice()),
-            Kind::Planes => (None, &[][..]),
+        let mesh = match &self.kind {
+            Kind::Surface(mesh) => Some(mesh),
+            Kind::Planes => None,
         };
         let reach = outward([x - tol, z - tol], [x + tol, z + tol]);
-        tree.into_iter()
-            .flat_map(move |t| t.locate_in_envelope_intersecting(&reach))
-            .map(|c| c.index as usize)
-            .filter(move |&k| {
-                let c = &corners[k];
+        mesh.into_iter().flat_map(move |mesh| {
+            mesh.tree.search(reach).filter(move |&k| {
+                let c = &mesh.corners(k);
                 if tol > 0.0 {
                     distance_2(c, &[x, z]) <= tol * tol
                 } else {
                     contains_point(c, &[x, z])
                 }
             })
+        })
     }
 
     /// The plan corners of surface triangle `k` (none for a plane).
     pub fn triangle(&self, k: usize) -> Option<[[f64; 2]; 3]> {
         match &self.kind {
             Kind::Planes => None,
-            Kind::Surface { corners, .. } => corners.get(k).copied(),
+            Kind::Surface(mesh) => (k < mesh.triangles.len()).then(|| mesh.corners(k)),
         }
     }
 }
@@ -529,6 +570,106 @@ mod tests {
                 .map(|k| g.faces()[k].height(x, z))
                 .fold(f64::NEG_INFINITY, f64::max);
             assert!((h - scan).abs() < 1e-12, "{h} vs {scan}");
+        }
+    }
+
+    /// A grid of `n` × `n` cells of rough ground, two triangles a cell, over [0, n]² about
+    /// `origin`: its corners, each once, and its triangles by their corners' numbers.
+    fn grid(n: usize, origin: f64) -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
+        let height = |i: usize, j: usize| ((i * 7 + j * 13) % 11) as f64 * 0.05;
+        let vertices = (0..=n)
+            .flat_map(|i| {
+                (0..=n).map(move |j| [origin + i as f64, height(i, j), origin + j as f64])
+            })
+            .collect();
+        let at = |i: usize, j: usize| (i * (n + 1) + j) as u32;
+        let triangles = (0..n)
+            .flat_map(|i| {
+                (0..n).flat_map(move |j| {
+                    [
+                        [at(i, j), at(i + 1, j), at(i + 1, j + 1)],
+                        [at(i, j), at(i + 1, j + 1), at(i, j + 1)],
+                    ]
+                })
+            })
+            .collect();
+        (vertices, triangles)
+    }
+
+    #[test]
+    fn a_surface_keeps_each_corner_once_and_under_eighty_bytes_a_triangle() {
+        // docs/performance.md, "Foundations of faces": a corner is 24 bytes, shared by six
+        // triangles on a grid; a triangle is its corners' numbers (12), its plane (32) and
+        // about 21 bytes of the tree; nothing spare is kept.
+        assert_eq!(std::mem::size_of::<[u32; 3]>(), 12);
+        assert_eq!(std::mem::size_of::<Plane>(), 32);
+        let (mut vertices, mut triangles) = grid(100, 0.0);
+        vertices.reserve(1000);
+        triangles.reserve(1000);
+        let (n, corners) = (triangles.len(), vertices.len());
+        let g = Ground::mesh(vertices, triangles).unwrap();
+        let Kind::Surface(mesh) = &g.kind else {
+            panic!("a surface")
+        };
+        assert_eq!(mesh.vertices.capacity(), corners);
+        assert_eq!(mesh.triangles.capacity(), n);
+        assert_eq!(g.faces.capacity(), n);
+        let bytes = corners * 24 + n * 12 + n * 32 + mesh.tree.bytes();
+        assert!(
+            bytes < 80 * n,
+            "{} bytes a triangle",
+            bytes as f64 / n as f64
+        );
+    }
+
+    #[test]
+    fn a_surface_of_shared_corners_is_the_surface_of_the_same_triangles_each_with_its_own() {
+        let (vertices, triangles) = grid(12, -3.0);
+        let own: Vec<[[f64; 3]; 3]> = triangles
+            .iter()
+            .map(|t| t.map(|k| vertices[k as usize]))
+            .collect();
+        let (shared, apart) = (
+            Ground::mesh(vertices, triangles).unwrap(),
+            Ground::surface(&own).unwrap(),
+        );
+        assert_eq!(shared, apart);
+        for k in 0..own.len() {
+            assert_eq!(shared.triangle(k), apart.triangle(k));
+        }
+        assert_eq!(shared.triangle(own.len()), None);
+        for (x, z) in [(0.3, 0.7), (-3.0, -3.0), (4.5, 2.25), (8.9, 8.99)] {
+            assert_eq!(shared.top(x, z), apart.top(x, z));
+            assert_eq!(
+                shared.faces_by_distance(x, z, 0.6),
+                apart.faces_by_distance(x, z, 0.6)
+            );
+        }
+    }
+
+    #[test]
+    fn a_triangle_naming_a_corner_there_is_not_is_refused() {
+        let (vertices, mut triangles) = grid(2, 0.0);
+        triangles[5][2] = 9;
+        assert_eq!(
+            Ground::mesh(vertices, triangles).unwrap_err(),
+            SurfaceError::NoCorner {
+                triangle: 5,
+                corner: 9,
+                count: 9
+            }
+        );
+    }
+
+    #[test]
+    fn of_triangles_equally_high_over_a_point_the_top_is_the_first_by_number() {
+        // Level ground: at a corner six triangles meet, all at height 0; along a diagonal two.
+        let (vertices, triangles) = grid(4, 0.0);
+        let level = vertices.iter().map(|v| [v[0], 0.0, v[2]]).collect();
+        let g = Ground::mesh(level, triangles).unwrap();
+        for (x, z) in [(2.0, 2.0), (1.0, 3.0), (2.5, 2.5), (0.0, 0.0), (4.0, 4.0)] {
+            let first = g.faces_near(x, z, 0.0)[0];
+            assert_eq!(g.top(x, z), Some((first, 0.0)), "({x}, {z})");
         }
     }
 

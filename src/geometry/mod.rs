@@ -18,6 +18,7 @@ pub mod frame;
 pub mod ground;
 pub mod paper_planes;
 pub mod penetration;
+pub mod plan_tree;
 pub mod plane;
 pub mod pose;
 pub mod relief;

@@ -35,7 +35,10 @@ pub use monolith::{MassProperties, Monolith, Section};
 pub use names::UnknownName;
 pub use record::Record;
 pub(crate) use record::bracket;
-pub use settings::{Contacts, DynamicsModel, Integrator, MAX_INCREMENTS, Mode, RunSettings};
+pub use settings::{
+    Contacts, DEFAULT_TOLERANCE, DynamicsModel, Integrator, MAX_INCREMENTS, MAX_TOLERANCE,
+    MIN_TOLERANCE, Mode, REFERENCE_STEP, RunSettings,
+};
 pub use simulation::{Simulation, SimulationBuilder};
 pub(crate) use simulation::{check_anchored, check_ratios, check_rigid_only, face_count};
 pub(crate) use water::water_loads_cracked;

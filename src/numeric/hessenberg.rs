@@ -12,6 +12,30 @@
 /// Largest order handled.
 pub const N: usize = 8;
 
+/// Sweeps per eigenvalue before the iteration is given up.
+pub(crate) const MAX_SWEEPS: usize = 30;
+
+/// Reading and writing entry (i, j) of a matrix: the steps of the iteration that the lockstep
+/// version (`hessenberg_lanes.rs`) shares with this one take any storage through it, so both
+/// run the same operations in the same order.
+pub(crate) trait Entries {
+    /// Entry (i, j), 1-based.
+    fn at(&self, i: usize, j: usize) -> f64;
+    /// Sets entry (i, j).
+    fn set(&mut self, i: usize, j: usize, v: f64);
+}
+
+impl<const M: usize> Entries for [[f64; M]; M] {
+    #[inline(always)]
+    fn at(&self, i: usize, j: usize) -> f64 {
+        self[i][j]
+    }
+    #[inline(always)]
+    fn set(&mut self, i: usize, j: usize, v: f64) {
+        self[i][j] = v;
+    }
+}
+
 /// A Hessenberg matrix of order `n ≤ N`, 1-based storage (row and column 0 unused) so that the
 /// classic algorithm reads as published.
 pub struct Hessenberg {
@@ -19,7 +43,8 @@ pub struct Hessenberg {
     n: usize,
 }
 
-const RADIX: f64 = 2.0;
+/// The base of the balancing scale factors.
+pub(crate) const RADIX: f64 = 2.0;
 
 impl Hessenberg {
     /// The companion matrix of the monic polynomial x^n + c\[n−1\] x^(n−1) + … + c\[0\]:
@@ -35,6 +60,11 @@ impl Hessenberg {
             a[j][j - 1] = 1.0;
         }
         Hessenberg { a, n }
+    }
+
+    /// The entries (1-based, row and column 0 unused) and the order.
+    pub(crate) fn parts(&self) -> (&[[f64; N + 1]; N + 1], usize) {
+        (&self.a, self.n)
     }
 
     /// Diagonal similarity by powers of 2 that makes row and column norms comparable.
@@ -85,62 +115,119 @@ impl Hessenberg {
     /// algorithm of an upper Hessenberg matrix (Numerical Recipes' `hqr`): deflate at a
     /// negligible subdiagonal, take a trailing 1×1 or 2×2 block's eigenvalues, else one double
     /// shift (Francis) sweep.
-    pub fn eigenvalues(mut self, wr: &mut [f64; N], wi: &mut [f64; N]) -> Option<usize> {
-        let n = self.n;
-        let anorm = self.norm();
-        let a = &mut self.a;
-        let mut nn = n;
-        // The exceptional shifts taken so far, added back to every eigenvalue.
-        let mut t = 0.0;
-        while nn >= 1 {
-            let mut its = 0;
-            loop {
-                let l = small_subdiagonal(a, nn, anorm);
-                let x = a[nn][nn];
-                if l == nn {
-                    // A 1×1 block: one eigenvalue.
-                    wr[nn - 1] = x + t;
-                    wi[nn - 1] = 0.0;
-                    nn -= 1;
-                } else {
-                    let y = a[nn - 1][nn - 1];
-                    let w = a[nn][nn - 1] * a[nn - 1][nn];
-                    if l == nn - 1 {
-                        let (re, im) = two_by_two(Shift { x, y, w }, t);
-                        (wr[nn - 2], wr[nn - 1]) = (re[0], re[1]);
-                        (wi[nn - 2], wi[nn - 1]) = (im[0], im[1]);
-                        nn -= 2;
-                    } else {
-                        if its == 30 {
-                            return None;
-                        }
-                        let shift = if its == 10 || its == 20 {
-                            exceptional_shift(a, nn, &mut t, x)
-                        } else {
-                            Shift { x, y, w }
-                        };
-                        its += 1;
-                        let (m, first) = sweep_start(a, l, nn, &shift);
-                        francis_sweep(a, Rows { l, m, nn }, first);
-                    }
-                }
-                if l + 1 >= nn {
-                    break;
-                }
-            }
-        }
-        Some(n)
+    pub fn eigenvalues(self, wr: &mut [f64; N], wi: &mut [f64; N]) -> Option<usize> {
+        self.eigenvalues_within(wr, wi, MAX_SWEEPS)
     }
 
-    /// Σ|a_ij| over the Hessenberg part: the scale a negligible subdiagonal is judged by.
-    fn norm(&self) -> f64 {
-        let mut anorm = 0.0;
-        for i in 1..=self.n {
-            for j in (i.max(2) - 1)..=self.n {
-                anorm += self.a[i][j].abs();
+    /// [`Hessenberg::eigenvalues`], giving up after `max_sweeps` sweeps without a deflation.
+    pub(crate) fn eigenvalues_within(
+        mut self,
+        wr: &mut [f64; N],
+        wi: &mut [f64; N],
+        max_sweeps: usize,
+    ) -> Option<usize> {
+        let n = self.n;
+        let mut progress = Progress::new(&self.a, n, max_sweeps);
+        loop {
+            match progress.step(&mut self.a, wr, wi) {
+                Step::Sweep(rows, first) => francis_sweep(&mut self.a, rows, first),
+                Step::Done => return Some(n),
+                Step::Failed => return None,
             }
         }
-        anorm
+    }
+}
+
+/// Σ|a_ij| over the Hessenberg part of the leading n×n block: the scale a negligible
+/// subdiagonal is judged by.
+fn norm<A: Entries>(a: &A, n: usize) -> f64 {
+    let mut anorm = 0.0;
+    for i in 1..=n {
+        for j in (i.max(2) - 1)..=n {
+            anorm += a.at(i, j).abs();
+        }
+    }
+    anorm
+}
+
+/// Where one matrix's iteration stands: rows 1..=`nn` not yet deflated, the sweeps since the
+/// last deflation, the exceptional shifts taken so far (added back to every eigenvalue).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Progress {
+    pub(crate) nn: usize,
+    its: usize,
+    t: f64,
+    anorm: f64,
+    max_sweeps: usize,
+}
+
+/// What a matrix needs next: a sweep of these rows from this first Householder vector, nothing
+/// (every eigenvalue found), or to be given up.
+pub(crate) enum Step {
+    Sweep(Rows, [f64; 3]),
+    Done,
+    Failed,
+}
+
+impl Progress {
+    /// The start on the balanced matrix `a` of order `n`, giving up after `max_sweeps` sweeps
+    /// without a deflation.
+    pub(crate) fn new<A: Entries>(a: &A, n: usize, max_sweeps: usize) -> Self {
+        Progress {
+            nn: n,
+            its: 0,
+            t: 0.0,
+            anorm: norm(a, n),
+            max_sweeps,
+        }
+    }
+
+    /// Deflates at a negligible subdiagonal, taking a trailing 1×1 or 2×2 block's eigenvalues
+    /// into `wr`, `wi`, as long as it can; then says what comes next (for a sweep, with the
+    /// shift chosen: the exceptional one after 10 and 20 sweeps).
+    pub(crate) fn step<A: Entries>(
+        &mut self,
+        a: &mut A,
+        wr: &mut [f64; N],
+        wi: &mut [f64; N],
+    ) -> Step {
+        loop {
+            let nn = self.nn;
+            if nn == 0 {
+                return Step::Done;
+            }
+            let l = small_subdiagonal(a, nn, self.anorm);
+            let x = a.at(nn, nn);
+            if l == nn {
+                // A 1×1 block: one eigenvalue.
+                wr[nn - 1] = x + self.t;
+                wi[nn - 1] = 0.0;
+                self.nn -= 1;
+                self.its = 0;
+                continue;
+            }
+            let y = a.at(nn - 1, nn - 1);
+            let w = a.at(nn, nn - 1) * a.at(nn - 1, nn);
+            if l == nn - 1 {
+                let (re, im) = two_by_two(Shift { x, y, w }, self.t);
+                (wr[nn - 2], wr[nn - 1]) = (re[0], re[1]);
+                (wi[nn - 2], wi[nn - 1]) = (im[0], im[1]);
+                self.nn -= 2;
+                self.its = 0;
+                continue;
+            }
+            if self.its == self.max_sweeps {
+                return Step::Failed;
+            }
+            let shift = if self.its == 10 || self.its == 20 {
+                exceptional_shift(a, nn, &mut self.t, x)
+            } else {
+                Shift { x, y, w }
+            };
+            self.its += 1;
+            let (m, first) = sweep_start(a, l, nn, &shift);
+            return Step::Sweep(Rows { l, m, nn }, first);
+        }
     }
 }
 
@@ -154,15 +241,15 @@ struct Shift {
 
 /// The row l of the lowest negligible subdiagonal element at or above row `nn` (set to zero),
 /// or 1: where the active block starts.
-fn small_subdiagonal<const M: usize>(a: &mut [[f64; M]; M], nn: usize, anorm: f64) -> usize {
+fn small_subdiagonal<A: Entries>(a: &mut A, nn: usize, anorm: f64) -> usize {
     let mut l = nn;
     while l >= 2 {
-        let mut s = a[l - 1][l - 1].abs() + a[l][l].abs();
+        let mut s = a.at(l - 1, l - 1).abs() + a.at(l, l).abs();
         if s == 0.0 {
             s = anorm;
         }
-        if a[l][l - 1].abs() + s == s {
-            a[l][l - 1] = 0.0;
+        if a.at(l, l - 1).abs() + s == s {
+            a.set(l, l - 1, 0.0);
             break;
         }
         l -= 1;
@@ -189,17 +276,12 @@ fn two_by_two(block: Shift, t: f64) -> ([f64; 2], [f64; 2]) {
 
 /// The exceptional shift after 10 and 20 sweeps without a deflation: the diagonal shifted by
 /// a_nn (added to `t`), and an ad hoc shift from the last subdiagonal elements.
-fn exceptional_shift<const M: usize>(
-    a: &mut [[f64; M]; M],
-    nn: usize,
-    t: &mut f64,
-    x: f64,
-) -> Shift {
+fn exceptional_shift<A: Entries>(a: &mut A, nn: usize, t: &mut f64, x: f64) -> Shift {
     *t += x;
     for i in 1..=nn {
-        a[i][i] -= x;
+        a.set(i, i, a.at(i, i) - x);
     }
-    let s = a[nn][nn - 1].abs() + a[nn - 1][nn - 2].abs();
+    let s = a.at(nn, nn - 1).abs() + a.at(nn - 1, nn - 2).abs();
     Shift {
         x: 0.75 * s,
         y: 0.75 * s,
@@ -209,28 +291,23 @@ fn exceptional_shift<const M: usize>(
 
 /// Where the double-shift sweep starts: the row m ≥ l below which two consecutive subdiagonal
 /// elements are small enough, and the first Householder vector (p, q, r) there.
-fn sweep_start<const M: usize>(
-    a: &[[f64; M]; M],
-    l: usize,
-    nn: usize,
-    shift: &Shift,
-) -> (usize, [f64; 3]) {
+fn sweep_start<A: Entries>(a: &A, l: usize, nn: usize, shift: &Shift) -> (usize, [f64; 3]) {
     let Shift { x, y, w } = *shift;
     let mut m = nn - 2;
     loop {
-        let z = a[m][m];
+        let z = a.at(m, m);
         let r = x - z;
         let s = y - z;
-        let p = (r * s - w) / a[m + 1][m] + a[m][m + 1];
-        let q = a[m + 1][m + 1] - z - r - s;
-        let r = a[m + 2][m + 1];
+        let p = (r * s - w) / a.at(m + 1, m) + a.at(m, m + 1);
+        let q = a.at(m + 1, m + 1) - z - r - s;
+        let r = a.at(m + 2, m + 1);
         let s = p.abs() + q.abs() + r.abs();
         let (p, q, r) = (p / s, q / s, r / s);
         if m == l {
             return (m, [p, q, r]);
         }
-        let u = a[m][m - 1].abs() * (q.abs() + r.abs());
-        let v = p.abs() * (a[m - 1][m - 1].abs() + z.abs() + a[m + 1][m + 1].abs());
+        let u = a.at(m, m - 1).abs() * (q.abs() + r.abs());
+        let v = p.abs() * (a.at(m - 1, m - 1).abs() + z.abs() + a.at(m + 1, m + 1).abs());
         if u + v == v {
             return (m, [p, q, r]);
         }
@@ -239,10 +316,10 @@ fn sweep_start<const M: usize>(
 }
 
 /// The rows a sweep works on: the active block l..=nn, the sweep starting at row m.
-struct Rows {
-    l: usize,
-    m: usize,
-    nn: usize,
+pub(crate) struct Rows {
+    pub(crate) l: usize,
+    pub(crate) m: usize,
+    pub(crate) nn: usize,
 }
 
 /// One Francis double-shift QR sweep of the active block from row m, its first Householder

@@ -1,9 +1,11 @@
-//! Small numerical kernels shared by the stages: eigenvalues of small Hessenberg matrices,
+//! Small numerical kernels shared by the stages: eigenvalues of small Hessenberg matrices (one
+//! at a time, or many in lockstep),
 //! dense polynomial products, the resultant of two quadratics, and the eigen-decomposition of
 //! a symmetric 2 × 2 matrix.
 
 mod distribution;
 pub mod hessenberg;
+pub mod hessenberg_lanes;
 mod shown;
 mod symmetric2;
 

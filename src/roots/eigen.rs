@@ -38,6 +38,59 @@ pub struct RawRoots {
     pub at_infinity: usize,
 }
 
+/// Up to 8 finite roots and the count at infinity, without allocation: what [`RawRoots`] holds.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FixedRoots {
+    roots: [RawRoot; 8],
+    len: usize,
+    /// As [`RawRoots::at_infinity`].
+    pub at_infinity: usize,
+}
+
+impl FixedRoots {
+    /// None yet, `at_infinity` at infinity.
+    pub(crate) fn new(at_infinity: usize) -> Self {
+        let zero = C::new(0.0, 0.0);
+        let none = RawRoot {
+            x: zero,
+            y: zero,
+            residual: 0.0,
+        };
+        FixedRoots {
+            roots: [none; 8],
+            len: 0,
+            at_infinity,
+        }
+    }
+
+    /// The finite roots.
+    pub fn roots(&self) -> &[RawRoot] {
+        &self.roots[..self.len]
+    }
+
+    fn push(&mut self, r: RawRoot) {
+        self.roots[self.len] = r;
+        self.len += 1;
+    }
+}
+
+impl From<&RawRoots> for FixedRoots {
+    fn from(r: &RawRoots) -> Self {
+        let mut fixed = FixedRoots::new(r.at_infinity);
+        r.roots.iter().for_each(|&root| fixed.push(root));
+        fixed
+    }
+}
+
+impl From<FixedRoots> for RawRoots {
+    fn from(r: FixedRoots) -> Self {
+        RawRoots {
+            roots: r.roots().to_vec(),
+            at_infinity: r.at_infinity,
+        }
+    }
+}
+
 /// |re| + |im|: a norm within √2 of the modulus, without a square root.
 #[inline]
 fn l1(z: C) -> f64 {
@@ -224,11 +277,21 @@ fn x_roots_pencil(p: &Coeffs, q: &Coeffs) -> (Vec<C>, usize) {
     (Vec::new(), 8)
 }
 
-/// x-values of the roots as eigenvalues of the companion matrix of the resultant
-/// R(x) = det S(x) = (a2 b0 − a0 b2)² − (a2 b1 − a1 b2)(a1 b0 − a0 b1), where p = Σ a_j(x) y^j
-/// and q = Σ b_j(x) y^j. The companion matrix is already upper Hessenberg, so balancing and the
-/// Francis QR iteration apply directly: no LU, no Hessenberg reduction, no allocation.
-fn x_roots_resultant(p: &Coeffs, q: &Coeffs) -> Option<([C; 8], usize, usize)> {
+/// The resultant R(x) = det S(x) = (a2 b0 − a0 b2)² − (a2 b1 − a1 b2)(a1 b0 − a0 b1), where
+/// p = Σ a_j(x) y^j and q = Σ b_j(x) y^j, made monic: its degree (a leading coefficient within
+/// its rounding error is zero) and the roots at infinity that degree leaves.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Resultant {
+    /// R / (its leading coefficient), lowest degree first, `deg` of them (the leading 1 omitted).
+    pub(crate) monic: [f64; 8],
+    /// The degree of R.
+    pub(crate) deg: usize,
+    /// 8 − `deg`.
+    pub(crate) at_infinity: usize,
+}
+
+/// The [`Resultant`] of p and q in y.
+pub(crate) fn resultant(p: &Coeffs, q: &Coeffs) -> Resultant {
     let col = |c: &Coeffs, j: usize| [c[0][j], c[1][j], c[2][j]];
     let (a0, a1, a2) = (col(p, 0), col(p, 1), col(p, 2));
     let (b0, b1, b2) = (col(q, 0), col(q, 1), col(q, 2));
@@ -288,14 +351,29 @@ fn x_roots_resultant(p: &Coeffs, q: &Coeffs) -> Option<([C; 8], usize, usize)> {
     while deg > 0 && res[deg].abs() <= bound[deg] {
         deg -= 1;
     }
-    let at_infinity = 8 - deg;
-    let mut xs = [C::new(0.0, 0.0); 8];
-    if deg == 0 {
-        return Some((xs, 0, at_infinity));
-    }
     let mut monic = [0.0; 8];
     for k in 0..deg {
         monic[k] = res[k] / res[deg];
+    }
+    Resultant {
+        monic,
+        deg,
+        at_infinity: 8 - deg,
+    }
+}
+
+/// x-values of the roots as eigenvalues of the companion matrix of the [`resultant`]. The
+/// companion matrix is already upper Hessenberg, so balancing and the Francis QR iteration
+/// apply directly: no LU, no Hessenberg reduction, no allocation.
+fn x_roots_resultant(p: &Coeffs, q: &Coeffs) -> Option<([C; 8], usize, usize)> {
+    let Resultant {
+        monic,
+        deg,
+        at_infinity,
+    } = resultant(p, q);
+    let mut xs = [C::new(0.0, 0.0); 8];
+    if deg == 0 {
+        return Some((xs, 0, at_infinity));
     }
     let mut h = crate::numeric::hessenberg::Hessenberg::companion(&monic[..deg]);
     h.balance();
@@ -339,10 +417,21 @@ pub fn solve_pencil(p: &Coeffs, q: &Coeffs) -> RawRoots {
 }
 
 /// For each x, the y that makes it a common root, then Newton refinement of (x, y).
-fn assign_y(p: &Coeffs, q: &Coeffs, xs: &[C], mut at_infinity: usize, keep_all: bool) -> RawRoots {
+fn assign_y(p: &Coeffs, q: &Coeffs, xs: &[C], at_infinity: usize, keep_all: bool) -> RawRoots {
+    assign_y_fixed(p, q, xs, at_infinity, keep_all).into()
+}
+
+/// [`assign_y`] into fixed storage (at most one root per x, and at most 8 x).
+pub(crate) fn assign_y_fixed(
+    p: &Coeffs,
+    q: &Coeffs,
+    xs: &[C],
+    at_infinity: usize,
+    keep_all: bool,
+) -> FixedRoots {
     // Eigenvalues that coincide may belong to distinct roots sharing one x (then each takes a
     // different y) or to one multiple root (then they share y).
-    let mut roots = Vec::with_capacity(8);
+    let mut roots = FixedRoots::new(at_infinity);
     let mut used = [false; 8];
     for i in 0..xs.len() {
         if used[i] {
@@ -387,7 +476,7 @@ fn assign_y(p: &Coeffs, q: &Coeffs, xs: &[C], mut at_infinity: usize, keep_all: 
             }
         }
         let distinct = &distinct[..nd];
-        let first_of_cluster = roots.len();
+        let first_of_cluster = roots.len;
         for (m, &k) in cluster.iter().enumerate() {
             used[k] = true;
             // The m-th distinct candidate if it is itself nearly a root, else the best one.
@@ -422,18 +511,18 @@ fn assign_y(p: &Coeffs, q: &Coeffs, xs: &[C], mut at_infinity: usize, keep_all: 
                 Some(r) if keep_all => roots.push(r),
                 Some(r)
                     if r.residual < 1e-6
-                        && !roots[..first_of_cluster].iter().any(|o: &RawRoot| {
+                        && !roots.roots[..first_of_cluster].iter().any(|o: &RawRoot| {
                             (o.x - r.x).norm().max((o.y - r.y).norm())
                                 < 1e-6 * (1.0 + r.x.norm().max(r.y.norm()))
                         }) =>
                 {
                     roots.push(r)
                 }
-                _ => at_infinity += 1,
+                _ => roots.at_infinity += 1,
             }
         }
     }
-    RawRoots { roots, at_infinity }
+    roots
 }
 
 #[cfg(test)]

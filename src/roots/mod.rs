@@ -5,6 +5,8 @@
 //!   the 16 that Bézout counts in the projective plane (the rest lie at infinity); the exact form
 //!   has bidegree (2, 2) in (tan α/2, tan ψ/2), at most 8 in P¹ × P¹. Each root is classified
 //!   ([`classify`]): real or complex, spurious, admissible.
+//! * [`solve_all_batch`]: the same at many displacements, the eigenvalues of their systems
+//!   found together ([`batch`]).
 //! * [`select`]: the physical pose — the root reached by continuation from the start of sliding
 //!   along the straight segment to (X, Z, θ) ([`Tracker`]).
 //!
@@ -25,17 +27,19 @@
 //! assert!((tracker.point().u[0] - chosen.alpha.re).abs() < 1e-12);
 //! ```
 
+pub mod batch;
 pub mod classify;
 pub mod eigen;
 pub mod follower;
 pub mod system;
 pub mod tracker;
 
+pub use batch::BatchSolver;
 pub use classify::Inadmissible;
 pub use follower::EigenFollower;
 pub use tracker::{BranchPoint, TrackError, TrackStats, Tracker};
 
-use crate::coeffs::{CoeffInputs, SmallAngleUnsquared};
+use crate::coeffs::{CoeffInputs, Inputs, SmallAngleUnsquared};
 use crate::geometry::Displacement;
 use crate::geometry::Site;
 use crate::model::Mode;
@@ -105,9 +109,9 @@ fn structural_multiplicity(site: &Site, d: Displacement, mode: Mode) -> usize {
 }
 
 /// Merges roots closer than [`MERGE`]: returns (representative, count).
-fn merge(raw: Vec<eigen::RawRoot>) -> Vec<(eigen::RawRoot, usize)> {
+fn merge(raw: &[eigen::RawRoot]) -> Vec<(eigen::RawRoot, usize)> {
     let mut out: Vec<(eigen::RawRoot, usize)> = Vec::new();
-    for r in raw {
+    for &r in raw {
         let size = 1.0 + r.x.norm().max(r.y.norm());
         match out
             .iter_mut()
@@ -126,14 +130,52 @@ pub fn solve_all(site: &Site, d: Displacement, mode: Mode) -> Result<AllRoots, T
         return Err(TrackError::NonFinite(d));
     }
     let (p, q) = system::biquadratic(site, d, mode);
-    let g = structural_multiplicity(site, d, mode);
     let raw = eigen::solve(&p, &q);
-    let merged: Vec<(eigen::RawRoot, usize)> = merge(raw.roots)
-        .into_iter()
-        .map(|(r, k)| (r, k * g))
+    let scales = system::unknown_scales(site, mode);
+    Ok(classified(site, d, mode, scales, &raw.roots))
+}
+
+/// [`solve_all`] at each of `ds`, in order, the systems' eigenvalues found together by
+/// `solver` (`roots/batch.rs`): the same results as one displacement at a time.
+pub fn solve_all_batch(
+    site: &Site,
+    ds: &[Displacement],
+    mode: Mode,
+    solver: &mut BatchSolver,
+) -> Vec<Result<AllRoots, TrackError>> {
+    let scales = system::unknown_scales(site, mode);
+    let systems: Vec<(eigen::Coeffs, eigen::Coeffs)> = ds
+        .iter()
+        .map(|&d| match d.is_finite() {
+            true => system::biquadratic_from(site, &Inputs::new(site, d), scales, d, mode),
+            false => ([[0.0; 3]; 3], [[0.0; 3]; 3]),
+        })
         .collect();
+    let mut raw = Vec::with_capacity(ds.len());
+    solver.solve(&systems, &mut raw);
+    ds.iter()
+        .zip(&raw)
+        .map(|(&d, r)| match d.is_finite() {
+            true => Ok(classified(site, d, mode, scales, r.roots())),
+            false => Err(TrackError::NonFinite(d)),
+        })
+        .collect()
+}
+
+/// The roots `raw` of the system at `d` (in the unknowns scaled by `scales`), merged,
+/// classified and sorted, with the physical one selected.
+fn classified(
+    site: &Site,
+    d: Displacement,
+    mode: Mode,
+    scales: system::UnknownScales,
+    raw: &[eigen::RawRoot],
+) -> AllRoots {
+    let g = structural_multiplicity(site, d, mode);
+    let merged: Vec<(eigen::RawRoot, usize)> =
+        merge(raw).into_iter().map(|(r, k)| (r, k * g)).collect();
     let finite: usize = merged.iter().map(|(_, k)| k).sum();
-    let classifier = Classifier::new(site, d, mode);
+    let classifier = Classifier::new(site, d, mode, scales);
     let mut roots: Vec<Root> = merged
         .into_iter()
         .map(|(r, multiplicity)| classifier.root(&r, multiplicity))
@@ -150,7 +192,7 @@ pub fn solve_all(site: &Site, d: Displacement, mode: Mode) -> Result<AllRoots, T
         },
         Err(e) => (None, Some(e)),
     };
-    Ok(AllRoots {
+    AllRoots {
         mode,
         displacement: d,
         roots,
@@ -158,7 +200,7 @@ pub fn solve_all(site: &Site, d: Displacement, mode: Mode) -> Result<AllRoots, T
         roots_at_infinity: bezout_count(mode).saturating_sub(finite),
         selected,
         selection_error,
-    })
+    }
 }
 
 /// What classifying one root of the solved system needs: the site, displacement and mode, and
@@ -176,7 +218,7 @@ struct Classifier<'a> {
 }
 
 impl<'a> Classifier<'a> {
-    fn new(site: &'a Site, d: Displacement, mode: Mode) -> Self {
+    fn new(site: &'a Site, d: Displacement, mode: Mode, scales: system::UnknownScales) -> Self {
         let unsquared = match (mode, site.as_paper()) {
             (Mode::SmallAngle, Some(p)) => Some(SmallAngleUnsquared::new(&CoeffInputs::new(p, d))),
             _ => None,
@@ -185,7 +227,7 @@ impl<'a> Classifier<'a> {
             site,
             d,
             mode,
-            scales: system::unknown_scales(site, mode),
+            scales,
             unsquared,
             general: site.as_paper().is_none(),
         }

@@ -11,7 +11,7 @@ use crate::mechanics::ContactGeometry;
 use crate::mechanics::loads::Applied;
 use crate::mechanics::static_friction;
 use crate::mechanics::statics::frictionless_normals;
-use crate::model::{Contacts, Simulation};
+use crate::model::{Contacts, RunSettings, Simulation};
 use std::ops::ControlFlow;
 
 /// The number of increments of dt that reach `t_end`: the last may be shorter, so that the route
@@ -27,6 +27,25 @@ pub(super) fn increment_end(t_end: f64, dt: f64, k: usize) -> f64 {
     } else {
         k as f64 * dt
     }
+}
+
+/// The recorded rows' times strictly inside (`t0`, `t1`), in order: the ends k·dt of the
+/// increments the driver records (every stride-th, and the last, at t_end). A model whose steps
+/// are longer than dt gives the rows at these times from within its steps.
+pub(super) fn recorded_within(
+    settings: &RunSettings,
+    t0: f64,
+    t1: f64,
+) -> impl Iterator<Item = f64> {
+    let (dt, t_end) = (settings.dt, settings.t_end);
+    let n = increments(t_end, dt);
+    let stride = settings.stride.max(1);
+    let first = ((t0 / dt).floor().max(0.0) as usize).max(1);
+    (first..=n)
+        .map(move |k| (k, increment_end(t_end, dt, k)))
+        .take_while(move |&(_, t)| t < t1 * (1.0 - 1e-15))
+        .filter(move |&(k, t)| t > t0 * (1.0 + 1e-15) && (k % stride == 0 || k == n))
+        .map(|(_, t)| t)
 }
 
 /// Drives model `M` from its start to the end of its route, then adds the factor of safety at
@@ -109,4 +128,24 @@ fn increments_of<'a, 's, M: Dynamics<'a>>(
         t,
         format!("t reached t_end = {} s", settings.t_end),
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::DynamicsModel;
+
+    #[test]
+    fn the_recorded_times_within_a_step_are_the_strides_increment_ends_and_the_last() {
+        let s = RunSettings::new(DynamicsModel::RigidBody, 0.1, 1.05).with_stride(3);
+        let within = |t0, t1| recorded_within(&s, t0, t1).collect::<Vec<_>>();
+        // k = 3, 6, 9 and the last (k = 11 at t_end); the ends themselves excluded.
+        let all = within(0.0, 2.0);
+        assert_eq!(all.len(), 4);
+        assert!((all[0] - 0.3).abs() < 1e-15 && (all[2] - 0.9).abs() < 1e-15);
+        assert_eq!(all[3], 1.05);
+        assert_eq!(within(0.3, 0.9).len(), 1);
+        assert!(within(0.31, 0.59).is_empty());
+        assert_eq!(within(0.0, 0.3 + 1e-9), [0.30000000000000004]);
+    }
 }

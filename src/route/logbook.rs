@@ -50,6 +50,8 @@ pub(super) struct Logbook<'s> {
     pub increments: usize,
     /// How often the paper's frictional solution was chosen afresh (paper's dynamics).
     pub switches: usize,
+    /// The rigid body's integration steps: taken, and tried and shortened.
+    pub steps: (usize, usize),
     /// The energy balance (rigid-body dynamics).
     pub energy: Option<EnergyBalance>,
     /// A block on its base: where it rested, what carried it, how deep its base went.
@@ -80,6 +82,7 @@ impl<'s> Logbook<'s> {
             travel: 0.0,
             increments: 0,
             switches: 0,
+            steps: (0, 0),
             energy: None,
             base: None,
             anchors_broken: Vec::new(),

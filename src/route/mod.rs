@@ -149,6 +149,20 @@ pub struct Diagnostics {
     pub end_jacobian_condition: Option<f64>,
     /// Wall-clock time of the computation (s).
     pub wall_s: f64,
+    /// The rigid body's integration steps taken (each chosen against the tolerance), and those
+    /// tried and taken again shorter; none for the paper's dynamics and the block on its base,
+    /// whose steps are the increments.
+    pub steps: Option<Steps>,
+}
+
+/// The rigid body's integration steps (`Diagnostics::steps`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
+pub struct Steps {
+    /// Steps taken.
+    pub taken: usize,
+    /// Steps tried and taken again shorter (the error over the tolerance, the energy balance
+    /// unresolved, a failure to locate).
+    pub retried: usize,
 }
 
 #[cfg(test)]

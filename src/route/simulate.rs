@@ -201,6 +201,10 @@ impl<'a> Runner<'a> {
                 tracker: finder.stats(),
                 end_jacobian_condition: finder.jacobian_condition(),
                 wall_s: started.elapsed().as_secs_f64(),
+                steps: (o.steps != (0, 0)).then_some(super::Steps {
+                    taken: o.steps.0,
+                    retried: o.steps.1,
+                }),
             },
         }
     }

@@ -40,6 +40,7 @@ impl Scene {
                     ("integrator", Value::String(s.integrator.as_str().into())),
                     ("stride", Value::Integer(s.stride as i64)),
                     ("contacts", Value::String(s.contacts.as_str().into())),
+                    ("tolerance", Value::Float(s.tolerance)),
                 ]),
             );
         }

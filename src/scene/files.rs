@@ -5,12 +5,14 @@
 
 use super::Scene;
 use super::input::open_bounded;
+use super::obj::{ObjSurface, read_obj};
 use crate::geometry::Ground;
 use crate::model::Record;
 use std::path::Path;
 use std::sync::Arc;
 
-/// The largest surface file (bytes): some two hundred thousand triangles.
+/// The largest surface file (bytes): some 1.5 million triangles on a grid of shared vertices
+/// (fewer where each triangle has corners of its own).
 pub const MAX_SURFACE_BYTES: u64 = 64 << 20;
 
 /// The largest record file (bytes): some million samples.
@@ -89,36 +91,15 @@ impl Files {
 }
 
 /// A Wavefront OBJ file of triangles (faces of more corners are split into triangles), Y up,
-/// in scene coordinates.
+/// in scene coordinates: its vertices and triangles read as they are kept (`obj.rs`), moved
+/// into the ground.
 fn read_surface(path: &Path) -> Result<Ground, String> {
-    let mut reader = std::io::BufReader::new(open_bounded(path, MAX_SURFACE_BYTES)?);
-    let options = tobj::LoadOptions {
-        triangulate: true,
-        single_index: true,
-        ..Default::default()
-    };
-    // A surface has no materials: a material library it names is not read.
-    let (models, _) = tobj::load_obj_buf(&mut reader, &options, |_| {
-        Err(tobj::LoadError::OpenFileFailed)
-    })
-    .map_err(|e| format!("not a Wavefront OBJ surface: {e}"))?;
-    let mut triangles = Vec::with_capacity(models.iter().map(|m| m.mesh.indices.len() / 3).sum());
-    for m in &models {
-        let p = &m.mesh.positions;
-        for t in m.mesh.indices.chunks_exact(3) {
-            let corner = |k: u32| -> Result<[f64; 3], String> {
-                let k = k as usize * 3;
-                p.get(k..k + 3)
-                    .map(|c| [c[0], c[1], c[2]])
-                    .ok_or_else(|| format!("a face names vertex {} of {}", k / 3 + 1, p.len() / 3))
-            };
-            triangles.push([corner(t[0])?, corner(t[1])?, corner(t[2])?]);
-        }
-    }
-    // The file's mesh is not needed once its triangles are out: freed before the ground is
-    // built, so that the two are not held at once.
-    drop(models);
-    Ground::surface(&triangles).map_err(|e| e.to_string())
+    let reader = std::io::BufReader::with_capacity(1 << 16, open_bounded(path, MAX_SURFACE_BYTES)?);
+    let ObjSurface {
+        vertices,
+        triangles,
+    } = read_obj(reader, MAX_SURFACE_BYTES).map_err(|e| e.to_string())?;
+    Ground::mesh(vertices, triangles).map_err(|e| e.to_string())
 }
 
 /// A record file: CSV with the header `t_s,ax_g,ay_g,az_g`.

@@ -9,6 +9,7 @@ mod echo;
 mod error;
 mod files;
 pub mod input;
+mod obj;
 mod raw;
 mod read;
 mod record_files;

@@ -243,6 +243,8 @@ pub struct RawSolver {
     pub stride: Option<i64>,
     /// Where the block touches the ground: "frame" (default) or "base".
     pub contacts: Option<String>,
+    /// The rigid body's error tolerance per step (default `model::DEFAULT_TOLERANCE`).
+    pub tolerance: Option<f64>,
 }
 
 /// `[base]`: the block's footprint, where it touches the ground under `contacts = "base"`.

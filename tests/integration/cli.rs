@@ -640,7 +640,7 @@ fn report_quick_writes_csv_markdown_and_picture() {
     let csv = std::fs::read_to_string(dir.join("work-precision.csv")).unwrap();
     assert_eq!(
         csv.lines().next().unwrap(),
-        "scene,dynamics,method,mode,integrator,dt_s,increments,wall_s,error_m"
+        "scene,dynamics,method,mode,integrator,dt_s,tolerance,increments,steps,wall_s,error_m"
     );
     assert_eq!(
         csv.lines().count(),
@@ -691,7 +691,13 @@ fn run_with_rigid_body_dynamics_reports_it_and_its_energy() {
         serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
     assert_eq!(summary["dynamics"], "rigid-body");
     assert_eq!(summary["integrator"], "rk4");
-    assert!(summary["energy"]["residual_j"].as_f64().unwrap().abs() < 1e-3);
+    // The balance holds to the step control's tolerance of the energy scale (about 1e8 J).
+    let energy = &summary["energy"];
+    let scale = energy["work_hydraulic_j"].as_f64().unwrap();
+    assert!(
+        energy["residual_j"].as_f64().unwrap().abs() < 1e-9 * scale,
+        "{energy}"
+    );
 }
 
 #[test]
@@ -1195,8 +1201,8 @@ fn long_scene(dir: &std::path::Path) -> std::path::PathBuf {
 
 #[test]
 fn an_interrupted_sweep_writes_a_row_for_every_combination() {
-    // Routes under way stop at their next increment, those not
-    // started are rows "not run (interrupted)"; the files are whole, the lock gone.
+    // Routes under way stop at their next increment, those not started are rows "not run
+    // (interrupted)"; the files are whole, the lock gone.
     let dir = temp_dir("interrupt-sweep");
     let scene = long_scene(&dir);
     let out = dir.join("out");
@@ -1207,7 +1213,7 @@ fn an_interrupted_sweep_writes_a_row_for_every_combination() {
             "--scene",
             scene.to_str().unwrap(),
             "--vary",
-            "friction.mu_k=0.2:0.3:12",
+            "friction.mu_k=0.2:0.3:400",
             "--out",
             out.to_str().unwrap(),
         ],
@@ -1222,12 +1228,22 @@ fn an_interrupted_sweep_writes_a_row_for_every_combination() {
         .records()
         .map(|r| r.unwrap()[column].to_string())
         .collect();
-    assert_eq!(reasons.len(), 12, "a row for every combination");
+    // Four hundred routes of some 20 ms each on two cores: some done, those under way
+    // interrupted, the rest not run.
+    assert_eq!(reasons.len(), 400, "a row for every combination");
     assert!(
-        reasons
-            .iter()
-            .all(|r| r == "interrupted" || r == "not run (interrupted)"),
+        reasons.iter().any(|r| r == "not run (interrupted)"),
         "{reasons:?}"
+    );
+    let ended: Vec<&String> = reasons
+        .iter()
+        .filter(|r| *r != "not run (interrupted)")
+        .collect();
+    assert!(
+        ended
+            .iter()
+            .all(|r| *r == "interrupted" || *r == "stopped" || r.starts_with("contact")),
+        "{ended:?}"
     );
     assert!(out.join("sweep.svg").exists());
     assert!(!out.join(".slideroute.lock").exists());

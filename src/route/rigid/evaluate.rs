@@ -144,7 +144,8 @@ pub(super) fn evaluate(
         strength: &sim.strength(faces, false),
     };
     let motion =
-        rigid_body::accelerations(&at, rates, sim.settings().dt, hold.creases).map_err(stop_of)?;
+        rigid_body::accelerations(&at, rates, sim.settings().reference_step(), hold.creases)
+            .map_err(stop_of)?;
     Ok(Eval {
         pose,
         motion,

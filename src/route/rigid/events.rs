@@ -70,6 +70,8 @@ pub(super) struct Bracket {
     pub y_lo: RigidState,
     pub y_hi: RigidState,
     pub found: Option<Event>,
+    /// The failure at the shortest length known to fail, if any: what the route meets first.
+    pub failure: Option<Stop>,
 }
 
 /// Event location: bisection on the length of the step `span` between 0 and its length, down to
@@ -94,6 +96,7 @@ pub(super) fn bracket_event(
         y_lo: *span.y,
         y_hi: span.end,
         found: None,
+        failure: None,
     };
     for _ in 0..60 {
         if b.hi - b.lo <= 1e-12 * sim.settings().dt {
@@ -110,7 +113,10 @@ pub(super) fn bracket_event(
                 b.y_hi = ym;
                 b.found = event;
             }
-            Err(_) => b.hi = mid,
+            Err(stop) => {
+                b.hi = mid;
+                b.failure = Some(stop);
+            }
         }
     }
     b
@@ -128,6 +134,18 @@ pub(super) fn rk4(
     h: f64,
     heading: &Heading<'_>,
 ) -> Result<(RigidState, Option<Event>), Stop> {
+    rk4_stages(sim, finder, y, k1, h, heading).map(|(next, _, crossed)| (next, crossed))
+}
+
+/// [`rk4`], also giving its last stage k4 (for the step's error estimate).
+pub(super) fn rk4_stages(
+    sim: &Simulation,
+    finder: &PoseFinder<'_>,
+    y: &RigidState,
+    k1: &[f64; VALUES],
+    h: f64,
+    heading: &Heading<'_>,
+) -> Result<(RigidState, [f64; VALUES], Option<Event>), Stop> {
     let mut crossed = None;
     let hold = Hold::of(heading.before);
     let mut stage = |y: &[f64; VALUES]| {
@@ -138,6 +156,6 @@ pub(super) fn rk4(
             y.with_rates(e.rates).derivative(&e.motion)
         })
     };
-    let next = crate::route::integrator::rk4(&y.to_array(), k1, h, &mut stage)?;
-    Ok((RigidState::from_array(&next), crossed))
+    let (next, k4) = crate::route::integrator::rk4_stages(&y.to_array(), k1, h, &mut stage)?;
+    Ok((RigidState::from_array(&next), k4, crossed))
 }

@@ -94,9 +94,17 @@ pub(super) struct RigidBody<'a> {
     slip_peak: f64,
     /// The last event, when it was a pivot: the contact and the moment.
     pivoted: Option<(usize, f64)>,
-    /// The substep: dt, halved where the energy balance says RK4 does not resolve the motion,
-    /// grown back by doubling.
+    /// The next step's length: chosen by the error estimate against the tolerance
+    /// (`substep.rs`), shortened where the energy balance says RK4 does not resolve the motion.
     h: f64,
+    /// Each value's weight in the step's error: 1 / (tolerance × its scale), zero for the works
+    /// and the time (`substep.rs`'s `error_weights`).
+    weights: [f64; state::VALUES],
+    /// The recorded rows at the times strictly inside the last step (its dense output, each
+    /// evaluated at its state), for a step longer than the rows' interval.
+    within: Vec<Row>,
+    /// The time the driver last advanced to: the row it asks for is this one's.
+    shown_t: f64,
     /// What the energy balance is measured from: the start.
     energy: EnergyOrigin,
     /// The balance's own round-off: its potential energy m g ΔY carries that of a height of the
@@ -119,9 +127,10 @@ impl<'a> RigidBody<'a> {
     fn new(sim: Model<'a>, y: RigidState, ev: Eval, energy: EnergyOrigin, resting: bool) -> Self {
         let mass = sim.block().mass;
         let (h, round_off) = (
-            sim.settings().dt,
+            sim.settings().reference_step(),
             64.0 * f64::EPSILON * mass * sim.loads().gravity * sim.l(),
         );
+        let weights = substep::error_weights(&sim);
         RigidBody {
             sim,
             y,
@@ -132,6 +141,9 @@ impl<'a> RigidBody<'a> {
             slip_peak: 0.0,
             pivoted: None,
             h,
+            weights,
+            within: Vec::new(),
+            shown_t: 0.0,
             energy,
             round_off,
             resting,
@@ -257,10 +269,17 @@ impl<'a> Dynamics<'a> for RigidBody<'a> {
         t_to: f64,
         o: Logbook<'s>,
     ) -> Flow<'s> {
+        self.shown_t = t_to;
         self.substeps(finder, k, t_to, o)
     }
 
     fn row(&self) -> Row {
+        // A row inside the last step (the step went past the driver's time).
+        if self.t > self.shown_t * (1.0 + 1e-15)
+            && let Some(r) = self.within.iter().find(|r| r.t_s == self.shown_t)
+        {
+            return *r;
+        }
         if self.resting {
             rest_row(self.t, &self.y, &self.ev.pose, self.ev.faces)
         } else {

@@ -155,7 +155,7 @@ impl RigidBody<'_> {
             Ok(p) => p,
             Err(e) => return Rest::Failed(e),
         };
-        o.travel += (stop_pose.cm - from.pose.cm).norm();
+        o.travel += (stopped.travel - self.y.travel).max(0.0);
         o.increments = k;
         let geom = ContactGeometry::new(&finder.site().normals(), &stop_pose);
         let check = match static_check(sim, &geom, t_event, from.faces, false) {
@@ -301,7 +301,7 @@ impl RigidBody<'_> {
                         self.slip_peak = 0.0;
                         self.region = None;
                         self.anchor = Anchor::after(&self.ev, None);
-                        self.h = sim.settings().dt;
+                        self.h = sim.settings().reference_step();
                         return Flow::Go(o);
                     }
                     Err(s) if tried >= t_target => {

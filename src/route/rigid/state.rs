@@ -24,10 +24,13 @@ pub(super) struct RigidState {
     pub work_friction: f64,
     /// The time (s), on which a ground-motion record's loads depend.
     pub t: f64,
+    /// The length of the CM's path so far (m), integrated with the motion (its rate the CM's
+    /// speed) so that it does not depend on how long the steps are.
+    pub travel: f64,
 }
 
 /// The number of the state's values, as the integrator sees them.
-pub(super) const VALUES: usize = 9;
+pub(super) const VALUES: usize = 10;
 
 impl RigidState {
     /// At the start: in place, moving as `initial` says, no work done, t = 0.
@@ -71,7 +74,7 @@ impl RigidState {
     }
 
     /// The state's rate of change with the motion `m` at it: the rates, the accelerations, the
-    /// loads' and friction's power, and time's own rate.
+    /// loads' and friction's power, time's own rate and the CM's speed.
     pub fn derivative(&self, m: &Motion) -> [f64; VALUES] {
         [
             self.vx,
@@ -83,6 +86,7 @@ impl RigidState {
             m.power_hydraulic,
             m.power_friction,
             1.0,
+            m.twist.v.norm(),
         ]
     }
 
@@ -98,12 +102,24 @@ impl RigidState {
             self.work_applied,
             self.work_friction,
             self.t,
+            self.travel,
         ]
     }
 
     /// The state of values in the integrator's order.
     pub fn from_array(y: &[f64; VALUES]) -> RigidState {
-        let [x, z, theta, vx, vz, omega, work_applied, work_friction, t] = *y;
+        let [
+            x,
+            z,
+            theta,
+            vx,
+            vz,
+            omega,
+            work_applied,
+            work_friction,
+            t,
+            travel,
+        ] = *y;
         RigidState {
             x,
             z,
@@ -114,6 +130,7 @@ impl RigidState {
             work_applied,
             work_friction,
             t,
+            travel,
         }
     }
 }
@@ -134,9 +151,13 @@ mod tests {
             work_applied: 7.0,
             work_friction: 8.0,
             t: 9.0,
+            travel: 10.0,
         };
         assert_eq!(RigidState::from_array(&s.to_array()), s);
-        assert_eq!(s.to_array(), [1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0]);
+        assert_eq!(
+            s.to_array(),
+            [1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0, 10.0]
+        );
         assert_eq!(s.rates(), [4.0, 5.0, 6.0]);
         assert_eq!(s.stopped().rates(), [0.0; 3]);
         assert_eq!(s.with_rates([1.0; 3]).t, 9.0);

@@ -1,9 +1,11 @@
-//! Substep control of the rigid body: an increment in substeps, each tried, taken, halved
-//! where the energy balance says RK4 does not resolve the motion, or cut at an event and the
-//! event handled (`derivations/08-rigid-body.md` §3).
+//! Step control of the rigid body: the route in steps, each tried, taken, shortened where its
+//! error estimate exceeds the tolerance or the energy balance says RK4 does not resolve the
+//! motion, or cut at an event and the event handled (`derivations/08-rigid-body.md` §3, §4a).
+//! A step may be longer than the interval of the recorded rows: the rows within it are its dense
+//! output, each evaluated at its own state.
 
 use super::evaluate::{Eval, Hold, evaluate};
-use super::events::{Bracket, Event, Heading, Span, bracket_event, rk4};
+use super::events::{Bracket, Event, Heading, Span, bracket_event, rk4_stages};
 use super::ground::{BeforeImpact, after_impact, ground_event};
 use super::hold::{Anchor, hold_anchor, hold_on_creases};
 use super::rest::Rest;
@@ -11,7 +13,9 @@ use super::state::{RigidState, VALUES};
 use super::tendons::AT_CAPACITY;
 use super::{Ending, RigidBody};
 use crate::model::Simulation;
+use crate::route::driver::recorded_within;
 use crate::route::dynamics::Flow;
+use crate::route::integrator::hermite;
 use crate::route::logbook::Logbook;
 use crate::route::pose_finder::PoseFinder;
 use crate::route::termination::{Reason, Stop};
@@ -20,13 +24,6 @@ use nalgebra::Vector3;
 /// The fraction of the largest kinetic energy of the route below which the block counts as at
 /// rest when a contact's slip passes through zero (see `RigidBody::cut_at_event`).
 const REST: f64 = 1e-9;
-
-/// A substep is halved when the energy balance W_h + W_f − ΔK − ΔU moves over it by more than
-/// this fraction of the route's energy scale (the largest of its kinetic energy and of the
-/// works so far), prorated to the substep. Where the motion is resolved RK4 moves it by about
-/// 1e-18 a step; it is exceeded where friction makes the motion stiff — near a stop the friction
-/// moments damp the rotation at a rate ∝ μ N r² / (I |v|) — or a slip swings round near zero.
-const ENERGY_TOLERANCE: f64 = 1e-9;
 
 /// The fraction of the largest kinetic energy since the block last slipped from rest below
 /// which a slip is settling: a contact's slip passing through zero there, with the loads within
@@ -43,17 +40,70 @@ const MAX_EVENTS: usize = 16;
 /// lifts a contact off its face and puts it on the next, `crease_event`), so 64 is none of them.
 const EVENTS_AT_ONE_MOMENT: usize = 64;
 
-/// The shortest substep, as a fraction of dt (then the step is taken as it is).
+/// The shortest substep, as a fraction of the reference step (then the step is taken as it is).
 const MIN_SUBSTEP: f64 = 1e-3;
 
-/// Substep control: whether a substep of length `len` (of an increment `dt`) moved the energy
-/// balance's residual from `before` to `after` by more than the tolerance — a fraction
-/// `ENERGY_TOLERANCE` of the route's energy `scale`, prorated to the substep, and never below
-/// the balance's own round-off — and may still be halved (it is longer than `MIN_SUBSTEP`·dt).
-fn unresolved_substep(residual: Change, scale: f64, len: f64, dt: f64, round_off: f64) -> bool {
-    (residual.after - residual.before).abs()
-        > (ENERGY_TOLERANCE * scale * (len / dt)).max(round_off)
-        && len > MIN_SUBSTEP * dt
+/// The longest step, in recorded rows' intervals: the rows within one step are kept until the
+/// driver takes them, so that this bounds their memory.
+const MAX_ROWS_IN_A_STEP: f64 = 1024.0;
+
+/// The most a step grows or shrinks at once, and the safety factor on the step the error
+/// estimate asks for (the usual controller of an embedded pair: Hairer, Nørsett & Wanner, I,
+/// II.4).
+const MAX_GROWTH: f64 = 5.0;
+const MAX_SHRINK: f64 = 0.2;
+const SAFETY: f64 = 0.9;
+
+/// Each value's weight in a step's error (`derivations/08-rigid-body.md` §4a): the CM's
+/// position and its path against the block's size L and the yaw in radians, each over the
+/// tolerance. The rates, the works and the time are not weighed: where friction switches within
+/// a step (a young slip's direction slaved or free, a contact starting to stick), the
+/// accelerations jump, and an estimate of the rates' error, first order there, would shrink the
+/// step to the shortest at every switch; the positions' error, of second order there, keeps the
+/// steps the motion needs, and the energy balance watches the rates.
+pub(super) fn error_weights(sim: &Simulation) -> [f64; VALUES] {
+    let (l, tol) = (sim.l(), sim.settings().tolerance);
+    let none = f64::INFINITY;
+    [l, l, 1.0, none, none, none, none, none, none, l].map(|s| 1.0 / (tol * s))
+}
+
+/// A step's error over the tolerance: the largest weighted component of the difference between
+/// RK4's solution and the embedded third-order one, h/6 (k4 − k5), where k5 is the derivative
+/// at the step's end (`derivations/08-rigid-body.md` §4a). At most 1 where the step is within the
+/// tolerance.
+fn error_ratio(weights: &[f64; VALUES], h: f64, k4: &[f64; VALUES], k5: &[f64; VALUES]) -> f64 {
+    (0..VALUES)
+        .map(|i| (h / 6.0 * (k4[i] - k5[i])).abs() * weights[i])
+        .fold(0.0, f64::max)
+}
+
+/// The factor by which the next step is the last one's, from its error ratio: the step whose
+/// error would be the tolerance (the estimate falls as h⁴), with the safety factor, within the
+/// growth and shrink bounds.
+fn step_factor(ratio: f64) -> f64 {
+    if ratio <= 0.0 {
+        return MAX_GROWTH;
+    }
+    (SAFETY * ratio.powf(-0.25)).clamp(MAX_SHRINK, MAX_GROWTH)
+}
+
+/// Substep control: whether a substep of length `len` moved the energy balance
+/// W_h + W_f − ΔK − ΔU from `before` to `after` by more than the `tolerance` of the route's
+/// energy `scale` (the largest of its kinetic energy and of the works so far), never below the
+/// balance's own round-off, and may still be shortened (it is longer than `MIN_SUBSTEP` of the
+/// `reference` step). Where the motion is resolved RK4 moves it by far less; it is exceeded where
+/// friction makes the motion stiff — near a stop the friction moments damp the rotation at a
+/// rate ∝ μ N r² / (I |v|) — or a slip swings round near zero, which the error estimate of a
+/// step across such a swing may not see.
+fn unresolved_substep(
+    residual: Change,
+    (scale, tolerance): (f64, f64),
+    len: f64,
+    reference: f64,
+    round_off: f64,
+) -> bool {
+    (residual.after - residual.before).abs() > (tolerance * scale).max(round_off)
+        && len > MIN_SUBSTEP * reference
 }
 
 /// A quantity before a substep and after it.
@@ -86,12 +136,16 @@ struct Trial<'f> {
     failed: Option<Stop>,
     /// The pose finder at the end state.
     at_next: PoseFinder<'f>,
+    /// The step's last stage, k4 (for its error estimate).
+    k4: [f64; VALUES],
 }
 
 impl RigidBody<'_> {
-    /// Increment `k` to `t_target` in substeps: each step checked for events — a stop, a
-    /// pivot, a release, a failure — found by bisection on the step length, and halved where
-    /// the energy balance says RK4 does not resolve the motion.
+    /// Increment `k` to `t_target` in steps: each step checked for events — a stop, a pivot, a
+    /// release, a failure — found by bisection on the step length, and shortened where its
+    /// error estimate exceeds the tolerance or the energy balance says RK4 does not resolve the
+    /// motion. An event-free step may end past `t_target` (the rows it passes are its dense
+    /// output); a step with an event ends by `t_target`, so that the rows stay in time order.
     pub(super) fn substeps<'s>(
         &mut self,
         finder: &mut PoseFinder<'_>,
@@ -114,15 +168,18 @@ impl RigidBody<'_> {
             // rest of the increment is taken in plain substeps: its error shows in the energy
             // balance.
             let resolve = events < MAX_EVENTS;
-            // A ground-motion record's samples are where its loads may turn: substeps end on
-            // them (RK4 keeps its order between them).
+            // A ground-motion record's samples are where its loads may turn: steps end on them
+            // (RK4 keeps its order between them); and none goes past the route's end.
+            let t_end = self.sim.settings().t_end;
             let until = match self.sim.record().and_then(|r| r.next_sample(self.t)) {
-                Some(s) if s < t_target => s,
-                _ => t_target,
+                Some(s) if s < t_end => s,
+                _ => t_end,
             };
             let before = self.t;
-            match self.substep(finder, k, until - self.t, resolve, &mut o) {
+            let left = (until - self.t, t_target - self.t);
+            match self.substep(finder, k, left, resolve, &mut o) {
                 Ok(Substep::Event) => {
+                    o.steps.0 += 1;
                     events += 1;
                     at_one_moment = match at_one_moment {
                         (t, n) if t == before && self.t == before => (t, n + 1),
@@ -143,24 +200,28 @@ impl RigidBody<'_> {
                         ));
                     }
                 }
-                Ok(Substep::Retry | Substep::Moved) => {}
+                Ok(Substep::Retry) => o.steps.1 += 1,
+                Ok(Substep::Moved) => o.steps.0 += 1,
                 Err(Ending::Failed(stop)) => return Flow::Ended(self.fail(o, stop)),
                 Err(Ending::At(reason, t, detail)) => {
                     return Flow::Ended(o.end(reason, t, detail));
                 }
             }
         }
-        self.t = t_target;
+        if self.t <= t_target * (1.0 + 1e-15) {
+            self.t = t_target;
+        }
         Flow::Go(o)
     }
 
-    /// One substep of at most `left` (s): tried, then moved on, retried shorter, or cut at an
-    /// event and the event handled.
+    /// One step of at most `left.0` (s) and, if it meets an event, of at most `left.1` (to the
+    /// driver's time): tried, then moved on, retried shorter, or cut at an event and the event
+    /// handled.
     fn substep<'f>(
         &mut self,
         finder: &mut PoseFinder<'f>,
         k: usize,
-        left: f64,
+        (left, to_target): (f64, f64),
         resolve: bool,
         o: &mut Logbook<'_>,
     ) -> Result<Substep, Ending> {
@@ -176,12 +237,27 @@ impl RigidBody<'_> {
             before: &motion,
             mass,
         };
-        let trial = self.trial(finder, self.h.min(left), resolve, &heading);
-        let dt = self.sim.settings().dt;
+        let longest =
+            MAX_ROWS_IN_A_STEP * self.sim.settings().dt * self.sim.settings().stride as f64;
+        let mut trial = self.trial(finder, self.h.min(left).min(longest), resolve, &heading);
+        let eventful = |t: &Trial<'_>| {
+            t.failed.is_some()
+                || t.crossed.is_some()
+                || heading
+                    .event(&t.next_ev.motion)
+                    .filter(|_| resolve)
+                    .is_some()
+        };
+        if trial.h > to_target * (1.0 + 1e-12) && eventful(&trial) {
+            // An event beyond the driver's time would push its rows before that time's: the
+            // step is taken again to the driver's time, and the event met in the next.
+            trial = self.trial(finder, to_target, resolve, &heading);
+        }
+        let reference = self.sim.settings().reference_step();
         // A failure over a long substep may be the integrator's (a slip too young to be
         // watched for reversal, turned round within the step): retry in shorter substeps down
         // to the shortest, and only there locate it.
-        if trial.failed.is_some() && trial.h > 2.0 * MIN_SUBSTEP * dt {
+        if trial.failed.is_some() && trial.h > 2.0 * MIN_SUBSTEP * reference {
             self.h = 0.5 * trial.h;
             return Ok(Substep::Retry);
         }
@@ -192,6 +268,7 @@ impl RigidBody<'_> {
         if trial.crossed.is_none() && at_end.is_none() && trial.failed.is_none() {
             return self.move_on(finder, trial, resolve, o);
         }
+        self.within.clear();
         self.cut_at_event(finder, k, trial, at_end, resolve, &heading, o)
     }
 
@@ -212,13 +289,13 @@ impl RigidBody<'_> {
         let hold = Hold::of(&self.ev.motion);
         let k1 = self.y.derivative(&self.ev.motion);
         let mut at_next = finder.clone();
-        let step = rk4(sim, finder, &self.y, &k1, h, heading).and_then(|(n, c)| {
+        let step = rk4_stages(sim, finder, &self.y, &k1, h, heading).and_then(|(n, k4, c)| {
             let e = evaluate(sim, &mut at_next, &n, hold)?;
-            Ok((n, c.filter(|_| resolve), e))
+            Ok((n, k4, c.filter(|_| resolve), e))
         });
-        let (next, crossed, next_ev, failed) = match step {
-            Ok((n, c, e)) => (e.accept(&n), c, e, None),
-            Err(stop) => (self.y, None, self.ev, Some(stop)),
+        let (next, k4, crossed, next_ev, failed) = match step {
+            Ok((n, k4, c, e)) => (e.accept(&n), k4, c, e, None),
+            Err(stop) => (self.y, k1, None, self.ev, Some(stop)),
         };
         Trial {
             h,
@@ -228,6 +305,7 @@ impl RigidBody<'_> {
             crossed,
             failed,
             at_next,
+            k4,
         }
     }
 
@@ -247,12 +325,15 @@ impl RigidBody<'_> {
             .max(y.work_applied.abs())
             .max(y.work_friction.abs())
             .max(y2.work_applied.abs());
-        unresolved_substep(residual, scale, len, self.sim.settings().dt, self.round_off)
+        let reference = self.sim.settings().reference_step();
+        let tolerance = self.sim.settings().tolerance;
+        unresolved_substep(residual, (scale, tolerance), len, reference, self.round_off)
     }
 
-    /// No event in the step: take it unless the energy balance moved by more than the
-    /// tolerance (then halve the substep and try again); a sticking contact is held where it
-    /// stuck.
+    /// No event in the step: take it unless its error estimate exceeds the tolerance or the
+    /// energy balance moved by more than its own (then shorten the step and try again); a
+    /// sticking contact is held where it stuck. The rows the step passes are its dense output,
+    /// each evaluated at its state. The next step's length follows from this one's error.
     fn move_on<'f>(
         &mut self,
         finder: &mut PoseFinder<'f>,
@@ -262,20 +343,29 @@ impl RigidBody<'_> {
     ) -> Result<Substep, Ending> {
         let Trial {
             h,
+            k1,
+            k4,
             next,
             next_ev,
             at_next,
             ..
         } = trial;
+        let reference = self.sim.settings().reference_step();
+        let shortest = MIN_SUBSTEP * reference;
+        let ratio = error_ratio(&self.weights, h, &k4, &next.derivative(&next_ev.motion));
+        if resolve && ratio > 1.0 && h > shortest {
+            self.h = (h * step_factor(ratio)).max(shortest);
+            return Ok(Substep::Retry);
+        }
         if self.unresolved(resolve, h, &next, &next_ev)
-            || (self.past_capacity(&next_ev, AT_CAPACITY).is_some()
-                && h > MIN_SUBSTEP * self.sim.settings().dt)
+            || (self.past_capacity(&next_ev, AT_CAPACITY).is_some() && h > shortest)
         {
             // Too long to resolve the motion, or carrying a tendon past its capacity: the break
             // is located as the substep shortens (`tendons.rs`).
             self.h = 0.5 * h;
             return Ok(Substep::Retry);
         }
+        let start = finder.clone();
         *finder = at_next;
         let (next, next_ev) = match self.anchor {
             Some(a) if next_ev.motion.stuck == Some(a.contact) => {
@@ -285,18 +375,70 @@ impl RigidBody<'_> {
         };
         let (next, next_ev) =
             hold_on_creases(&self.sim, finder, next, next_ev).map_err(Ending::Failed)?;
+        if !self.rows_within(&start, h, &k1, (&next, &next_ev)) {
+            // A row within the step off the model: shorter steps.
+            *finder = start;
+            self.h = 0.5 * h;
+            return Ok(Substep::Retry);
+        }
         self.go_to(o, next, next_ev);
         self.anchor = Anchor::after(&self.ev, self.anchor);
         self.t += h;
-        if h >= self.h {
-            self.h = (2.0 * self.h).min(self.sim.settings().dt);
-        }
+        let proposed = (h * step_factor(ratio)).min(MAX_GROWTH * self.h);
+        // A step cut short (at a record's sample, the route's end) says nothing against the
+        // step before it.
+        self.h = if h < self.h {
+            proposed.max(self.h)
+        } else {
+            proposed
+        };
         Ok(Substep::Moved)
+    }
+
+    /// The recorded rows strictly inside the step of length `h` from the current state (its
+    /// derivative `k1`) to `end`: the step's dense output (`integrator::hermite`) at each row's
+    /// time, evaluated there on a copy of `start`, the finder at the step's start. False where a
+    /// row's state is off the model.
+    fn rows_within(
+        &mut self,
+        start: &PoseFinder<'_>,
+        h: f64,
+        k1: &[f64; VALUES],
+        (end, end_ev): (&RigidState, &Eval),
+    ) -> bool {
+        self.within.clear();
+        let t0 = self.t;
+        let times = recorded_within(self.sim.settings(), t0, t0 + h);
+        let (y0, y1) = (self.y.to_array(), end.to_array());
+        let k5 = end.derivative(&end_ev.motion);
+        let hold = Hold::of(&self.ev.motion);
+        let mut f = start.clone();
+        for t in times {
+            let y = RigidState::from_array(&hermite((&y0, k1), (&y1, &k5), h, (t - t0) / h));
+            let y = y.at(y0[8] + (t - t0));
+            // Held as the step's end is: a sticking contact where it stuck, a crease's contact
+            // on its second face.
+            let row = evaluate(&self.sim, &mut f, &y, hold).and_then(|e| {
+                let (y, e) = match self.anchor {
+                    Some(a) if e.motion.stuck == Some(a.contact) => {
+                        hold_anchor(&self.sim, &mut f, e.accept(&y), e, a)?
+                    }
+                    _ => (e.accept(&y), e),
+                };
+                let (y, e) = hold_on_creases(&self.sim, &mut f, y, e)?;
+                Ok(e.row(t, &y))
+            });
+            match row {
+                Ok(r) => self.within.push(r),
+                Err(_) => return false,
+            }
+        }
+        true
     }
 
     /// Takes the state `y`, evaluated as `e`, its travel booked.
     fn go_to(&mut self, o: &mut Logbook<'_>, y: RigidState, e: Eval) {
-        o.travel += (e.pose.cm - self.ev.pose.cm).norm();
+        o.travel += (y.travel - self.y.travel).max(0.0);
         self.y = y;
         self.ev = e;
     }
@@ -328,10 +470,11 @@ impl RigidBody<'_> {
         if let (Some(stop), None) = (trial.failed, bracket.found) {
             // A failure that is the ground's event (a contact meeting a face, a crease letting
             // go) changes what the contacts are held to and the route goes on; any other ends
-            // it.
+            // it, told as it is first met: at the bracket's end, not the step's.
             if let Some(next) = self.crease_event(finder, k, &bracket, &stop, o)? {
                 return Ok(next);
             }
+            let stop = bracket.failure.clone().unwrap_or(stop);
             return Err(self.end_at_failure(finder, k, &bracket, stop, o));
         }
         let Bracket {
@@ -340,6 +483,7 @@ impl RigidBody<'_> {
             y_lo,
             y_hi,
             found,
+            ..
         } = bracket;
         // The substep up to the event must itself be resolved: else approach it in shorter
         // substeps.
@@ -362,7 +506,8 @@ impl RigidBody<'_> {
             // The same pivot again at the same moment: the block cannot move on consistently.
             Event::Pivot(i)
                 if self.pivoted.is_some_and(|(j, at)| {
-                    i == j && (self.t + lo - at).abs() <= 1e-9 * self.sim.settings().dt
+                    i == j
+                        && (self.t + lo - at).abs() <= 1e-9 * self.sim.settings().reference_step()
                 }) =>
             {
                 Event::Stop

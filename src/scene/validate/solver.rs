@@ -83,6 +83,9 @@ impl Reader<'_> {
             }
             settings = settings.with_stride(usize::try_from(k).unwrap_or(usize::MAX));
         }
+        if let Some(tol) = s.tolerance {
+            settings = settings.with_tolerance(tol);
+        }
         settings.check().map_err(|e| self.model(e))?;
         Ok(settings)
     }

@@ -56,10 +56,19 @@ pub fn report(args: &ReportArgs) -> Result<(), CliError> {
     if !args.quiet {
         for r in &references {
             outln!(
-                "reference {}, {} dynamics: dt {:.4e} s, change at dt/2 {:.1e} m (bound {:.0e} m)",
+                "reference {}, {} dynamics: {}, change at {} {:.1e} m (bound {:.0e} m)",
                 r.scene,
                 r.dynamics,
-                r.dt_s,
+                r.tolerance
+                    .map_or(format!("dt {:.4e} s", r.dt_s), |t| format!(
+                        "tolerance {t:.0e}, rows every {:.4e} s",
+                        r.dt_s
+                    )),
+                if r.tolerance.is_some() {
+                    "tolerance/10"
+                } else {
+                    "dt/2"
+                },
                 r.change_m,
                 r.bound_m
             );

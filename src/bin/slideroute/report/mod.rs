@@ -1,12 +1,17 @@
 //! The work–precision report: error of the route against run time for each method, mode and
-//! integrator of the paper's dynamics, and for the rigid body (the default dynamics: exact
-//! mode, RK4, continuation), over a ladder of increments; and the stiff and extreme cases.
+//! integrator of the paper's dynamics over a ladder of increments, and for the rigid body (the
+//! default dynamics: exact mode, RK4, continuation) over a ladder of tolerances; and the stiff
+//! and extreme cases.
 //!
-//! Reference: exact mode, RK4, continuation, dt_ref = 0.02 s / 512, of the same dynamics, over
-//! a horizon that ends before the route does (paper-like 1 s, shallow 0.5 s). Every dt of the
-//! ladder (0.02 s / 2^k) is an exact binary multiple of dt_ref, so rows match in time exactly.
-//! The reference is established by running it again at dt_ref / 2: the largest CM distance
-//! between the two must be below 1e-9·L (reported as `reference_change_m`).
+//! The paper's dynamics: the reference is exact mode, RK4, continuation, dt_ref = 0.02 s / 512,
+//! over a horizon that ends before the route does (paper-like 1 s, shallow 0.5 s). Every dt of
+//! the ladder (0.02 s / 2^k) is an exact binary multiple of dt_ref, so rows match in time
+//! exactly. The reference is established by running it again at dt_ref / 2.
+//!
+//! The rigid body chooses its own steps against `solver.tolerance`, its rows every
+//! 0.02 s / 8: the ladder is of tolerances (10⁻⁵ … 10⁻¹⁰), the reference at 10⁻¹³, established
+//! by running it again at 10⁻¹⁴. Either way the largest CM distance between a reference and its
+//! check must be below 1e-9·L (reported as `reference_change_m`).
 
 use serde::Serialize;
 use slideroute::{Computed, DynamicsModel, Integrator, Mode, PoseMethod, Route, Runner, Scene};
@@ -23,8 +28,13 @@ pub struct Point {
     pub method: PoseMethod,
     pub mode: Mode,
     pub integrator: Integrator,
+    /// The rows' interval; the paper's dynamics' increment.
     pub dt_s: f64,
+    /// The rigid body's tolerance (none for the paper's dynamics, whose steps are dt).
+    pub tolerance: Option<f64>,
     pub increments: usize,
+    /// The integration steps: the rigid body's own, the paper's dynamics' increments.
+    pub steps: usize,
     /// Median wall time of the repeats (s).
     pub wall_s: f64,
     /// Largest CM distance from the reference at matching times (m).
@@ -38,13 +48,22 @@ pub struct Reference {
     pub dynamics: DynamicsModel,
     pub horizon_s: f64,
     pub dt_s: f64,
-    /// Largest CM distance between the reference and the same run at dt_ref / 2 (m).
+    /// The rigid body's reference tolerance (checked at a tenth of it).
+    pub tolerance: Option<f64>,
+    /// Largest CM distance between the reference and the same run at dt_ref / 2, or at a
+    /// tenth of the tolerance (m).
     pub change_m: f64,
     /// 1e-9·L.
     pub bound_m: f64,
 }
 
 const DT0: f64 = 0.02;
+
+/// The rigid body's rows' interval in the report.
+const RIGID_ROWS_DT: f64 = DT0 / 8.0;
+
+/// The rigid body's reference tolerance.
+const RIGID_REFERENCE_TOLERANCE: f64 = 1e-13;
 
 /// How one series of the ladder runs: the dynamics, the pose method, the mode, the integrator.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -88,16 +107,18 @@ fn with_solver(
     dynamics: DynamicsModel,
     mode: Mode,
     integrator: Integrator,
-    dt: f64,
+    (dt, tolerance): (f64, Option<f64>),
     t_end: f64,
 ) -> Result<Scene, String> {
-    let keys: [(&str, toml::Value); 6] = [
+    let tolerance = tolerance.unwrap_or(slideroute::DEFAULT_TOLERANCE);
+    let keys: [(&str, toml::Value); 7] = [
         ("dynamics", dynamics.as_str().into()),
         ("mode", mode.as_str().into()),
         ("integrator", integrator.as_str().into()),
         ("dt_s", dt.into()),
         ("t_end_s", t_end.into()),
         ("stride", 1.into()),
+        ("tolerance", tolerance.into()),
     ];
     // Its callers pass the report's own valid steps and horizons.
     scene
@@ -155,16 +176,39 @@ pub fn work_precision(
         for dynamics in [DynamicsModel::Paper, DynamicsModel::RigidBody] {
             // Each dynamics against its own reference: the error is of the integration, not
             // the difference between the models.
-            let exact =
-                |dt| with_solver(&scene, dynamics, Mode::Exact, Integrator::Rk4, dt, horizon);
-            let reference = run(&exact(ref_dt)?, PoseMethod::Continuation)?;
-            let check = run(&exact(ref_dt / 2.0)?, PoseMethod::Continuation)?;
+            let rigid = dynamics == DynamicsModel::RigidBody;
+            let exact = |dt, tol| {
+                with_solver(
+                    &scene,
+                    dynamics,
+                    Mode::Exact,
+                    Integrator::Rk4,
+                    (dt, tol),
+                    horizon,
+                )
+            };
+            let (reference, change_m, reference_at) = if rigid {
+                let tol = RIGID_REFERENCE_TOLERANCE;
+                let reference = run(&exact(RIGID_ROWS_DT, Some(tol))?, PoseMethod::Continuation)?;
+                let check = run(
+                    &exact(RIGID_ROWS_DT, Some(tol / 10.0))?,
+                    PoseMethod::Continuation,
+                )?;
+                let change = max_distance(&reference, &check, 1);
+                (reference, change, (RIGID_ROWS_DT, Some(tol)))
+            } else {
+                let reference = run(&exact(ref_dt, None)?, PoseMethod::Continuation)?;
+                let check = run(&exact(ref_dt / 2.0, None)?, PoseMethod::Continuation)?;
+                let change = max_distance(&reference, &check, 2);
+                (reference, change, (ref_dt, None))
+            };
             references.push(Reference {
                 scene: scene.name().to_string(),
                 dynamics,
                 horizon_s: horizon,
-                dt_s: ref_dt,
-                change_m: max_distance(&reference, &check, 2),
+                dt_s: reference_at.0,
+                tolerance: reference_at.1,
+                change_m,
                 bound_m: 1e-9 * scene.l(),
             });
             for series in series().into_iter().filter(|s| s.dynamics == dynamics) {
@@ -175,18 +219,29 @@ pub fn work_precision(
                     ..
                 } = series;
                 for k in 0..levels {
-                    let dt = DT0 / f64::from(1u32 << k);
-                    let s = with_solver(&scene, dynamics, mode, integrator, dt, horizon)?;
+                    // The paper's dynamics: dt halving; the rigid body: the tolerance falling
+                    // tenfold (by a hundredfold in the quick report).
+                    let (dt, tolerance) = if rigid {
+                        let decades = if quick { 2 * k + 6 } else { k + 5 };
+                        (RIGID_ROWS_DT, Some(10f64.powi(-decades)))
+                    } else {
+                        (DT0 / f64::from(1u32 << k), None)
+                    };
+                    let s =
+                        with_solver(&scene, dynamics, mode, integrator, (dt, tolerance), horizon)?;
                     let mut times = Vec::with_capacity(repeats);
                     let mut last = None;
                     for _ in 0..repeats {
                         let t0 = Instant::now();
-                        let r = run(&s, method)?;
+                        let r = computed(&s, method)?;
                         times.push(t0.elapsed().as_secs_f64());
                         last = Some(r);
                     }
                     times.sort_by(f64::total_cmp);
-                    let r = last.ok_or("no run")?;
+                    let c: Computed = last.ok_or("no run")?;
+                    let steps = c.diagnostics.steps.map_or(c.route.increments, |s| s.taken);
+                    let r = c.route;
+                    let ratio = (dt / reference_at.0).round() as usize;
                     points.push(Point {
                         scene: scene.name().to_string(),
                         dynamics,
@@ -194,9 +249,11 @@ pub fn work_precision(
                         mode,
                         integrator,
                         dt_s: dt,
+                        tolerance,
                         increments: r.increments,
+                        steps,
                         wall_s: times[times.len() / 2],
-                        error_m: max_distance(&r, &reference, (dt / ref_dt).round() as usize),
+                        error_m: max_distance(&r, &reference, ratio),
                     });
                     if progress().is_break() {
                         return Err(INTERRUPTED.into());
@@ -467,7 +524,9 @@ mod tests {
             mode: Mode::Exact,
             integrator: Integrator::Paper,
             dt_s,
+            tolerance: None,
             increments: 100,
+            steps: 100,
             wall_s,
             error_m,
         }

@@ -749,7 +749,9 @@ fn work_precision_points() -> Vec<crate::report::Point> {
                     mode,
                     integrator,
                     dt_s,
+                    tolerance: None,
                     increments: 100 << k,
+                    steps: 100 << k,
                     wall_s: 1e-4 * (1 + w + s) as f64 * f64::from(1u32 << k),
                     error_m: 1e-3 * dt_s / (1 + w) as f64,
                 });
