@@ -68,11 +68,11 @@ pub fn interruptible<T: Send>(
         while !handle.is_finished() {
             py.detach(|| std::thread::sleep(nap));
             nap = (nap * 2).min(Duration::from_millis(25));
-            if failed.is_none() {
-                if let Err(e) = py.check_signals() {
-                    failed = Some(e);
-                    watch.stop.store(true, Ordering::Relaxed);
-                }
+            if failed.is_none()
+                && let Err(e) = py.check_signals()
+            {
+                failed = Some(e);
+                watch.stop.store(true, Ordering::Relaxed);
             }
             tell(&mut failed, false);
         }

@@ -630,10 +630,10 @@ pub fn select(
             .enumerate()
             .map(|(k, s)| (k, largest_turn(prev, &s.angles)))
             .min_by(|a, b| a.1.total_cmp(&b.1));
-        if let Some((k, d)) = near {
-            if d < CONTINUATION_RADIUS {
-                return Some(k);
-            }
+        if let Some((k, d)) = near
+            && d < CONTINUATION_RADIUS
+        {
+            return Some(k);
         }
     }
     solutions

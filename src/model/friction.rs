@@ -304,6 +304,7 @@ impl Strengths {
                 *s,
             )?;
         }
+        let mut seen = Vec::new();
         for (k, face) in self.faces.iter().enumerate() {
             let prefix = format!("friction.face[{k}]");
             if face.faces.is_empty() {
@@ -321,6 +322,20 @@ impl Strengths {
                         face_count.saturating_sub(1)
                     ),
                 ));
+            }
+            // A face named twice (in one entry or two) would take the first entry's criterion
+            // silently: refused, naming both.
+            for &n in &face.faces {
+                if let Some(&(_, j)) = seen.iter().find(|(m, _)| *m == n) {
+                    return Err(ModelError::new(
+                        format!("{prefix}.faces"),
+                        format!(
+                            "face {n} is named twice (also in friction.face[{j}]): a face \
+                             takes one criterion"
+                        ),
+                    ));
+                }
+                seen.push((n, k));
             }
             face.friction.check(&prefix)?;
             non_negative(&format!("{prefix}.cohesion_pa"), face.cohesion_pa)?;
@@ -453,5 +468,37 @@ mod tests {
         assert_eq!(s.at(&base, [0, 7, 1], false).cohesion_n, [0.0; 3]);
         assert!(s.has_cohesion() && s.check(8).is_ok());
         assert_eq!(s.check(7).unwrap_err().key, "friction.face[0].faces");
+    }
+
+    #[test]
+    fn a_face_named_twice_is_refused_naming_both_entries() {
+        let entry = |faces: Vec<u32>, mu| FaceStrength {
+            faces,
+            friction: Friction::coulomb(mu),
+            cohesion_pa: 0.0,
+        };
+        let with = |faces| Strengths {
+            cohesion_pa: 0.0,
+            shares_m2: [0.0; 3],
+            faces,
+        };
+        // In two entries: the second is named, with the first.
+        let e = with(vec![entry(vec![1], 0.8), entry(vec![2, 1], 0.3)])
+            .check(3)
+            .unwrap_err();
+        assert_eq!(e.key, "friction.face[1].faces");
+        assert!(
+            e.reason.contains("face 1") && e.reason.contains("friction.face[0]"),
+            "{e}"
+        );
+        // In one entry.
+        let e = with(vec![entry(vec![0, 0], 0.8)]).check(3).unwrap_err();
+        assert_eq!(e.key, "friction.face[0].faces");
+        // Each once: fine.
+        assert!(
+            with(vec![entry(vec![0], 0.8), entry(vec![1, 2], 0.3)])
+                .check(3)
+                .is_ok()
+        );
     }
 }

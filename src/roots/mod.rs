@@ -318,10 +318,10 @@ fn select_among(
             (k, (r.alpha.re - p.u[0]).abs().max((s - p.u[1]).abs()))
         })
         .min_by(|a, b| a.1.total_cmp(&b.1));
-    if let Some((k, dist)) = nearest {
-        if dist < 1e-6 {
-            return Ok(k);
-        }
+    if let Some((k, dist)) = nearest
+        && dist < 1e-6
+    {
+        return Ok(k);
     }
     let residual = system::Equations::new(site, d, mode)
         .eval(p.u)

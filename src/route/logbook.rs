@@ -124,10 +124,10 @@ impl<'s> Logbook<'s> {
 
     /// The kept rows, the last row always among them (taken out of the logbook).
     pub fn take_rows(&mut self) -> Vec<Row> {
-        if let Some(last) = self.last {
-            if self.rows.last().is_none_or(|r| r.t_s != last.t_s) {
-                self.rows.push(last);
-            }
+        if let Some(last) = self.last
+            && self.rows.last().is_none_or(|r| r.t_s != last.t_s)
+        {
+            self.rows.push(last);
         }
         std::mem::take(&mut self.rows)
     }

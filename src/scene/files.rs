@@ -110,10 +110,11 @@ fn read_record(path: &Path) -> Result<Record, String> {
         .from_reader(file);
     let header = r.headers().map_err(|e| e.to_string())?.clone();
     if header.iter().collect::<Vec<_>>() != RECORD_COLUMNS {
+        // What the line says is not echoed: the file may be any file (a scene names it).
         return Err(format!(
-            "the header must be `{}`, got `{}`",
+            "line 1 must be the header `{}`; it is not (it has {} comma-separated fields)",
             RECORD_COLUMNS.join(","),
-            header.iter().collect::<Vec<_>>().join(",")
+            header.len()
         ));
     }
     let mut samples = Vec::new();

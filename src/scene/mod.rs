@@ -177,7 +177,19 @@ impl Scene {
         K: AsRef<str>,
         V: Into<toml::Value>,
     {
-        let mut doc = self.source.clone();
+        self.with_keys_of(self.source.clone(), keys)
+    }
+
+    /// [`Scene::with_keys`] on `doc`, this scene's document or a part of it.
+    fn with_keys_of<K, V>(
+        &self,
+        mut doc: toml::Table,
+        keys: impl IntoIterator<Item = (K, V)>,
+    ) -> Result<Scene, SceneError>
+    where
+        K: AsRef<str>,
+        V: Into<toml::Value>,
+    {
         for (key, value) in keys {
             let key = key.as_ref();
             let (section, name) = match key.split_once('.') {
@@ -294,8 +306,16 @@ impl Scene {
     /// The same scene with load case `case`'s levels and coefficients set (its origin names
     /// the case).
     pub fn for_case(&self, case: &LoadCase) -> Result<Scene, SceneError> {
+        // The case's scene without the `[[case]]` list: reading the others again for each would
+        // make a check quadratic in its cases.
+        let doc: toml::Table = self
+            .source
+            .iter()
+            .filter(|(k, _)| k.as_str() != "case")
+            .map(|(k, v)| (k.clone(), v.clone()))
+            .collect();
         let mut s = self
-            .with_keys(case.keys.iter().map(|(k, v)| (k.as_str(), *v)))
+            .with_keys_of(doc, case.keys.iter().map(|(k, v)| (k.as_str(), *v)))
             .map_err(|mut e| {
                 if case.keys.iter().any(|(k, _)| *k == e.key) {
                     e.reason = format!("in case \"{}\": {}", case.name, e.reason);
@@ -390,14 +410,14 @@ impl Scene {
                 ));
             }
         }
-        if let Some(Friction::Coulomb { mu_k }) = self.friction {
-            if mu_k > 2.0 {
-                w.push(format!(
-                    "{}: friction.mu_k: μ = {mu_k} is over 2, far above any rock joint's (about \
+        if let Some(Friction::Coulomb { mu_k }) = self.friction
+            && mu_k > 2.0
+        {
+            w.push(format!(
+                "{}: friction.mu_k: μ = {mu_k} is over 2, far above any rock joint's (about \
                      0.3–1)",
-                    self.origin
-                ));
-            }
+                self.origin
+            ));
         }
         w
     }

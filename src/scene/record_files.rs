@@ -179,9 +179,12 @@ fn npts_dt(line: &str) -> Result<(usize, f64), String> {
         (Some(n), Some(dt)) => (n, dt),
         _ if numbers.len() >= 2 => (numbers[0], numbers[1]),
         _ => {
+            // What the line says is not echoed: the file may be any file (a scene names it).
             return Err(format!(
-                "line 4 must give the count and the step (`NPTS= 4000, DT= .0050 SEC`), got `{}`",
-                line.trim()
+                "line 4 must give the count and the step (`NPTS= 4000, DT= .0050 SEC`); it \
+                 does not (it has {} words, {} of them numbers)",
+                tokens.len(),
+                numbers.len()
             ));
         }
     };

@@ -981,12 +981,24 @@ fn inputs_that_are_not_regular_files_or_too_large_are_refused() {
 
 #[test]
 fn a_second_run_into_a_folder_in_use_is_refused() {
-    // Two runs into one --out spliced their route.csv files. A run holds a
-    // lock on its folder (here held as if by this test's own, living, process).
+    // Two runs into one --out spliced their route.csv files. A run holds the operating
+    // system's lock on its folder's lock file (here held by this test's own process).
     let dir = temp_dir("locked");
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join(".slideroute.lock"), std::process::id().to_string()).unwrap();
+    let held = std::fs::OpenOptions::new()
+        .read(true)
+        .write(true)
+        .open(dir.join(".slideroute.lock"))
+        .unwrap();
+    held.lock().unwrap();
     let o = run(&["run", "--quiet", "--out", dir.to_str().unwrap()]);
+    assert!(
+        stderr(&o).contains(&format!("(process {})", std::process::id())),
+        "{}",
+        stderr(&o)
+    );
+    drop(held);
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     assert!(
         stderr(&o).contains("another slideroute run"),
@@ -994,7 +1006,7 @@ fn a_second_run_into_a_folder_in_use_is_refused() {
         stderr(&o)
     );
     assert!(!dir.join("route.csv").exists());
-    // A lock left by a process that is gone is taken over.
+    // A lock file left by a process that is gone (nothing holds its lock) is taken over.
     std::fs::write(dir.join(".slideroute.lock"), "4294967295").unwrap();
     let o = run(&[
         "run",

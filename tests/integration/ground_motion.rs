@@ -224,6 +224,29 @@ fn a_record_the_scene_cannot_use_is_refused_naming_the_key() {
         assert_eq!(e.key, "seismic.record", "{e}");
         assert!(e.to_string().contains(why), "{name}: {e}");
     }
+    // A scene naming any file as its record: what the file says is never in the message (a
+    // secret's first line, say), only what was expected and where.
+    for (key, name, secret) in [
+        (
+            "record",
+            "secret.csv",
+            "root:x:0:0:root:/root:/bin/bash\nsecond line\n",
+        ),
+        (
+            "record_x",
+            "secret.at2",
+            "one\ntwo\nthree\nNPTS PASSWORD=hunter2 and more\n",
+        ),
+    ] {
+        std::fs::write(dir.join(name), secret).unwrap();
+        let path = dir.join(format!("{name}.toml"));
+        std::fs::write(&path, format!("{paper}\n[seismic]\n{key} = \"{name}\"\n")).unwrap();
+        let e = Scene::from_file(&path).unwrap_err().to_string();
+        for word in ["root:x", "bash", "hunter2", "PASSWORD"] {
+            assert!(!e.contains(word), "{name}: {e}");
+        }
+        assert!(e.contains("line"), "{name}: {e}");
+    }
     // The paper's dynamics has no moving foundation.
     std::fs::write(dir.join("ok.csv"), "t_s,ax_g,ay_g,az_g\n0,0,0,0\n1,0,0,0\n").unwrap();
     let path = dir.join("paper.toml");

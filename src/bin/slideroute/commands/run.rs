@@ -78,13 +78,13 @@ fn with_dynamics(scene: Scene, args: &RunArgs) -> Result<Scene, CliError> {
     };
     let before = scene.settings().map(|s| s.integrator);
     let scene = scene.with_dynamics(model).map_err(bad_input)?;
-    if let (Some(b), Some(after)) = (before, scene.settings().map(|s| s.integrator)) {
-        if b != after {
-            eprintln!(
-                "slideroute: note: --dynamics {model} integrates with \"{after}\" (its own \
+    if let (Some(b), Some(after)) = (before, scene.settings().map(|s| s.integrator))
+        && b != after
+    {
+        eprintln!(
+            "slideroute: note: --dynamics {model} integrates with \"{after}\" (its own \
                  default), not the scene's \"{b}\""
-            );
-        }
+        );
     }
     Ok(scene)
 }

@@ -3,8 +3,12 @@
 //!
 //! * Every file is written under a temporary name in the same folder and renamed into place
 //!   when complete, so a file is never seen half-written (a rename within a folder is atomic).
-//! * A run holds `.slideroute.lock` (its process id) while it writes; a second run into the same
-//!   folder is refused. A lock left by a run that no longer exists is taken over.
+//!   A temporary name is not predictable (a random suffix) and is created new, so that a link
+//!   planted at it is never followed; so is the private staging folder.
+//! * A run holds the operating system's lock on `.slideroute.lock` (its process id written in
+//!   it for the message) while it writes; a second run into the same folder is refused. The lock
+//!   goes with the process, however it ends; a file left by a run that no longer exists is taken
+//!   over.
 //! * The folder keeps a record of what each command wrote into it ([`RECORD`]: the command and
 //!   the file, one per line). When a run is done, the files the same command wrote there before
 //!   and did not write this time are removed (say, the pictures after `--no-plots`); another
@@ -27,6 +31,102 @@ pub struct Folder {
     dir: PathBuf,
     command: &'static str,
     written: Vec<(String, u64)>,
+    /// The open lock file, locked (the lock is the operating system's, released when it closes).
+    lock: std::fs::File,
+    /// The private staging folder, once made.
+    staging: Option<PathBuf>,
+}
+
+/// A suffix no other process can guess: the process id and a number from the standard
+/// library's randomly seeded hasher.
+fn unguessable() -> String {
+    use std::hash::{BuildHasher, Hasher};
+    let mut h = std::collections::hash_map::RandomState::new().build_hasher();
+    h.write_u128(
+        std::time::SystemTime::now()
+            .duration_since(std::time::UNIX_EPOCH)
+            .map_or(0, |d| d.as_nanos()),
+    );
+    format!("{}.{:016x}", std::process::id(), h.finish())
+}
+
+/// Creates a new empty file at `dir/.{stem}.{unguessable}.tmp` (never an existing file or a
+/// link: created new) and gives its path.
+fn new_temporary(dir: &Path, stem: &str) -> std::io::Result<PathBuf> {
+    let mut last = None;
+    for _ in 0..16 {
+        let tmp = dir.join(format!(".{stem}.{}.tmp", unguessable()));
+        match std::fs::OpenOptions::new()
+            .write(true)
+            .create_new(true)
+            .open(&tmp)
+        {
+            Ok(_) => return Ok(tmp),
+            Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => last = Some(e),
+            Err(e) => return Err(e),
+        }
+    }
+    Err(last.unwrap_or_else(|| std::io::Error::other("no temporary name")))
+}
+
+/// Whether `name` is one of slideroute's temporaries (`.NAME.PID.HEX.tmp`) or staging folders
+/// (`.slideroute-staging.PID.HEX`): what a run killed while it wrote leaves behind.
+fn leftover(name: &str) -> bool {
+    let tail = |rest: &str| {
+        rest.rsplit_once('.').is_some_and(|(pid, hex)| {
+            let pid = pid.rsplit('.').next().unwrap_or("");
+            !pid.is_empty()
+                && pid.bytes().all(|b| b.is_ascii_digit())
+                && hex.len() == 16
+                && hex.bytes().all(|b| b.is_ascii_hexdigit())
+        })
+    };
+    if let Some(rest) = name.strip_prefix(".slideroute-staging.") {
+        return tail(rest);
+    }
+    name.starts_with('.') && name.strip_suffix(".tmp").is_some_and(tail)
+}
+
+/// Removes what runs killed while they wrote into `dir` left there — temporaries, staging
+/// folders — and in its folders one level down: plain files and real folders only, never a
+/// link. Called with the lock held, so that no other run is writing there.
+fn remove_leftovers(dir: &Path) {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        let (Ok(kind), name) = (entry.file_type(), entry.file_name()) else {
+            continue;
+        };
+        let name = name.to_string_lossy();
+        let path = entry.path();
+        if kind.is_file() && leftover(&name) {
+            let _ = std::fs::remove_file(&path);
+        } else if kind.is_dir() && leftover(&name) {
+            let _ = std::fs::remove_dir_all(&path);
+        } else if kind.is_dir() && !name.starts_with('.') {
+            for inner in std::fs::read_dir(&path).into_iter().flatten().flatten() {
+                let inner_name = inner.file_name();
+                if inner.file_type().is_ok_and(|k| k.is_file())
+                    && leftover(&inner_name.to_string_lossy())
+                {
+                    let _ = std::fs::remove_file(inner.path());
+                }
+            }
+        }
+    }
+}
+
+/// The lock file's identity (device, inode), to tell that the path still names the file locked.
+#[cfg(unix)]
+fn identity(m: &std::fs::Metadata) -> (u64, u64) {
+    use std::os::unix::fs::MetadataExt;
+    (m.dev(), m.ino())
+}
+
+#[cfg(not(unix))]
+fn identity(_: &std::fs::Metadata) -> (u64, u64) {
+    (0, 0)
 }
 
 /// The entries of a folder's [`RECORD`] (command, file): none where there is no record, or it
@@ -59,53 +159,69 @@ fn plain_file(path: &Path) -> bool {
     std::fs::symlink_metadata(path).is_ok_and(|m| m.file_type().is_file())
 }
 
-fn alive(pid: u32) -> bool {
-    // Linux and the BSDs with procfs; elsewhere a lock is taken as held.
-    !Path::new("/proc/self").exists() || Path::new(&format!("/proc/{pid}")).exists()
-}
-
 impl Folder {
     /// Creates `dir` if needed and locks it for `command` (`run`, `sweep`, …: the name its
     /// files are recorded under); the error says why not, naming the folder.
     pub fn open(dir: &Path, command: &'static str) -> Result<Folder, String> {
         std::fs::create_dir_all(dir)
             .map_err(|e| format!("{}: cannot create: {e}", dir.display()))?;
-        let lock = dir.join(LOCK);
-        for _ in 0..2 {
-            match std::fs::OpenOptions::new()
-                .write(true)
-                .create_new(true)
-                .open(&lock)
-            {
-                Ok(mut f) => {
-                    use std::io::Write;
-                    let _ = write!(f, "{}", std::process::id());
-                    return Ok(Folder {
-                        dir: dir.to_path_buf(),
-                        command,
-                        written: Vec::new(),
-                    });
-                }
-                Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {
-                    let holder = std::fs::read_to_string(&lock)
-                        .ok()
-                        .and_then(|s| s.trim().parse::<u32>().ok());
-                    match holder {
-                        Some(pid) if alive(pid) => {
-                            return Err(format!(
-                                "{}: another slideroute run (process {pid}) is writing into this \
-                                 folder; wait for it or choose another --out",
-                                dir.display()
-                            ));
-                        }
-                        // Left by a run that no longer exists (or unreadable): take it over.
-                        _ => {
-                            let _ = std::fs::remove_file(&lock);
-                        }
-                    }
-                }
-                Err(e) => return Err(format!("{}: cannot lock: {e}", lock.display())),
+        let path = dir.join(LOCK);
+        let cannot = |e: std::io::Error| format!("{}: cannot lock: {e}", path.display());
+        for _ in 0..8 {
+            // Never through a link put in the lock's place.
+            if std::fs::symlink_metadata(&path).is_ok_and(|m| !m.file_type().is_file()) {
+                return Err(format!(
+                    "{}: is not a plain file (a link or a folder where the lock goes); remove \
+                     it or choose another --out",
+                    path.display()
+                ));
             }
+            let mut file = std::fs::OpenOptions::new()
+                .read(true)
+                .write(true)
+                .create(true)
+                .truncate(false)
+                .open(&path)
+                .map_err(cannot)?;
+            match file.try_lock() {
+                Ok(()) => {}
+                Err(std::fs::TryLockError::WouldBlock) => {
+                    let holder = std::fs::read_to_string(&path).unwrap_or_default();
+                    let holder = holder.trim();
+                    let who = if holder.parse::<u32>().is_ok() {
+                        format!(" (process {holder})")
+                    } else {
+                        String::new()
+                    };
+                    return Err(format!(
+                        "{}: another slideroute run{who} is writing into this folder; wait for \
+                         it or choose another --out",
+                        dir.display()
+                    ));
+                }
+                Err(std::fs::TryLockError::Error(e)) => return Err(cannot(e)),
+            }
+            // Locked: the path must still name this file (a run that just finished removes
+            // its lock file; then lock the new one).
+            let same = match (file.metadata(), std::fs::symlink_metadata(&path)) {
+                (Ok(a), Ok(b)) => identity(&a) == identity(&b),
+                _ => false,
+            };
+            if !same {
+                continue;
+            }
+            use std::io::{Seek, Write};
+            let _ = file.set_len(0);
+            let _ = file.rewind();
+            let _ = write!(file, "{}", std::process::id());
+            remove_leftovers(dir);
+            return Ok(Folder {
+                dir: dir.to_path_buf(),
+                command,
+                written: Vec::new(),
+                lock: file,
+                staging: None,
+            });
         }
         Err(format!("{}: cannot lock the folder", dir.display()))
     }
@@ -127,7 +243,9 @@ impl Folder {
             .file_name()
             .map(|n| n.to_string_lossy().into_owned())
             .unwrap_or_default();
-        let tmp = path.with_file_name(format!(".{file_name}.{}.tmp", std::process::id()));
+        let parent = path.parent().unwrap_or(&self.dir);
+        let tmp = new_temporary(parent, &file_name)
+            .map_err(|e| format!("{}: cannot write: {e}", parent.display()))?;
         let result = write(&tmp).and_then(|()| {
             std::fs::rename(&tmp, &path)
                 .map_err(|e| format!("{}: cannot write: {e}", path.display()))
@@ -149,13 +267,18 @@ impl Folder {
         })
     }
 
-    /// A private folder inside this one (removed when the run ends) for writers that want a
-    /// path of their own to write into; [`Folder::adopt`] moves their files into place.
-    pub fn staging(&self) -> Result<PathBuf, String> {
+    /// A private folder inside this one (made new under a name no one can guess, removed when
+    /// the run ends) for writers that want a path of their own to write into;
+    /// [`Folder::adopt`] moves their files into place.
+    pub fn staging(&mut self) -> Result<PathBuf, String> {
+        if let Some(d) = &self.staging {
+            return Ok(d.clone());
+        }
         let d = self
             .dir
-            .join(format!(".slideroute-staging.{}", std::process::id()));
-        std::fs::create_dir_all(&d).map_err(|e| format!("{}: cannot create: {e}", d.display()))?;
+            .join(format!(".slideroute-staging.{}", unguessable()));
+        std::fs::create_dir(&d).map_err(|e| format!("{}: cannot create: {e}", d.display()))?;
+        self.staging = Some(d.clone());
         Ok(d)
     }
 
@@ -218,9 +341,8 @@ impl Folder {
             record.push_str(&format!("{command}\t{name}\n"));
         }
         let path = self.dir.join(RECORD);
-        let tmp = self
-            .dir
-            .join(format!(".{RECORD}.{}.tmp", std::process::id()));
+        let tmp = new_temporary(&self.dir, RECORD)
+            .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
         std::fs::write(&tmp, record)
             .and_then(|()| std::fs::rename(&tmp, &path))
             .map_err(|e| {
@@ -232,11 +354,14 @@ impl Folder {
 
 impl Drop for Folder {
     fn drop(&mut self) {
-        let _ = std::fs::remove_dir_all(
-            self.dir
-                .join(format!(".slideroute-staging.{}", std::process::id())),
-        );
+        if let Some(d) = &self.staging {
+            // A link put in its place is removed, not followed.
+            let _ = std::fs::remove_dir_all(d);
+        }
+        // The lock file goes while still locked (a run waiting on it then finds the path gone
+        // and locks a new one); the lock goes with the file's closing.
         let _ = std::fs::remove_file(self.dir.join(LOCK));
+        let _ = self.lock.unlock();
     }
 }
 
@@ -259,10 +384,136 @@ mod tests {
         assert!(e.contains("another slideroute run"), "{e}");
         drop(first);
         assert!(Folder::open(&d, "run").is_ok());
-        // A lock whose process is gone (pid 0 is never a user process's).
+        // A lock file left by a run that no longer holds it (killed, say).
         std::fs::write(d.join(LOCK), "4294967295").unwrap();
-        assert!(Folder::open(&d, "run").is_ok());
+        let f = Folder::open(&d, "run").unwrap();
+        // Its process id is in the lock from the start, for the message.
+        assert_eq!(
+            std::fs::read_to_string(d.join(LOCK)).unwrap(),
+            std::process::id().to_string()
+        );
+        let e = Folder::open(&d, "run").unwrap_err();
+        assert!(
+            e.contains(&format!("(process {})", std::process::id())),
+            "{e}"
+        );
+        drop(f);
+        assert!(!d.join(LOCK).exists());
         let _ = std::fs::remove_dir_all(&d);
+    }
+
+    #[test]
+    fn runs_started_together_into_one_folder_never_hold_it_at_once() {
+        let d = temp("race");
+        std::fs::create_dir_all(&d).unwrap();
+        let holders = std::sync::atomic::AtomicUsize::new(0);
+        let most = std::sync::atomic::AtomicUsize::new(0);
+        std::thread::scope(|s| {
+            for _ in 0..8 {
+                s.spawn(|| {
+                    for _ in 0..50 {
+                        if let Ok(f) = Folder::open(&d, "run") {
+                            let now = holders.fetch_add(1, std::sync::atomic::Ordering::SeqCst) + 1;
+                            most.fetch_max(now, std::sync::atomic::Ordering::SeqCst);
+                            std::thread::yield_now();
+                            holders.fetch_sub(1, std::sync::atomic::Ordering::SeqCst);
+                            drop(f);
+                        }
+                    }
+                });
+            }
+        });
+        assert_eq!(most.into_inner(), 1);
+        let _ = std::fs::remove_dir_all(&d);
+    }
+
+    #[test]
+    fn what_a_killed_run_left_is_removed_by_the_next_and_nothing_else() {
+        let d = temp("leftovers");
+        std::fs::create_dir_all(d.join("paper")).unwrap();
+        let left = [
+            ".route.csv.4242.00ff00ff00ff00ff.tmp",
+            "paper/.route.csv.7.0123456789abcdef.tmp",
+            ".slideroute-outputs.99.fedcba9876543210.tmp",
+        ];
+        let kept = [
+            ".route.csv.4242.tmp",
+            "notes.tmp",
+            ".mine.tmp",
+            ".route.csv.4242.00ff00ff00ff00fg.tmp",
+            "paper/route.csv",
+        ];
+        for f in left.iter().chain(&kept) {
+            std::fs::write(d.join(f), "x").unwrap();
+        }
+        std::fs::create_dir_all(d.join(".slideroute-staging.4242.0011223344556677")).unwrap();
+        std::fs::write(
+            d.join(".slideroute-staging.4242.0011223344556677/plan.svg"),
+            "x",
+        )
+        .unwrap();
+        let f = Folder::open(&d, "run").unwrap();
+        for g in left {
+            assert!(!d.join(g).exists(), "{g}");
+        }
+        assert!(!d.join(".slideroute-staging.4242.0011223344556677").exists());
+        for g in kept {
+            assert!(d.join(g).exists(), "{g}");
+        }
+        drop(f);
+        let _ = std::fs::remove_dir_all(&d);
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn links_planted_at_temporary_names_and_the_lock_are_not_followed() {
+        let d = temp("planted");
+        let target = temp("planted-target");
+        std::fs::create_dir_all(&d).unwrap();
+        std::fs::create_dir_all(&target).unwrap();
+        std::fs::write(target.join("theirs"), "theirs").unwrap();
+        // The names temporaries used to have, and the staging folder's.
+        let pid = std::process::id();
+        for name in [
+            format!(".route.csv.{pid}.tmp"),
+            format!(".{RECORD}.{pid}.tmp"),
+            format!(".slideroute-staging.{pid}"),
+        ] {
+            std::os::unix::fs::symlink(target.join("theirs"), d.join(name)).unwrap();
+        }
+        let mut f = Folder::open(&d, "run").unwrap();
+        f.write_bytes("route.csv", b"ours").unwrap();
+        let staged = f.staging().unwrap();
+        std::fs::write(staged.join("plan.svg"), "ours").unwrap();
+        f.adopt_all(vec![staged.join("plan.svg")]).unwrap();
+        f.finish().unwrap();
+        assert_eq!(
+            std::fs::read_to_string(target.join("theirs")).unwrap(),
+            "theirs"
+        );
+        assert_eq!(
+            std::fs::read_to_string(d.join("route.csv")).unwrap(),
+            "ours"
+        );
+        assert!(
+            std::fs::symlink_metadata(d.join("route.csv"))
+                .unwrap()
+                .is_file()
+        );
+        assert_eq!(std::fs::read_to_string(d.join("plan.svg")).unwrap(), "ours");
+        // A link where the lock goes: refused, the link's target untouched.
+        let other = temp("planted-lock");
+        std::fs::create_dir_all(&other).unwrap();
+        std::os::unix::fs::symlink(target.join("theirs"), other.join(LOCK)).unwrap();
+        let e = Folder::open(&other, "run").unwrap_err();
+        assert!(e.contains("not a plain file"), "{e}");
+        assert_eq!(
+            std::fs::read_to_string(target.join("theirs")).unwrap(),
+            "theirs"
+        );
+        for p in [&d, &target, &other] {
+            let _ = std::fs::remove_dir_all(p);
+        }
     }
 
     #[test]

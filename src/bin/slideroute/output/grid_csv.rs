@@ -64,8 +64,9 @@ impl<R: Read> PoseRows<R> {
         };
         if headers.iter().collect::<Vec<_>>() != COLUMNS {
             return Err(err(format!(
-                "the header must be exactly `x_m,z_m,theta_deg`, found `{}`",
-                headers.iter().collect::<Vec<_>>().join(",")
+                "line 1 must be exactly the header `x_m,z_m,theta_deg`; it is not (it has {} \
+                 comma-separated fields)",
+                headers.len()
             )));
         }
         Ok(PoseRows {
