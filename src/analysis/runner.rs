@@ -242,4 +242,34 @@ mod tests {
         let stopped = run_many(&items, |mu| base.with("friction.mu_k", *mu), || (), || true);
         assert!(stopped.iter().all(|o| *o == Outcome::NotRun));
     }
+
+    #[test]
+    fn a_route_of_many_keeps_fewer_rows_and_comes_to_the_same_result() {
+        // The default scene's route records 4365 rows; run among many it records at most
+        // ROWS_OF_MANY, its steps the same: the same end, travel and path ends, its largest tilts
+        // from fewer rows within a hundredth of a degree.
+        let scene = Scene::default_scene();
+        let alone = crate::run(&scene).unwrap();
+        assert!(alone.rows.len() > 4 * ROWS_OF_MANY);
+        let many = run_many(&[()], |_| Ok(scene.clone()), || (), || false);
+        let Outcome::Route(r) = &many[0] else {
+            panic!("{:?}", many[0]);
+        };
+        let want = RouteResult::of(&alone);
+        assert_eq!(
+            (r.reason, r.t_s, r.travel_m, r.x_m, r.z_m, r.yaw_deg),
+            (
+                want.reason,
+                want.t_s,
+                want.travel_m,
+                want.x_m,
+                want.z_m,
+                want.yaw_deg
+            )
+        );
+        assert_eq!(r.cm_path_m.first(), want.cm_path_m.first());
+        assert_eq!(r.cm_path_m.last(), want.cm_path_m.last());
+        assert!((r.max_alpha_deg - want.max_alpha_deg).abs() < 1e-2);
+        assert!((r.max_beta_deg - want.max_beta_deg).abs() < 1e-2);
+    }
 }

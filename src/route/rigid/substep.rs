@@ -365,22 +365,21 @@ impl RigidBody<'_> {
             self.h = 0.5 * h;
             return Ok(Substep::Retry);
         }
-        let start = finder.clone();
-        *finder = at_next;
+        let mut at_next = at_next;
         let (next, next_ev) = match self.anchor {
             Some(a) if next_ev.motion.stuck == Some(a.contact) => {
-                hold_anchor(&self.sim, finder, next, next_ev, a).map_err(Ending::Failed)?
+                hold_anchor(&self.sim, &mut at_next, next, next_ev, a).map_err(Ending::Failed)?
             }
             _ => (next, next_ev),
         };
         let (next, next_ev) =
-            hold_on_creases(&self.sim, finder, next, next_ev).map_err(Ending::Failed)?;
-        if !self.rows_within(&start, h, &k1, (&next, &next_ev)) {
+            hold_on_creases(&self.sim, &mut at_next, next, next_ev).map_err(Ending::Failed)?;
+        if !self.rows_within(finder, h, &k1, (&next, &next_ev)) {
             // A row within the step off the model: shorter steps.
-            *finder = start;
             self.h = 0.5 * h;
             return Ok(Substep::Retry);
         }
+        *finder = at_next;
         self.go_to(o, next, next_ev);
         self.anchor = Anchor::after(&self.ev, self.anchor);
         self.t += h;
@@ -408,7 +407,10 @@ impl RigidBody<'_> {
     ) -> bool {
         self.within.clear();
         let t0 = self.t;
-        let times = recorded_within(self.sim.settings(), t0, t0 + h);
+        let mut times = recorded_within(self.sim.settings(), t0, t0 + h).peekable();
+        if times.peek().is_none() {
+            return true;
+        }
         let (y0, y1) = (self.y.to_array(), end.to_array());
         let k5 = end.derivative(&end_ev.motion);
         let hold = Hold::of(&self.ev.motion);
