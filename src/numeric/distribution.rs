@@ -172,8 +172,27 @@ impl Distribution {
                 ));
             }
         };
-        d.check().map_err(|why| format!("`{text}`: {why}"))?;
+        d.check()
+            .and_then(|()| d.check_draws())
+            .map_err(|why| format!("`{text}`: {why}"))?;
         Ok(d)
+    }
+
+    /// Whether every draw is a finite number: the quantiles at the two ends of the (0, 1) that
+    /// [`Distribution::quantile`] takes, and at its middle, are finite (the quantile is
+    /// monotone, so every other lies between them). A uniform on [−10³⁰⁸, 10³⁰⁸] has a width past
+    /// the largest double; a lognormal whose sd/mean squared overflows has σ = ∞.
+    fn check_draws(&self) -> Result<(), String> {
+        for u in [0.0, 0.5, 1.0] {
+            let x = self.quantile(u);
+            if !x.is_finite() {
+                return Err(format!(
+                    "its draws are not all finite numbers (the quantile at {u} is {x}): \
+                     parameters too far apart for double precision"
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// Whether the parameters make a distribution.
@@ -234,14 +253,22 @@ impl Distribution {
                 n.inverse_cdf(a + u * (b - a)).clamp(lo, hi)
             }
             Distribution::LogNormal { mean, sd } => {
-                let s2 = (1.0 + (sd / mean).powi(2)).ln();
-                LogNormal::new(mean.ln() - 0.5 * s2, s2.sqrt()).map_or(mean, |d| d.inverse_cdf(u))
+                // ln(1 + r²) without forming r² where it would overflow.
+                let r = sd / mean;
+                let s2 = if r > 1e150 {
+                    2.0 * r.ln()
+                } else {
+                    r.mul_add(r, 1.0).ln()
+                };
+                // Not finite where σ is not (a parameter out of range): refused when parsed.
+                LogNormal::new(mean.ln() - 0.5 * s2, s2.sqrt())
+                    .map_or(f64::NAN, |d| d.inverse_cdf(u))
             }
             Distribution::Uniform { lo, hi } => {
-                Uniform::new(lo, hi).map_or(lo, |d| d.inverse_cdf(u))
+                Uniform::new(lo, hi).map_or(f64::NAN, |d| d.inverse_cdf(u))
             }
             Distribution::Triangular { lo, mode, hi } => {
-                Triangular::new(lo, hi, mode).map_or(mode, |d| d.inverse_cdf(u))
+                Triangular::new(lo, hi, mode).map_or(f64::NAN, |d| d.inverse_cdf(u))
             }
         }
     }
@@ -274,7 +301,7 @@ impl std::str::FromStr for Uncertain {
         }
         Ok(Uncertain {
             key: key.to_string(),
-            distribution: Distribution::parse(spec)?,
+            distribution: Distribution::parse(spec).map_err(|e| format!("{key}: {e}"))?,
         })
     }
 }
@@ -321,6 +348,14 @@ mod tests {
         // Lognormal with mean 2, sd 1: median = mean / √(1 + sd²/mean²).
         let l = Distribution::parse("lognormal:2:1").unwrap();
         assert!(close(l.quantile(0.5), 2.0 / 1.25f64.sqrt(), 1e-12));
+        // A huge sd/mean: σ² = ln(1 + r²) ≈ 2 ln r where r² would overflow (it gave NaN).
+        let wide = Distribution::parse("lognormal:0.4:1e300").unwrap();
+        let s2 = 2.0 * 2.5e300f64.ln();
+        assert!(close(
+            wide.quantile(0.5),
+            (0.4f64.ln() - 0.5 * s2).exp(),
+            1e-9
+        ));
         // Truncated symmetrically about its mean: the median is the mean, every value inside.
         let tn = Distribution::parse("truncnormal:0:0.5:-1:1").unwrap();
         assert!(close(tn.quantile(0.5), 0.0, 1e-12));
@@ -346,9 +381,27 @@ mod tests {
             ("triangular:0:5:4", "the mode 5"),
             ("lognormal:-1:1", "mean must be positive"),
             ("truncnormal:0:1:50:60", "too far in the tail"),
+            // Draws past the largest double: refused, never written as inf or NaN.
+            ("uniform:-1e308:1e308", "not all finite"),
+            ("triangular:-1e308:0:1e308", "not all finite"),
+            ("normal:1e308:1e307", "not all finite"),
+            ("lognormal:1e305:1e306", "not all finite"),
         ] {
             let e = Distribution::parse(text).unwrap_err();
             assert!(e.contains(why), "{text}: {e}");
+        }
+        // Every error of a key's distribution names the key.
+        for text in [
+            "normal:0:-1",
+            "gauss:0:1",
+            "normal:0",
+            "normal:x:1",
+            "uniform:-1e308:1e308",
+        ] {
+            let e = format!("friction.mu_k={text}")
+                .parse::<Uncertain>()
+                .unwrap_err();
+            assert!(e.starts_with("friction.mu_k: "), "{e}");
         }
         let u: Uncertain = "friction.mu_k=normal:0.40:0.05".parse().unwrap();
         assert_eq!(u.key, "friction.mu_k");

@@ -62,6 +62,14 @@ pub fn check_uncertain(scene: &Scene, uncertain: &[Uncertain]) -> Result<(), Key
     }
     for u in uncertain {
         check_key(scene, &u.key, false, &[])?;
+        // A whole-number key (solver.stride) refuses a fraction: a distribution draws fractions.
+        if check_key(scene, &u.key, false, &[0.5]).is_err() {
+            return Err(KeyError {
+                key: u.key.clone(),
+                reason: "the key takes whole numbers, and a distribution draws fractions"
+                    .to_string(),
+            });
+        }
     }
     Ok(())
 }

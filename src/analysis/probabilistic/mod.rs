@@ -129,6 +129,17 @@ mod tests {
     }
 
     #[test]
+    fn a_whole_number_key_is_refused_as_uncertain_before_any_sample_runs() {
+        // `--dist solver.stride=uniform:1:5` ran every sample as an invalid scene and exited 0.
+        let scene = crate::scene::Scene::default_scene();
+        let u = |t: &str| t.parse::<Uncertain>().unwrap();
+        let e = check_uncertain(&scene, &[u("solver.stride=uniform:1:5")]).unwrap_err();
+        assert_eq!(e.key, "solver.stride");
+        assert!(e.reason.contains("whole numbers"), "{}", e.reason);
+        assert!(check_uncertain(&scene, &[u("friction.mu_k=uniform:0.3:0.5")]).is_ok());
+    }
+
+    #[test]
     fn the_wilson_interval_holds_its_proportion_and_stays_in_zero_one() {
         let (p, (lo, hi)) = proportion(30, 100);
         assert_eq!(p, 0.3);

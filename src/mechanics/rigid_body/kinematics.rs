@@ -6,7 +6,7 @@
 use super::RigidError;
 use crate::mechanics::ContactGeometry;
 use crate::model::Block;
-use nalgebra::{Matrix3, Matrix6, Vector3, Vector6};
+use nalgebra::{Matrix3, Matrix4, Vector3, Vector4};
 
 /// The inertia tensor in global axes and its inverse, at one pose.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -74,41 +74,42 @@ pub(super) fn theta_rate_row(u: &Vector3<f64>) -> Vector3<f64> {
 /// The twist of the constrained block with rates (Ẋ, Ż, θ̇): six linear equations — v_X = Ẋ,
 /// v_Z = Ż, the three contact velocities along their normals vanish, and θ̇ from ω. This is the
 /// velocity projection: the twist always satisfies the constraints to round-off.
+///
+/// The first two equations give v_X and v_Z outright in ω (their pivots are 1), so they are
+/// substituted into the other four, which are solved for (v_Y, ω): the same solution as the six
+/// by elimination, singular exactly when the six are.
 pub fn twist(geom: &ContactGeometry, rates: [f64; 3]) -> Result<Twist, RigidError> {
-    let mut a = Matrix6::zeros();
-    let mut b = Vector6::zeros();
     // (Ẋ, Ż) are the rates of the frame's origin O, at −c from the point the twist is of
-    // (c = `geom.cm_offset`): v_O = v + c × ω.
+    // (c = `geom.cm_offset`): v_O = v + c × ω, so v_X = Ẋ + p·ω and v_Z = Ż + q·ω.
     let c = geom.cm_offset;
-    a[(0, 0)] = 1.0;
-    a[(0, 4)] = -c.z;
-    a[(0, 5)] = c.y;
-    b[0] = rates[0];
-    a[(1, 2)] = 1.0;
-    a[(1, 3)] = -c.y;
-    a[(1, 4)] = c.x;
-    b[1] = rates[1];
+    let p = Vector3::new(0.0, c.z, -c.y);
+    let q = Vector3::new(c.y, -c.x, 0.0);
+    let mut a = Matrix4::zeros();
+    let mut b = Vector4::zeros();
     for i in 0..3 {
+        // n·v + (r × n)·ω = 0 with v_X, v_Z substituted: unknowns (v_Y, ω).
         let n = geom.n[i];
-        let m = geom.r[i].cross(&n);
-        for c in 0..3 {
-            a[(2 + i, c)] = n[c];
-            a[(2 + i, 3 + c)] = m[c];
+        let m = geom.r[i].cross(&n) + p * n.x + q * n.z;
+        a[(i, 0)] = n.y;
+        for k in 0..3 {
+            a[(i, 1 + k)] = m[k];
         }
+        b[i] = -n.x * rates[0] - n.z * rates[1];
     }
     let row = theta_rate_row(&geom.frame.i);
-    for c in 0..3 {
-        a[(5, 3 + c)] = row[c];
+    for k in 0..3 {
+        a[(3, 1 + k)] = row[k];
     }
-    b[5] = rates[2];
+    b[3] = rates[2];
     let x = a
         .lu()
         .solve(&b)
         .filter(|x| x.iter().all(|v| v.is_finite()))
         .ok_or(RigidError::Singular("velocity projection"))?;
+    let w = Vector3::new(x[1], x[2], x[3]);
     Ok(Twist {
-        v: Vector3::new(x[0], x[1], x[2]),
-        w: Vector3::new(x[3], x[4], x[5]),
+        v: Vector3::new(rates[0] + p.dot(&w), x[0], rates[1] + q.dot(&w)),
+        w,
     })
 }
 

@@ -12,8 +12,8 @@ pub const ROUTE_HEADER: [&str; 25] = Row::COLUMNS;
 /// with the route's length): the header [`ROUTE_HEADER`], then one line per [`CsvRows::push`];
 /// reactions that could not be had are empty. Each number is written straight into the buffered
 /// output, with no allocation a row: a whole number below 2⁵³ in magnitude as an integer, any
-/// other as its shortest decimal that reads back the same (`ryu`: an exponent past 10¹⁶ or below
-/// 10⁻⁵, as `1.5e-7`); no number needs quoting. The first write error is kept and returned by
+/// other as its shortest decimal that reads back the same (`zmij`: an exponent past 10¹⁶ or below
+/// 10⁻⁵, as `1.5e-7` or `2.5e+17`); no number needs quoting. The first write error is kept and returned by
 /// [`CsvRows::finish`].
 pub struct CsvRows<W: Write> {
     w: std::io::BufWriter<W>,
@@ -33,7 +33,7 @@ impl<W: Write> CsvRows<W> {
         }
         // Reactions that could not be had, and the second face of a contact on no crease, are
         // empty.
-        let (mut decimal, mut integer) = (ryu::Buffer::new(), itoa::Buffer::new());
+        let (mut decimal, mut integer) = (zmij::Buffer::new(), itoa::Buffer::new());
         let mut line = || -> std::io::Result<()> {
             for (k, v) in r.values().iter().enumerate() {
                 if k > 0 {
@@ -60,15 +60,16 @@ impl<W: Write> CsvRows<W> {
 }
 
 /// Writes `x` as route.csv has it: a whole number below 2⁵³ in magnitude as an integer (a face's
-/// number, a zero; as Rust's `Display` writes it), any other by `ryu`.
+/// number, a zero; as Rust's `Display` writes it), any other by `zmij`.
 fn write_number(
     w: &mut impl Write,
-    (decimal, integer): (&mut ryu::Buffer, &mut itoa::Buffer),
+    (decimal, integer): (&mut zmij::Buffer, &mut itoa::Buffer),
     x: f64,
 ) -> std::io::Result<()> {
     const WHOLE: f64 = 9_007_199_254_740_992.0;
-    if x.fract() == 0.0 && x.abs() < WHOLE && !(x == 0.0 && x.is_sign_negative()) {
-        // Exact: a whole |x| < 2⁵³ is an i64.
+    // Whole: |x| < 2⁵³ converts to an i64 and back exactly (the conversion truncates, so only a
+    // whole x comes back equal); NaN fails the bound.
+    if x.abs() < WHOLE && (x as i64) as f64 == x && !(x == 0.0 && x.is_sign_negative()) {
         w.write_all(integer.format(x as i64).as_bytes())
     } else {
         w.write_all(decimal.format(x).as_bytes())
@@ -174,6 +175,10 @@ mod tests {
         gap.s_n = Some([-0.0, 1e-300, f64::MAX]);
         gap.crease = [None, Some(2), None];
         gap.x_m = 1e21;
+        // 2⁵³ is past the integers written as such; 2⁵³ − 1 is not.
+        gap.z_m = 9_007_199_254_740_992.0;
+        gap.vx_m_s = -9_007_199_254_740_991.0;
+        gap.vz_m_s = 0.5;
         rows.push(gap);
         let mut ours = Vec::new();
         write_csv(&mut ours, &rows).unwrap();
@@ -200,9 +205,13 @@ mod tests {
         assert!(first.contains(",0,1,2,"), "{first}");
         let last = text.lines().last().unwrap();
         assert!(
-            last.contains(",-0.0,1e-300,1.7976931348623157e308,"),
+            last.contains(",-0.0,1e-300,1.7976931348623157e+308,"),
             "{last}"
         );
-        assert!(last.contains(",1e21,"), "{last}");
+        assert!(last.starts_with(&format!("{},1e+21,", gap.t_s)), "{last}");
+        assert!(
+            last.contains(",9007199254740992.0,") && last.contains(",-9007199254740991,0.5,"),
+            "{last}"
+        );
     }
 }
