@@ -100,7 +100,7 @@ pub mod poses {
 /// Load cases checked against the sliding factor of safety their guideline requires.
 pub mod check {
     pub use crate::analysis::anchor_design::{AnchorDesign, design_anchors};
-    pub use crate::analysis::check::{CaseResult, check_cases, meets};
+    pub use crate::analysis::check::{CaseResult, check_cases, check_cases_until, meets};
     pub use crate::analysis::gravity_method::{
         GravityCase, GravityVerdict, gravity_method, required_compression,
     };

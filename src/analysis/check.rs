@@ -15,6 +15,7 @@ use crate::route::pose_finder::PoseFinder;
 use crate::route::{Computed, Route, Runner};
 use crate::scene::{LoadsUsed, Scene, SceneError};
 use nalgebra::Vector3;
+use std::ops::ControlFlow;
 
 /// One load case checked.
 #[derive(Debug, Clone, serde::Serialize)]
@@ -66,13 +67,35 @@ pub fn meets(fs: Option<FactorOfSafety>, required: f64) -> bool {
 /// progress). A case whose levels or coefficients make no valid scene is an error naming it.
 pub fn check_cases(
     scene: &Scene,
+    each: impl FnMut(&CaseResult),
+) -> Result<Vec<CaseResult>, SceneError> {
+    check_cases_until(scene, each, || false)
+}
+
+/// [`check_cases`], asking `stop` before each case and at each increment of a case's route:
+/// once it answers true the route under way ends there (termination "interrupted") and the
+/// cases done so far are returned, that one last; a caller that stopped the check knows it
+/// holds fewer results than cases.
+pub fn check_cases_until(
+    scene: &Scene,
     mut each: impl FnMut(&CaseResult),
+    stop: impl Fn() -> bool,
 ) -> Result<Vec<CaseResult>, SceneError> {
     let cases = cases_of(scene);
     let mut out = Vec::with_capacity(cases.len());
     for case in cases.iter() {
+        if stop() {
+            break;
+        }
         let s = scene.for_case(case)?;
-        let run = Runner::new(&s.simulation()?).run();
+        let observe = |_: f64| {
+            if stop() {
+                ControlFlow::Break(())
+            } else {
+                ControlFlow::Continue(())
+            }
+        };
+        let run = Runner::new(&s.simulation()?).progress(observe).run();
         let fs = run.route.factor_of_safety;
         let gravity = gravity_case(&s, case.category, &run.route).map(|c| gravity_method(&c));
         let passes = match &gravity {

@@ -812,6 +812,8 @@ fn a_closed_pipe_on_stdout_ends_quietly() {
     // Like `slideroute roots … --json | head -0`, whoever reads standard
     // output has gone before it is written. It used to panic ("failed printing to stdout", exit
     // 101); now it ends quietly, as other Unix tools do.
+    let dir = temp_dir("closed-pipe");
+    let closed_out = dir.join("out");
     for args in [
         vec![
             "roots",
@@ -824,6 +826,34 @@ fn a_closed_pipe_on_stdout_ends_quietly() {
             "--json",
         ],
         vec!["scene", "--print-default"],
+        // The commands of many routes print their tables at the end (`probabilistic` panicked).
+        vec![
+            "probabilistic",
+            "--samples",
+            "8",
+            "--dist",
+            "friction.mu_k=normal:0.4:0.04",
+            "--no-plots",
+            "--no-3d",
+            "--out",
+            closed_out.to_str().unwrap(),
+        ],
+        vec![
+            "sweep",
+            "--vary",
+            "friction.mu_k=0.3:0.4:2",
+            "--no-plots",
+            "--no-3d",
+            "--out",
+            closed_out.to_str().unwrap(),
+        ],
+        vec![
+            "check",
+            "--no-plots",
+            "--no-3d",
+            "--out",
+            closed_out.to_str().unwrap(),
+        ],
     ] {
         let (reader, writer) = std::io::pipe().unwrap();
         drop(reader);
@@ -835,6 +865,7 @@ fn a_closed_pipe_on_stdout_ends_quietly() {
         assert_eq!(o.status.code(), Some(0), "{args:?}: {}", stderr(&o));
         assert!(stderr(&o).is_empty(), "{args:?}: {}", stderr(&o));
     }
+    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]
@@ -1315,6 +1346,38 @@ fn an_interrupted_report_writes_nothing_and_says_so() {
     assert!(stderr(&o).contains("interrupted"), "{}", stderr(&o));
     assert!(!out.join("work-precision.csv").exists());
     assert!(!out.join("work-precision.md").exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn an_interrupted_check_stops_and_writes_nothing() {
+    // `check` ran its cases to the end through the first Ctrl-C (and a second left no message).
+    let dir = temp_dir("interrupt-check");
+    let scene = long_scene(&dir);
+    let out = dir.join("out");
+    let o = interrupted_after(
+        &[
+            "check",
+            "--scene",
+            scene.to_str().unwrap(),
+            "--no-plots",
+            "--no-3d",
+            "--quiet",
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        400,
+    );
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(
+        e.contains("interrupted: the check stopped after 0 of 1 cases"),
+        "{e}"
+    );
+    assert_eq!(e.lines().count(), 1, "{e}");
+    for name in ["check.csv", "check.json", "report.html", ".slideroute.lock"] {
+        assert!(!out.join(name).exists(), "{name}");
+    }
     let _ = std::fs::remove_dir_all(&dir);
 }
 
@@ -2335,4 +2398,101 @@ fn a_scene_with_several_faults_gets_a_line_for_each() {
         err.contains("foundation.xi_deg") && err.contains("friction.mu_k"),
         "{err}"
     );
+}
+
+/// The files under `dir` that a person sees (no hidden names), relative, sorted.
+fn visible_files(dir: &std::path::Path) -> Vec<String> {
+    fn walk(root: &std::path::Path, at: &std::path::Path, out: &mut Vec<String>) {
+        for e in std::fs::read_dir(at).unwrap() {
+            let e = e.unwrap();
+            let name = e.file_name().to_string_lossy().into_owned();
+            if name.starts_with('.') {
+                continue;
+            }
+            if e.file_type().unwrap().is_dir() {
+                walk(root, &e.path(), out);
+            } else {
+                let rel = e.path().strip_prefix(root).unwrap().to_path_buf();
+                out.push(rel.to_string_lossy().into_owned());
+            }
+        }
+    }
+    let mut out = Vec::new();
+    walk(dir, dir, &mut out);
+    out.sort();
+    out
+}
+
+#[test]
+fn a_manifest_is_written_last_and_names_exactly_the_files_beside_it() {
+    // summary.json was written before the files it should name, and an earlier run's pictures
+    // stayed beside a later run's summary until the very end.
+    let dir = temp_dir("manifest-exact");
+    let out = dir.join("out");
+    let o = out.to_str().unwrap();
+    let short = ["--set", "solver.t_end_s=0.3"];
+    let cases: [(&[&str], &str); 5] = [
+        (&["run", "--quiet", "--out", o], "summary.json"),
+        // The same folder again without pictures: the pictures go, and the summary says so.
+        (
+            &["run", "--quiet", "--no-plots", "--out", o],
+            "summary.json",
+        ),
+        (
+            &[
+                "run",
+                "--quiet",
+                "--compare-dynamics",
+                "--no-3d",
+                "--out",
+                o,
+            ],
+            "comparison.json",
+        ),
+        (
+            &[
+                "probabilistic",
+                "--quiet",
+                "--samples",
+                "4",
+                "--dist",
+                "friction.mu_k=normal:0.4:0.04",
+                "--out",
+                o,
+            ],
+            "probabilistic.json",
+        ),
+        (&["check", "--quiet", "--out", o], "check.json"),
+    ];
+    for (args, manifest) in cases {
+        let _ = std::fs::remove_dir_all(&out);
+        // Twice, the second over the first's files.
+        for _ in 0..2 {
+            let mut all = args.to_vec();
+            if args[0] == "run" && !args.contains(&"--compare-dynamics") {
+                all.extend(short);
+            }
+            let r = run(&all);
+            assert_eq!(r.status.code(), Some(0), "{args:?}: {}", stderr(&r));
+        }
+        let json: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join(manifest)).unwrap()).unwrap();
+        let mut named: Vec<String> = json["manifest"]["files"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|f| f["name"].as_str().unwrap().to_string())
+            .collect();
+        // A manifest names the files beside it, not itself; a check's failing cases are in
+        // folders of their own, with their own summaries.
+        named.push(manifest.to_string());
+        named.sort();
+        let beside: Vec<String> = visible_files(&out)
+            .into_iter()
+            .filter(|f| !f.starts_with("case-"))
+            .collect();
+        // The other manifests of a comparison (each route's summary) are named by the last.
+        assert_eq!(named, beside, "{args:?}");
+    }
+    let _ = std::fs::remove_dir_all(&dir);
 }

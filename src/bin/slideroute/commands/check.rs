@@ -4,11 +4,11 @@
 
 use super::{load, write_route_folder};
 use crate::cli::CheckArgs;
-use crate::exit::{CliError, bad_input, failed, out, outln};
+use crate::exit::{CliError, bad_input, failed, interrupted, out, outln};
 use crate::output::folder::Folder;
 use crate::output::{check_files, check_report, route_files};
 use slideroute::Scene;
-use slideroute::check::{AnchorDesign, CaseResult, Guideline, check_cases, design_anchors};
+use slideroute::check::{AnchorDesign, CaseResult, Guideline, check_cases_until, design_anchors};
 use std::path::PathBuf;
 
 /// `check.json`: the guideline and every case.
@@ -25,13 +25,24 @@ struct CheckJson<'a> {
 pub fn check(args: &CheckArgs) -> Result<(), CliError> {
     let scene = load(&args.scene)?;
     let mut folder = Folder::open(&args.out, "check").map_err(failed)?;
-    let results = check_cases(&scene, |_| ()).map_err(bad_input)?;
+    let results = check_cases_until(&scene, |_| (), interrupted).map_err(bad_input)?;
+    if interrupted() {
+        // A check is filed whole: nothing of a partial one is written.
+        let done = results
+            .iter()
+            .filter(|r| r.run.route.termination.reason != slideroute::Reason::Interrupted)
+            .count();
+        return Err(failed(format!(
+            "interrupted: the check stopped after {done} of {} cases; nothing was written",
+            scene.cases().len().max(1)
+        )));
+    }
     let design = if args.design_anchors {
         Some(design_anchors(&scene).map_err(bad_input)?)
     } else {
         None
     };
-    let mut written = failing_routes(&scene, &results, args)?;
+    let mut written = failing_routes(&folder, &scene, &results, args)?;
     written.push(
         folder
             .write_with("check.csv", |tmp| {
@@ -42,15 +53,6 @@ pub fn check(args: &CheckArgs) -> Result<(), CliError> {
             .map_err(failed)?,
     );
     let manifest = route_files::Manifest::new(&scene, &folder);
-    let json = CheckJson {
-        guideline: scene.guideline(),
-        cases: &results,
-        anchor_design: design.as_deref(),
-    };
-    written.push(
-        route_files::write_json_with_manifest(&mut folder, "check.json", &json, &manifest)
-            .map_err(failed)?,
-    );
     let page = check_report::report(
         scene.name(),
         scene.guideline(),
@@ -62,6 +64,17 @@ pub fn check(args: &CheckArgs) -> Result<(), CliError> {
     written.push(
         folder
             .write_bytes("report.html", page.as_bytes())
+            .map_err(failed)?,
+    );
+    // The manifest of check.json names every file beside it, report.html too.
+    let manifest = route_files::Manifest::new(&scene, &folder);
+    let json = CheckJson {
+        guideline: scene.guideline(),
+        cases: &results,
+        anchor_design: design.as_deref(),
+    };
+    written.push(
+        route_files::write_json_with_manifest(&mut folder, "check.json", &json, &manifest)
             .map_err(failed)?,
     );
     folder.finish().map_err(failed)?;
@@ -83,6 +96,7 @@ pub fn check(args: &CheckArgs) -> Result<(), CliError> {
 
 /// The route of each case that fails, in `case-N/` (N its number among the cases).
 fn failing_routes(
+    folder: &Folder,
     scene: &Scene,
     results: &[CaseResult],
     args: &CheckArgs,
@@ -90,7 +104,9 @@ fn failing_routes(
     let mut written = Vec::new();
     for (k, r) in results.iter().enumerate().filter(|(_, r)| !r.passes) {
         let case_scene = scene.for_case(&r.case).map_err(bad_input)?;
-        let mut sub = Folder::open(&args.out.join(format!("case-{k}")), "check").map_err(failed)?;
+        let mut sub = folder
+            .open_inside(&format!("case-{k}"), "check")
+            .map_err(failed)?;
         written.push(
             route_files::write_route_csv(&mut sub, "route.csv", &r.run.route.rows)
                 .map_err(failed)?,

@@ -14,7 +14,7 @@ pub fn compare(args: &RunArgs) -> Result<(), CliError> {
     let mut folder = Folder::open(&args.out_dir(), "run").map_err(failed)?;
     let c =
         slideroute::compare::compare_dynamics_observed(&scene, interrupted).map_err(bad_input)?;
-    let mut files = crate::output::compare_files::write(&mut folder, &scene, &c).map_err(failed)?;
+    let mut files = crate::output::compare_files::write_rows(&mut folder, &c).map_err(failed)?;
     if !args.no_3d {
         files.extend(
             crate::output::view::many::write_compare_view(
@@ -35,6 +35,9 @@ pub fn compare(args: &RunArgs) -> Result<(), CliError> {
             .map_err(failed)?;
         files.push(path);
     }
+    files.extend(
+        crate::output::compare_files::write_summaries(&mut folder, &scene, &c).map_err(failed)?,
+    );
     folder.finish().map_err(failed)?;
     if interrupted() {
         return Err(interrupted_after(

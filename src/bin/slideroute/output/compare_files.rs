@@ -9,15 +9,31 @@ use slideroute::Scene;
 use slideroute::compare::Comparison;
 use std::path::PathBuf;
 
-/// Writes both routes and `comparison.json` into `folder`; returns the paths written.
-pub fn write(folder: &mut Folder, scene: &Scene, c: &Comparison) -> Result<Vec<PathBuf>, String> {
+/// Each route's folder as the comparison names it, with its route.
+fn both(c: &Comparison) -> [(&'static str, &slideroute::Computed); 2] {
+    [("paper", &c.paper), ("rigid-body", &c.rigid_body)]
+}
+
+/// Writes both routes' rows (`paper/route.csv`, `rigid-body/route.csv`) into `folder`; returns
+/// the paths written. The summaries come after every other file ([`write_summaries`]).
+pub fn write_rows(folder: &mut Folder, c: &Comparison) -> Result<Vec<PathBuf>, String> {
+    both(c)
+        .into_iter()
+        .map(|(sub, computed)| {
+            route_files::write_route_csv(folder, &format!("{sub}/route.csv"), &computed.route.rows)
+        })
+        .collect()
+}
+
+/// Writes both routes' `summary.json` and `comparison.json` (the manifests, last) into
+/// `folder`; returns the paths written.
+pub fn write_summaries(
+    folder: &mut Folder,
+    scene: &Scene,
+    c: &Comparison,
+) -> Result<Vec<PathBuf>, String> {
     let mut files = Vec::new();
-    for (sub, computed) in [("paper", &c.paper), ("rigid-body", &c.rigid_body)] {
-        files.push(route_files::write_route_csv(
-            folder,
-            &format!("{sub}/route.csv"),
-            &computed.route.rows,
-        )?);
+    for (sub, computed) in both(c) {
         let scene = scene
             .with_dynamics(computed.route.dynamics)
             .map_err(|e| e.to_string())?;

@@ -10,11 +10,17 @@
 //!   goes with the process, however it ends; a file left by a run that no longer exists is taken
 //!   over.
 //! * The folder keeps a record of what each command wrote into it ([`RECORD`]: the command and
-//!   the file, one per line). When a run is done, the files the same command wrote there before
-//!   and did not write this time are removed (say, the pictures after `--no-plots`); another
+//!   the file, one per line, its manifest marked). Before a run renames its first file in, it
+//!   removes its command's earlier manifest (`summary.json`, `check.json`, …), and the record
+//!   names each file before it is renamed in; the manifest is written last
+//!   ([`Folder::write_manifest`]), after the files of the command's earlier run that this one
+//!   did not write are removed. So a folder with a command's manifest holds exactly the files
+//!   it names (from that command), and a run killed part way leaves a folder without one,
+//!   whose every file the next run of that command knows and replaces or removes. Another
 //!   command's files, and files slideroute did not write, are never touched — whatever their
-//!   names. A file named in the record that is no longer a plain file (a link put in its place)
-//!   is left alone.
+//!   names.
+//! * Nothing is written, read for removal or removed through a link: a link (or anything but a
+//!   plain file or a real folder) where an output or its folder goes is refused, naming it.
 
 use std::path::{Path, PathBuf};
 
@@ -35,6 +41,13 @@ pub struct Folder {
     lock: std::fs::File,
     /// The private staging folder, once made.
     staging: Option<PathBuf>,
+    /// The files of this run that are manifests.
+    manifests: Vec<String>,
+    /// Whether this run has begun to replace the folder's files: this command's earlier
+    /// manifests are gone, and the record names every file renamed in.
+    opened_up: bool,
+    /// Whether this command's earlier files that this run did not write are gone.
+    stale_removed: bool,
 }
 
 /// A suffix no other process can guess: the process id and a number from the standard
@@ -129,9 +142,19 @@ fn identity(_: &std::fs::Metadata) -> (u64, u64) {
     (0, 0)
 }
 
-/// The entries of a folder's [`RECORD`] (command, file): none where there is no record, or it
-/// is not a plain file.
-fn read_record(dir: &Path) -> Vec<(String, String)> {
+/// One line of a folder's [`RECORD`]: the command, the file (relative to the folder), and
+/// whether the file is that command's manifest (`summary.json`, `check.json`, …: written last,
+/// removed first).
+#[derive(Debug, Clone, PartialEq)]
+struct Entry {
+    command: String,
+    file: String,
+    manifest: bool,
+}
+
+/// The entries of a folder's [`RECORD`]: none where there is no record, or it is not a plain
+/// file. A line is `COMMAND<TAB>FILE`, with `<TAB>manifest` after a manifest.
+fn read_record(dir: &Path) -> Vec<Entry> {
     let path = dir.join(RECORD);
     let plain = std::fs::symlink_metadata(&path).is_ok_and(|m| m.file_type().is_file());
     if !plain {
@@ -140,10 +163,43 @@ fn read_record(dir: &Path) -> Vec<(String, String)> {
     std::fs::read_to_string(&path)
         .unwrap_or_default()
         .lines()
-        .filter_map(|line| line.split_once('\t'))
-        .filter(|(_, file)| recordable(file))
-        .map(|(c, f)| (c.to_string(), f.to_string()))
+        .filter_map(|line| {
+            let (command, rest) = line.split_once('\t')?;
+            let (file, manifest) = match rest.split_once('\t') {
+                Some((file, "manifest")) => (file, true),
+                Some(_) => return None,
+                None => (rest, false),
+            };
+            recordable(file).then(|| Entry {
+                command: command.to_string(),
+                file: file.to_string(),
+                manifest,
+            })
+        })
         .collect()
+}
+
+/// Writes `entries` as `dir`'s [`RECORD`], whole (a temporary renamed into place).
+fn write_record(dir: &Path, entries: &[Entry]) -> Result<(), String> {
+    let mut text = String::new();
+    for e in entries {
+        text.push_str(&e.command);
+        text.push('\t');
+        text.push_str(&e.file);
+        if e.manifest {
+            text.push_str("\tmanifest");
+        }
+        text.push('\n');
+    }
+    let path = dir.join(RECORD);
+    let tmp =
+        new_temporary(dir, RECORD).map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
+    std::fs::write(&tmp, text)
+        .and_then(|()| std::fs::rename(&tmp, &path))
+        .map_err(|e| {
+            let _ = std::fs::remove_file(&tmp);
+            format!("{}: cannot write: {e}", path.display())
+        })
 }
 
 /// Whether `name` is a path a record may name: relative, inside the folder, no `..`.
@@ -157,6 +213,39 @@ fn recordable(name: &str) -> bool {
 /// Whether `path` is a plain file (not a link, not a folder).
 fn plain_file(path: &Path) -> bool {
     std::fs::symlink_metadata(path).is_ok_and(|m| m.file_type().is_file())
+}
+
+/// Why `name` (relative to `dir`) is no place for an output: a link, or something other than a
+/// real folder, on the way to it (a link at `out/paper` would take `paper/route.csv` into
+/// another folder), or a link or folder where the file itself goes. `None` where the way is
+/// real folders (or nothing yet) and the place a plain file or free.
+fn not_a_place_for_output(dir: &Path, name: &str) -> Option<String> {
+    let mut at = dir.to_path_buf();
+    let parts: Vec<&std::ffi::OsStr> = Path::new(name).iter().collect();
+    for (k, part) in parts.iter().enumerate() {
+        at.push(part);
+        let Ok(m) = std::fs::symlink_metadata(&at) else {
+            return None; // Nothing there yet: made new below, by this run.
+        };
+        let last = k + 1 == parts.len();
+        let kind = m.file_type();
+        if kind.is_symlink() {
+            return Some(format!(
+                "{}: is a link where slideroute writes its output; it is not followed: remove \
+                 it or choose another --out",
+                at.display()
+            ));
+        }
+        if (last && !kind.is_file()) || (!last && !kind.is_dir()) {
+            return Some(format!(
+                "{}: is not a {} where slideroute writes its output: remove it or choose \
+                 another --out",
+                at.display(),
+                if last { "plain file" } else { "folder" }
+            ));
+        }
+    }
+    None
 }
 
 impl Folder {
@@ -221,9 +310,31 @@ impl Folder {
                 written: Vec::new(),
                 lock: file,
                 staging: None,
+                manifests: Vec::new(),
+                opened_up: false,
+                stale_removed: false,
             });
         }
         Err(format!("{}: cannot lock the folder", dir.display()))
+    }
+
+    /// The folder `name` inside this one, opened for `command` as [`Folder::open`] does; refused
+    /// where a link (or a file) stands at its name: it is not followed.
+    pub fn open_inside(&self, name: &str, command: &'static str) -> Result<Folder, String> {
+        let dir = self.dir.join(name);
+        match std::fs::symlink_metadata(&dir) {
+            Ok(m) if m.file_type().is_symlink() || !m.is_dir() => Err(format!(
+                "{}: is {} where slideroute writes its output; it is not followed: remove it or \
+                 choose another --out",
+                dir.display(),
+                if m.file_type().is_symlink() {
+                    "a link"
+                } else {
+                    "not a folder"
+                }
+            )),
+            _ => Folder::open(&dir, command),
+        }
     }
 
     /// Writes `name` (relative; its folder is created) through `write`, which is given the
@@ -235,6 +346,9 @@ impl Folder {
         write: impl FnOnce(&Path) -> Result<(), String>,
     ) -> Result<PathBuf, String> {
         let path = self.dir.join(name);
+        if let Some(why) = not_a_place_for_output(&self.dir, name) {
+            return Err(why);
+        }
         if let Some(parent) = path.parent() {
             std::fs::create_dir_all(parent)
                 .map_err(|e| format!("{}: cannot create: {e}", parent.display()))?;
@@ -246,10 +360,12 @@ impl Folder {
         let parent = path.parent().unwrap_or(&self.dir);
         let tmp = new_temporary(parent, &file_name)
             .map_err(|e| format!("{}: cannot write: {e}", parent.display()))?;
-        let result = write(&tmp).and_then(|()| {
-            std::fs::rename(&tmp, &path)
-                .map_err(|e| format!("{}: cannot write: {e}", path.display()))
-        });
+        let result = write(&tmp)
+            .and_then(|()| self.about_to_place(name))
+            .and_then(|()| {
+                std::fs::rename(&tmp, &path)
+                    .map_err(|e| format!("{}: cannot write: {e}", path.display()))
+            });
         if result.is_err() {
             let _ = std::fs::remove_file(&tmp);
         }
@@ -308,47 +424,108 @@ impl Folder {
         &self.written
     }
 
-    /// Removes the files this command wrote here before ([`RECORD`]) that this run did not
-    /// write, and their folders if that leaves them empty; records what this run wrote beside
-    /// the other commands' files that are still there; then unlocks.
-    pub fn finish(self) -> Result<(), String> {
-        let wrote = |name: &str| self.written.iter().any(|(n, _)| n == name);
-        let mut kept: Vec<(String, String)> = Vec::new();
-        for (command, name) in read_record(&self.dir) {
-            let path = self.dir.join(&name);
-            if command == self.command {
-                if !wrote(&name) && plain_file(&path) {
-                    std::fs::remove_file(&path).map_err(|e| {
+    /// Before `name` is renamed into place: the first time, this command's earlier manifests
+    /// are removed (from then on until this run's manifest is written, the folder has none of
+    /// this command's: recognisably incomplete, should the run be killed); and the record is
+    /// made to name `name`, so that whatever a killed run renamed in is known to the next run,
+    /// which removes it if it does not write it again.
+    fn about_to_place(&mut self, name: &str) -> Result<(), String> {
+        let mut record = read_record(&self.dir);
+        if !self.opened_up {
+            for e in record
+                .iter()
+                .filter(|e| e.command == self.command && e.manifest)
+            {
+                let path = self.dir.join(&e.file);
+                if not_a_place_for_output(&self.dir, &e.file).is_none() && plain_file(&path) {
+                    std::fs::remove_file(&path).map_err(|err| {
                         format!(
-                            "{}: cannot remove this command's earlier file: {e}",
+                            "{}: cannot remove this command's earlier summary: {err}",
                             path.display()
                         )
                     })?;
-                    if let Some(parent) = path.parent().filter(|p| *p != self.dir) {
-                        let _ = std::fs::remove_dir(parent); // only if empty
-                    }
                 }
-            } else if !wrote(&name) && plain_file(&path) && !kept.iter().any(|(_, n)| *n == name) {
-                kept.push((command, name));
+            }
+            self.opened_up = true;
+        }
+        if !record
+            .iter()
+            .any(|e| e.command == self.command && e.file == name)
+        {
+            record.push(Entry {
+                command: self.command.to_string(),
+                file: name.to_string(),
+                manifest: false,
+            });
+            write_record(&self.dir, &record)?;
+        }
+        Ok(())
+    }
+
+    /// Writes `bytes` as `name`, this command's manifest (what produced the folder and the
+    /// files in it): first the files this command wrote here before and did not write this
+    /// time are removed, so that the manifest, written last, names exactly the files beside it.
+    pub fn write_manifest(&mut self, name: &str, bytes: &[u8]) -> Result<PathBuf, String> {
+        self.remove_stale()?;
+        let path = self.write_bytes(name, bytes)?;
+        self.manifests.push(name.to_string());
+        Ok(path)
+    }
+
+    /// Removes the files this command wrote here before ([`RECORD`]) that this run did not
+    /// write (and will not: called once its files are written), and their folders if that
+    /// leaves them empty. Never through a link, never anything but a plain file.
+    fn remove_stale(&mut self) -> Result<(), String> {
+        if self.stale_removed {
+            return Ok(());
+        }
+        for e in read_record(&self.dir) {
+            let path = self.dir.join(&e.file);
+            let wrote = self.written.iter().any(|(n, _)| *n == e.file);
+            if e.command == self.command
+                && !wrote
+                && not_a_place_for_output(&self.dir, &e.file).is_none()
+                && plain_file(&path)
+            {
+                std::fs::remove_file(&path).map_err(|err| {
+                    format!(
+                        "{}: cannot remove this command's earlier file: {err}",
+                        path.display()
+                    )
+                })?;
+                if let Some(parent) = path.parent().filter(|p| *p != self.dir) {
+                    let _ = std::fs::remove_dir(parent); // only if empty
+                }
             }
         }
-        let mut record = String::new();
-        for (command, name) in kept
-            .iter()
-            .map(|(c, n)| (c.as_str(), n.as_str()))
-            .chain(self.written.iter().map(|(n, _)| (self.command, n.as_str())))
-        {
-            record.push_str(&format!("{command}\t{name}\n"));
+        self.stale_removed = true;
+        Ok(())
+    }
+
+    /// Removes this command's earlier files that this run did not write (where no manifest
+    /// did); records what this run wrote (its manifests marked) beside the other commands'
+    /// files that are still there; then unlocks.
+    pub fn finish(mut self) -> Result<(), String> {
+        self.remove_stale()?;
+        let mut kept: Vec<Entry> = Vec::new();
+        for e in read_record(&self.dir) {
+            let wrote = self.written.iter().any(|(n, _)| *n == e.file);
+            let real = not_a_place_for_output(&self.dir, &e.file).is_none();
+            if e.command != self.command
+                && !wrote
+                && real
+                && plain_file(&self.dir.join(&e.file))
+                && !kept.iter().any(|k| k.file == e.file)
+            {
+                kept.push(e);
+            }
         }
-        let path = self.dir.join(RECORD);
-        let tmp = new_temporary(&self.dir, RECORD)
-            .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
-        std::fs::write(&tmp, record)
-            .and_then(|()| std::fs::rename(&tmp, &path))
-            .map_err(|e| {
-                let _ = std::fs::remove_file(&tmp);
-                format!("{}: cannot write: {e}", path.display())
-            })
+        kept.extend(self.written.iter().map(|(n, _)| Entry {
+            command: self.command.to_string(),
+            file: n.clone(),
+            manifest: self.manifests.contains(n),
+        }));
+        write_record(&self.dir, &kept)
     }
 }
 
@@ -585,5 +762,92 @@ mod tests {
         assert!(target.join("theirs.csv").exists());
         let _ = std::fs::remove_dir_all(&d);
         let _ = std::fs::remove_dir_all(&target);
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_link_where_an_output_goes_is_refused_and_nothing_is_written_or_removed_through_it() {
+        // `ln -s OTHER out/paper; slideroute run --out out` deleted OTHER/route.csv, and a link
+        // at `out/case-2` took `check`'s route into its target.
+        let (d, other) = (temp("link-way"), temp("link-way-other"));
+        std::fs::create_dir_all(&d).unwrap();
+        std::fs::create_dir_all(&other).unwrap();
+        std::fs::write(other.join("route.csv"), "theirs").unwrap();
+        std::os::unix::fs::symlink(&other, d.join("paper")).unwrap();
+        std::os::unix::fs::symlink(other.join("route.csv"), d.join("summary.json")).unwrap();
+        // A record of an earlier run naming files under that folder.
+        std::fs::write(d.join(RECORD), "run\tpaper/route.csv\n").unwrap();
+        let mut f = Folder::open(&d, "run").unwrap();
+        let e = f.write_bytes("paper/route.csv", b"ours").unwrap_err();
+        assert!(e.contains("paper: is a link"), "{e}");
+        let e = f.write_bytes("summary.json", b"ours").unwrap_err();
+        assert!(e.contains("summary.json: is a link"), "{e}");
+        let e = f.open_inside("paper", "check").unwrap_err();
+        assert!(e.contains("paper: is a link"), "{e}");
+        f.write_bytes("route.csv", b"ours").unwrap();
+        f.finish().unwrap();
+        assert_eq!(
+            std::fs::read_to_string(other.join("route.csv")).unwrap(),
+            "theirs"
+        );
+        assert_eq!(std::fs::read_dir(&other).unwrap().count(), 1);
+        // A real folder on the way is written into.
+        let d2 = temp("link-way-real");
+        let mut f = Folder::open(&d2, "run").unwrap();
+        f.write_bytes("paper/route.csv", b"ours").unwrap();
+        f.finish().unwrap();
+        assert!(d2.join("paper/route.csv").is_file());
+        for dir in [&d, &other, &d2] {
+            let _ = std::fs::remove_dir_all(dir);
+        }
+    }
+
+    #[test]
+    fn a_run_killed_while_it_replaces_files_leaves_no_manifest_and_the_next_cleans_up() {
+        // A SIGKILL after the new route.csv was renamed in, before summary.json, left the new
+        // route beside the old summary and pictures.
+        let d = temp("killed-mid-way");
+        let mut f = Folder::open(&d, "run").unwrap();
+        f.write_bytes("route.csv", b"old").unwrap();
+        f.write_bytes("plan.svg", b"old").unwrap();
+        f.write_manifest("summary.json", b"old").unwrap();
+        f.finish().unwrap();
+        // The next run renames its first file in and is killed (dropped unfinished).
+        let mut f = Folder::open(&d, "run").unwrap();
+        f.write_bytes("route.csv", b"new").unwrap();
+        assert!(
+            !d.join("summary.json").exists(),
+            "the old summary went first"
+        );
+        f.write_bytes("extra.svg", b"new").unwrap();
+        drop(f);
+        assert!(!d.join("summary.json").exists());
+        let record = std::fs::read_to_string(d.join(RECORD)).unwrap();
+        assert!(record.contains("run\textra.svg\n"), "{record}");
+        // A third run writes the route and its summary only: what neither it nor the record's
+        // other commands wrote is gone, and the summary names exactly the files beside it.
+        let mut f = Folder::open(&d, "run").unwrap();
+        f.write_bytes("route.csv", b"third").unwrap();
+        let manifest: Vec<String> = f.written().iter().map(|(n, _)| n.clone()).collect();
+        f.write_manifest("summary.json", manifest.join(",").as_bytes())
+            .unwrap();
+        assert!(!d.join("plan.svg").exists() && !d.join("extra.svg").exists());
+        f.finish().unwrap();
+        let mut beside: Vec<String> = std::fs::read_dir(&d)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .filter(|n| !n.starts_with('.'))
+            .collect();
+        beside.sort();
+        assert_eq!(beside, ["route.csv", "summary.json"]);
+        assert_eq!(
+            std::fs::read_to_string(d.join("summary.json")).unwrap(),
+            "route.csv"
+        );
+        assert_eq!(
+            std::fs::read_to_string(d.join(RECORD)).unwrap(),
+            "run\troute.csv\nrun\tsummary.json\tmanifest\n"
+        );
+        let _ = std::fs::remove_dir_all(&d);
     }
 }

@@ -140,7 +140,8 @@ pub fn write_route_csv(folder: &mut Folder, name: &str, rows: &[Row]) -> Result<
     })
 }
 
-/// `value` with the manifest, as pretty JSON, written as `name` into `folder`.
+/// `value` with the manifest, as pretty JSON, written as `name` into `folder`: the command's
+/// manifest ([`Folder::write_manifest`]), so written after every other file of the run.
 pub fn write_json_with_manifest(
     folder: &mut Folder,
     name: &str,
@@ -155,7 +156,7 @@ pub fn write_json_with_manifest(
     }
     let text = serde_json::to_string_pretty(&WithManifest { value, manifest })
         .map_err(|e| format!("{name}: {e}"))?;
-    folder.write_bytes(name, (text + "\n").as_bytes())
+    folder.write_manifest(name, (text + "\n").as_bytes())
 }
 
 #[cfg(test)]
