@@ -31,6 +31,7 @@ bar (tqdm's where tqdm is installed, else a line on stderr).
 from __future__ import annotations
 
 import collections as _collections
+import collections.abc as _abc
 import contextlib as _contextlib
 import json as _json
 import os as _os
@@ -215,6 +216,13 @@ class Scene:
         """A scene from a dict of its tables and keys, as a scene file writes them
         (``{"frame": {"l1x": 6.0, ...}, "foundation": {...}, ...}``); files it names (a
         surface, a record) are found from ``folder``."""
+        missing = _none_at(document)
+        if missing is not None:
+            raise InputError(
+                f"{origin}: {missing}: None is no value a scene can hold (leave the key out for "
+                "its default)",
+                missing,
+            )
         try:
             text = _json.dumps(document, allow_nan=False)
         except TypeError as e:
@@ -352,6 +360,23 @@ class Scene:
         given = [(k, [float(v) for v in vs]) for k, vs in values.items()]
         with _progress(progress, "sweep") as tell:
             return Samples(self._s.sweep(given, dynamics, tell))
+
+
+def _none_at(value: Any, at: str = "") -> "Optional[str]":
+    """The key (``friction.mu_k``, ``case[2].name``) of the first None in a scene's dict."""
+    if value is None:
+        return at or "scene"
+    if isinstance(value, _abc.Mapping):
+        for k, v in value.items():
+            found = _none_at(v, f"{at}.{k}" if at else str(k))
+            if found is not None:
+                return found
+    elif isinstance(value, (list, tuple)):
+        for i, v in enumerate(value):
+            found = _none_at(v, f"{at}[{i}]")
+            if found is not None:
+                return found
+    return None
 
 
 def _from_state(document: "Dict[str, Any]", origin: str, folder: str) -> Scene:
@@ -539,6 +564,22 @@ def distributions(scene: Scene, dists: "Distributions") -> "List[Tuple[str, str]
     return merged
 
 
+def _whole(name: str, value: Any, lo: int, hi: int) -> int:
+    """``value`` as a whole number from ``lo`` to ``hi``; else :class:`InputError` naming
+    ``name`` (Python's OverflowError named nothing, and a wrapped number ran silently)."""
+    if isinstance(value, bool) or not isinstance(value, (int, _np.integer)):
+        raise InputTypeError(f"{name}: a whole number, got {value!r}", name)
+    v = int(value)
+    if not lo <= v <= hi:
+        raise InputError(f"{name} {v}: a whole number from {lo} to {hi}", name)
+    return v
+
+
+_MAX_SAMPLES = 10_000_000
+_MAX_SEED = 2**64 - 1
+_MAX_SAMPLE_NUMBER = 2**53 - 1
+
+
 def sample_values(
     scene: Scene,
     dists: "Distributions" = None,
@@ -549,7 +590,11 @@ def sample_values(
     """The values of every sample of a design (rows) of each uncertain key (columns), drawn
     whole from ``seed``: the same on any machine. ``dists`` as for :func:`probabilistic`."""
     return _native.sample_values(
-        scene._s, distributions(scene, dists), int(samples), int(seed), sampling
+        scene._s,
+        distributions(scene, dists),
+        _whole("samples", samples, 1, _MAX_SAMPLES),
+        _whole("seed", seed, 0, _MAX_SEED),
+        sampling,
     )
 
 
@@ -569,7 +614,13 @@ def run_samples(
         raise InputError("values: a 2-D array, one row per sample", "values")
     with _progress(progress, "samples") as tell:
         return Samples(
-            _native.run_samples(scene._s, distributions(scene, dists), v, int(first), tell)
+            _native.run_samples(
+                scene._s,
+                distributions(scene, dists),
+                v,
+                _whole("first", first, 0, _MAX_SAMPLE_NUMBER - len(v)),
+                tell,
+            )
         )
 
 
@@ -590,8 +641,8 @@ def summarise(
     return _native.summarise_samples(
         scene._s,
         distributions(scene, dists),
-        int(samples),
-        int(seed),
+        _whole("samples", samples, 1, _MAX_SAMPLES),
+        _whole("seed", seed, 0, _MAX_SEED),
         sampling,
         dict(rows),
         travel_limit_m,

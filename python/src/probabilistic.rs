@@ -30,6 +30,9 @@ fn uncertain_of(py: Python<'_>, given: &[(String, String)]) -> PyResult<Vec<Unce
         .collect()
 }
 
+/// The numbers a sample can have: below 2⁵³, each exactly a float too.
+const MAX_SAMPLE_NUMBER: usize = 1 << 53;
+
 /// A design's uncertain keys and sampling, checked: from 1 to [`MAX_SAMPLES`] samples, at
 /// least one key, each a number of the scene.
 fn design_of(
@@ -102,6 +105,20 @@ pub fn run_samples<'py>(
             ),
         ));
     }
+    // Each sample's number, first + k, must be a number (the Python layer keeps it below 2⁵³).
+    if first
+        .checked_add(shape[0])
+        .is_none_or(|end| end > MAX_SAMPLE_NUMBER)
+    {
+        return Err(input_error(
+            py,
+            "first",
+            format!(
+                "first {first}: the samples' numbers, first to first + {} − 1, must stay below 2^53",
+                shape[0]
+            ),
+        ));
+    }
     let a = values.as_array();
     let rows: Vec<Vec<f64>> = a.rows().into_iter().map(|r| r.to_vec()).collect();
     let base = &scene.inner;
@@ -134,6 +151,25 @@ pub fn summarise_samples<'py>(
     let (u, sampling) = design_of(py, scene, &uncertain, samples, sampling)?;
     let keys: Vec<String> = u.iter().map(|x| x.key.clone()).collect();
     let rows = samples_from(py, &keys, columns)?;
+    // The summary is of the whole design: every sample's row, once (3 rows summarised as a
+    // design of 1000 samples gave probabilities of 3 routes).
+    let numbered = rows.iter().enumerate().all(|(k, r)| r.index == k);
+    if rows.len() != samples || !numbered {
+        return Err(input_error(
+            py,
+            "rows",
+            format!(
+                "rows: {} rows{} for a design of {samples} samples: give every sample's row, in \
+                 order (Samples.concat joins chunks)",
+                rows.len(),
+                if numbered {
+                    ""
+                } else {
+                    " not numbered 0, 1, 2, …"
+                }
+            ),
+        ));
+    }
     let design = Design {
         scene: &scene.inner,
         uncertain: &u,

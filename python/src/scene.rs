@@ -211,7 +211,7 @@ impl PyScene {
         let total = scene.cases().len().max(1);
         let progress = progress.as_ref().map(|f| (f, total));
         let results = interruptible(py, progress, |watch| {
-            slideroute::check::check_cases(scene, |_| watch.tick())
+            slideroute::check::check_cases_until(scene, |_| watch.tick(), || watch.stopped())
         })?
         .map_err(|e| scene_error(py, &e))?;
         let columns = check_columns(py, &results)?;

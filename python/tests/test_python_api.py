@@ -348,3 +348,59 @@ def test_progress_true_without_tqdm_writes_one_line_on_stderr(monkeypatch, capsy
 def test_the_install_says_it_builds_for_minutes():
     setup = (ROOT / "python" / "setup.sh").read_text(encoding="utf-8")
     assert "few minutes" in setup and "install -v" in setup
+
+
+# Arguments out of range (issue #32 item 10) -------------------------------------------------
+
+
+def test_whole_number_arguments_out_of_range_are_input_errors_naming_them():
+    # Python's OverflowError named nothing, and first = 2**64 - 1 wrapped inside the library.
+    s = slideroute.Scene.default().with_keys({"solver.t_end_s": 0.2})
+    d = {"friction.mu_k": "normal:0.4:0.04"}
+    for kwargs, name in [
+        ({"samples": -5}, "samples"),
+        ({"samples": 0}, "samples"),
+        ({"samples": 10**8}, "samples"),
+        ({"samples": 5, "seed": -1}, "seed"),
+        ({"samples": 5, "seed": 2**64}, "seed"),
+    ]:
+        with pytest.raises(slideroute.InputError) as e:
+            slideroute.sample_values(s, d, **kwargs)
+        assert e.value.name == name and str(e.value).startswith(name), str(e.value)
+    with pytest.raises(TypeError) as e:
+        slideroute.sample_values(s, d, samples=2.5)
+    assert e.value.name == "samples"
+    v = slideroute.sample_values(s, d, samples=3)
+    for first in (-1, 2**64 - 1, 2**53):
+        with pytest.raises(slideroute.InputError) as e:
+            slideroute.run_samples(s, d, v, first=first)
+        assert e.value.name == "first", str(e.value)
+    rows = slideroute.run_samples(s, d, v, first=2**53 - 4)
+    assert list(rows["sample"]) == [2**53 - 4, 2**53 - 3, 2**53 - 2]
+
+
+def test_a_summary_is_of_every_row_of_its_design_or_refused():
+    # Three rows summarised as a design of 1000 samples gave the probabilities of three routes.
+    s = slideroute.Scene.default().with_keys({"solver.t_end_s": 0.2})
+    d = {"friction.mu_k": "normal:0.4:0.04"}
+    v = slideroute.sample_values(s, d, samples=3, seed=7)
+    rows = slideroute.run_samples(s, d, v)
+    with pytest.raises(slideroute.InputError) as e:
+        slideroute.summarise(s, d, 1000, 7, "lhs", rows)
+    assert e.value.name == "rows" and "3 rows for a design of 1000 samples" in str(e.value)
+    later = slideroute.run_samples(s, d, v, first=1)
+    with pytest.raises(slideroute.InputError, match="not numbered"):
+        slideroute.summarise(s, d, 3, 7, "lhs", later)
+    summary = slideroute.summarise(s, d, 3, 7, "lhs", rows)
+    assert summary["routes"] == 3
+
+
+def test_a_scene_dict_holding_none_is_refused_naming_its_key():
+    # It pointed at "line 1 column 236" of a JSON text the user never wrote.
+    doc = slideroute.Scene.default().to_dict()
+    doc["friction"]["mu_k"] = None
+    with pytest.raises(slideroute.InputError) as e:
+        slideroute.Scene.from_dict(doc)
+    assert e.value.name == "friction.mu_k" and "column" not in str(e.value), str(e.value)
+    with pytest.raises(slideroute.InputError, match=r"case\[0\]\.name"):
+        slideroute.Scene.from_dict({**slideroute.Scene.default().to_dict(), "case": [{"name": None}]})
