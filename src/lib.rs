@@ -80,8 +80,9 @@ pub use model::{
     WaterLoads,
 };
 pub use route::{
-    AnchorBreak, BaseReport, Carrying, Computed, Diagnostics, EnergyBalance, OVERTURN_DEG,
-    PoseMethod, Reason, Resting, Route, Row, Runner, Steps, Termination, pose_of_row, simulate,
+    AnchorBreak, BaseReport, Carrying, Computed, Diagnostics, EnergyBalance, KEPT_ROWS,
+    OVERTURN_DEG, PoseMethod, Reason, Resting, Route, Row, Runner, Steps, Termination, pose_of_row,
+    simulate,
 };
 pub use scene::{LoadsUsed, Scene, SceneError, SceneErrorKind};
 
@@ -111,7 +112,7 @@ pub mod check {
 /// The paper's dynamics beside the rigid body's: both routes of one scene, and where they part.
 pub mod compare {
     pub use crate::analysis::compare::{
-        Comparison, Parting, compare_dynamics, compare_dynamics_observed,
+        Comparison, Parting, compare_dynamics, compare_dynamics_observed, compare_dynamics_streamed,
     };
 }
 

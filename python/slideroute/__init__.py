@@ -64,6 +64,7 @@ if _t.TYPE_CHECKING:  # names for the annotations only: not the package's
 __all__ = [
     "Scene",
     "Route",
+    "RouteChunks",
     "Samples",
     "Check",
     "Probabilistic",
@@ -283,14 +284,32 @@ class Scene:
     __hash__ = None  # type: ignore[assignment]
 
     # Computing -----------------------------------------------------------------------------
-    def route(self, dynamics: "Optional[str]" = None, progress: "Progress" = None) -> "Route":
+    def route(
+        self,
+        dynamics: "Optional[str]" = None,
+        progress: "Progress" = None,
+        max_rows: int = 1_000_000,
+    ) -> "Route":
         """The route (``dynamics``: ``"rigid-body"`` or ``"paper"``, the scene's own by
         default): the rows ``route.csv`` has, as NumPy arrays, and its summary.
         ``progress(done, total)`` is told how many increments of dt are done (``True``: a
-        bar); Ctrl-C stops it with ``KeyboardInterrupt``."""
+        bar); Ctrl-C stops it with ``KeyboardInterrupt``. The arrays take 200 bytes a row: a
+        route that may record more than ``max_rows`` rows (t_end_s / dt_s / stride) is refused
+        before it starts with :class:`InputError`; :meth:`route_chunks` reads any length."""
+        limit = _whole("max_rows", max_rows, 1, 2**62)
         with _progress(progress, f"route of {self.name}") as tell:
-            columns, summary = self._s.route(dynamics, tell)
+            columns, summary = self._s.route(dynamics, tell, limit)
         return Route(columns=columns, summary=summary)
+
+    def route_chunks(
+        self, rows: int = 16_384, dynamics: "Optional[str]" = None
+    ) -> "RouteChunks":
+        """The route read in chunks: an iterator of dicts of NumPy arrays (the columns
+        :meth:`route` gives) of at most ``rows`` rows each, computed a chunk or two ahead of the
+        reader, so that a route of any length is read in bounded memory. Its ``summary`` is
+        there once the last chunk is read. Ctrl-C stops it with ``KeyboardInterrupt``; leaving
+        the loop early stops the route."""
+        return RouteChunks(self._s.route_chunks(dynamics, _whole("rows", rows, 1, 2**32)))
 
     def factor_of_safety(self, dynamics: "Optional[str]" = None) -> "Optional[float]":
         """The factor of safety at the start, without the route after it (the largest multiple
@@ -381,6 +400,38 @@ def _none_at(value: Any, at: str = "") -> "Optional[str]":
 
 def _from_state(document: "Dict[str, Any]", origin: str, folder: str) -> Scene:
     return Scene(_native.Scene.from_json(_json.dumps(document), origin, folder))
+
+
+class RouteChunks:
+    """A route read in chunks (:meth:`Scene.route_chunks`): iterate for dicts of NumPy arrays;
+    ``summary`` (as ``summary.json`` has it) once the last is read, else None."""
+
+    def __init__(self, native: "Any") -> None:
+        self._native = native
+
+    def __iter__(self) -> "RouteChunks":
+        return self
+
+    def __next__(self) -> "Dict[str, Any]":
+        return self._native.__next__()
+
+    @property
+    def summary(self) -> "Optional[Dict[str, Any]]":
+        return self._native.summary
+
+    def close(self) -> None:
+        """Stops the route; the chunks not read are dropped."""
+        self._native.close()
+
+    def __enter__(self) -> "RouteChunks":
+        return self
+
+    def __exit__(self, *exc: "Any") -> None:
+        self.close()
+
+    def __repr__(self) -> str:
+        done = "done" if self.summary is not None else "under way"
+        return f"<RouteChunks: {done}>"
 
 
 @_dataclass(frozen=True, repr=False)

@@ -8,6 +8,7 @@
 mod columns;
 mod errors;
 mod probabilistic;
+mod route_chunks;
 mod scene;
 mod watch;
 
@@ -56,6 +57,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     // became a panic, or was lost and the analysis ran on (numpy::PyArray's first use).
     numpy::PyArray1::<f64>::zeros(m.py(), 0, false);
     m.add_class::<scene::PyScene>()?;
+    m.add_class::<route_chunks::PyRouteChunks>()?;
     m.add_function(wrap_pyfunction!(probabilistic::sample_values, m)?)?;
     m.add_function(wrap_pyfunction!(probabilistic::run_samples, m)?)?;
     m.add_function(wrap_pyfunction!(probabilistic::distributions, m)?)?;

@@ -15,6 +15,12 @@ use slideroute::{Displacement, DynamicsModel, FactorOfSafety, Mode, Runner};
 use std::ops::ControlFlow;
 use std::path::Path;
 
+/// The rows `Scene.route` gives at most unless told otherwise: 10⁶ (200 MB of arrays).
+const MAX_ROUTE_ROWS: usize = 1_000_000;
+
+/// Bytes a row of `Scene.route`'s arrays takes: 25 doubles.
+const ROW_BYTES: usize = 8 * slideroute::Row::COLUMNS.len();
+
 /// A scene: the contact frame, the foundation, the block, its loads and friction, the solver.
 #[pyclass(frozen, module = "slideroute._native", name = "Scene")]
 #[derive(Clone)]
@@ -141,22 +147,41 @@ impl PyScene {
     /// The route: (columns, summary) with columns `Row::COLUMNS` as float arrays (NaN where a
     /// value could not be had) and the summary as `summary.json` has it. `progress(done,
     /// total)` is told how many increments of dt are done; Ctrl-C stops the route with
-    /// `KeyboardInterrupt`.
-    #[pyo3(signature = (dynamics = None, progress = None))]
+    /// `KeyboardInterrupt`. A route that may record more than `max_rows` rows (from t_end, dt
+    /// and stride) is refused before it starts: its arrays would take 200 bytes a row
+    /// (`route_chunks` reads any length in chunks). The rows go straight into the columns, the
+    /// route keeping only a few of its own: 200 bytes a row in all.
+    #[pyo3(signature = (dynamics = None, progress = None, max_rows = MAX_ROUTE_ROWS))]
     fn route<'py>(
         &self,
         py: Python<'py>,
         dynamics: Option<&str>,
         progress: Option<Bound<'py, PyAny>>,
+        max_rows: usize,
     ) -> PyResult<(Bound<'py, PyDict>, Bound<'py, PyAny>)> {
         let scene = self.with_dynamics(py, dynamics)?;
         let sim = scene.simulation().map_err(|e| scene_error(py, &e))?;
         let settings = sim.settings();
         // As the route counts them (`src/route/driver.rs`): the last may be shorter.
         let increments = ((settings.t_end / settings.dt - 1e-9).ceil()).max(1.0) as usize;
+        let recorded = increments.div_ceil(settings.stride.max(1));
+        if recorded > max_rows {
+            return Err(input_error(
+                py,
+                "max_rows",
+                format!(
+                    "{}: the route may record {recorded} rows (t_end_s / dt_s / stride), more \
+                     than max_rows = {max_rows} ({} MB of arrays): raise solver.stride, pass a \
+                     larger max_rows, or read it in chunks with Scene.route_chunks()",
+                    scene.origin(),
+                    recorded.saturating_mul(ROW_BYTES) / 1_000_000
+                ),
+            ));
+        }
         let progress = progress.as_ref().map(|f| (f, increments));
-        let computed = interruptible(py, progress, |watch| {
-            Runner::new(&sim)
+        let (cols, computed) = interruptible(py, progress, |watch| {
+            let mut cols: Vec<Vec<f64>> = vec![Vec::new(); slideroute::Row::COLUMNS.len()];
+            let computed = Runner::new(&sim)
                 .progress(|part| {
                     watch.set((part * increments as f64).round() as usize);
                     if watch.stopped() {
@@ -165,21 +190,40 @@ impl PyScene {
                         ControlFlow::Continue(())
                     }
                 })
-                .run()
+                .stream(1, |row| {
+                    for (col, v) in cols.iter_mut().zip(row.values()) {
+                        col.push(v.unwrap_or(f64::NAN));
+                    }
+                })
+                .keep_at_most(slideroute::KEPT_ROWS)
+                .run();
+            (cols, computed)
         })?;
         let columns = PyDict::new(py);
-        // Each row's values once, then column by column.
-        let rows = &computed.route.rows;
-        let mut cols = vec![Vec::with_capacity(rows.len()); slideroute::Row::COLUMNS.len()];
-        for row in rows {
-            for (col, v) in cols.iter_mut().zip(row.values()) {
-                col.push(v.unwrap_or(f64::NAN));
-            }
-        }
         for (name, v) in slideroute::Row::COLUMNS.iter().zip(cols) {
             columns.set_item(*name, PyArray1::from_vec(py, v))?;
         }
         Ok((columns, json(py, &computed)?))
+    }
+
+    /// The route read in chunks of at most `rows` rows (columns as [`PyScene::route`] gives
+    /// them), any length in bounded memory; the summary once the last chunk is read.
+    #[pyo3(signature = (dynamics = None, rows = 16_384))]
+    fn route_chunks(
+        &self,
+        py: Python<'_>,
+        dynamics: Option<&str>,
+        rows: usize,
+    ) -> PyResult<crate::route_chunks::PyRouteChunks> {
+        if rows == 0 {
+            return Err(input_error(
+                py,
+                "rows",
+                "rows 0: a chunk holds at least one row",
+            ));
+        }
+        let scene = self.with_dynamics(py, dynamics)?;
+        Ok(crate::route_chunks::PyRouteChunks::start(scene, rows))
     }
 
     /// The factor of safety at the start, as the route's summary has it (`{"kind": "finite",

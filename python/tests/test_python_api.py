@@ -404,3 +404,38 @@ def test_a_scene_dict_holding_none_is_refused_naming_its_key():
     assert e.value.name == "friction.mu_k" and "column" not in str(e.value), str(e.value)
     with pytest.raises(slideroute.InputError, match=r"case\[0\]\.name"):
         slideroute.Scene.from_dict({**slideroute.Scene.default().to_dict(), "case": [{"name": None}]})
+
+
+# A route of any length (issue #32 item 2) ---------------------------------------------------
+
+
+def test_a_route_read_in_chunks_is_the_route_read_whole_and_its_summary():
+    s = slideroute.Scene.default().with_keys({"solver.t_end_s": 0.5})
+    whole = s.route()
+    chunks = s.route_chunks(rows=97)
+    parts = list(chunks)
+    assert len(parts) == -(-len(whole) // 97) and all(len(p["t_s"]) <= 97 for p in parts)
+    for name, column in whole.columns.items():
+        np.testing.assert_array_equal(np.concatenate([p[name] for p in parts]), column)
+    assert chunks.summary["termination"] == whole.summary["termination"]
+    assert chunks.summary["travel_m"] == whole.summary["travel_m"]
+    # Leaving early stops the route; the first chunks are the same.
+    with s.route_chunks(rows=10) as early:
+        first = next(early)
+    np.testing.assert_array_equal(first["x_m"], whole.columns["x_m"][:10])
+    assert early.summary is None
+    with pytest.raises(slideroute.InputError):
+        s.route_chunks(rows=0)
+
+
+def test_a_route_too_long_to_hold_is_refused_before_it_starts_naming_the_way_out():
+    # 2 × 10^7 rows would have taken 4 GB of arrays (and 10 GB of rows before them).
+    long = slideroute.Scene.default().with_keys({"solver.dt_s": 1e-6})
+    with pytest.raises(slideroute.InputError) as e:
+        long.route()
+    assert e.value.name == "max_rows" and "route_chunks" in str(e.value), str(e.value)
+    assert "20000000 rows" in str(e.value), str(e.value)
+    short = slideroute.Scene.default().with_keys({"solver.t_end_s": 0.2})
+    with pytest.raises(slideroute.InputError):
+        short.route(max_rows=100)
+    assert len(short.route(max_rows=201)) == 201

@@ -63,7 +63,8 @@ pub fn meets(fs: Option<FactorOfSafety>, required: f64) -> bool {
 }
 
 /// The load cases of `scene` (`[[case]]`; a scene without any is one usual case, as written),
-/// each with its factor of safety, verdict and route. `each` is called after each case (for
+/// each with its factor of safety, verdict and route (at most
+/// [`KEPT_ROWS`](crate::route::KEPT_ROWS) of its rows kept). `each` is called after each case (for
 /// progress). A case whose levels or coefficients make no valid scene is an error naming it.
 pub fn check_cases(
     scene: &Scene,
@@ -95,7 +96,11 @@ pub fn check_cases_until(
                 ControlFlow::Continue(())
             }
         };
-        let run = Runner::new(&s.simulation()?).progress(observe).run();
+        // A few rows kept (its summary, its path): a case of any length in bounded memory.
+        let run = Runner::new(&s.simulation()?)
+            .progress(observe)
+            .keep_at_most(crate::route::KEPT_ROWS)
+            .run();
         let fs = run.route.factor_of_safety;
         let gravity = gravity_case(&s, case.category, &run.route).map(|c| gravity_method(&c));
         let passes = match &gravity {

@@ -116,7 +116,36 @@ pub fn compare_dynamics_observed(
     scene: &Scene,
     stop: impl Fn() -> bool,
 ) -> Result<Comparison, SceneError> {
-    let run = |model: DynamicsModel| -> Result<Computed, SceneError> {
+    compare_with(scene, stop, None)
+}
+
+/// [`compare_dynamics_observed`] in bounded memory: every row of the paper's route to
+/// `paper_rows` and of the rigid body's to `rigid_rows` as they are computed, each route
+/// keeping at most [`KEPT_ROWS`](crate::route::KEPT_ROWS) of them; where the routes part is
+/// found on the kept rows (interpolated in time between them).
+pub fn compare_dynamics_streamed(
+    scene: &Scene,
+    stop: impl Fn() -> bool,
+    paper_rows: &mut dyn FnMut(&Row),
+    rigid_rows: &mut dyn FnMut(&Row),
+) -> Result<Comparison, SceneError> {
+    compare_with(scene, stop, Some([paper_rows, rigid_rows]))
+}
+
+/// Where a route's rows go as they are computed.
+type Sink<'s> = &'s mut dyn FnMut(&Row);
+
+/// Both routes, every row kept, or streamed to `sinks` (the paper's, the rigid body's).
+fn compare_with(
+    scene: &Scene,
+    stop: impl Fn() -> bool,
+    sinks: Option<[Sink<'_>; 2]>,
+) -> Result<Comparison, SceneError> {
+    let [mut paper_sink, mut rigid_sink] = match sinks {
+        Some([a, b]) => [Some(a), Some(b)],
+        None => [None, None],
+    };
+    let mut run = |model: DynamicsModel| -> Result<Computed, SceneError> {
         let sim = scene.with_dynamics(model)?.simulation()?;
         let observe = |_: f64| {
             if stop() {
@@ -125,7 +154,18 @@ pub fn compare_dynamics_observed(
                 std::ops::ControlFlow::Continue(())
             }
         };
-        Ok(Runner::new(&sim).progress(observe).run())
+        let runner = Runner::new(&sim).progress(observe);
+        let sink = match model {
+            DynamicsModel::Paper => paper_sink.take(),
+            DynamicsModel::RigidBody => rigid_sink.take(),
+        };
+        Ok(match sink {
+            Some(sink) => runner
+                .stream(1, sink)
+                .keep_at_most(crate::route::KEPT_ROWS)
+                .run(),
+            None => runner.run(),
+        })
     };
     let paper = run(DynamicsModel::Paper)?;
     let rigid_body = run(DynamicsModel::RigidBody)?;
@@ -171,5 +211,40 @@ mod tests {
         assert_eq!(p.parted_at_s, Some(0.21));
         assert!((p.max_separation_m - 0.5).abs() < 1e-12);
         assert!((p.yaw_difference_at_end_deg - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_streamed_comparison_gives_every_row_and_parts_where_the_whole_one_does() {
+        // Both routes held whole took 200 bytes a row (657 MB at dt = 2 µs): streamed, every
+        // row goes out and at most KEPT_ROWS stay.
+        let scene = Scene::default_scene()
+            .with("solver.dt_s", 1e-4)
+            .and_then(|s| s.with("solver.t_end_s", 1.0))
+            .unwrap();
+        let whole = compare_dynamics(&scene).unwrap();
+        let (mut paper, mut rigid) = (Vec::new(), Vec::new());
+        let streamed =
+            compare_dynamics_streamed(&scene, || false, &mut |r| paper.push(*r), &mut |r| {
+                rigid.push(*r)
+            })
+            .unwrap();
+        assert_eq!(paper, whole.paper.route.rows);
+        assert_eq!(rigid, whole.rigid_body.route.rows);
+        assert!(whole.rigid_body.route.rows.len() > 2 * crate::route::KEPT_ROWS);
+        for kept in [&streamed.paper.route.rows, &streamed.rigid_body.route.rows] {
+            assert!(kept.len() <= crate::route::KEPT_ROWS + 1, "{}", kept.len());
+        }
+        assert_eq!(
+            streamed.rigid_body.route.termination,
+            whole.rigid_body.route.termination
+        );
+        // Parted within one kept row's spacing of the whole rows' parting.
+        let (a, b) = (streamed.parting, whole.parting);
+        let spacing = 1.0 / crate::route::KEPT_ROWS as f64 * 3.0;
+        assert!(
+            (a.parted_at_s.unwrap() - b.parted_at_s.unwrap()).abs() <= spacing,
+            "{a:?} {b:?}"
+        );
+        assert!((a.separation_at_end_m - b.separation_at_end_m).abs() < 1e-9);
     }
 }

@@ -20,7 +20,7 @@ pub use body::{BaseReport, Carrying, OVERTURN_DEG, Resting, pose_of_row};
 pub use logbook::EnergyBalance;
 pub use pose_finder::PoseMethod;
 pub use row::{Row, faces_of};
-pub use simulate::{Runner, simulate};
+pub use simulate::{KEPT_ROWS, Runner, simulate};
 pub use termination::{Reason, Termination};
 
 use crate::mechanics::static_friction::{FactorOfSafety, YieldAcceleration};

@@ -23,6 +23,11 @@ pub fn simulate(sim: &Simulation) -> Route {
 /// Where a streamed route's kept rows go, as they are made.
 type RowSink<'a> = Box<dyn FnMut(&Row) + 'a>;
 
+/// The rows a long route keeps in memory for its pictures and summaries where every row goes
+/// to a file as it is computed, or is not needed: the command line's routes, a check's cases,
+/// a comparison's two routes ([`Runner::keep_at_most`]).
+pub const KEPT_ROWS: usize = 4000;
+
 /// How a simulation is run, apart from what is simulated: the pose method, who is told of the
 /// progress (and may stop the route), and where rows go as they are computed.
 ///
@@ -79,6 +84,23 @@ impl<'a> Runner<'a> {
     pub fn stream(mut self, keep_every: usize, sink: impl FnMut(&Row) + 'a) -> Self {
         self.sink = Some(Box::new(sink));
         self.keep_every = keep_every.max(1);
+        self
+    }
+
+    /// The route keeping at most about `rows` of its recorded rows in memory (every k-th and the
+    /// last, k from the rows the settings record: t_end / dt / stride), whether or not they are
+    /// also streamed ([`Runner::stream`], which sets k itself; call this after it): a route of
+    /// any length in bounded memory, its result the same.
+    pub fn keep_at_most(mut self, rows: usize) -> Self {
+        let s = self.sim.settings();
+        let recorded = (s.t_end / s.dt).ceil() / s.stride as f64;
+        let k = (recorded / rows.max(1) as f64).ceil();
+        self.keep_every = if k.is_finite() && k >= 1.0 {
+            // Beyond any count of rows: the first and the last only.
+            k.min(usize::MAX as f64) as usize
+        } else {
+            1
+        };
         self
     }
 

@@ -69,3 +69,71 @@ fn a_ten_million_increment_route_streams_in_bounded_memory() {
     assert!(peak > 0 && peak < 100 * 1024, "peak {} MB", peak / 1024);
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// Runs `slideroute args…` to its end; its exit status and peak resident set (kB).
+fn peak_of(args: &[&std::ffi::OsStr]) -> (std::process::ExitStatus, u64) {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_slideroute"))
+        .args(args)
+        .spawn()
+        .unwrap();
+    let mut peak = 0;
+    loop {
+        if let Some(kb) = peak_kb(child.id()) {
+            peak = peak.max(kb);
+        }
+        if let Some(status) = child.try_wait().unwrap() {
+            return (status, peak);
+        }
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+}
+
+#[test]
+fn check_and_a_comparison_keep_bounded_memory_whatever_the_routes_length() {
+    // `check` and `run --compare-dynamics` held every row of their routes (451 and 657 MB at
+    // dt = 2 µs, about 300 bytes a row): now their routes stream to route.csv like `run`'s.
+    // Here 100 000 rows a route (30 MB a route held), under 20 MB in all.
+    let dir = std::env::temp_dir().join(format!("slideroute-memory-many-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = dir.join("fine.toml");
+    std::fs::write(
+        &scene,
+        slideroute::Scene::DEFAULT_TOML
+            .replace("dt_s = 1.0e-3", "dt_s = 5.0e-6")
+            .replace("t_end_s = 20.0", "t_end_s = 0.5"),
+    )
+    .unwrap();
+    let (check_out, compare_out) = (dir.join("check"), dir.join("compare"));
+    let s = scene.as_os_str();
+    let quiet = ["--quiet", "--no-plots", "--no-3d", "--scene"].map(std::ffi::OsStr::new);
+    let mut check = vec![std::ffi::OsStr::new("check")];
+    check.extend(quiet);
+    check.extend([s, "--out".as_ref(), check_out.as_os_str()]);
+    let mut compare = vec![std::ffi::OsStr::new("run"), "--compare-dynamics".as_ref()];
+    compare.extend(quiet);
+    compare.extend([s, "--out".as_ref(), compare_out.as_os_str()]);
+    for (args, routes) in [
+        (check, vec![check_out.join("case-0/route.csv")]),
+        (
+            compare,
+            vec![
+                compare_out.join("paper/route.csv"),
+                compare_out.join("rigid-body/route.csv"),
+            ],
+        ),
+    ] {
+        let (status, peak) = peak_of(&args);
+        assert!(status.success(), "{args:?}");
+        for route in routes {
+            let rows = std::fs::read_to_string(&route).unwrap().lines().count();
+            assert!(rows > 90_000, "{}: {rows}", route.display());
+        }
+        assert!(
+            peak > 0 && peak < 20 * 1024,
+            "{args:?}: peak {} MB",
+            peak / 1024
+        );
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -2,13 +2,14 @@
 //! `check.json`, `report.html` (a page to hand in), and the route of every case that fails in
 //! `case-N/`.
 
-use super::{load, write_route_folder};
+use super::{load, stream_route_csv, write_route_folder};
 use crate::cli::CheckArgs;
 use crate::exit::{CliError, bad_input, failed, interrupted, out, outln};
 use crate::output::folder::Folder;
 use crate::output::{check_files, check_report, route_files};
 use slideroute::Scene;
 use slideroute::check::{AnchorDesign, CaseResult, Guideline, check_cases_until, design_anchors};
+use std::ops::ControlFlow;
 use std::path::PathBuf;
 
 /// `check.json`: the guideline and every case.
@@ -104,17 +105,31 @@ fn failing_routes(
     let mut written = Vec::new();
     for (k, r) in results.iter().enumerate().filter(|(_, r)| !r.passes) {
         let case_scene = scene.for_case(&r.case).map_err(bad_input)?;
+        let sim = case_scene.simulation().map_err(bad_input)?;
         let mut sub = folder
             .open_inside(&format!("case-{k}"), "check")
             .map_err(failed)?;
-        written.push(
-            route_files::write_route_csv(&mut sub, "route.csv", &r.run.route.rows)
-                .map_err(failed)?,
-        );
+        // The check kept a few of the case's rows: its route again, every row to route.csv
+        // as it is computed (the same route: the computation is deterministic).
+        let stop = |_: f64| {
+            if interrupted() {
+                ControlFlow::Break(())
+            } else {
+                ControlFlow::Continue(())
+            }
+        };
+        let (csv, run) = stream_route_csv(&mut sub, "route.csv", &sim, stop).map_err(failed)?;
+        written.push(csv);
         written.extend(
-            write_route_folder(sub, &case_scene, &r.run, args.no_plots, args.no_3d)
+            write_route_folder(sub, &case_scene, &run, args.no_plots, args.no_3d)
                 .map_err(failed)?,
         );
+        if interrupted() {
+            return Err(failed(
+                "interrupted: the check's failing cases' routes were being written; the \
+                 check's own files were not written",
+            ));
+        }
     }
     Ok(written)
 }

@@ -6,15 +6,40 @@ use super::load;
 use crate::cli::RunArgs;
 use crate::exit::{CliError, bad_input, failed, interrupted, interrupted_after, out};
 use crate::output::folder::Folder;
+use crate::output::route_files::CsvRows;
 use crate::output::summary::CompareSummary;
 
 /// Runs `slideroute run --compare-dynamics`.
 pub fn compare(args: &RunArgs) -> Result<(), CliError> {
     let scene = load(&args.scene)?;
     let mut folder = Folder::open(&args.out_dir(), "run").map_err(failed)?;
-    let c =
-        slideroute::compare::compare_dynamics_observed(&scene, interrupted).map_err(bad_input)?;
-    let mut files = crate::output::compare_files::write_rows(&mut folder, &c).map_err(failed)?;
+    // Every row of each route to its route.csv as it is computed (staged, moved into place
+    // once both are done), a few kept for the summaries and pictures: bounded memory.
+    let staging = folder.staging().map_err(failed)?;
+    let staged = [
+        ("paper/route.csv", staging.join("paper-route.csv")),
+        ("rigid-body/route.csv", staging.join("rigid-body-route.csv")),
+    ];
+    let writer = |path: &std::path::Path| {
+        std::fs::File::create(path)
+            .and_then(CsvRows::new)
+            .map_err(|e| failed(format!("{}: cannot write: {e}", path.display())))
+    };
+    let (mut paper, mut rigid) = (writer(&staged[0].1)?, writer(&staged[1].1)?);
+    let c = slideroute::compare::compare_dynamics_streamed(
+        &scene,
+        interrupted,
+        &mut |r| paper.push(r),
+        &mut |r| rigid.push(r),
+    )
+    .map_err(bad_input)?;
+    for (rows, (name, _)) in [paper, rigid].into_iter().zip(&staged) {
+        rows.finish().map_err(|e| failed(format!("{name}: {e}")))?;
+    }
+    let mut files = Vec::new();
+    for (name, path) in &staged {
+        files.push(folder.adopt(name, path).map_err(failed)?);
+    }
     if !args.no_3d {
         files.extend(
             crate::output::view::many::write_compare_view(

@@ -134,6 +134,34 @@ pub fn print_json(value: &impl serde::Serialize) -> Result<(), CliError> {
     Ok(())
 }
 
+/// The route of `sim` with every row streamed into `name` (route.csv) in `folder` as it is
+/// computed, keeping at most [`KEPT_ROWS`](slideroute::KEPT_ROWS) rows in memory for the
+/// pictures and the summary: a route of any length in bounded memory. `progress` as
+/// [`Runner::progress`](slideroute::Runner::progress).
+pub fn stream_route_csv(
+    folder: &mut Folder,
+    name: &str,
+    sim: &slideroute::Simulation,
+    progress: impl FnMut(f64) -> std::ops::ControlFlow<()>,
+) -> Result<(PathBuf, Computed), String> {
+    use crate::output::route_files::CsvRows;
+    let mut computed = None;
+    let path = folder.write_with(name, |tmp| {
+        let file = std::fs::File::create(tmp)
+            .map_err(|e| format!("{}: cannot write: {e}", tmp.display()))?;
+        let mut rows = CsvRows::new(file).map_err(|e| format!("{name}: {e}"))?;
+        let run = slideroute::Runner::new(sim)
+            .progress(progress)
+            .stream(1, |r| rows.push(r))
+            .keep_at_most(slideroute::KEPT_ROWS)
+            .run();
+        computed = Some(run);
+        rows.finish().map_err(|e| format!("{name}: {e}"))
+    })?;
+    let computed = computed.ok_or_else(|| format!("{name}: no route"))?;
+    Ok((path, computed))
+}
+
 /// The pictures of `computed`'s route (unless `no_plots`), the route in 3-D, route.html and
 /// route.glb (unless `no_3d`), and summary.json (with the manifest, last) into the locked output
 /// folder, beside route.csv, each whole or absent, replacing an earlier run's outputs there.

@@ -1,18 +1,13 @@
 //! `slideroute run`: one route, its rows streamed to route.csv as they are computed, then its
 //! pictures and summary.json; `--compare-dynamics` is `compare.rs`.
 
-use super::{ROUTE_STEPS, load, route_bar, write_route_folder};
+use super::{ROUTE_STEPS, load, route_bar, stream_route_csv, write_route_folder};
 use crate::cli::RunArgs;
 use crate::exit::{CliError, bad_input, failed, interrupted, interrupted_after, out};
 use crate::output::folder::Folder;
-use crate::output::route_files::CsvRows;
 use crate::output::summary::RouteSummary;
-use slideroute::{Reason, Runner, Scene};
+use slideroute::{Reason, Scene};
 use std::ops::ControlFlow;
-
-/// The most rows a route keeps for its pictures and summary, whatever its length (the rest go
-/// to route.csv only): memory does not grow with the route.
-const KEPT_ROWS: f64 = 4000.0;
 
 /// Runs `slideroute run`.
 pub fn run(args: &RunArgs) -> Result<(), CliError> {
@@ -32,24 +27,9 @@ pub fn run(args: &RunArgs) -> Result<(), CliError> {
             ControlFlow::Continue(())
         }
     };
-    let settings = sim.settings();
-    let rows = (settings.t_end / settings.dt).ceil() / settings.stride as f64;
-    let keep_every = (rows / KEPT_ROWS).ceil().max(1.0) as usize;
-    let mut computed = None;
-    let csv_path = folder.write_with("route.csv", |tmp| {
-        let file = std::fs::File::create(tmp)
-            .map_err(|e| format!("{}: cannot write: {e}", tmp.display()))?;
-        let mut rows = CsvRows::new(file).map_err(|e| format!("route.csv: {e}"))?;
-        let run = Runner::new(&sim)
-            .progress(progress)
-            .stream(keep_every, |r| rows.push(r))
-            .run();
-        computed = Some(run);
-        rows.finish().map_err(|e| format!("route.csv: {e}"))
-    });
+    let csv_path = stream_route_csv(&mut folder, "route.csv", &sim, progress);
     bar.finish_and_clear();
-    let csv_path = csv_path.map_err(failed)?;
-    let computed = computed.ok_or_else(|| failed("route.csv: no route"))?;
+    let (csv_path, computed) = csv_path.map_err(failed)?;
     let mut files = vec![csv_path];
     files.extend(
         write_route_folder(folder, &scene, &computed, args.no_plots, args.no_3d).map_err(failed)?,

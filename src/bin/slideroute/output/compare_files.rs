@@ -14,17 +14,6 @@ fn both(c: &Comparison) -> [(&'static str, &slideroute::Computed); 2] {
     [("paper", &c.paper), ("rigid-body", &c.rigid_body)]
 }
 
-/// Writes both routes' rows (`paper/route.csv`, `rigid-body/route.csv`) into `folder`; returns
-/// the paths written. The summaries come after every other file ([`write_summaries`]).
-pub fn write_rows(folder: &mut Folder, c: &Comparison) -> Result<Vec<PathBuf>, String> {
-    both(c)
-        .into_iter()
-        .map(|(sub, computed)| {
-            route_files::write_route_csv(folder, &format!("{sub}/route.csv"), &computed.route.rows)
-        })
-        .collect()
-}
-
 /// Writes both routes' `summary.json` and `comparison.json` (the manifests, last) into
 /// `folder`; returns the paths written.
 pub fn write_summaries(

@@ -399,7 +399,7 @@ impl Folder {
     }
 
     /// Moves a finished file `from` (in [`Folder::staging`]) into place as `name`.
-    fn adopt(&mut self, name: &str, from: &Path) -> Result<PathBuf, String> {
+    pub fn adopt(&mut self, name: &str, from: &Path) -> Result<PathBuf, String> {
         self.write_with(name, |tmp| {
             std::fs::rename(from, tmp).map_err(|e| format!("{}: cannot move: {e}", from.display()))
         })

@@ -77,7 +77,8 @@ fn write_number(
 }
 
 /// Writes the rows with the header [`ROUTE_HEADER`]; reactions that could not be had are empty.
-pub fn write_csv(out: impl Write, rows: &[Row]) -> std::io::Result<()> {
+#[cfg(test)]
+fn write_csv(out: impl Write, rows: &[Row]) -> std::io::Result<()> {
     let mut w = CsvRows::new(out)?;
     for r in rows {
         w.push(r);
@@ -129,15 +130,6 @@ impl Manifest {
                 .collect(),
         }
     }
-}
-
-/// Writes the rows as `name` (CSV) into `folder`, whole or not at all.
-pub fn write_route_csv(folder: &mut Folder, name: &str, rows: &[Row]) -> Result<PathBuf, String> {
-    folder.write_with(name, |tmp| {
-        let file = std::fs::File::create(tmp)
-            .map_err(|e| format!("{}: cannot write: {e}", tmp.display()))?;
-        write_csv(file, rows).map_err(|e| format!("{name}: {e}"))
-    })
 }
 
 /// `value` with the manifest, as pretty JSON, written as `name` into `folder`: the command's
