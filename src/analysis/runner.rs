@@ -240,7 +240,9 @@ mod tests {
     #[test]
     fn only_the_first_paths_kept_routes_of_many_hold_their_path() {
         // A path is 1 kB of a row of many: 10⁷ samples held 14 GB.
-        let base = Scene::default_scene().with("solver.t_end_s", 0.002).unwrap();
+        let base = Scene::default_scene()
+            .with("solver.t_end_s", 0.002)
+            .unwrap();
         let items: Vec<usize> = (0..PATHS_KEPT + 3).collect();
         let rows = run_many(&items, |_| Ok(base.clone()), || (), || false);
         let paths: Vec<usize> = rows
@@ -250,7 +252,11 @@ mod tests {
                 other => panic!("{other:?}"),
             })
             .collect();
-        assert!(paths[..PATHS_KEPT].iter().all(|&n| n >= 2), "{:?}", &paths[..4]);
+        assert!(
+            paths[..PATHS_KEPT].iter().all(|&n| n >= 2),
+            "{:?}",
+            &paths[..4]
+        );
         assert_eq!(paths[PATHS_KEPT..], [0, 0, 0]);
     }
 

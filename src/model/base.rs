@@ -88,7 +88,7 @@ impl Base {
         if !depth.is_finite() || depth < 0.0 {
             return Err(ModelError::new(
                 "monolith.height_m (the centre of mass's height)",
-                format!("must be zero or more, got {depth}"),
+                format!("must be zero or more, got {}", crate::numeric::given(depth)),
             ));
         }
         if let Some((a, b)) = crossing_edges(&outline) {

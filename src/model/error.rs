@@ -29,11 +29,14 @@ pub(crate) fn check(key: &str, v: f64, ok: bool, what: &str) -> Result<f64, Mode
     if !v.is_finite() {
         return Err(ModelError::new(
             key,
-            format!("must be a finite number, got {v}"),
+            format!("must be a finite number, got {}", crate::numeric::given(v)),
         ));
     }
     if !ok {
-        return Err(ModelError::new(key, format!("must be {what}, got {v}")));
+        return Err(ModelError::new(
+            key,
+            format!("must be {what}, got {}", crate::numeric::given(v)),
+        ));
     }
     Ok(v)
 }
@@ -65,5 +68,8 @@ mod tests {
         let e = non_negative("friction.mu_k", f64::NAN).unwrap_err();
         assert_eq!(e.reason, "must be a finite number, got NaN");
         assert!(finite("x", f64::INFINITY).is_err() && non_negative("x", 0.0).is_ok());
+        // A huge value as written, not its 301 digits.
+        let e = positive("block.mass_kg", -1e300).unwrap_err();
+        assert_eq!(e.reason, "must be positive, got -1e300");
     }
 }

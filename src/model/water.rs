@@ -63,10 +63,11 @@ impl Levels {
             return Err(ModelError::new(
                 "water.headwater_m",
                 format!(
-                    "must be at most the crest, the monolith's height ({} m), got {headwater} m \
+                    "must be at most the crest, the monolith's height ({} m), got {} m \
                      (water over the crest pushes and lifts as a nappe, which the guideline's \
                      loads are not)",
-                    section.height
+                    crate::numeric::given(section.height),
+                    crate::numeric::given(headwater)
                 ),
             ));
         }
@@ -75,8 +76,10 @@ impl Levels {
             return Err(ModelError::new(
                 "water.tailwater_m",
                 format!(
-                    "must be at most the headwater ({headwater} m), got {tailwater} m (the water \
-                     pushes the monolith downstream)"
+                    "must be at most the headwater ({} m), got {} m (the water \
+                     pushes the monolith downstream)",
+                    crate::numeric::given(headwater),
+                    crate::numeric::given(tailwater)
                 ),
             ));
         }
@@ -84,8 +87,9 @@ impl Levels {
             return Err(ModelError::new(
                 "water.tailwater_m",
                 format!(
-                    "must be at most the monolith's height ({} m), got {tailwater} m",
-                    section.height
+                    "must be at most the monolith's height ({} m), got {} m",
+                    crate::numeric::given(section.height),
+                    crate::numeric::given(tailwater)
                 ),
             ));
         }
@@ -135,7 +139,7 @@ impl Levels {
                 i.elevation >= 0.0 && i.elevation <= section.height,
                 &format!(
                     "on the upstream face, from 0 to {} m above the base",
-                    section.height
+                    crate::numeric::given(section.height)
                 ),
             )?;
         }

@@ -10,7 +10,7 @@ mod shown;
 mod symmetric2;
 
 pub use distribution::{Distribution, FORMS, Uncertain};
-pub use shown::{degrees, fixed, seconds};
+pub use shown::{degrees, fixed, given, seconds};
 pub use symmetric2::symmetric_eigen2;
 
 /// An angle folded into (−π, π] by arithmetic (no trigonometric calls).

@@ -42,6 +42,27 @@ pub fn seconds(value: f64) -> Shown {
     }
 }
 
+/// A number as given, for a message about it: its shortest form that reads back the same, in
+/// scientific notation past 10¹⁶ or below 10⁻⁵ in size (`1e300`, not 301 digits; `1.5e-7`).
+#[derive(Debug, Clone, Copy)]
+pub struct Given(pub f64);
+
+/// [`Given`]: `value` as given.
+pub fn given(value: f64) -> Given {
+    Given(value)
+}
+
+impl fmt::Display for Given {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let v = self.0;
+        if v.is_finite() && v != 0.0 && !(1e-5..1e16).contains(&v.abs()) {
+            write!(f, "{v:e}")
+        } else {
+            write!(f, "{v}")
+        }
+    }
+}
+
 impl fmt::Display for Shown {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let v = self.value;
@@ -73,6 +94,30 @@ mod tests {
         assert_eq!(seconds(4.364835837701146).to_string(), "4.364836");
         assert_eq!(seconds(3.0).to_string(), "3");
         assert_eq!(seconds(0.0).to_string(), "0");
+    }
+
+    #[test]
+    fn a_number_as_given_is_short_and_reads_back_the_same() {
+        for (v, text) in [
+            (1e300, "1e300"),
+            (-1.7976931348623157e308, "-1.7976931348623157e308"),
+            (1.5e-7, "1.5e-7"),
+            (5e-324, "5e-324"),
+            (15.0, "15"),
+            (-1.0, "-1"),
+            (0.25, "0.25"),
+            (0.0, "0"),
+            (1e16, "1e16"),
+            (9.5e15, "9500000000000000"),
+            (f64::NAN, "NaN"),
+            (f64::NEG_INFINITY, "-inf"),
+        ] {
+            let shown = given(v).to_string();
+            assert_eq!(shown, text);
+            if v.is_finite() {
+                assert_eq!(shown.parse::<f64>().unwrap().to_bits(), v.to_bits());
+            }
+        }
     }
 
     #[test]

@@ -74,7 +74,10 @@ impl Reader<'_> {
         }
         let pts: [[f64; 2]; 3] = std::array::from_fn(|k| [c[k][0], c[k][1]]);
         if let Some(v) = pts.iter().flatten().find(|v| !v.is_finite()) {
-            return Err(self.invalid(key, format!("must be finite numbers, got {v}")));
+            return Err(self.invalid(
+                key,
+                format!("must be finite numbers, got {}", crate::numeric::given(*v)),
+            ));
         }
         let side = |a: usize, b: usize| (pts[a][0] - pts[b][0]).hypot(pts[a][1] - pts[b][1]);
         let longest = side(0, 1).max(side(1, 2)).max(side(0, 2));
