@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Creates crosscheck/.venv with pydrake (about 42 MB; under a minute) and crosscheck/.records
-# (real ground-motion records, 1 MB). Idempotent.
+# Creates crosscheck/.venv with pydrake (about 42 MB; under a minute) and MuJoCo (peers.py's third
+# peer; about 100 MB installed), and crosscheck/.records (real ground-motion records, 1 MB).
+# Idempotent.
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 python="${PYTHON:-python3}"
@@ -9,6 +10,7 @@ if [ ! -x "$here/.venv/bin/python" ]; then
 fi
 "$here/.venv/bin/python" -m pip install --quiet --disable-pip-version-check -r "$here/requirements.txt"
 "$here/.venv/bin/python" -c "import pydrake; print('pydrake ready:', pydrake.__file__)"
+"$here/.venv/bin/python" -c "import mujoco; print('mujoco ready:', mujoco.__version__)"
 # Real strong-motion records for `cargo test real_records -- --ignored`: the eighteen SLAMMER's
 # Python port ships (pyslammer 0.2.2 from PyPI, GPL-3.0; its sample_ground_motions folder),
 # taken from its wheel as they come, into crosscheck/.records (not kept in the repository).
