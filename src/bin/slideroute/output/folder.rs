@@ -448,18 +448,20 @@ impl Folder {
             }
             self.opened_up = true;
         }
-        if !record
-            .iter()
-            .any(|e| e.command == self.command && e.file == name)
-        {
-            record.push(Entry {
+        let manifest = self.manifests.iter().any(|m| m == name);
+        let listed = record
+            .iter_mut()
+            .find(|e| e.command == self.command && e.file == name);
+        match listed {
+            Some(e) if e.manifest == manifest => return Ok(()),
+            Some(e) => e.manifest = manifest,
+            None => record.push(Entry {
                 command: self.command.to_string(),
                 file: name.to_string(),
-                manifest: false,
-            });
-            write_record(&self.dir, &record)?;
+                manifest,
+            }),
         }
-        Ok(())
+        write_record(&self.dir, &record)
     }
 
     /// Writes `bytes` as `name`, this command's manifest (what produced the folder and the
@@ -467,9 +469,13 @@ impl Folder {
     /// time are removed, so that the manifest, written last, names exactly the files beside it.
     pub fn write_manifest(&mut self, name: &str, bytes: &[u8]) -> Result<PathBuf, String> {
         self.remove_stale()?;
-        let path = self.write_bytes(name, bytes)?;
+        // Known as a manifest before it is placed: the record marks it so from the start.
         self.manifests.push(name.to_string());
-        Ok(path)
+        let written = self.write_bytes(name, bytes);
+        if written.is_err() {
+            self.manifests.retain(|m| m != name);
+        }
+        written
     }
 
     /// Removes the files this command wrote here before ([`RECORD`]) that this run did not
@@ -848,6 +854,18 @@ mod tests {
             std::fs::read_to_string(d.join(RECORD)).unwrap(),
             "run\troute.csv\nrun\tsummary.json\tmanifest\n"
         );
+        // Killed after its manifest was placed, before it finished: the record already marks
+        // the manifest, so the next run's first file removes it first.
+        let mut f = Folder::open(&d, "run").unwrap();
+        f.write_bytes("plan.svg", b"fourth").unwrap();
+        f.write_manifest("summary.json", b"fourth").unwrap();
+        drop(f);
+        let record = std::fs::read_to_string(d.join(RECORD)).unwrap();
+        assert!(record.contains("run\tsummary.json\tmanifest\n"), "{record}");
+        let mut f = Folder::open(&d, "run").unwrap();
+        f.write_bytes("route.csv", b"fifth").unwrap();
+        assert!(!d.join("summary.json").exists());
+        drop(f);
         let _ = std::fs::remove_dir_all(&d);
     }
 }
