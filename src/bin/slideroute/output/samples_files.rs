@@ -1,7 +1,11 @@
 //! `samples.csv`: a probabilistic analysis's samples, one row per sample in order — its values,
 //! the factor of safety, how its route ended, the travel, where it ended, and the detail (what
-//! ended the route, or why the values made no valid scene).
+//! ended the route, or why the values made no valid scene). The factor of safety is written as
+//! in `sweep.csv`: a number, `unbounded` (no multiple of the driving loads starts the block) or
+//! `not-holdable` (the weight alone does), never an infinity; every other number by
+//! [`number`], never `inf` or `NaN`.
 
+use crate::output::sweep_files::number;
 use slideroute::probabilistic::{Sample, Uncertain};
 use slideroute::{NOT_RUN, Outcome};
 
@@ -30,17 +34,16 @@ pub fn write_csv(
     w.write_record(&header)?;
     for s in rows {
         let mut rec = vec![s.index.to_string()];
-        rec.extend(s.values.iter().map(|v| v.to_string()));
+        rec.extend(s.values.iter().map(|&v| number(v)));
         match &s.outcome {
             Outcome::Route(r) => rec.extend([
-                r.factor_of_safety_value()
-                    .map_or(String::new(), |f| f.to_string()),
+                r.factor_of_safety.map_or(String::new(), |f| f.cell()),
                 r.reason.as_str().to_string(),
-                r.t_s.to_string(),
-                r.travel_m.to_string(),
-                r.yaw_deg.to_string(),
-                r.x_m.to_string(),
-                r.z_m.to_string(),
+                number(r.t_s),
+                number(r.travel_m),
+                number(r.yaw_deg),
+                number(r.x_m),
+                number(r.z_m),
                 r.detail.clone(),
             ]),
             Outcome::Invalid { reason } => {
@@ -55,4 +58,63 @@ pub fn write_csv(
     }
     w.flush()?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use slideroute::{FactorOfSafety, Reason, RouteResult};
+
+    /// A sample whose route ran with factor of safety `fs`.
+    fn sample(index: usize, mu: f64, fs: FactorOfSafety) -> Sample {
+        Sample {
+            index,
+            values: vec![mu],
+            outcome: Outcome::Route(RouteResult {
+                factor_of_safety: Some(fs),
+                reason: Reason::Stopped,
+                t_s: 2.0,
+                detail: String::new(),
+                travel_m: 1.5,
+                x_m: 1.0,
+                z_m: 0.5,
+                yaw_deg: 3.0,
+                max_alpha_deg: 0.0,
+                max_beta_deg: 0.0,
+                permanent_xz_m: None,
+                cm_path_m: Vec::new(),
+            }),
+        }
+    }
+
+    #[test]
+    fn samples_csv_writes_the_factor_of_safetys_words_as_sweep_csv_does_never_an_infinity() {
+        // A sample with μ near 0 cannot be held: samples.csv wrote `-inf` where sweep.csv
+        // writes `not-holdable`.
+        let uncertain: Vec<Uncertain> = vec!["friction.mu_k=uniform:0:0.6".parse().unwrap()];
+        let rows = [
+            sample(0, 1e-300, FactorOfSafety::NotHoldable),
+            sample(1, 0.5, FactorOfSafety::Unbounded),
+            sample(2, 0.4, FactorOfSafety::Finite { value: 0.8624 }),
+        ];
+        let mut out = Vec::new();
+        write_csv(&mut out, &uncertain, &rows).unwrap();
+        let text = String::from_utf8(out).unwrap();
+        let lower = text.to_lowercase();
+        assert!(!lower.contains("inf") && !lower.contains("nan"), "{text}");
+        let fs: Vec<&str> = text
+            .lines()
+            .skip(1)
+            .map(|l| l.split(',').nth(2).unwrap())
+            .collect();
+        assert_eq!(fs, ["not-holdable", "unbounded", "0.8624"]);
+        // Each word is the one sweep.csv writes for the same kind.
+        assert_eq!(fs[0], FactorOfSafety::NotHoldable.cell());
+        assert_eq!(fs[1], FactorOfSafety::Unbounded.cell());
+        // A tiny sampled value is short and reads back the same.
+        assert!(
+            text.lines().nth(1).unwrap().starts_with("0,1e-300,"),
+            "{text}"
+        );
+    }
 }

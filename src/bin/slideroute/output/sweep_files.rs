@@ -19,6 +19,20 @@ pub const SWEEP_COLUMNS: [&str; 10] = [
     "detail",
 ];
 
+/// A number as a cell of `sweep.csv` or `samples.csv`: its shortest form that reads back the
+/// same (in scientific notation past 10¹⁶ or below 10⁻⁵ in size: `1e-300`, not 300 zeros),
+/// or an empty cell, as for a quantity the row does not have, where it is not a finite number
+/// (none is expected): never `inf` or `NaN`.
+pub fn number(v: f64) -> String {
+    if v.is_finite() {
+        slideroute::internals::numeric::given(v).to_string()
+    } else {
+        String::new()
+    }
+}
+
+/// `sweep.csv`: the header (the varied keys, then [`SWEEP_COLUMNS`]) and one row per
+/// combination, numbers by [`number`], the factor of safety a number or a word.
 pub fn write_csv(out: impl Write, varies: &[Vary], rows: &[SweepRow]) -> Result<(), csv::Error> {
     let mut w = csv::Writer::from_writer(out);
     let header: Vec<&str> = varies
@@ -27,7 +41,7 @@ pub fn write_csv(out: impl Write, varies: &[Vary], rows: &[SweepRow]) -> Result<
         .chain(SWEEP_COLUMNS)
         .collect();
     w.write_record(&header)?;
-    let opt = |v: Option<f64>| v.map_or(String::new(), |x| x.to_string());
+    let opt = |v: Option<f64>| v.map_or(String::new(), number);
     for r in rows {
         let mut rec: Vec<String> = varies
             .iter()
@@ -54,4 +68,69 @@ pub fn write_csv(out: impl Write, varies: &[Vary], rows: &[SweepRow]) -> Result<
     }
     w.flush()?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use slideroute::FactorOfSafety;
+
+    #[test]
+    fn number_cells_read_back_the_same_and_are_never_inf_or_nan() {
+        for v in [
+            0.0,
+            0.25,
+            -1.5,
+            1e-300,
+            5e-324,
+            f64::MAX,
+            -f64::MAX,
+            1e16,
+            12.9,
+        ] {
+            let cell = number(v);
+            assert!(cell.len() < 30, "{cell}");
+            assert_eq!(
+                cell.parse::<f64>().unwrap().to_bits(),
+                v.to_bits(),
+                "{cell}"
+            );
+        }
+        for v in [f64::INFINITY, f64::NEG_INFINITY, f64::NAN] {
+            assert_eq!(number(v), "");
+        }
+    }
+
+    #[test]
+    fn sweep_csv_writes_words_for_factors_of_safety_and_no_infinity() {
+        let varies = [Vary {
+            key: "friction.mu_k".into(),
+            values: vec![0.0, 0.4],
+            words: None,
+        }];
+        let row = |mu: f64, fs: FactorOfSafety, travel: f64| SweepRow {
+            values: vec![mu],
+            reason: "stopped".into(),
+            t_end_s: Some(1.0),
+            travel_m: Some(travel),
+            final_theta_deg: Some(0.0),
+            max_alpha_deg: Some(0.0),
+            max_beta_deg: Some(0.0),
+            permanent_x_m: None,
+            permanent_z_m: None,
+            factor_of_safety: Some(fs),
+            detail: String::new(),
+        };
+        let rows = [
+            row(0.0, FactorOfSafety::NotHoldable, f64::INFINITY),
+            row(0.4, FactorOfSafety::Unbounded, f64::NAN),
+        ];
+        let mut out = Vec::new();
+        write_csv(&mut out, &varies, &rows).unwrap();
+        let text = String::from_utf8(out).unwrap();
+        let lower = text.to_lowercase();
+        assert!(!lower.contains("inf") && !lower.contains("nan"), "{text}");
+        assert!(text.contains(",not-holdable,"), "{text}");
+        assert!(text.contains(",unbounded,"), "{text}");
+    }
 }

@@ -8,6 +8,7 @@ use super::sheet::{self, Area, Entry, Mark, Res, Sheet, err};
 use super::thinned;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
+use slideroute::FactorOfSafety;
 use slideroute::Outcome;
 use slideroute::Route;
 use slideroute::Scene;
@@ -258,7 +259,14 @@ impl Histogram {
             .x_desc("factor of safety at the start")
             .y_desc("samples")
             .x_label_formatter(&fx)
-            .y_label_formatter(&|v| format!("{v:.0}"))
+            // Counts are whole: no label at a tick between two (`2` twice, at 2 and 2.5).
+            .y_label_formatter(&|v| {
+                if (v - v.round()).abs() < 1e-9 {
+                    format!("{v:.0}")
+                } else {
+                    String::new()
+                }
+            })
             .light_line_style(BLACK.mix(0.05))
             .draw()
             .map_err(err(path))?;
@@ -319,13 +327,28 @@ impl Histogram {
                 Mark::None,
                 format!(
                     "5 % {}, median {}, 95 % {}",
-                    fixed(p.p5, 3),
-                    fixed(p.p50, 3),
-                    fixed(p.p95, 3)
+                    fs_percentile(p.p5),
+                    fs_percentile(p.p50),
+                    fs_percentile(p.p95)
                 ),
             ));
         }
         entries
+    }
+}
+
+/// A percentile of the factor of safety for the legend: the number, or where more than 5 % of
+/// the samples are unbounded or cannot be held (their value as a number is ±∞), the word
+/// `samples.csv` and `sweep.csv` write for them; never `inf`.
+fn fs_percentile(v: f64) -> String {
+    if v == f64::INFINITY {
+        FactorOfSafety::Unbounded.cell()
+    } else if v == f64::NEG_INFINITY {
+        FactorOfSafety::NotHoldable.cell()
+    } else if v.is_finite() {
+        fixed(v, 3).to_string()
+    } else {
+        "—".into()
     }
 }
 
@@ -410,6 +433,8 @@ pub fn tornado(path: &Path, summary: &Summary) -> Res<()> {
             (s.with_factor_of_safety, ABOVE, (y + 0.33, y + 0.6)),
             (s.with_travel, TRAVEL, (y + 0.63, y + 0.9)),
         ] {
+            // A correlation that is not a number (none is expected) is drawn as none.
+            let rho = rho.filter(|r| r.is_finite());
             let Some(rho) = rho else {
                 let style = ("sans-serif", sheet::FONT)
                     .into_font()
@@ -525,6 +550,16 @@ mod tests {
         let key = format!(" {name}=\"");
         let start = tag.find(&key)? + key.len();
         tag[start..].split('"').next()?.parse().ok()
+    }
+
+    #[test]
+    fn percentiles_of_the_factor_of_safety_past_the_finite_are_words_not_infinities() {
+        // Over 5 % of the samples unbounded: the 95th percentile is +∞ as a number, and the
+        // legend wrote `95 % inf`.
+        assert_eq!(fs_percentile(f64::INFINITY), "unbounded");
+        assert_eq!(fs_percentile(f64::NEG_INFINITY), "not-holdable");
+        assert_eq!(fs_percentile(1.23456), "1.235");
+        assert_eq!(fs_percentile(f64::NAN), "—");
     }
 
     #[test]

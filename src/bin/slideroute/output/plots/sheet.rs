@@ -42,17 +42,60 @@ pub(super) struct Sheet<'a> {
 impl<'a> Sheet<'a> {
     /// A white sheet of `w` × `h` pixels: `title` across the top, the chart below it on the left,
     /// the panel of [`PANEL_W`] on the right.
-    pub fn new(path: &'a Path, (w, h): (u32, u32), title: &str) -> Res<Sheet<'a>> {
-        let root = SVGBackend::new(path, (w, h)).into_drawing_area();
+    pub fn new(path: &'a Path, size: (u32, u32), title: &str) -> Res<Sheet<'a>> {
+        Sheet::captioned(path, size, title, None)
+    }
+
+    /// A sheet as [`Sheet::new`] makes it, with a `caption` across its foot, under both the
+    /// chart and the panel, on a pale band, wrapped to the sheet's width: what a picture says
+    /// of all of it (what it left out of a sweep too large to draw whole). The sheet grows by
+    /// the caption's lines, so that the chart and the panel keep their size.
+    pub fn captioned(
+        path: &'a Path,
+        (w, h): (u32, u32),
+        title: &str,
+        caption: Option<&str>,
+    ) -> Res<Sheet<'a>> {
+        let lines = caption.map_or(Vec::new(), |c| wrap(c, w as i32 - 2 * CAPTION_X));
+        let foot = if lines.is_empty() {
+            0
+        } else {
+            LINE_H * lines.len() as i32 + 2 * CAPTION_PAD
+        };
+        let root = SVGBackend::new(path, (w, h + foot as u32)).into_drawing_area();
         root.fill(&WHITE).map_err(err(path))?;
         let body = root
             .titled(title, ("sans-serif", TITLE))
             .map_err(err(path))?;
+        let (_, body_h) = body.dim_in_pixel();
+        let (body, foot_area) = body.split_vertically(body_h as i32 - foot);
+        if foot > 0 {
+            foot_area
+                .draw(&Rectangle::new(
+                    [(CAPTION_X / 2, 2), (w as i32 - CAPTION_X / 2, foot - 2)],
+                    RGBColor(240, 240, 235).filled(),
+                ))
+                .map_err(err(path))?;
+            for (k, line) in lines.into_iter().enumerate() {
+                foot_area
+                    .draw(&Text::new(
+                        line,
+                        (CAPTION_X, CAPTION_PAD + LINE_H * k as i32 + LINE_H / 2),
+                        font(FONT),
+                    ))
+                    .map_err(err(path))?;
+            }
+        }
         let (chart, panel) = body.split_horizontally(w - PANEL_W);
         let panel = panel.margin(8, 8, 6, 6);
         Ok(Sheet { root, chart, panel })
     }
 }
+
+/// The left margin of a caption's text (pixels).
+const CAPTION_X: i32 = 16;
+/// The room above and below a caption's lines (pixels).
+const CAPTION_PAD: i32 = 6;
 
 /// How an entry of a legend is marked.
 #[derive(Debug, Clone, Copy)]
@@ -294,30 +337,43 @@ pub(super) fn message(path: &Path, size: (u32, u32), title: &str, lines: &[Strin
 }
 
 /// The range of the finite `values`, padded by 5 %; a constant (or no) value gets a range
-/// about it wide enough for readable ticks, not `-0.0 … 0.0`.
+/// about it wide enough for readable ticks, not `-0.0 … 0.0`. The range is always finite and
+/// within ±[`AXIS_LIMIT`], however large the values (a span near ±`f64::MAX` would overflow to
+/// an infinite one and leave the axis without ticks); values beyond it fall off the chart.
 pub(super) fn ranges(values: impl Iterator<Item = f64>) -> (f64, f64) {
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
     for v in values.filter(|v| v.is_finite()) {
-        lo = lo.min(v);
-        hi = hi.max(v);
+        lo = lo.min(v.clamp(-AXIS_LIMIT, AXIS_LIMIT));
+        hi = hi.max(v.clamp(-AXIS_LIMIT, AXIS_LIMIT));
     }
     if !lo.is_finite() {
         return (0.0, 1.0);
     }
     let size = hi.abs().max(lo.abs());
-    if hi - lo <= 1e-9 * size.max(1e-300) {
+    let (lo, hi) = if hi - lo <= 1e-9 * size.max(1e-300) {
         let pad = if size > 0.0 { 0.1 * size } else { 1.0 };
-        return (lo - pad, hi + pad);
-    }
-    let pad = ((hi - lo) * 0.05).max(1e-3 * size);
-    (lo - pad, hi + pad)
+        (lo - pad, hi + pad)
+    } else {
+        let pad = ((hi - lo) * 0.05).max(1e-3 * size);
+        (lo - pad, hi + pad)
+    };
+    (lo.max(-AXIS_LIMIT), hi.min(AXIS_LIMIT))
 }
 
-/// Tick labels for an axis over `lo..hi`: as many decimals as about ten ticks need, no `-0`.
+/// The largest size an axis reaches: a quarter of `f64::MAX`, so that the span of an axis from
+/// −`AXIS_LIMIT` to `AXIS_LIMIT` is still finite.
+pub(super) const AXIS_LIMIT: f64 = f64::MAX / 4.0;
+
+/// Tick labels for an axis over `lo..hi`: as many decimals as about ten ticks need, no `-0`,
+/// never `inf` or `NaN`.
 pub(super) fn ticks(lo: f64, hi: f64) -> impl Fn(&f64) -> String {
     let span = (hi - lo).abs().max(f64::MIN_POSITIVE);
     let decimals = (-(span / 10.0).log10().floor()).clamp(0.0, 9.0) as usize;
     move |v: &f64| {
+        // No label rather than `inf` or `NaN` (no tick of a finite axis is either).
+        if !v.is_finite() {
+            return String::new();
+        }
         // A tick at zero computed as lo + k·step carries round-off (−3.3e-24): it is zero.
         let v = &(if v.abs() < 1e-9 * span { 0.0 } else { *v });
         if *v == 0.0 && decimals > 4 {
@@ -339,10 +395,21 @@ pub(super) fn ticks(lo: f64, hi: f64) -> impl Fn(&f64) -> String {
 }
 
 /// A value for a legend or note, short: four significant digits, trailing zeros dropped, in
-/// powers of ten (`6×10⁶`) past a million or under a thousandth.
+/// powers of ten (`6×10⁶`) past a million or under a thousandth. Finite for every finite value,
+/// the subnormal (`10⁻³¹⁰`, `4.941×10⁻³²⁴`), the largest (`1.798×10³⁰⁸`) and zero of either sign
+/// (`0`): the power of ten is read off Rust's own exponent notation, never divided out (10⁻³¹⁰
+/// underflows to 0, and dividing by it gave `inf×10⁻³¹⁰`). An infinite value is `∞` or `−∞`,
+/// and one that is not a number, which no caller means to pass, a dash `—`: never `inf` or
+/// `NaN`.
 pub(super) fn short(v: f64) -> String {
-    if v == 0.0 || !v.is_finite() {
-        return format!("{}", if v == 0.0 { 0.0 } else { v });
+    if v.is_nan() {
+        return "—".into();
+    }
+    if v.is_infinite() {
+        return if v > 0.0 { "∞" } else { "−∞" }.into();
+    }
+    if v == 0.0 {
+        return "0".into();
     }
     let a = v.abs();
     if (1e-3..1e6).contains(&a) {
@@ -355,15 +422,19 @@ pub(super) fn short(v: f64) -> String {
         };
         return if s == "-0" { "0".into() } else { s };
     }
-    let e = a.log10().floor() as i32;
-    let m = v / 10f64.powi(e);
-    let m = short(m);
+    // `-1.235e-310`: four significant digits, rounded once, whatever the size.
+    let sci = format!("{v:.3e}");
+    let Some((m, e)) = sci.split_once('e') else {
+        return sci;
+    };
+    let m = m.trim_end_matches('0').trim_end_matches('.');
     let sup: String = e
-        .to_string()
         .chars()
         .map(|c| match c {
             '-' => '⁻',
-            d => ['⁰', '¹', '²', '³', '⁴', '⁵', '⁶', '⁷', '⁸', '⁹'][(d as u8 - b'0') as usize],
+            d => d.to_digit(10).map_or(d, |d| {
+                ['⁰', '¹', '²', '³', '⁴', '⁵', '⁶', '⁷', '⁸', '⁹'][d as usize]
+            }),
         })
         .collect();
     if m == "1" {
@@ -430,6 +501,67 @@ mod tests {
         assert_eq!(t(&-3.3e-24), "0");
         let (lo, hi) = ranges([5e6].into_iter());
         assert!(lo < 5e6 && hi > 5e6 && (hi - lo) > 1e5);
+    }
+
+    #[test]
+    fn short_numbers_are_finite_and_sensible_at_the_extremes_of_f64() {
+        for (v, text) in [
+            (0.0, "0"),
+            (-0.0, "0"),
+            (1e-310, "10⁻³¹⁰"),
+            (-1e-310, "-1×10⁻³¹⁰"),
+            (2.5e-310, "2.5×10⁻³¹⁰"),
+            (5e-324, "4.941×10⁻³²⁴"),
+            (f64::MIN_POSITIVE, "2.225×10⁻³⁰⁸"),
+            (f64::MAX, "1.798×10³⁰⁸"),
+            (-f64::MAX, "-1.798×10³⁰⁸"),
+            (1e300, "10³⁰⁰"),
+            (9.99996e6, "10⁷"),
+            (f64::INFINITY, "∞"),
+            (f64::NEG_INFINITY, "−∞"),
+            (f64::NAN, "—"),
+        ] {
+            let s = short(v);
+            assert_eq!(s, text, "{v:e}");
+            let lower = s.to_lowercase();
+            assert!(
+                !lower.contains("inf") && !lower.contains("nan"),
+                "{v:e}: {s}"
+            );
+        }
+        // A force, or a legend's key and value, of the same extremes.
+        assert_eq!(force(1e-310), "10⁻³¹⁰ N");
+        assert_eq!(force(f64::MAX), "1.798×10³⁰² MN");
+        assert_eq!(
+            key_value("loads.eccentricity_m", &short(1e-310)),
+            "loads.eccentricity_m = 10⁻³¹⁰ m"
+        );
+    }
+
+    #[test]
+    fn axes_of_extreme_values_are_finite_and_label_no_infinity() {
+        for values in [
+            vec![-f64::MAX, f64::MAX],
+            vec![f64::MAX],
+            vec![5e-324, 1e-310],
+            vec![0.0, f64::INFINITY, f64::NAN],
+            vec![1e300, -1e300],
+        ] {
+            let (lo, hi) = ranges(values.iter().copied());
+            assert!(
+                lo.is_finite() && hi.is_finite() && lo < hi,
+                "{values:?}: {lo} {hi}"
+            );
+            assert!((hi - lo).is_finite(), "{values:?}: {lo} {hi}");
+            let t = ticks(lo, hi);
+            for k in 0..=10 {
+                let label = t(&(lo + (hi - lo) * f64::from(k) / 10.0));
+                assert!(!label.contains("inf") && !label.contains("NaN"), "{label}");
+            }
+        }
+        let t = ticks(0.0, 1.0);
+        assert_eq!(t(&f64::INFINITY), "");
+        assert_eq!(t(&f64::NAN), "");
     }
 
     #[test]

@@ -5,7 +5,12 @@
 //! from 0. Legends are in numeric order
 //! with units; past a handful of groups the colour follows the second key on a scale with a
 //! colour bar; a block that did not slide, a route that ended at once and one that slid are
-//! marked apart.
+//! marked apart. However large the sweep, the picture stays under 2 MB: past [`MAX_LINES`]
+//! lines it draws an evenly spaced choice of them, and along each line at most [`MAX_ALONG`]
+//! values of the first key (fewer when there are many lines, [`MAX_MARKED`] in all), evenly
+//! spaced, the ends kept and, where there is room, both sides of every change of how the route
+//! ended; a caption across the picture's foot says what was drawn of how many combinations,
+//! and `sweep.csv` keeps every one.
 
 use super::COLORS;
 use super::sheet::{self, Area, Entry, Mark, Res, Sheet, err};
@@ -24,6 +29,20 @@ const LISTED: usize = 20;
 const AXIS_WIDTH: u32 = 800;
 /// The sweep's reason for a block that did not slide (the route's own word).
 const DID_NOT_SLIDE: &str = slideroute::Reason::DoesNotSlide.as_str();
+/// The most lines (combinations of the keys after the first) a picture draws: past this, an
+/// evenly spaced choice of them in the keys' order, the first and last kept. Thirty lines
+/// already fill the colour scale.
+const MAX_LINES: usize = 30;
+/// The most values of the first key a line marks, however few the lines: 400 over an axis
+/// 800 pixels wide, each marker already touching the next.
+const MAX_ALONG: usize = 400;
+/// The most combinations a picture marks in all, each on both charts (some 320 bytes a
+/// combination at most, its two markers and its pieces of line): 1.2 MB at most (1.17 MB
+/// measured with every marker a cross over a triangle), so that the picture stays under 2 MB
+/// whatever the sweep's size. Along each line, `MAX_MARKED` over the number of lines.
+const MAX_MARKED: usize = 3600;
+/// The most tick marks of an axis of words (numbered past the room for their names).
+const MAX_WORD_TICKS: usize = 40;
 
 /// How a combination came out, for its marker.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -59,26 +78,79 @@ fn outcome(r: &SweepRow, shaken: bool) -> Outcome {
 
 /// The combinations grouped by the values of every key but the first, groups in numeric
 /// order of those values (−1, −0.5, 0; 6×10⁶ before 10⁷), each group's rows by the first key.
+/// One sort, then runs of equal keys: linear but for the sort, whatever the number of groups.
 fn groups(rows: &[SweepRow]) -> Vec<(Vec<f64>, Vec<&SweepRow>)> {
-    let mut groups: Vec<(Vec<f64>, Vec<&SweepRow>)> = Vec::new();
-    for r in rows {
-        let key = r.values.get(1..).unwrap_or(&[]).to_vec();
-        match groups.iter_mut().find(|g| g.0 == key) {
-            Some(g) => g.1.push(r),
-            None => groups.push((key, vec![r])),
-        }
+    fn others(r: &SweepRow) -> &[f64] {
+        r.values.get(1..).unwrap_or(&[])
     }
-    groups.sort_by(|a, b| {
-        a.0.iter()
-            .zip(&b.0)
+    let order = |a: &[f64], b: &[f64]| {
+        a.iter()
+            .zip(b)
             .map(|(x, y)| x.total_cmp(y))
             .find(|o| o.is_ne())
-            .unwrap_or(std::cmp::Ordering::Equal)
-    });
-    for g in &mut groups {
-        g.1.sort_by(|a, b| a.values[0].total_cmp(&b.values[0]));
+            .unwrap_or_else(|| a.len().cmp(&b.len()))
+    };
+    let mut sorted: Vec<&SweepRow> = rows.iter().collect();
+    sorted.sort_by(|a, b| order(others(a), others(b)).then(first_of(a).total_cmp(&first_of(b))));
+    sorted
+        .chunk_by(|a, b| order(others(a), others(b)).is_eq())
+        .map(|g| (others(g[0]).to_vec(), g.to_vec()))
+        .collect()
+}
+
+/// The first varied key's value of row `r` (0 where it has none, which no sweep row lacks).
+fn first_of(r: &SweepRow) -> f64 {
+    r.values.first().copied().unwrap_or(0.0)
+}
+
+/// Whether two combinations ended alike: the same reason and the same outcome (a line joins
+/// only neighbours that did).
+fn ended_alike(a: &SweepRow, b: &SweepRow, shaken: bool) -> bool {
+    a.reason == b.reason && outcome(a, shaken) == outcome(b, shaken)
+}
+
+/// `m` of the indices `0..n`, evenly spaced, the first and the last among them (every index
+/// when `n <= m`).
+fn spread(n: usize, m: usize) -> Vec<usize> {
+    if n <= m {
+        return (0..n).collect();
     }
-    groups
+    if m <= 1 {
+        return vec![0];
+    }
+    (0..m)
+        .map(|k| (k * (n - 1) + (m - 1) / 2) / (m - 1))
+        .collect()
+}
+
+/// At most `along` of a line's `members` (in the first key's order): every one when they are
+/// few; else evenly spaced, the first and last kept and, where there is room for them (half of
+/// `along`), both neighbours at every change of how the route ended, so that the line breaks
+/// where the full sweep's does. With whether every such change was kept.
+fn thin_line<'r>(
+    members: &[&'r SweepRow],
+    along: usize,
+    shaken: bool,
+) -> (Vec<&'r SweepRow>, bool) {
+    let n = members.len();
+    if n <= along {
+        return (members.to_vec(), true);
+    }
+    let changes: Vec<usize> = (1..n)
+        .filter(|&i| !ended_alike(members[i - 1], members[i], shaken))
+        .flat_map(|i| [i - 1, i])
+        .collect();
+    let room = changes.len() <= along / 2;
+    let mut keep = if room {
+        let mut keep = spread(n, along - changes.len());
+        keep.extend(changes);
+        keep
+    } else {
+        spread(n, along)
+    };
+    keep.sort_unstable();
+    keep.dedup();
+    (keep.into_iter().map(|i| members[i]).collect(), room)
 }
 
 /// A varied value for people: the word, or the number short with the key's unit.
@@ -124,7 +196,8 @@ pub fn sweep(path: &Path, varies: &[Vary], rows: &[SweepRow]) -> Res<()> {
         },
         first.key
     );
-    let sheet = Sheet::new(path, SIZE, &title)?;
+    // A sweep too large to draw whole says across the picture's foot what it drew of it.
+    let sheet = Sheet::captioned(path, SIZE, &title, plot.drawn_words().as_deref())?;
     let (_, ch) = sheet.chart.dim_in_pixel();
     let (top, bottom) = sheet.chart.split_vertically((f64::from(ch) * 0.6) as u32);
     plot.draw_travel(&top)?;
@@ -183,13 +256,25 @@ type SweepChart<'a, 'p> =
     ChartContext<'a, SVGBackend<'p>, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
 
 /// What the drawing steps of a sweep picture share: the file (for its errors), the varied keys
-/// (at least one), the rows and their groups (one line each), the range of the second key's
-/// values (for a colour scale) and the range of the x axis.
+/// (at least one), the rows, the groups drawn (one line each, thinned past [`MAX_LINES`] and
+/// [`MAX_ALONG`]), the range of the second key's values (for a colour scale) and the range of
+/// the x axis.
 struct SweepPlot<'a> {
     path: &'a Path,
     varies: &'a [Vary],
+    /// Every row of the sweep (counted in the panel).
     rows: &'a [SweepRow],
+    /// The groups drawn, each with the rows drawn of it.
     groups: Vec<(Vec<f64>, Vec<&'a SweepRow>)>,
+    /// The rows drawn: those of `groups`.
+    drawn: Vec<&'a SweepRow>,
+    /// How many groups (lines) the sweep has, drawn or not.
+    lines: usize,
+    /// The most rows a line marks (every one, when its rows are fewer).
+    along: usize,
+    /// Whether each line drawn keeps both neighbours at every change of how the route ended
+    /// (a line with too many changes keeps only its evenly spaced rows).
+    changes_kept: bool,
     /// The second key's lowest and highest values (0, 0 without one).
     second_range: (f64, f64),
     /// The x axis's range: the first key's values, or its words at 0, 1, ….
@@ -214,16 +299,35 @@ impl<'a> SweepPlot<'a> {
         });
         let x_range = match &varies[0].words {
             Some(w) => (-0.5, w.len() as f64 - 0.5),
-            None => sheet::ranges(rows.iter().map(|r| r.values[0])),
+            None => sheet::ranges(rows.iter().map(first_of)),
         };
+        let shaken = rows.iter().any(|r| r.permanent_x_m.is_some());
+        let all = groups(rows);
+        let lines = all.len();
+        let chosen = spread(lines, MAX_LINES);
+        let along = (MAX_MARKED / chosen.len().max(1)).clamp(2, MAX_ALONG);
+        let mut changes_kept = true;
+        let groups: Vec<(Vec<f64>, Vec<&SweepRow>)> = chosen
+            .into_iter()
+            .map(|k| {
+                let (line, kept) = thin_line(&all[k].1, along, shaken);
+                changes_kept &= kept;
+                (all[k].0.clone(), line)
+            })
+            .collect();
+        let drawn = groups.iter().flat_map(|g| g.1.iter().copied()).collect();
         SweepPlot {
             path,
             varies,
             rows,
-            groups: groups(rows),
+            groups,
+            drawn,
+            lines,
+            along,
+            changes_kept,
             second_range,
             x_range,
-            shaken: rows.iter().any(|r| r.permanent_x_m.is_some()),
+            shaken,
             numbered: varies[0]
                 .words
                 .as_ref()
@@ -254,9 +358,10 @@ impl<'a> SweepPlot<'a> {
     fn regimes<'r>(&self, members: &[&'r SweepRow]) -> Vec<Vec<&'r SweepRow>> {
         let mut runs: Vec<Vec<&SweepRow>> = Vec::new();
         for &r in members {
-            let same = runs.last().and_then(|run| run.last()).is_some_and(|q| {
-                q.reason == r.reason && outcome(q, self.shaken) == outcome(r, self.shaken)
-            });
+            let same = runs
+                .last()
+                .and_then(|run| run.last())
+                .is_some_and(|q| ended_alike(q, r, self.shaken));
             match runs.last_mut() {
                 Some(run) if same => run.push(r),
                 _ => runs.push(vec![r]),
@@ -273,7 +378,12 @@ impl<'a> SweepPlot<'a> {
     /// Whether the groups are few enough for a colour each, named in a legend (else the
     /// colour follows the second key on a scale).
     fn few(&self) -> bool {
-        self.groups.len() <= COLORS.len()
+        self.lines <= COLORS.len()
+    }
+
+    /// Whether some combinations are not drawn (the sweep is larger than a picture holds).
+    fn thinned(&self) -> bool {
+        self.drawn.len() < self.rows.len()
     }
 
     /// The colour of the `k`-th group, whose other keys' values are `key`.
@@ -288,9 +398,9 @@ impl<'a> SweepPlot<'a> {
         }
     }
 
-    /// The finite factors of safety of the rows.
+    /// The finite factors of safety of the rows drawn.
     fn finite_factors(&self) -> Vec<f64> {
-        self.rows
+        self.drawn
             .iter()
             .filter_map(|r| r.factor_of_safety.and_then(|f| f.value()))
             .collect()
@@ -308,7 +418,10 @@ impl<'a> SweepPlot<'a> {
         let (x0, x1) = self.x_range;
         let (y0, y1) = y_range;
         let x_label = x_labels(first, self.x_range, self.numbered);
-        let x_count = first.words.as_ref().map_or(10, |w| w.len());
+        let x_count = first
+            .words
+            .as_ref()
+            .map_or(10, |w| w.len().min(MAX_WORD_TICKS));
         let mut chart = ChartBuilder::on(area)
             .margin(10)
             .x_label_area_size(50)
@@ -337,7 +450,7 @@ impl<'a> SweepPlot<'a> {
     /// Where nothing moved the axis runs from 0 to 1 m and says so.
     fn draw_travel(&self, area: &Area) -> Res<()> {
         let values: Vec<f64> = self
-            .rows
+            .drawn
             .iter()
             .filter_map(|r| self.upper_value(r))
             .collect();
@@ -380,7 +493,7 @@ impl<'a> SweepPlot<'a> {
                 for run in self.regimes(members) {
                     let pts: Vec<(f64, f64)> = run
                         .iter()
-                        .filter_map(|r| self.upper_value(r).map(|t| (r.values[0], t)))
+                        .filter_map(|r| self.upper_value(r).map(|t| (first_of(r), t)))
                         .collect();
                     if pts.len() > 1 {
                         chart
@@ -393,7 +506,7 @@ impl<'a> SweepPlot<'a> {
                 let Some(t) = self.upper_value(r) else {
                     continue;
                 };
-                let at = (r.values[0], t);
+                let at = (first_of(r), t);
                 let mark = match outcome(r, self.shaken) {
                     Outcome::Slid => Mark::Dot(color),
                     Outcome::Cut => Mark::Ring(color),
@@ -429,7 +542,7 @@ impl<'a> SweepPlot<'a> {
                 .filter_map(|r| {
                     r.factor_of_safety
                         .and_then(|f| f.value())
-                        .map(|f| (r.values[0], f))
+                        .map(|f| (first_of(r), f))
                 })
                 .collect();
             if !self.categorical() {
@@ -440,13 +553,13 @@ impl<'a> SweepPlot<'a> {
             for r in members {
                 let (at, mark) = match r.factor_of_safety {
                     Some(FactorOfSafety::Finite { value }) => {
-                        ((r.values[0], value), Mark::Dot(color))
+                        ((first_of(r), value), Mark::Dot(color))
                     }
                     Some(FactorOfSafety::Unbounded) => {
-                        ((r.values[0], f1), Mark::Triangle(color, true))
+                        ((first_of(r), f1), Mark::Triangle(color, true))
                     }
                     Some(FactorOfSafety::NotHoldable) => {
-                        ((r.values[0], f0), Mark::Triangle(color, false))
+                        ((first_of(r), f0), Mark::Triangle(color, false))
                     }
                     None => continue,
                 };
@@ -495,9 +608,14 @@ impl<'a> SweepPlot<'a> {
                     &[Entry::new(
                         Mark::None,
                         format!(
-                            "one line for each value of {} and of {}",
+                            "one line for each value of {} and of {}{}",
                             v.key,
-                            others.join(", ")
+                            others.join(", "),
+                            if self.lines > self.groups.len() {
+                                " (some left out: see the foot)"
+                            } else {
+                                ""
+                            }
                         ),
                     )],
                     y,
@@ -510,7 +628,7 @@ impl<'a> SweepPlot<'a> {
     /// The markers this sweep uses, explained from `y` in the panel (in the group's colour
     /// for a single group, else in black); returns the y below them.
     fn draw_markers(&self, panel: &Area, y: i32) -> Res<i32> {
-        let rows = self.rows;
+        let rows = &self.drawn;
         let marker = if self.groups.len() == 1 {
             COLORS[1]
         } else {
@@ -629,6 +747,55 @@ impl<'a> SweepPlot<'a> {
         }
         let y = sheet::heading(self.path, panel, "Sweep", y + 6)?;
         sheet::legend(self.path, panel, &[Entry::new(Mark::None, counts)], y)
+    }
+
+    /// What was drawn of a sweep larger than a picture holds, in words (none when every
+    /// combination is): how many combinations of how many, how many lines, how many values of
+    /// the first key along each, how they were chosen, and that `sweep.csv` has them all.
+    fn drawn_words(&self) -> Option<String> {
+        if !self.thinned() {
+            return None;
+        }
+        let first = &self.first().key;
+        let values = {
+            let mut v: Vec<f64> = self.rows.iter().map(first_of).collect();
+            v.sort_by(f64::total_cmp);
+            v.dedup_by(|a, b| a.total_cmp(b).is_eq());
+            v.len()
+        };
+        let mut words = format!(
+            "Drawn: {} of the {} combinations, to keep the picture small",
+            self.drawn.len(),
+            self.rows.len()
+        );
+        if self.lines > self.groups.len() {
+            let keys: Vec<&str> = self.varies[1..].iter().map(|v| v.key.as_str()).collect();
+            let what = match keys.as_slice() {
+                [one] => format!("values of {one}"),
+                [rest @ .., last] => format!("combinations of {} and {last}", rest.join(", ")),
+                [] => String::new(),
+            };
+            words.push_str(&format!(
+                "; {} of the {} lines ({what}), evenly spaced, the first and last kept",
+                self.groups.len(),
+                self.lines,
+            ));
+        }
+        if values > self.along {
+            words.push_str(&format!(
+                "; along each line at most {} of the {values} values of {first}, evenly \
+                 spaced, the ends kept{}",
+                self.along,
+                if self.changes_kept {
+                    " and both sides of each change of how the route ended"
+                } else {
+                    " (the route's end changes too often along a line to keep both sides of \
+                     each change)"
+                }
+            ));
+        }
+        words.push_str(". sweep.csv has every combination.");
+        Some(words)
     }
 }
 
@@ -1042,6 +1209,174 @@ mod tests {
         }
         let svg = draw("reasons", &[vary("friction.mu_k", &mu)], &two);
         assert_eq!(coloured_lines(&svg).len(), 2);
+    }
+
+    /// Row `k` of a large synthetic sweep over `values`: the travel falls with the first
+    /// value to none (did not slide) past 0.48 + 0.01 × the second; every 97th ended at once
+    /// with an unbounded factor of safety, every 89th cannot be held (markers of every kind,
+    /// and changes of how the route ended all along the lines).
+    fn synthetic(k: usize, values: Vec<f64>) -> SweepRow {
+        let (mu, e) = (values[0], values.get(1).copied().unwrap_or(1.0));
+        let travel = (10.0 * (0.48 + 0.01 * e - mu)).max(0.0);
+        let mut r = SweepRow {
+            travel_m: Some(travel),
+            factor_of_safety: Some(FactorOfSafety::Finite {
+                value: mu / 0.45 - 0.01 * e,
+            }),
+            ..row(values)
+        };
+        if travel == 0.0 {
+            r.reason = DID_NOT_SLIDE.into();
+            r.t_end_s = Some(0.0);
+        }
+        if k.is_multiple_of(97) {
+            r.reason = "the contact forces are not determined".into();
+            r.t_end_s = Some(0.0);
+            r.travel_m = Some(0.0);
+            r.factor_of_safety = Some(FactorOfSafety::Unbounded);
+        } else if k.is_multiple_of(89) {
+            r.factor_of_safety = Some(FactorOfSafety::NotHoldable);
+        }
+        r
+    }
+
+    /// `n` values evenly spaced from `a` to `b`.
+    fn linspace(a: f64, b: f64, n: usize) -> Vec<f64> {
+        (0..n)
+            .map(|k| a + (b - a) * k as f64 / (n - 1).max(1) as f64)
+            .collect()
+    }
+
+    #[test]
+    fn a_sweep_of_any_size_draws_a_picture_under_2_mb_that_says_what_it_left_out() {
+        // 300 × 300 combinations drew an 18 MB sweep.svg; one key of 90 000 values and three
+        // keys of 100 × 30 × 30 grow alike. Every picture under 2 MB, whole, and saying in its
+        // panel how many of the 90 000 it drew.
+        let mu = linspace(0.3, 0.6, 300);
+        let e = linspace(0.5, 1.5, 300);
+        let two: Vec<SweepRow> = grid(&mu, &e)
+            .into_iter()
+            .enumerate()
+            .map(|(k, r)| synthetic(k, r.values))
+            .collect();
+        let long = linspace(0.3, 0.6, 90_000);
+        let one: Vec<SweepRow> = long
+            .iter()
+            .enumerate()
+            .map(|(k, &m)| synthetic(k, vec![m]))
+            .collect();
+        let (mu3, e3, f3) = (
+            linspace(0.3, 0.6, 100),
+            linspace(0.5, 1.5, 30),
+            linspace(6e6, 1e7, 30),
+        );
+        let three: Vec<SweepRow> = f3
+            .iter()
+            .flat_map(|&f| e3.iter().map(move |&e| (e, f)))
+            .flat_map(|(e, f)| mu3.iter().map(move |&m| vec![m, e, f]))
+            .enumerate()
+            .map(|(k, v)| synthetic(k, v))
+            .collect();
+        // The largest markers everywhere: every combination a cross (ended at once) over a
+        // triangle (unbounded) or a dot (finite), every other one a change of reason.
+        let crosses: Vec<SweepRow> = grid(&mu, &e)
+            .into_iter()
+            .enumerate()
+            .map(|(k, r)| SweepRow {
+                reason: format!("reason {}", k % 2),
+                t_end_s: Some(0.0),
+                travel_m: Some(0.0),
+                factor_of_safety: Some(if k.is_multiple_of(2) {
+                    FactorOfSafety::Unbounded
+                } else {
+                    FactorOfSafety::Finite {
+                        value: 0.1 + k as f64 * 1e-5,
+                    }
+                }),
+                ..r
+            })
+            .collect();
+        let cases = [
+            (
+                "crosses",
+                vec![vary("friction.mu_k", &mu), vary("loads.eccentricity_m", &e)],
+                crosses,
+            ),
+            (
+                "two",
+                vec![vary("friction.mu_k", &mu), vary("loads.eccentricity_m", &e)],
+                two,
+            ),
+            ("one", vec![vary("friction.mu_k", &long)], one),
+            (
+                "three",
+                vec![
+                    vary("friction.mu_k", &mu3),
+                    vary("loads.eccentricity_m", &e3),
+                    vary("loads.hydraulic_force_n", &f3),
+                ],
+                three,
+            ),
+        ];
+        for (name, varies, rows) in cases {
+            assert_eq!(rows.len(), 90_000);
+            let svg = draw(&format!("large-{name}"), &varies, &rows);
+            assert!(svg.len() < 2_000_000, "{name}: {} bytes", svg.len());
+            assert!(svg.trim_end().ends_with("</svg>"), "{name}: cut");
+            assert!(!svg.contains("NaN") && !svg.contains("inf"), "{name}");
+            let words: String = texts(&svg).into_iter().map(|t| t.1 + " ").collect();
+            assert!(words.contains("90000 combinations:"), "{name}: {words}");
+            assert!(
+                words.contains(" of the 90000 combinations"),
+                "{name}: {words}"
+            );
+            assert!(
+                words.contains("sweep.csv has every combination"),
+                "{name}: {words}"
+            );
+        }
+    }
+
+    #[test]
+    fn a_thinned_line_keeps_its_ends_and_where_the_route_ended_otherwise() {
+        assert_eq!(spread(5, 10), vec![0, 1, 2, 3, 4]);
+        assert_eq!(spread(10, 4), vec![0, 3, 6, 9]);
+        assert_eq!(spread(1000, 1), vec![0]);
+        let s = spread(90_000, 400);
+        assert_eq!((s.len(), s[0], s[399]), (400, 0, 89_999));
+        assert!(s.windows(2).all(|w| w[0] < w[1]));
+        // Slid up to 0.4870, did not slide from 0.4871: both kept, and the line breaks there.
+        let mu = linspace(0.3, 0.6, 3001);
+        let rows: Vec<SweepRow> = mu
+            .iter()
+            .map(|&m| {
+                let mut r = row(vec![m]);
+                if m > 0.48705 {
+                    r.reason = DID_NOT_SLIDE.into();
+                    r.t_end_s = Some(0.0);
+                    r.travel_m = Some(0.0);
+                }
+                r
+            })
+            .collect();
+        let members: Vec<&SweepRow> = rows.iter().collect();
+        let (kept, all_changes) = thin_line(&members, 120, false);
+        assert!(all_changes);
+        assert!(kept.len() <= 120 && kept.len() > 100, "{}", kept.len());
+        let at = |r: &SweepRow| (first_of(r) * 1e4).round() / 1e4;
+        let xs: Vec<f64> = kept.iter().map(|r| at(r)).collect();
+        for want in [0.3, 0.487, 0.4871, 0.6] {
+            assert!(xs.contains(&want), "{want} not kept");
+        }
+        // A change at every value: too many to keep both sides of each, still at most 120.
+        let mut alternating = rows.clone();
+        for (k, r) in alternating.iter_mut().enumerate() {
+            r.reason = format!("reason {}", k % 2);
+        }
+        let members: Vec<&SweepRow> = alternating.iter().collect();
+        let (kept, all_changes) = thin_line(&members, 120, false);
+        assert!(!all_changes);
+        assert_eq!(kept.len(), 120);
     }
 
     #[test]

@@ -806,3 +806,25 @@ fn no_two_work_precision_series_share_colour_and_marker() {
     let rigid = words.iter().filter(|w| w.contains("rigid-body")).count();
     assert_eq!(rigid, 2, "{words:?}");
 }
+
+#[test]
+fn a_subnormal_or_zero_eccentricity_draws_finite_numbers_in_every_legend() {
+    // `loads.eccentricity_m = 1e-310` drew "inf×10⁻³¹⁰ m from the CM" in plan.svg's legend.
+    for (e, want) in [(1e-310, "10⁻³¹⁰ m from the CM"), (0.0, " 0 m from the CM")] {
+        let scene =
+            with_keys(&scene_with(0.2, 8e6), &[("loads.eccentricity_m", e)]).expect("a scene");
+        let (dir, _) = route_pictures("subnormal", &scene);
+        for file in ["plan.svg", "profile.svg", "angles.svg", "reactions.svg"] {
+            let svg = read(&dir, file);
+            let words: Vec<String> = texts(&svg).into_iter().map(|t| t.text).collect();
+            let words = words.join(" ");
+            assert!(
+                !words.contains("inf") && !words.contains("NaN"),
+                "{e:e}: {file}: {words}"
+            );
+            if file == "plan.svg" {
+                assert!(words.contains(want), "{e:e}: {words}");
+            }
+        }
+    }
+}

@@ -92,7 +92,8 @@ pub fn page_data(page: &Page3d) -> Value {
         let mut points = Vec::new();
         for p in &f.paths {
             starts.push(points.len() / 3);
-            points.extend(flat(p, 3));
+            // To the centimetre: a thousand paths keep the page under 2 MB.
+            points.extend(flat(p, 2));
         }
         json!({
             "label": f.label,

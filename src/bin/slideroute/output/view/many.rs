@@ -12,8 +12,9 @@ use std::path::PathBuf;
 /// The most CM paths a fan page draws (the first that ran, in order: as `route-fan.svg`).
 pub const MAX_FAN_PATHS: usize = 1000;
 
-/// The most points a fan path keeps (thinned evenly, the first and last kept).
-pub const MAX_FAN_POINTS: usize = 200;
+/// The most points a fan path keeps (thinned evenly, the first and last kept): with points to the
+/// centimetre, a thousand paths and three.js keep a fan page under 2 MB.
+pub const MAX_FAN_POINTS: usize = 32;
 
 /// What a page shows.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
