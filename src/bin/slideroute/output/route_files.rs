@@ -10,7 +10,8 @@ pub const ROUTE_HEADER: [&str; 25] = Row::COLUMNS;
 
 /// route.csv written row by row as the route computes them (memory does not grow
 /// with the route's length): the header [`ROUTE_HEADER`], then one line per [`CsvRows::push`];
-/// reactions that could not be had are empty. Each number is written straight into the buffered
+/// reactions that could not be had are empty, and so is any value that is not a finite number
+/// (none should be: the file never holds one). Each number is written straight into the buffered
 /// output, with no allocation a row: a whole number below 2⁵³ in magnitude as an integer, any
 /// other as its shortest decimal that reads back the same (`zmij`: an exponent past 10¹⁶ or below
 /// 10⁻⁵, as `1.5e-7` or `2.5e+17`); no number needs quoting. The first write error is kept and returned by
@@ -39,7 +40,11 @@ impl<W: Write> CsvRows<W> {
                 if k > 0 {
                     self.w.write_all(b",")?;
                 }
-                if let Some(x) = *v {
+                // Not a number or infinite: empty, as a value that could not be had (a file
+                // holds numbers only).
+                if let Some(x) = *v
+                    && x.is_finite()
+                {
                     write_number(&mut self.w, (&mut decimal, &mut integer), x)?;
                 }
             }
@@ -173,6 +178,9 @@ mod tests {
         gap.vx_m_s = -9_007_199_254_740_991.0;
         gap.vz_m_s = 0.5;
         rows.push(gap);
+        // A value that is not a number is written empty, never `NaN` or `inf`.
+        let mut odd = rows[1];
+        odd.n_n = Some([f64::NAN, f64::INFINITY, 1.0]);
         let mut ours = Vec::new();
         write_csv(&mut ours, &rows).unwrap();
         let mut back = csv::Reader::from_reader(ours.as_slice());
@@ -206,5 +214,11 @@ mod tests {
             last.contains(",9007199254740992.0,") && last.contains(",-9007199254740991,0.5,"),
             "{last}"
         );
+        let mut one = Vec::new();
+        write_csv(&mut one, &[odd]).unwrap();
+        let one = String::from_utf8(one).unwrap();
+        let line = one.lines().nth(1).unwrap();
+        assert!(!line.contains("NaN") && !line.contains("inf"), "{line}");
+        assert!(line.contains(",,,1,"), "{line}");
     }
 }
