@@ -38,15 +38,34 @@ fn probability(k: usize, n: usize) -> Probability {
 }
 
 /// Percentiles 5, 50, 95 of some values (linear between order statistics; infinite values
-/// count, as the largest or smallest).
+/// count, as the largest or smallest). Written as numbers, an infinite one as the factor of
+/// safety's words ([`word_or_number`]): a file holds no infinity.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct Percentiles {
     /// The 5th percentile.
+    #[serde(serialize_with = "word_or_number")]
     pub p5: f64,
     /// The median.
+    #[serde(serialize_with = "word_or_number")]
     pub p50: f64,
     /// The 95th percentile.
+    #[serde(serialize_with = "word_or_number")]
     pub p95: f64,
+}
+
+/// A finite value as a number; +∞ as `"unbounded"` and −∞ as `"not-holdable"`, the words of a
+/// factor of safety no multiple of the loads reaches or that the weight alone defeats (the
+/// only percentiles that can be infinite); NaN, which percentiles leave out, as null.
+fn word_or_number<S: serde::Serializer>(v: &f64, s: S) -> Result<S::Ok, S::Error> {
+    if v.is_finite() {
+        s.serialize_f64(*v)
+    } else if *v == f64::INFINITY {
+        s.serialize_str("unbounded")
+    } else if *v == f64::NEG_INFINITY {
+        s.serialize_str("not-holdable")
+    } else {
+        s.serialize_none()
+    }
 }
 
 /// The percentiles of `v`, NaN left out; `None` if nothing is left.
@@ -285,5 +304,11 @@ mod tests {
         assert_eq!((p.p50, p.p95), (2.0, f64::INFINITY));
         let p = percentiles(vec![f64::NEG_INFINITY, 1.0, 2.0]).unwrap();
         assert_eq!((p.p5, p.p50), (f64::NEG_INFINITY, 1.0));
+        // Written with the factor of safety's words, never null or an infinity.
+        let both = percentiles(vec![f64::NEG_INFINITY, 1.0, f64::INFINITY]).unwrap();
+        assert_eq!(
+            serde_json::to_string(&both).unwrap(),
+            r#"{"p5":"not-holdable","p50":1.0,"p95":"unbounded"}"#
+        );
     }
 }
