@@ -176,7 +176,8 @@ fn number(t: &str, what: &str) -> Result<f64, String> {
 }
 
 /// COUNT values from START to STOP, evenly spaced, STOP itself the last (not START + (STOP −
-/// START) with its rounding).
+/// START) with its rounding). Where STOP − START overflows (`1e308:-1e308:3`), each value is
+/// START (1 − f) + STOP f instead, finite as both ends are.
 fn evenly(a: &str, b: &str, n: &str) -> Result<Vec<f64>, String> {
     let (a, b) = (number(a, "START")?, number(b, "STOP")?);
     let n: usize = n
@@ -193,8 +194,11 @@ fn evenly(a: &str, b: &str, n: &str) -> Result<Vec<f64>, String> {
             .map(|k| {
                 if k == n - 1 {
                     b
-                } else {
+                } else if (b - a).is_finite() {
                     a + (b - a) * k as f64 / (n - 1) as f64
+                } else {
+                    let f = k as f64 / (n - 1) as f64;
+                    a * (1.0 - f) + b * f
                 }
             })
             .collect()
@@ -499,6 +503,22 @@ mod tests {
 
     fn vary(s: &str) -> Vary {
         s.parse().unwrap()
+    }
+
+    #[test]
+    fn a_range_wider_than_the_largest_number_gives_finite_values() {
+        // Before, STOP − START overflowed and the middle value was NaN (written as such in
+        // sweep.csv, the run exiting 0).
+        let v = vary("solver.dt_s=1e308:-1e308:3");
+        assert_eq!(v.values, vec![1e308, 0.0, -1e308]);
+        let v = vary("friction.mu_k=-1.7976931348623157e308:1.7976931348623157e308:5");
+        assert!(v.values.iter().all(|x| x.is_finite()), "{:?}", v.values);
+        assert!(v.values.windows(2).all(|w| w[0] < w[1]), "{:?}", v.values);
+        // An ordinary range keeps its values to the bit.
+        assert_eq!(
+            vary("friction.mu_k=0.2:0.6:3").values,
+            vec![0.2, 0.2 + 0.4 * 0.5, 0.6]
+        );
     }
 
     #[test]

@@ -146,6 +146,21 @@ pub enum SurfaceError {
     },
 }
 
+impl SurfaceError {
+    /// The triangle (its number, from 0) the fault is of, if it is one triangle's: a file's
+    /// reader then names the line the triangle came from.
+    pub fn triangle(&self) -> Option<usize> {
+        match *self {
+            SurfaceError::NonFinite(k)
+            | SurfaceError::Degenerate(k)
+            | SurfaceError::TooLarge(k) => Some(k),
+            SurfaceError::NoCorner { triangle, .. } => Some(triangle),
+            SurfaceError::Vertical { index, .. } => Some(index),
+            SurfaceError::Empty | SurfaceError::TooMany(_) => None,
+        }
+    }
+}
+
 impl Ground {
     /// A ground of planes (at least one).
     pub fn planes(faces: Vec<Plane>) -> Ground {

@@ -20,28 +20,44 @@ pub struct Record {
 
 impl Record {
     /// From samples: at least two, times finite and strictly increasing, accelerations finite
-    /// and below 10 g.
+    /// and below 10 g. A fault names the sample and its line as a record file without blank
+    /// lines has it (the header, then a sample a line).
     pub fn new(samples: Vec<(f64, [f64; 3])>) -> Result<Record, ModelError> {
+        Record::checked(samples, |k| Some(k as u64 + 2))
+    }
+
+    /// [`Record::new`] of the samples read from the lines `lines` of a file (`lines[k]` sample
+    /// k's, from 1): a fault names the line the sample is on, blank lines counted.
+    pub(crate) fn from_lines(
+        samples: Vec<(f64, [f64; 3])>,
+        lines: &[u64],
+    ) -> Result<Record, ModelError> {
+        Record::checked(samples, |k| lines.get(k).copied())
+    }
+
+    /// [`Record::new`], sample k's fault naming its line `line(k)` where there is one.
+    fn checked(
+        samples: Vec<(f64, [f64; 3])>,
+        line: impl Fn(usize) -> Option<u64>,
+    ) -> Result<Record, ModelError> {
         if samples.len() < 2 {
             return Err(fault("a record needs at least two samples".into()));
         }
+        let at = |k: usize| match line(k) {
+            Some(l) => format!("sample {k} (line {l})"),
+            None => format!("sample {k}"),
+        };
         for (k, (t, a)) in samples.iter().enumerate() {
             if !t.is_finite() || a.iter().any(|v| !v.is_finite()) {
-                return Err(fault(format!(
-                    "sample {k} (line {}): not a finite number",
-                    k + 2
-                )));
+                return Err(fault(format!("{}: not a finite number", at(k))));
             }
             if a.iter().any(|v| v.abs() > 10.0) {
-                return Err(fault(format!(
-                    "sample {k} (line {}): an acceleration over 10 g",
-                    k + 2
-                )));
+                return Err(fault(format!("{}: an acceleration over 10 g", at(k))));
             }
             if k > 0 && *t <= samples[k - 1].0 {
                 return Err(fault(format!(
-                    "sample {k} (line {}): time {t} s does not come after {} s",
-                    k + 2,
+                    "{}: time {t} s does not come after {} s",
+                    at(k),
                     samples[k - 1].0
                 )));
             }
@@ -77,12 +93,14 @@ impl Record {
     /// The same record with every acceleration times `k` (a scale, a polarity): refused where
     /// a sample then exceeds 10 g.
     pub fn scaled(&self, k: f64) -> Result<Record, ModelError> {
-        Record::new(
+        // No line: the fault is the factor's, whatever line of a file the sample was on.
+        Record::checked(
             self.t
                 .iter()
                 .zip(&self.a)
                 .map(|(t, a)| (*t, a.map(|v| v * k)))
                 .collect(),
+            |_| None,
         )
     }
 
@@ -155,5 +173,20 @@ mod tests {
         let e = Record::new(vec![(0.0, [0.0; 3]), (1.0, [f64::NAN, 0.0, 0.0])]).unwrap_err();
         assert!(e.reason.contains("not a finite number"), "{e}");
         assert!(Record::new(vec![(0.0, [0.0; 3])]).is_err());
+    }
+
+    #[test]
+    fn a_records_fault_names_the_line_its_sample_was_read_from() {
+        // Samples read from lines 2, 5 and 9 (blank lines between): the third's time goes back.
+        let samples = vec![(0.0, [0.0; 3]), (1.0, [0.1, 0.0, 0.0]), (0.5, [0.0; 3])];
+        let e = Record::from_lines(samples, &[2, 5, 9]).unwrap_err();
+        assert!(e.reason.starts_with("sample 2 (line 9): time 0.5 s"), "{e}");
+        // A scale that takes a sample over 10 g is the scale's fault: no line.
+        let r = Record::new(vec![(0.0, [0.0; 3]), (1.0, [2.0, 0.0, 0.0])]).unwrap();
+        let e = r.scaled(6.0).unwrap_err();
+        assert!(
+            e.reason.starts_with("sample 1: an acceleration over 10 g"),
+            "{e}"
+        );
     }
 }

@@ -185,6 +185,10 @@ impl RunSettings {
     /// increments, an integrator the dynamics has, a stride of at least 1.
     pub fn check(&self) -> Result<(), ModelError> {
         let (dt, t_end) = (self.dt, self.t_end);
+        // Each time by itself first: `t_end_s = inf` is the time limit's fault, not the
+        // increment's (t_end_s / dt_s is then infinite too).
+        positive("solver.dt_s", dt)?;
+        positive("solver.t_end_s", t_end)?;
         if dt > t_end && t_end > 0.0 {
             return Err(ModelError::new(
                 "solver.dt_s",
@@ -195,16 +199,21 @@ impl RunSettings {
         }
         let n = t_end / dt;
         if dt > 0.0 && t_end > 0.0 && n > MAX_INCREMENTS {
+            // A count past the largest number (dt_s = 5e-324) is said in words, not `inf`
+            // (which a sweep's table would hold as its reason).
+            let count = if n.is_finite() {
+                format!("{n:.3e}")
+            } else {
+                format!("{t_end} s / {dt:e} s, past the largest number of")
+            };
             return Err(ModelError::new(
                 "solver.dt_s",
                 format!(
-                    "t_end_s / dt_s = {n:.3e} increments, more than the {MAX_INCREMENTS:e} one \
+                    "t_end_s / dt_s = {count} increments, more than the {MAX_INCREMENTS:e} one \
                      run may take"
                 ),
             ));
         }
-        positive("solver.dt_s", dt)?;
-        positive("solver.t_end_s", t_end)?;
         if self.dynamics == DynamicsModel::RigidBody && self.integrator != Integrator::Rk4 {
             return Err(ModelError::new(
                 "solver.integrator",
@@ -258,6 +267,26 @@ impl RunSettings {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn times_not_finite_are_each_their_own_keys_fault_and_no_message_says_inf() {
+        let at = |dt: f64, t_end: f64| {
+            RunSettings::new(DynamicsModel::RigidBody, dt, t_end)
+                .check()
+                .unwrap_err()
+        };
+        // Before, `t_end_s = inf` was solver.dt_s's fault: "t_end_s / dt_s = inf increments".
+        let e = at(1e-3, f64::INFINITY);
+        assert_eq!(e.key, "solver.t_end_s");
+        assert!(e.reason.contains("finite"), "{}", e.reason);
+        assert_eq!(at(f64::NAN, 20.0).key, "solver.dt_s");
+        // A count of increments past the largest number is said in words.
+        let e = at(5e-324, 0.2);
+        assert_eq!(e.key, "solver.dt_s");
+        assert!(e.reason.contains("past the largest number"), "{}", e.reason);
+        assert!(!e.reason.contains("inf"), "{}", e.reason);
+        assert!(at(1e-9, 20.0).reason.contains("2.000e10 increments"));
+    }
 
     #[test]
     fn each_dynamics_brings_its_own_integrator_and_refuses_the_others() {

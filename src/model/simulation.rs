@@ -461,10 +461,16 @@ pub(crate) fn check_ratios(scale: f64, b: &Block, l: &Loads) -> Result<(), Model
         };
         return Err(ModelError::new(
             key,
+            // Said in words: an infinite weight printed would be `inf` in a sweep's table.
             format!(
-                "the weight m g = {weight:e} N is not a usable number (mass {:e} kg, gravity {:e} \
-                 m/s²)",
-                b.mass, l.gravity
+                "the weight m g is {} (mass {:e} kg, gravity {:e} m/s²)",
+                if weight.is_infinite() {
+                    "beyond the largest number"
+                } else {
+                    "too small to compute with"
+                },
+                b.mass,
+                l.gravity
             ),
         ));
     }
@@ -475,6 +481,20 @@ pub(crate) fn check_ratios(scale: f64, b: &Block, l: &Loads) -> Result<(), Model
                 "{:e} N is more than {MAX_RATIO:e} times the weight ({weight:e} N, from a mass of \
                  {:e} kg)",
                 l.hydraulic_force, b.mass
+            ),
+        ));
+    }
+    // The water's moment about the CM against the weight's over the block: c = 1e12 m (a
+    // moment 1e11 times the weight's) spun the block so that a 0.2 s route took a minute.
+    let moment = l.hydraulic_force * l.eccentricity.abs();
+    if moment > MAX_RATIO * weight * scale {
+        return Err(ModelError::new(
+            "loads.eccentricity_m",
+            format!(
+                "the water's moment F c = {moment:e} N·m (c = {:e} m) is more than {MAX_RATIO:e} \
+                 times the weight's over the block, m g L = {:e} N·m",
+                l.eccentricity,
+                weight * scale
             ),
         ));
     }
@@ -588,5 +608,31 @@ mod tests {
             .build()
             .unwrap_err();
         assert_eq!(e.key, "friction.mu_k");
+    }
+
+    #[test]
+    fn a_waters_moment_a_million_times_the_weights_is_refused_naming_the_eccentricity() {
+        // Before, c = 1e12 m was taken, and its route of 0.2 s took a minute of sweeps.
+        for c in [1e12, -9.2e18] {
+            let e = builder()
+                .loads(Loads::plain(8e6, c, 9.81))
+                .build()
+                .unwrap_err();
+            assert_eq!(e.key, "loads.eccentricity_m");
+            assert!(e.reason.contains("moment"), "{}", e.reason);
+        }
+        // F c = 8e12 N·m against 1e6 m g L ≈ 1e14 N·m: taken. No water, any c.
+        assert!(
+            builder()
+                .loads(Loads::plain(8e6, 1e6, 9.81))
+                .build()
+                .is_ok()
+        );
+        assert!(
+            builder()
+                .loads(Loads::plain(0.0, 1e300, 9.81))
+                .build()
+                .is_ok()
+        );
     }
 }

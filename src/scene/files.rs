@@ -4,8 +4,8 @@
 //! them again.
 
 use super::Scene;
-use super::input::open_bounded;
-use super::obj::{ObjSurface, read_obj};
+use super::input::{CsvLines, open_bounded};
+use super::obj::{ObjError, ObjSurface, face_line, read_obj};
 use crate::geometry::Ground;
 use crate::model::Record;
 use std::path::Path;
@@ -92,46 +92,73 @@ impl Files {
 
 /// A Wavefront OBJ file of triangles (faces of more corners are split into triangles), Y up,
 /// in scene coordinates: its vertices and triangles read as they are kept (`obj.rs`), moved
-/// into the ground.
+/// into the ground. A triangle the ground cannot take is named by the line of its face (the
+/// file read again to find it).
 fn read_surface(path: &Path) -> Result<Ground, String> {
-    let reader = std::io::BufReader::with_capacity(1 << 16, open_bounded(path, MAX_SURFACE_BYTES)?);
+    let open = || {
+        open_bounded(path, MAX_SURFACE_BYTES)
+            .map(|file| std::io::BufReader::with_capacity(1 << 16, file))
+    };
     let ObjSurface {
         vertices,
         triangles,
-    } = read_obj(reader, MAX_SURFACE_BYTES).map_err(|e| e.to_string())?;
-    Ground::mesh(vertices, triangles).map_err(|e| e.to_string())
+    } = read_obj(open()?, MAX_SURFACE_BYTES).map_err(|e| e.to_string())?;
+    Ground::mesh(vertices, triangles).map_err(|error| {
+        let line = error.triangle().and_then(|k| face_line(open().ok()?, k));
+        match line {
+            Some(line) => ObjError::Face { line, error },
+            None => ObjError::Surface(error),
+        }
+        .to_string()
+    })
 }
 
-/// A record file: CSV with the header `t_s,ax_g,ay_g,az_g`.
+/// A record file: CSV with the header `t_s,ax_g,ay_g,az_g`, then a sample a line; every fault
+/// named by its line in the file, blank lines counted ([`CsvLines`]).
 fn read_record(path: &Path) -> Result<Record, String> {
     let file = open_bounded(path, MAX_RECORD_BYTES)?;
-    let mut r = csv::ReaderBuilder::new()
-        .trim(csv::Trim::All)
-        .from_reader(file);
-    let header = r.headers().map_err(|e| e.to_string())?.clone();
-    if header.iter().collect::<Vec<_>>() != RECORD_COLUMNS {
+    let mut lines = CsvLines::new(std::io::BufReader::new(file));
+    let header = lines.next().transpose().map_err(|e| e.to_string())?;
+    match header {
+        Some(h) if h.cells == RECORD_COLUMNS => {}
         // What the line says is not echoed: the file may be any file (a scene names it).
-        return Err(format!(
-            "line 1 must be the header `{}`; it is not (it has {} comma-separated fields)",
-            RECORD_COLUMNS.join(","),
-            header.len()
-        ));
+        Some(h) => {
+            return Err(format!(
+                "line {} must be the header `{}`; it is not (it has {} comma-separated fields)",
+                h.number,
+                RECORD_COLUMNS.join(","),
+                h.cells.len()
+            ));
+        }
+        None => {
+            return Err(format!(
+                "the file is empty; its first line must be the header `{}`",
+                RECORD_COLUMNS.join(",")
+            ));
+        }
     }
-    let mut samples = Vec::new();
-    for (k, row) in r.records().enumerate() {
-        let row = row.map_err(|e| e.to_string())?;
+    let (mut samples, mut numbers) = (Vec::new(), Vec::new());
+    for line in lines {
+        let line = line.map_err(|e| e.to_string())?;
+        if line.cells.len() != RECORD_COLUMNS.len() {
+            return Err(format!(
+                "line {}: {} comma-separated fields where the header has {}",
+                line.number,
+                line.cells.len(),
+                RECORD_COLUMNS.len()
+            ));
+        }
         let mut v = [0.0; 4];
-        for (c, cell) in v.iter_mut().enumerate() {
-            let text = row.get(c).unwrap_or("");
+        for (c, (cell, text)) in v.iter_mut().zip(&line.cells).enumerate() {
             *cell = text.parse().map_err(|_| {
                 format!(
                     "line {}: `{text}` in {} is not a number",
-                    k + 2,
-                    RECORD_COLUMNS[c]
+                    line.number, RECORD_COLUMNS[c]
                 )
             })?;
         }
         samples.push((v[0], [v[1], v[2], v[3]]));
+        numbers.push(line.number);
     }
-    Record::new(samples).map_err(|e| e.reason)
+    Record::from_lines(samples, &numbers).map_err(|e| e.reason)
 }

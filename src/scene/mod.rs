@@ -192,6 +192,15 @@ impl Scene {
     {
         for (key, value) in keys {
             let key = key.as_ref();
+            // `.mu_k`, `friction.`, `a..b`: no key of any section (the error would name none).
+            if key.split('.').any(|part| part.trim().is_empty()) {
+                return Err(SceneError::of(
+                    SceneErrorKind::UnknownKey,
+                    &self.origin,
+                    key,
+                    "not a key: a key is `section.key` (`friction.mu_k`), or `name`",
+                ));
+            }
             let (section, name) = match key.split_once('.') {
                 Some((section, name)) => (Some(section), name),
                 None => (None, key),

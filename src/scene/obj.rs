@@ -7,6 +7,7 @@
 //! materials, smoothing, lines and points are passed over. The file's size is bounded by its
 //! caller (`files.rs`).
 
+use crate::geometry::ground::SurfaceError;
 use std::io::BufRead;
 
 /// A surface as its file gives it: the vertices (X, Y, Z) in the file's order, and the
@@ -36,6 +37,17 @@ pub enum ObjError {
         /// What is wrong with it.
         fault: LineFault,
     },
+    /// A triangle the ground cannot be made of, by the line (from 1) of the face it came from.
+    #[error("line {line}: {error}")]
+    Face {
+        /// The face's line.
+        line: usize,
+        /// What is wrong with its triangle.
+        error: SurfaceError,
+    },
+    /// A surface the ground cannot be made of, as a whole (no triangles, too many).
+    #[error("{0}")]
+    Surface(SurfaceError),
 }
 
 /// What is wrong with a line of a surface file.
@@ -50,6 +62,10 @@ pub enum LineFault {
     /// A vertex whose weight is zero.
     #[error("a vertex's weight is zero")]
     ZeroWeight,
+    /// A vertex with a coordinate that is not a finite number (`inf`, `nan`, `1e999`, or one
+    /// its weight takes past the largest number).
+    #[error("a vertex's coordinates must be finite numbers")]
+    NotFinite,
     /// A face's corner whose vertex number is not a whole number.
     #[error("`{0}` is not a vertex number")]
     NotCorner(String),
@@ -105,6 +121,27 @@ pub fn read_obj(mut reader: impl BufRead, limit: u64) -> Result<ObjSurface, ObjE
     }
 }
 
+/// The line (from 1) of the face that made triangle `triangle` (from 0) of the surface in
+/// `reader`, as [`read_obj`] fans faces into triangles: read again, only where a triangle is
+/// found wrong, so that no line number is kept for every triangle. `None` past the last.
+pub fn face_line(mut reader: impl BufRead, triangle: usize) -> Option<usize> {
+    let (mut line, mut number, mut made) = (Vec::with_capacity(256), 0, 0usize);
+    loop {
+        line.clear();
+        if reader.read_until(b'\n', &mut line).ok()? == 0 {
+            return None;
+        }
+        number += 1;
+        let mut words = Words(&line);
+        if words.next() == Some(b"f") {
+            made += words.count().saturating_sub(2);
+            if made > triangle {
+                return Some(number);
+            }
+        }
+    }
+}
+
 impl ObjSurface {
     /// `v x y z`, `v x y z w` (each coordinate divided by w) or `v x y z r g b` (the colour
     /// passed over).
@@ -124,6 +161,9 @@ impl ObjSurface {
             4 => [x / w, y / w, z / w],
             _ => return Err(LineFault::VertexNumbers(count)),
         };
+        if !corner.iter().all(|x| x.is_finite()) {
+            return Err(LineFault::NotFinite);
+        }
         if self.vertices.len() > u32::MAX as usize {
             return Err(LineFault::TooManyVertices);
         }
@@ -412,6 +452,33 @@ mod tests {
         assert_eq!(fault("v 0 0 0 1 1\n"), (1, LineFault::VertexNumbers(5)));
         let e = read("v 0 0 0\nf 1 2 3\n").unwrap_err().to_string();
         assert!(e.contains("OBJ") && e.contains("line 2"), "{e}");
+    }
+
+    #[test]
+    fn a_vertex_that_is_not_finite_is_refused_at_its_line() {
+        for v in [
+            "v inf 0 0",
+            "v 0 nan 0",
+            "v 0 0 -inf",
+            "v 0 1e999 0",
+            "v 1e308 0 0 1e-10",
+        ] {
+            assert_eq!(
+                fault(&format!("v 0 0 0\n\n{v}\n")),
+                (3, LineFault::NotFinite),
+                "{v}"
+            );
+        }
+    }
+
+    #[test]
+    fn a_triangles_face_is_found_by_its_number_as_faces_are_fanned() {
+        let text = "v 0 0 0\nv 1 0 0\nv 1 0 1\nv 0 0 1\n\nf 1 2 3 4\n# f 1 2 3\nf 1 2 3\n";
+        let at = |k| face_line(text.as_bytes(), k);
+        assert_eq!(
+            (at(0), at(1), at(2), at(3)),
+            (Some(6), Some(6), Some(8), None)
+        );
     }
 
     #[test]

@@ -27,6 +27,20 @@ pub(super) fn from_toml(text: &str, origin: &str, folder: &Path) -> Result<Scene
         }
         e
     };
+    if let Some((key, at, digits)) = too_large_integer(doc.get_ref(), "") {
+        let mut err = SceneError::of(
+            SceneErrorKind::WrongType,
+            origin,
+            key,
+            format!(
+                "a whole number of {digits} digits, beyond the 64-bit integers a scene may hold \
+                 (about ±9.2e18); a number with a point or an exponent (1.0e19) is read as a \
+                 decimal"
+            ),
+        );
+        err.position = Some(line_col(text, at));
+        return Err(err);
+    }
     let table =
         <toml::Table as serde::Deserialize>::deserialize(toml::Deserializer::from(doc.clone()))
             .map_err(|e| {
@@ -65,6 +79,45 @@ pub(super) fn from_table(
     validate(raw, origin, table, sources)
 }
 
+/// The first whole number in `table` (whose keys are under `prefix`) that no 64-bit integer
+/// holds — TOML allows none, and a [`toml::Value`] cannot hold one — as the key errors name
+/// (`section.key`, a list of tables' item `name[k].key`), the offset where it is written and
+/// how many digits it has.
+fn too_large_integer(table: &DeTable<'_>, prefix: &str) -> Option<(String, usize, usize)> {
+    table.iter().find_map(|(name, value)| {
+        let name: &str = name.get_ref().as_ref();
+        let key = if prefix.is_empty() {
+            name.to_string()
+        } else {
+            format!("{prefix}.{name}")
+        };
+        too_large_in(value, &key)
+    })
+}
+
+/// [`too_large_integer`] in one value, `key` its key.
+fn too_large_in(value: &toml::Spanned<DeValue<'_>>, key: &str) -> Option<(String, usize, usize)> {
+    match value.get_ref() {
+        DeValue::Integer(i) if i64::from_str_radix(i.as_str(), i.radix()).is_err() => {
+            let digits = i
+                .as_str()
+                .chars()
+                .filter(char::is_ascii_alphanumeric)
+                .count();
+            Some((key.to_string(), value.span().start, digits))
+        }
+        DeValue::Table(t) => too_large_integer(t, key),
+        DeValue::Array(items) => items
+            .iter()
+            .enumerate()
+            .find_map(|(k, v)| match v.get_ref() {
+                DeValue::Table(t) => too_large_integer(t, &format!("{key}[{k}]")),
+                _ => too_large_in(v, key),
+            }),
+        _ => None,
+    }
+}
+
 /// The error of a document that is not a scene's: every unknown key, and the faults of the
 /// scene read without them (`table`, from `sources`).
 fn read_error(
@@ -99,6 +152,8 @@ fn unknown_key(key: &str, origin: &str) -> SceneError {
     let known = raw::keys_of(section).join(", ");
     let reason = if section.is_empty() {
         format!("unknown key `{name}`; a scene's sections are {known}")
+    } else if known.is_empty() {
+        format!("unknown key `{name}`; [{section}] is not a section of keys")
     } else {
         format!("unknown key `{name}`; the keys of [{section}] are {known}")
     };

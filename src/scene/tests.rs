@@ -554,6 +554,65 @@ fn every_error_gives_the_line_of_the_key_it_names() {
 }
 
 #[test]
+fn a_time_limit_that_is_not_finite_is_the_time_limits_fault_at_its_line() {
+    // Before, `t_end_s = inf` was reported as solver.dt_s (t_end_s / dt_s = inf increments)
+    // at dt_s's line.
+    let line = GOOD.lines().position(|l| l.starts_with("t_end_s")).unwrap() + 1;
+    for v in ["inf", "+inf", "nan", "-inf"] {
+        let text = with("t_end_s = 20.0", &format!("t_end_s = {v}"));
+        assert_names(&text, "solver.t_end_s", "finite");
+        assert_eq!(err(&text).position.map(|p| p.0), Some(line), "{v}");
+    }
+    let text = with("dt_s = 1.0e-3", "dt_s = inf");
+    assert_names(&text, "solver.dt_s", "finite");
+}
+
+#[test]
+fn a_whole_number_beyond_64_bits_is_named_by_its_key_and_line() {
+    // Before: `not a table of keys: invalid type: integer … as i128`, no key, no line.
+    let line = |key: &str| GOOD.lines().position(|l| l.starts_with(key)).unwrap() + 1;
+    for big in [
+        "9223372036854775808",
+        "-9223372036854775809",
+        "18446744073709551616",
+        "99999999999999999999999999999",
+        "0x1_0000_0000_0000_0000",
+    ] {
+        let text = with("mu_k = 0.40", &format!("mu_k = {big}"));
+        assert_names(&text, "friction.mu_k", "64-bit");
+        let e = err(&text);
+        assert_eq!(e.kind, SceneErrorKind::WrongType);
+        assert_eq!(e.position, Some((line("mu_k"), 8)), "{big}");
+    }
+    // In an array, an inline table and a list of tables: the key that holds it.
+    let text = format!("{GOOD}[base]\noutline_m = [[0, 1], [2, 18446744073709551616]]\n");
+    assert_names(&text, "base.outline_m", "64-bit");
+    let text = format!("{GOOD}[[case]]\nname = \"a\"\n[[case]]\nkh = 18446744073709551616\n");
+    assert_names(&text, "case[1].kh", "64-bit");
+    let text = with("mu_k = 0.40", "mu_k = { a = 18446744073709551616 }");
+    assert_names(&text, "friction.mu_k.a", "64-bit");
+    // The largest and the smallest 64-bit integers are read (and then judged as values).
+    let text = with("dt_s = 1.0e-3", "dt_s = 9223372036854775807");
+    assert_eq!(err(&text).key, "solver.dt_s");
+    assert!(!err(&text).reason.contains("64-bit"), "{}", err(&text));
+}
+
+#[test]
+fn a_key_with_an_empty_part_is_refused_naming_it() {
+    // Before, `.mu_k` gave "unknown key ``" naming nothing.
+    let s = Scene::from_toml(GOOD, "dam.toml").unwrap();
+    for key in [".mu_k", "friction.", "", "friction..mu_k", " . "] {
+        let e = s.with(key, 0.3).unwrap_err();
+        assert_eq!(e.key, key);
+        assert_eq!(e.kind, SceneErrorKind::UnknownKey);
+        assert!(e.to_string().contains(&format!("{key}: not a key")), "{e}");
+    }
+    // A key under a key is not a section's: said so, not an empty list of keys.
+    let e = s.with("friction.mu_k.deeper", 0.3).unwrap_err();
+    assert!(e.to_string().contains("is not a section of keys"), "{e}");
+}
+
+#[test]
 fn each_error_says_its_kind() {
     let kind = |text: &str| err(text).kind;
     assert_eq!(kind("[frame\n"), SceneErrorKind::Unreadable);

@@ -21,6 +21,7 @@ mod exact_relations_at_direct_poses;
 mod faces;
 mod general_pose;
 mod ground_motion;
+mod hostile;
 mod memory;
 mod newmark_exact;
 mod paper_misprints;

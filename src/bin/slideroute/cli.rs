@@ -222,10 +222,22 @@ pub struct ProbabilisticArgs {
     #[command(flatten)]
     pub scene: SceneArg,
     /// How many samples.
-    #[arg(long, value_name = "N", default_value_t = 1000)]
+    // A negative count is read as the flag's value, and refused naming the flag (not taken
+    // for an unknown argument).
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = 1000,
+        allow_negative_numbers = true
+    )]
     pub samples: usize,
     /// The seed the samples are drawn from.
-    #[arg(long, value_name = "S", default_value_t = 1)]
+    #[arg(
+        long,
+        value_name = "S",
+        default_value_t = 1,
+        allow_negative_numbers = true
+    )]
     pub seed: u64,
     /// An uncertain key and its distribution, `KEY=normal:MEAN:SD`,
     /// `KEY=truncnormal:MEAN:SD:LO:HI`, `KEY=lognormal:MEAN:SD`, `KEY=uniform:LO:HI` or

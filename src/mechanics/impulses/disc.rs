@@ -41,10 +41,17 @@ pub fn disc_minimum(w: &Tangential, u: &Vector2<f64>, radius: f64, nu: &mut f64)
     }
     // |p(ν)| falls from above the radius (or from infinity) as ν grows; Newton from the last ν
     // this contact found (a slip that changes little needs a step or two).
+    // A disc so small against the slip (a friction coefficient of 1e-300) that ν overflows:
+    // p(ν) → −u/ν as ν grows, so the rim's point opposite the slip, to round-off.
+    let opposite = || -u * (radius / u.norm());
     if !(*nu > 0.0 && p_of(*nu).norm() >= radius) {
         // |p(ν)| ≥ |u| / (λ_max + ν), so at this ν it is at least the radius: Newton on the
         // secular equation then climbs to the root without overshooting it.
         *nu = (u.norm() / radius - lam.max()).max(0.0);
+        if !(*nu + lam.max()).powi(3).is_finite() {
+            *nu = 0.0;
+            return opposite();
+        }
     }
     let mut nu_k = *nu;
     for _ in 0..50 {
@@ -65,10 +72,16 @@ pub fn disc_minimum(w: &Tangential, u: &Vector2<f64>, radius: f64, nu: &mut f64)
             break;
         }
     }
-    *nu = nu_k;
     let p = p_of(nu_k);
     // On the rim exactly.
-    p * (radius / p.norm())
+    let p = p * (radius / p.norm());
+    if p.iter().all(|x| x.is_finite()) {
+        *nu = nu_k;
+        p
+    } else {
+        *nu = 0.0;
+        opposite()
+    }
 }
 
 #[cfg(test)]
@@ -115,6 +128,27 @@ mod tests {
                 let cos = slip.dot(&p) / (slip.norm() * p.norm());
                 assert!((cos + 1.0).abs() < 1e-12, "{cos}");
             }
+        }
+    }
+
+    #[test]
+    fn a_disc_too_small_for_its_slip_gives_the_rim_opposite_the_slip_not_a_nan() {
+        // Before, ν = |u|/radius overflowed (a friction coefficient of 1e-300) and the impulse
+        // was NaN, which hung the route in the rotation's renormalisation.
+        let t = Tangential::new(Matrix2::new(2.0, 0.7, 0.7, 1.0));
+        let u = Vector2::new(3.0, -4.0);
+        for radius in [1e-300, 5e-324, 1e-310, 1e-200] {
+            let mut nu = 0.0;
+            let p = disc_minimum(&t, &u, radius, &mut nu);
+            assert!(
+                p.iter().all(|x| x.is_finite()) && nu.is_finite(),
+                "{p} {nu}"
+            );
+            // Along −u (compared without squares, which underflow at these sizes).
+            let along = p.x * u.x + p.y * u.y;
+            let across = p.x * u.y - p.y * u.x;
+            assert!(along <= 0.0 && across.abs() <= 1e-9 * along.abs(), "{p}");
+            assert!(p.x.abs().max(p.y.abs()) <= radius, "{p}");
         }
     }
 }

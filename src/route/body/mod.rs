@@ -361,11 +361,21 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
             s.w = Vector3::zeros();
         }
         let stepped = self.ctx().step(&mut s, self.t, h, &self.last);
-        if !(s.v.iter().chain(s.w.iter()).all(|x| x.is_finite())) {
+        // A step that leaves a velocity or the pose not finite ends the route at the last
+        // state that was (no row of NaN).
+        let finite = |m: &[f64]| m.iter().all(|x| x.is_finite());
+        if !(finite(s.v.as_slice()) && finite(s.w.as_slice())) {
             return self.end(
                 o,
                 Reason::ContactForcesUndetermined,
                 format!("the step from t = {} s gave no finite velocity", self.t),
+            );
+        }
+        if !(finite(s.pose.cm.as_slice()) && finite(s.pose.rotation.as_slice())) {
+            return self.end(
+                o,
+                Reason::ContactForcesUndetermined,
+                format!("the step from t = {} s gave no finite pose", self.t),
             );
         }
         if self.resting && self.slow(&s, h) {
@@ -435,8 +445,16 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
             .site()
             .contacts()
             .map(|[x, z]| pose.point(&Vector3::new(x, -depth, z)));
+        let contacts = self.sim.site().contacts();
         let elevation = |a: usize, b: usize| {
-            let d = frame[b] - frame[a];
+            let mut d = frame[b] - frame[a];
+            if !(d.norm() > 0.0 && d.norm().is_finite()) {
+                // A body so far away (a load of 1e30 flung it 1e22 m in a step) that its
+                // contacts' places round to one: the side turned by the rotation alone, not a
+                // NaN.
+                let [(xa, za), (xb, zb)] = [a, b].map(|k| (contacts[k][0], contacts[k][1]));
+                d = pose.rotation * Vector3::new(xb - xa, 0.0, zb - za);
+            }
             (d.y / d.norm()).clamp(-1.0, 1.0).asin().to_degrees()
         };
         let faces = frame.map(|p| self.ground.top(p.x, p.z).map_or(0, |(f, _)| f as u32));

@@ -1,7 +1,7 @@
 //! The state of a body on its base: its pose, its velocities, and the work done on it so far.
 
 use crate::geometry::BodyPose;
-use nalgebra::{Matrix3, Rotation3, Vector3};
+use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector3};
 
 /// Where the body is, how it moves, and the work done on it since the start.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -44,12 +44,19 @@ impl BodyState {
     /// Moves the pose over `h` (s) at the velocities (the step's end velocities: the
     /// semi-implicit Euler step), the rotation by the exact exponential of ω h, kept a
     /// rotation.
+    ///
+    /// A motion over the step that is not finite (a step gone wrong) leaves the pose where it
+    /// is, for the caller to end the route on the velocities: a rotation of NaN is never made
+    /// (renormalising one would not converge, and the route would hang).
     pub fn drift(&mut self, h: f64) {
-        self.pose.cm += self.v * h;
-        let turn = Rotation3::from_scaled_axis(self.w * h);
-        let mut r = turn * Rotation3::from_matrix_unchecked(self.pose.rotation);
-        r.renormalize();
-        self.pose.rotation = r.into_inner();
+        let (dx, turn) = (self.v * h, self.w * h);
+        if !dx.iter().chain(turn.iter()).all(|x| x.is_finite()) {
+            return;
+        }
+        self.pose.cm += dx;
+        let turn = Rotation3::from_scaled_axis(turn);
+        let r = turn * Rotation3::from_matrix_unchecked(self.pose.rotation);
+        self.pose.rotation = renormalized(&r).into_inner();
     }
 
     /// The yaw θ (rad): the angle of x′'s projection from +X towards +Z.
@@ -65,6 +72,24 @@ impl BodyState {
         (i.x * di.z - i.z * di.x) / (i.x * i.x + i.z * i.z)
     }
 }
+
+/// The rotation nearest `r`, as nalgebra's `Rotation3::renormalize` finds it (from `r`'s
+/// quaternion, then at most [`RENORMALIZE_ITERATIONS`] of its iterations, where nalgebra's
+/// own has no bound and some turns of 10¹⁵ rad never converged): the same rotation whenever
+/// those converge, as they do within a few.
+fn renormalized(r: &Rotation3<f64>) -> Rotation3<f64> {
+    let mut guess = UnitQuaternion::from_rotation_matrix(r);
+    guess.renormalize();
+    Rotation3::from_matrix_eps(
+        r.matrix(),
+        f64::EPSILON,
+        RENORMALIZE_ITERATIONS,
+        guess.to_rotation_matrix(),
+    )
+}
+
+/// The most iterations [`renormalized`] takes.
+const RENORMALIZE_ITERATIONS: usize = 100;
 
 #[cfg(test)]
 mod tests {
@@ -82,5 +107,25 @@ mod tests {
         assert!((s.yaw() + 0.3).abs() < 1e-14);
         let r = s.pose.rotation;
         assert!((r.transpose() * r - Matrix3::identity()).norm() < 1e-14);
+    }
+
+    #[test]
+    fn a_motion_that_is_not_finite_leaves_the_pose_and_returns() {
+        let pose = BodyPose {
+            cm: Vector3::new(1.0, 2.0, 3.0),
+            rotation: Matrix3::identity(),
+        };
+        for (v, w) in [
+            (Vector3::zeros(), Vector3::new(0.0, f64::NAN, 0.0)),
+            (Vector3::new(f64::INFINITY, 0.0, 0.0), Vector3::zeros()),
+            (Vector3::zeros(), Vector3::new(1e308, 0.0, 0.0)),
+        ] {
+            let mut s = BodyState::at_rest(pose);
+            s.v = v;
+            s.w = w;
+            // Before, a NaN turn renormalised for ever.
+            s.drift(10.0);
+            assert_eq!(s.pose, pose);
+        }
     }
 }

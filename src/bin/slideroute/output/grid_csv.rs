@@ -3,7 +3,8 @@
 
 use crate::output::roots_report::RootsReport;
 use slideroute::Displacement;
-use std::io::{Read, Write};
+use slideroute::internals::scene::input::{CsvLine, CsvLineError, CsvLines, MAX_CSV_LINE_BYTES};
+use std::io::{BufReader, Read, Write};
 
 /// A grid file that cannot be used: names the file, the line and the reason.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -29,14 +30,14 @@ impl GridPose {
 }
 
 /// The longest line a grid file may have (bytes): a pose is three numbers.
-pub const MAX_LINE_BYTES: usize = 4096;
+pub const MAX_LINE_BYTES: usize = MAX_CSV_LINE_BYTES;
 
 /// The poses of a grid file (CSV with the header `x_m,z_m,theta_deg`), one at a time, so that
 /// memory does not grow with the file: only a line longer than [`MAX_LINE_BYTES`] is refused.
+/// Every fault names its line as the file has it, blank lines counted.
 pub struct PoseRows<R: Read> {
-    rdr: csv::Reader<LineLimit<R>>,
+    lines: CsvLines<BufReader<R>>,
     file: String,
-    record: csv::StringRecord,
     failed: bool,
 }
 
@@ -45,34 +46,40 @@ const COLUMNS: [&str; 3] = ["x_m", "z_m", "theta_deg"];
 impl<R: Read> PoseRows<R> {
     /// The reader of `input` (named `file` in errors), its header checked.
     pub fn new(input: R, file: &str) -> Result<PoseRows<R>, GridError> {
-        let mut rdr = csv::ReaderBuilder::new()
-            .trim(csv::Trim::All)
-            .from_reader(LineLimit::new(input));
-        let err = |reason: String| GridError {
+        let mut lines = CsvLines::new(BufReader::new(input));
+        let err = |line: u64, reason: String| GridError {
             file: file.to_string(),
-            place: "line 1".into(),
+            place: format!("line {line}"),
             reason,
         };
-        let headers = match rdr.headers() {
-            Ok(h) => h.clone(),
-            Err(e) => {
-                return Err(match too_long(&e) {
-                    Some(t) => t.error(file),
-                    None => err(format!("cannot read the header: {e}")),
-                });
-            }
+        let header = match lines.next().transpose() {
+            Ok(h) => h,
+            Err(e) => return Err(line_error(file, &e)),
         };
-        if headers.iter().collect::<Vec<_>>() != COLUMNS {
-            return Err(err(format!(
-                "line 1 must be exactly the header `x_m,z_m,theta_deg`; it is not (it has {} \
-                 comma-separated fields)",
-                headers.len()
-            )));
+        match header {
+            Some(h) if h.cells == COLUMNS => {}
+            Some(h) => {
+                return Err(err(
+                    h.number,
+                    format!(
+                        "line {} must be exactly the header `x_m,z_m,theta_deg`; it is not (it \
+                         has {} comma-separated fields)",
+                        h.number,
+                        h.cells.len()
+                    ),
+                ));
+            }
+            None => {
+                return Err(err(
+                    1,
+                    "the file is empty; its first line must be the header `x_m,z_m,theta_deg`"
+                        .into(),
+                ));
+            }
         }
         Ok(PoseRows {
-            rdr,
+            lines,
             file: file.to_string(),
-            record: csv::StringRecord::new(),
             failed: false,
         })
     }
@@ -85,20 +92,29 @@ impl<R: Read> PoseRows<R> {
         }
     }
 
-    fn pose(&self) -> Result<GridPose, GridError> {
-        let line = self.record.position().map_or(0, |p| p.line());
+    fn pose(&self, line: &CsvLine) -> Result<GridPose, GridError> {
+        let n = line.number;
+        if line.cells.len() != COLUMNS.len() {
+            return Err(self.err(
+                format!("line {n}"),
+                format!(
+                    "{} comma-separated fields where the header has {}",
+                    line.cells.len(),
+                    COLUMNS.len()
+                ),
+            ));
+        }
         let mut v = [0.0; 3];
-        for (k, name) in COLUMNS.iter().enumerate() {
-            let text = self.record.get(k).unwrap_or("");
+        for (k, (name, text)) in COLUMNS.iter().zip(&line.cells).enumerate() {
             let x: f64 = text.parse().map_err(|_| {
                 self.err(
-                    format!("line {line}, column {name}"),
+                    format!("line {n}, column {name}"),
                     format!("`{text}` is not a number"),
                 )
             })?;
             if !x.is_finite() {
                 return Err(self.err(
-                    format!("line {line}, column {name}"),
+                    format!("line {n}, column {name}"),
                     format!("must be a finite number, got {text}"),
                 ));
             }
@@ -120,95 +136,30 @@ impl<R: Read> Iterator for PoseRows<R> {
         if self.failed {
             return None;
         }
-        let item = match self.rdr.read_record(&mut self.record) {
-            Ok(false) => return None,
-            Ok(true) => self.pose(),
-            Err(e) => Err(match too_long(&e) {
-                Some(t) => t.error(&self.file),
-                None => {
-                    let line = e.position().map_or(0, |p| p.line());
-                    self.err(format!("line {line}"), e.to_string())
-                }
-            }),
+        let item = match self.lines.next()? {
+            Ok(line) => self.pose(&line),
+            Err(e) => Err(line_error(&self.file, &e)),
         };
         self.failed = item.is_err();
         Some(item)
     }
 }
 
-/// A line over [`MAX_LINE_BYTES`]: its number (from 1).
-#[derive(Debug)]
-struct TooLong {
-    line: u64,
-}
-
-impl std::fmt::Display for TooLong {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(
-            f,
-            "line {} is longer than {MAX_LINE_BYTES} bytes",
-            self.line
-        )
-    }
-}
-
-impl std::error::Error for TooLong {}
-
-impl TooLong {
-    fn error(&self, file: &str) -> GridError {
-        GridError {
-            file: file.to_string(),
-            place: format!("line {}", self.line),
-            reason: format!("longer than {MAX_LINE_BYTES} bytes (a pose is three numbers)"),
-        }
-    }
-}
-
-/// The over-long line a CSV error comes from, if it does.
-fn too_long(e: &csv::Error) -> Option<&TooLong> {
-    match e.kind() {
-        csv::ErrorKind::Io(io) => io.get_ref()?.downcast_ref::<TooLong>(),
-        _ => None,
-    }
-}
-
-/// A reader that fails (`InvalidData`) on a line longer than [`MAX_LINE_BYTES`].
-struct LineLimit<R> {
-    inner: R,
-    run: usize,
-    lines: u64,
-}
-
-impl<R> LineLimit<R> {
-    fn new(inner: R) -> Self {
-        LineLimit {
-            inner,
-            run: 0,
-            lines: 0,
-        }
-    }
-}
-
-impl<R: Read> Read for LineLimit<R> {
-    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
-        let n = self.inner.read(buf)?;
-        for &b in &buf[..n] {
-            if b == b'\n' {
-                self.run = 0;
-                self.lines += 1;
-            } else {
-                self.run += 1;
-                if self.run > MAX_LINE_BYTES {
-                    return Err(std::io::Error::new(
-                        std::io::ErrorKind::InvalidData,
-                        TooLong {
-                            line: self.lines + 1,
-                        },
-                    ));
-                }
-            }
-        }
-        Ok(n)
+/// The grid error of a line that could not be read.
+fn line_error(file: &str, e: &CsvLineError) -> GridError {
+    let (line, reason) = match e {
+        CsvLineError::TooLong(n) => (
+            *n,
+            format!("longer than {MAX_LINE_BYTES} bytes (a pose is three numbers)"),
+        ),
+        CsvLineError::NotText(n) => (*n, "not UTF-8 text".into()),
+        CsvLineError::OpenQuote(n) => (*n, "a quoted cell is not closed on the line".into()),
+        CsvLineError::Read(n, why) => (*n, format!("cannot read the file: {why}")),
+    };
+    GridError {
+        file: file.to_string(),
+        place: format!("line {line}"),
+        reason,
     }
 }
 
