@@ -35,23 +35,10 @@ fn a_ten_million_increment_route_streams_in_bounded_memory() {
     )
     .unwrap();
     let out = dir.join("out");
-    let mut child = Command::new(env!("CARGO_BIN_EXE_slideroute"))
-        .args(["run", "--quiet", "--dynamics", "paper", "--scene"])
-        .arg(&scene)
-        .arg("--out")
-        .arg(&out)
-        .spawn()
-        .unwrap();
-    let mut peak = 0;
-    let status = loop {
-        if let Some(kb) = peak_kb(child.id()) {
-            peak = peak.max(kb);
-        }
-        if let Some(status) = child.try_wait().unwrap() {
-            break status;
-        }
-        std::thread::sleep(std::time::Duration::from_millis(10));
-    };
+    let args = ["run", "--quiet", "--dynamics", "paper", "--scene"].map(std::ffi::OsStr::new);
+    let mut args = args.to_vec();
+    args.extend([scene.as_os_str(), "--out".as_ref(), out.as_os_str()]);
+    let (status, peak) = peak_of(&args);
     assert!(status.success());
     let summary = std::fs::read_to_string(out.join("summary.json")).unwrap();
     let summary: serde_json::Value = serde_json::from_str(&summary).unwrap();
