@@ -39,7 +39,7 @@ fn probability(k: usize, n: usize) -> Probability {
 
 /// Percentiles 5, 50, 95 of some values (linear between order statistics; infinite values
 /// count, as the largest or smallest). Written as numbers, an infinite one as the factor of
-/// safety's words ([`word_or_number`]): a file holds no infinity.
+/// safety's words (`"unbounded"`, `"not-holdable"`): a file holds no infinity.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct Percentiles {
     /// The 5th percentile.
