@@ -490,9 +490,11 @@ pub(crate) fn check_ratios(scale: f64, b: &Block, l: &Loads) -> Result<(), Model
     if moment > MAX_RATIO * weight * scale {
         return Err(ModelError::new(
             "loads.eccentricity_m",
+            // F and c given, not their product, which may be past the largest number.
             format!(
-                "the water's moment F c = {moment:e} N·m (c = {:e} m) is more than {MAX_RATIO:e} \
+                "the water's moment F c (F = {:e} N, c = {:e} m) is more than {MAX_RATIO:e} \
                  times the weight's over the block, m g L = {:e} N·m",
+                l.hydraulic_force,
                 l.eccentricity,
                 weight * scale
             ),
@@ -506,11 +508,21 @@ pub(crate) fn check_ratios(scale: f64, b: &Block, l: &Loads) -> Result<(), Model
     ] {
         let ratio = i / ml2;
         if !(ratio.is_finite() && (1.0 / MAX_RATIO..=MAX_RATIO).contains(&ratio)) {
+            // A ratio or m L² past the largest number said in words, not `inf`.
+            let shown = |v: f64| {
+                if v.is_finite() {
+                    format!("{v:e}")
+                } else {
+                    "past the largest number".to_string()
+                }
+            };
             return Err(ModelError::new(
                 key,
                 format!(
-                    "{i:e} kg·m² against m L² = {ml2:e} kg·m²: a ratio of {ratio:e}, outside \
-                     1e-6 … 1e6 (a monolith's is of order 0.1)"
+                    "{i:e} kg·m² against m L² = {} kg·m²: a ratio of {}, outside 1e-6 … 1e6 (a \
+                     monolith's is of order 0.1)",
+                    shown(ml2),
+                    shown(ratio)
                 ),
             ));
         }
@@ -613,13 +625,14 @@ mod tests {
     #[test]
     fn a_waters_moment_a_million_times_the_weights_is_refused_naming_the_eccentricity() {
         // Before, c = 1e12 m was taken, and its route of 0.2 s took a minute of sweeps.
-        for c in [1e12, -9.2e18] {
+        for c in [1e12, -9.2e18, f64::MAX] {
             let e = builder()
                 .loads(Loads::plain(8e6, c, 9.81))
                 .build()
                 .unwrap_err();
             assert_eq!(e.key, "loads.eccentricity_m");
             assert!(e.reason.contains("moment"), "{}", e.reason);
+            assert!(!e.reason.contains("inf"), "{}", e.reason);
         }
         // F c = 8e12 N·m against 1e6 m g L ≈ 1e14 N·m: taken. No water, any c.
         assert!(
