@@ -127,9 +127,9 @@ pub mod sweep {
 /// samples drawn from a seed, every sample's route, and what they come to.
 pub mod probabilistic {
     pub use crate::analysis::probabilistic::{
-        Design, Distribution, FORMS, Given, Limits, MAX_SAMPLES, Percentiles, Probability, Sample,
-        Sampling, Sensitivity, Summary, Uncertain, check_uncertain, merged, proportion, run_values,
-        sample_scene, sample_values, summarise,
+        CHUNK, Columns, Design, Distribution, FORMS, Given, Limits, MAX_SAMPLES, Percentiles,
+        Probability, Sample, Sampling, Sensitivity, Summary, Tally, Uncertain, check_uncertain,
+        merged, proportion, run_values, sample_rows, sample_scene, sample_values, summarise,
     };
 }
 

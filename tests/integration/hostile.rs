@@ -616,15 +616,7 @@ fn record_case(rng: &mut Rng) -> Case {
                 fault = None;
             }
             7 => {
-                lines = lines
-                    .iter()
-                    .map(|l| {
-                        l.split(',')
-                            .map(|c| format!("\"{c}\""))
-                            .collect::<Vec<_>>()
-                            .join(" , ")
-                    })
-                    .collect();
+                lines = every_cell_quoted(&lines, " , ");
                 what = "every cell quoted".into();
                 fault = None;
             }
@@ -782,15 +774,7 @@ fn grid_case(rng: &mut Rng) -> Case {
             fault = None;
         }
         5 => {
-            lines = lines
-                .iter()
-                .map(|l| {
-                    l.split(',')
-                        .map(|c| format!("\"{c}\""))
-                        .collect::<Vec<_>>()
-                        .join(",")
-                })
-                .collect();
+            lines = every_cell_quoted(&lines, ",");
             what = "every cell quoted".into();
             fault = None;
         }
@@ -1784,4 +1768,17 @@ fn a_weight_of_1e306_n_is_not_held_by_forty_thousand_sweeps_of_nan() {
     );
     assert!(not_numbers(&dir, None).is_empty());
     let _ = std::fs::remove_dir_all(dir);
+}
+
+/// `lines` with every comma-separated cell in double quotes, the cells joined by `comma`.
+fn every_cell_quoted(lines: &[String], comma: &str) -> Vec<String> {
+    lines
+        .iter()
+        .map(|l| {
+            l.split(',')
+                .map(|c| format!("\"{c}\""))
+                .collect::<Vec<_>>()
+                .join(comma)
+        })
+        .collect()
 }

@@ -4,13 +4,17 @@
 //! whatever the number of threads, and a range of the design run anywhere (another process,
 //! another machine) gives the rows the whole run gives for that range.
 
-use super::{Sampling, Uncertain, sample_scene, sample_values};
+use super::{Sampling, Uncertain, sample_rows, sample_scene, sample_values};
 use crate::analysis::runner::{Outcome, run_many};
 use crate::analysis::sweep::{KeyError, check_key, given_twice};
 use crate::scene::Scene;
 
 /// The most samples one design may have.
 pub const MAX_SAMPLES: usize = 10_000_000;
+
+/// The most samples [`Design::run_each`] runs at once (on every core): enough that the cores
+/// seldom wait for a chunk's slowest route, few enough that their rows take a few MB.
+pub const CHUNK: usize = 4096;
 
 /// One sample: its number in the design, its values, what it came to.
 #[derive(Debug, Clone, PartialEq)]
@@ -49,6 +53,32 @@ impl Design<'_> {
     /// [`Outcome::NotRun`]) and by routes under way, which end at their next increment.
     pub fn run(&self, tick: impl Fn() + Sync, stop: impl Fn() -> bool + Sync) -> Vec<Sample> {
         run_values(self.scene, self.uncertain, 0, self.values(), tick, stop)
+    }
+
+    /// Every sample, in order, as [`Design::run`] runs them, each handed to `each` as soon as
+    /// it and those before it have run, holding at most [`CHUNK`] samples at a time (their
+    /// values drawn as they are needed, [`sample_rows`]): memory does not grow with the number
+    /// of samples. The first error of `each` ends the run and is returned; so does `stop`, after
+    /// which the samples not run are handed on as [`Outcome::NotRun`].
+    pub fn run_each<E>(
+        &self,
+        tick: impl Fn() + Sync,
+        stop: impl Fn() -> bool + Sync,
+        mut each: impl FnMut(Sample) -> Result<(), E>,
+    ) -> Result<(), E> {
+        let mut rows = sample_rows(self.uncertain, self.samples, self.seed, self.sampling);
+        let mut first = 0;
+        loop {
+            let chunk: Vec<Vec<f64>> = rows.by_ref().take(CHUNK).collect();
+            if chunk.is_empty() {
+                return Ok(());
+            }
+            let n = chunk.len();
+            for sample in run_values(self.scene, self.uncertain, first, chunk, &tick, &stop) {
+                each(sample)?;
+            }
+            first += n;
+        }
     }
 }
 

@@ -4,16 +4,18 @@
 //! every sample of a design run in order by the one runner (`design.rs`), the rank correlations
 //! of inputs with results (`sensitivity.rs`), and what the samples come to (`summary.rs`).
 
+mod columns;
 mod design;
 mod sampling;
 mod sensitivity;
 mod summary;
 
 pub use crate::numeric::{Distribution, FORMS, Uncertain};
-pub use design::{Design, MAX_SAMPLES, Sample, check_uncertain, run_values};
-pub use sampling::{Sampling, design};
-pub use sensitivity::{Sensitivity, sensitivities};
-pub use summary::{Given, Limits, Percentiles, Probability, Summary, summarise};
+pub use columns::Columns;
+pub use design::{CHUNK, Design, MAX_SAMPLES, Sample, check_uncertain, run_values};
+pub use sampling::{Draws, Sampling};
+pub use sensitivity::Sensitivity;
+pub use summary::{Given, Limits, Percentiles, Probability, Summary, Tally, summarise};
 
 use crate::scene::{Scene, SceneError};
 
@@ -39,22 +41,30 @@ pub fn sample_values(
     seed: u64,
     sampling: Sampling,
 ) -> Vec<Vec<f64>> {
+    sample_rows(uncertain, samples, seed, sampling).collect()
+}
+
+/// [`sample_values`] one sample at a time, holding no sample's values but the one given (the
+/// design drawn one row at a time).
+pub fn sample_rows(
+    uncertain: &[Uncertain],
+    samples: usize,
+    seed: u64,
+    sampling: Sampling,
+) -> impl Iterator<Item = Vec<f64>> + '_ {
     let mut sorted: Vec<usize> = (0..uncertain.len()).collect();
     sorted.sort_by(|&a, &b| uncertain[a].key.cmp(&uncertain[b].key));
     let mut dimension = vec![0; uncertain.len()];
     for (d, &k) in sorted.iter().enumerate() {
         dimension[k] = d;
     }
-    design(samples, uncertain.len(), seed, sampling)
-        .into_iter()
-        .map(|row| {
-            uncertain
-                .iter()
-                .zip(&dimension)
-                .map(|(k, &d)| k.distribution.quantile(row[d]))
-                .collect()
-        })
-        .collect()
+    Draws::new(samples, uncertain.len(), seed, sampling).map(move |row| {
+        uncertain
+            .iter()
+            .zip(&dimension)
+            .map(|(k, &d)| k.distribution.quantile(row[d]))
+            .collect()
+    })
 }
 
 /// The scene of one sample: `scene` with each uncertain key set to its value, checked as a

@@ -3,7 +3,9 @@
 //! values, so that a monotone effect of any shape counts fully and an infinite factor of safety
 //! (a block no multiple of the loads starts) is simply the largest.
 
+#[cfg(test)]
 use super::Sample;
+#[cfg(test)]
 use crate::analysis::runner::RouteResult;
 
 /// Spearman's ρ of paired values: the Pearson correlation of their ranks, ties given their
@@ -67,7 +69,9 @@ pub struct Sensitivity {
     pub with_travel: Option<f64>,
 }
 
-/// The rank correlations of each of `keys` with the factor of safety and the travel.
+/// The rank correlations of each of `keys` with the factor of safety and the travel, of samples
+/// held in a list (`Tally` computes them without one).
+#[cfg(test)]
 pub fn sensitivities(keys: &[String], samples: &[Sample]) -> Vec<Sensitivity> {
     let routes: Vec<(&[f64], &RouteResult)> = samples
         .iter()

@@ -3,8 +3,8 @@
 //! travel, rotation and a record's permanent displacement exceed the limits given,
 //! percentiles, and each input's rank correlations — `probabilistic.json`.
 
-use super::{Design, Sample, Sampling, Sensitivity, proportion, sensitivities};
-use crate::analysis::runner::{Outcome, RouteResult};
+use super::{Columns, Design, Sample, Sampling, Sensitivity, proportion};
+use crate::analysis::runner::Outcome;
 
 /// A probability with its 95 % Wilson interval, over the samples whose route ran.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
@@ -207,70 +207,285 @@ pub struct Summary {
     pub rank_correlations: Vec<Sensitivity>,
 }
 
-/// What `samples` of `design` came to.
+/// What `samples` of `design` came to (a [`Tally`] of them, held in memory).
 pub fn summarise(design: &Design, limits: Limits, samples: &[Sample]) -> Summary {
-    let routes: Vec<&RouteResult> = samples.iter().filter_map(|s| s.outcome.route()).collect();
-    let n = routes.len();
-    let count = |f: &dyn Fn(&RouteResult) -> bool| routes.iter().filter(|r| f(r)).count();
-    // A failed cone program counts as not sliding (its row says so).
-    let fs = |r: &RouteResult| r.factor_of_safety_value().unwrap_or(f64::NAN);
-    let keys: Vec<String> = design.uncertain.iter().map(|u| u.key.clone()).collect();
-    let shaken = design.scene.record().is_some();
-    let displaced = |r: &RouteResult| r.permanent_m().unwrap_or(0.0);
-    Summary {
-        scene: design.scene.name().to_string(),
-        samples: design.samples,
-        seed: design.seed,
-        sampling: design.sampling,
-        distributions: design
-            .uncertain
-            .iter()
-            .map(|u| Given {
-                key: u.key.clone(),
-                distribution: u.distribution.to_string(),
-            })
-            .collect(),
-        routes: n,
-        invalid_samples: samples
-            .iter()
-            .filter(|s| matches!(s.outcome, Outcome::Invalid { .. }))
-            .count(),
-        not_run: samples
-            .iter()
-            .filter(|s| matches!(s.outcome, Outcome::NotRun))
-            .count(),
-        shaken,
-        probability_of_sliding: if shaken {
-            probability(count(&|r| displaced(r) > 0.0), n)
+    let mut tally = Tally::new(design, limits, None).with_in_memory_rows(samples.len());
+    // Held in memory, the tally has no file to fail on.
+    samples
+        .iter()
+        .try_for_each(|s| tally.add(s))
+        .and_then(|()| tally.finish())
+        .expect("a tally held in memory does not fail")
+}
+
+/// What the samples of a design come to, taken one at a time in the design's order
+/// ([`Tally::add`]) and summed up by [`Tally::finish`]: the counts as the samples come, and each
+/// route's values (the sample's values, factor of safety, travel, yaw, permanent displacement)
+/// in [`Columns`], which hold a bounded number in memory and the rest in a temporary file, so
+/// that the percentiles and rank correlations are exact for any number of samples in a few tens
+/// of MB.
+pub struct Tally {
+    head: Summary,
+    limits: Limits,
+    keys: usize,
+    /// Sliding, over the displacement, travel and rotation limits.
+    counts: [usize; 4],
+    columns: Columns,
+}
+
+impl Tally {
+    /// An empty tally of `design`'s samples; a temporary file, if needed, made in `spill_in`
+    /// (else the system's temporary folder).
+    pub fn new(design: &Design, limits: Limits, spill_in: Option<std::path::PathBuf>) -> Tally {
+        let keys = design.uncertain.len();
+        let shaken = design.scene.record().is_some();
+        let head = Summary {
+            scene: design.scene.name().to_string(),
+            samples: design.samples,
+            seed: design.seed,
+            sampling: design.sampling,
+            distributions: design
+                .uncertain
+                .iter()
+                .map(|u| Given {
+                    key: u.key.clone(),
+                    distribution: u.distribution.to_string(),
+                })
+                .collect(),
+            routes: 0,
+            invalid_samples: 0,
+            not_run: 0,
+            shaken,
+            probability_of_sliding: probability(0, 0),
+            displacement_limit_m: limits.displacement_m.filter(|_| shaken),
+            probability_displacement_exceeds_limit: None,
+            permanent_displacement_m: None,
+            travel_limit_m: limits.travel_m,
+            probability_travel_exceeds_limit: None,
+            rotation_limit_deg: limits.rotation_deg,
+            probability_rotation_exceeds_limit: None,
+            factor_of_safety: None,
+            travel_m: None,
+            rotation_deg: None,
+            rank_correlations: design
+                .uncertain
+                .iter()
+                .map(|u| Sensitivity {
+                    key: u.key.clone(),
+                    with_factor_of_safety: None,
+                    with_travel: None,
+                })
+                .collect(),
+        };
+        Tally {
+            head,
+            limits,
+            keys,
+            counts: [0; 4],
+            columns: Columns::new(keys + 4, spill_in),
+        }
+    }
+
+    /// The same tally holding up to `rows` routes in memory.
+    pub fn with_in_memory_rows(self, rows: usize) -> Tally {
+        Tally {
+            columns: self.columns.with_in_memory_rows(rows),
+            ..self
+        }
+    }
+
+    /// Takes the next sample.
+    pub fn add(&mut self, sample: &Sample) -> std::io::Result<()> {
+        let r = match &sample.outcome {
+            Outcome::Route(r) => r,
+            Outcome::Invalid { .. } => {
+                self.head.invalid_samples += 1;
+                return Ok(());
+            }
+            Outcome::NotRun => {
+                self.head.not_run += 1;
+                return Ok(());
+            }
+        };
+        self.head.routes += 1;
+        // A failed cone program counts as not sliding (its row says so).
+        let fs = r.factor_of_safety_value().unwrap_or(f64::NAN);
+        let displaced = r.permanent_m().unwrap_or(0.0);
+        let sliding = if self.head.shaken {
+            displaced > 0.0
         } else {
-            probability(count(&|r| fs(r) < 1.0), n)
-        },
-        displacement_limit_m: limits.displacement_m.filter(|_| shaken),
-        probability_displacement_exceeds_limit: limits
-            .displacement_m
-            .filter(|_| shaken)
-            .map(|l| probability(count(&|r| displaced(r) > l), n)),
-        permanent_displacement_m: shaken
-            .then(|| percentiles(routes.iter().map(|r| displaced(r)).collect()))
-            .flatten(),
-        travel_limit_m: limits.travel_m,
-        probability_travel_exceeds_limit: limits
-            .travel_m
-            .map(|l| probability(count(&|r| r.travel_m > l), n)),
-        rotation_limit_deg: limits.rotation_deg,
-        probability_rotation_exceeds_limit: limits
-            .rotation_deg
-            .map(|l| probability(count(&|r| r.yaw_deg.abs() > l), n)),
-        factor_of_safety: percentiles(routes.iter().map(|r| fs(r)).collect()),
-        travel_m: percentiles(routes.iter().map(|r| r.travel_m).collect()),
-        rotation_deg: percentiles(routes.iter().map(|r| r.yaw_deg.abs()).collect()),
-        rank_correlations: sensitivities(&keys, samples),
+            fs < 1.0
+        };
+        let over = [
+            sliding,
+            self.head.shaken && self.limits.displacement_m.is_some_and(|l| displaced > l),
+            self.limits.travel_m.is_some_and(|l| r.travel_m > l),
+            self.limits
+                .rotation_deg
+                .is_some_and(|l| r.yaw_deg.abs() > l),
+        ];
+        for (c, o) in self.counts.iter_mut().zip(over) {
+            *c += usize::from(o);
+        }
+        let mut row = Vec::with_capacity(self.keys + 4);
+        row.extend(sample.values.iter().take(self.keys));
+        row.resize(self.keys, f64::NAN);
+        row.extend([fs, r.travel_m, r.yaw_deg.abs(), displaced]);
+        self.columns.push(&row)
+    }
+
+    /// The samples' factor of safety, in order, of each route that ran (NaN where its cone
+    /// program failed): `each` called with every one.
+    pub fn factors_of_safety(&self, mut each: impl FnMut(f64)) -> std::io::Result<()> {
+        let c = self.keys;
+        self.columns.scan(|row| each(row[c]))
+    }
+
+    /// What the samples came to.
+    pub fn finish(&self) -> std::io::Result<Summary> {
+        let mut s = self.head.clone();
+        let n = s.routes;
+        let [sliding, over_displacement, over_travel, over_rotation] = self.counts;
+        let (fs, travel, rotation, displaced) =
+            (self.keys, self.keys + 1, self.keys + 2, self.keys + 3);
+        s.probability_of_sliding = probability(sliding, n);
+        s.probability_displacement_exceeds_limit = s
+            .displacement_limit_m
+            .map(|_| probability(over_displacement, n));
+        s.probability_travel_exceeds_limit = s.travel_limit_m.map(|_| probability(over_travel, n));
+        s.probability_rotation_exceeds_limit =
+            s.rotation_limit_deg.map(|_| probability(over_rotation, n));
+        if s.shaken {
+            s.permanent_displacement_m = self.columns.percentiles(displaced)?;
+        }
+        s.factor_of_safety = self.columns.percentiles(fs)?;
+        s.travel_m = self.columns.percentiles(travel)?;
+        s.rotation_deg = self.columns.percentiles(rotation)?;
+        for (k, c) in s.rank_correlations.iter_mut().enumerate() {
+            c.with_factor_of_safety = self.columns.spearman(k, fs)?;
+            c.with_travel = self.columns.spearman(k, travel)?;
+        }
+        Ok(s)
     }
 }
 
 #[cfg(test)]
 mod tests {
+    use super::super::columns::tests::uniforms;
+    use super::super::sensitivity::sensitivities;
     use super::*;
+    use crate::analysis::runner::RouteResult;
+    use crate::mechanics::static_friction::FactorOfSafety;
+    use crate::route::Reason;
+    use crate::scene::Scene;
+
+    /// Samples of every kind from a fixed sequence: routes with finite, infinite and failed
+    /// factors of safety, ties in travel, invalid and not run.
+    fn mixed(n: usize) -> Vec<Sample> {
+        let mut next = uniforms(0x2545_f491_4f6c_dd1d);
+        (0..n)
+            .map(|index| {
+                let (a, b) = (next(), next());
+                let outcome = match index % 11 {
+                    3 => Outcome::Invalid { reason: "x".into() },
+                    7 => Outcome::NotRun,
+                    k => Outcome::Route(RouteResult {
+                        factor_of_safety: match k {
+                            1 => Some(FactorOfSafety::Unbounded),
+                            2 => Some(FactorOfSafety::NotHoldable),
+                            5 => None,
+                            _ => Some(FactorOfSafety::Finite {
+                                value: 0.5 + a + 0.2 * b,
+                            }),
+                        },
+                        reason: Reason::Stopped,
+                        t_s: 1.0,
+                        detail: String::new(),
+                        // Ties: travel on a grid of 0.25 m.
+                        travel_m: (8.0 * a * b).round() / 4.0,
+                        x_m: 0.0,
+                        z_m: 0.0,
+                        yaw_deg: 10.0 * (b - 0.5),
+                        max_alpha_deg: 0.0,
+                        max_beta_deg: 0.0,
+                        permanent_xz_m: Some([a, b]),
+                        cm_path_m: Vec::new(),
+                    }),
+                };
+                Sample {
+                    index,
+                    values: vec![a, b],
+                    outcome,
+                }
+            })
+            .collect()
+    }
+
+    #[test]
+    fn a_tally_past_its_memory_comes_to_the_percentiles_and_correlations_of_every_value_held() {
+        let scene = Scene::default_scene();
+        let uncertain: Vec<crate::numeric::Uncertain> = [
+            "friction.mu_k=uniform:0.3:0.5",
+            "loads.eccentricity_m=uniform:0.5:1.5",
+        ]
+        .map(|u| u.parse().unwrap())
+        .to_vec();
+        let design = Design {
+            scene: &scene,
+            uncertain: &uncertain,
+            samples: 700,
+            seed: 1,
+            sampling: Sampling::MonteCarlo,
+        };
+        let samples = mixed(700);
+        let limits = Limits::new(Some(0.5), Some(2.0)).unwrap();
+        // Held whole, the old way: every value in a list.
+        let routes: Vec<&RouteResult> = samples.iter().filter_map(|s| s.outcome.route()).collect();
+        let fs = |r: &&RouteResult| r.factor_of_safety_value().unwrap_or(f64::NAN);
+        let want_fs = percentiles(routes.iter().map(fs).collect());
+        let want_travel = percentiles(routes.iter().map(|r| r.travel_m).collect());
+        let want_rotation = percentiles(routes.iter().map(|r| r.yaw_deg.abs()).collect());
+        let keys = [
+            "friction.mu_k".to_string(),
+            "loads.eccentricity_m".to_string(),
+        ];
+        let want_rho = sensitivities(&keys, &samples);
+        for rows in [1, 16, 100, 10_000] {
+            let mut tally = Tally::new(&design, limits, None).with_in_memory_rows(rows);
+            for s in &samples {
+                tally.add(s).unwrap();
+            }
+            let got = tally.finish().unwrap();
+            assert_eq!(got.routes, routes.len());
+            assert_eq!((got.invalid_samples, got.not_run), (64, 63));
+            assert_eq!(got.factor_of_safety, want_fs, "{rows}");
+            assert_eq!(got.travel_m, want_travel, "{rows}");
+            assert_eq!(got.rotation_deg, want_rotation, "{rows}");
+            assert_eq!(
+                got.probability_of_sliding,
+                probability(routes.iter().filter(|r| fs(r) < 1.0).count(), routes.len())
+            );
+            assert_eq!(
+                got.probability_travel_exceeds_limit,
+                Some(probability(
+                    routes.iter().filter(|r| r.travel_m > 0.5).count(),
+                    routes.len()
+                ))
+            );
+            for (g, w) in got.rank_correlations.iter().zip(&want_rho) {
+                let near = |a: Option<f64>, b: Option<f64>| match (a, b) {
+                    (Some(a), Some(b)) => (a - b).abs() < 1e-12,
+                    (a, b) => a.is_none() && b.is_none(),
+                };
+                assert!(
+                    near(g.with_factor_of_safety, w.with_factor_of_safety),
+                    "{g:?} {w:?}"
+                );
+                assert!(near(g.with_travel, w.with_travel), "{g:?} {w:?}");
+                assert!(g.with_travel.is_some() && g.with_factor_of_safety.is_some());
+            }
+        }
+    }
 
     #[test]
     fn a_probability_says_its_interval_or_that_no_route_ran() {

@@ -82,12 +82,15 @@ pub(super) fn hold_anchor(
 pub(super) fn hold_on_creases(
     sim: &Simulation,
     finder: &mut PoseFinder<'_>,
-    mut y: RigidState,
-    mut ev: Eval,
-) -> Result<(RigidState, Eval), Stop> {
+    y: &mut RigidState,
+    ev: &mut Eval,
+) -> Result<(), Stop> {
     let l = sim.l();
     for _ in 0..4 {
         let creases = ev.motion.creases.without(ev.motion.stuck);
+        if creases.is_empty() {
+            break;
+        }
         let gaps: Vec<f64> = creases
             .iter()
             .map(|c| c.normal.dot(&ev.pose.vertices[c.contact]) - c.offset)
@@ -118,8 +121,8 @@ pub(super) fn hold_on_creases(
         y.x += delta[0];
         y.z += delta[1];
         y.theta += delta[2] / l;
-        ev = evaluate(sim, finder, &y, Hold::of(&ev.motion))?;
-        y = ev.accept(&y);
+        *ev = evaluate(sim, finder, y, Hold::of(&ev.motion))?;
+        *y = ev.accept(y);
     }
-    Ok((y, ev))
+    Ok(())
 }

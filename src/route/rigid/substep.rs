@@ -372,8 +372,9 @@ impl RigidBody<'_> {
             }
             _ => (next, next_ev),
         };
-        let (next, next_ev) =
-            hold_on_creases(&self.sim, &mut at_next, next, next_ev).map_err(Ending::Failed)?;
+        let (mut next, mut next_ev) = (next, next_ev);
+        hold_on_creases(&self.sim, &mut at_next, &mut next, &mut next_ev)
+            .map_err(Ending::Failed)?;
         if !self.rows_within(finder, h, &k1, (&next, &next_ev)) {
             // A row within the step off the model: shorter steps.
             self.h = 0.5 * h;
@@ -420,14 +421,16 @@ impl RigidBody<'_> {
             let y = y.at(y0[8] + (t - t0));
             // Held as the step's end is: a sticking contact where it stuck, a crease's contact
             // on its second face.
-            let row = evaluate(&self.sim, &mut f, &y, hold).and_then(|e| {
-                let (y, e) = match self.anchor {
+            let row = evaluate(&self.sim, &mut f, &y, hold).and_then(|mut e| {
+                let mut y = match self.anchor {
                     Some(a) if e.motion.stuck == Some(a.contact) => {
-                        hold_anchor(&self.sim, &mut f, e.accept(&y), e, a)?
+                        let held;
+                        (held, e) = hold_anchor(&self.sim, &mut f, e.accept(&y), e, a)?;
+                        held
                     }
-                    _ => (e.accept(&y), e),
+                    _ => e.accept(&y),
                 };
-                let (y, e) = hold_on_creases(&self.sim, &mut f, y, e)?;
+                hold_on_creases(&self.sim, &mut f, &mut y, &mut e)?;
                 Ok(e.row(t, &y))
             });
             match row {
@@ -585,8 +588,10 @@ impl RigidBody<'_> {
         // The state just after: evaluated there, each crease's contact put back on its second
         // face (which may itself call for the next event).
         let settle = |finder: &mut PoseFinder<'_>, hold: Hold| {
-            let at = evaluate(sim, finder, &y_lo, hold)?;
-            hold_on_creases(sim, finder, at.accept(&y_lo), at)
+            let mut at = evaluate(sim, finder, &y_lo, hold)?;
+            let mut y = at.accept(&y_lo);
+            hold_on_creases(sim, finder, &mut y, &mut at)?;
+            Ok((y, at))
         };
         // A contact riding a crease that can neither stay at it nor slip from it along a
         // direction consistent with its friction: it leaves one of the two faces, the first

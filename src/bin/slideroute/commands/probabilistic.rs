@@ -7,9 +7,12 @@ use crate::cli::ProbabilisticArgs;
 use crate::exit::{CliError, bad_input, failed, interrupted, many_interrupted_after, outln};
 use crate::output::folder::Folder;
 use crate::output::route_files::{Manifest, write_json_with_manifest};
+use crate::output::samples_files::SamplesCsv;
+use crate::output::view::many::MAX_FAN_PATHS;
 use slideroute::Scene;
 use slideroute::probabilistic::{
-    Design, Limits, MAX_SAMPLES, Sampling, Summary, Uncertain, check_uncertain, merged, summarise,
+    Design, Limits, MAX_SAMPLES, Sample, Sampling, Summary, Tally, Uncertain, check_uncertain,
+    merged,
 };
 
 /// Runs `slideroute probabilistic`.
@@ -46,21 +49,37 @@ pub fn probabilistic(args: &ProbabilisticArgs) -> Result<(), CliError> {
         seed: args.seed,
         sampling: args.sampling,
     };
-    let rows = design.run(|| bar.inc(1), interrupted);
-    bar.finish_and_clear();
+    // Each sample, as it comes, written to samples.csv and tallied (its values kept in a
+    // temporary file in the staging folder past a few MB); the first routes kept for the fans.
+    let mut tally = Tally::new(&design, limits, Some(folder.staging().map_err(failed)?));
+    let mut kept: Vec<Sample> = Vec::new();
     let csv_path = folder
         .write_with("samples.csv", |tmp| {
             let file = std::fs::File::create(tmp)
                 .map_err(|e| format!("{}: cannot write: {e}", tmp.display()))?;
-            crate::output::samples_files::write_csv(
-                std::io::BufWriter::new(file),
-                &uncertain,
-                &rows,
-            )
-            .map_err(|e| format!("samples.csv: {e}"))
+            let mut csv = SamplesCsv::new(std::io::BufWriter::new(file), &uncertain)
+                .map_err(|e| format!("samples.csv: {e}"))?;
+            design.run_each(
+                || bar.inc(1),
+                interrupted,
+                |s| {
+                    csv.push(&s).map_err(|e| format!("samples.csv: {e}"))?;
+                    tally
+                        .add(&s)
+                        .map_err(|e| format!("the samples' temporary file: {e}"))?;
+                    if kept.len() < MAX_FAN_PATHS && s.outcome.route().is_some() {
+                        kept.push(s);
+                    }
+                    Ok::<(), String>(())
+                },
+            )?;
+            csv.finish().map_err(|e| format!("samples.csv: {e}"))
         })
         .map_err(failed)?;
-    let summary = summarise(&design, limits, &rows);
+    bar.finish_and_clear();
+    let summary = tally
+        .finish()
+        .map_err(|e| failed(format!("the samples' temporary file: {e}")))?;
     let mut written = vec![csv_path];
     // The scene as written, drawn in black on the fan (route-fan.svg and route-fan.html).
     let drawn_plots = cfg!(feature = "plots") && !args.no_plots;
@@ -72,18 +91,25 @@ pub fn probabilistic(args: &ProbabilisticArgs) -> Result<(), CliError> {
     #[cfg(feature = "plots")]
     if drawn_plots && !interrupted() {
         let staging = folder.staging().map_err(failed)?;
+        let fs = |each: &mut dyn FnMut(Option<f64>)| {
+            tally
+                .factors_of_safety(|v| each(Some(v).filter(|v| !v.is_nan())))
+                .map_err(|e| format!("the samples' temporary file: {e}"))
+        };
         let staged = crate::output::plots::write_probabilistic_plots(
             &staging,
             &base,
             nominal.as_ref(),
-            &rows,
+            &kept,
+            &fs,
             &summary,
         )
         .map_err(failed)?;
         written.extend(folder.adopt_all(staged).map_err(failed)?);
     }
     if !args.no_3d && !interrupted() {
-        let (paths, routes) = crate::output::view::many::cm_paths(rows.iter().map(|s| &s.outcome));
+        let (paths, _) = crate::output::view::many::cm_paths(kept.iter().map(|s| &s.outcome));
+        let routes = summary.routes;
         let mut notes = vec![format!(
             "{} samples, seed {}; the foundation is drawn as the scene writes it",
             summary.samples, summary.seed

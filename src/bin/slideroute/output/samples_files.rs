@@ -9,30 +9,38 @@ use crate::output::sweep_files::number;
 use slideroute::probabilistic::{Sample, Uncertain};
 use slideroute::{NOT_RUN, Outcome};
 
-/// `samples.csv`: one row per sample, in order.
-pub fn write_csv(
-    out: impl std::io::Write,
-    uncertain: &[Uncertain],
-    rows: &[Sample],
-) -> Result<(), csv::Error> {
-    let mut w = csv::Writer::from_writer(out);
-    let mut header = vec!["sample".to_string()];
-    header.extend(uncertain.iter().map(|u| u.key.clone()));
-    header.extend(
-        [
-            "factor_of_safety",
-            "reason",
-            "t_end_s",
-            "travel_m",
-            "final_yaw_deg",
-            "final_x_m",
-            "final_z_m",
-            "detail",
-        ]
-        .map(String::from),
-    );
-    w.write_record(&header)?;
-    for s in rows {
+/// `samples.csv` written as the samples come, one row each, in order: memory does not grow
+/// with their number.
+pub struct SamplesCsv<W: std::io::Write> {
+    w: csv::Writer<W>,
+}
+
+impl<W: std::io::Write> SamplesCsv<W> {
+    /// The file with its header: the sample's number, each uncertain key, then what the route
+    /// came to.
+    pub fn new(out: W, uncertain: &[Uncertain]) -> Result<Self, csv::Error> {
+        let mut w = csv::Writer::from_writer(out);
+        let mut header = vec!["sample".to_string()];
+        header.extend(uncertain.iter().map(|u| u.key.clone()));
+        header.extend(
+            [
+                "factor_of_safety",
+                "reason",
+                "t_end_s",
+                "travel_m",
+                "final_yaw_deg",
+                "final_x_m",
+                "final_z_m",
+                "detail",
+            ]
+            .map(String::from),
+        );
+        w.write_record(&header)?;
+        Ok(SamplesCsv { w })
+    }
+
+    /// The row of sample `s`.
+    pub fn push(&mut self, s: &Sample) -> Result<(), csv::Error> {
         let mut rec = vec![s.index.to_string()];
         rec.extend(s.values.iter().map(|&v| number(v)));
         match &s.outcome {
@@ -54,10 +62,28 @@ pub fn write_csv(
                 rec.extend(["", NOT_RUN, "", "", "", "", "", ""].map(String::from));
             }
         }
-        w.write_record(&rec)?;
+        self.w.write_record(&rec)
     }
-    w.flush()?;
-    Ok(())
+
+    /// Everything written out.
+    pub fn finish(mut self) -> Result<(), csv::Error> {
+        self.w.flush()?;
+        Ok(())
+    }
+}
+
+/// `samples.csv`: one row per sample, in order.
+#[cfg(test)]
+pub fn write_csv(
+    out: impl std::io::Write,
+    uncertain: &[Uncertain],
+    rows: &[Sample],
+) -> Result<(), csv::Error> {
+    let mut w = SamplesCsv::new(out, uncertain)?;
+    for s in rows {
+        w.push(s)?;
+    }
+    w.finish()
 }
 
 #[cfg(test)]

@@ -119,18 +119,29 @@ pub fn route_fan(
     )
 }
 
+/// The factors of safety of the samples whose route ran, each handed in order to the function
+/// given (`None` where the cone program failed): held in no list, so that a picture of any
+/// number of samples takes no memory for them.
+pub type FactorsOfSafety<'a> = &'a dyn Fn(&mut dyn FnMut(Option<f64>)) -> Res<()>;
+
+/// The finite factors of safety, each handed in order to the function given.
+type Finite<'a> = &'a dyn Fn(&mut dyn FnMut(f64)) -> Res<()>;
+
 /// The histogram of the factor of safety: bars below 1 red, at or above blue; infinite values
 /// (no multiple of the loads starts the block, or the weight alone does) counted in the panel.
-pub fn factor_of_safety(path: &Path, samples: &[Sample], summary: &Summary) -> Res<()> {
-    let fs = factors_of_safety(samples);
-    let finite: Vec<f64> = fs
-        .iter()
-        .flatten()
-        .copied()
-        .filter(|v| v.is_finite())
-        .collect();
+/// Two passes over the factors: their range and what is not drawn, then the bars.
+pub fn factor_of_safety(path: &Path, fs: FactorsOfSafety, summary: &Summary) -> Res<()> {
+    let mut not = NotDrawn::default();
+    let (mut finite, mut lo, mut hi) = (0usize, f64::INFINITY, f64::NEG_INFINITY);
+    fs(&mut |v| match v {
+        Some(v) if v.is_finite() => {
+            finite += 1;
+            (lo, hi) = (lo.min(v), hi.max(v));
+        }
+        v => not.count(v),
+    })?;
     let title = format!("{}: factor of safety of the samples", summary.scene);
-    if finite.is_empty() {
+    if finite == 0 {
         return sheet::message(
             path,
             (900, 300),
@@ -141,26 +152,31 @@ pub fn factor_of_safety(path: &Path, samples: &[Sample], summary: &Summary) -> R
             )],
         );
     }
-    let histogram = Histogram::of(&finite);
+    let histogram = Histogram::over(finite, (lo, hi), &|each| {
+        fs(&mut |v| {
+            if let Some(v) = v.filter(|v| v.is_finite()) {
+                each(v)
+            }
+        })
+    })?;
     let sheet = Sheet::new(path, (1200, 600), &title)?;
     histogram.draw(path, &sheet.chart)?;
     let mut entries = histogram.entries(summary);
-    entries.extend(not_drawn(&fs));
+    entries.extend(not.entries());
     let y = sheet::heading(path, &sheet.panel, "Legend", 0)?;
     sheet::legend(path, &sheet.panel, &entries, y)?;
     sheet.root.present().map_err(err(path))
 }
 
-/// The factor of safety of each sample whose route ran: a number, ±∞, or none where the cone
-/// program failed.
-fn factors_of_safety(samples: &[Sample]) -> Vec<Option<f64>> {
-    samples
-        .iter()
-        .filter_map(|s| match &s.outcome {
-            Outcome::Route(r) => Some(r.factor_of_safety_value()),
-            _ => None,
-        })
-        .collect()
+/// The factor of safety of each sample whose route ran, handed to `each`: a number, ±∞, or
+/// none where the cone program failed.
+#[cfg(test)]
+pub(super) fn factors_of_safety(samples: &[Sample], each: &mut dyn FnMut(Option<f64>)) {
+    for s in samples {
+        if let Outcome::Route(r) = &s.outcome {
+            each(r.factor_of_safety_value());
+        }
+    }
 }
 
 /// The bars of the factor of safety's histogram: their edges placed so that 1 is always one of
@@ -189,24 +205,37 @@ struct Bar {
 }
 
 impl Histogram {
-    /// The histogram of the `finite` factors of safety (not empty): about √n bars, from 10 to
-    /// 60, of one width over the values and 1, an edge at 1.
+    /// The histogram of the `finite` factors of safety (not empty).
+    #[cfg(test)]
     fn of(finite: &[f64]) -> Histogram {
-        let (lo, hi) = sheet::ranges(finite.iter().copied().chain([1.0]));
-        let bins = (finite.len() as f64).sqrt().clamp(10.0, 60.0);
+        let lo = finite.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = finite.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        let all = |each: &mut dyn FnMut(f64)| -> Res<()> {
+            finite.iter().for_each(|&v| each(v));
+            Ok(())
+        };
+        Histogram::over(finite.len(), (lo, hi), &all).expect("values in memory")
+    }
+
+    /// The histogram of `n` finite factors of safety, `n` at least one, the least and largest
+    /// `(lo, hi)`, which `scan` hands over one by one: about √n bars, from 10 to 60, of one
+    /// width over the values and 1, an edge at 1.
+    fn over(n: usize, (lo, hi): (f64, f64), scan: Finite) -> Res<Histogram> {
+        let (lo, hi) = sheet::ranges([lo, hi, 1.0].into_iter());
+        let bins = (n as f64).sqrt().clamp(10.0, 60.0);
         let width = (hi - lo) / bins;
         // Whole bars from 1 down past `lo` and up past `hi`: 1 is an edge.
         let below = ((1.0 - lo) / width).ceil().max(0.0) as usize;
         let above = ((hi - 1.0) / width).ceil().max(1.0) as usize;
         let first = 1.0 - below as f64 * width;
         let mut counts = vec![0usize; below + above];
-        for &v in finite {
+        scan(&mut |v| {
             // Counted from 1, so that a value of exactly 1 starts the first bar held.
             let k = below as f64 + ((v - 1.0) / width).floor();
             counts[(k.max(0.0) as usize).min(below + above - 1)] += 1;
-        }
+        })?;
         let top = counts.iter().copied().max().unwrap_or(1) as f64 * 1.08;
-        Histogram {
+        Ok(Histogram {
             lo: first - 0.5 * width,
             hi: first + (below + above) as f64 * width + 0.5 * width,
             width,
@@ -214,7 +243,7 @@ impl Histogram {
             counts,
             below,
             top,
-        }
+        })
     }
 
     /// The bars that hold samples, each coloured by the side of 1 its samples are on.
@@ -352,25 +381,40 @@ fn fs_percentile(v: f64) -> String {
     }
 }
 
-/// The legend's notes of the factors of safety `fs` the histogram does not draw: how many are
-/// +∞, −∞ or none, and what each means (no note for none of a kind).
-fn not_drawn(fs: &[Option<f64>]) -> Vec<Entry> {
-    let count = |f: &dyn Fn(&Option<f64>) -> bool| fs.iter().filter(|v| f(v)).count();
-    [
-        (
-            count(&|v| *v == Some(f64::INFINITY)),
-            "no multiple of the driving loads starts the block (factor of safety +∞)",
-        ),
-        (
-            count(&|v| *v == Some(f64::NEG_INFINITY)),
-            "the weight alone starts the block (−∞)",
-        ),
-        (count(&|v| v.is_none()), "the cone program failed (none)"),
-    ]
-    .into_iter()
-    .filter(|(n, _)| *n > 0)
-    .map(|(n, words)| Entry::new(Mark::None, format!("not drawn: {n} where {words}")))
-    .collect()
+/// How many of the factors of safety the histogram does not draw are +∞, −∞ or none, and the
+/// legend's notes of them, each saying what it means (no note for none of a kind).
+#[derive(Debug, Default)]
+struct NotDrawn {
+    unbounded: usize,
+    not_holdable: usize,
+    none: usize,
+}
+
+impl NotDrawn {
+    /// Counts a factor of safety that is not drawn (not a finite number).
+    fn count(&mut self, v: Option<f64>) {
+        match v {
+            Some(f64::INFINITY) => self.unbounded += 1,
+            Some(f64::NEG_INFINITY) => self.not_holdable += 1,
+            None => self.none += 1,
+            Some(_) => {}
+        }
+    }
+
+    fn entries(&self) -> Vec<Entry> {
+        [
+            (
+                self.unbounded,
+                "no multiple of the driving loads starts the block (factor of safety +∞)",
+            ),
+            (self.not_holdable, "the weight alone starts the block (−∞)"),
+            (self.none, "the cone program failed (none)"),
+        ]
+        .into_iter()
+        .filter(|(n, _)| *n > 0)
+        .map(|(n, words)| Entry::new(Mark::None, format!("not drawn: {n} where {words}")))
+        .collect()
+    }
 }
 
 /// The sensitivity tornado: for each uncertain value, Spearman's ρ with the factor of safety
@@ -494,21 +538,24 @@ pub fn tornado(path: &Path, summary: &Summary) -> Res<()> {
 }
 
 /// `route-fan.svg`, `factor-of-safety.svg` and `sensitivity.svg` in `dir`; `nominal` is the
-/// route of the scene as written, drawn in black on the fan (none if it failed).
+/// route of the scene as written, drawn in black on the fan (none if it failed); `kept` the
+/// samples whose paths the fan draws (the first [`MAX_FAN_PATHS`] routes will do), `fs` every
+/// route's factor of safety.
 pub fn write_probabilistic_plots(
     dir: &Path,
     scene: &Scene,
     nominal: Option<&Route>,
-    samples: &[Sample],
+    kept: &[Sample],
+    fs: FactorsOfSafety,
     summary: &Summary,
 ) -> Res<Vec<std::path::PathBuf>> {
     let fan = dir.join("route-fan.svg");
-    route_fan(&fan, scene, nominal, samples, summary)?;
-    let fs = dir.join("factor-of-safety.svg");
-    factor_of_safety(&fs, samples, summary)?;
+    route_fan(&fan, scene, nominal, kept, summary)?;
+    let path = dir.join("factor-of-safety.svg");
+    factor_of_safety(&path, fs, summary)?;
     let t = dir.join("sensitivity.svg");
     tornado(&t, summary)?;
-    Ok(vec![fan, fs, t])
+    Ok(vec![fan, path, t])
 }
 
 /// The probability of sliding as the legend says it: under a ground-motion record, that the

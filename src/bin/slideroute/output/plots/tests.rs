@@ -710,8 +710,12 @@ fn every_picture_has_text_of_at_least_14_px() {
     let summary = slideroute::probabilistic::summarise(&design, limits, &samples);
     let nominal = slideroute::run(&uncertain).ok();
     let dir = temp_dir("sizes-probabilistic");
-    for p in
-        write_probabilistic_plots(&dir, &uncertain, nominal.as_ref(), &samples, &summary).unwrap()
+    let fs = |each: &mut dyn FnMut(Option<f64>)| {
+        super::probabilistic::factors_of_safety(&samples, each);
+        Ok(())
+    };
+    for p in write_probabilistic_plots(&dir, &uncertain, nominal.as_ref(), &samples, &fs, &summary)
+        .unwrap()
     {
         check(
             &p.display().to_string(),

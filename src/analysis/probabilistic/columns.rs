@@ -1,0 +1,469 @@
+//! The values the summary needs of every route of a probabilistic analysis — rows of a few
+//! numbers, one a route — kept in memory up to a bound and beyond it in an unnamed temporary
+//! file, so that the percentiles and Spearman's rank correlations come out exactly as if every
+//! value were held (`summary.rs`, `sensitivity.rs`) for any number of samples, in a few tens
+//! of MB: percentiles by a radix selection in passes over the rows, ranks by counting, block by
+//! block, where each of a block's values falls among all the others.
+
+use super::Percentiles;
+use super::sensitivity::spearman as spearman_held;
+use super::summary::percentiles as percentiles_held;
+use std::cell::RefCell;
+use std::fs::File;
+use std::io::{BufReader, BufWriter, Read, Seek, SeekFrom, Write};
+use std::path::PathBuf;
+
+/// Rows of `width` numbers appended in order: the first `in_memory_rows` held in memory, every
+/// later one written to an unnamed temporary file (made when first needed, in the folder given,
+/// else the system's temporary folder; gone when the store is dropped).
+pub struct Columns {
+    width: usize,
+    in_memory_rows: usize,
+    held: Vec<f64>,
+    spilled: usize,
+    spill_in: Option<PathBuf>,
+    file: RefCell<Option<BufWriter<File>>>,
+}
+
+impl Columns {
+    /// The rows held in memory unless said otherwise: 2¹⁸ (a few MB for a few columns).
+    pub const DEFAULT_IN_MEMORY_ROWS: usize = 1 << 18;
+
+    /// An empty store of rows of `width` numbers; a temporary file, if one is needed, made in
+    /// `spill_in`.
+    pub fn new(width: usize, spill_in: Option<PathBuf>) -> Columns {
+        Columns {
+            width,
+            in_memory_rows: Columns::DEFAULT_IN_MEMORY_ROWS,
+            held: Vec::new(),
+            spilled: 0,
+            spill_in,
+            file: RefCell::new(None),
+        }
+    }
+
+    /// The same store holding at most `rows` rows in memory (at least one).
+    pub fn with_in_memory_rows(self, rows: usize) -> Columns {
+        Columns {
+            in_memory_rows: rows.max(1),
+            ..self
+        }
+    }
+
+    /// The numbers in a row.
+    pub fn width(&self) -> usize {
+        self.width
+    }
+
+    /// The rows stored.
+    pub fn rows(&self) -> usize {
+        self.held.len() / self.width.max(1) + self.spilled
+    }
+
+    /// Appends a row (its first `width` numbers; missing ones are NaN).
+    pub fn push(&mut self, row: &[f64]) -> std::io::Result<()> {
+        let values = (0..self.width).map(|c| row.get(c).copied().unwrap_or(f64::NAN));
+        if self.spilled == 0 && self.held.len() < self.in_memory_rows * self.width {
+            self.held.extend(values);
+            return Ok(());
+        }
+        let mut file = self.file.borrow_mut();
+        if file.is_none() {
+            let f = match &self.spill_in {
+                Some(dir) => tempfile::tempfile_in(dir)?,
+                None => tempfile::tempfile()?,
+            };
+            *file = Some(BufWriter::with_capacity(1 << 20, f));
+        }
+        if let Some(w) = file.as_mut() {
+            for v in values {
+                w.write_all(&v.to_le_bytes())?;
+            }
+        }
+        self.spilled += 1;
+        Ok(())
+    }
+
+    /// Every row, in order: those in memory, then the file's read back.
+    pub fn scan(&self, mut each: impl FnMut(&[f64])) -> std::io::Result<()> {
+        let w = self.width.max(1);
+        if self.width == 0 {
+            for _ in 0..self.rows() {
+                each(&[]);
+            }
+            return Ok(());
+        }
+        for row in self.held.chunks_exact(w) {
+            each(row);
+        }
+        let mut file = self.file.borrow_mut();
+        let Some(writer) = file.as_mut() else {
+            return Ok(());
+        };
+        writer.flush()?;
+        let mut f = writer.get_ref().try_clone()?;
+        f.seek(SeekFrom::Start(0))?;
+        let mut r = BufReader::with_capacity(1 << 20, f);
+        let (mut bytes, mut row) = (vec![0u8; 8 * w], vec![0.0; w]);
+        for _ in 0..self.spilled {
+            r.read_exact(&mut bytes)?;
+            for (v, b) in row.iter_mut().zip(bytes.chunks_exact(8)) {
+                *v = f64::from_le_bytes(b.try_into().unwrap_or([0; 8]));
+            }
+            each(&row);
+        }
+        // The next write goes at the end, wherever the clone's reading left the shared offset.
+        writer.get_mut().seek(SeekFrom::End(0))?;
+        Ok(())
+    }
+
+    /// Whether every row is in memory.
+    fn all_held(&self) -> bool {
+        self.spilled == 0
+    }
+
+    /// The numbers of column `c`, in order (all rows in memory).
+    fn held_column(&self, c: usize) -> Vec<f64> {
+        self.held
+            .chunks_exact(self.width.max(1))
+            .map(|r| r[c])
+            .collect()
+    }
+
+    /// Percentiles 5, 50 and 95 of column `c`, as `summary::percentiles` gives them of the
+    /// column held whole (NaN left out; `None` if nothing is left).
+    pub fn percentiles(&self, c: usize) -> std::io::Result<Option<Percentiles>> {
+        if c >= self.width {
+            return Ok(None);
+        }
+        if self.all_held() {
+            return Ok(percentiles_held(self.held_column(c)));
+        }
+        let mut n = 0usize;
+        self.scan(|r| n += usize::from(!r[c].is_nan()))?;
+        if n == 0 {
+            return Ok(None);
+        }
+        // The order statistics the interpolation reads: i and i + 1 at each percentile.
+        let mut wanted: Vec<usize> = Vec::new();
+        for q in [0.05, 0.5, 0.95] {
+            let i = (q * (n - 1) as f64).floor() as usize;
+            wanted.extend([i, (i + 1).min(n - 1)]);
+        }
+        let mut found = Vec::with_capacity(wanted.len());
+        for &k in &wanted {
+            found.push(self.select(c, k)?);
+        }
+        let at = |j: usize, q: f64| {
+            let pos = q * (n - 1) as f64;
+            let f = pos.fract();
+            let (vi, vj) = (found[2 * j], found[2 * j + 1]);
+            if f == 0.0 || vi == vj {
+                vi
+            } else if vi.is_infinite() || vj.is_infinite() {
+                if f < 0.5 { vi } else { vj }
+            } else {
+                vi + f * (vj - vi)
+            }
+        };
+        Ok(Some(Percentiles {
+            p5: at(0, 0.05),
+            p50: at(1, 0.5),
+            p95: at(2, 0.95),
+        }))
+    }
+
+    /// The `k`-th smallest (from 0) of column `c` in the order of `f64::total_cmp`, NaN left
+    /// out: a radix selection on the order's 64-bit keys, 16 bits a pass (four passes over the
+    /// rows, 65 536 counters).
+    fn select(&self, c: usize, k: usize) -> std::io::Result<f64> {
+        let (mut prefix, mut rank) = (0u64, k);
+        for pass in 0..4u32 {
+            let shift = 48 - 16 * pass;
+            // The keys that agree with `prefix` above this pass's 16 bits.
+            let high = if pass == 0 {
+                0
+            } else {
+                u64::MAX << (shift + 16)
+            };
+            let mut counts = vec![0usize; 1 << 16];
+            self.scan(|r| {
+                let v = r[c];
+                if !v.is_nan() {
+                    let key = order_key(v);
+                    if key & high == prefix {
+                        counts[((key >> shift) & 0xffff) as usize] += 1;
+                    }
+                }
+            })?;
+            let mut digit = 0usize;
+            while digit + 1 < counts.len() && rank >= counts[digit] {
+                rank -= counts[digit];
+                digit += 1;
+            }
+            prefix |= (digit as u64) << shift;
+        }
+        Ok(from_order_key(prefix))
+    }
+
+    /// Spearman's ρ of columns `a` and `b`, as `sensitivity::spearman` gives it of the pairs
+    /// `(row[a], row[b])` held whole (a pair with a NaN left out; `None` with fewer than three
+    /// pairs or a constant side).
+    pub fn spearman(&self, a: usize, b: usize) -> std::io::Result<Option<f64>> {
+        if a >= self.width || b >= self.width {
+            return Ok(None);
+        }
+        if self.all_held() {
+            let pairs: Vec<(f64, f64)> = self
+                .held
+                .chunks_exact(self.width.max(1))
+                .map(|r| (r[a], r[b]))
+                .collect();
+            return Ok(spearman_held(&pairs));
+        }
+        let kept = |r: &[f64]| !r[a].is_nan() && !r[b].is_nan();
+        let mut n = 0usize;
+        self.scan(|r| n += usize::from(kept(r)))?;
+        if n < 3 {
+            return Ok(None);
+        }
+        // The ranks' mean is (n + 1)/2 whatever the ties; Pearson's sums of the deviations
+        // block by block: each block's kept pairs ranked among all kept pairs.
+        let mean = 0.5 * (n as f64 + 1.0);
+        let (mut sab, mut saa, mut sbb) = (0.0, 0.0, 0.0);
+        let block = self.in_memory_rows;
+        let mut start = 0usize;
+        while start < n {
+            let end = (start + block).min(n);
+            // The block's pairs: the kept pairs numbered start..end.
+            let (mut va, mut vb) = (Vec::new(), Vec::new());
+            let mut index = 0usize;
+            self.scan(|r| {
+                if kept(r) {
+                    if (start..end).contains(&index) {
+                        va.push(r[a]);
+                        vb.push(r[b]);
+                    }
+                    index += 1;
+                }
+            })?;
+            let ra = self.ranks_among(&va, a, &kept)?;
+            let rb = self.ranks_among(&vb, b, &kept)?;
+            for (x, y) in ra.iter().zip(&rb) {
+                let (dx, dy) = (x - mean, y - mean);
+                sab += dx * dy;
+                saa += dx * dx;
+                sbb += dy * dy;
+            }
+            start = end;
+        }
+        Ok((saa > 0.0 && sbb > 0.0).then(|| (sab / (saa * sbb).sqrt()).clamp(-1.0, 1.0)))
+    }
+
+    /// The rank of each of `values` among column `c` of the rows `kept` says: how many are less
+    /// plus half of one more than how many are equal (ties their mean rank, as
+    /// `sensitivity::ranks` gives them). One pass, counting into difference arrays where each
+    /// row's value falls among the sorted `values`.
+    fn ranks_among(
+        &self,
+        values: &[f64],
+        c: usize,
+        kept: &dyn Fn(&[f64]) -> bool,
+    ) -> std::io::Result<Vec<f64>> {
+        let mut order: Vec<usize> = (0..values.len()).collect();
+        order.sort_by(|&i, &j| values[i].total_cmp(&values[j]));
+        let sorted: Vec<f64> = order.iter().map(|&i| values[i]).collect();
+        // less[j]: rows whose value is below sorted[j]; equal[j]: rows equal to it. A row of
+        // value v adds one to less[j] for every j from the first sorted value above v, and one
+        // to equal[j] for each j of a sorted value equal to v (`==`, so −0 ties with +0).
+        let m = sorted.len();
+        let (mut less, mut equal) = (vec![0i64; m + 1], vec![0i64; m + 1]);
+        self.scan(|r| {
+            if kept(r) {
+                let v = r[c];
+                let lo = sorted.partition_point(|&s| s < v);
+                let hi = sorted.partition_point(|&s| s <= v);
+                less[hi] += 1;
+                equal[lo] += 1;
+                equal[hi] -= 1;
+            }
+        })?;
+        let (mut l, mut e) = (0i64, 0i64);
+        let mut ranks = vec![0.0; m];
+        for (j, &i) in order.iter().enumerate() {
+            l += less[j];
+            e += equal[j];
+            ranks[i] = l as f64 + 0.5 * (e as f64 + 1.0);
+        }
+        Ok(ranks)
+    }
+}
+
+/// The 64-bit key that orders numbers as `f64::total_cmp` does (sign flipped for the
+/// positives, every bit for the negatives).
+fn order_key(v: f64) -> u64 {
+    let bits = v.to_bits();
+    if bits >> 63 == 1 {
+        !bits
+    } else {
+        bits | (1 << 63)
+    }
+}
+
+/// The number whose [`order_key`] is `key`.
+fn from_order_key(key: u64) -> f64 {
+    f64::from_bits(if key >> 63 == 1 {
+        key & !(1 << 63)
+    } else {
+        !key
+    })
+}
+
+#[cfg(test)]
+pub(super) mod tests {
+    use super::*;
+
+    /// Uniforms in [0, 1) from a fixed xorshift sequence seeded with `seed` (not zero).
+    pub(in crate::analysis::probabilistic) fn uniforms(mut seed: u64) -> impl FnMut() -> f64 {
+        move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+
+    /// `n` rows of three columns from a fixed sequence: a column of ties on a coarse grid
+    /// with −0 and +0, one with ±∞ and NaN now and then, and a constant one.
+    fn rows(n: usize) -> Vec<[f64; 3]> {
+        let mut next = uniforms(0x9e37_79b9_7f4a_7c15);
+        (0..n)
+            .map(|k| {
+                let (u, w) = (next(), next());
+                let tie = ((u * 8.0).floor() - 4.0) / 4.0;
+                let tie = if k % 5 == 0 && tie == 0.0 { -0.0 } else { tie };
+                let wild = match k % 13 {
+                    1 => f64::INFINITY,
+                    4 => f64::NEG_INFINITY,
+                    7 => f64::NAN,
+                    _ => w * 3.0 - u,
+                };
+                [tie, wild, 2.5]
+            })
+            .collect()
+    }
+
+    fn stored(data: &[[f64; 3]], in_memory: usize) -> Columns {
+        let mut c = Columns::new(3, None).with_in_memory_rows(in_memory);
+        for r in data {
+            c.push(r).unwrap();
+        }
+        c
+    }
+
+    fn bits(p: Option<Percentiles>) -> Option<[u64; 3]> {
+        p.map(|p| [p.p5.to_bits(), p.p50.to_bits(), p.p95.to_bits()])
+    }
+
+    #[test]
+    fn a_store_past_its_memory_gives_the_percentiles_of_every_value_held_bit_for_bit() {
+        for n in [0, 1, 2, 3, 10, 1000, 5000] {
+            let data = rows(n);
+            for in_memory in [1, 7, 64, n.max(1)] {
+                let s = stored(&data, in_memory);
+                assert!(s.held.len() <= 3 * in_memory, "{n} {in_memory}");
+                for c in 0..3 {
+                    let want = percentiles_held(data.iter().map(|r| r[c]).collect());
+                    assert_eq!(
+                        bits(s.percentiles(c).unwrap()),
+                        bits(want),
+                        "n {n}, {in_memory} held, column {c}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn a_store_past_its_memory_gives_the_rank_correlations_of_every_pair_held() {
+        for n in [0, 2, 3, 4, 10, 1000, 3000] {
+            let mut data = rows(n);
+            // A column related to the first by a monotone function with its ties.
+            for r in &mut data {
+                r[2] = if r[0].is_nan() { 0.0 } else { r[0].powi(3) };
+            }
+            for in_memory in [1, 7, 64, n.max(1)] {
+                let s = stored(&data, in_memory);
+                for (a, b) in [(0, 1), (1, 0), (0, 2), (1, 2), (1, 1)] {
+                    let pairs: Vec<(f64, f64)> = data.iter().map(|r| (r[a], r[b])).collect();
+                    let want = spearman_held(&pairs);
+                    let got = s.spearman(a, b).unwrap();
+                    match (got, want) {
+                        (Some(g), Some(w)) => {
+                            assert!(
+                                (g - w).abs() < 1e-12,
+                                "n {n} {in_memory} ({a},{b}): {g} {w}"
+                            )
+                        }
+                        (g, w) => assert!(
+                            g.is_none() && w.is_none(),
+                            "n {n} {in_memory} ({a},{b}): {g:?} {w:?}"
+                        ),
+                    }
+                }
+            }
+        }
+        // A constant side has none.
+        let s = stored(
+            &rows(100)
+                .iter()
+                .map(|r| [r[0], 1.0, 1.0])
+                .collect::<Vec<_>>(),
+            8,
+        );
+        assert_eq!(s.spearman(0, 1).unwrap(), None);
+    }
+
+    #[test]
+    fn a_store_gives_back_every_row_in_order_bit_for_bit_and_takes_more_after() {
+        let data = rows(500);
+        let mut s = stored(&data, 16);
+        assert_eq!(s.rows(), 500);
+        let mut back = Vec::new();
+        s.scan(|r| back.push([r[0].to_bits(), r[1].to_bits(), r[2].to_bits()]))
+            .unwrap();
+        let want: Vec<[u64; 3]> = data.iter().map(|r| r.map(f64::to_bits)).collect();
+        assert_eq!(back, want);
+        // Read back, then written on: the new rows go at the end.
+        s.push(&[1.0, 2.0, 3.0]).unwrap();
+        let mut last = None;
+        let mut count = 0;
+        s.scan(|r| {
+            count += 1;
+            last = Some([r[0], r[1], r[2]]);
+        })
+        .unwrap();
+        assert_eq!((count, last), (501, Some([1.0, 2.0, 3.0])));
+    }
+
+    #[test]
+    fn the_order_key_orders_as_total_cmp_and_comes_back_to_its_number() {
+        let v = [
+            f64::NEG_INFINITY,
+            -1e300,
+            -1.0,
+            -5e-324,
+            -0.0,
+            0.0,
+            5e-324,
+            1.0,
+            f64::INFINITY,
+        ];
+        for w in v.windows(2) {
+            assert!(order_key(w[0]) < order_key(w[1]), "{} {}", w[0], w[1]);
+        }
+        for x in v {
+            assert_eq!(from_order_key(order_key(x)).to_bits(), x.to_bits());
+        }
+    }
+}
