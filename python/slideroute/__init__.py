@@ -738,6 +738,7 @@ def probabilistic(
     rotation_limit_deg: "Optional[float]" = None,
     progress: "Progress" = None,
     displacement_limit_m: "Optional[float]" = None,
+    max_samples: int = 100_000,
 ) -> Probabilistic:
     """The probabilistic analysis, as ``slideroute probabilistic`` runs it: each uncertain
     key's distribution (``{"friction.mu_k": "normal:0.40:0.05"}``; the scene's
@@ -746,7 +747,18 @@ def probabilistic(
     ``progress(done, total)`` is told how many samples are done; ``progress=True`` shows a bar
     (tqdm's where it is installed, else a line on stderr). Ctrl-C stops it at its next route
     with ``KeyboardInterrupt``. Under a ground-motion record, ``displacement_limit_m`` asks
-    for the probability that the permanent displacement exceeds it."""
+    for the probability that the permanent displacement exceeds it. Every sample's row is held
+    (about 1.5 kB a sample at the peak): more than ``max_samples`` samples are refused before
+    any runs with :class:`InputError`; raise it, run the design in ranges with
+    :func:`run_samples` keeping what you need, or use the command line, which holds none."""
+    limit = _whole("max_samples", max_samples, 1, _MAX_SAMPLES)
+    if _whole("samples", samples, 1, _MAX_SAMPLES) > limit:
+        raise InputError(
+            f"samples {samples}: more than max_samples = {limit}; every sample's row is held "
+            "(about 1.5 kB each): raise max_samples, run ranges with run_samples, or use the "
+            "command line's probabilistic, which holds none",
+            "samples",
+        )
     dist = distributions(scene, dists)
     values = sample_values(scene, dist, samples, seed, sampling)
     rows = run_samples(scene, dist, values, progress=progress)

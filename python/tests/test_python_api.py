@@ -428,6 +428,27 @@ def test_a_route_read_in_chunks_is_the_route_read_whole_and_its_summary():
         s.route_chunks(rows=0)
 
 
+def test_a_probabilistic_analysis_too_large_to_hold_is_refused_before_any_sample_runs():
+    # Every sample's row is held, about 1.5 kB at the peak: 10^7 samples would have reached
+    # 15 GB before anything said so.
+    s = slideroute.Scene.default()
+    calls = []
+    with pytest.raises(slideroute.InputError) as e:
+        slideroute.probabilistic(
+            s, {"friction.mu_k": "uniform:3:4"}, samples=100_001, progress=lambda d, t: calls.append(d)
+        )
+    assert e.value.name == "samples" and "max_samples" in str(e.value), str(e.value)
+    assert "run_samples" in str(e.value) and calls == [], str(e.value)
+    with pytest.raises(slideroute.InputError) as e:
+        slideroute.probabilistic(s, {"friction.mu_k": "uniform:3:4"}, samples=5, max_samples=4)
+    assert e.value.name == "samples", str(e.value)
+    with pytest.raises(slideroute.InputError) as e:
+        slideroute.probabilistic(s, {"friction.mu_k": "uniform:3:4"}, samples=5, max_samples=0)
+    assert e.value.name == "max_samples", str(e.value)
+    p = slideroute.probabilistic(s, {"friction.mu_k": "uniform:3:4"}, samples=5, max_samples=5)
+    assert len(p.samples["sample"]) == 5
+
+
 def test_a_route_too_long_to_hold_is_refused_before_it_starts_naming_the_way_out():
     # 2 × 10^7 rows would have taken 4 GB of arrays (and 10 GB of rows before them).
     long = slideroute.Scene.default().with_keys({"solver.dt_s": 1e-6})
