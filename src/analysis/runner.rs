@@ -192,6 +192,11 @@ pub fn run_many<T: Sync>(
 /// none (1 kB a row saved: 10⁷ samples held 14 GB).
 pub const PATHS_KEPT: usize = 2000;
 
+/// The most routes the streaming runs (`Design::run_each`, `Sweep::run_each`) run at once on
+/// every core: enough that the cores seldom wait for a chunk's slowest route, few enough that
+/// their results take a few MB.
+pub const CHUNK: usize = 4096;
+
 /// The most rows a route of many keeps (every stride-th increment, the stride chosen so): what
 /// a [`RouteResult`] takes from them — the last row, the largest tilts, a CM path of
 /// [`RouteResult::PATH_POINTS`] — needs no more, and each row of a rigid-body route is the model

@@ -7,7 +7,7 @@
 //! value is checked exactly as in a scene file; a combination that is invalid or whose route
 //! fails becomes a row with its reason, never an abort.
 
-use super::runner::{Outcome, run_many};
+use super::runner::{CHUNK, Outcome, run_many};
 use crate::model::{DynamicsModel, Friction, Integrator, Mode};
 use crate::scene::{Scene, SceneError};
 
@@ -486,13 +486,45 @@ impl<'a> Sweep<'a> {
     /// next increment as interrupted and combinations not yet started are
     /// [`Outcome::NotRun`]: every combination still has its row.
     pub fn run(&self, tick: impl Fn() + Sync, stop: impl Fn() -> bool + Sync) -> Vec<SweepRow> {
-        let combinations: Vec<Vec<f64>> = (0..self.count()).map(|k| self.values(k)).collect();
+        self.run_range(0..self.count(), tick, stop)
+    }
+
+    /// The combinations numbered `range`, in order, as [`Sweep::run`] runs them.
+    fn run_range(
+        &self,
+        range: std::ops::Range<usize>,
+        tick: impl Fn() + Sync,
+        stop: impl Fn() -> bool + Sync,
+    ) -> Vec<SweepRow> {
+        let combinations: Vec<Vec<f64>> = range.map(|k| self.values(k)).collect();
         let outcomes = run_many(&combinations, |values| self.scene(values), tick, stop);
         combinations
             .into_iter()
             .zip(outcomes)
             .map(|(values, outcome)| SweepRow { values, outcome })
             .collect()
+    }
+
+    /// Every combination, in order, as [`Sweep::run`] runs them, each handed to `each` as soon
+    /// as it and those before it have run, at most [`CHUNK`] at a time on every core: the
+    /// sweep holds no row `each` does not keep. The first error of `each` ends the run and is
+    /// returned.
+    pub fn run_each<E>(
+        &self,
+        tick: impl Fn() + Sync,
+        stop: impl Fn() -> bool + Sync,
+        mut each: impl FnMut(SweepRow) -> Result<(), E>,
+    ) -> Result<(), E> {
+        let n = self.count();
+        let mut first = 0;
+        while first < n {
+            let end = (first + CHUNK).min(n);
+            for row in self.run_range(first..end, &tick, &stop) {
+                each(row)?;
+            }
+            first = end;
+        }
+        Ok(())
     }
 }
 

@@ -12,9 +12,7 @@ use crate::scene::Scene;
 /// The most samples one design may have.
 pub const MAX_SAMPLES: usize = 10_000_000;
 
-/// The most samples [`Design::run_each`] runs at once (on every core): enough that the cores
-/// seldom wait for a chunk's slowest route, few enough that their rows take a few MB.
-pub const CHUNK: usize = 4096;
+pub use crate::analysis::runner::CHUNK;
 
 /// One sample: its number in the design, its values, what it came to.
 #[derive(Debug, Clone, PartialEq)]

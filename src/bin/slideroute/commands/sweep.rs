@@ -6,7 +6,10 @@ use super::{load_with, progress_bar};
 use crate::cli::SweepArgs;
 use crate::exit::{CliError, bad_input, failed, interrupted, many_interrupted_after, outln};
 use crate::output::folder::Folder;
+use crate::output::sweep_files::SweepCsv;
+use crate::output::view::many::MAX_FAN_PATHS;
 use crate::sweep::SweepRow;
+use slideroute::Outcome;
 use slideroute::sweep::{Sweep, Vary};
 use std::collections::BTreeMap;
 
@@ -24,21 +27,39 @@ pub fn sweep(args: &SweepArgs) -> Result<(), CliError> {
     let n = sweep.count();
     let mut folder = Folder::open(&args.out, "sweep").map_err(failed)?;
     let bar = progress_bar(args.quiet, n as u64, "sweep", "combinations");
-    let ran = sweep.run(|| bar.inc(1), interrupted);
-    let rows: Vec<SweepRow> = ran.iter().map(SweepRow::from).collect();
-    bar.finish_and_clear();
     let varies = sweep.varies();
+    // Each combination, as it comes, written to sweep.csv and kept for the picture without its
+    // detail (sweep.csv has it); the first routes kept for the fan.
+    let mut rows: Vec<SweepRow> = Vec::new();
+    let mut fan: Vec<Outcome> = Vec::new();
     let csv_path = folder
         .write_with("sweep.csv", |tmp| {
             let file = std::fs::File::create(tmp)
                 .map_err(|e| format!("{}: cannot write: {e}", tmp.display()))?;
-            crate::output::sweep_files::write_csv(file, varies, &rows)
-                .map_err(|e| format!("sweep.csv: {e}"))
+            let mut csv = SweepCsv::new(std::io::BufWriter::new(file), varies)
+                .map_err(|e| format!("sweep.csv: {e}"))?;
+            sweep.run_each(
+                || bar.inc(1),
+                interrupted,
+                |ran| {
+                    let mut row = SweepRow::from(&ran);
+                    csv.push(&row).map_err(|e| format!("sweep.csv: {e}"))?;
+                    row.detail = String::new();
+                    rows.push(row);
+                    if fan.len() < MAX_FAN_PATHS && ran.outcome.route().is_some() {
+                        fan.push(ran.outcome);
+                    }
+                    Ok::<(), String>(())
+                },
+            )?;
+            csv.finish().map_err(|e| format!("sweep.csv: {e}"))
         })
         .map_err(failed)?;
+    bar.finish_and_clear();
     let mut written = vec![csv_path];
     if !args.no_3d && !interrupted() {
-        let (paths, routes) = crate::output::view::many::cm_paths(ran.iter().map(|r| &r.outcome));
+        let (paths, _) = crate::output::view::many::cm_paths(&fan);
+        let routes = rows.iter().filter(|r| r.travel_m.is_some()).count();
         let mut notes: Vec<String> = varies
             .iter()
             .map(|v| {

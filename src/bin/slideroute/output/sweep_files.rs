@@ -31,19 +31,32 @@ pub fn number(v: f64) -> String {
     }
 }
 
-/// `sweep.csv`: the header (the varied keys, then [`SWEEP_COLUMNS`]) and one row per
-/// combination, numbers by [`number`], the factor of safety a number or a word.
-pub fn write_csv(out: impl Write, varies: &[Vary], rows: &[SweepRow]) -> Result<(), csv::Error> {
-    let mut w = csv::Writer::from_writer(out);
-    let header: Vec<&str> = varies
-        .iter()
-        .map(|v| v.key.as_str())
-        .chain(SWEEP_COLUMNS)
-        .collect();
-    w.write_record(&header)?;
-    let opt = |v: Option<f64>| v.map_or(String::new(), number);
-    for r in rows {
-        let mut rec: Vec<String> = varies
+/// `sweep.csv` written as the combinations come: the header (the varied keys, then
+/// [`SWEEP_COLUMNS`]) and one row per combination, in order, numbers by [`number`], the factor
+/// of safety a number or a word; memory does not grow with their number.
+pub struct SweepCsv<'v, W: Write> {
+    w: csv::Writer<W>,
+    varies: &'v [Vary],
+}
+
+impl<'v, W: Write> SweepCsv<'v, W> {
+    /// The file with its header: each varied key, then what the route came to.
+    pub fn new(out: W, varies: &'v [Vary]) -> Result<Self, csv::Error> {
+        let mut w = csv::Writer::from_writer(out);
+        let header: Vec<&str> = varies
+            .iter()
+            .map(|v| v.key.as_str())
+            .chain(SWEEP_COLUMNS)
+            .collect();
+        w.write_record(&header)?;
+        Ok(SweepCsv { w, varies })
+    }
+
+    /// The row of combination `r`.
+    pub fn push(&mut self, r: &SweepRow) -> Result<(), csv::Error> {
+        let opt = |v: Option<f64>| v.map_or(String::new(), number);
+        let mut rec: Vec<String> = self
+            .varies
             .iter()
             .zip(&r.values)
             .map(|(v, &x)| v.cell(x))
@@ -64,10 +77,24 @@ pub fn write_csv(out: impl Write, varies: &[Vary], rows: &[SweepRow]) -> Result<
         // A number, or `unbounded` / `not-holdable` (never an empty cell or an infinity).
         rec.push(r.factor_of_safety.map_or(String::new(), |f| f.cell()));
         rec.push(r.detail.clone());
-        w.write_record(&rec)?;
+        self.w.write_record(&rec)
     }
-    w.flush()?;
-    Ok(())
+
+    /// Everything written out.
+    pub fn finish(mut self) -> Result<(), csv::Error> {
+        self.w.flush()?;
+        Ok(())
+    }
+}
+
+/// `sweep.csv` of `rows`, in order.
+#[cfg(test)]
+pub fn write_csv(out: impl Write, varies: &[Vary], rows: &[SweepRow]) -> Result<(), csv::Error> {
+    let mut w = SweepCsv::new(out, varies)?;
+    for r in rows {
+        w.push(r)?;
+    }
+    w.finish()
 }
 
 #[cfg(test)]
