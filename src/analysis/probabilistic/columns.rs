@@ -23,7 +23,11 @@ pub struct Columns {
     spilled: usize,
     spill_in: Option<PathBuf>,
     file: RefCell<Option<BufWriter<File>>>,
+    stop: Option<fn() -> bool>,
 }
+
+/// How many rows a pass reads between two askings of [`Columns::stop_when`]'s function.
+const ASK_EVERY: usize = 1 << 16;
 
 impl Columns {
     /// The rows held in memory unless said otherwise: 2¹⁸ (a few MB for a few columns).
@@ -39,6 +43,24 @@ impl Columns {
             spilled: 0,
             spill_in,
             file: RefCell::new(None),
+            stop: None,
+        }
+    }
+
+    /// Passes over the rows asking `stop` every 65 536 rows, and ending with an error of kind
+    /// `Interrupted` when it says so: a summary of millions of rows stops within a second.
+    pub fn stop_when(&mut self, stop: fn() -> bool) {
+        self.stop = Some(stop);
+    }
+
+    /// An `Interrupted` error if the stop function says so.
+    fn asked_to_stop(&self) -> std::io::Result<()> {
+        match self.stop {
+            Some(stop) if stop() => Err(std::io::Error::new(
+                std::io::ErrorKind::Interrupted,
+                "interrupted",
+            )),
+            _ => Ok(()),
         }
     }
 
@@ -93,7 +115,10 @@ impl Columns {
             }
             return Ok(());
         }
-        for row in self.held.chunks_exact(w) {
+        for (k, row) in self.held.chunks_exact(w).enumerate() {
+            if k % ASK_EVERY == 0 {
+                self.asked_to_stop()?;
+            }
             each(row);
         }
         let mut file = self.file.borrow_mut();
@@ -105,7 +130,10 @@ impl Columns {
         f.seek(SeekFrom::Start(0))?;
         let mut r = BufReader::with_capacity(1 << 20, f);
         let (mut bytes, mut row) = (vec![0u8; 8 * w], vec![0.0; w]);
-        for _ in 0..self.spilled {
+        for k in 0..self.spilled {
+            if k % ASK_EVERY == 0 {
+                self.asked_to_stop()?;
+            }
             r.read_exact(&mut bytes)?;
             for (v, b) in row.iter_mut().zip(bytes.chunks_exact(8)) {
                 *v = f64::from_le_bytes(b.try_into().unwrap_or([0; 8]));
@@ -444,6 +472,24 @@ pub(super) mod tests {
         })
         .unwrap();
         assert_eq!((count, last), (501, Some([1.0, 2.0, 3.0])));
+    }
+
+    static STOP: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+
+    #[test]
+    fn a_pass_over_the_rows_ends_as_interrupted_when_the_stop_function_says_so() {
+        let mut s = stored(&rows(300_000), 1000);
+        s.stop_when(|| STOP.load(std::sync::atomic::Ordering::Relaxed));
+        assert!(s.percentiles(1).unwrap().is_some());
+        STOP.store(true, std::sync::atomic::Ordering::Relaxed);
+        let mut seen = 0usize;
+        let e = s.scan(|_| seen += 1).unwrap_err();
+        assert_eq!(e.kind(), std::io::ErrorKind::Interrupted);
+        assert!(seen < ASK_EVERY, "{seen}");
+        assert_eq!(
+            s.spearman(0, 1).unwrap_err().kind(),
+            std::io::ErrorKind::Interrupted
+        );
     }
 
     #[test]

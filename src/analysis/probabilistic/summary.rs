@@ -294,6 +294,12 @@ impl Tally {
         }
     }
 
+    /// Its summing up asks `stop` every 65 536 routes and ends with an error of kind
+    /// `Interrupted` when it says so ([`Columns::stop_when`]).
+    pub fn stop_when(&mut self, stop: fn() -> bool) {
+        self.columns.stop_when(stop);
+    }
+
     /// Takes the next sample.
     pub fn add(&mut self, sample: &Sample) -> std::io::Result<()> {
         let r = match &sample.outcome {

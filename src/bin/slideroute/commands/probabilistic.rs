@@ -4,7 +4,9 @@
 
 use super::{load_with, progress_bar};
 use crate::cli::ProbabilisticArgs;
-use crate::exit::{CliError, bad_input, failed, interrupted, many_interrupted_after, outln};
+use crate::exit::{
+    CliError, bad_input, failed, interrupted, interrupted_after, many_interrupted_after, outln,
+};
 use crate::output::folder::Folder;
 use crate::output::route_files::{Manifest, write_json_with_manifest};
 use crate::output::samples_files::SamplesCsv;
@@ -77,9 +79,21 @@ pub fn probabilistic(args: &ProbabilisticArgs) -> Result<(), CliError> {
         })
         .map_err(failed)?;
     bar.finish_and_clear();
-    let summary = tally
-        .finish()
-        .map_err(|e| failed(format!("the samples' temporary file: {e}")))?;
+    // Summed up whole after an interrupted run (its samples not run counted); a Ctrl-C while
+    // millions of routes are summed up stops it.
+    if !interrupted() {
+        tally.stop_when(interrupted);
+    }
+    let summary = tally.finish().map_err(|e| {
+        if e.kind() == std::io::ErrorKind::Interrupted {
+            interrupted_after(
+                "interrupted while the samples were summed up (probabilistic.json not written)",
+                std::slice::from_ref(&csv_path),
+            )
+        } else {
+            failed(format!("the samples' temporary file: {e}"))
+        }
+    })?;
     let mut written = vec![csv_path];
     // The scene as written, drawn in black on the fan (route-fan.svg and route-fan.html).
     let drawn_plots = cfg!(feature = "plots") && !args.no_plots;
