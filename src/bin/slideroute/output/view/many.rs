@@ -12,9 +12,57 @@ use std::path::PathBuf;
 /// The most CM paths a fan page draws (the first that ran, in order: as `route-fan.svg`).
 pub const MAX_FAN_PATHS: usize = 1000;
 
-/// The most points a fan path keeps (thinned evenly, the first and last kept): with points to the
-/// centimetre, a thousand paths and three.js keep a fan page under 2 MB.
+/// The most points a fan path keeps (where it turns most, the first and last kept: [`simplified`]):
+/// with points to the centimetre, a thousand paths and three.js keep a fan page under 2 MB.
 pub const MAX_FAN_POINTS: usize = 32;
+
+/// At most `n` of the points of `path`, the first and last kept and each other chosen where the
+/// path turns most: point after point, the one farthest from the chord between the points kept
+/// either side of it (Douglas–Peucker's order, stopped at `n` points or when every point left
+/// lies within a millimetre of its chord, far below the centimetre the page writes). Evenly
+/// spread points cut the corner of a sharply turning route; these keep it.
+pub fn simplified(path: &[[f64; 2]], n: usize) -> Vec<[f64; 2]> {
+    if path.len() <= n || n < 2 {
+        return path.to_vec();
+    }
+    let off = |q: [f64; 2], a: [f64; 2], b: [f64; 2]| {
+        let (dx, dz) = (b[0] - a[0], b[1] - a[1]);
+        let len2 = dx * dx + dz * dz;
+        let t = if len2 > 0.0 {
+            (((q[0] - a[0]) * dx + (q[1] - a[1]) * dz) / len2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        (q[0] - a[0] - t * dx).hypot(q[1] - a[1] - t * dz)
+    };
+    let mut keep = vec![false; path.len()];
+    keep[0] = true;
+    keep[path.len() - 1] = true;
+    for _ in 2..n {
+        let (mut farthest, mut at) = (1e-3, None);
+        let mut a = 0;
+        for b in 1..path.len() {
+            if keep[b] {
+                for i in a + 1..b {
+                    let d = off(path[i], path[a], path[b]);
+                    if d > farthest {
+                        (farthest, at) = (d, Some(i));
+                    }
+                }
+                a = b;
+            }
+        }
+        match at {
+            Some(i) => keep[i] = true,
+            None => break,
+        }
+    }
+    path.iter()
+        .zip(&keep)
+        .filter(|(_, k)| **k)
+        .map(|(q, _)| *q)
+        .collect()
+}
 
 /// What a page shows.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
@@ -144,7 +192,7 @@ pub fn cm_paths<'a>(
 }
 
 /// A fan page (`route-fan.html`, `sweep.html`): the foundation of `scene` under `paths` (X,
-/// Z; each thinned to [`MAX_FAN_POINTS`], at most [`MAX_FAN_PATHS`] drawn), each point on the
+/// Z; each [`simplified`] to [`MAX_FAN_POINTS`], at most [`MAX_FAN_PATHS`] drawn), each point on the
 /// ground (a point off a surface left out), of `routes` routes in all, with `nominal` (the
 /// scene as written) where there is one. `what` names the routes ("sampled routes").
 pub fn fan_page(
@@ -161,7 +209,7 @@ pub fn fan_page(
         .iter()
         .take(MAX_FAN_PATHS)
         .map(|p| {
-            slideroute::internals::analysis::runner::thin(p, MAX_FAN_POINTS)
+            simplified(p, MAX_FAN_POINTS)
                 .into_iter()
                 .filter_map(|[x, z]| ground_height(scene, x, z).map(|y| [x, y, z]))
                 .collect::<Vec<_>>()

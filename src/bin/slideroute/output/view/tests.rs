@@ -425,3 +425,48 @@ fn every_kept_pose_of_either_dynamics_stands_its_contacts_on_their_planes() {
         }
     }
 }
+
+#[test]
+fn a_fan_path_keeps_the_corner_of_a_sharp_turn_that_evenly_spread_points_cut() {
+    // An L: 5 m along X, then 5 m along Z, 64 points evenly in time with the corner at point
+    // 44 (the route slowed before it): 32 evenly spread points (points 43 and 45 about it)
+    // miss it and cut the corner; the simplified path goes through it.
+    let mut path: Vec<[f64; 2]> = (0..=44).map(|i| [5.0 * f64::from(i) / 44.0, 0.0]).collect();
+    path.extend((1..=19).map(|i| [5.0, 5.0 * f64::from(i) / 19.0]));
+    assert_eq!(path.len(), 64);
+    // How far the points of `path` lie from the polyline `kept`.
+    let deviation = |kept: &[[f64; 2]]| {
+        path.iter()
+            .map(|q| {
+                kept.windows(2)
+                    .map(|w| {
+                        let (a, b) = (w[0], w[1]);
+                        let (dx, dz) = (b[0] - a[0], b[1] - a[1]);
+                        let t = (((q[0] - a[0]) * dx + (q[1] - a[1]) * dz) / (dx * dx + dz * dz))
+                            .clamp(0.0, 1.0);
+                        (q[0] - a[0] - t * dx).hypot(q[1] - a[1] - t * dz)
+                    })
+                    .fold(f64::INFINITY, f64::min)
+            })
+            .fold(0.0, f64::max)
+    };
+    let even = slideroute::internals::analysis::runner::thin(&path, many::MAX_FAN_POINTS);
+    let kept = many::simplified(&path, many::MAX_FAN_POINTS);
+    assert!(
+        !even.contains(&[5.0, 0.0]) && deviation(&even) > 0.05,
+        "{}",
+        deviation(&even)
+    );
+    assert!(kept.contains(&[5.0, 0.0]), "{kept:?}");
+    assert!(deviation(&kept) < 1e-12, "{}", deviation(&kept));
+    // Its ends, its order, at most the count; a straight path needs only its ends.
+    assert_eq!((kept[0], *kept.last().unwrap()), (path[0], path[63]));
+    assert!(kept.len() <= many::MAX_FAN_POINTS);
+    let order: Vec<usize> = kept
+        .iter()
+        .map(|q| path.iter().position(|p| p == q).unwrap())
+        .collect();
+    assert!(order.windows(2).all(|w| w[0] < w[1]), "{order:?}");
+    assert_eq!(many::simplified(&path[..45], 32), vec![path[0], path[44]]);
+    assert_eq!(many::simplified(&path[..10], 32), path[..10].to_vec());
+}
