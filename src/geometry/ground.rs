@@ -96,7 +96,7 @@ fn contains_point(c: &[[f64; 2]; 3], point: &[f64; 2]) -> bool {
 }
 
 /// The squared plan distance (m²) from `q` to the segment from `a` to `b`.
-pub(crate) fn segment_distance_2(a: [f64; 2], b: [f64; 2], q: [f64; 2]) -> f64 {
+pub fn segment_distance_2(a: [f64; 2], b: [f64; 2], q: [f64; 2]) -> f64 {
     let (dx, dz) = (b[0] - a[0], b[1] - a[1]);
     let len2 = dx * dx + dz * dz;
     let t = if len2 > 0.0 {

@@ -26,14 +26,7 @@ pub fn simplified(path: &[[f64; 2]], n: usize) -> Vec<[f64; 2]> {
         return path.to_vec();
     }
     let off = |q: [f64; 2], a: [f64; 2], b: [f64; 2]| {
-        let (dx, dz) = (b[0] - a[0], b[1] - a[1]);
-        let len2 = dx * dx + dz * dz;
-        let t = if len2 > 0.0 {
-            (((q[0] - a[0]) * dx + (q[1] - a[1]) * dz) / len2).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        (q[0] - a[0] - t * dx).hypot(q[1] - a[1] - t * dz)
+        slideroute::internals::geometry::ground::segment_distance_2(a, b, q).sqrt()
     };
     let mut keep = vec![false; path.len()];
     keep[0] = true;
