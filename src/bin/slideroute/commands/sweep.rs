@@ -28,9 +28,15 @@ pub fn sweep(args: &SweepArgs) -> Result<(), CliError> {
     let mut folder = Folder::open(&args.out, "sweep").map_err(failed)?;
     let bar = progress_bar(args.quiet, n as u64, "sweep", "combinations");
     let varies = sweep.varies();
-    // Each combination, as it comes, written to sweep.csv and kept for the picture without its
-    // detail (sweep.csv has it); the first routes kept for the fan.
+    // Each combination, as it comes, written to sweep.csv, counted, and kept (without its
+    // detail, which sweep.csv has) if it lies on a line the picture draws; the first routes
+    // kept for the fan.
+    #[cfg(feature = "plots")]
+    let mut drawn = crate::output::plots::Drawn::new(varies);
+    #[cfg(feature = "plots")]
     let mut rows: Vec<SweepRow> = Vec::new();
+    let mut counts: BTreeMap<String, usize> = BTreeMap::new();
+    let mut routes = 0usize;
     let mut fan: Vec<Outcome> = Vec::new();
     let csv_path = folder
         .write_with("sweep.csv", |tmp| {
@@ -42,10 +48,17 @@ pub fn sweep(args: &SweepArgs) -> Result<(), CliError> {
                 || bar.inc(1),
                 interrupted,
                 |ran| {
-                    let mut row = SweepRow::from(&ran);
+                    let row = SweepRow::from(&ran);
                     csv.push(&row).map_err(|e| format!("sweep.csv: {e}"))?;
-                    row.detail = String::new();
-                    rows.push(row);
+                    *counts.entry(row.reason.clone()).or_default() += 1;
+                    routes += usize::from(row.travel_m.is_some());
+                    #[cfg(feature = "plots")]
+                    if !args.no_plots && drawn.add(&row) {
+                        rows.push(SweepRow {
+                            detail: String::new(),
+                            ..row
+                        });
+                    }
                     if fan.len() < MAX_FAN_PATHS && ran.outcome.route().is_some() {
                         fan.push(ran.outcome);
                     }
@@ -59,7 +72,6 @@ pub fn sweep(args: &SweepArgs) -> Result<(), CliError> {
     let mut written = vec![csv_path];
     if !args.no_3d && !interrupted() {
         let (paths, _) = crate::output::view::many::cm_paths(&fan);
-        let routes = rows.iter().filter(|r| r.travel_m.is_some()).count();
         let mut notes: Vec<String> = varies
             .iter()
             .map(|v| {
@@ -80,7 +92,7 @@ pub fn sweep(args: &SweepArgs) -> Result<(), CliError> {
         written.push(
             folder
                 .write_with("sweep.svg", |tmp| {
-                    crate::output::plots::sweep(tmp, varies, &rows)
+                    crate::output::plots::sweep_drawn(tmp, varies, &rows, &drawn)
                 })
                 .map_err(failed)?,
         );
@@ -90,10 +102,6 @@ pub fn sweep(args: &SweepArgs) -> Result<(), CliError> {
         return Err(many_interrupted_after("combinations", &written));
     }
     if !args.quiet {
-        let mut counts: BTreeMap<&str, usize> = BTreeMap::new();
-        for r in &rows {
-            *counts.entry(r.reason.as_str()).or_default() += 1;
-        }
         let summary: Vec<String> = counts.iter().map(|(k, v)| format!("{v} × {k}")).collect();
         let plural = if n == 1 { "" } else { "s" };
         outln!("{n} combination{plural}: {}", summary.join(", "));

@@ -17,7 +17,9 @@ mod work_precision;
 #[cfg(feature = "cli")]
 pub use probabilistic::write_probabilistic_plots;
 #[cfg(feature = "cli")]
+#[cfg(test)]
 pub use sweep::sweep;
+pub use sweep::{Drawn, sweep_drawn};
 #[cfg(feature = "cli")]
 pub use work_precision::work_precision;
 

@@ -10,7 +10,8 @@
 //! values of the first key (fewer when there are many lines, [`MAX_MARKED`] in all), evenly
 //! spaced, the ends kept and, where there is room, both sides of every change of how the route
 //! ended; a caption across the picture's foot says what was drawn of how many combinations,
-//! and `sweep.csv` keeps every one.
+//! and `sweep.csv` keeps every one. The lines drawn are known from the varied keys before any
+//! route runs ([`Drawn`]), so that a sweep keeps only their rows, whatever its size.
 
 use super::COLORS;
 use super::sheet::{self, Area, Entry, Mark, Res, Sheet, err};
@@ -109,6 +110,79 @@ fn ended_alike(a: &SweepRow, b: &SweepRow, shaken: bool) -> bool {
     a.reason == b.reason && outcome(a, shaken) == outcome(b, shaken)
 }
 
+/// What the picture takes of a sweep, known from its varied keys before any route runs: the
+/// lines it draws (the groups of the other keys' values that [`groups`] would make of every
+/// combination, evenly spaced past [`MAX_LINES`]), so that only their combinations are kept,
+/// and the counts of every combination, summed as they come ([`Drawn::add`]).
+pub struct Drawn {
+    /// How many lines the whole sweep has.
+    lines: usize,
+    /// The other keys' values of each line drawn, in the order [`groups`] gives them.
+    chosen: Vec<Vec<f64>>,
+    combinations: usize,
+    permanent: bool,
+    /// How many combinations came out each way, as [`outcome`] says unshaken and shaken.
+    counts: [[usize; 5]; 2],
+}
+
+impl Drawn {
+    /// The lines of `varies`: the groups of every key but the first are the combinations of
+    /// their distinct values, in the order of each key's values (the second key's first), so
+    /// the `j`-th group is `j` written in their mixed radix.
+    pub fn new(varies: &[Vary]) -> Drawn {
+        let distinct: Vec<Vec<f64>> = varies
+            .iter()
+            .skip(1)
+            .map(|v| {
+                let mut d = v.values.clone();
+                d.sort_by(f64::total_cmp);
+                d.dedup_by(|a, b| a.total_cmp(b).is_eq());
+                d
+            })
+            .collect();
+        let lines = distinct
+            .iter()
+            .fold(1usize, |n, d| n.saturating_mul(d.len()));
+        let chosen = spread(lines, MAX_LINES)
+            .into_iter()
+            .map(|j| {
+                let mut rest = j;
+                let mut key = vec![0.0; distinct.len()];
+                for (k, d) in distinct.iter().enumerate().rev() {
+                    key[k] = d[rest % d.len().max(1)];
+                    rest /= d.len().max(1);
+                }
+                key
+            })
+            .collect();
+        Drawn {
+            lines,
+            chosen,
+            combinations: 0,
+            permanent: false,
+            counts: [[0; 5]; 2],
+        }
+    }
+
+    /// Counts the combination `r`; whether the picture needs it (it lies on a line drawn).
+    pub fn add(&mut self, r: &SweepRow) -> bool {
+        self.combinations += 1;
+        self.permanent |= r.permanent_x_m.is_some();
+        for (shaken, counts) in self.counts.iter_mut().enumerate() {
+            counts[outcome(r, shaken == 1) as usize] += 1;
+        }
+        let others = r.values.get(1..).unwrap_or(&[]);
+        self.chosen.iter().any(|key| {
+            key.len() <= others.len() && key.iter().zip(others).all(|(a, b)| a.total_cmp(b).is_eq())
+        })
+    }
+
+    /// How many combinations came out as `o`.
+    fn count(&self, o: Outcome) -> usize {
+        self.counts[usize::from(self.permanent)][o as usize]
+    }
+}
+
 /// `m` of the indices `0..n`, evenly spaced, the first and the last among them (every index
 /// when `n <= m`).
 fn spread(n: usize, m: usize) -> Vec<usize> {
@@ -176,8 +250,17 @@ fn scale_color(x: f64, lo: f64, hi: f64) -> RGBColor {
     ViridisRGB.get_color((0.9 * h.clamp(0.0, 1.0)) as f32)
 }
 
-/// Travel and factor of safety against the first varied key.
+/// Travel and factor of safety against the first varied key, of every row of the sweep held.
+#[cfg(test)]
 pub fn sweep(path: &Path, varies: &[Vary], rows: &[SweepRow]) -> Res<()> {
+    let mut drawn = Drawn::new(varies);
+    let kept: Vec<SweepRow> = rows.iter().filter(|r| drawn.add(r)).cloned().collect();
+    sweep_drawn(path, varies, &kept, &drawn)
+}
+
+/// Travel and factor of safety against the first varied key: `rows` the combinations `drawn`
+/// kept ([`Drawn::add`] said so), in the sweep's order, `drawn` having counted every one.
+pub fn sweep_drawn(path: &Path, varies: &[Vary], rows: &[SweepRow], drawn: &Drawn) -> Res<()> {
     let Some(first) = varies.first() else {
         return sheet::message(
             path,
@@ -186,7 +269,7 @@ pub fn sweep(path: &Path, varies: &[Vary], rows: &[SweepRow]) -> Res<()> {
             &["No key was varied, so there is nothing to plot.".into()],
         );
     };
-    let plot = SweepPlot::new(path, varies, rows);
+    let plot = SweepPlot::new(path, varies, rows, drawn);
     let title = format!(
         "sweep: {} and factor of safety against {}",
         if plot.shaken {
@@ -262,8 +345,10 @@ type SweepChart<'a, 'p> =
 struct SweepPlot<'a> {
     path: &'a Path,
     varies: &'a [Vary],
-    /// Every row of the sweep (counted in the panel).
+    /// The rows of the lines drawn.
     rows: &'a [SweepRow],
+    /// The lines and counts of the whole sweep.
+    totals: &'a Drawn,
     /// The groups drawn, each with the rows drawn of it.
     groups: Vec<(Vec<f64>, Vec<&'a SweepRow>)>,
     /// The rows drawn: those of `groups`.
@@ -289,7 +374,7 @@ struct SweepPlot<'a> {
 
 impl<'a> SweepPlot<'a> {
     /// The picture of `rows`, `varies` not empty.
-    fn new(path: &'a Path, varies: &'a [Vary], rows: &'a [SweepRow]) -> Self {
+    fn new(path: &'a Path, varies: &'a [Vary], rows: &'a [SweepRow], totals: &'a Drawn) -> Self {
         let second_range = varies.get(1).map_or((0.0, 0.0), |v| {
             v.values
                 .iter()
@@ -301,10 +386,11 @@ impl<'a> SweepPlot<'a> {
             Some(w) => (-0.5, w.len() as f64 - 0.5),
             None => sheet::ranges(rows.iter().map(first_of)),
         };
-        let shaken = rows.iter().any(|r| r.permanent_x_m.is_some());
+        let shaken = totals.permanent;
+        // The rows are those of the lines drawn: their groups are the lines.
         let all = groups(rows);
-        let lines = all.len();
-        let chosen = spread(lines, MAX_LINES);
+        let lines = totals.lines;
+        let chosen: Vec<usize> = (0..all.len()).collect();
         let along = (MAX_MARKED / chosen.len().max(1)).clamp(2, MAX_ALONG);
         let mut changes_kept = true;
         let groups: Vec<(Vec<f64>, Vec<&SweepRow>)> = chosen
@@ -320,6 +406,7 @@ impl<'a> SweepPlot<'a> {
             path,
             varies,
             rows,
+            totals,
             groups,
             drawn,
             lines,
@@ -383,7 +470,7 @@ impl<'a> SweepPlot<'a> {
 
     /// Whether some combinations are not drawn (the sweep is larger than a picture holds).
     fn thinned(&self) -> bool {
-        self.drawn.len() < self.rows.len()
+        self.drawn.len() < self.totals.combinations
     }
 
     /// The colour of the `k`-th group, whose other keys' values are `key`.
@@ -723,12 +810,12 @@ impl<'a> SweepPlot<'a> {
     /// How many combinations slid, did not slide, ended at once or had no route, under the
     /// heading "Sweep" from `y` in the panel; returns the y below.
     fn draw_counts(&self, panel: &Area, y: i32) -> Res<i32> {
-        let rows = self.rows;
-        let count = |o: Outcome| rows.iter().filter(|r| outcome(r, self.shaken) == o).count();
-        let plural = if rows.len() == 1 { "" } else { "s" };
+        let all = self.totals.combinations;
+        let count = |o: Outcome| self.totals.count(o);
+        let plural = if all == 1 { "" } else { "s" };
         let mut counts = format!(
             "{} combination{plural}: {} slid, {} did not slide, {} ended at once",
-            rows.len(),
+            all,
             count(Outcome::Slid),
             count(Outcome::DidNotSlide),
             count(Outcome::EndedAtOnce)
@@ -766,7 +853,7 @@ impl<'a> SweepPlot<'a> {
         let mut words = format!(
             "Drawn: {} of the {} combinations, to keep the picture small",
             self.drawn.len(),
-            self.rows.len()
+            self.totals.combinations
         );
         if self.lines > self.groups.len() {
             let keys: Vec<&str> = self.varies[1..].iter().map(|v| v.key.as_str()).collect();
@@ -1403,5 +1490,64 @@ mod tests {
         let ticks: Vec<f64> = words.iter().filter_map(|w| w.parse().ok()).collect();
         assert!(ticks.iter().all(|&v| v >= 0.0), "{ticks:?}");
         assert!(ticks.contains(&0.0) && ticks.contains(&1.0), "{ticks:?}");
+    }
+
+    #[test]
+    fn the_lines_drawn_known_from_the_keys_are_those_every_row_held_would_give() {
+        // The picture keeps only the rows of the lines it draws, chosen before any route runs:
+        // they must be the groups that grouping every combination and spreading would choose.
+        let grid = |values: &[Vec<f64>]| -> Vec<SweepRow> {
+            let n: usize = values.iter().map(Vec::len).product();
+            (0..n)
+                .map(|mut k| {
+                    let mut v = vec![0.0; values.len()];
+                    for (i, vals) in values.iter().enumerate().rev() {
+                        v[i] = vals[k % vals.len()];
+                        k /= vals.len();
+                    }
+                    row(v)
+                })
+                .collect()
+        };
+        let lin = |n: usize, lo: f64| (0..n).map(|i| lo + i as f64 * 0.5).collect::<Vec<f64>>();
+        for values in [
+            vec![lin(3, 0.0)],
+            vec![lin(3, 0.0), lin(4, -1.0)],
+            vec![lin(2, 0.0), vec![1.0, 0.0, 1.0, -0.0, 0.0, -2.0]],
+            vec![lin(5, 0.0), lin(41, 3.0)],
+            vec![lin(2, 0.0), lin(7, 1.0), vec![3.0, -3.0, 1e7, 6e6, 2.0]],
+            vec![lin(1, 0.0), lin(31, 0.0), lin(30, 9.0)],
+        ] {
+            let varies: Vec<Vary> = values
+                .iter()
+                .enumerate()
+                .map(|(k, v)| Vary::numbers(&format!("k.{k}"), v.clone()))
+                .collect();
+            let rows = grid(&values);
+            let all = groups(&rows);
+            let want: Vec<Vec<f64>> = spread(all.len(), MAX_LINES)
+                .into_iter()
+                .map(|k| all[k].0.clone())
+                .collect();
+            let mut drawn = Drawn::new(&varies);
+            let kept: Vec<&SweepRow> = rows.iter().filter(|r| drawn.add(r)).collect();
+            let bits = |v: &[Vec<f64>]| -> Vec<Vec<u64>> {
+                v.iter()
+                    .map(|k| k.iter().map(|x| x.to_bits()).collect())
+                    .collect()
+            };
+            assert_eq!(drawn.lines, all.len(), "{values:?}");
+            assert_eq!(bits(&drawn.chosen), bits(&want), "{values:?}");
+            let in_chosen: usize = all
+                .iter()
+                .filter(|g| {
+                    want.iter()
+                        .any(|w| bits(std::slice::from_ref(w)) == bits(std::slice::from_ref(&g.0)))
+                })
+                .map(|g| g.1.len())
+                .sum();
+            assert_eq!(kept.len(), in_chosen, "{values:?}");
+            assert_eq!(drawn.combinations, rows.len());
+        }
     }
 }
