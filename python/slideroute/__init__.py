@@ -370,13 +370,28 @@ class Scene:
         values: "Mapping[str, Iterable[float]]",
         dynamics: "Optional[str]" = None,
         progress: "Progress" = None,
+        max_combinations: int = 100_000,
     ) -> "Samples":
         """Every combination of the values given (``{"friction.mu_k": [0.3, 0.35, 0.4]}``),
         each route on its own core, by the runner ``slideroute sweep`` uses: one row per
         combination, in order (the last key varies fastest), the rows ``sweep.csv`` has (see
         :class:`Samples`). ``progress(done, total)`` is told how far it is (``True``: a bar);
-        Ctrl-C stops it with ``KeyboardInterrupt``."""
+        Ctrl-C stops it with ``KeyboardInterrupt``. Every row is held (about 1.1 kB a
+        combination at the peak): more than ``max_combinations`` are refused before any runs
+        with :class:`InputError`; raise it, sweep in parts, or use the command line, which
+        holds none."""
         given = [(k, [float(v) for v in vs]) for k, vs in values.items()]
+        limit = _whole("max_combinations", max_combinations, 1, 2**62)
+        count = 1
+        for _, vs in given:
+            count *= len(vs)
+        if count > limit:
+            raise InputError(
+                f"values: {count} combinations, more than max_combinations = {limit}; every "
+                "row is held (about 1.1 kB each): raise max_combinations, sweep in parts, or use "
+                "the command line's sweep, which holds none",
+                "values",
+            )
         with _progress(progress, "sweep") as tell:
             return Samples(self._s.sweep(given, dynamics, tell))
 

@@ -449,6 +449,24 @@ def test_a_probabilistic_analysis_too_large_to_hold_is_refused_before_any_sample
     assert len(p.samples["sample"]) == 5
 
 
+def test_a_sweep_too_large_to_hold_is_refused_before_any_combination_runs():
+    # Every row is held, about 1.1 kB at the peak: 10^4 x 10^4 values reached 7 GB in 30 s.
+    s = slideroute.Scene.default()
+    calls = []
+    grid = {
+        "friction.mu_k": [3.0 + i / 400 for i in range(400)],
+        "loads.eccentricity_m": [0.0] * 251,
+    }
+    with pytest.raises(slideroute.InputError) as e:
+        s.sweep(grid, progress=lambda d, t: calls.append(d))
+    assert e.value.name == "values" and "100400 combinations" in str(e.value), str(e.value)
+    assert "max_combinations" in str(e.value) and calls == [], str(e.value)
+    with pytest.raises(slideroute.InputError) as e:
+        s.sweep({"friction.mu_k": [3.0, 3.5]}, max_combinations=0)
+    assert e.value.name == "max_combinations", str(e.value)
+    assert len(s.sweep({"friction.mu_k": [3.0, 3.5]}, max_combinations=2)["sample"]) == 2
+
+
 def test_a_route_too_long_to_hold_is_refused_before_it_starts_naming_the_way_out():
     # 2 × 10^7 rows would have taken 4 GB of arrays (and 10 GB of rows before them).
     long = slideroute.Scene.default().with_keys({"solver.dt_s": 1e-6})
