@@ -405,7 +405,8 @@ impl Folder {
         })
     }
 
-    /// [`Folder::adopt`] for each of `staged`, under its own file name.
+    /// [`Folder::adopt`] for each of `staged`, under its own file name (the pictures').
+    #[cfg(any(feature = "plots", test))]
     pub fn adopt_all(&mut self, staged: Vec<PathBuf>) -> Result<Vec<PathBuf>, String> {
         staged
             .iter()
