@@ -1,5 +1,5 @@
-//! Every sample of a design run: the samples drawn whole from the seed before any route runs,
-//! each sample's route independent of every other and run by the one runner
+//! Every sample of a design run: the samples a fixed function of the seed (drawn a row at a
+//! time, the values of a design drawn whole before any route runs), each sample's route independent of every other and run by the one runner
 //! (`analysis/runner.rs`), the results kept in sample order — so they are the same for a seed
 //! whatever the number of threads, and a range of the design run anywhere (another process,
 //! another machine) gives the rows the whole run gives for that range.

@@ -1,8 +1,8 @@
 //! Designs of uniforms in (0, 1)ⁿ: plain Monte Carlo, or a Latin hypercube (each
 //! value's range cut into as many equally likely strata as there are samples, one sample in
-//! each, the strata paired at random across values). Drawn whole from the seed before any route
-//! runs, so that the samples are the same for a seed whatever the number of threads or machines
-//! that run them.
+//! each, the strata paired at random across values). A fixed function of the seed — drawn a row
+//! at a time ([`Draws`]) as if drawn whole before any route runs —, so that the samples are the
+//! same for a seed whatever the number of threads or machines that run them.
 
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
