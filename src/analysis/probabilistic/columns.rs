@@ -172,25 +172,28 @@ impl Columns {
         if self.all_held() {
             return Ok(percentiles_held(self.held_column(c)));
         }
-        let mut n = 0usize;
-        self.scan(|r| n += usize::from(!r[c].is_nan()))?;
+        // The first pass counts the values as it takes the first 16 bits of their order keys.
+        let first = self.histogram(c, 48, &[0])?;
+        let n: usize = first[0].iter().sum();
         if n == 0 {
             return Ok(None);
         }
-        // The order statistics the interpolation reads: i and i + 1 at each percentile.
-        let mut wanted: Vec<usize> = Vec::new();
+        // The order statistics the interpolation reads: i and i + 1 at each percentile, each
+        // found once.
+        let mut wanted: Vec<usize> = Vec::with_capacity(6);
         for q in [0.05, 0.5, 0.95] {
             let i = (q * (n - 1) as f64).floor() as usize;
             wanted.extend([i, (i + 1).min(n - 1)]);
         }
-        let mut found = Vec::with_capacity(wanted.len());
-        for &k in &wanted {
-            found.push(self.select(c, k)?);
-        }
+        let mut ks = wanted.clone();
+        ks.sort_unstable();
+        ks.dedup();
+        let found = self.select(c, &ks, &first[0])?;
+        let value = |k: usize| ks.binary_search(&k).map_or(f64::NAN, |i| found[i]);
         let at = |j: usize, q: f64| {
             let pos = q * (n - 1) as f64;
             let f = pos.fract();
-            let (vi, vj) = (found[2 * j], found[2 * j + 1]);
+            let (vi, vj) = (value(wanted[2 * j]), value(wanted[2 * j + 1]));
             if f == 0.0 || vi == vj {
                 vi
             } else if vi.is_infinite() || vj.is_infinite() {
@@ -206,37 +209,54 @@ impl Columns {
         }))
     }
 
-    /// The `k`-th smallest (from 0) of column `c` in the order of `f64::total_cmp`, NaN left
-    /// out: a radix selection on the order's 64-bit keys, 16 bits a pass (four passes over the
-    /// rows, 65 536 counters).
-    fn select(&self, c: usize, k: usize) -> std::io::Result<f64> {
-        let (mut prefix, mut rank) = (0u64, k);
-        for pass in 0..4u32 {
-            let shift = 48 - 16 * pass;
-            // The keys that agree with `prefix` above this pass's 16 bits.
-            let high = if pass == 0 {
-                0
-            } else {
-                u64::MAX << (shift + 16)
-            };
-            let mut counts = vec![0usize; 1 << 16];
-            self.scan(|r| {
-                let v = r[c];
-                if !v.is_nan() {
-                    let key = order_key(v);
-                    if key & high == prefix {
-                        counts[((key >> shift) & 0xffff) as usize] += 1;
+    /// The `ks`-th smallest (from 0) of column `c` in the order of `f64::total_cmp`, NaN left
+    /// out: a radix selection on the order's 64-bit keys, 16 bits a pass, all of `ks` in the
+    /// same three passes over the rows after the first, whose histogram of the first 16 bits
+    /// is `first` (65 536 counters a value sought).
+    fn select(&self, c: usize, ks: &[usize], first: &[usize]) -> std::io::Result<Vec<f64>> {
+        // Each value sought: the bits of its key found so far, and its rank among the keys
+        // that begin with them.
+        let mut sought: Vec<(u64, usize)> = ks
+            .iter()
+            .map(|&k| {
+                let mut rank = k;
+                (digit_at(first, &mut rank) << 48, rank)
+            })
+            .collect();
+        for shift in [32, 16, 0] {
+            let prefixes: Vec<u64> = sought.iter().map(|&(p, _)| p).collect();
+            let counts = self.histogram(c, shift, &prefixes)?;
+            for ((prefix, rank), counts) in sought.iter_mut().zip(&counts) {
+                *prefix |= digit_at(counts, rank) << shift;
+            }
+        }
+        Ok(sought.iter().map(|&(p, _)| from_order_key(p)).collect())
+    }
+
+    /// For each of `prefixes`, how many of column `c`'s numbers (NaN left out) have an order
+    /// key that begins as it does (the bits above `shift + 16`), by their 16 bits from `shift`
+    /// up: one pass.
+    fn histogram(
+        &self,
+        c: usize,
+        shift: u32,
+        prefixes: &[u64],
+    ) -> std::io::Result<Vec<Vec<usize>>> {
+        let mask = u64::MAX.checked_shl(shift + 16).unwrap_or(0);
+        let mut counts = vec![vec![0usize; 1 << 16]; prefixes.len()];
+        self.scan(|r| {
+            let v = r[c];
+            if !v.is_nan() {
+                let key = order_key(v);
+                let digit = ((key >> shift) & 0xffff) as usize;
+                for (&prefix, counts) in prefixes.iter().zip(&mut counts) {
+                    if key & mask == prefix {
+                        counts[digit] += 1;
                     }
                 }
-            })?;
-            let mut digit = 0usize;
-            while digit + 1 < counts.len() && rank >= counts[digit] {
-                rank -= counts[digit];
-                digit += 1;
             }
-            prefix |= (digit as u64) << shift;
-        }
-        Ok(from_order_key(prefix))
+        })?;
+        Ok(counts)
     }
 
     /// Spearman's ρ of columns `a` and `b`, as `sensitivity::spearman` gives it of the pairs
@@ -267,7 +287,7 @@ impl Columns {
         let block = self.in_memory_rows;
         let mut start = 0usize;
         while start < n {
-            let end = (start + block).min(n);
+            let end = start.saturating_add(block).min(n);
             // The block's pairs: the kept pairs numbered start..end.
             let (mut va, mut vb) = (Vec::new(), Vec::new());
             let mut index = 0usize;
@@ -280,9 +300,14 @@ impl Columns {
                     index += 1;
                 }
             })?;
-            let ra = self.ranks_among(&va, a, &kept)?;
-            let rb = self.ranks_among(&vb, b, &kept)?;
-            for (x, y) in ra.iter().zip(&rb) {
+            let (mut ra, mut rb) = (Ranks::of(va), Ranks::of(vb));
+            self.scan(|r| {
+                if kept(r) {
+                    ra.count(r[a]);
+                    rb.count(r[b]);
+                }
+            })?;
+            for (x, y) in ra.ranks().zip(rb.ranks()) {
                 let (dx, dy) = (x - mean, y - mean);
                 sab += dx * dy;
                 saa += dx * dx;
@@ -292,44 +317,110 @@ impl Columns {
         }
         Ok((saa > 0.0 && sbb > 0.0).then(|| (sab / (saa * sbb).sqrt()).clamp(-1.0, 1.0)))
     }
+}
 
-    /// The rank of each of `values` among column `c` of the rows `kept` says: how many are less
-    /// plus half of one more than how many are equal (ties their mean rank, as
-    /// `sensitivity::ranks` gives them). One pass, counting into difference arrays where each
-    /// row's value falls among the sorted `values`.
-    fn ranks_among(
-        &self,
-        values: &[f64],
-        c: usize,
-        kept: &dyn Fn(&[f64]) -> bool,
-    ) -> std::io::Result<Vec<f64>> {
-        let mut order: Vec<usize> = (0..values.len()).collect();
-        order.sort_by(|&i, &j| values[i].total_cmp(&values[j]));
-        let sorted: Vec<f64> = order.iter().map(|&i| values[i]).collect();
-        // less[j]: rows whose value is below sorted[j]; equal[j]: rows equal to it. A row of
-        // value v adds one to less[j] for every j from the first sorted value above v, and one
-        // to equal[j] for each j of a sorted value equal to v (`==`, so −0 ties with +0).
-        let m = sorted.len();
-        let (mut less, mut equal) = (vec![0i64; m + 1], vec![0i64; m + 1]);
-        self.scan(|r| {
-            if kept(r) {
-                let v = r[c];
-                let lo = sorted.partition_point(|&s| s < v);
-                let hi = sorted.partition_point(|&s| s <= v);
-                less[hi] += 1;
-                equal[lo] += 1;
-                equal[hi] -= 1;
-            }
-        })?;
-        let (mut l, mut e) = (0i64, 0i64);
-        let mut ranks = vec![0.0; m];
-        for (j, &i) in order.iter().enumerate() {
-            l += less[j];
-            e += equal[j];
-            ranks[i] = l as f64 + 0.5 * (e as f64 + 1.0);
-        }
-        Ok(ranks)
+/// The next 16 bits of the key ranked `rank` among those a histogram counts (`counts`, by
+/// those bits); `rank` becomes its rank among the keys with those bits.
+fn digit_at(counts: &[usize], rank: &mut usize) -> u64 {
+    let mut digit = 0usize;
+    while digit + 1 < counts.len() && *rank >= counts[digit] {
+        *rank -= counts[digit];
+        digit += 1;
     }
+    digit as u64
+}
+
+/// The ranks of a block's numbers among all the numbers counted ([`Ranks::count`]), ties
+/// given their mean rank as `sensitivity::ranks` gives them: how many are less plus half of
+/// one more than how many are equal. The numbers counted are taken a batch at a time, sorted
+/// and merged with the block's (a pass over both), which reads memory in order where a search
+/// of the block for each would wait on it.
+struct Ranks {
+    /// The block's distinct numbers as [`tie_key`]s, increasing.
+    keys: Vec<u64>,
+    /// Each of the block's numbers in its order: the index of its key.
+    of: Vec<usize>,
+    /// `between[j]`: the numbers counted above `keys[j - 1]` and below `keys[j]` (the last
+    /// one above every key).
+    between: Vec<u64>,
+    /// `equal[j]`: the numbers counted equal to `keys[j]`.
+    equal: Vec<u64>,
+    /// The batch of numbers counted but not yet merged, as [`tie_key`]s.
+    batch: Vec<u64>,
+}
+
+impl Ranks {
+    /// A batch at least this long (or as long as the block): a short block's merges cost
+    /// little more than their batch.
+    const BATCH: usize = 1 << 12;
+
+    fn of(values: Vec<f64>) -> Ranks {
+        let mut keys: Vec<u64> = values.iter().map(|&v| tie_key(v)).collect();
+        keys.sort_unstable();
+        keys.dedup();
+        let of = values
+            .into_iter()
+            .map(|v| keys.partition_point(|&k| k < tie_key(v)))
+            .collect();
+        let between = vec![0; keys.len() + 1];
+        let equal = vec![0; keys.len()];
+        let batch = Vec::with_capacity(keys.len().max(Ranks::BATCH));
+        Ranks {
+            keys,
+            of,
+            between,
+            equal,
+            batch,
+        }
+    }
+
+    /// Counts one more number (not NaN).
+    fn count(&mut self, v: f64) {
+        self.batch.push(tie_key(v));
+        if self.batch.len() >= self.keys.len().max(Ranks::BATCH) {
+            self.merge();
+        }
+    }
+
+    /// Counts the batch: sorted, then walked beside the block's keys.
+    fn merge(&mut self) {
+        self.batch.sort_unstable();
+        let mut j = 0;
+        for &x in &self.batch {
+            while j < self.keys.len() && self.keys[j] < x {
+                j += 1;
+            }
+            match self.equal.get_mut(j) {
+                Some(e) if self.keys[j] == x => *e += 1,
+                _ => self.between[j] += 1,
+            }
+        }
+        self.batch.clear();
+    }
+
+    /// The rank of each of the block's numbers, in its order.
+    fn ranks(&mut self) -> impl Iterator<Item = f64> + '_ {
+        self.merge();
+        let mut less = 0u64;
+        let rank_of: Vec<f64> = self
+            .equal
+            .iter()
+            .zip(&self.between)
+            .map(|(&e, &b)| {
+                less += b;
+                let r = less as f64 + 0.5 * (e as f64 + 1.0);
+                less += e;
+                r
+            })
+            .collect();
+        self.of.iter().map(move |&j| rank_of[j])
+    }
+}
+
+/// [`order_key`] with −0 taken as +0: equal keys for numbers equal as `==` has them (NaN
+/// aside), in the order of `f64::total_cmp` otherwise.
+fn tie_key(v: f64) -> u64 {
+    order_key(if v == 0.0 { 0.0 } else { v })
 }
 
 /// The 64-bit key that orders numbers as `f64::total_cmp` does (sign flipped for the
@@ -398,13 +489,34 @@ pub(super) mod tests {
         p.map(|p| [p.p5.to_bits(), p.p50.to_bits(), p.p95.to_bits()])
     }
 
+    /// `n` rows of −0, +0 and 1 in a fixed order, NaN now and then: order statistics that fall
+    /// on −0 or +0 (equal as numbers, not as bits) and the interpolation between them.
+    fn zeros(n: usize) -> Vec<[f64; 3]> {
+        let mut next = uniforms(0x5851_f42d_4c95_7f2d);
+        (0..n)
+            .map(|_| {
+                let u = next();
+                let z = if u < 0.4 { -0.0 } else { 0.0 };
+                [
+                    z,
+                    if u > 0.9 { 1.0 } else { z },
+                    if u < 0.1 { f64::NAN } else { -z },
+                ]
+            })
+            .collect()
+    }
+
     #[test]
     fn a_store_past_its_memory_gives_the_percentiles_of_every_value_held_bit_for_bit() {
-        for n in [0, 1, 2, 3, 10, 1000, 5000] {
-            let data = rows(n);
+        let sets = [0, 1, 2, 3, 10, 1000, 5000]
+            .into_iter()
+            .map(rows)
+            .chain([3, 21, 400].map(zeros));
+        for data in sets {
+            let n = data.len();
             for in_memory in [1, 7, 64, n.max(1)] {
                 let s = stored(&data, in_memory);
-                assert!(s.held.len() <= 3 * in_memory, "{n} {in_memory}");
+                assert_eq!(s.spilled, n.saturating_sub(in_memory), "{n} {in_memory}");
                 for c in 0..3 {
                     let want = percentiles_held(data.iter().map(|r| r[c]).collect());
                     assert_eq!(
@@ -419,14 +531,24 @@ pub(super) mod tests {
 
     #[test]
     fn a_store_past_its_memory_gives_the_rank_correlations_of_every_pair_held() {
-        for n in [0, 2, 3, 4, 10, 1000, 3000] {
-            let mut data = rows(n);
-            // A column related to the first by a monotone function with its ties.
-            for r in &mut data {
-                r[2] = if r[0].is_nan() { 0.0 } else { r[0].powi(3) };
-            }
-            for in_memory in [1, 7, 64, n.max(1)] {
+        let sets = [0, 1, 2, 3, 4, 10, 1000, 5000]
+            .into_iter()
+            .map(|n| {
+                let mut data = rows(n);
+                // A column related to the first by a monotone function with its ties.
+                for r in &mut data {
+                    r[2] = if r[0].is_nan() { 0.0 } else { r[0].powi(3) };
+                }
+                data
+            })
+            .chain([3, 21, 400].map(zeros));
+        for data in sets {
+            let n = data.len();
+            // A block of one row at a time only where it is quick.
+            let smallest = if n > 1000 { 7 } else { 1 };
+            for in_memory in [smallest, 7, 64, n.max(1)] {
                 let s = stored(&data, in_memory);
+                assert_eq!(s.spilled, n.saturating_sub(in_memory), "{n} {in_memory}");
                 for (a, b) in [(0, 1), (1, 0), (0, 2), (1, 2), (1, 1)] {
                     let pairs: Vec<(f64, f64)> = data.iter().map(|r| (r[a], r[b])).collect();
                     let want = spearman_held(&pairs);
@@ -477,6 +599,24 @@ pub(super) mod tests {
         })
         .unwrap();
         assert_eq!((count, last), (501, Some([1.0, 2.0, 3.0])));
+    }
+
+    #[test]
+    fn a_store_holds_no_more_rows_in_memory_than_it_was_given_and_the_rest_in_its_file() {
+        let data = rows(1000);
+        let s = stored(&data, 64);
+        assert_eq!((s.held.len(), s.spilled, s.rows()), (3 * 64, 936, 1000));
+        assert!(s.file.borrow().is_some());
+        // Within its bound, no file.
+        let s = stored(&data, 1000);
+        assert_eq!((s.held.len(), s.spilled, s.rows()), (3 * 1000, 0, 1000));
+        assert!(s.file.borrow().is_none());
+        // Nothing stored: nothing to give, and no panic.
+        let s = stored(&[], 4);
+        assert_eq!(s.rows(), 0);
+        assert_eq!(s.percentiles(0).unwrap(), None);
+        assert_eq!(s.spearman(0, 1).unwrap(), None);
+        assert_eq!(s.percentiles(3).unwrap(), None);
     }
 
     static STOP: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
