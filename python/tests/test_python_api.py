@@ -435,7 +435,10 @@ def test_a_probabilistic_analysis_too_large_to_hold_is_refused_before_any_sample
     calls = []
     with pytest.raises(slideroute.InputError) as e:
         slideroute.probabilistic(
-            s, {"friction.mu_k": "uniform:3:4"}, samples=100_001, progress=lambda d, t: calls.append(d)
+            s,
+            {"friction.mu_k": "uniform:3:4"},
+            samples=100_001,
+            progress=lambda d, t: calls.append(d),
         )
     assert e.value.name == "samples" and "max_samples" in str(e.value), str(e.value)
     assert "run_samples" in str(e.value) and calls == [], str(e.value)

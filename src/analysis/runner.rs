@@ -197,6 +197,28 @@ pub const PATHS_KEPT: usize = 2000;
 /// their results take a few MB.
 pub const CHUNK: usize = 4096;
 
+/// The items of `items` run [`CHUNK`] at a time by `run(first, chunk)` (`first`: the number of
+/// the chunk's first item), each result handed in order to `each` as soon as its chunk has run:
+/// memory holds one chunk, whatever the number of items. The first error of `each` ends it.
+pub fn run_chunked<T, R, E>(
+    mut items: impl Iterator<Item = T>,
+    mut run: impl FnMut(usize, Vec<T>) -> Vec<R>,
+    mut each: impl FnMut(R) -> Result<(), E>,
+) -> Result<(), E> {
+    let mut first = 0;
+    loop {
+        let chunk: Vec<T> = items.by_ref().take(CHUNK).collect();
+        if chunk.is_empty() {
+            return Ok(());
+        }
+        let n = chunk.len();
+        for r in run(first, chunk) {
+            each(r)?;
+        }
+        first += n;
+    }
+}
+
 /// The most rows a route of many keeps (every stride-th increment, the stride chosen so): what
 /// a [`RouteResult`] takes from them — the last row, the largest tilts, a CM path of
 /// [`RouteResult::PATH_POINTS`] — needs no more, and each row of a rigid-body route is the model
@@ -231,6 +253,42 @@ pub fn thin<T: Copy>(items: &[T], n: usize) -> Vec<T> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn chunked_runs_hand_every_result_on_in_order_with_its_number_and_stop_at_an_error() {
+        let n = 2 * CHUNK + 3;
+        let mut firsts = Vec::new();
+        let mut got = Vec::new();
+        let done: Result<(), ()> = run_chunked(
+            0..n,
+            |first, chunk| {
+                firsts.push((first, chunk.len()));
+                chunk.into_iter().map(|k| (first, k)).collect()
+            },
+            |r| {
+                got.push(r);
+                Ok(())
+            },
+        );
+        assert_eq!(done, Ok(()));
+        assert_eq!(firsts, [(0, CHUNK), (CHUNK, CHUNK), (2 * CHUNK, 3)]);
+        assert!(
+            got.iter()
+                .enumerate()
+                .all(|(i, &(first, k))| k == i && first == i / CHUNK * CHUNK)
+        );
+        // The first error ends it: no chunk after the one it came in runs.
+        let mut runs = 0;
+        let e = run_chunked(
+            0..n,
+            |_, c| {
+                runs += 1;
+                c
+            },
+            |k| if k == 5 { Err(k) } else { Ok(()) },
+        );
+        assert_eq!((e, runs), (Err(5), 1));
+    }
 
     #[test]
     fn a_thinned_path_keeps_its_ends_and_at_most_its_count() {

@@ -7,7 +7,7 @@
 //! value is checked exactly as in a scene file; a combination that is invalid or whose route
 //! fails becomes a row with its reason, never an abort.
 
-use super::runner::{CHUNK, Outcome, run_many};
+use super::runner::{Outcome, run_chunked, run_many};
 use crate::model::{DynamicsModel, Friction, Integrator, Mode};
 use crate::scene::{Scene, SceneError};
 
@@ -506,25 +506,20 @@ impl<'a> Sweep<'a> {
     }
 
     /// Every combination, in order, as [`Sweep::run`] runs them, each handed to `each` as soon
-    /// as it and those before it have run, at most [`CHUNK`] at a time on every core: the
+    /// as it and those before it have run, at most 4096 (`CHUNK`) at a time on every core: the
     /// sweep holds no row `each` does not keep. The first error of `each` ends the run and is
     /// returned.
     pub fn run_each<E>(
         &self,
         tick: impl Fn() + Sync,
         stop: impl Fn() -> bool + Sync,
-        mut each: impl FnMut(SweepRow) -> Result<(), E>,
+        each: impl FnMut(SweepRow) -> Result<(), E>,
     ) -> Result<(), E> {
-        let n = self.count();
-        let mut first = 0;
-        while first < n {
-            let end = (first + CHUNK).min(n);
-            for row in self.run_range(first..end, &tick, &stop) {
-                each(row)?;
-            }
-            first = end;
-        }
-        Ok(())
+        run_chunked(
+            0..self.count(),
+            |first, chunk| self.run_range(first..first + chunk.len(), &tick, &stop),
+            each,
+        )
     }
 }
 

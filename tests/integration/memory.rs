@@ -125,46 +125,56 @@ fn check_and_a_comparison_keep_bounded_memory_whatever_the_routes_length() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
+/// Runs `slideroute args(size)… --out DIR` at each of two sizes, each in a folder of its own,
+/// `check(DIR, size)` after each; the peak resident sets (kB).
+fn peaks_at(
+    name: &str,
+    sizes: [usize; 2],
+    args: impl Fn(usize) -> Vec<String>,
+    check: impl Fn(&std::path::Path, usize),
+) -> [u64; 2] {
+    let dir = std::env::temp_dir().join(format!("slideroute-memory-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let peaks = sizes.map(|size| {
+        let out = dir.join(size.to_string());
+        let mut given: Vec<std::ffi::OsString> = args(size).into_iter().map(Into::into).collect();
+        given.extend(["--out".into(), out.clone().into_os_string()]);
+        let given: Vec<&std::ffi::OsStr> = given.iter().map(|a| a.as_os_str()).collect();
+        let (status, peak) = peak_of(&given);
+        assert!(status.success(), "{given:?}");
+        check(&out, size);
+        peak
+    });
+    let _ = std::fs::remove_dir_all(&dir);
+    peaks
+}
+
+/// The number of lines of `file`.
+fn lines_of(file: &std::path::Path) -> usize {
+    std::fs::read_to_string(file).unwrap().lines().count()
+}
+
 #[test]
 fn a_probabilistic_analysis_keeps_bounded_memory_whatever_the_number_of_samples() {
     // Each sample was held to the end (its values, its outcome, its reason): 100 000 samples
     // whose values make no valid scene took 57.7 MB at their peak, 168 MB for 300 000 routes.
     // Now they run 4096 at a time, each row written as it comes and each route's values kept
     // in a bounded store: the peak does not grow with the number of samples.
-    let dir =
-        std::env::temp_dir().join(format!("slideroute-memory-samples-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    let mut peaks = Vec::new();
-    for samples in ["2000", "100000"] {
-        let out = dir.join(samples);
-        let args = [
-            "probabilistic",
-            "--quiet",
-            "--no-plots",
-            "--no-3d",
-            "--samples",
-            samples,
-            "--dist",
-            "friction.mu_k=uniform:-2:-1",
-            "--out",
-        ]
-        .map(std::ffi::OsStr::new);
-        let mut args = args.to_vec();
-        args.push(out.as_os_str());
-        let (status, peak) = peak_of(&args);
-        assert!(status.success(), "{samples}");
-        let rows = std::fs::read_to_string(out.join("samples.csv"))
-            .unwrap()
-            .lines()
-            .count();
-        assert_eq!(
-            rows,
-            samples.parse::<usize>().unwrap() + 1,
-            "the header and each sample"
-        );
-        peaks.push(peak);
-    }
+    let words = "probabilistic --quiet --no-plots --no-3d --dist friction.mu_k=uniform:-2:-1";
+    let peaks = peaks_at(
+        "samples",
+        [2000, 100_000],
+        |n| {
+            let mut a: Vec<String> = words.split(' ').map(String::from).collect();
+            a.extend(["--samples".into(), n.to_string()]);
+            a
+        },
+        |out, n| {
+            let rows = lines_of(&out.join("samples.csv"));
+            assert_eq!(rows, n + 1, "the header and each sample");
+        },
+    );
     println!(
         "peak resident set: 2 000 samples {} kB, 100 000 {} kB",
         peaks[0], peaks[1]
@@ -175,7 +185,6 @@ fn a_probabilistic_analysis_keeps_bounded_memory_whatever_the_number_of_samples(
         peaks[0],
         peaks[1]
     );
-    let _ = std::fs::remove_dir_all(&dir);
 }
 
 #[test]
@@ -184,31 +193,25 @@ fn a_sweep_keeps_bounded_memory_whatever_the_number_of_combinations() {
     // no valid scene took 73.8 MB at their peak (792 MB for 1 000 × 1 000 routes). Now they
     // run 4096 at a time, each row written as it comes, and the picture keeps only the rows of
     // the 30 lines it draws.
-    let dir = std::env::temp_dir().join(format!("slideroute-memory-sweep-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    let mut peaks = Vec::new();
-    for n in ["20", "300"] {
-        let out = dir.join(n);
-        let (mu, e) = (
-            format!("friction.mu_k=-2:-1:{n}"),
-            format!("loads.eccentricity_m=0:1:{n}"),
-        );
-        let args =
-            ["sweep", "--quiet", "--vary", &mu, "--vary", &e, "--out"].map(std::ffi::OsStr::new);
-        let mut args = args.to_vec();
-        args.push(out.as_os_str());
-        let (status, peak) = peak_of(&args);
-        assert!(status.success(), "{n}");
-        let rows = std::fs::read_to_string(out.join("sweep.csv"))
-            .unwrap()
-            .lines()
-            .count();
-        let n: usize = n.parse().unwrap();
-        assert_eq!(rows, n * n + 1, "the header and each combination");
-        assert!(out.join("sweep.svg").is_file());
-        peaks.push(peak);
-    }
+    let peaks = peaks_at(
+        "sweep",
+        [20, 300],
+        |n| {
+            vec![
+                "sweep".into(),
+                "--quiet".into(),
+                "--vary".into(),
+                format!("friction.mu_k=-2:-1:{n}"),
+                "--vary".into(),
+                format!("loads.eccentricity_m=0:1:{n}"),
+            ]
+        },
+        |out, n| {
+            let rows = lines_of(&out.join("sweep.csv"));
+            assert_eq!(rows, n * n + 1, "the header and each combination");
+            assert!(out.join("sweep.svg").is_file());
+        },
+    );
     println!(
         "peak resident set: 400 combinations {} kB, 90 000 {} kB",
         peaks[0], peaks[1]
@@ -219,5 +222,4 @@ fn a_sweep_keeps_bounded_memory_whatever_the_number_of_combinations() {
         peaks[0],
         peaks[1]
     );
-    let _ = std::fs::remove_dir_all(&dir);
 }

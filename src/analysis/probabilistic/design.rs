@@ -1,11 +1,11 @@
 //! Every sample of a design run: the samples a fixed function of the seed (drawn a row at a
-//! time, the values of a design drawn whole before any route runs), each sample's route independent of every other and run by the one runner
-//! (`analysis/runner.rs`), the results kept in sample order — so they are the same for a seed
+//! time, the values of a design drawn whole before any route runs), each sample's route
+//! independent of every other and run by the one runner (`analysis/runner.rs`), the results kept in sample order — so they are the same for a seed
 //! whatever the number of threads, and a range of the design run anywhere (another process,
 //! another machine) gives the rows the whole run gives for that range.
 
 use super::{Sampling, Uncertain, sample_rows, sample_scene, sample_values};
-use crate::analysis::runner::{Outcome, run_many};
+use crate::analysis::runner::{Outcome, run_chunked, run_many};
 use crate::analysis::sweep::{KeyError, check_key, given_twice};
 use crate::scene::Scene;
 
@@ -62,21 +62,13 @@ impl Design<'_> {
         &self,
         tick: impl Fn() + Sync,
         stop: impl Fn() -> bool + Sync,
-        mut each: impl FnMut(Sample) -> Result<(), E>,
+        each: impl FnMut(Sample) -> Result<(), E>,
     ) -> Result<(), E> {
-        let mut rows = sample_rows(self.uncertain, self.samples, self.seed, self.sampling);
-        let mut first = 0;
-        loop {
-            let chunk: Vec<Vec<f64>> = rows.by_ref().take(CHUNK).collect();
-            if chunk.is_empty() {
-                return Ok(());
-            }
-            let n = chunk.len();
-            for sample in run_values(self.scene, self.uncertain, first, chunk, &tick, &stop) {
-                each(sample)?;
-            }
-            first += n;
-        }
+        run_chunked(
+            sample_rows(self.uncertain, self.samples, self.seed, self.sampling),
+            |first, chunk| run_values(self.scene, self.uncertain, first, chunk, &tick, &stop),
+            each,
+        )
     }
 }
 

@@ -1,8 +1,9 @@
 //! The probabilistic analysis: distributions on any numeric scene key
 //! (`numeric/distribution.rs`, below the scene so that a scene's `[uncertain]` table can name
-//! them), designs of samples that are a fixed function of a seed (`sampling.rs`), each sample's scene (here),
-//! every sample of a design run in order by the one runner (`design.rs`), the rank correlations
-//! of inputs with results (`sensitivity.rs`), and what the samples come to (`summary.rs`, from the bounded store of `columns.rs`).
+//! them), designs of samples that are a fixed function of a seed (`sampling.rs`), each
+//! sample's scene (here), every sample of a design run in order by the one runner
+//! (`design.rs`), the rank correlations of inputs with results (`sensitivity.rs`), and what
+//! the samples come to (`summary.rs`, from the bounded store of `columns.rs`).
 
 mod columns;
 mod design;

@@ -185,9 +185,9 @@ pub fn cm_paths<'a>(
 }
 
 /// A fan page (`route-fan.html`, `sweep.html`): the foundation of `scene` under `paths` (X,
-/// Z; each [`simplified`] to [`MAX_FAN_POINTS`], at most [`MAX_FAN_PATHS`] drawn), each point on the
-/// ground (a point off a surface left out), of `routes` routes in all, with `nominal` (the
-/// scene as written) where there is one. `what` names the routes ("sampled routes").
+/// Z; each [`simplified`] to [`MAX_FAN_POINTS`], at most [`MAX_FAN_PATHS`] drawn), each point
+/// on the ground (a point off a surface left out), of `routes` routes in all, with `nominal`
+/// (the scene as written) where there is one. `what` names the routes ("sampled routes").
 pub fn fan_page(
     scene: &Scene,
     nominal: Option<&Route>,
