@@ -3,7 +3,8 @@
 //! file, so that the percentiles and Spearman's rank correlations come out exactly as if every
 //! value were held (`summary.rs`, `sensitivity.rs`) for any number of samples, in a few tens
 //! of MB: percentiles by a radix selection in passes over the rows, ranks by counting, block by
-//! block, where each of a block's values falls among all the others.
+//! block, where each of a block's values falls among all the others. The sweep's picture keeps
+//! what it shows of each combination in the same store.
 
 use super::Percentiles;
 use super::sensitivity::spearman as spearman_held;

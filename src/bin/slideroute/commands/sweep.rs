@@ -28,13 +28,12 @@ pub fn sweep(args: &SweepArgs) -> Result<(), CliError> {
     let mut folder = Folder::open(&args.out, "sweep").map_err(failed)?;
     let bar = progress_bar(args.quiet, n as u64, "sweep", "combinations");
     let varies = sweep.varies();
-    // Each combination, as it comes, written to sweep.csv, counted, and kept (without its
-    // detail, which sweep.csv has) if it lies on a line the picture draws; the first routes
-    // kept for the fan.
+    // Each combination, as it comes, written to sweep.csv, counted, and what the picture shows
+    // of it kept if it lies on a line the picture draws (in a temporary file in the staging
+    // folder past a few MB); the first routes kept for the fan.
     #[cfg(feature = "plots")]
-    let mut drawn = crate::output::plots::Drawn::new(varies);
-    #[cfg(feature = "plots")]
-    let mut rows: Vec<SweepRow> = Vec::new();
+    let mut drawn =
+        crate::output::plots::Drawn::new(varies, Some(folder.staging().map_err(failed)?));
     let mut counts: BTreeMap<String, usize> = BTreeMap::new();
     let mut routes = 0usize;
     let mut fan: Vec<Outcome> = Vec::new();
@@ -53,11 +52,8 @@ pub fn sweep(args: &SweepArgs) -> Result<(), CliError> {
                     *counts.entry(row.reason.clone()).or_default() += 1;
                     routes += usize::from(row.travel_m.is_some());
                     #[cfg(feature = "plots")]
-                    if !args.no_plots && drawn.add(&row) {
-                        rows.push(SweepRow {
-                            detail: String::new(),
-                            ..row
-                        });
+                    if !args.no_plots {
+                        drawn.add(&row).map_err(|e| format!("sweep picture: {e}"))?;
                     }
                     if fan.len() < MAX_FAN_PATHS && ran.outcome.route().is_some() {
                         fan.push(ran.outcome);
@@ -92,6 +88,7 @@ pub fn sweep(args: &SweepArgs) -> Result<(), CliError> {
         written.push(
             folder
                 .write_with("sweep.svg", |tmp| {
+                    let rows = drawn.rows().map_err(|e| format!("sweep picture: {e}"))?;
                     crate::output::plots::sweep_drawn(tmp, varies, &rows, &drawn)
                 })
                 .map_err(failed)?,

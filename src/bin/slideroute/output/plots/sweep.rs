@@ -11,7 +11,9 @@
 //! spaced, the ends kept and, where there is room, both sides of every change of how the route
 //! ended; a caption across the picture's foot says what was drawn of how many combinations,
 //! and `sweep.csv` keeps every one. The lines drawn are known from the varied keys before any
-//! route runs ([`Drawn`]), so that a sweep keeps only their rows, whatever its size.
+//! route runs, and the values drawn along them chosen once every combination has come from a
+//! few numbers kept of each, past a few MB in a temporary file ([`Drawn`]), so that a sweep of
+//! any size keeps only a few MB for its picture.
 
 use super::COLORS;
 use super::sheet::{self, Area, Entry, Mark, Res, Sheet, err};
@@ -112,8 +114,11 @@ fn ended_alike(a: &SweepRow, b: &SweepRow, shaken: bool) -> bool {
 
 /// What the picture takes of a sweep, known from its varied keys before any route runs: the
 /// lines it draws (the groups of the other keys' values that [`groups`] would make of every
-/// combination, evenly spaced past [`MAX_LINES`]), so that only their combinations are kept,
-/// and the counts of every combination, summed as they come ([`Drawn::add`]).
+/// combination, evenly spaced past [`MAX_LINES`]), and the counts of every combination, summed as
+/// they come ([`Drawn::add`]). Of each combination on a line drawn it keeps what the picture
+/// shows, in a store that spills past a few MB to an unnamed temporary file, and how it ended,
+/// four bytes a combination: the values drawn along each line are chosen from those once every
+/// combination has come ([`Drawn::rows`]), so that a sweep of any size keeps only a few MB.
 pub struct Drawn {
     /// How many lines the whole sweep has.
     lines: usize,
@@ -123,13 +128,41 @@ pub struct Drawn {
     permanent: bool,
     /// How many combinations came out each way, as [`outcome`] says unshaken and shaken.
     counts: [[usize; 5]; 2],
+    /// The first key's values in their order (`total_cmp`): a combination's place along its
+    /// line is its value's, equal values in the order they came.
+    sorted_first: Vec<f64>,
+    /// For each line drawn, how the combination at each place along it ended (0: none came),
+    /// [`Drawn::mark`].
+    marks: Vec<Vec<u32>>,
+    /// How many times each line drawn repeats (its key's values repeated among those varied).
+    repeats: Vec<usize>,
+    /// The reasons seen, a mark's number for each.
+    reasons: Vec<String>,
+    /// What the picture shows of each combination on a line drawn, [`STORED`] numbers a row.
+    store: slideroute::probabilistic::Columns,
+    /// Set by [`Drawn::rows`]: the most values a line marks, whether every line kept both sides
+    /// of each change of how the route ended, and the first key's values on the lines drawn
+    /// (the lowest and highest, and how many distinct).
+    along: usize,
+    changes_kept: bool,
+    first_span: Option<(f64, f64)>,
+    first_distinct: usize,
 }
+
+/// The numbers [`Drawn`] keeps of a combination on a line drawn: the line, the place along it,
+/// the first key's value, the reason's number, which of the next five are there (a bit each;
+/// the factor of safety's kind in bits 4 and 5), the end time, the travel, the permanent
+/// displacement along X and Z, and a finite factor of safety.
+const STORED: usize = 10;
+/// The rows of the store held in memory (80 bytes each): 2.6 MB.
+const STORED_IN_MEMORY: usize = 1 << 15;
 
 impl Drawn {
     /// The lines of `varies`: the groups of every key but the first are the combinations of
     /// their distinct values, in the order of each key's values (the second key's first), so
-    /// the `j`-th group is `j` written in their mixed radix.
-    pub fn new(varies: &[Vary]) -> Drawn {
+    /// the `j`-th group is `j` written in their mixed radix. A temporary file, if the sweep
+    /// needs one, is made in `spill_in`.
+    pub fn new(varies: &[Vary], spill_in: Option<std::path::PathBuf>) -> Drawn {
         let distinct: Vec<Vec<f64>> = varies
             .iter()
             .skip(1)
@@ -143,7 +176,7 @@ impl Drawn {
         let lines = distinct
             .iter()
             .fold(1usize, |n, d| n.saturating_mul(d.len()));
-        let chosen = spread(lines, MAX_LINES)
+        let chosen: Vec<Vec<f64>> = spread(lines, MAX_LINES)
             .into_iter()
             .map(|j| {
                 let mut rest = j;
@@ -155,26 +188,183 @@ impl Drawn {
                 key
             })
             .collect();
+        let mut sorted_first = varies.first().map_or_else(Vec::new, |v| v.values.clone());
+        sorted_first.sort_by(f64::total_cmp);
+        // A line whose key repeats among the values varied has each value of the first key as
+        // many times over.
+        let repeats: Vec<usize> = chosen
+            .iter()
+            .map(|key| {
+                key.iter()
+                    .zip(varies.iter().skip(1))
+                    .map(|(x, v)| v.values.iter().filter(|y| y.total_cmp(x).is_eq()).count())
+                    .product()
+            })
+            .collect();
         Drawn {
             lines,
+            marks: repeats
+                .iter()
+                .map(|&m| vec![0; sorted_first.len() * m])
+                .collect(),
+            repeats,
             chosen,
             combinations: 0,
             permanent: false,
             counts: [[0; 5]; 2],
+            sorted_first,
+            reasons: Vec::new(),
+            store: slideroute::probabilistic::Columns::new(STORED, spill_in)
+                .with_in_memory_rows(STORED_IN_MEMORY),
+            along: 0,
+            changes_kept: true,
+            first_span: None,
+            first_distinct: 0,
         }
     }
 
-    /// Counts the combination `r`; whether the picture needs it (it lies on a line drawn).
-    pub fn add(&mut self, r: &SweepRow) -> bool {
+    /// Counts the combination `r` and, if it lies on a line drawn, keeps what the picture shows
+    /// of it (an error only from the temporary file).
+    pub fn add(&mut self, r: &SweepRow) -> std::io::Result<()> {
         self.combinations += 1;
         self.permanent |= r.permanent_x_m.is_some();
         for (shaken, counts) in self.counts.iter_mut().enumerate() {
             counts[outcome(r, shaken == 1) as usize] += 1;
         }
         let others = r.values.get(1..).unwrap_or(&[]);
-        self.chosen.iter().any(|key| {
+        let Some(line) = self.chosen.iter().position(|key| {
             key.len() <= others.len() && key.iter().zip(others).all(|(a, b)| a.total_cmp(b).is_eq())
-        })
+        }) else {
+            return Ok(());
+        };
+        // Its place: the first among the places of its value that no combination took yet
+        // (each value of the first key `repeats` places along the line).
+        let first = first_of(r);
+        let m = self.repeats[line];
+        let from = self
+            .sorted_first
+            .partition_point(|x| x.total_cmp(&first).is_lt());
+        let to = self
+            .sorted_first
+            .partition_point(|x| x.total_cmp(&first).is_le());
+        let Some(place) = (from * m..to * m).find(|&p| self.marks[line][p] == 0) else {
+            // A value the first key does not have, or more of it than it has: not drawn.
+            return Ok(());
+        };
+        let reason = match self.reasons.iter().position(|x| *x == r.reason) {
+            Some(k) => k,
+            None => {
+                self.reasons.push(r.reason.clone());
+                self.reasons.len() - 1
+            }
+        };
+        self.marks[line][place] = Drawn::mark(reason, r);
+        let (fos_kind, fos) = match r.factor_of_safety {
+            None => (0, 0.0),
+            Some(FactorOfSafety::Finite { value }) => (1, value),
+            Some(FactorOfSafety::Unbounded) => (2, 0.0),
+            Some(FactorOfSafety::NotHoldable) => (3, 0.0),
+        };
+        let optional = [r.t_end_s, r.travel_m, r.permanent_x_m, r.permanent_z_m];
+        let present = optional
+            .iter()
+            .enumerate()
+            .fold(fos_kind << 4, |bits, (k, v)| {
+                bits | (u32::from(v.is_some()) << k)
+            });
+        let [t, travel, px, pz] = optional.map(|v| v.unwrap_or(0.0));
+        self.store.push(&[
+            line as f64,
+            place as f64,
+            first,
+            reason as f64,
+            f64::from(present),
+            t,
+            travel,
+            px,
+            pz,
+            fos,
+        ])
+    }
+
+    /// How a combination that ended for the reason numbered `reason` came out: the reason and
+    /// its [`outcome`], as one number above 0. Two combinations ended alike ([`ended_alike`])
+    /// when their marks are equal, under a record or not: of two with the same reason, a record
+    /// only turns both slid into both cut.
+    fn mark(reason: usize, r: &SweepRow) -> u32 {
+        let reason = u32::try_from(reason).unwrap_or(u32::MAX / 8 - 1);
+        1 + reason * 5 + outcome(r, false) as u32
+    }
+
+    /// The combinations the picture draws, once every one has come, in the order they came: on
+    /// each line drawn at most `along` of them ([`thin`]: evenly spaced, the ends and both sides
+    /// of each change of how the route ended kept); `along` shared out among the lines that have
+    /// any. Their details are not kept (sweep.csv has them).
+    pub fn rows(&mut self) -> std::io::Result<Vec<SweepRow>> {
+        let lines_with_rows = self
+            .marks
+            .iter()
+            .filter(|m| m.iter().any(|&x| x != 0))
+            .count();
+        self.along = (MAX_MARKED / lines_with_rows.max(1)).clamp(2, MAX_ALONG);
+        self.changes_kept = true;
+        let mut keep: Vec<Vec<bool>> = Vec::with_capacity(self.marks.len());
+        for marks in &self.marks {
+            // The places a combination came to, one line at a time (4 bytes each).
+            let places: Vec<u32> = (0..marks.len() as u32)
+                .filter(|&p| marks[p as usize] != 0)
+                .collect();
+            let at = |i: usize| marks[places[i] as usize];
+            let (kept, all_changes) = thin(places.len(), self.along, |i| at(i - 1) != at(i));
+            self.changes_kept &= all_changes;
+            let mut k = vec![false; marks.len()];
+            for i in kept {
+                k[places[i] as usize] = true;
+            }
+            keep.push(k);
+        }
+        let on_any: Vec<f64> = (0..self.sorted_first.len())
+            .filter(|&p| {
+                let on =
+                    |(m, r): (&Vec<u32>, &usize)| m[p * r..(p + 1) * r].iter().any(|&x| x != 0);
+                self.marks.iter().zip(&self.repeats).any(on)
+            })
+            .map(|p| self.sorted_first[p])
+            .collect();
+        self.first_span = on_any.first().zip(on_any.last()).map(|(a, b)| (*a, *b));
+        self.first_distinct = on_any.chunk_by(|a, b| a.total_cmp(b).is_eq()).count();
+        let mut rows = Vec::new();
+        let (chosen, reasons) = (&self.chosen, &self.reasons);
+        self.store.scan(|s| {
+            let (line, place) = (s[0] as usize, s[1] as usize);
+            if !keep[line][place] {
+                return;
+            }
+            let present = s[4] as u32;
+            let has = |k: usize| (present >> k) & 1 == 1;
+            let at = |k: usize| has(k).then_some(s[5 + k]);
+            let mut values = vec![s[2]];
+            values.extend_from_slice(&chosen[line]);
+            rows.push(SweepRow {
+                values,
+                reason: reasons[s[3] as usize].clone(),
+                t_end_s: at(0),
+                travel_m: at(1),
+                final_theta_deg: None,
+                max_alpha_deg: None,
+                max_beta_deg: None,
+                permanent_x_m: at(2),
+                permanent_z_m: at(3),
+                factor_of_safety: match present >> 4 {
+                    1 => Some(FactorOfSafety::Finite { value: s[9] }),
+                    2 => Some(FactorOfSafety::Unbounded),
+                    3 => Some(FactorOfSafety::NotHoldable),
+                    _ => None,
+                },
+                detail: String::new(),
+            });
+        })?;
+        Ok(rows)
     }
 
     /// How many combinations came out as `o`.
@@ -197,21 +387,17 @@ fn spread(n: usize, m: usize) -> Vec<usize> {
         .collect()
 }
 
-/// At most `along` of a line's `members` (in the first key's order): every one when they are
-/// few; else evenly spaced, the first and last kept and, where there is room for them (half of
-/// `along`), both neighbours at every change of how the route ended, so that the line breaks
-/// where the full sweep's does. With whether every such change was kept.
-fn thin_line<'r>(
-    members: &[&'r SweepRow],
-    along: usize,
-    shaken: bool,
-) -> (Vec<&'r SweepRow>, bool) {
-    let n = members.len();
+/// Which of a line's `n` combinations (in the first key's order) to draw, at most `along`:
+/// every one when they are few; else evenly spaced, the first and last kept and, where there is
+/// room for them (half of `along`), both neighbours at every change of how the route ended
+/// (`differs(i)`: the `i`-th ended otherwise than the one before), so that the line breaks where
+/// the full sweep's does. The places in order, with whether every such change was kept.
+fn thin(n: usize, along: usize, differs: impl Fn(usize) -> bool) -> (Vec<usize>, bool) {
     if n <= along {
-        return (members.to_vec(), true);
+        return ((0..n).collect(), true);
     }
     let changes: Vec<usize> = (1..n)
-        .filter(|&i| !ended_alike(members[i - 1], members[i], shaken))
+        .filter(|&i| differs(i))
         .flat_map(|i| [i - 1, i])
         .collect();
     let room = changes.len() <= along / 2;
@@ -224,6 +410,18 @@ fn thin_line<'r>(
     };
     keep.sort_unstable();
     keep.dedup();
+    (keep, room)
+}
+
+/// [`thin`] of a line's rows.
+#[cfg(test)]
+fn thin_line<'r>(
+    members: &[&'r SweepRow],
+    along: usize,
+    shaken: bool,
+) -> (Vec<&'r SweepRow>, bool) {
+    let differs = |i: usize| !ended_alike(members[i - 1], members[i], shaken);
+    let (keep, room) = thin(members.len(), along, differs);
     (keep.into_iter().map(|i| members[i]).collect(), room)
 }
 
@@ -253,13 +451,16 @@ fn scale_color(x: f64, lo: f64, hi: f64) -> RGBColor {
 /// Travel and factor of safety against the first varied key, of every row of the sweep held.
 #[cfg(test)]
 pub fn sweep(path: &Path, varies: &[Vary], rows: &[SweepRow]) -> Res<()> {
-    let mut drawn = Drawn::new(varies);
-    let kept: Vec<SweepRow> = rows.iter().filter(|r| drawn.add(r)).cloned().collect();
+    let mut drawn = Drawn::new(varies, None);
+    for r in rows {
+        drawn.add(r).map_err(err(path))?;
+    }
+    let kept = drawn.rows().map_err(err(path))?;
     sweep_drawn(path, varies, &kept, &drawn)
 }
 
 /// Travel and factor of safety against the first varied key: `rows` the combinations `drawn`
-/// kept ([`Drawn::add`] said so), in the sweep's order, `drawn` having counted every one.
+/// chose ([`Drawn::rows`]), in the sweep's order, `drawn` having counted every one.
 pub fn sweep_drawn(path: &Path, varies: &[Vary], rows: &[SweepRow], drawn: &Drawn) -> Res<()> {
     let Some(first) = varies.first() else {
         return sheet::message(
@@ -345,8 +546,6 @@ type SweepChart<'a, 'p> =
 struct SweepPlot<'a> {
     path: &'a Path,
     varies: &'a [Vary],
-    /// The rows of the lines drawn.
-    rows: &'a [SweepRow],
     /// The lines and counts of the whole sweep.
     totals: &'a Drawn,
     /// The groups drawn, each with the rows drawn of it.
@@ -382,36 +581,24 @@ impl<'a> SweepPlot<'a> {
                     (a.0.min(x), a.1.max(x))
                 })
         });
+        // The x axis spans the first key's values on every line drawn, not only those marked.
         let x_range = match &varies[0].words {
             Some(w) => (-0.5, w.len() as f64 - 0.5),
-            None => sheet::ranges(rows.iter().map(first_of)),
+            None => sheet::ranges(totals.first_span.into_iter().flat_map(|(a, b)| [a, b])),
         };
         let shaken = totals.permanent;
-        // The rows are those of the lines drawn: their groups are the lines.
-        let all = groups(rows);
-        let lines = totals.lines;
-        let chosen: Vec<usize> = (0..all.len()).collect();
-        let along = (MAX_MARKED / chosen.len().max(1)).clamp(2, MAX_ALONG);
-        let mut changes_kept = true;
-        let groups: Vec<(Vec<f64>, Vec<&SweepRow>)> = chosen
-            .into_iter()
-            .map(|k| {
-                let (line, kept) = thin_line(&all[k].1, along, shaken);
-                changes_kept &= kept;
-                (all[k].0.clone(), line)
-            })
-            .collect();
+        // The rows are those drawn ([`Drawn::rows`]): their groups are the lines.
+        let groups = groups(rows);
         let drawn = groups.iter().flat_map(|g| g.1.iter().copied()).collect();
         SweepPlot {
             path,
             varies,
-            rows,
             totals,
             groups,
             drawn,
-            lines,
-            along,
-            changes_kept,
+            lines: totals.lines,
+            along: totals.along,
+            changes_kept: totals.changes_kept,
             second_range,
             x_range,
             shaken,
@@ -844,12 +1031,7 @@ impl<'a> SweepPlot<'a> {
             return None;
         }
         let first = &self.first().key;
-        let values = {
-            let mut v: Vec<f64> = self.rows.iter().map(first_of).collect();
-            v.sort_by(f64::total_cmp);
-            v.dedup_by(|a, b| a.total_cmp(b).is_eq());
-            v.len()
-        };
+        let values = self.totals.first_distinct;
         let mut words = format!(
             "Drawn: {} of the {} combinations, to keep the picture small",
             self.drawn.len(),
@@ -1529,8 +1711,11 @@ mod tests {
                 .into_iter()
                 .map(|k| all[k].0.clone())
                 .collect();
-            let mut drawn = Drawn::new(&varies);
-            let kept: Vec<&SweepRow> = rows.iter().filter(|r| drawn.add(r)).collect();
+            let mut drawn = Drawn::new(&varies, None);
+            for r in &rows {
+                drawn.add(r).unwrap();
+            }
+            let kept = drawn.marks.iter().flatten().filter(|&&m| m != 0).count();
             let bits = |v: &[Vec<f64>]| -> Vec<Vec<u64>> {
                 v.iter()
                     .map(|k| k.iter().map(|x| x.to_bits()).collect())
@@ -1546,8 +1731,127 @@ mod tests {
                 })
                 .map(|g| g.1.len())
                 .sum();
-            assert_eq!(kept.len(), in_chosen, "{values:?}");
+            assert_eq!(kept, in_chosen, "{values:?}");
             assert_eq!(drawn.combinations, rows.len());
+        }
+    }
+
+    /// The rows drawn when every combination is held: the lines [`Drawn`] chose, each grouped
+    /// from every row and thinned along itself ([`thin_line`]), in the sweep's order; with
+    /// whether every change was kept, the first key's lowest and highest values on the lines
+    /// and how many distinct.
+    fn drawn_when_held(
+        rows: &[SweepRow],
+        chosen: &[Vec<f64>],
+        shaken: bool,
+    ) -> (Vec<SweepRow>, bool, Option<(f64, f64)>, usize) {
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<u64>>();
+        let on_lines: Vec<SweepRow> = rows
+            .iter()
+            .filter(|r| chosen.iter().any(|k| bits(k) == bits(&r.values[1..])))
+            .cloned()
+            .collect();
+        let all = groups(&on_lines);
+        let along = (MAX_MARKED / all.len().max(1)).clamp(2, MAX_ALONG);
+        let mut kept: Vec<*const SweepRow> = Vec::new();
+        let mut every_change = true;
+        for (_, members) in &all {
+            let (line, changes) = thin_line(members, along, shaken);
+            every_change &= changes;
+            kept.extend(line.into_iter().map(|r| r as *const SweepRow));
+        }
+        let mut firsts: Vec<f64> = on_lines.iter().map(first_of).collect();
+        firsts.sort_by(f64::total_cmp);
+        let span = firsts.first().zip(firsts.last()).map(|(a, b)| (*a, *b));
+        firsts.dedup_by(|a, b| a.total_cmp(b).is_eq());
+        let drawn = on_lines
+            .iter()
+            .filter(|r| kept.contains(&(*r as *const SweepRow)))
+            .cloned()
+            .collect();
+        (drawn, every_change, span, firsts.len())
+    }
+
+    #[test]
+    fn the_rows_drawn_chosen_as_they_come_are_those_every_row_held_would_give() {
+        // Long lines (more values of the first key than a line marks) whose routes end in
+        // runs and at scattered values, the first key's values out of order and repeated (−0
+        // beside 0), under a record and not, a sweep cut short, and the store spilled to its
+        // file after a few rows: the rows drawn, their order and what the caption says are
+        // those of holding every combination and thinning each line whole.
+        let mut firsts: Vec<f64> = (0..900).map(|i| (i as f64 * 0.37).sin() * 3.0).collect();
+        firsts.extend([0.0, -0.0, 0.0, 1.5, 1.5]);
+        let seconds = [2.0, -1.0, 0.5, -1.0];
+        let ended = |k: usize, x: f64| -> (String, Option<f64>) {
+            if x > 2.2 {
+                (DID_NOT_SLIDE.into(), Some(0.0))
+            } else if k % 97 == 13 {
+                ("a contact lifted off".into(), Some(0.0))
+            } else if (k / 7).is_multiple_of(5) && x < -2.5 {
+                ("stopped".into(), Some(1.0))
+            } else {
+                ("time limit".into(), Some(2.0))
+            }
+        };
+        for (shaken, cut, spill) in [(false, 0, 1), (true, 0, 1 << 15), (false, 1000, 7)] {
+            let mut rows = Vec::new();
+            for (i, &x) in firsts.iter().enumerate() {
+                for (j, &y) in seconds.iter().enumerate() {
+                    let k = i * seconds.len() + j;
+                    let mut r = row(vec![x, y]);
+                    (r.reason, r.t_end_s) = ended(k, x);
+                    r.travel_m = Some(x.abs() + y);
+                    if shaken {
+                        r.permanent_x_m = Some(0.1 * x);
+                        r.permanent_z_m = Some(-0.2 * y);
+                    }
+                    r.factor_of_safety = match k % 4 {
+                        0 => Some(FactorOfSafety::Finite { value: 1.0 + x }),
+                        1 => Some(FactorOfSafety::Unbounded),
+                        2 => Some(FactorOfSafety::NotHoldable),
+                        _ => None,
+                    };
+                    rows.push(r);
+                }
+            }
+            rows.truncate(rows.len() - cut);
+            let varies = vec![Vary::numbers("k.0", firsts.clone()), vary("k.1", &seconds)];
+            let mut drawn = Drawn::new(&varies, None);
+            drawn.store =
+                slideroute::probabilistic::Columns::new(STORED, None).with_in_memory_rows(spill);
+            for r in &rows {
+                drawn.add(r).unwrap();
+            }
+            let got = drawn.rows().unwrap();
+            let (want, every_change, span, distinct) =
+                drawn_when_held(&rows, &drawn.chosen, shaken);
+            let shown = |r: &SweepRow| {
+                let v = |x: Option<f64>| x.map(f64::to_bits);
+                (
+                    r.values.iter().map(|x| x.to_bits()).collect::<Vec<_>>(),
+                    r.reason.clone(),
+                    [
+                        v(r.t_end_s),
+                        v(r.travel_m),
+                        v(r.permanent_x_m),
+                        v(r.permanent_z_m),
+                    ],
+                    format!("{:?}", r.factor_of_safety),
+                )
+            };
+            let (got_shown, want_shown): (Vec<_>, Vec<_>) = (
+                got.iter().map(shown).collect(),
+                want.iter().map(shown).collect(),
+            );
+            assert!(
+                want.len() < rows.len() && want.len() > 100,
+                "{}",
+                want.len()
+            );
+            assert_eq!(got_shown, want_shown, "shaken {shaken}, cut {cut}");
+            assert_eq!(drawn.changes_kept, every_change);
+            assert_eq!(drawn.first_span, span);
+            assert_eq!(drawn.first_distinct, distinct);
         }
     }
 }
