@@ -116,7 +116,8 @@ pub struct RunSettings {
     pub dynamics: DynamicsModel,
     /// Where the block touches the ground.
     pub contacts: Contacts,
-    /// The rigid body's error tolerance per step (see [`DEFAULT_TOLERANCE`]).
+    /// The error tolerance per step (see [`DEFAULT_TOLERANCE`]): the rigid body's steps, and
+    /// the substeps the paper's dynamics takes with RK4.
     pub tolerance: f64,
 }
 

@@ -4,20 +4,10 @@
 /// y + h/6 (k1 + 2 k2 + 2 k3 + k4) with the stages at y + h/2 k1, y + h/2 k2 and y + h k3.
 /// `f(stage)` gives the derivative at a stage (or an error, which ends the step). The one RK4
 /// of both dynamics: the paper's on (X, Z, θ, Ẋ, Ż, θ̇), the rigid body's on that state and
-/// the two works.
-pub fn rk4<const N: usize, E>(
-    y: &[f64; N],
-    k1: &[f64; N],
-    h: f64,
-    f: impl FnMut(&[f64; N]) -> Result<[f64; N], E>,
-) -> Result<[f64; N], E> {
-    rk4_stages(y, k1, h, f).map(|(next, _)| next)
-}
-
-/// [`rk4`], also giving its last stage k4 (the derivative at y + h k3), with which and the
-/// derivative k5 at the step's end the embedded third-order solution
+/// the two works. It also gives its last stage k4 (the derivative at y + h k3), with which and
+/// the derivative k5 at the step's end the embedded third-order solution
 /// y + h/6 (k1 + 2 k2 + 2 k3 + k5) estimates the step's error as h/6 (k4 − k5)
-/// (`derivations/08-rigid-body.md` §4a).
+/// (`derivations/08-rigid-body.md` §4a): both dynamics choose their steps by it.
 pub fn rk4_stages<const N: usize, E>(
     y: &[f64; N],
     k1: &[f64; N],

@@ -149,13 +149,13 @@ pub struct Diagnostics {
     pub end_jacobian_condition: Option<f64>,
     /// Wall-clock time of the computation (s).
     pub wall_s: f64,
-    /// The rigid body's integration steps taken (each chosen against the tolerance), and those
-    /// tried and taken again shorter; none for the paper's dynamics and the block on its base,
-    /// whose steps are the increments.
+    /// The integration steps taken (each chosen against the tolerance), and those tried and
+    /// taken again shorter: the rigid body's, and the paper's dynamics' RK4 substeps; none for
+    /// the paper's own update and the block on its base, whose steps are the increments.
     pub steps: Option<Steps>,
 }
 
-/// The rigid body's integration steps (`Diagnostics::steps`).
+/// The integration steps of a route chosen against the tolerance (`Diagnostics::steps`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
 pub struct Steps {
     /// Steps taken.

@@ -243,7 +243,8 @@ pub struct RawSolver {
     pub stride: Option<i64>,
     /// Where the block touches the ground: "frame" (default) or "base".
     pub contacts: Option<String>,
-    /// The rigid body's error tolerance per step (default `model::DEFAULT_TOLERANCE`).
+    /// The error tolerance per step, the rigid body's and the paper's RK4 substeps' (default
+    /// `model::DEFAULT_TOLERANCE`).
     pub tolerance: Option<f64>,
 }
 

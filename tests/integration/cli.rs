@@ -644,9 +644,9 @@ fn report_quick_writes_csv_markdown_and_picture() {
     );
     assert_eq!(
         csv.lines().count(),
-        // Quick: 2 scenes × (the paper's dynamics' 2 pose methods × 2 modes × 2 integrators,
-        // and the rigid body) × 3 steps of dt.
-        1 + 2 * (2 * 2 * 2 + 1) * 3
+        // Quick: 2 scenes × (the paper's dynamics' 2 pose methods × 2 modes × 2 integrators
+        // over dt, the paper's RK4 over tolerances, and the rigid body over tolerances) × 3.
+        1 + 2 * (2 * 2 * 2 + 2) * 3
     );
     let md = std::fs::read_to_string(dir.join("work-precision.md")).unwrap();
     assert!(md.contains("## Stiff and extreme cases") && md.contains("## References"));

@@ -75,11 +75,16 @@ fn paper_like_scene_runs_to_a_stated_end() {
     assert!(!r.termination.detail.is_empty());
 }
 
-/// End position (X, Z) at `t_end` with the given integrator and step.
+/// End position (X, Z) at `t_end` with the given integrator and step (RK4 at the loosest
+/// tolerance, so that no increment is cut into substeps: the order in dt is RK4's own).
 fn end(s: &Scene, integrator: Integrator, dt: f64, t_end: f64) -> (f64, f64) {
     let s = common::with(
         &s.with("solver.integrator", integrator.as_str()).unwrap(),
-        &[("solver.dt_s", dt), (T_END, t_end)],
+        &[
+            ("solver.dt_s", dt),
+            (T_END, t_end),
+            ("solver.tolerance", slideroute::MAX_TOLERANCE),
+        ],
     );
     let r = run(&s);
     assert_eq!(
@@ -127,6 +132,48 @@ fn rk4_converges_at_fourth_order() {
             assert!((3.7..4.3).contains(&o), "{}: order {o}", s.name());
         }
     }
+}
+
+#[test]
+fn the_papers_rk4_keeps_to_its_tolerance_whatever_the_increment() {
+    // Rows every 0.1 s: RK4 in one step an increment (the loosest tolerance) strays by µm from
+    // the route at dt = 1e-4 s; at the default tolerance (1e-9 of the block's size L = 10 m)
+    // the increments are cut into substeps as the error estimate asks, and the route keeps
+    // within the tolerance of the fine one at every row.
+    let rows = |dt: f64, tolerance: f64| -> (Route, usize) {
+        let s = common::with(
+            &paper_scene().with("solver.integrator", "rk4").unwrap(),
+            &[
+                ("solver.dt_s", dt),
+                (T_END, 1.9),
+                ("solver.tolerance", tolerance),
+            ],
+        );
+        let sim = s.simulation().unwrap();
+        let c = slideroute::Runner::new(&sim).run();
+        let steps = c.diagnostics.steps.map_or(0, |s| s.taken);
+        (c.route, steps)
+    };
+    let (fine, _) = rows(1e-4, slideroute::MAX_TOLERANCE);
+    let apart = |r: &Route| -> f64 {
+        r.rows
+            .iter()
+            .enumerate()
+            .map(|(k, q)| {
+                let f = &fine.rows[k * 1000];
+                assert!((f.t_s - q.t_s).abs() < 1e-12);
+                (f.x_m - q.x_m).hypot(f.z_m - q.z_m)
+            })
+            .fold(0.0, f64::max)
+    };
+    let (coarse, steps) = rows(0.1, slideroute::MAX_TOLERANCE);
+    assert_eq!((coarse.rows.len(), steps), (20, 19));
+    let (held, substeps) = rows(0.1, 1e-9);
+    assert_eq!(held.rows.len(), 20);
+    let (e_coarse, e_held) = (apart(&coarse), apart(&held));
+    assert!(e_coarse > 1e-6, "{e_coarse}");
+    assert!(e_held < 1e-8, "{e_held}");
+    assert!(substeps > 2 * 19, "{substeps}");
 }
 
 #[test]

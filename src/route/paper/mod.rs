@@ -43,11 +43,88 @@ fn row(s: &State, ev: Option<&Evaluation>, pose: &crate::geometry::Pose, faces: 
 }
 
 /// The paper's dynamics under way: the state and the evaluation (pose, reactions,
-/// accelerations) at it.
+/// accelerations) at it; with RK4, how many substeps the last increment took.
 pub(super) struct Paper<'a> {
     sim: &'a Simulation,
     state: State,
     ev: Evaluation,
+    pieces: usize,
+}
+
+/// The most substeps RK4 takes over one increment (2¹²): where even these leave a substep's
+/// error estimate over the tolerance, the increment is taken in this many.
+const MAX_PIECES: usize = 1 << 12;
+
+impl Paper<'_> {
+    /// RK4 over the increment from the state to `t_to` (of length `dt`), in as many equal
+    /// substeps as the tolerance asks: each substep's error estimated as the rigid body's is
+    /// (`derivations/08-rigid-body.md` §4a), h/6 (k4 − k5) on X, Z against `solver.tolerance`
+    /// of the block's size and on θ against the tolerance in radians, at no cost beyond the
+    /// evaluation at the substep's end, which the next substep starts from. An increment whose
+    /// substep is over the tolerance is taken again in twice as many (up to [`MAX_PIECES`]); the
+    /// next increment starts with as many as this one took, or half as many where half would
+    /// have done by the estimate. Where one substep an increment does (the default increment
+    /// of 1 ms), the route is the increment's single RK4 step, as before. The state and the
+    /// evaluation at `t_to`, and whether a reaction was chosen afresh on the way.
+    fn rk4_within(
+        &mut self,
+        finder: &mut PoseFinder<'_>,
+        (t_to, dt): (f64, f64),
+        o: &mut Logbook<'_>,
+    ) -> Result<(State, Evaluation, bool), Stop> {
+        let sim = self.sim;
+        let (l, tol) = (sim.l(), sim.settings().tolerance);
+        let weights = [1.0 / (tol * l), 1.0 / (tol * l), 1.0 / tol];
+        let mut pieces = self.pieces.clamp(1, MAX_PIECES);
+        loop {
+            let mut f = finder.clone();
+            let (mut s, mut ev, mut fresh) = (self.state, self.ev, false);
+            let h = dt / pieces as f64;
+            let mut worst: f64 = 0.0;
+            let mut taken = 0;
+            while taken < pieces {
+                let base = f.clone();
+                let prev = ev.reaction;
+                let (next, k4) = rk4_step(&s, &ev.acc, h, |q: &State| {
+                    let mut g = base.clone();
+                    evaluate(sim, &mut g, q.displacement(), Some(&prev), velocity(q)).map(|e| e.acc)
+                })?;
+                // The last substep ends at t_to itself, not at a running sum.
+                let next = if taken + 1 == pieces {
+                    State { t: t_to, ..next }
+                } else {
+                    next
+                };
+                let at = next.displacement();
+                let end = evaluate(sim, &mut f, at, Some(&ev.reaction), velocity(&next))?;
+                let k5 = [next.vx, next.vz, next.omega];
+                let ratio = (0..3)
+                    .map(|i| (h / 6.0 * (k4[i] - k5[i])).abs() * weights[i])
+                    .fold(0.0, f64::max);
+                if ratio > 1.0 && pieces < MAX_PIECES {
+                    break;
+                }
+                worst = worst.max(ratio);
+                fresh |= end.fresh;
+                (s, ev) = (next, end);
+                taken += 1;
+            }
+            if taken == pieces {
+                o.steps.0 += pieces;
+                *finder = f;
+                // Twice the substep multiplies the estimate by 16: halve their number only
+                // where that would leave it under half the tolerance.
+                self.pieces = if pieces > 1 && 16.0 * worst < 0.5 {
+                    pieces / 2
+                } else {
+                    pieces
+                };
+                return Ok((s, ev, fresh));
+            }
+            o.steps.1 += taken + 1;
+            pieces *= 2;
+        }
+    }
 }
 
 impl<'a> Dynamics<'a> for Paper<'a> {
@@ -103,7 +180,15 @@ impl<'a> Dynamics<'a> for Paper<'a> {
             };
             return Start::Ended(o.end(Reason::DoesNotSlide, 0.0, detail));
         }
-        Start::Moving(Paper { sim, state, ev }, o)
+        Start::Moving(
+            Paper {
+                sim,
+                state,
+                ev,
+                pieces: 1,
+            },
+            o,
+        )
     }
 
     fn advance<'s>(
@@ -114,40 +199,29 @@ impl<'a> Dynamics<'a> for Paper<'a> {
         mut o: Logbook<'s>,
     ) -> Flow<'s> {
         let sim = self.sim;
-        let (state, ev) = (&self.state, &self.ev);
+        let (state, ev) = (self.state, self.ev);
         // The increment ends at t_to (exactly t_end for the last one).
         let dt = t_to - (k - 1) as f64 * sim.settings().dt;
-        let next = match sim.settings().integrator {
-            Integrator::Paper => Ok(paper_step(state, &ev.acc, dt)),
-            Integrator::Rk4 => {
-                let base = finder.clone();
-                let prev = ev.reaction;
-                rk4_step(state, &ev.acc, dt, |s: &State| {
-                    let mut f = base.clone();
-                    evaluate(sim, &mut f, s.displacement(), Some(&prev), velocity(s)).map(|e| e.acc)
-                })
+        let stepped = match sim.settings().integrator {
+            Integrator::Paper => {
+                // Time as k·dt (t_end at the last), not a running sum.
+                let next = State {
+                    t: t_to,
+                    ..paper_step(&state, &ev.acc, dt)
+                };
+                let at = next.displacement();
+                evaluate(sim, finder, at, Some(&ev.reaction), velocity(&next))
+                    .map(|e| (next, e, e.fresh))
             }
+            Integrator::Rk4 => self.rk4_within(finder, (t_to, dt), &mut o),
         };
-        let next = match next {
-            // Time as k·dt (t_end at the last), not a running sum.
-            Ok(n) => State { t: t_to, ..n },
+        let (next, new_ev, fresh) = match stepped {
+            Ok(x) => x,
             Err(Stop { reason, detail, .. }) => {
                 return Flow::Ended(o.finish(self.row(), reason, state.t, detail));
             }
         };
-        let new_ev = match evaluate(
-            sim,
-            finder,
-            next.displacement(),
-            Some(&ev.reaction),
-            velocity(&next),
-        ) {
-            Ok(e) => e,
-            Err(Stop { reason, detail, .. }) => {
-                return Flow::Ended(o.finish(self.row(), reason, state.t, detail));
-            }
-        };
-        if new_ev.fresh {
+        if fresh {
             o.switches += 1;
         }
         o.increments = k;
@@ -162,7 +236,7 @@ impl<'a> Dynamics<'a> for Paper<'a> {
             // Where the paper's update (accelerations frozen over the increment) brings it to
             // zero: (v + a τ)·a = 0 (with RK4, to first order in τ).
             let tau = (-along(v) / along(a)).clamp(0.0, dt);
-            let mut stop = paper_step(state, &ev.acc, tau);
+            let mut stop = paper_step(&state, &ev.acc, tau);
             stop.vx = 0.0;
             stop.vz = 0.0;
             stop.omega = 0.0;

@@ -4,10 +4,11 @@
 //!   start of the increment, v += a·dt and x += v·dt + a·dt²/2 (first order in dt overall,
 //!   because the accelerations are frozen over the increment).
 //! * [`rk4_step`]: the route's RK4 (`route/integrator.rs`) on y = (X, Z, θ, Ẋ, Ż, θ̇) with the
-//!   paper's right-hand side, the accelerations evaluated at the stage positions.
+//!   paper's right-hand side, the accelerations evaluated at the stage positions; with its last
+//!   stage, for the error estimate that chooses its substeps (`mod.rs`).
 
 use super::state::State;
-use crate::route::integrator::rk4;
+use crate::route::integrator::rk4_stages;
 
 /// Eqs. (33)–(38).
 pub fn paper_step(s: &State, acc: &[f64; 3], dt: f64) -> State {
@@ -22,13 +23,15 @@ pub fn paper_step(s: &State, acc: &[f64; 3], dt: f64) -> State {
     }
 }
 
-/// [`rk4`] on the paper's state. `acc(state)` gives the accelerations at a stage state.
+/// [`rk4_stages`] on the paper's state. `acc(state)` gives the accelerations at a stage state.
+/// The state at the step's end, and the last stage's derivative k4 (its first three the rates
+/// (Ẋ, Ż, θ̇) at y + h k3).
 pub fn rk4_step<E>(
     s: &State,
     acc0: &[f64; 3],
     dt: f64,
     mut acc: impl FnMut(&State) -> Result<[f64; 3], E>,
-) -> Result<State, E> {
+) -> Result<(State, [f64; 6]), E> {
     let y = [s.x, s.z, s.theta, s.vx, s.vz, s.omega];
     let of = |y: &[f64; 6], h: f64| State {
         t: s.t + h,
@@ -43,12 +46,12 @@ pub fn rk4_step<E>(
     let k1 = derivative(&y, *acc0);
     // The stages' times: the first two at half the step, the last at its end.
     let mut stage = 0;
-    let next = rk4(&y, &k1, dt, |z| {
+    let (next, k4) = rk4_stages(&y, &k1, dt, |z| {
         stage += 1;
         let h = if stage < 3 { 0.5 * dt } else { dt };
         acc(&of(z, h)).map(|a| derivative(z, a))
     })?;
-    Ok(of(&next, dt))
+    Ok((of(&next, dt), k4))
 }
 
 #[cfg(test)]
@@ -63,7 +66,7 @@ mod tests {
         };
         let a = [2.0, -1.0, 0.5];
         let p = paper_step(&s, &a, 0.1);
-        let r = rk4_step::<()>(&s, &a, 0.1, |_| Ok(a)).unwrap();
+        let r = rk4_step::<()>(&s, &a, 0.1, |_| Ok(a)).unwrap().0;
         for q in [p, r] {
             assert!((q.x - (0.1 + 0.5 * 2.0 * 0.01)).abs() < 1e-15);
             assert!((q.vz + 0.1).abs() < 1e-15);
@@ -82,7 +85,9 @@ mod tests {
             };
             for _ in 0..n {
                 let a0 = [-s.x, 0.0, 0.0];
-                s = rk4_step::<()>(&s, &a0, dt, |q| Ok([-q.x, 0.0, 0.0])).unwrap();
+                s = rk4_step::<()>(&s, &a0, dt, |q| Ok([-q.x, 0.0, 0.0]))
+                    .unwrap()
+                    .0;
             }
             (s.x - 1f64.cos()).abs()
         };

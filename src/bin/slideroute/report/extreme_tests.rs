@@ -71,6 +71,7 @@ fn quick_report_establishes_its_references_and_shows_the_orders() {
                 .filter(|p| {
                     p.scene == scene
                         && p.dynamics == DynamicsModel::Paper
+                        && p.tolerance.is_none()
                         && p.method == method
                         && p.mode == mode
                         && p.integrator == integrator
@@ -118,6 +119,26 @@ fn quick_report_establishes_its_references_and_shows_the_orders() {
             rigid.iter().all(|&(tol, e)| e < tol * l),
             "{scene}: {rigid:?}"
         );
+        // The paper's dynamics over tolerances (RK4, rows every 0.02 s): its error never rises
+        // as the tolerance falls, keeps within it, and falls where the tolerance is below what
+        // one step an increment gives (10⁻¹⁰ of L), the increments then cut into substeps.
+        let paper: Vec<(f64, f64, usize, usize)> = points
+            .iter()
+            .filter(|p| {
+                p.scene == scene && p.dynamics == DynamicsModel::Paper && p.tolerance.is_some()
+            })
+            .map(|p| (p.tolerance.unwrap(), p.error_m, p.steps, p.increments))
+            .collect();
+        assert_eq!(paper.len(), 3, "{scene}: {paper:?}");
+        assert!(
+            paper.windows(2).all(|w| w[1].1 <= w[0].1) && paper[2].1 * 10.0 < paper[0].1,
+            "{scene}: {paper:?}"
+        );
+        assert!(
+            paper.iter().all(|&(tol, e, _, _)| e < tol * l),
+            "{scene}: {paper:?}"
+        );
+        assert!(paper[2].2 > paper[2].3, "{scene}: {paper:?}");
     }
     assert!(
         references

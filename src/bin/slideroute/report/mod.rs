@@ -12,6 +12,12 @@
 //! 0.02 s / 8: the ladder is of tolerances (10⁻⁵ … 10⁻¹⁰), the reference at 10⁻¹³, established
 //! by running it again at 10⁻¹⁴. Either way the largest CM distance between a reference and its
 //! check must be below 1e-9·L (reported as `reference_change_m`).
+//!
+//! The paper's dynamics with RK4 takes as many substeps an increment as `solver.tolerance` asks
+//! (`route/paper/mod.rs`): its ladder of increments runs at the loosest tolerance, 10⁻³, where
+//! no increment of the ladder is cut, so that it shows RK4's order in dt; and one more series,
+//! continuation in exact mode, runs the same ladder of tolerances as the rigid body with its
+//! rows every 0.02 s, against the paper's reference.
 
 use serde::Serialize;
 use slideroute::{Computed, DynamicsModel, Integrator, Mode, PoseMethod, Route, Runner, Scene};
@@ -30,10 +36,12 @@ pub struct Point {
     pub integrator: Integrator,
     /// The rows' interval; the paper's dynamics' increment.
     pub dt_s: f64,
-    /// The rigid body's tolerance (none for the paper's dynamics, whose steps are dt).
+    /// The tolerance the steps were chosen against: the rigid body's, and the paper's
+    /// dynamics' in its series by tolerance; none for the paper's ladder of increments (its
+    /// steps are dt, at the loosest tolerance).
     pub tolerance: Option<f64>,
     pub increments: usize,
-    /// The integration steps: the rigid body's own, the paper's dynamics' increments.
+    /// The integration steps: those chosen against the tolerance, else the increments.
     pub steps: usize,
     /// Median wall time of the repeats (s).
     pub wall_s: f64,
@@ -65,18 +73,24 @@ const RIGID_ROWS_DT: f64 = DT0 / 8.0;
 /// The rigid body's reference tolerance.
 const RIGID_REFERENCE_TOLERANCE: f64 = 1e-13;
 
-/// How one series of the ladder runs: the dynamics, the pose method, the mode, the integrator.
+/// The paper's dynamics' rows in its series by tolerance.
+const PAPER_TOLERANCE_ROWS_DT: f64 = DT0;
+
+/// How one series of the ladder runs: the dynamics, the pose method, the mode, the integrator,
+/// and whether over a ladder of tolerances (else of increments).
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct Series {
     dynamics: DynamicsModel,
     method: PoseMethod,
     mode: Mode,
     integrator: Integrator,
+    by_tolerance: bool,
 }
 
-/// The series of the ladder: every pose method, mode and integrator of the paper's dynamics,
-/// then the rigid body as it runs by default (continuation, exact mode, RK4; it takes no other
-/// mode or integrator).
+/// The series of the ladder: every pose method, mode and integrator of the paper's dynamics
+/// over increments, the paper's dynamics as continuation in exact mode with RK4 over
+/// tolerances, then the rigid body as it runs by default (continuation, exact mode, RK4; it
+/// takes no other mode or integrator) over tolerances.
 fn series() -> Vec<Series> {
     let mut out = Vec::new();
     for method in [PoseMethod::Continuation, PoseMethod::AllRoots] {
@@ -87,16 +101,20 @@ fn series() -> Vec<Series> {
                     method,
                     mode,
                     integrator,
+                    by_tolerance: false,
                 });
             }
         }
     }
-    out.push(Series {
-        dynamics: DynamicsModel::RigidBody,
-        method: PoseMethod::Continuation,
-        mode: Mode::Exact,
-        integrator: Integrator::Rk4,
-    });
+    for dynamics in [DynamicsModel::Paper, DynamicsModel::RigidBody] {
+        out.push(Series {
+            dynamics,
+            method: PoseMethod::Continuation,
+            mode: Mode::Exact,
+            integrator: Integrator::Rk4,
+            by_tolerance: true,
+        });
+    }
     out
 }
 
@@ -216,19 +234,26 @@ pub fn work_precision(
                     method,
                     mode,
                     integrator,
+                    by_tolerance,
                     ..
                 } = series;
                 for k in 0..levels {
-                    // The paper's dynamics: dt halving; the rigid body: the tolerance falling
-                    // tenfold (by a hundredfold in the quick report).
-                    let (dt, tolerance) = if rigid {
+                    // Over increments: dt halving, at the loosest tolerance (no increment cut);
+                    // over tolerances: the tolerance falling tenfold (by a hundredfold in the
+                    // quick report).
+                    let (dt, tolerance) = if by_tolerance {
                         let decades = if quick { 2 * k + 6 } else { k + 5 };
-                        (RIGID_ROWS_DT, Some(10f64.powi(-decades)))
+                        let rows = if rigid {
+                            RIGID_ROWS_DT
+                        } else {
+                            PAPER_TOLERANCE_ROWS_DT
+                        };
+                        (rows, Some(10f64.powi(-decades)))
                     } else {
                         (DT0 / f64::from(1u32 << k), None)
                     };
-                    let s =
-                        with_solver(&scene, dynamics, mode, integrator, (dt, tolerance), horizon)?;
+                    let runs_at = (dt, tolerance.or(Some(slideroute::MAX_TOLERANCE)));
+                    let s = with_solver(&scene, dynamics, mode, integrator, runs_at, horizon)?;
                     let mut times = Vec::with_capacity(repeats);
                     let mut last = None;
                     for _ in 0..repeats {
@@ -296,6 +321,7 @@ pub fn speedups(points: &[Point]) -> Vec<Speedup> {
                     && a.mode == c.mode
                     && a.integrator == c.integrator
                     && a.dt_s == c.dt_s
+                    && a.tolerance == c.tolerance
             })?;
             let (cu, au) = (per_increment(c), per_increment(a));
             Some(Speedup {

@@ -1,5 +1,6 @@
 //! The work–precision picture of `slideroute report`: error of the route against run time,
-//! log–log, one line per scene, dynamics, pose method, mode and integrator; the legend in the
+//! log–log, one line per scene, dynamics, pose method, mode and integrator (and the paper's
+//! dynamics over tolerances apart from its ladder of increments); the legend in the
 //! panel. Every series has a colour and a marker of its own: the colour tells the dynamics,
 //! method, mode and integrator, the marker (and a dashed line) the scene.
 
@@ -41,12 +42,15 @@ struct Line {
 fn lines(points: &[crate::report::Point]) -> Vec<Line> {
     let mut out: Vec<Line> = Vec::new();
     for p in points.iter().filter(|p| p.error_m > 0.0 && p.wall_s > 0.0) {
+        // The paper's dynamics over tolerances is a series apart from its ladder of increments.
+        let by_tolerance = p.dynamics == slideroute::DynamicsModel::Paper && p.tolerance.is_some();
         let how = format!(
-            "{}: {} {} {}",
+            "{}: {} {} {}{}",
             p.dynamics.as_str(),
             p.method.as_str(),
             p.mode.as_str(),
-            p.integrator.as_str()
+            p.integrator.as_str(),
+            if by_tolerance { " by tolerance" } else { "" }
         );
         match out.iter_mut().find(|l| l.scene == p.scene && l.how == how) {
             Some(l) => l.points.push((p.wall_s, p.error_m)),
@@ -109,7 +113,7 @@ pub fn work_precision(path: &Path, points: &[crate::report::Point]) -> Res<()> {
     let (e0, e1) = all
         .iter()
         .fold((f64::INFINITY, 0.0f64), |a, p| (a.0.min(p.1), a.1.max(p.1)));
-    let sheet = Sheet::new(path, (1300, 900), title)?;
+    let sheet = Sheet::new(path, (1300, 1040), title)?;
     let mut chart = ChartBuilder::on(&sheet.chart)
         .margin(10)
         .x_label_area_size(50)
