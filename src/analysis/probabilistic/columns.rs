@@ -30,6 +30,23 @@ pub struct Columns {
 /// How many rows a pass reads between two askings of [`Columns::stop_when`]'s function.
 const ASK_EVERY: usize = 1 << 16;
 
+/// Puts the spill file's offset back at its end when dropped: after a pass over the file, also
+/// one its callback panicked out of, so that the rows pushed later are written after the others.
+struct AtEnd<'a>(&'a mut BufWriter<File>);
+
+impl AtEnd<'_> {
+    /// The offset at the end now, or why it could not be put there.
+    fn finish(self) -> std::io::Result<u64> {
+        self.0.get_mut().seek(SeekFrom::End(0))
+    }
+}
+
+impl Drop for AtEnd<'_> {
+    fn drop(&mut self) {
+        let _ = self.0.get_mut().seek(SeekFrom::End(0));
+    }
+}
+
 impl Columns {
     /// The rows held in memory unless said otherwise: 2¹⁸ (a few MB for a few columns).
     pub const DEFAULT_IN_MEMORY_ROWS: usize = 1 << 18;
@@ -122,7 +139,13 @@ impl Columns {
             }
             each(row);
         }
-        let mut file = self.file.borrow_mut();
+        // A pass begun from within another's callback (the file is being read): an error, not a
+        // panic.
+        let Ok(mut file) = self.file.try_borrow_mut() else {
+            return Err(std::io::Error::other(
+                "the store's rows are already being read by an enclosing pass",
+            ));
+        };
         let Some(writer) = file.as_mut() else {
             return Ok(());
         };
@@ -144,10 +167,11 @@ impl Columns {
             }
             Ok(())
         };
-        let read = read();
         // The next write goes at the end, wherever the reading left the offset the clone
-        // shares, whether it ended or was stopped.
-        writer.get_mut().seek(SeekFrom::End(0))?;
+        // shares, whether it ended, was stopped, or `each` panicked (the guard's drop).
+        let at_end = AtEnd(writer);
+        let read = read();
+        at_end.finish()?;
         read
     }
 
@@ -688,4 +712,37 @@ pub(super) mod tests {
         );
     }
     static STOP2: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+
+    #[test]
+    fn a_pass_left_by_a_panic_or_begun_within_another_leaves_every_row_whole() {
+        // A callback that panics halfway through the file left its offset there (the next row
+        // went over the others), and a pass begun inside another's callback panicked on the
+        // file already borrowed.
+        // The file's rows are more than its reader's buffer holds (1 MiB, 43 690 rows of
+        // three), so the panic leaves the offset within the file.
+        let data = rows(100_000);
+        let mut s = stored(&data, 1000);
+        let mut seen = 0usize;
+        let panicked = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            let _ = s.scan(|_| {
+                seen += 1;
+                assert!(seen < 3000, "a callback that panics");
+            });
+        }));
+        assert!(panicked.is_err());
+        s.push(&[1.0, 2.0, 3.0]).unwrap();
+        let mut inner = None;
+        let mut back = Vec::new();
+        s.scan(|r| {
+            if back.len() == 2000 {
+                inner = Some(s.scan(|_| ()));
+            }
+            back.push([r[0].to_bits(), r[1].to_bits(), r[2].to_bits()]);
+        })
+        .unwrap();
+        assert!(inner.is_some_and(|r| r.is_err()));
+        let mut want: Vec<[u64; 3]> = data.iter().map(|r| r.map(f64::to_bits)).collect();
+        want.push([1.0f64.to_bits(), 2.0f64.to_bits(), 3.0f64.to_bits()]);
+        assert!(back == want, "rows differ after a panicked pass");
+    }
 }
