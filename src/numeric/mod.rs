@@ -1,12 +1,13 @@
 //! Small numerical kernels shared by the stages: eigenvalues of small Hessenberg matrices (one
 //! at a time, or many in lockstep),
-//! dense polynomial products, the resultant of two quadratics, and the eigen-decomposition of
-//! a symmetric 2 × 2 matrix.
+//! dense polynomial products, the resultant of two quadratics, the eigen-decomposition of a
+//! symmetric 2 × 2 matrix, and small square systems solved on fixed arrays.
 
 mod distribution;
 pub mod hessenberg;
 pub mod hessenberg_lanes;
 mod shown;
+pub mod small_solve;
 mod symmetric2;
 
 pub use distribution::{Distribution, FORMS, Uncertain};

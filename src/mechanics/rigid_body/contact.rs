@@ -6,6 +6,7 @@ use super::RigidError;
 use super::creases::Creases;
 use super::kinematics::{Inertia, Twist, pivot_direction, theta_rate_row, twist, unit};
 use crate::mechanics::ContactGeometry;
+use crate::numeric::small_solve;
 use nalgebra::{SMatrix, SVector, Vector3};
 
 /// A slip speed below this fraction of the block's speed scale counts as zero slip.
@@ -111,10 +112,7 @@ impl Ctx<'_> {
         &self,
         dir: &[Vector3<f64>; 3],
         mu: &[f64; 3],
-    ) -> Result<Solved, RigidError>
-    where
-        nalgebra::Const<N>: nalgebra::DimMin<nalgebra::Const<N>, Output = nalgebra::Const<N>>,
-    {
+    ) -> Result<Solved, RigidError> {
         let geom = self.geom;
         // Constraint k: its contact, normal and force direction g (normal and friction).
         let (contact, normal) = self.rows::<N>(&self.creases);
@@ -124,20 +122,18 @@ impl Ctx<'_> {
             std::array::from_fn(|k| geom.r[contact[k]].cross(&normal[k]));
         let arm_g: [Vector3<f64>; N] =
             std::array::from_fn(|k| self.inertia.inverse * geom.r[contact[k]].cross(&g[k]));
-        let mut kk = SMatrix::<f64, N, N>::zeros();
-        let mut b = SVector::<f64, N>::zeros();
+        let mut kk = [[0.0; N]; N];
+        let mut b = [0.0; N];
         let free_ang = self.inertia.inverse * self.torque;
         for r in 0..N {
             for q in 0..N {
-                kk[(r, q)] = normal[r].dot(&g[q]) / self.mass + arm_n[r].dot(&arm_g[q]);
+                kk[r][q] = normal[r].dot(&g[q]) / self.mass + arm_n[r].dot(&arm_g[q]);
             }
             b[r] = -normal[r].dot(&self.centripetal[contact[r]])
                 - normal[r].dot(&self.force) / self.mass
                 - arm_n[r].dot(&free_ang);
         }
-        let lambda = kk
-            .lu()
-            .solve(&b)
+        let lambda = small_solve::solve(kk, b)
             .filter(|x| x.iter().all(|v| v.is_finite()))
             .ok_or(RigidError::Singular("normal reactions"))?;
         let mut f = self.force;

@@ -6,7 +6,8 @@
 use super::RigidError;
 use crate::mechanics::ContactGeometry;
 use crate::model::Block;
-use nalgebra::{Matrix3, Matrix4, Vector3, Vector4};
+use crate::numeric::small_solve;
+use nalgebra::{Matrix3, Vector3};
 
 /// The inertia tensor in global axes and its inverse, at one pose.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -84,26 +85,24 @@ pub fn twist(geom: &ContactGeometry, rates: [f64; 3]) -> Result<Twist, RigidErro
     let c = geom.cm_offset;
     let p = Vector3::new(0.0, c.z, -c.y);
     let q = Vector3::new(c.y, -c.x, 0.0);
-    let mut a = Matrix4::zeros();
-    let mut b = Vector4::zeros();
+    let mut a = [[0.0; 4]; 4];
+    let mut b = [0.0; 4];
     for i in 0..3 {
         // n·v + (r × n)·ω = 0 with v_X, v_Z substituted: unknowns (v_Y, ω).
         let n = geom.n[i];
         let m = geom.r[i].cross(&n) + p * n.x + q * n.z;
-        a[(i, 0)] = n.y;
+        a[i][0] = n.y;
         for k in 0..3 {
-            a[(i, 1 + k)] = m[k];
+            a[i][1 + k] = m[k];
         }
         b[i] = -n.x * rates[0] - n.z * rates[1];
     }
     let row = theta_rate_row(&geom.frame.i);
     for k in 0..3 {
-        a[(3, 1 + k)] = row[k];
+        a[3][1 + k] = row[k];
     }
     b[3] = rates[2];
-    let x = a
-        .lu()
-        .solve(&b)
+    let x = small_solve::solve(a, b)
         .filter(|x| x.iter().all(|v| v.is_finite()))
         .ok_or(RigidError::Singular("velocity projection"))?;
     let w = Vector3::new(x[1], x[2], x[3]);
