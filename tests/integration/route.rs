@@ -177,6 +177,68 @@ fn the_papers_rk4_keeps_to_its_tolerance_whatever_the_increment() {
 }
 
 #[test]
+fn the_papers_rk4_ends_where_its_last_substep_could_be_taken() {
+    // The default scene's friction solution is lost at 2.024 s. A substep that cannot be taken
+    // ended the route at the start of its increment, whatever substeps were taken before it:
+    // at 2.0 s with increments of 0.1 s. Now at the last substep taken.
+    let end = |dt: f64| {
+        let s = common::with(
+            &paper_scene().with("solver.integrator", "rk4").unwrap(),
+            &[("solver.dt_s", dt)],
+        );
+        let r = run(&s);
+        assert_eq!(r.termination.reason, Reason::NoFrictionSolution);
+        r.termination.t_s
+    };
+    let (coarse, fine) = (end(0.1), end(1e-4));
+    assert!((coarse - fine).abs() < 1e-3, "{coarse} against {fine}");
+}
+
+#[test]
+fn where_the_papers_rk4_stops_and_how_far_it_went_follow_the_tolerance() {
+    // A kicked block that friction brings to rest. The stop was searched from the increment's
+    // start and the travel summed over the increments' chords, both whatever the substeps: at
+    // dt = 0.1 s the stop lay 2·10⁻⁵ m and the travel 6·10⁻⁴ m from dt = 10⁻⁵ s at any
+    // tolerance (found by a reviewing helper). Now both come from the substep where the
+    // velocity passes through zero and the substeps' chords (the stop still first order in
+    // that substep: 1.4·10⁻⁷ m at 10⁻¹²).
+    let kicked = Scene::from_toml(include_str!("../../scenes/kicked.toml"), "kicked")
+        .unwrap()
+        .with_dynamics(DynamicsModel::Paper)
+        .unwrap()
+        .with("solver.integrator", "rk4")
+        .unwrap();
+    let end = |dt: f64, tolerance: f64| -> (f64, f64, f64, f64) {
+        let s = common::with(
+            &kicked,
+            &[
+                ("friction.mu_k", 0.3),
+                (FORCE, 3e6),
+                ("loads.eccentricity_m", 1.0),
+                ("solver.dt_s", dt),
+                ("solver.tolerance", tolerance),
+            ],
+        );
+        let r = run(&s);
+        assert_eq!(
+            r.termination.reason,
+            Reason::Stopped,
+            "{}",
+            r.termination.detail
+        );
+        let l = r.rows.last().unwrap();
+        (l.t_s, l.x_m, l.z_m, r.travel_m)
+    };
+    let fine = end(1e-5, 1e-9);
+    let apart =
+        |e: (f64, f64, f64, f64)| ((e.1 - fine.1).hypot(e.2 - fine.2), (e.3 - fine.3).abs());
+    let (stop, travel) = apart(end(0.1, slideroute::MAX_TOLERANCE));
+    assert!(stop > 1e-5 && travel > 1e-4, "{stop} {travel}");
+    let (stop, travel) = apart(end(0.1, 1e-12));
+    assert!(stop < 5e-7 && travel < 2e-6, "{stop} {travel}");
+}
+
+#[test]
 fn large_eccentricity_gives_a_visibly_curved_route() {
     let curved = run(&with(&[
         ("foundation.kappa_deg", 20.0),

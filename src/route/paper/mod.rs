@@ -55,6 +55,34 @@ pub(super) struct Paper<'a> {
 /// error estimate over the tolerance, the increment is taken in this many.
 const MAX_PIECES: usize = 1 << 12;
 
+/// An increment taken: the state and the evaluation at its end, how often the friction solution
+/// was chosen afresh on the way, the CM's travel (chords at the substeps' ends), and where the
+/// velocity along the increment's first acceleration passed through zero, if it did.
+struct Stepped {
+    next: State,
+    ev: Evaluation,
+    switches: usize,
+    travel: f64,
+    crossing: Option<Crossing>,
+}
+
+/// The (sub)step over which the velocity along the increment's first acceleration passed from
+/// below zero to zero or above: its start, the evaluation there, its length, and the travel up
+/// to its start.
+#[derive(Clone, Copy)]
+struct Crossing {
+    from: State,
+    ev: Evaluation,
+    h: f64,
+    travel: f64,
+}
+
+/// Whether the velocity along `a` passes from below zero to zero or above between `s` and `n`.
+fn crosses(a: &[f64; 3], s: &State, n: &State) -> bool {
+    let along = |w: [f64; 2]| w[0] * a[0] + w[1] * a[1];
+    along([s.vx, s.vz]) < 0.0 && along([n.vx, n.vz]) >= 0.0
+}
+
 impl Paper<'_> {
     /// RK4 over the increment from the state to `t_to` (of length `dt`), in as many equal
     /// substeps as the tolerance asks: each substep's error estimated as the rigid body's is
@@ -64,39 +92,64 @@ impl Paper<'_> {
     /// substep is over the tolerance is taken again in twice as many (up to [`MAX_PIECES`]); the
     /// next increment starts with as many as this one took, or half as many where half would
     /// have done by the estimate. Where one substep an increment does (the default increment
-    /// of 1 ms), the route is the increment's single RK4 step, as before. The state and the
-    /// evaluation at `t_to`, and whether a reaction was chosen afresh on the way.
+    /// of 1 ms), the route is the increment's single RK4 step, as before. The travel is summed
+    /// over the substeps' chords, the friction solutions chosen afresh counted at each, and the
+    /// substep where the block may stop is kept for the stop's search. A substep that cannot be
+    /// taken ends the route: with the substeps taken before it (then the finder is moved to the
+    /// last of them), or at the increment's start.
     fn rk4_within(
         &mut self,
         finder: &mut PoseFinder<'_>,
         (t_to, dt): (f64, f64),
         o: &mut Logbook<'_>,
-    ) -> Result<(State, Evaluation, bool), Stop> {
+    ) -> Result<Stepped, (Stop, Option<Box<Stepped>>)> {
         let sim = self.sim;
         let (l, tol) = (sim.l(), sim.settings().tolerance);
         let weights = [1.0 / (tol * l), 1.0 / (tol * l), 1.0 / tol];
+        let first_acc = self.ev.acc;
         let mut pieces = self.pieces.clamp(1, MAX_PIECES);
         loop {
             let mut f = finder.clone();
-            let (mut s, mut ev, mut fresh) = (self.state, self.ev, false);
+            let mut done = Stepped {
+                next: self.state,
+                ev: self.ev,
+                switches: 0,
+                travel: 0.0,
+                crossing: None,
+            };
             let h = dt / pieces as f64;
             let mut worst: f64 = 0.0;
             let mut taken = 0;
             while taken < pieces {
+                let (s, ev) = (done.next, done.ev);
                 let base = f.clone();
                 let prev = ev.reaction;
-                let (next, k4) = rk4_step(&s, &ev.acc, h, |q: &State| {
+                let stepped = rk4_step(&s, &ev.acc, h, |q: &State| {
                     let mut g = base.clone();
                     evaluate(sim, &mut g, q.displacement(), Some(&prev), velocity(q)).map(|e| e.acc)
-                })?;
-                // The last substep ends at t_to itself, not at a running sum.
-                let next = if taken + 1 == pieces {
-                    State { t: t_to, ..next }
-                } else {
-                    next
+                })
+                .and_then(|(next, k4)| {
+                    // The last substep ends at t_to itself, not at a running sum.
+                    let next = if taken + 1 == pieces {
+                        State { t: t_to, ..next }
+                    } else {
+                        next
+                    };
+                    let at = next.displacement();
+                    let end = evaluate(sim, &mut f, at, Some(&ev.reaction), velocity(&next))?;
+                    Ok((next, k4, end))
+                });
+                let (next, k4, end) = match stepped {
+                    Ok(x) => x,
+                    Err(stop) => {
+                        o.steps.0 += taken;
+                        if taken == 0 {
+                            return Err((stop, None));
+                        }
+                        *finder = f;
+                        return Err((stop, Some(Box::new(done))));
+                    }
                 };
-                let at = next.displacement();
-                let end = evaluate(sim, &mut f, at, Some(&ev.reaction), velocity(&next))?;
                 let k5 = [next.vx, next.vz, next.omega];
                 let ratio = (0..3)
                     .map(|i| (h / 6.0 * (k4[i] - k5[i])).abs() * weights[i])
@@ -105,8 +158,17 @@ impl Paper<'_> {
                     break;
                 }
                 worst = worst.max(ratio);
-                fresh |= end.fresh;
-                (s, ev) = (next, end);
+                if done.crossing.is_none() && crosses(&first_acc, &s, &next) {
+                    done.crossing = Some(Crossing {
+                        from: s,
+                        ev,
+                        h,
+                        travel: done.travel,
+                    });
+                }
+                done.switches += usize::from(end.fresh);
+                done.travel += (end.pose.cm - ev.pose.cm).norm();
+                (done.next, done.ev) = (next, end);
                 taken += 1;
             }
             if taken == pieces {
@@ -119,7 +181,7 @@ impl Paper<'_> {
                 } else {
                     pieces
                 };
-                return Ok((s, ev, fresh));
+                return Ok(done);
             }
             o.steps.1 += taken + 1;
             pieces *= 2;
@@ -211,32 +273,55 @@ impl<'a> Dynamics<'a> for Paper<'a> {
                 };
                 let at = next.displacement();
                 evaluate(sim, finder, at, Some(&ev.reaction), velocity(&next))
-                    .map(|e| (next, e, e.fresh))
+                    .map(|e| Stepped {
+                        next,
+                        ev: e,
+                        switches: usize::from(e.fresh),
+                        travel: (e.pose.cm - ev.pose.cm).norm(),
+                        crossing: crosses(&ev.acc, &state, &next).then_some(Crossing {
+                            from: state,
+                            ev,
+                            h: dt,
+                            travel: 0.0,
+                        }),
+                    })
+                    .map_err(|stop| (stop, None))
             }
             Integrator::Rk4 => self.rk4_within(finder, (t_to, dt), &mut o),
         };
-        let (next, new_ev, fresh) = match stepped {
+        let Stepped {
+            next,
+            ev: new_ev,
+            switches,
+            travel,
+            crossing,
+        } = match stepped {
             Ok(x) => x,
-            Err(Stop { reason, detail, .. }) => {
-                return Flow::Ended(o.finish(self.row(), reason, state.t, detail));
+            Err((Stop { reason, detail, .. }, taken)) => {
+                // The substeps taken before the one that could not be: the route ends there.
+                if let Some(t) = taken {
+                    o.switches += t.switches;
+                    o.travel += t.travel;
+                    (self.state, self.ev) = (t.next, t.ev);
+                }
+                return Flow::Ended(o.finish(self.row(), reason, self.state.t, detail));
             }
         };
-        if fresh {
-            o.switches += 1;
-        }
+        o.switches += switches;
         o.increments = k;
         // Stopped: the CM velocity along the acceleration — along i', the direction the paper's
-        // dynamics drive (eqs. 30–35) — passes through zero in the increment, and friction
-        // holds there. The paper's model has no friction against the velocity across i' (a
-        // drift of a fraction of a per cent of the speed where we measured it), so the speed
-        // itself only passes through a minimum; the stop sets it to zero.
-        let (v, a) = ([state.vx, state.vz], [ev.acc[0], ev.acc[1]]);
-        let along = |w: [f64; 2]| w[0] * a[0] + w[1] * a[1];
-        if along(v) < 0.0 && along([next.vx, next.vz]) >= 0.0 {
-            // Where the paper's update (accelerations frozen over the increment) brings it to
+        // dynamics drive (eqs. 30–35) — passes through zero in the increment (with RK4, in the
+        // substep `crossing` is), and friction holds there. The paper's model has no friction
+        // against the velocity across i' (a drift of a fraction of a per cent of the speed where
+        // we measured it), so the speed itself only passes through a minimum; the stop sets it
+        // to zero.
+        if let Some(c) = crossing {
+            // Where the paper's update (accelerations frozen over the (sub)step) brings it to
             // zero: (v + a τ)·a = 0 (with RK4, to first order in τ).
-            let tau = (-along(v) / along(a)).clamp(0.0, dt);
-            let mut stop = paper_step(&state, &ev.acc, tau);
+            let (v, a) = ([c.from.vx, c.from.vz], [c.ev.acc[0], c.ev.acc[1]]);
+            let along = |w: [f64; 2]| w[0] * a[0] + w[1] * a[1];
+            let tau = (-along(v) / along(a)).clamp(0.0, c.h);
+            let mut stop = paper_step(&c.from, &c.ev.acc, tau);
             stop.vx = 0.0;
             stop.vz = 0.0;
             stop.omega = 0.0;
@@ -245,7 +330,7 @@ impl<'a> Dynamics<'a> for Paper<'a> {
                 sim,
                 &mut at_stop,
                 stop.displacement(),
-                Some(&ev.reaction),
+                Some(&c.ev.reaction),
                 None,
             ) {
                 Ok(e) => e,
@@ -261,7 +346,7 @@ impl<'a> Dynamics<'a> for Paper<'a> {
                 &sim.strength(faces_of(sim.site()), false),
             );
             if fs_here >= 1.0 {
-                o.travel += (stop_ev.pose.cm - ev.pose.cm).norm();
+                o.travel += c.travel + (stop_ev.pose.cm - c.ev.pose.cm).norm();
                 o.push(row(
                     &stop,
                     Some(&stop_ev),
@@ -275,7 +360,7 @@ impl<'a> Dynamics<'a> for Paper<'a> {
                 return Flow::Ended(o.end(Reason::Stopped, stop.t, detail));
             }
         }
-        o.travel += (new_ev.pose.cm - ev.pose.cm).norm();
+        o.travel += travel;
         self.state = next;
         self.ev = new_ev;
         Flow::Go(o)

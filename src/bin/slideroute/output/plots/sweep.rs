@@ -238,7 +238,8 @@ impl Drawn {
             return Ok(());
         };
         // Its place: the first among the places of its value that no combination took yet
-        // (each value of the first key `repeats` places along the line).
+        // (each value of the first key `repeats` places along the line). They are taken in
+        // order, so those taken are the first ones: found by halving, however many repeat.
         let first = first_of(r);
         let m = self.repeats[line];
         let from = self
@@ -247,7 +248,9 @@ impl Drawn {
         let to = self
             .sorted_first
             .partition_point(|x| x.total_cmp(&first).is_le());
-        let Some(place) = (from * m..to * m).find(|&p| self.marks[line][p] == 0) else {
+        let places = &self.marks[line][from * m..to * m];
+        let taken = places.partition_point(|&x| x != 0);
+        let Some(place) = (taken < places.len()).then_some(from * m + taken) else {
             // A value the first key does not have, or more of it than it has: not drawn.
             return Ok(());
         };
