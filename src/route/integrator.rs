@@ -23,6 +23,22 @@ pub fn rk4_stages<const N: usize, E>(
     Ok((next, k4))
 }
 
+/// A step's error over the tolerance: the largest weighted component of the difference between
+/// RK4's solution and the embedded third-order one, h/6 (k4 − k5), where k5 is the derivative
+/// at the step's end (`derivations/08-rigid-body.md` §4a); `weights` each value's 1 / (tolerance
+/// × its scale), 0 for a value not weighed. At most 1 where the step is within the tolerance.
+/// Both dynamics choose their steps by it.
+pub fn error_ratio<const N: usize>(
+    weights: &[f64; N],
+    h: f64,
+    k4: &[f64; N],
+    k5: &[f64; N],
+) -> f64 {
+    (0..N)
+        .map(|i| (h / 6.0 * (k4[i] - k5[i])).abs() * weights[i])
+        .fold(0.0, f64::max)
+}
+
 /// The cubic Hermite interpolant between (y0, f0) at the start of a step of length `h` and
 /// (y1, f1) at its end, at the fraction `s` ∈ [0, 1] of it: the dense output of the step,
 /// within O(h⁴) of the motion where the step is.

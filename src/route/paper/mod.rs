@@ -19,6 +19,7 @@ use super::termination::{Reason, Stop};
 use crate::mechanics::loads::Applied;
 use crate::mechanics::onset::factor_of_safety;
 use crate::model::{Integrator, Simulation};
+use crate::route::integrator::error_ratio;
 
 fn row(s: &State, ev: Option<&Evaluation>, pose: &crate::geometry::Pose, faces: [u32; 3]) -> Row {
     Row {
@@ -95,8 +96,9 @@ impl Paper<'_> {
     /// of 1 ms), the route is the increment's single RK4 step, as before. The travel is summed
     /// over the substeps' chords, the friction solutions chosen afresh counted at each, and the
     /// substep where the block may stop is kept for the stop's search. A substep that cannot be
-    /// taken ends the route: with the substeps taken before it (then the finder is moved to the
-    /// last of them), or at the increment's start.
+    /// taken ends the route: with the substeps taken before it, or at the increment's start.
+    /// `finder` follows the substeps' ends, and is put back at the increment's start when it is
+    /// taken again.
     fn rk4_within(
         &mut self,
         finder: &mut PoseFinder<'_>,
@@ -105,11 +107,20 @@ impl Paper<'_> {
     ) -> Result<Stepped, (Stop, Option<Box<Stepped>>)> {
         let sim = self.sim;
         let (l, tol) = (sim.l(), sim.settings().tolerance);
-        let weights = [1.0 / (tol * l), 1.0 / (tol * l), 1.0 / tol];
+        // X and Z against τ L, θ against τ rad; the rates not weighed (as the rigid body's).
+        let weights = [1.0 / (tol * l), 1.0 / (tol * l), 1.0 / tol, 0.0, 0.0, 0.0];
         let first_acc = self.ev.acc;
         let mut pieces = self.pieces.clamp(1, MAX_PIECES);
+        // The finder at the increment's start: the first substep's stages start from it, and an
+        // increment taken again in more substeps starts from it again (one copy an increment, as
+        // a single RK4 step needs for its stages).
+        let start = finder.clone();
+        let mut again = false;
         loop {
-            let mut f = finder.clone();
+            if again {
+                *finder = start.clone();
+            }
+            again = true;
             let mut done = Stepped {
                 next: self.state,
                 ev: self.ev,
@@ -121,10 +132,16 @@ impl Paper<'_> {
             let mut worst: f64 = 0.0;
             let mut taken = 0;
             while taken < pieces {
-                let (s, ev) = (done.next, done.ev);
-                let base = f.clone();
+                let (s, ev) = (&done.next, &done.ev);
+                let later;
+                let base = if taken == 0 {
+                    &start
+                } else {
+                    later = finder.clone();
+                    &later
+                };
                 let prev = ev.reaction;
-                let stepped = rk4_step(&s, &ev.acc, h, |q: &State| {
+                let stepped = rk4_step(s, &ev.acc, h, |q: &State| {
                     let mut g = base.clone();
                     evaluate(sim, &mut g, q.displacement(), Some(&prev), velocity(q)).map(|e| e.acc)
                 })
@@ -136,7 +153,7 @@ impl Paper<'_> {
                         next
                     };
                     let at = next.displacement();
-                    let end = evaluate(sim, &mut f, at, Some(&ev.reaction), velocity(&next))?;
+                    let end = evaluate(sim, finder, at, Some(&ev.reaction), velocity(&next))?;
                     Ok((next, k4, end))
                 });
                 let (next, k4, end) = match stepped {
@@ -146,34 +163,33 @@ impl Paper<'_> {
                         if taken == 0 {
                             return Err((stop, None));
                         }
-                        *finder = f;
                         return Err((stop, Some(Box::new(done))));
                     }
                 };
-                let k5 = [next.vx, next.vz, next.omega];
-                let ratio = (0..3)
-                    .map(|i| (h / 6.0 * (k4[i] - k5[i])).abs() * weights[i])
-                    .fold(0.0, f64::max);
+                let k5 = [
+                    next.vx, next.vz, next.omega, end.acc[0], end.acc[1], end.acc[2],
+                ];
+                let ratio = error_ratio(&weights, h, &k4, &k5);
                 if ratio > 1.0 && pieces < MAX_PIECES {
                     break;
                 }
                 worst = worst.max(ratio);
-                if done.crossing.is_none() && crosses(&first_acc, &s, &next) {
+                let chord = (end.pose.cm - ev.pose.cm).norm();
+                if done.crossing.is_none() && crosses(&first_acc, s, &next) {
                     done.crossing = Some(Crossing {
-                        from: s,
-                        ev,
+                        from: *s,
+                        ev: *ev,
                         h,
                         travel: done.travel,
                     });
                 }
                 done.switches += usize::from(end.fresh);
-                done.travel += (end.pose.cm - ev.pose.cm).norm();
+                done.travel += chord;
                 (done.next, done.ev) = (next, end);
                 taken += 1;
             }
             if taken == pieces {
                 o.steps.0 += pieces;
-                *finder = f;
                 // Twice the substep multiplies the estimate by 16: halve their number only
                 // where that would leave it under half the tolerance.
                 self.pieces = if pieces > 1 && 16.0 * worst < 0.5 {

@@ -15,7 +15,7 @@ use super::{Ending, RigidBody};
 use crate::model::Simulation;
 use crate::route::driver::recorded_within;
 use crate::route::dynamics::Flow;
-use crate::route::integrator::hermite;
+use crate::route::integrator::{error_ratio, hermite};
 use crate::route::logbook::Logbook;
 use crate::route::pose_finder::PoseFinder;
 use crate::route::termination::{Reason, Stop};
@@ -65,16 +65,6 @@ pub(super) fn error_weights(sim: &Simulation) -> [f64; VALUES] {
     let (l, tol) = (sim.l(), sim.settings().tolerance);
     let none = f64::INFINITY;
     [l, l, 1.0, none, none, none, none, none, none, l].map(|s| 1.0 / (tol * s))
-}
-
-/// A step's error over the tolerance: the largest weighted component of the difference between
-/// RK4's solution and the embedded third-order one, h/6 (k4 − k5), where k5 is the derivative
-/// at the step's end (`derivations/08-rigid-body.md` §4a). At most 1 where the step is within the
-/// tolerance.
-fn error_ratio(weights: &[f64; VALUES], h: f64, k4: &[f64; VALUES], k5: &[f64; VALUES]) -> f64 {
-    (0..VALUES)
-        .map(|i| (h / 6.0 * (k4[i] - k5[i])).abs() * weights[i])
-        .fold(0.0, f64::max)
 }
 
 /// The factor by which the next step is the last one's, from its error ratio: the step whose

@@ -88,8 +88,7 @@ pub fn sweep(args: &SweepArgs) -> Result<(), CliError> {
         written.push(
             folder
                 .write_with("sweep.svg", |tmp| {
-                    let rows = drawn.rows().map_err(|e| format!("sweep picture: {e}"))?;
-                    crate::output::plots::sweep_drawn(tmp, varies, &rows, &drawn)
+                    crate::output::plots::sweep_drawn(tmp, varies, &drawn)
                 })
                 .map_err(failed)?,
         );

@@ -118,7 +118,7 @@ fn ended_alike(a: &SweepRow, b: &SweepRow, shaken: bool) -> bool {
 /// they come ([`Drawn::add`]). Of each combination on a line drawn it keeps what the picture
 /// shows, in a store that spills past a few MB to an unnamed temporary file, and how it ended,
 /// four bytes a combination: the values drawn along each line are chosen from those once every
-/// combination has come ([`Drawn::rows`]), so that a sweep of any size keeps only a few MB.
+/// combination has come ([`Drawn::choose`]), so that a sweep of any size keeps only a few MB.
 pub struct Drawn {
     /// How many lines the whole sweep has.
     lines: usize,
@@ -140,9 +140,14 @@ pub struct Drawn {
     reasons: Vec<String>,
     /// What the picture shows of each combination on a line drawn, [`STORED`] numbers a row.
     store: slideroute::probabilistic::Columns,
-    /// Set by [`Drawn::rows`]: the most values a line marks, whether every line kept both sides
-    /// of each change of how the route ended, and the first key's values on the lines drawn
-    /// (the lowest and highest, and how many distinct).
+}
+
+/// What the picture draws of the lines, chosen once every combination has come
+/// ([`Drawn::choose`]): the rows drawn (in the order they came), the most values a line marks,
+/// whether every line kept both sides of each change of how the route ended, and the first
+/// key's values on the lines drawn (the lowest and highest, and how many distinct).
+struct Chosen {
+    rows: Vec<SweepRow>,
     along: usize,
     changes_kept: bool,
     first_span: Option<(f64, f64)>,
@@ -216,10 +221,6 @@ impl Drawn {
             reasons: Vec::new(),
             store: slideroute::probabilistic::Columns::new(STORED, spill_in)
                 .with_in_memory_rows(STORED_IN_MEMORY),
-            along: 0,
-            changes_kept: true,
-            first_span: None,
-            first_distinct: 0,
         }
     }
 
@@ -303,14 +304,14 @@ impl Drawn {
     /// each line drawn at most `along` of them ([`thin`]: evenly spaced, the ends and both sides
     /// of each change of how the route ended kept); `along` shared out among the lines that have
     /// any. Their details are not kept (sweep.csv has them).
-    pub fn rows(&mut self) -> std::io::Result<Vec<SweepRow>> {
+    fn choose(&self) -> std::io::Result<Chosen> {
         let lines_with_rows = self
             .marks
             .iter()
             .filter(|m| m.iter().any(|&x| x != 0))
             .count();
-        self.along = (MAX_MARKED / lines_with_rows.max(1)).clamp(2, MAX_ALONG);
-        self.changes_kept = true;
+        let along = (MAX_MARKED / lines_with_rows.max(1)).clamp(2, MAX_ALONG);
+        let mut changes_kept = true;
         let mut keep: Vec<Vec<bool>> = Vec::with_capacity(self.marks.len());
         for marks in &self.marks {
             // The places a combination came to, one line at a time (4 bytes each).
@@ -318,8 +319,8 @@ impl Drawn {
                 .filter(|&p| marks[p as usize] != 0)
                 .collect();
             let at = |i: usize| marks[places[i] as usize];
-            let (kept, all_changes) = thin(places.len(), self.along, |i| at(i - 1) != at(i));
-            self.changes_kept &= all_changes;
+            let (kept, all_changes) = thin(places.len(), along, |i| at(i - 1) != at(i));
+            changes_kept &= all_changes;
             let mut k = vec![false; marks.len()];
             for i in kept {
                 k[places[i] as usize] = true;
@@ -334,8 +335,8 @@ impl Drawn {
             })
             .map(|p| self.sorted_first[p])
             .collect();
-        self.first_span = on_any.first().zip(on_any.last()).map(|(a, b)| (*a, *b));
-        self.first_distinct = on_any.chunk_by(|a, b| a.total_cmp(b).is_eq()).count();
+        let first_span = on_any.first().zip(on_any.last()).map(|(a, b)| (*a, *b));
+        let first_distinct = on_any.chunk_by(|a, b| a.total_cmp(b).is_eq()).count();
         let mut rows = Vec::new();
         let (chosen, reasons) = (&self.chosen, &self.reasons);
         self.store.scan(|s| {
@@ -367,7 +368,13 @@ impl Drawn {
                 detail: String::new(),
             });
         })?;
-        Ok(rows)
+        Ok(Chosen {
+            rows,
+            along,
+            changes_kept,
+            first_span,
+            first_distinct,
+        })
     }
 
     /// How many combinations came out as `o`.
@@ -458,13 +465,12 @@ pub fn sweep(path: &Path, varies: &[Vary], rows: &[SweepRow]) -> Res<()> {
     for r in rows {
         drawn.add(r).map_err(err(path))?;
     }
-    let kept = drawn.rows().map_err(err(path))?;
-    sweep_drawn(path, varies, &kept, &drawn)
+    sweep_drawn(path, varies, &drawn)
 }
 
-/// Travel and factor of safety against the first varied key: `rows` the combinations `drawn`
-/// chose ([`Drawn::rows`]), in the sweep's order, `drawn` having counted every one.
-pub fn sweep_drawn(path: &Path, varies: &[Vary], rows: &[SweepRow], drawn: &Drawn) -> Res<()> {
+/// Travel and factor of safety against the first varied key, of the combinations `drawn` kept
+/// ([`Drawn::add`], every one counted), those drawn chosen now ([`Drawn::choose`]).
+pub fn sweep_drawn(path: &Path, varies: &[Vary], drawn: &Drawn) -> Res<()> {
     let Some(first) = varies.first() else {
         return sheet::message(
             path,
@@ -473,7 +479,8 @@ pub fn sweep_drawn(path: &Path, varies: &[Vary], rows: &[SweepRow], drawn: &Draw
             &["No key was varied, so there is nothing to plot.".into()],
         );
     };
-    let plot = SweepPlot::new(path, varies, rows, drawn);
+    let chosen = drawn.choose().map_err(err(path))?;
+    let plot = SweepPlot::new(path, varies, &chosen, drawn);
     let title = format!(
         "sweep: {} and factor of safety against {}",
         if plot.shaken {
@@ -562,6 +569,8 @@ struct SweepPlot<'a> {
     /// Whether each line drawn keeps both neighbours at every change of how the route ended
     /// (a line with too many changes keeps only its evenly spaced rows).
     changes_kept: bool,
+    /// How many distinct values of the first key the lines drawn have.
+    first_values: usize,
     /// The second key's lowest and highest values (0, 0 without one).
     second_range: (f64, f64),
     /// The x axis's range: the first key's values, or its words at 0, 1, ….
@@ -575,8 +584,8 @@ struct SweepPlot<'a> {
 }
 
 impl<'a> SweepPlot<'a> {
-    /// The picture of `rows`, `varies` not empty.
-    fn new(path: &'a Path, varies: &'a [Vary], rows: &'a [SweepRow], totals: &'a Drawn) -> Self {
+    /// The picture of the rows `chosen`, `varies` not empty.
+    fn new(path: &'a Path, varies: &'a [Vary], chosen: &'a Chosen, totals: &'a Drawn) -> Self {
         let second_range = varies.get(1).map_or((0.0, 0.0), |v| {
             v.values
                 .iter()
@@ -587,11 +596,11 @@ impl<'a> SweepPlot<'a> {
         // The x axis spans the first key's values on every line drawn, not only those marked.
         let x_range = match &varies[0].words {
             Some(w) => (-0.5, w.len() as f64 - 0.5),
-            None => sheet::ranges(totals.first_span.into_iter().flat_map(|(a, b)| [a, b])),
+            None => sheet::ranges(chosen.first_span.into_iter().flat_map(|(a, b)| [a, b])),
         };
         let shaken = totals.permanent;
-        // The rows are those drawn ([`Drawn::rows`]): their groups are the lines.
-        let groups = groups(rows);
+        // The rows are those drawn: their groups are the lines.
+        let groups = groups(&chosen.rows);
         let drawn = groups.iter().flat_map(|g| g.1.iter().copied()).collect();
         SweepPlot {
             path,
@@ -600,8 +609,9 @@ impl<'a> SweepPlot<'a> {
             groups,
             drawn,
             lines: totals.lines,
-            along: totals.along,
-            changes_kept: totals.changes_kept,
+            along: chosen.along,
+            changes_kept: chosen.changes_kept,
+            first_values: chosen.first_distinct,
             second_range,
             x_range,
             shaken,
@@ -1034,7 +1044,7 @@ impl<'a> SweepPlot<'a> {
             return None;
         }
         let first = &self.first().key;
-        let values = self.totals.first_distinct;
+        let values = self.first_values;
         let mut words = format!(
             "Drawn: {} of the {} combinations, to keep the picture small",
             self.drawn.len(),
@@ -1825,7 +1835,7 @@ mod tests {
             for r in &rows {
                 drawn.add(r).unwrap();
             }
-            let got = drawn.rows().unwrap();
+            let got = drawn.choose().unwrap();
             let (want, every_change, span, distinct) =
                 drawn_when_held(&rows, &drawn.chosen, shaken);
             let shown = |r: &SweepRow| {
@@ -1843,7 +1853,7 @@ mod tests {
                 )
             };
             let (got_shown, want_shown): (Vec<_>, Vec<_>) = (
-                got.iter().map(shown).collect(),
+                got.rows.iter().map(shown).collect(),
                 want.iter().map(shown).collect(),
             );
             assert!(
@@ -1852,9 +1862,9 @@ mod tests {
                 want.len()
             );
             assert_eq!(got_shown, want_shown, "shaken {shaken}, cut {cut}");
-            assert_eq!(drawn.changes_kept, every_change);
-            assert_eq!(drawn.first_span, span);
-            assert_eq!(drawn.first_distinct, distinct);
+            assert_eq!(got.changes_kept, every_change);
+            assert_eq!(got.first_span, span);
+            assert_eq!(got.first_distinct, distinct);
         }
     }
 }
