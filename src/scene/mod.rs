@@ -22,8 +22,8 @@ pub(crate) use raw::keys_of;
 
 use crate::geometry::Site;
 use crate::model::{
-    Block, DynamicsModel, Friction, Guideline, Initial, LoadCase, Loads, Record, RunSettings,
-    Strengths,
+    Block, Contacts, DynamicsModel, Friction, Guideline, Initial, LoadCase, Loads, Record,
+    RunSettings, Strengths,
 };
 use std::path::Path;
 
@@ -393,7 +393,8 @@ impl Scene {
     }
 
     /// Values that are valid but likely mistakes, one line each naming the key: a
-    /// dip under 1° (often radians typed as degrees) and a friction coefficient over 2.
+    /// dip under 1° (often radians typed as degrees), a friction coefficient over 2, and a
+    /// tolerance given to the block on its base, which steps by `dt_s` and has none.
     pub fn warnings(&self) -> Vec<String> {
         let mut w = Vec::new();
         // The dips as written: the paper's two, or each face's (a level face, 0°, is meant).
@@ -425,6 +426,17 @@ impl Scene {
             w.push(format!(
                 "{}: friction.mu_k: μ = {mu_k} is over 2, far above any rock joint's (about \
                      0.3–1)",
+                self.origin
+            ));
+        }
+        let tolerance = self.source.get("solver").and_then(|t| t.get("tolerance"));
+        if let (Some(_), Some(settings)) = (tolerance, &self.settings)
+            && settings.contacts == Contacts::Base
+        {
+            w.push(format!(
+                "{}: solver.tolerance: has no effect on the block on its base \
+                 (solver.contacts = \"base\"), which steps by solver.dt_s (first order: halve dt_s \
+                 to halve its error)",
                 self.origin
             ));
         }

@@ -507,6 +507,34 @@ fn likely_mistakes_give_warnings_naming_the_key() {
 }
 
 #[test]
+fn a_tolerance_given_to_the_block_on_its_base_warns_that_it_has_no_effect() {
+    // The block on its base steps by dt_s (first order): a tolerance asked of it changed
+    // nothing, without a word. The three points' rigid body takes it; so does a scene that
+    // gives none.
+    let base = |extra: &str| {
+        Scene::default_scene()
+            .with("solver.contacts", "base")
+            .and_then(|s| match extra {
+                "" => Ok(s),
+                _ => s.with("solver.tolerance", 1e-12),
+            })
+            .unwrap()
+            .warnings()
+    };
+    let w = base("tolerance");
+    assert_eq!(w.len(), 1, "{w:?}");
+    assert!(
+        w[0].contains("solver.tolerance") && w[0].contains("dt_s"),
+        "{w:?}"
+    );
+    assert!(base("").is_empty());
+    let frame = Scene::default_scene()
+        .with("solver.tolerance", 1e-12)
+        .unwrap();
+    assert!(frame.warnings().is_empty(), "{:?}", frame.warnings());
+}
+
+#[test]
 fn derived_quantities_that_are_not_usable_are_errors_naming_the_key() {
     // Each input finite and positive, but the weight infinite, the water
     // load or a moment of inertia absurd against it: one line naming the key to change.

@@ -29,10 +29,6 @@ fn python() -> PathBuf {
 
 /// Drake's rows for a scene file over the horizon: t, X, Y, Z, θ° and the three contacts'
 /// positions (X, Y, Z each).
-fn drake_path(scene: &Path) -> Vec<Vec<f64>> {
-    drake_path_with(scene, HORIZON_S, &[])
-}
-
 /// [`drake_path`] over `horizon` (s) with more arguments for the script (a finer contact).
 fn drake_path_with(scene: &Path, horizon: f64, extra: &[&str]) -> Vec<Vec<f64>> {
     drake_csv("drake_route.py", scene, horizon, extra).1
@@ -88,11 +84,11 @@ fn drake_csv(
     (header, rows)
 }
 
-fn ours(scene_file: &Path) -> (Vec<Row>, Reason, f64) {
+fn ours_to(scene_file: &Path, horizon: f64) -> (Vec<Row>, Reason, f64) {
     let scene = Scene::from_file(scene_file)
         .unwrap()
         .with_dynamics(DynamicsModel::RigidBody)
-        .and_then(|s| s.with("solver.t_end_s", HORIZON_S))
+        .and_then(|s| s.with("solver.t_end_s", horizon))
         .and_then(|s| s.with("solver.contacts", "frame"))
         .unwrap();
     let r = slideroute::run(&scene).unwrap();
@@ -125,9 +121,14 @@ enum End {
 /// Travel within 0.5 %, CM positions within 0.5 % of travel and yaw within 0.2° at every
 /// millisecond until our route ends (at `end`, which Drake's path must show too).
 fn agrees_with_drake(name: &str, end: End) {
+    agrees_with_drake_to(name, end, HORIZON_S)
+}
+
+/// [`agrees_with_drake`] over `horizon` seconds.
+fn agrees_with_drake_to(name: &str, end: End, horizon: f64) {
     let file = root().join("scenes").join(format!("{name}.toml"));
-    let drake = drake_path(&file);
-    let (rows, reason, t_end) = ours(&file);
+    let drake = drake_path_with(&file, horizon, &[]);
+    let (rows, reason, t_end) = ours_to(&file, horizon);
     let expected = match end {
         End::Horizon => Reason::TimeLimit,
         End::Stopped => Reason::Stopped,
@@ -252,6 +253,17 @@ fn rigid_body_creeping_contact_pivots_until_contact_0_reaches_plane_1_as_in_drak
     // pivot; followed as a slip it crept across plane 2's strike and the route ended "contact 2
     // left plane 2" at 2.350 s, where Drake's contact 2 stays put until contact 0 crosses at 2.499 s.
     agrees_with_drake("creeping-pivot", End::Contact0ReachesPlane1 { l2x: 4.0 });
+}
+
+#[test]
+#[ignore = "needs pydrake (crosscheck/setup.sh); run by .ci/run"]
+fn rigid_body_leaving_a_pivot_at_speed_goes_on_as_in_drake() {
+    // scenes/pivot-escape.toml, a probabilistic analysis's sample: contact 2 leaves its pivot
+    // at 2.65 s with the block at 3 m/s, its slip passing through zero again and again. The
+    // same pivot met again at one moment was taken for the stop, and the block, set at rest,
+    // was 1.06 m and 10.3° from Drake's by 3 s; contact 0 reached plane 1 at 3.96 s, where
+    // Drake's crosses at 3.046 s.
+    agrees_with_drake_to("pivot-escape", End::Contact0ReachesPlane1 { l2x: 4.0 }, 3.2);
 }
 
 #[test]

@@ -122,7 +122,7 @@ fn companions(scene: &str) -> Vec<(String, Vec<u8>)> {
     }
 }
 
-const SCENES: [&str; 17] = [
+const SCENES: [&str; 18] = [
     "paper-like.toml",
     "creeping-pivot.toml",
     "dam.toml",
@@ -132,6 +132,7 @@ const SCENES: [&str; 17] = [
     "monolith.toml",
     "paper-like-faces.toml",
     "paper-like-uncertain.toml",
+    "pivot-escape.toml",
     "pivot-held.toml",
     "pivot-released.toml",
     "ramp-faces.toml",

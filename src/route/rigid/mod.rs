@@ -94,6 +94,10 @@ pub(super) struct RigidBody<'a> {
     slip_peak: f64,
     /// The last event, when it was a pivot: the contact and the moment.
     pivoted: Option<(usize, f64)>,
+    /// The next step passes through a moment where a contact's slip turns about zero faster
+    /// than its events can be told apart (the same pivot met again at once, the block under
+    /// way): taken plain, no event resolved, and of the shortest substep (`substep.rs`).
+    through: bool,
     /// The next step's length: chosen by the error estimate against the tolerance
     /// (`substep.rs`), shortened where the energy balance says RK4 does not resolve the motion.
     h: f64,
@@ -140,6 +144,7 @@ impl<'a> RigidBody<'a> {
             ke_max: 0.0,
             slip_peak: 0.0,
             pivoted: None,
+            through: false,
             h,
             weights,
             within: Vec::new(),

@@ -157,7 +157,7 @@ impl RigidBody<'_> {
             // Past MAX_EVENTS in one increment (a contact's slip chattering about zero), the
             // rest of the increment is taken in plain substeps: its error shows in the energy
             // balance.
-            let resolve = events < MAX_EVENTS;
+            let resolve = events < MAX_EVENTS && !self.through;
             // A ground-motion record's samples are where its loads may turn: steps end on them
             // (RK4 keeps its order between them); and none goes past the route's end.
             let t_end = self.sim.settings().t_end;
@@ -229,7 +229,12 @@ impl RigidBody<'_> {
         };
         let longest =
             MAX_ROWS_IN_A_STEP * self.sim.settings().dt * self.sim.settings().stride as f64;
-        let mut trial = self.trial(finder, self.h.min(left).min(longest), resolve, &heading);
+        let reference = self.sim.settings().reference_step();
+        let h = match std::mem::take(&mut self.through) {
+            true => MIN_SUBSTEP * reference,
+            false => self.h,
+        };
+        let mut trial = self.trial(finder, h.min(left).min(longest), resolve, &heading);
         let eventful = |t: &Trial<'_>| {
             t.failed.is_some()
                 || t.crossed.is_some()
@@ -243,7 +248,6 @@ impl RigidBody<'_> {
             // step is taken again to the driver's time, and the event met in the next.
             trial = self.trial(finder, to_target, resolve, &heading);
         }
-        let reference = self.sim.settings().reference_step();
         // A failure over a long substep may be the integrator's (a slip too young to be
         // watched for reversal, turned round within the step): retry in shorter substeps down
         // to the shortest, and only there locate it.
@@ -498,13 +502,21 @@ impl RigidBody<'_> {
         let ke = (self.ev.motion.twist).kinetic_energy(mass, &self.ev.motion.inertia);
         let event = match found.or(at_end).or(trial.crossed).unwrap_or(Event::Stop) {
             Event::Pivot(_) if ke <= REST * self.ke_max => Event::Stop,
-            // The same pivot again at the same moment: the block cannot move on consistently.
+            // The same pivot again at the same moment: the contact's slip, not held by its cone,
+            // starts so as to pass through zero again at once. Where the block is settling
+            // this is its stop; a block under way passes through the moment in one plain step
+            // of the shortest substep (its friction turning within it), as it would were the
+            // moments apart (`through`).
             Event::Pivot(i)
                 if self.pivoted.is_some_and(|(j, at)| {
                     i == j
                         && (self.t + lo - at).abs() <= 1e-9 * self.sim.settings().reference_step()
                 }) =>
             {
+                if ke > SETTLED * self.slip_peak || !self.holds_at(finder, &y_lo) {
+                    self.through = true;
+                    return Ok(Substep::Retry);
+                }
                 Event::Stop
             }
             Event::Pivot(_) if ke <= SETTLED * self.slip_peak && self.holds_at(finder, &y_lo) => {
