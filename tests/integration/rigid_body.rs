@@ -334,6 +334,29 @@ fn a_sticking_pivot_that_reaches_its_cone_starts_to_slip_and_the_route_goes_on()
 }
 
 #[test]
+fn an_event_is_approached_in_steps_within_the_tolerance_whatever_the_rows_interval() {
+    // scenes/shaken.toml slips again from rest at 1.3713 s. With rows every 50 ms (steps up to
+    // the record's 5 ms samples) the bisection met a pivot of contact 2 in a single step of
+    // 3.6 ms that steps of 1 ms, each within the tolerance, never see, and took it: the block
+    // was 9.4e-4 m/s slow 30 ms later and its travel 7.7e-4 m short of the converged route
+    // (rows every 1 ms: 1.3e-6). The step up to an event is now held to the tolerance like any
+    // other, and the rows' interval moves the route by no more than the tolerance does.
+    let travel = |dt: f64, tol: f64| {
+        let r = run(&scene_file("shaken", &[(DT, dt), (TOL, tol)]));
+        assert_eq!(r.termination.reason, Reason::Stopped, "{:?}", r.termination);
+        r.travel_m
+    };
+    let converged = travel(0.05, 1e-12);
+    for dt in [1e-3, 0.05] {
+        let t = travel(dt, 1e-9);
+        assert!(
+            (t - converged).abs() < 1e-5,
+            "rows every {dt} s: travel {t} m, converged {converged} m"
+        );
+    }
+}
+
+#[test]
 fn a_block_under_way_is_not_stopped_by_a_pivot_met_again_at_once_whatever_the_tolerance() {
     // scenes/creeping-pivot.toml: at 2.349 s contact 2 leaves its pivot, its slip passing
     // through zero ever less often. At some tolerances (1e-7, 1e-6, 3e-6, 1e-4, 1e-3) the same
