@@ -195,6 +195,39 @@ fn the_papers_rk4_ends_where_its_last_substep_could_be_taken() {
 }
 
 #[test]
+fn the_papers_rk4_ends_where_a_contact_leaves_its_plane_whatever_the_increment() {
+    // scenes/shallow.toml under the paper's dynamics: contact 2 leaves plane 2 at 0.67168 s.
+    // The route ended at the last substep that could be taken whole, at a time set by the
+    // substeps (0.671 s at dt = 1 ms, 0.663 s at 0.05 s, 0.0085 s and 2 cm of travel apart);
+    // now the failing substep's longest part that can be taken is found by bisection, and the
+    // end is the model's, whatever the increment.
+    let shallow = Scene::from_toml(include_str!("../../scenes/shallow.toml"), "shallow")
+        .unwrap()
+        .with_dynamics(DynamicsModel::Paper)
+        .unwrap()
+        .with("solver.integrator", "rk4")
+        .unwrap();
+    let end = |dt: f64| {
+        let r = run(&common::with(&shallow, &[("solver.dt_s", dt)]));
+        assert_eq!(
+            r.termination.reason,
+            Reason::ContactLeftPlane,
+            "{:?}",
+            r.termination
+        );
+        (r.termination.t_s, r.travel_m)
+    };
+    let fine = end(1e-4);
+    for dt in [1e-3, 0.05, 0.2] {
+        let (t, travel) = end(dt);
+        assert!(
+            (t - fine.0).abs() < 1e-6 && (travel - fine.1).abs() < 1e-5,
+            "dt {dt}: ends at {t} s after {travel} m, at dt = 1e-4 s {fine:?}"
+        );
+    }
+}
+
+#[test]
 fn where_the_papers_rk4_stops_and_how_far_it_went_follow_the_tolerance() {
     // A kicked block that friction brings to rest. The stop was searched from the increment's
     // start and the travel summed over the increments' chords, both whatever the substeps: at

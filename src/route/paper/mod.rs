@@ -84,6 +84,50 @@ fn crosses(a: &[f64; 3], s: &State, n: &State) -> bool {
     along([s.vx, s.vz]) < 0.0 && along([n.vx, n.vz]) >= 0.0
 }
 
+/// Bisection for the longest part of a substep of length `h` from `s` (evaluated as `ev`) that
+/// can be taken when the whole cannot (a contact left its plane, the frictional system has no
+/// solution): single RK4 steps of the part's length from `s`, to 1e-12 of `h`. The state there,
+/// its evaluation and the finder at it; none where no part can be, or where the velocity along
+/// the increment's first acceleration `first_acc` passes through zero first (the block stops
+/// before: the route ends at the substep's start, as it did).
+fn longest_part<'f>(
+    sim: &Simulation,
+    base: &PoseFinder<'f>,
+    (s, ev): (&State, &Evaluation),
+    h: f64,
+    first_acc: &[f64; 3],
+) -> Option<(State, Evaluation, PoseFinder<'f>)> {
+    let prev = ev.reaction;
+    let part = |len: f64| {
+        let (next, _) = rk4_step(s, &ev.acc, len, |q: &State| {
+            let mut g = base.clone();
+            evaluate(sim, &mut g, q.displacement(), Some(&prev), velocity(q)).map(|e| e.acc)
+        })?;
+        let mut f = base.clone();
+        let end = evaluate(
+            sim,
+            &mut f,
+            next.displacement(),
+            Some(&prev),
+            velocity(&next),
+        )?;
+        Ok::<_, Stop>((next, end, f))
+    };
+    let (mut lo, mut hi) = (0.0, h);
+    let mut best = None;
+    while hi - lo > 1e-12 * h {
+        let mid = 0.5 * (lo + hi);
+        match part(mid) {
+            Ok(p) => {
+                lo = mid;
+                best = Some(p);
+            }
+            Err(_) => hi = mid,
+        }
+    }
+    best.filter(|(next, _, _)| !crosses(first_acc, s, next))
+}
+
 impl Paper<'_> {
     /// RK4 over the increment from the state to `t_to` (of length `dt`), in as many equal
     /// substeps as the tolerance asks: each substep's error estimated as the rigid body's is
@@ -160,10 +204,20 @@ impl Paper<'_> {
                     Ok(x) => x,
                     Err(stop) => {
                         o.steps.0 += taken;
-                        if taken == 0 {
-                            return Err((stop, None));
-                        }
-                        return Err((stop, Some(Box::new(done))));
+                        // The route ends where the model does, inside this substep: its longest
+                        // part that can be taken.
+                        let part = longest_part(sim, base, (s, ev), h, &first_acc);
+                        let ended = match part {
+                            Some((next, end, f)) => {
+                                done.switches += usize::from(end.fresh);
+                                done.travel += (end.pose.cm - done.ev.pose.cm).norm();
+                                (done.next, done.ev) = (next, end);
+                                *finder = f;
+                                true
+                            }
+                            None => taken > 0,
+                        };
+                        return Err((stop, ended.then(|| Box::new(done))));
                     }
                 };
                 let k5 = [
