@@ -527,7 +527,10 @@ impl RigidBody<'_> {
                         && (self.t + lo - at).abs() <= 1e-9 * self.sim.settings().reference_step()
                 }) =>
             {
-                if ke > SETTLED * self.slip_peak || !self.holds_at(finder, &y_lo) {
+                // Not within a plain step already (one that could not be taken whole, the
+                // same pivot before its failure): there the stop, as before, so that no step is
+                // tried again for ever.
+                if resolve && (ke > SETTLED * self.slip_peak || !self.holds_at(finder, &y_lo)) {
                     self.through = true;
                     return Ok(Substep::Retry);
                 }
