@@ -359,13 +359,16 @@ fn an_event_is_approached_in_steps_within_the_tolerance_whatever_the_rows_interv
 #[test]
 fn a_block_under_way_is_not_stopped_by_a_pivot_met_again_at_once_whatever_the_tolerance() {
     // scenes/creeping-pivot.toml: at 2.349 s contact 2 leaves its pivot, its slip passing
-    // through zero ever less often. At some tolerances (1e-7, 1e-6, 3e-6, 1e-4, 1e-3) the same
-    // pivot came again at one moment and was taken for the stop: the block, at 4 m/s, was set at
-    // rest (10 MJ of kinetic energy gone from the balance) and crept on to the time limit, 0.2 m
-    // short and 1.5° off. Whatever the tolerance, it now goes on until contact 0 reaches
-    // plane 1 (Drake: 2.499 s), the energy balanced to its tolerance's order.
+    // through zero ever less often. At most tolerances (1e-3, 1e-4, 3e-6, 1e-6, 5e-7, 1e-7,
+    // 1e-10) the same pivot came again at one moment and was taken for the stop: the block, at
+    // 4 m/s, was set at rest (10 MJ of kinetic energy gone from the balance) and crept on to
+    // the time limit, 0.2 m short and 1.5° off. Then (a reviewing helper) the pivots after the
+    // pass made the rest of the increment plain steps without error control, and at 1e-6 the
+    // balance lost 26 kJ and the end moved 1.7e-4 s. Whatever the tolerance, it now goes on
+    // until contact 0 reaches plane 1 (Drake: 2.499 s), with the converged route's end and
+    // travel and the energy balanced.
     let mut ends = Vec::new();
-    for tol in [1e-3, 1e-4, 3e-6, 1e-6, 1e-7, 1e-10] {
+    for tol in [1e-3, 1e-4, 3e-6, 1e-6, 5e-7, 1e-7, 1e-10, 1e-12] {
         let r = run(&scene_file("creeping-pivot", &[(TOL, tol)]));
         assert_eq!(
             r.termination.reason,
@@ -375,7 +378,7 @@ fn a_block_under_way_is_not_stopped_by_a_pivot_met_again_at_once_whatever_the_to
         );
         let e = r.energy.unwrap();
         assert!(
-            e.residual_j.abs() < 1e-2 * e.work_hydraulic_j,
+            e.residual_j.abs() < 1e-6 * e.work_hydraulic_j,
             "tolerance {tol}: the balance is off by {} J of {} J",
             e.residual_j,
             e.work_hydraulic_j
@@ -386,7 +389,7 @@ fn a_block_under_way_is_not_stopped_by_a_pivot_met_again_at_once_whatever_the_to
     assert!((t_ref - 2.499).abs() < 0.002, "{ends:?}");
     for &(tol, t, travel) in &ends {
         assert!(
-            (t - t_ref).abs() < 1e-3 && (travel - travel_ref).abs() < 1e-2,
+            (t - t_ref).abs() < 1e-6 && (travel - travel_ref).abs() < 1e-6,
             "tolerance {tol}: {ends:?}"
         );
     }

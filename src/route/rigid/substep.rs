@@ -155,8 +155,8 @@ impl RigidBody<'_> {
                 continue;
             }
             // Past MAX_EVENTS in one increment (a contact's slip chattering about zero), the
-            // rest of the increment is taken in plain substeps: its error shows in the energy
-            // balance.
+            // rest of the increment is taken in plain substeps: no event resolved, each still
+            // within the tolerance by its error estimate.
             let resolve = events < MAX_EVENTS && !self.through;
             // A ground-motion record's samples are where its loads may turn: steps end on them
             // (RK4 keeps its order between them); and none goes past the route's end.
@@ -169,6 +169,7 @@ impl RigidBody<'_> {
             let left = (until - self.t, t_target - self.t);
             match self.substep(finder, k, left, resolve, &mut o) {
                 Ok(Substep::Event) => {
+                    self.through = false;
                     o.steps.0 += 1;
                     events += 1;
                     at_one_moment = match at_one_moment {
@@ -191,7 +192,10 @@ impl RigidBody<'_> {
                     }
                 }
                 Ok(Substep::Retry) => o.steps.1 += 1,
-                Ok(Substep::Moved) => o.steps.0 += 1,
+                Ok(Substep::Moved) => {
+                    self.through = false;
+                    o.steps.0 += 1;
+                }
                 Err(Ending::Failed(stop)) => return Flow::Ended(self.fail(o, stop)),
                 Err(Ending::At(reason, t, detail)) => {
                     return Flow::Ended(o.end(reason, t, detail));
@@ -230,8 +234,10 @@ impl RigidBody<'_> {
         let longest =
             MAX_ROWS_IN_A_STEP * self.sim.settings().dt * self.sim.settings().stride as f64;
         let reference = self.sim.settings().reference_step();
-        let h = match std::mem::take(&mut self.through) {
-            true => MIN_SUBSTEP * reference,
+        // Through a moment of a pivot met again at once: the shortest substep, or shorter where
+        // it had to be taken again (`through` stays set until a step is taken).
+        let h = match self.through {
+            true => self.h.min(MIN_SUBSTEP * reference),
             false => self.h,
         };
         let mut trial = self.trial(finder, h.min(left).min(longest), resolve, &heading);
@@ -347,7 +353,9 @@ impl RigidBody<'_> {
         let reference = self.sim.settings().reference_step();
         let shortest = MIN_SUBSTEP * reference;
         let ratio = error_ratio(&self.weights, h, &k4, &next.derivative(&next_ev.motion));
-        if resolve && ratio > 1.0 && h > shortest {
+        // Plain steps too (past MAX_EVENTS in an increment: events not resolved), so that
+        // friction turning within them costs no more than the tolerance allows in position.
+        if ratio > 1.0 && h > shortest {
             self.h = (h * step_factor(ratio)).max(shortest);
             return Ok(Substep::Retry);
         }
@@ -527,14 +535,18 @@ impl RigidBody<'_> {
                         && (self.t + lo - at).abs() <= 1e-9 * self.sim.settings().reference_step()
                 }) =>
             {
-                // Not within a plain step already (one that could not be taken whole, the
-                // same pivot before its failure): there the stop, as before, so that no step is
-                // tried again for ever.
-                if resolve && (ke > SETTLED * self.slip_peak || !self.holds_at(finder, &y_lo)) {
+                if ke <= SETTLED * self.slip_peak && self.holds_at(finder, &y_lo) {
+                    Event::Stop
+                } else if resolve {
                     self.through = true;
                     return Ok(Substep::Retry);
+                } else {
+                    // Within a plain step already, which could not be taken whole: the pivot
+                    // as any other (the contact held where it stuck while its cone allows),
+                    // never the stop of a block under way; events at one moment without moving
+                    // on are bounded (`EVENTS_AT_ONE_MOMENT`).
+                    Event::Pivot(i)
                 }
-                Event::Stop
             }
             Event::Pivot(_) if ke <= SETTLED * self.slip_peak && self.holds_at(finder, &y_lo) => {
                 Event::Stop
