@@ -228,6 +228,52 @@ fn the_papers_rk4_ends_where_a_contact_leaves_its_plane_whatever_the_increment()
 }
 
 #[test]
+fn the_papers_rk4_stops_the_block_whatever_the_increment() {
+    // A kicked block that friction brings to rest at 0.782 s, under the paper's dynamics with
+    // RK4. With increments of 0.5 s the route went past the stop and ended "contact 2 left
+    // plane 2" at 0.898 s: a stop earlier in the increment than a failing substep was not
+    // looked for; with 1 and 2 s it ended so at t = 0 with no travel: the increment's single
+    // substep failed, and a failure ended the route before the increment was cut into
+    // substeps. Now a failing substep longer than the reference step is cut as an inaccurate
+    // one is, and the stop before a failure is found.
+    let kicked = Scene::from_toml(include_str!("../../scenes/kicked.toml"), "kicked")
+        .unwrap()
+        .with_dynamics(DynamicsModel::Paper)
+        .unwrap()
+        .with("solver.integrator", "rk4")
+        .unwrap();
+    let end = |dt: f64| {
+        let s = common::with(
+            &kicked,
+            &[
+                ("friction.mu_k", 0.3),
+                (FORCE, 3e6),
+                ("loads.eccentricity_m", 1.0),
+                ("solver.dt_s", dt),
+                ("solver.t_end_s", 4.0),
+            ],
+        );
+        let r = run(&s);
+        assert_eq!(
+            r.termination.reason,
+            Reason::Stopped,
+            "dt {dt}: {:?}",
+            r.termination
+        );
+        (r.termination.t_s, r.travel_m)
+    };
+    let fine = end(1e-3);
+    for dt in [0.1, 0.5, 1.0, 2.0] {
+        let (t, travel) = end(dt);
+        // The stop is of the first order in its substep (of at most the reference step, 1 ms).
+        assert!(
+            (t - fine.0).abs() < 2e-3 && (travel - fine.1).abs() < 1e-3,
+            "dt {dt}: stops at {t} s after {travel} m, at dt = 1 ms {fine:?}"
+        );
+    }
+}
+
+#[test]
 fn where_the_papers_rk4_stops_and_how_far_it_went_follow_the_tolerance() {
     // A kicked block that friction brings to rest. The stop was searched from the increment's
     // start and the travel summed over the increments' chords, both whatever the substeps: at

@@ -59,23 +59,24 @@ const MAX_PIECES: usize = 1 << 12;
 /// An increment taken: the state and the evaluation at its end, how often the friction solution
 /// was chosen afresh on the way, the CM's travel (chords at the substeps' ends), and where the
 /// velocity along the increment's first acceleration passed through zero, if it did.
-struct Stepped {
+struct Stepped<'f> {
     next: State,
     ev: Evaluation,
     switches: usize,
     travel: f64,
-    crossing: Option<Crossing>,
+    crossing: Option<Crossing<'f>>,
 }
 
 /// The (sub)step over which the velocity along the increment's first acceleration passed from
 /// below zero to zero or above: its start, the evaluation there, its length, and the travel up
-/// to its start.
-#[derive(Clone, Copy)]
-struct Crossing {
+/// to its start, and the pose finder there (RK4's substeps; else the increment's end's).
+#[derive(Clone)]
+struct Crossing<'f> {
     from: State,
     ev: Evaluation,
     h: f64,
     travel: f64,
+    at: Option<PoseFinder<'f>>,
 }
 
 /// Whether the velocity along `a` passes from below zero to zero or above between `s` and `n`.
@@ -143,12 +144,12 @@ impl Paper<'_> {
     /// taken ends the route: with the substeps taken before it, or at the increment's start.
     /// `finder` follows the substeps' ends, and is put back at the increment's start when it is
     /// taken again.
-    fn rk4_within(
+    fn rk4_within<'f>(
         &mut self,
-        finder: &mut PoseFinder<'_>,
+        finder: &mut PoseFinder<'f>,
         (t_to, dt): (f64, f64),
         o: &mut Logbook<'_>,
-    ) -> Result<Stepped, (Stop, Option<Box<Stepped>>)> {
+    ) -> Result<Stepped<'f>, (Stop, Option<Box<Stepped<'f>>>)> {
         let sim = self.sim;
         let (l, tol) = (sim.l(), sim.settings().tolerance);
         // X and Z against τ L, θ against τ rad; the rates not weighed (as the rigid body's).
@@ -203,6 +204,14 @@ impl Paper<'_> {
                 let (next, k4, end) = match stepped {
                     Ok(x) => x,
                     Err(stop) => {
+                        // A substep longer than the reference step that cannot be taken may be
+                        // the integrator's (its stages far from the motion), as the rigid
+                        // body's: the increment is taken again in shorter substeps, and only a
+                        // substep of the reference step or shorter ends the route.
+                        let reference = sim.settings().reference_step();
+                        if h > reference * (1.0 + 1e-12) && pieces < MAX_PIECES {
+                            break;
+                        }
                         o.steps.0 += taken;
                         // The route ends where the model does, inside this substep: its longest
                         // part that can be taken.
@@ -235,6 +244,7 @@ impl Paper<'_> {
                         ev: *ev,
                         h,
                         travel: done.travel,
+                        at: Some(base.clone()),
                     });
                 }
                 done.switches += usize::from(end.fresh);
@@ -353,6 +363,7 @@ impl<'a> Dynamics<'a> for Paper<'a> {
                             ev,
                             h: dt,
                             travel: 0.0,
+                            at: None,
                         }),
                     })
                     .map_err(|stop| (stop, None))
@@ -368,6 +379,14 @@ impl<'a> Dynamics<'a> for Paper<'a> {
         } = match stepped {
             Ok(x) => x,
             Err((Stop { reason, detail, .. }, taken)) => {
+                // The block stopped before the substep that could not be, and friction holds
+                // it: the route ends there, stopped.
+                if let Some(c) = taken.as_ref().and_then(|t| t.crossing.clone()) {
+                    o = match self.stop_in(finder, c, state.t, o) {
+                        Ok(ended) => return ended,
+                        Err(o) => o,
+                    };
+                }
                 // The substeps taken before the one that could not be: the route ends there.
                 if let Some(t) = taken {
                     o.switches += t.switches;
@@ -379,56 +398,13 @@ impl<'a> Dynamics<'a> for Paper<'a> {
         };
         o.switches += switches;
         o.increments = k;
-        // Stopped: the CM velocity along the acceleration — along i', the direction the paper's
-        // dynamics drive (eqs. 30–35) — passes through zero in the increment (with RK4, in the
-        // substep `crossing` is), and friction holds there. The paper's model has no friction
-        // against the velocity across i' (a drift of a fraction of a per cent of the speed where
-        // we measured it), so the speed itself only passes through a minimum; the stop sets it
-        // to zero.
+        // Stopped where the velocity along the acceleration passes through zero and friction
+        // holds (`stop_in`).
         if let Some(c) = crossing {
-            // Where the paper's update (accelerations frozen over the (sub)step) brings it to
-            // zero: (v + a τ)·a = 0 (with RK4, to first order in τ).
-            let (v, a) = ([c.from.vx, c.from.vz], [c.ev.acc[0], c.ev.acc[1]]);
-            let along = |w: [f64; 2]| w[0] * a[0] + w[1] * a[1];
-            let tau = (-along(v) / along(a)).clamp(0.0, c.h);
-            let mut stop = paper_step(&c.from, &c.ev.acc, tau);
-            stop.vx = 0.0;
-            stop.vz = 0.0;
-            stop.omega = 0.0;
-            let mut at_stop = finder.clone();
-            let stop_ev = match evaluate(
-                sim,
-                &mut at_stop,
-                stop.displacement(),
-                Some(&c.ev.reaction),
-                None,
-            ) {
-                Ok(e) => e,
-                Err(Stop { reason, detail, .. }) => {
-                    return Flow::Ended(o.finish(self.row(), reason, state.t, detail));
-                }
+            o = match self.stop_in(finder, c, state.t, o) {
+                Ok(ended) => return ended,
+                Err(o) => o,
             };
-            let applied = Applied::new(sim.loads(), sim.block(), &stop_ev.geom.frame);
-            let (fs_here, _, _) = factor_of_safety(
-                &stop_ev.geom,
-                &applied,
-                &stop_ev.statics,
-                &sim.strength(faces_of(sim.site()), false),
-            );
-            if fs_here >= 1.0 {
-                o.travel += c.travel + (stop_ev.pose.cm - c.ev.pose.cm).norm();
-                o.push(row(
-                    &stop,
-                    Some(&stop_ev),
-                    &stop_ev.pose,
-                    faces_of(sim.site()),
-                ));
-                let detail = format!(
-                    "speed reached zero at t = {:.6} s; factor of safety there {fs_here:.4}",
-                    stop.t
-                );
-                return Flow::Ended(o.end(Reason::Stopped, stop.t, detail));
-            }
         }
         o.travel += travel;
         self.state = next;
@@ -471,5 +447,77 @@ impl<'a> Dynamics<'a> for Paper<'a> {
         if let Some(h) = hint {
             t.detail = format!("{}; {h}", t.detail);
         }
+    }
+}
+
+impl Paper<'_> {
+    /// The stop in the (sub)step `c` where the velocity along the increment's first
+    /// acceleration passes through zero: the route ends "stopped" there if friction holds the
+    /// block (`Ok`, or ended where the stop is off the model, at `start_t`, the increment's
+    /// start); else the logbook back (`Err`) and the block goes on.
+    ///
+    /// Stopped: the CM velocity along the acceleration — along i', the direction the paper's
+    /// dynamics drive (eqs. 30–35) — passes through zero in the increment (with RK4, in the
+    /// substep `crossing` is), and friction holds there. The paper's model has no friction
+    /// against the velocity across i' (a drift of a fraction of a per cent of the speed where
+    /// we measured it), so the speed itself only passes through a minimum; the stop sets it
+    /// to zero.
+    // The logbook comes back by value where the route goes on, as the driver passes it along
+    // (`Flow`); boxing it for this one call an increment with a stop would gain nothing.
+    #[allow(clippy::result_large_err)]
+    fn stop_in<'s>(
+        &self,
+        finder: &PoseFinder<'_>,
+        c: Crossing<'_>,
+        start_t: f64,
+        mut o: Logbook<'s>,
+    ) -> Result<Flow<'s>, Logbook<'s>> {
+        let sim = self.sim;
+        // Where the paper's update (accelerations frozen over the (sub)step) brings it to
+        // zero: (v + a τ)·a = 0 (with RK4, to first order in τ).
+        let (v, a) = ([c.from.vx, c.from.vz], [c.ev.acc[0], c.ev.acc[1]]);
+        let along = |w: [f64; 2]| w[0] * a[0] + w[1] * a[1];
+        let tau = (-along(v) / along(a)).clamp(0.0, c.h);
+        let mut stop = paper_step(&c.from, &c.ev.acc, tau);
+        stop.vx = 0.0;
+        stop.vz = 0.0;
+        stop.omega = 0.0;
+        // The finder where the (sub)step started, near the stop (an increment may go on well
+        // past it before a later substep fails).
+        let mut at_stop = c.at.clone().unwrap_or_else(|| finder.clone());
+        let stop_ev = match evaluate(
+            sim,
+            &mut at_stop,
+            stop.displacement(),
+            Some(&c.ev.reaction),
+            None,
+        ) {
+            Ok(e) => e,
+            Err(Stop { reason, detail, .. }) => {
+                return Ok(Flow::Ended(o.finish(self.row(), reason, start_t, detail)));
+            }
+        };
+        let applied = Applied::new(sim.loads(), sim.block(), &stop_ev.geom.frame);
+        let (fs_here, _, _) = factor_of_safety(
+            &stop_ev.geom,
+            &applied,
+            &stop_ev.statics,
+            &sim.strength(faces_of(sim.site()), false),
+        );
+        if fs_here < 1.0 {
+            return Err(o);
+        }
+        o.travel += c.travel + (stop_ev.pose.cm - c.ev.pose.cm).norm();
+        o.push(row(
+            &stop,
+            Some(&stop_ev),
+            &stop_ev.pose,
+            faces_of(sim.site()),
+        ));
+        let detail = format!(
+            "speed reached zero at t = {:.6} s; factor of safety there {fs_here:.4}",
+            stop.t
+        );
+        Ok(Flow::Ended(o.end(Reason::Stopped, stop.t, detail)))
     }
 }
