@@ -227,6 +227,16 @@ fn the_papers_rk4_ends_where_a_contact_leaves_its_plane_whatever_the_increment()
     }
 }
 
+/// scenes/kicked.toml under the paper's dynamics integrated by RK4.
+fn kicked_under_the_papers_rk4() -> Scene {
+    Scene::from_toml(include_str!("../../scenes/kicked.toml"), "kicked")
+        .unwrap()
+        .with_dynamics(DynamicsModel::Paper)
+        .unwrap()
+        .with("solver.integrator", "rk4")
+        .unwrap()
+}
+
 #[test]
 fn the_papers_rk4_stops_the_block_whatever_the_increment() {
     // A kicked block that friction brings to rest at 0.782 s, under the paper's dynamics with
@@ -236,12 +246,7 @@ fn the_papers_rk4_stops_the_block_whatever_the_increment() {
     // substep failed, and a failure ended the route before the increment was cut into
     // substeps. Now a failing substep longer than the reference step is cut as an inaccurate
     // one is, and the stop before a failure is found.
-    let kicked = Scene::from_toml(include_str!("../../scenes/kicked.toml"), "kicked")
-        .unwrap()
-        .with_dynamics(DynamicsModel::Paper)
-        .unwrap()
-        .with("solver.integrator", "rk4")
-        .unwrap();
+    let kicked = kicked_under_the_papers_rk4();
     let end = |dt: f64| {
         let s = common::with(
             &kicked,
@@ -281,12 +286,7 @@ fn where_the_papers_rk4_stops_and_how_far_it_went_follow_the_tolerance() {
     // tolerance (found by a reviewing helper). Now both come from the substep where the
     // velocity passes through zero and the substeps' chords (the stop still first order in
     // that substep: 1.4·10⁻⁷ m at 10⁻¹²).
-    let kicked = Scene::from_toml(include_str!("../../scenes/kicked.toml"), "kicked")
-        .unwrap()
-        .with_dynamics(DynamicsModel::Paper)
-        .unwrap()
-        .with("solver.integrator", "rk4")
-        .unwrap();
+    let kicked = kicked_under_the_papers_rk4();
     let end = |dt: f64, tolerance: f64| -> (f64, f64, f64, f64) {
         let s = common::with(
             &kicked,
