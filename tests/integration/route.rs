@@ -194,6 +194,16 @@ fn the_papers_rk4_ends_where_its_last_substep_could_be_taken() {
     assert!((coarse - fine).abs() < 1e-3, "{coarse} against {fine}");
 }
 
+/// The scene `text` (named `name`) under the paper's dynamics integrated by RK4.
+fn under_the_papers_rk4(text: &str, name: &str) -> Scene {
+    Scene::from_toml(text, name)
+        .unwrap()
+        .with_dynamics(DynamicsModel::Paper)
+        .unwrap()
+        .with("solver.integrator", "rk4")
+        .unwrap()
+}
+
 #[test]
 fn the_papers_rk4_ends_where_a_contact_leaves_its_plane_whatever_the_increment() {
     // scenes/shallow.toml under the paper's dynamics: contact 2 leaves plane 2 at 0.67168 s.
@@ -201,12 +211,7 @@ fn the_papers_rk4_ends_where_a_contact_leaves_its_plane_whatever_the_increment()
     // substeps (0.671 s at dt = 1 ms, 0.663 s at 0.05 s, 0.0085 s and 2 cm of travel apart);
     // now the failing substep's longest part that can be taken is found by bisection, and the
     // end is the model's, whatever the increment.
-    let shallow = Scene::from_toml(include_str!("../../scenes/shallow.toml"), "shallow")
-        .unwrap()
-        .with_dynamics(DynamicsModel::Paper)
-        .unwrap()
-        .with("solver.integrator", "rk4")
-        .unwrap();
+    let shallow = under_the_papers_rk4(include_str!("../../scenes/shallow.toml"), "shallow");
     let end = |dt: f64| {
         let r = run(&common::with(&shallow, &[("solver.dt_s", dt)]));
         assert_eq!(
@@ -227,16 +232,6 @@ fn the_papers_rk4_ends_where_a_contact_leaves_its_plane_whatever_the_increment()
     }
 }
 
-/// scenes/kicked.toml under the paper's dynamics integrated by RK4.
-fn kicked_under_the_papers_rk4() -> Scene {
-    Scene::from_toml(include_str!("../../scenes/kicked.toml"), "kicked")
-        .unwrap()
-        .with_dynamics(DynamicsModel::Paper)
-        .unwrap()
-        .with("solver.integrator", "rk4")
-        .unwrap()
-}
-
 #[test]
 fn the_papers_rk4_stops_the_block_whatever_the_increment() {
     // A kicked block that friction brings to rest at 0.782 s, under the paper's dynamics with
@@ -246,7 +241,7 @@ fn the_papers_rk4_stops_the_block_whatever_the_increment() {
     // substep failed, and a failure ended the route before the increment was cut into
     // substeps. Now a failing substep longer than the reference step is cut as an inaccurate
     // one is, and the stop before a failure is found.
-    let kicked = kicked_under_the_papers_rk4();
+    let kicked = under_the_papers_rk4(include_str!("../../scenes/kicked.toml"), "kicked");
     let end = |dt: f64| {
         let s = common::with(
             &kicked,
@@ -286,7 +281,7 @@ fn where_the_papers_rk4_stops_and_how_far_it_went_follow_the_tolerance() {
     // tolerance (found by a reviewing helper). Now both come from the substep where the
     // velocity passes through zero and the substeps' chords (the stop still first order in
     // that substep: 1.4·10⁻⁷ m at 10⁻¹²).
-    let kicked = kicked_under_the_papers_rk4();
+    let kicked = under_the_papers_rk4(include_str!("../../scenes/kicked.toml"), "kicked");
     let end = |dt: f64, tolerance: f64| -> (f64, f64, f64, f64) {
         let s = common::with(
             &kicked,

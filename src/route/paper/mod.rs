@@ -87,17 +87,14 @@ fn crosses(a: &[f64; 3], s: &State, n: &State) -> bool {
 
 /// Bisection for the longest part of a substep of length `h` from `s` (evaluated as `ev`) that
 /// can be taken when the whole cannot (a contact left its plane, the frictional system has no
-/// solution): single RK4 steps of the part's length from `s`, to 1e-12 of `h`. The state there,
-/// its evaluation and the finder at it; none where no part can be, or where the velocity along
-/// the increment's first acceleration `first_acc` passes through zero first (the block stops
-/// before: the route ends at the substep's start, as it did).
+/// solution): single RK4 steps of the part's length from `s`, to 1e-12 of `h`. The part's
+/// length, the state there, its evaluation and the finder at it; none where no part can be.
 fn longest_part<'f>(
     sim: &Simulation,
     base: &PoseFinder<'f>,
     (s, ev): (&State, &Evaluation),
     h: f64,
-    first_acc: &[f64; 3],
-) -> Option<(State, Evaluation, PoseFinder<'f>)> {
+) -> Option<(f64, State, Evaluation, PoseFinder<'f>)> {
     let prev = ev.reaction;
     let part = |len: f64| {
         let (next, _) = rk4_step(s, &ev.acc, len, |q: &State| {
@@ -112,7 +109,7 @@ fn longest_part<'f>(
             Some(&prev),
             velocity(&next),
         )?;
-        Ok::<_, Stop>((next, end, f))
+        Ok::<_, Stop>((len, next, end, f))
     };
     let (mut lo, mut hi) = (0.0, h);
     let mut best = None;
@@ -126,7 +123,7 @@ fn longest_part<'f>(
             Err(_) => hi = mid,
         }
     }
-    best.filter(|(next, _, _)| !crosses(first_acc, s, next))
+    best
 }
 
 impl Paper<'_> {
@@ -215,9 +212,20 @@ impl Paper<'_> {
                         o.steps.0 += taken;
                         // The route ends where the model does, inside this substep: its longest
                         // part that can be taken.
-                        let part = longest_part(sim, base, (s, ev), h, &first_acc);
+                        let part = longest_part(sim, base, (s, ev), h);
                         let ended = match part {
-                            Some((next, end, f)) => {
+                            Some((len, next, end, f)) => {
+                                // A stop within the part is the route's end if friction holds
+                                // there (`advance`, `stop_in`), as in any substep.
+                                if done.crossing.is_none() && crosses(&first_acc, s, &next) {
+                                    done.crossing = Some(Crossing {
+                                        from: *s,
+                                        ev: *ev,
+                                        h: len,
+                                        travel: done.travel,
+                                        at: Some(base.clone()),
+                                    });
+                                }
                                 done.switches += usize::from(end.fresh);
                                 done.travel += (end.pose.cm - done.ev.pose.cm).norm();
                                 (done.next, done.ev) = (next, end);

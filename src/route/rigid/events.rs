@@ -1,5 +1,5 @@
 //! The events within a rigid-body step — a stop, a pivot, a release — how they are recognised
-//! ([`Heading`]), met at a stage of the RK4 step ([`rk4`]) and located by bisection on the step
+//! ([`Heading`]), met at a stage of the RK4 step ([`rk4_stages`]) and located by bisection on the step
 //! length ([`bracket_event`]).
 
 use super::evaluate::{Hold, evaluate};
@@ -68,6 +68,9 @@ pub(super) struct Bracket {
     pub lo: f64,
     pub hi: f64,
     pub y_lo: RigidState,
+    /// The last stage of the single step of length `lo` (its error estimate's k4; `span.k1`
+    /// while `lo` is 0).
+    pub k4_lo: [f64; VALUES],
     pub y_hi: RigidState,
     pub found: Option<Event>,
     /// The failure at the shortest length known to fail, if any: what the route meets first.
@@ -84,16 +87,17 @@ pub(super) fn bracket_event(
     heading: &Heading<'_>,
 ) -> Bracket {
     let hold = Hold::of(heading.before);
-    let reaches = |len: f64| -> Result<(Option<Event>, RigidState), Stop> {
-        let (yh, crossed) = rk4(sim, finder, span.y, span.k1, len, heading)?;
+    let reaches = |len: f64| -> Result<(Option<Event>, RigidState, [f64; VALUES]), Stop> {
+        let (yh, k4, crossed) = rk4_stages(sim, finder, span.y, span.k1, len, heading)?;
         let mut f = finder.clone();
         let e = evaluate(sim, &mut f, &yh, hold)?;
-        Ok((heading.event(&e.motion).or(crossed), yh))
+        Ok((heading.event(&e.motion).or(crossed), yh, k4))
     };
     let mut b = Bracket {
         lo: 0.0,
         hi: span.h,
         y_lo: *span.y,
+        k4_lo: *span.k1,
         y_hi: span.end,
         found: None,
         failure: None,
@@ -104,11 +108,12 @@ pub(super) fn bracket_event(
         }
         let mid = 0.5 * (b.lo + b.hi);
         match reaches(mid) {
-            Ok((None, ym)) => {
+            Ok((None, ym, k4)) => {
                 b.lo = mid;
                 b.y_lo = ym;
+                b.k4_lo = k4;
             }
-            Ok((event, ym)) => {
+            Ok((event, ym, _)) => {
                 b.hi = mid;
                 b.y_hi = ym;
                 b.found = event;
@@ -123,21 +128,10 @@ pub(super) fn bracket_event(
 }
 
 /// One classic RK4 step of length h from y, whose derivative k1 is known; stages evaluated on
-/// copies of `finder`. Also says whether a stage met an event of `heading`: then the step
-/// passed through a stop or a pivot, where Coulomb friction jumps and the step's result means
-/// nothing (its later stages push on with friction turned round).
-pub(super) fn rk4(
-    sim: &Simulation,
-    finder: &PoseFinder<'_>,
-    y: &RigidState,
-    k1: &[f64; VALUES],
-    h: f64,
-    heading: &Heading<'_>,
-) -> Result<(RigidState, Option<Event>), Stop> {
-    rk4_stages(sim, finder, y, k1, h, heading).map(|(next, _, crossed)| (next, crossed))
-}
-
-/// [`rk4`], also giving its last stage k4 (for the step's error estimate).
+/// copies of `finder`. Also gives its last stage k4 (for the step's error estimate) and says
+/// whether a stage met an event of `heading`: then the step passed through a stop or a pivot,
+/// where Coulomb friction jumps and the step's result means nothing (its later stages push on
+/// with friction turned round).
 pub(super) fn rk4_stages(
     sim: &Simulation,
     finder: &PoseFinder<'_>,

@@ -488,6 +488,7 @@ impl RigidBody<'_> {
             lo,
             hi,
             y_lo,
+            k4_lo,
             y_hi,
             found,
             ..
@@ -502,10 +503,8 @@ impl RigidBody<'_> {
             let e = evaluate(sim, &mut f, &y_lo, hold).map_err(Ending::Failed)?;
             let shortest = MIN_SUBSTEP * self.sim.settings().reference_step();
             if resolve && lo > shortest {
-                let (_, k4, _) = rk4_stages(sim, finder, &self.y, &trial.k1, lo, heading)
-                    .map_err(Ending::Failed)?;
                 let at = e.accept(&y_lo);
-                let ratio = error_ratio(&self.weights, lo, &k4, &at.derivative(&e.motion));
+                let ratio = error_ratio(&self.weights, lo, &k4_lo, &at.derivative(&e.motion));
                 if ratio > 1.0 {
                     self.h = (lo * step_factor(ratio)).max(shortest);
                     return Ok(Substep::Retry);
