@@ -48,6 +48,11 @@ impl FoundationTrig {
         (1.0 / self.cot_xi, 1.0 / self.cot_zeta)
     }
 
+    /// (sin κ, cos κ): the strike of plane 2 (`geometry::paper_planes`), computed once.
+    pub fn kappa_sin_cos(&self) -> (f64, f64) {
+        (self.sk, self.ck)
+    }
+
     /// The functions of `site`'s foundation.
     pub fn new(site: &PaperSite) -> Self {
         let g = site.foundation;

@@ -7,7 +7,6 @@
 //!   plane (vertex 0 over the horizontal part, vertex 1 over plane 1, vertex 2 over plane 2).
 
 use crate::coeffs::{FoundationTrig, SiteTrig, SmallAngleUnsquared};
-use crate::geometry::paper_planes::{along_dip_2, r};
 use crate::geometry::{Displacement, Pose};
 use crate::geometry::{PaperSite, Site};
 use crate::model::Mode;
@@ -190,15 +189,19 @@ fn check_paper_pose(
     if p.beta.is_nan() || p.beta >= g.zeta {
         return Err(Inadmissible::BetaOutOfRange);
     }
-    let (l2x, r2) = (site.frame.l2x, r(site));
+    // `paper_planes::r` and `along_dip_2` with κ's sine and cosine computed once (the same
+    // values: a check is made at every pose the route takes).
+    let (sk, ck) = trig.kappa_sin_cos();
+    let along_dip_2 = |x: f64, z: f64| x * ck - z * sk;
+    let (l2x, r2) = (site.frame.l2x, site.frame.l2x * ck + site.frame.l2z * sk);
     let [p0, p1, p2] = p.vertices;
-    if p0.x > l2x + tol || along_dip_2(site, p0.x, p0.z) > r2 + tol {
+    if p0.x > l2x + tol || along_dip_2(p0.x, p0.z) > r2 + tol {
         return Err(Inadmissible::Contact0ReachedInclinedPlane);
     }
     if p1.x < l2x - tol {
         return Err(Inadmissible::Contact1LeftPlane1);
     }
-    if along_dip_2(site, p2.x, p2.z) < r2 - tol {
+    if along_dip_2(p2.x, p2.z) < r2 - tol {
         return Err(Inadmissible::Contact2LeftPlane2);
     }
     if p.alpha < alpha_min {

@@ -200,7 +200,7 @@ impl<'a> Runner<'a> {
             dynamics: settings.dynamics,
             pose_method: self.method,
             rows: o.take_rows(),
-            termination: o.termination,
+            termination: o.termination.clone(),
             factor_of_safety: o.fs,
             factor_of_safety_limit: o.fs_limit,
             paper_ratio: o.paper_ratio,

@@ -433,12 +433,13 @@ impl<'a> Dynamics<'a> for Paper<'a> {
     /// the rigid body's: its kinematics hold only where its frictional system has a
     /// solution and its contacts stay on their planes, which is not physics ending the route.
     fn explain_end(o: &mut Logbook<'_>) {
+        let fs = o.fs;
         let t = &mut o.termination;
         let hint = match t.reason {
-            Reason::DoesNotSlide if o.fs.is_some_and(|f| !f.at_least_one()) => Some(format!(
+            Reason::DoesNotSlide if fs.is_some_and(|f| !f.at_least_one()) => Some(format!(
                 "the paper's dynamics cannot start this block, yet the friction cones cannot hold \
                  it (factor of safety {}): run it with --dynamics rigid-body",
-                o.fs.map(|f| f.to_string()).unwrap_or_default()
+                fs.map(|f| f.to_string()).unwrap_or_default()
             )),
             Reason::NoFrictionSolution
             | Reason::NoAdmissibleRoot
