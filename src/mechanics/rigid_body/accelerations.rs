@@ -101,6 +101,27 @@ pub fn accelerations(
     step: f64,
     creases: Creases,
 ) -> Result<Motion, RigidError> {
+    accelerations_releasing(at, rates, step, creases, None)
+}
+
+/// [`accelerations`] just past the moment contact `released` (if any) stopped being held by its
+/// cone: its slip, still zero, starts in the direction that reproduces itself, not held again
+/// there unless no direction does (then its cone left it by round-off only, and it is a pivot
+/// like any other: held if its cone holds it).
+///
+/// Why: the release is located where the stuck contact's shear leaves its cone, to within
+/// round-off of the cone's edge; evaluated there again its cone may hold it by round-off, the
+/// contact stuck once more, and the route met the same release again at once, event after
+/// event, until it took the rest of the increment in one plain step with the contact held
+/// through it — the release late by that step, whose length the tolerance sets
+/// (`derivations/08-rigid-body.md` §4a).
+pub fn accelerations_releasing(
+    at: &State<'_>,
+    rates: [f64; 3],
+    step: f64,
+    creases: Creases,
+    released: Option<usize>,
+) -> Result<Motion, RigidError> {
     let (geom, block, friction) = (at.geom, at.block, at.strength);
     if creases.len() == 3 {
         return Err(RigidError::Wedged);
@@ -148,6 +169,7 @@ pub fn accelerations(
             slip: &slip,
             rates,
             step,
+            released,
         };
         moving.contact_forces(sol, &coefficients)?
     };
@@ -180,6 +202,8 @@ struct Moving<'a> {
     rates: [f64; 3],
     /// The integrator's step (s).
     step: f64,
+    /// A contact just released from sticking: at a pivot it slips, never sticks.
+    released: Option<usize>,
 }
 
 impl Moving<'_> {
@@ -201,6 +225,17 @@ impl Moving<'_> {
         let (pivot, slaved) = self.pivot_or_slaved(&sol, &mut dir, &mu)?;
         if slaved && pivot.is_none() {
             sol = ctx.solve(&dir, &mu)?;
+        }
+        // A contact released at this moment slips on in the direction that reproduces itself.
+        // Where no direction does (its cone was left by round-off, and holds it after all),
+        // it is tested for sticking as any pivot is, as before the release.
+        if let Some(i) = pivot.filter(|&i| self.released == Some(i)) {
+            let (mut d, mut m) = (dir, mu);
+            match slip_start(ctx, &mut d, &mut m, i, coefficients) {
+                Ok(s) => return Ok((s, None)),
+                Err(RigidError::SlipStart { .. }) => {}
+                Err(e) => return Err(e),
+            }
         }
         let mut stuck = None;
         if let Some(i) = pivot {

@@ -28,7 +28,7 @@ mod impact;
 mod kinematics;
 mod slip_start;
 
-pub use accelerations::{Motion, State, accelerations};
+pub use accelerations::{Motion, State, accelerations, accelerations_releasing};
 pub use creases::{Crease, Creases, crease_rates};
 pub use impact::{Impact, ImpactLaw, impact};
 pub use kinematics::{Inertia, Twist, contact_velocity_map, pivot_rates};

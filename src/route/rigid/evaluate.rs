@@ -90,6 +90,9 @@ pub(super) fn stop_of(e: RigidError) -> Stop {
 pub(super) struct Hold {
     pub stuck: Option<usize>,
     pub creases: Creases,
+    /// A contact released from sticking at this moment: it slips, though its slip is still zero
+    /// and its cone holds it to round-off ([`rigid_body::accelerations_releasing`]).
+    pub released: Option<usize>,
 }
 
 impl Hold {
@@ -98,12 +101,22 @@ impl Hold {
         Hold {
             stuck: m.stuck,
             creases: m.creases,
+            released: None,
         }
     }
 
     /// The same creases, with `stuck` sticking.
     pub fn sticking(self, stuck: Option<usize>) -> Hold {
         Hold { stuck, ..self }
+    }
+
+    /// The same creases, contact `i` released from sticking at this moment.
+    pub fn releasing(self, i: usize) -> Hold {
+        Hold {
+            stuck: None,
+            released: Some(i),
+            ..self
+        }
     }
 }
 
@@ -123,10 +136,12 @@ pub(super) fn evaluate(
     let applied = Applied::of(sim, &geom, sim.ground(y.t)).about(&geom.cm_offset);
     let mut rates = y.rates();
     let mut removed = 0.0;
-    if let Some(i) = stuck {
+    if let Some(i) = stuck.or(hold.released) {
         // Always: a contact that stuck at the start of the step can only start to slip by its
         // cone no longer holding it (the release, which `accelerations` sees after this
-        // projection), never by the integrator's drift, however long the step.
+        // projection), never by the integrator's drift, however long the step. A contact
+        // released at this moment starts to slip from zero, not from that drift (of round-off's
+        // size, it would set the young slip's direction and turn it round at once).
         (rates, removed) =
             rigid_body::pivot_rates(&geom, sim.block(), rates, i).map_err(stop_of)?;
     }
@@ -143,9 +158,9 @@ pub(super) fn evaluate(
         block: sim.block(),
         strength: &sim.strength(faces, false),
     };
-    let motion =
-        rigid_body::accelerations(&at, rates, sim.settings().reference_step(), hold.creases)
-            .map_err(stop_of)?;
+    let step = sim.settings().reference_step();
+    let motion = rigid_body::accelerations_releasing(&at, rates, step, hold.creases, hold.released)
+        .map_err(stop_of)?;
     Ok(Eval {
         pose,
         motion,

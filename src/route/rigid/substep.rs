@@ -560,12 +560,12 @@ impl RigidBody<'_> {
             Event::Pivot(i) => Some((i, self.t + lo)),
             _ => None,
         };
-        let (y_at, len, stick) = match event {
-            Event::Release(_) => (y_hi, hi, None),
-            Event::Pivot(i) => (y_lo, lo, Some(i)),
+        let (y_at, len, hold) = match event {
+            Event::Release(i) => (y_hi, hi, hold.releasing(i)),
+            Event::Pivot(i) => (y_lo, lo, hold.sticking(Some(i))),
             Event::Stop => return self.stop(finder, k, y_lo, self.t + hi, o),
         };
-        let at = evaluate(sim, finder, &y_at, hold.sticking(stick)).map_err(Ending::Failed)?;
+        let at = evaluate(sim, finder, &y_at, hold).map_err(Ending::Failed)?;
         self.go_to(o, at.accept(&y_at), at);
         self.anchor = Anchor::after(&self.ev, None);
         self.t += len;
