@@ -395,6 +395,20 @@ fn a_block_under_way_is_not_stopped_by_a_pivot_met_again_at_once_whatever_the_to
     }
 }
 
+/// The route of one sample of a probabilistic analysis over wide ranges: μ, the eccentricity
+/// (m), ξ, ζ, κ (degrees) and F (N), with one solver key more.
+fn wide_sample([mu, c, xi, zeta, kappa, f]: [f64; 6], solver: (&str, f64)) -> Route {
+    run(&rigid(&[
+        (MU, mu),
+        (ECCENTRICITY, c),
+        ("foundation.xi_deg", xi),
+        ("foundation.zeta_deg", zeta),
+        ("foundation.kappa_deg", kappa),
+        (FORCE, f),
+        solver,
+    ]))
+}
+
 #[test]
 fn a_contact_released_at_its_cones_edge_slips_on_at_once_whatever_the_tolerance() {
     // A sample of a probabilistic analysis (seed 11, 1500 samples, wide ranges): contact 2,
@@ -407,15 +421,7 @@ fn a_contact_released_at_its_cones_edge_slips_on_at_once_whatever_the_tolerance(
     // 0.2167 m). Now the released contact slips on from its release: 1.4552165 s, 0.2164062 m
     // at every tolerance (Drake's contact 2 leaves the strike from about 1.44 s).
     let end = |tol: f64| {
-        let r = run(&rigid(&[
-            (MU, 0.4736),
-            (ECCENTRICITY, -1.864),
-            ("foundation.xi_deg", 18.05),
-            ("foundation.zeta_deg", 31.53),
-            ("foundation.kappa_deg", -19.73),
-            (FORCE, 5.43e6),
-            (TOL, tol),
-        ]));
+        let r = wide_sample([0.4736, -1.864, 18.05, 31.53, -19.73, 5.43e6], (TOL, tol));
         assert!(
             r.termination.reason == Reason::ContactLeftPlane
                 && r.termination.detail.contains("contact 2 left plane 2"),
@@ -444,15 +450,15 @@ fn a_contact_released_where_no_slip_direction_reproduces_itself_is_held_again() 
     // route is the same whatever the rows' interval: contact 0 reaches an inclined plane at
     // 3.557844 s (at τ = 1e-13 as well).
     let end = |dt: f64| {
-        let r = run(&rigid(&[
-            (MU, 0.486806683855319),
-            (ECCENTRICITY, -0.5278645883935345),
-            ("foundation.xi_deg", 22.27207872672652),
-            ("foundation.zeta_deg", 26.963701485601295),
-            ("foundation.kappa_deg", -9.738983184780082),
-            (FORCE, 7619327.596897509),
-            (DT, dt),
-        ]));
+        let sample = [
+            0.486806683855319,
+            -0.5278645883935345,
+            22.27207872672652,
+            26.963701485601295,
+            -9.738983184780082,
+            7619327.596897509,
+        ];
+        let r = wide_sample(sample, (DT, dt));
         assert_eq!(
             r.termination.reason,
             Reason::Contact0ReachedInclinedPlane,
