@@ -6,12 +6,14 @@
 use super::site::PaperSite;
 
 /// R: the distance from the start CM to int. line 2/horiz (eq. 4).
+#[cfg_attr(not(feature = "internals"), allow(dead_code))]
 pub fn r(site: &PaperSite) -> f64 {
     let k = site.foundation.kappa;
     site.frame.l2x * k.cos() + site.frame.l2z * k.sin()
 }
 
 /// n·(X, Z) with n = (cos κ, −sin κ) (S of eq. 5 when applied to the CM).
+#[cfg_attr(not(feature = "internals"), allow(dead_code))]
 pub fn along_dip_2(site: &PaperSite, x: f64, z: f64) -> f64 {
     let k = site.foundation.kappa;
     x * k.cos() - z * k.sin()

@@ -95,6 +95,7 @@ pub struct State<'a> {
 /// direction; the slip then grows or shrinks along d, and a slip that shrinks passes through
 /// zero where the route's pivot event finds it. As `step` → 0 the band vanishes and the law is
 /// Coulomb's.
+#[cfg_attr(not(feature = "internals"), allow(dead_code))]
 pub fn accelerations(
     at: &State<'_>,
     rates: [f64; 3],
