@@ -204,6 +204,19 @@ fn under_the_papers_rk4(text: &str, name: &str) -> Scene {
         .unwrap()
 }
 
+/// The route of scenes/kicked.toml under the paper's RK4, pushed so that friction brings it to
+/// rest (μ = 0.3, F = 3 MN, c = 1 m), with the solver keys `solver`.
+fn kicked_under_the_papers_rk4(solver: &[(&str, f64)]) -> Route {
+    let kicked = under_the_papers_rk4(include_str!("../../scenes/kicked.toml"), "kicked");
+    let mut keys = vec![
+        ("friction.mu_k", 0.3),
+        (FORCE, 3e6),
+        ("loads.eccentricity_m", 1.0),
+    ];
+    keys.extend_from_slice(solver);
+    run(&common::with(&kicked, &keys))
+}
+
 #[test]
 fn the_papers_rk4_ends_where_a_contact_leaves_its_plane_whatever_the_increment() {
     // scenes/shallow.toml under the paper's dynamics: contact 2 leaves plane 2 at 0.67168 s.
@@ -241,19 +254,8 @@ fn the_papers_rk4_stops_the_block_whatever_the_increment() {
     // substep failed, and a failure ended the route before the increment was cut into
     // substeps. Now a failing substep longer than the reference step is cut as an inaccurate
     // one is, and the stop before a failure is found.
-    let kicked = under_the_papers_rk4(include_str!("../../scenes/kicked.toml"), "kicked");
     let end = |dt: f64| {
-        let s = common::with(
-            &kicked,
-            &[
-                ("friction.mu_k", 0.3),
-                (FORCE, 3e6),
-                ("loads.eccentricity_m", 1.0),
-                ("solver.dt_s", dt),
-                ("solver.t_end_s", 4.0),
-            ],
-        );
-        let r = run(&s);
+        let r = kicked_under_the_papers_rk4(&[("solver.dt_s", dt), ("solver.t_end_s", 4.0)]);
         assert_eq!(
             r.termination.reason,
             Reason::Stopped,
@@ -281,19 +283,9 @@ fn where_the_papers_rk4_stops_and_how_far_it_went_follow_the_tolerance() {
     // tolerance (found by a reviewing helper). Now both come from the substep where the
     // velocity passes through zero and the substeps' chords (the stop still first order in
     // that substep: 1.4·10⁻⁷ m at 10⁻¹²).
-    let kicked = under_the_papers_rk4(include_str!("../../scenes/kicked.toml"), "kicked");
     let end = |dt: f64, tolerance: f64| -> (f64, f64, f64, f64) {
-        let s = common::with(
-            &kicked,
-            &[
-                ("friction.mu_k", 0.3),
-                (FORCE, 3e6),
-                ("loads.eccentricity_m", 1.0),
-                ("solver.dt_s", dt),
-                ("solver.tolerance", tolerance),
-            ],
-        );
-        let r = run(&s);
+        let r =
+            kicked_under_the_papers_rk4(&[("solver.dt_s", dt), ("solver.tolerance", tolerance)]);
         assert_eq!(
             r.termination.reason,
             Reason::Stopped,

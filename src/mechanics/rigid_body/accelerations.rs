@@ -230,11 +230,12 @@ impl Moving<'_> {
         // A contact released at this moment slips on in the direction that reproduces itself.
         // Where no direction does (its cone was left by round-off, and holds it after all),
         // it is tested for sticking as any pivot is, as before the release.
+        let mut no_direction = None;
         if let Some(i) = pivot.filter(|&i| self.released == Some(i)) {
             let (mut d, mut m) = (dir, mu);
             match slip_start(ctx, &mut d, &mut m, i, coefficients) {
                 Ok(s) => return Ok((s, None)),
-                Err(RigidError::SlipStart { .. }) => {}
+                Err(e @ RigidError::SlipStart { .. }) => no_direction = Some(e),
                 Err(e) => return Err(e),
             }
         }
@@ -257,6 +258,8 @@ impl Moving<'_> {
             (Some(s), _) => (s, pivot),
             // The pivot's cone cannot hold it: it starts to slip, in the direction that
             // reproduces itself (as from rest, for the one contact).
+            // (A released contact's was sought above: no direction reproduces itself.)
+            (None, Some(_)) if let Some(e) = no_direction => return Err(e),
             (None, Some(i)) => (slip_start(ctx, &mut dir, &mut mu, i, coefficients)?, None),
             // Coulomb without a pivot: the solve above is the answer.
             (None, None) if !friction.is_stress_dependent() => (sol, None),

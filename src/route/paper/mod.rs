@@ -79,6 +79,14 @@ struct Crossing<'f> {
     at: Option<PoseFinder<'f>>,
 }
 
+/// The paper's resisting-over-driving ratio (`mechanics::onset`) at evaluation `ev`, with the
+/// driving and resisting forces: at the start, and at a stop to tell whether the block stays.
+fn paper_ratio(sim: &Simulation, ev: &Evaluation) -> (f64, f64, f64) {
+    let applied = Applied::new(sim.loads(), sim.block(), &ev.geom.frame);
+    let strength = sim.strength(faces_of(sim.site()), false);
+    factor_of_safety(&ev.geom, &applied, &ev.statics, &strength)
+}
+
 /// Whether the velocity along `a` passes from below zero to zero or above between `s` and `n`.
 fn crosses(a: &[f64; 3], s: &State, n: &State) -> bool {
     let along = |w: [f64; 2]| w[0] * a[0] + w[1] * a[1];
@@ -306,13 +314,7 @@ impl<'a> Dynamics<'a> for Paper<'a> {
                 return Start::Ended(o.end(reason, 0.0, detail));
             }
         };
-        let applied = Applied::new(sim.loads(), sim.block(), &ev.geom.frame);
-        let (fs, driving, resisting) = factor_of_safety(
-            &ev.geom,
-            &applied,
-            &ev.statics,
-            &sim.strength(faces_of(sim.site()), false),
-        );
+        let (fs, driving, resisting) = paper_ratio(sim, &ev);
         o.paper_ratio = fs.is_finite().then_some(fs);
         o.push(row(&state, Some(&ev), &ev.pose, faces_of(sim.site())));
         if sim.initial().at_rest() && (fs >= 1.0 || ev.reaction.accel <= 0.0) {
@@ -506,13 +508,7 @@ impl Paper<'_> {
                 return Ok(Flow::Ended(o.finish(self.row(), reason, start_t, detail)));
             }
         };
-        let applied = Applied::new(sim.loads(), sim.block(), &stop_ev.geom.frame);
-        let (fs_here, _, _) = factor_of_safety(
-            &stop_ev.geom,
-            &applied,
-            &stop_ev.statics,
-            &sim.strength(faces_of(sim.site()), false),
-        );
+        let (fs_here, _, _) = paper_ratio(sim, &stop_ev);
         if fs_here < 1.0 {
             return Err(o);
         }
