@@ -477,6 +477,43 @@ fn a_contact_released_where_no_slip_direction_reproduces_itself_is_held_again() 
 }
 
 #[test]
+fn a_slip_restarted_on_a_strike_is_not_turned_round_by_a_middle_stage_whatever_the_rows() {
+    // Another sample of that analysis: contact 2 sits stuck on plane 2's strike and is released
+    // at 4.2252955 s; its slip restarts from zero, growing at 1e-4 to 1e-2 m/s² (friction's
+    // scale is 2.7 m/s²). A middle RK4 stage, off the motion by O(h²), turned that slip round:
+    // a "pivot" started it from zero again, seven times with rows every 1 ms, nine with 10 ms
+    // (where the steps end sets how many), and the contact left the strike later the more there
+    // were: 4.247971 s against 4.252179 s (1.3 cm of travel). Such a pivot is now taken only
+    // where the step's dense output shows it too: 4.2479621 s whatever the rows' interval and
+    // the tolerance (τ = 1e-9 … 1e-13).
+    let sample = [
+        0.5771302928556081,
+        -1.4533778915432132,
+        19.71315190695433,
+        26.3082022731939,
+        14.7701806893064,
+        7266108.288966624,
+    ];
+    let end = |dt: f64| {
+        let r = wide_sample(sample, (DT, dt));
+        assert_eq!(
+            r.termination.reason,
+            Reason::ContactLeftPlane,
+            "rows every {dt} s: {:?}",
+            r.termination
+        );
+        (dt, r.termination.t_s, r.travel_m)
+    };
+    let ends = [end(1e-3), end(1e-2)];
+    for &(dt, t, travel) in &ends {
+        assert!(
+            (t - 4.2479621).abs() < 1e-6 && (travel - ends[0].2).abs() < 1e-6,
+            "rows every {dt} s: {ends:?}"
+        );
+    }
+}
+
+#[test]
 fn energy_on_a_sticking_pivot_route_falls_with_the_tolerance() {
     // The route turns about a sticking contact for 1.44 s: the energy balance's residual falls
     // with the tolerance (the sticking contact's velocity projection removes only energy of the

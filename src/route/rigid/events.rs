@@ -2,10 +2,11 @@
 //! ([`Heading`]), met at a stage of the RK4 step ([`rk4_stages`]) and located by bisection on the step
 //! length ([`bracket_event`]).
 
-use super::evaluate::{Hold, evaluate};
+use super::evaluate::{Eval, Hold, evaluate};
 use super::state::{RigidState, VALUES};
 use crate::mechanics::rigid_body::Motion;
 use crate::model::Simulation;
+use crate::route::integrator::hermite;
 use crate::route::pose_finder::PoseFinder;
 use crate::route::termination::Stop;
 
@@ -91,7 +92,9 @@ pub(super) fn bracket_event(
         let (yh, k4, crossed) = rk4_stages(sim, finder, span.y, span.k1, len, heading)?;
         let mut f = finder.clone();
         let e = evaluate(sim, &mut f, &yh, hold)?;
-        Ok((heading.event(&e.motion).or(crossed), yh, k4))
+        let seen = crossed
+            .and_then(|c| confirmed(sim, finder, heading, (span.y, span.k1), (&yh, &e), len, c));
+        Ok((heading.event(&e.motion).or(seen), yh, k4))
     };
     let mut b = Bracket {
         lo: 0.0,
@@ -139,17 +142,63 @@ pub(super) fn rk4_stages(
     k1: &[f64; VALUES],
     h: f64,
     heading: &Heading<'_>,
-) -> Result<(RigidState, [f64; VALUES], Option<Event>), Stop> {
+) -> Result<(RigidState, [f64; VALUES], Option<AtStage>), Stop> {
     let mut crossed = None;
+    let mut stages = 0;
     let hold = Hold::of(heading.before);
     let mut stage = |y: &[f64; VALUES]| {
         let mut f = finder.for_stages();
         let y = RigidState::from_array(y);
+        stages += 1;
         evaluate(sim, &mut f, &y, hold).map(|e| {
-            crossed = crossed.or(heading.event(&e.motion));
+            crossed = crossed.or(heading.event(&e.motion).map(|event| AtStage {
+                event,
+                mid: stages < 3,
+            }));
             y.with_rates(e.rates).derivative(&e.motion)
         })
     };
     let (next, k4) = crate::route::integrator::rk4_stages(&y.to_array(), k1, h, &mut stage)?;
     Ok((RigidState::from_array(&next), k4, crossed))
+}
+
+/// An event met at a stage of an RK4 step: at one of the two at its middle (the second and
+/// third), or at the last, at its end.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) struct AtStage {
+    pub event: Event,
+    pub mid: bool,
+}
+
+/// Whether an event met at a stage of the step of length `h` from `y0` (its derivative `k1`) to
+/// `y1` (evaluated there as `e1`) is the motion's (`derivations/08-rigid-body.md` §4a). The middle
+/// stages' states are off the motion by O(h²): enough to turn round a slip just started from
+/// zero, and a "pivot" there starts it from zero again, and again, as often as the steps' ends
+/// fall there (so that where a route ends moved with the rows' interval). A pivot met at a
+/// middle stage is taken where the step's dense output at its middle, within O(h⁴) of the
+/// motion, shows an event too. A pivot met at the last stage, which is at the step's end, is
+/// taken as met: the bisection that locates it moves that stage off it, where friction turned
+/// round in the last stage would otherwise leave a first-order error that only steps of the
+/// tolerance's square root keep within it. A stop or a release is taken as met.
+pub(super) fn confirmed(
+    sim: &Simulation,
+    finder: &PoseFinder<'_>,
+    heading: &Heading<'_>,
+    (y0, k1): (&RigidState, &[f64; VALUES]),
+    (y1, e1): (&RigidState, &Eval),
+    h: f64,
+    at: AtStage,
+) -> Option<Event> {
+    if !at.mid || !matches!(at.event, Event::Pivot(_)) {
+        return Some(at.event);
+    }
+    let end = e1.accept(y1);
+    let (a, b, k5) = (y0.to_array(), end.to_array(), end.derivative(&e1.motion));
+    let mid = RigidState::from_array(&hermite((&a, k1), (&b, &k5), h, 0.5)).at(y0.t + 0.5 * h);
+    let mut f = finder.for_stages();
+    match evaluate(sim, &mut f, &mid, Hold::of(heading.before)) {
+        Ok(e) => heading.event(&e.motion),
+        // Off the model at the middle: as the stage said.
+        Err(_) => Some(at.event),
+    }
 }

@@ -5,7 +5,7 @@
 //! output, each evaluated at its own state.
 
 use super::evaluate::{Eval, Hold, evaluate};
-use super::events::{Bracket, Event, Heading, Span, bracket_event, rk4_stages};
+use super::events::{Bracket, Event, Heading, Span, bracket_event, confirmed, rk4_stages};
 use super::ground::{BeforeImpact, after_impact, ground_event};
 use super::hold::{Anchor, hold_anchor, hold_on_creases};
 use super::rest::Rest;
@@ -291,7 +291,10 @@ impl RigidBody<'_> {
         let mut at_next = finder.clone();
         let step = rk4_stages(sim, finder, &self.y, &k1, h, heading).and_then(|(n, k4, c)| {
             let e = evaluate(sim, &mut at_next, &n, hold)?;
-            Ok((n, k4, c.filter(|_| resolve), e))
+            let seen = c
+                .filter(|_| resolve)
+                .and_then(|c| confirmed(sim, finder, heading, (&self.y, &k1), (&n, &e), h, c));
+            Ok((n, k4, seen, e))
         });
         let (next, k4, crossed, next_ev, failed) = match step {
             Ok((n, k4, c, e)) => (e.accept(&n), k4, c, e, None),
