@@ -45,7 +45,14 @@ pub struct Motion {
     pub crease_normal: [Option<f64>; 3],
     /// The creases the motion was evaluated with.
     pub creases: Creases,
+    /// How friction's directions were had (a step crossing from one to another has its
+    /// accelerations jump): bit j set where contact j's young slip had its direction slaved,
+    /// [`SETTLED_TOGETHER`] where the slow block's slips were settled together.
+    pub regime: u8,
 }
+
+/// The bit of [`Motion::regime`] set where a slow block's slips were settled together.
+pub const SETTLED_TOGETHER: u8 = 1 << 3;
 
 /// The block at one pose: its contacts and the faces under them, the loads on it (moments
 /// about the point the contacts' arms are from), its mass properties, and what its contacts
@@ -158,10 +165,11 @@ pub fn accelerations_releasing(
     } else {
         ctx.solve(&slip.map(unit), &coefficients(&[1.0; 3]))?
     };
-    let (sol, stuck) = if frictionless {
-        (sol, None)
+    let (sol, stuck, regime) = if frictionless {
+        (sol, None, 0)
     } else if tw.is_zero() {
-        from_rest(&ctx, &sol, &coefficients)?
+        let (s, st) = from_rest(&ctx, &sol, &coefficients)?;
+        (s, st, 0)
     } else {
         let moving = Moving {
             ctx: &ctx,
@@ -190,6 +198,7 @@ pub fn accelerations_releasing(
         stuck,
         crease_normal: [0, 1, 2].map(|i| creases.at(i).map(|_| sol.crease[i])),
         creases,
+        regime,
     })
 }
 
@@ -216,14 +225,15 @@ impl Moving<'_> {
         &self,
         mut sol: Solved,
         coefficients: &dyn Fn(&[f64; 3]) -> [f64; 3],
-    ) -> Result<(Solved, Option<usize>), RigidError> {
+    ) -> Result<(Solved, Option<usize>, u8), RigidError> {
         let (ctx, friction) = (self.ctx, self.friction);
         let mut dir = self.slip.map(unit);
         let mut mu = coefficients(&sol.lambda);
         if let Some(s) = self.settled_together(&sol, &mu, coefficients) {
-            return Ok((s, None));
+            return Ok((s, None, SETTLED_TOGETHER));
         }
-        let (pivot, slaved) = self.pivot_or_slaved(&sol, &mut dir, &mu)?;
+        let (pivot, regime) = self.pivot_or_slaved(&sol, &mut dir, &mu)?;
+        let slaved = regime != 0;
         if slaved && pivot.is_none() {
             sol = ctx.solve(&dir, &mu)?;
         }
@@ -234,7 +244,7 @@ impl Moving<'_> {
         if let Some(i) = pivot.filter(|&i| self.released == Some(i)) {
             let (mut d, mut m) = (dir, mu);
             match slip_start(ctx, &mut d, &mut m, i, coefficients) {
-                Ok(s) => return Ok((s, None)),
+                Ok(s) => return Ok((s, None, regime)),
                 Err(e @ RigidError::SlipStart { .. }) => no_direction = Some(e),
                 Err(e) => return Err(e),
             }
@@ -254,7 +264,7 @@ impl Moving<'_> {
                 stuck = Some(s);
             }
         }
-        Ok(match (stuck, pivot) {
+        let (s, st) = match (stuck, pivot) {
             (Some(s), _) => (s, pivot),
             // The pivot's cone cannot hold it: it starts to slip, in the direction that
             // reproduces itself (as from rest, for the one contact).
@@ -278,7 +288,8 @@ impl Moving<'_> {
                 }
                 (sol, None)
             }
-        })
+        };
+        Ok((s, st, regime))
     }
 
     /// The whole block slow, barely speeding up or slowing down: every slip so slow that
@@ -338,17 +349,18 @@ impl Moving<'_> {
     }
 
     /// The pivot — a contact whose slip is zero, or a slow slip friction stops within the step —
-    /// and whether some young slip's direction in `dir` was slaved.
+    /// and which young slips had their directions in `dir` slaved (bit j for contact j,
+    /// [`Motion::regime`]).
     fn pivot_or_slaved(
         &self,
         sol: &Solved,
         dir: &mut [Vector3<f64>; 3],
         mu: &[f64; 3],
-    ) -> Result<(Option<usize>, bool), RigidError> {
+    ) -> Result<(Option<usize>, u8), RigidError> {
         let (ctx, slip, step) = (self.ctx, self.slip, self.step);
         let scale = self.twist.v.norm() + self.twist.w.norm() * ctx.arm;
         let mut pivot = (0..3).find(|&i| slip[i].norm() <= ZERO_SLIP * scale);
-        let mut slaved = false;
+        let mut slaved = 0u8;
         let zero_pivot = pivot;
         for j in (0..3).filter(|&j| Some(j) != zero_pivot) {
             let friction_accel = mu[j] * sol.lambda[j].abs() / ctx.mass;
@@ -367,7 +379,7 @@ impl Moving<'_> {
             if let Some((d, a)) = slaved_direction(ctx, dir, mu, j, &dir[j])? {
                 if a.abs() < 0.1 * friction_accel {
                     dir[j] = d;
-                    slaved = true;
+                    slaved |= 1 << j;
                 } else if a < 0.0
                     && pivot.is_none()
                     && slip[j].norm() <= -a * step

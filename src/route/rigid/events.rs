@@ -19,6 +19,8 @@ use crate::route::termination::Stop;
 pub(super) struct Heading<'a> {
     pub before: &'a Motion,
     pub mass: f64,
+    /// Whether a switch of friction's regime is an event.
+    pub switches: bool,
 }
 
 /// What happened within a step.
@@ -31,6 +33,11 @@ pub(super) enum Event {
     /// The contact that stuck at the start of the step can no longer be held by its friction
     /// cone: it starts to slip.
     Release(usize),
+    /// Friction's regime ([`Motion::regime`]: young slips' directions slaved or free, a slow
+    /// block's slips settled together or not) is no longer the step's start's: the
+    /// accelerations jump there, a first-order error in a step across it that its error
+    /// estimate does not see. Nothing changes at it; the step ends there.
+    Switch,
 }
 
 impl Heading<'_> {
@@ -52,6 +59,7 @@ impl Heading<'_> {
             .filter(|&i| b.stuck != Some(i) && b.shear[i].norm() > 0.0)
             .find(|&i| m.slip[i].dot(&b.shear[i]) >= 0.0)
             .map(Event::Pivot)
+            .or_else(|| (self.switches && m.regime != b.regime).then_some(Event::Switch))
     }
 }
 
@@ -151,10 +159,15 @@ pub(super) fn rk4_stages(
         let y = RigidState::from_array(y);
         stages += 1;
         evaluate(sim, &mut f, &y, hold).map(|e| {
-            crossed = crossed.or(heading.event(&e.motion).map(|event| AtStage {
-                event,
-                mid: stages < 3,
-            }));
+            // A switch is told at the step's end only: a stage's state is off the motion by
+            // O(h²), and a switch there and back within the step is no jump at its end.
+            crossed = crossed.or(heading
+                .event(&e.motion)
+                .filter(|&e| e != Event::Switch)
+                .map(|event| AtStage {
+                    event,
+                    mid: stages < 3,
+                }));
             y.with_rates(e.rates).derivative(&e.motion)
         })
     };

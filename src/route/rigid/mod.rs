@@ -123,6 +123,12 @@ pub(super) struct RigidBody<'a> {
     /// While resting: the ground accelerations it is certainly held under where it rests
     /// (`held_region.rs`), found at its first increment at rest.
     region: Option<held_region::HeldRegion>,
+    /// Whether the next step locates a switch of friction's regime as an event
+    /// (`events.rs`'s `Event::Switch`): not past `MAX_SWITCHES` in an increment, nor after a
+    /// switch met again at the moment of the last.
+    switching: bool,
+    /// The moment of the last switch located.
+    switched_at: f64,
 }
 
 impl<'a> RigidBody<'a> {
@@ -153,6 +159,8 @@ impl<'a> RigidBody<'a> {
             round_off,
             resting,
             region: None,
+            switching: true,
+            switched_at: f64::NAN,
         }
     }
 

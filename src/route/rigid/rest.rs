@@ -104,6 +104,7 @@ pub(super) fn rest_eval(
             stuck: None,
             crease_normal: [None; 3],
             creases: Creases::NONE,
+            regime: 0,
         },
         rates: [0.0; 3],
         removed: 0.0,

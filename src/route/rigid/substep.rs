@@ -40,6 +40,10 @@ const MAX_EVENTS: usize = 16;
 /// lifts a contact off its face and puts it on the next, `crease_event`), so 64 is none of them.
 const EVENTS_AT_ONE_MOMENT: usize = 64;
 
+/// The most switches of friction's regime (`Event::Switch`) located within one increment; past
+/// it the increment's steps cross them as they are.
+const MAX_SWITCHES: usize = 16;
+
 /// The shortest substep, as a fraction of the reference step (then the step is taken as it is).
 const MIN_SUBSTEP: f64 = 1e-3;
 
@@ -57,7 +61,8 @@ const SAFETY: f64 = 0.9;
 /// Each value's weight in a step's error (`derivations/08-rigid-body.md` §4a): the CM's
 /// position and its path against the block's size L and the yaw in radians, each over the
 /// tolerance. The rates, the works and the time are not weighed: where friction switches within
-/// a step (a young slip's direction slaved or free, a contact starting to stick), the
+/// a step (a contact starting to stick, or a switch of friction's regime past `MAX_SWITCHES` in
+/// an increment; below it a switch is located as an event, `events::Event::Switch`), the
 /// accelerations jump, and an estimate of the rates' error, first order there, would shrink the
 /// step to the shortest at every switch; the positions' error, of second order there, keeps the
 /// steps the motion needs, and the energy balance watches the rates.
@@ -111,6 +116,8 @@ enum Substep {
     Moved,
     /// An event was handled (a pivot, a release, a stop from which the block slips again).
     Event,
+    /// The step ended where friction's regime switched.
+    Switch,
 }
 
 /// One attempted step: its length, the derivative at its start, and what it reached.
@@ -144,6 +151,8 @@ impl RigidBody<'_> {
         mut o: Logbook<'s>,
     ) -> Flow<'s> {
         let mut events = 0usize;
+        let mut switches = 0usize;
+        self.switching = true;
         // Events met at one moment without the route moving on: (the moment, how many).
         let mut at_one_moment = (f64::NAN, 0usize);
         while self.t < t_target * (1.0 - 1e-15) {
@@ -158,6 +167,7 @@ impl RigidBody<'_> {
             // rest of the increment is taken in plain substeps: no event resolved, each still
             // within the tolerance by its error estimate.
             let resolve = events < MAX_EVENTS && !self.through;
+            self.switching &= switches < MAX_SWITCHES;
             // A ground-motion record's samples are where its loads may turn: steps end on them
             // (RK4 keeps its order between them); and none goes past the route's end.
             let t_end = self.sim.settings().t_end;
@@ -168,10 +178,13 @@ impl RigidBody<'_> {
             let before = self.t;
             let left = (until - self.t, t_target - self.t);
             match self.substep(finder, k, left, resolve, &mut o) {
-                Ok(Substep::Event) => {
+                Ok(step @ (Substep::Event | Substep::Switch)) => {
                     self.through = false;
                     o.steps.0 += 1;
-                    events += 1;
+                    match step {
+                        Substep::Switch => switches += 1,
+                        _ => events += 1,
+                    }
                     at_one_moment = match at_one_moment {
                         (t, n) if t == before && self.t == before => (t, n + 1),
                         _ => (self.t, 1),
@@ -230,6 +243,7 @@ impl RigidBody<'_> {
         let heading = Heading {
             before: &motion,
             mass,
+            switches: self.switching && resolve,
         };
         let longest =
             MAX_ROWS_IN_A_STEP * self.sim.settings().dt * self.sim.settings().stride as f64;
@@ -555,23 +569,49 @@ impl RigidBody<'_> {
             }
             e => e,
         };
+        if event == Event::Switch {
+            // The same switch again at the moment of the last (the regime flipping to and fro
+            // there): the rest of the increment crosses switches as they are.
+            let reference = self.sim.settings().reference_step();
+            if (self.t + hi - self.switched_at).abs() <= 1e-9 * reference {
+                self.switching = false;
+                return Ok(Substep::Retry);
+            }
+            // The rates past the switch set where a young slip set free goes, and a single
+            // step's error in them is not watched (`error_weights`): a switch is located within
+            // a step of at most a tenth of the reference step (within 1 ms, route ends moved
+            // with the rows' interval by up to 3e-5 s at τ = 1e-13; within 0.1 ms, by 4e-7 s).
+            let within = 0.1 * reference;
+            if lo > within {
+                self.h = lo - 0.5 * within;
+                return Ok(Substep::Retry);
+            }
+        }
         // A release goes on from just past the moment (the contact then slips, in the
         // direction `rigid_body::accelerations` gives); a pivot from just before it, the
         // contact's remaining slip (of the bisection's size) projected out, stuck while its
-        // cone allows.
-        self.pivoted = match event {
-            Event::Pivot(i) => Some((i, self.t + lo)),
-            _ => None,
-        };
+        // cone allows; a switch from just past it, in the new regime, nothing else changed.
+        let switched = event == Event::Switch;
+        if !switched {
+            self.pivoted = match event {
+                Event::Pivot(i) => Some((i, self.t + lo)),
+                _ => None,
+            };
+        }
         let (y_at, len, hold) = match event {
             Event::Release(i) => (y_hi, hi, hold.releasing(i)),
             Event::Pivot(i) => (y_lo, lo, hold.sticking(Some(i))),
+            Event::Switch => (y_hi, hi, hold),
             Event::Stop => return self.stop(finder, k, y_lo, self.t + hi, o),
         };
         let at = evaluate(sim, finder, &y_at, hold).map_err(Ending::Failed)?;
         self.go_to(o, at.accept(&y_at), at);
-        self.anchor = Anchor::after(&self.ev, None);
+        self.anchor = Anchor::after(&self.ev, self.anchor.filter(|_| switched));
         self.t += len;
+        if switched {
+            self.switched_at = self.t;
+            return Ok(Substep::Switch);
+        }
         Ok(Substep::Event)
     }
 
