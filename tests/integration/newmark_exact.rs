@@ -101,10 +101,15 @@ fn agrees(name: &str, seed: u64, pga: f64, mu: f64, push: f64) {
 
 /// The route's energy balance closed to [`BALANCE`] of the larger work.
 fn balanced(name: &str, route: &Route) {
+    balanced_to(name, route, BALANCE);
+}
+
+/// The route's energy balance closed to `bound` of the larger work.
+fn balanced_to(name: &str, route: &Route, bound: f64) {
     let e = route.energy.expect("an energy balance");
     let scale = e.work_hydraulic_j.abs().max(e.work_friction_j.abs());
     assert!(
-        e.residual_j.abs() <= BALANCE * scale,
+        e.residual_j.abs() <= bound * scale,
         "{name}: energy residual {} J of {scale} J of work",
         e.residual_j
     );
@@ -143,7 +148,6 @@ fn other_frictions_and_yield_accelerations_slide_the_exact_distance() {
 /// off and turned by up to 2e-6°).
 #[test]
 fn a_block_shaken_both_ways_slides_the_exact_distance_without_turning() {
-    let dt = 0.005;
     for (seed, mu, axis) in [
         (2, 0.1, "x"),
         (3, 0.1, "z"),
@@ -152,30 +156,91 @@ fn a_block_shaken_both_ways_slides_the_exact_distance_without_turning() {
         (4, 0.2, "z"),
         (5, 0.2, "z"),
     ] {
-        let name = format!("both-{seed}-{mu}-{axis}");
-        let a = record(seed, 12.0, dt, 0.4);
-        let want = exact(&a, dt, mu, 0.0);
-        let dir = std::env::temp_dir().join(format!("slideroute-{name}-{}", std::process::id()));
-        let run = Run {
-            contacts: "frame",
-            dt_s: 1e-3,
-            stride: 1000,
-        };
-        let path = write_along(&dir, &name, (&a, dt, axis), (mu, 0.0), run);
-        let route: Route = slideroute::run(&Scene::from_file(&path).unwrap()).unwrap();
-        std::fs::remove_dir_all(&dir).ok();
-        let [x, z] = route.permanent_displacement_xz_m.expect("a displacement");
-        let (along, across) = if axis == "x" { (x, z) } else { (z, x) };
-        assert!(
-            (along - want).abs() <= 1e-7 * want.abs(),
-            "{name}: {along} m against the exact {want} m"
-        );
-        assert!(across.abs() < 1e-9, "{name}: {across} m across");
-        let turned = route.permanent_rotation_deg.expect("a rotation");
-        assert!(turned.abs() < 1e-7, "{name}: turned {turned}°");
-        assert_eq!(route.termination.reason, Reason::Stopped, "{name}");
-        balanced(&name, &route);
+        let (name, off, route) = both_ways(seed, mu, axis);
+        off.within(&name, &route, (1e-7, 1e-7, BALANCE));
     }
+}
+
+/// The six cases above over forty records each (seeds 1–40; μ = 0.1 and 0.2 along Z, μ = 0.1
+/// along X): every one within 1e-4 of the exact distance, nothing across beyond 1e-9 m, no
+/// turning beyond 1e-6°, stopped, its balance within 1e-7 of the work; and half of them within
+/// 1e-12. Measured on 8095131: median 8e-14, nine in ten within 1.3e-8, the worst three
+/// 2.4e-5–2.5e-5 (seeds 35 and 36 at μ = 0.1: a stop seen at a middle RK4 stage where the
+/// exact block's slip only comes near zero, `derivations/08-rigid-body.md` §4a), 9.8e-8° of
+/// turning, balances within 2.1e-8 of the work. The bound is 1e-3.
+#[test]
+#[ignore = "120 routes: run by .ci/run (many_records)"]
+fn many_records_both_ways_slide_within_a_ten_thousandth_of_the_exact_distance() {
+    let mut offs = Vec::new();
+    for seed in 1..=40 {
+        for (mu, axis) in [(0.1, "z"), (0.2, "z"), (0.1, "x")] {
+            let (name, off, route) = both_ways(seed, mu, axis);
+            off.within(&name, &route, (1e-4, 1e-6, 1e-7));
+            offs.push(off.along.abs());
+        }
+    }
+    offs.sort_by(f64::total_cmp);
+    let median = offs[offs.len() / 2];
+    assert!(
+        median <= 1e-12,
+        "median {median:.2e} of the exact distance off"
+    );
+}
+
+/// How far a route is from the exact block: along (a fraction of the exact distance), across
+/// (m), turned (°).
+struct Off {
+    along: f64,
+    across: f64,
+    turned_deg: f64,
+}
+
+impl Off {
+    /// Route `name` within `along` of the exact distance and `turned` degrees of turning,
+    /// nothing across beyond 1e-9 m, stopped, its energy balance within `balance` of the work.
+    fn within(&self, name: &str, route: &Route, (along, turned, balance): (f64, f64, f64)) {
+        assert!(
+            self.along.abs() <= along,
+            "{name}: {:.2e} of the exact distance off",
+            self.along
+        );
+        assert!(self.across.abs() < 1e-9, "{name}: {} m across", self.across);
+        assert!(
+            self.turned_deg.abs() < turned,
+            "{name}: turned {}°",
+            self.turned_deg
+        );
+        assert_eq!(route.termination.reason, Reason::Stopped, "{name}");
+        balanced_to(name, route, balance);
+    }
+}
+
+/// The block without a push shaken along `axis` by record `seed` (pga 0.4 g, 12 s at 5 ms),
+/// friction `mu`, three points of the frame, rows every second: its name, how far it is from
+/// Newmark's exact block, and the route.
+fn both_ways(seed: u64, mu: f64, axis: &str) -> (String, Off, Route) {
+    let dt = 0.005;
+    let name = format!("both-{seed}-{mu}-{axis}");
+    let a = record(seed, 12.0, dt, 0.4);
+    let want = exact(&a, dt, mu, 0.0);
+    let dir = std::env::temp_dir().join(format!("slideroute-{name}-{}", std::process::id()));
+    let run = Run {
+        contacts: "frame",
+        dt_s: 1e-3,
+        stride: 1000,
+    };
+    let path = write_along(&dir, &name, (&a, dt, axis), (mu, 0.0), run);
+    let route: Route = slideroute::run(&Scene::from_file(&path).unwrap()).unwrap();
+    std::fs::remove_dir_all(&dir).ok();
+    let [x, z] = route.permanent_displacement_xz_m.expect("a displacement");
+    let (along, across) = if axis == "x" { (x, z) } else { (z, x) };
+    assert!(want != 0.0, "{name}: the exact block does not slide");
+    let off = Off {
+        along: (along - want) / want,
+        across,
+        turned_deg: route.permanent_rotation_deg.expect("a rotation"),
+    };
+    (name, off, route)
 }
 
 /// The two-directional reference ([`two_way`]) shaken along one axis is Newmark's block in closed
