@@ -126,7 +126,12 @@ fn check_and_a_comparison_keep_bounded_memory_whatever_the_routes_length() {
 }
 
 /// Runs `slideroute args(size)… --out DIR` at each of two sizes, each in a folder of its own,
-/// `check(DIR, size)` after each; the peak resident sets (kB).
+/// `check(DIR, size)` after each; the peak resident sets (kB). The smaller size runs three
+/// times and gives its largest peak: polling misses a peak reached in a run's last few
+/// milliseconds (a short run's picture drawn), and a peak of the smaller run under its true one
+/// fails the comparison of the two (once in a full local run, not reproduced since). The kernel's
+/// peak of a reaped child (`wait4`) is no cure: it counts the parent's memory, which the child
+/// shares until it execs (51 MB for a run whose own peak is under 20 MB).
 fn peaks_at(
     name: &str,
     sizes: [usize; 2],
@@ -136,7 +141,7 @@ fn peaks_at(
     let dir = std::env::temp_dir().join(format!("slideroute-memory-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
-    let peaks = sizes.map(|size| {
+    let peak_at = |size: usize| {
         let out = dir.join(size.to_string());
         let mut given: Vec<std::ffi::OsString> = args(size).into_iter().map(Into::into).collect();
         given.extend(["--out".into(), out.clone().into_os_string()]);
@@ -145,7 +150,9 @@ fn peaks_at(
         assert!(status.success(), "{given:?}");
         check(&out, size);
         peak
-    });
+    };
+    let small = (0..3).map(|_| peak_at(sizes[0])).max().unwrap();
+    let peaks = [small, peak_at(sizes[1])];
     let _ = std::fs::remove_dir_all(&dir);
     peaks
 }
