@@ -189,11 +189,12 @@ fn a_switch_is_not_taken_from_a_step_that_passed_through_a_stop() {
 /// within 1e-12. Measured: median 6e-14, nine in ten within 2.6e-9, the worst 4.0e-7 and
 /// 2.8e-7 (seeds 30 and 31, μ = 0.1, along Z only, the same records along X exact to 1e-14;
 /// seed 30 turned by 2.9e-8°: a rotation of round-off's size grown at slip onsets,
-/// `derivations/08-rigid-body.md` §4a; seed 31 not traced), 9.8e-8° of turning, balances within
-/// 1.7e-9 of the work. Before a stop met only at a middle RK4 stage was taken again shorter, and a stage's
-/// stop put before a switch at the step's end, three were 2.4–2.5e-5 off (a stop where the
-/// exact block's slip only comes near zero; a switch taken from a step through a stop) and two
-/// balances 2.1e-8 of the work. The bound is 1e-3.
+/// `derivations/08-rigid-body.md` §4a; seed 31 a stop met 0.18 µs late, its slip across not
+/// yet zero), 9.8e-8° of turning, balances within 1.7e-9 of the work. Before a stop met only
+/// at a middle RK4 stage was taken again shorter, and a stage's stop put before a switch at
+/// the step's end, three were 2.4–2.5e-5 off (a stop where the exact block's slip only comes
+/// near zero; a switch taken from a step through a stop) and two balances 2.1e-8 of the work.
+/// The bound is 1e-3.
 #[test]
 #[ignore = "120 routes: run by .ci/run (many_records)"]
 fn many_records_both_ways_slide_within_a_millionth_of_the_exact_distance() {
