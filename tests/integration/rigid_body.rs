@@ -409,6 +409,17 @@ fn wide_sample([mu, c, xi, zeta, kappa, f]: [f64; 6], solver: (&str, f64)) -> Ro
     ]))
 }
 
+/// Every run of [`wide_ends`] ends within 1e-6 s of `t_end`, its travel within 1e-6 m of the
+/// first run's.
+fn ends_at(ends: &[(f64, f64, f64)], t_end: f64) {
+    for &(value, t, travel) in ends {
+        assert!(
+            (t - t_end).abs() < 1e-6 && (travel - ends[0].2).abs() < 1e-6,
+            "at {value}: {ends:?}"
+        );
+    }
+}
+
 /// Where a wide sample's route ends (the key's value, the time, the travel) at each value of a
 /// solver key, each route ending for `reason`.
 fn wide_ends(sample: [f64; 6], key: &str, values: &[f64], reason: Reason) -> Vec<(f64, f64, f64)> {
@@ -478,12 +489,7 @@ fn a_contact_released_where_no_slip_direction_reproduces_itself_is_held_again() 
         &[1e-3, 1e-2, 2e-2],
         Reason::Contact0ReachedInclinedPlane,
     );
-    for &(dt, t, travel) in &ends {
-        assert!(
-            (t - 3.557844).abs() < 1e-6 && (travel - ends[0].2).abs() < 1e-6,
-            "rows every {dt} s: {ends:?}"
-        );
-    }
+    ends_at(&ends, 3.557844);
 }
 
 #[test]
@@ -505,12 +511,7 @@ fn a_slip_restarted_on_a_strike_is_not_turned_round_by_a_middle_stage_whatever_t
         7266108.288966624,
     ];
     let ends = wide_ends(sample, DT, &[1e-3, 1e-2], Reason::ContactLeftPlane);
-    for &(dt, t, travel) in &ends {
-        assert!(
-            (t - 4.2479621).abs() < 1e-6 && (travel - ends[0].2).abs() < 1e-6,
-            "rows every {dt} s: {ends:?}"
-        );
-    }
+    ends_at(&ends, 4.2479621);
 }
 
 #[test]

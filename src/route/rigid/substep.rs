@@ -129,7 +129,7 @@ struct Trial<'f> {
     next_ev: Eval,
     /// An event met at one of the step's stages.
     crossed: Option<Event>,
-    /// A stop met only at a middle stage: the step's end shows none.
+    /// The event met at a stage is a stop met at a middle stage.
     stop_at_middle: bool,
     /// Where the step or its end state is off the model.
     failed: Option<Stop>,
@@ -284,14 +284,14 @@ impl RigidBody<'_> {
         // (2.4e-5 of Newmark's distance in three records of 120). The step is taken again at
         // half its length, as an error estimate over the tolerance would have it, until a
         // stage no longer overshoots or the stop shows at the step's end or its last stage.
-        if trial.stop_at_middle && trial.h > 2.0 * MIN_SUBSTEP * reference {
-            self.h = 0.5 * trial.h;
-            return Ok(Substep::Retry);
-        }
         let at_end = match trial.failed {
             None => heading.event(&trial.next_ev.motion).filter(|_| resolve),
             Some(_) => None,
         };
+        if trial.stop_at_middle && at_end.is_none() && trial.h > 2.0 * MIN_SUBSTEP * reference {
+            self.h = 0.5 * trial.h;
+            return Ok(Substep::Retry);
+        }
         if trial.crossed.is_none() && at_end.is_none() && trial.failed.is_none() {
             return self.move_on(finder, trial, resolve, o);
         }
@@ -321,8 +321,7 @@ impl RigidBody<'_> {
             let c = c.filter(|_| resolve);
             let seen =
                 c.and_then(|c| confirmed(sim, finder, heading, (&self.y, &k1), (&n, &e), h, c));
-            let middle = c.is_some_and(|c| c.mid && c.event == Event::Stop)
-                && heading.event(&e.motion).is_none();
+            let middle = c.is_some_and(|c| c.mid && c.event == Event::Stop);
             Ok((n, k4, seen, e, middle))
         });
         let (next, k4, crossed, next_ev, failed, stop_at_middle) = match step {
