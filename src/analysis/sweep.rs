@@ -8,7 +8,7 @@
 //! fails becomes a row with its reason, never an abort.
 
 use super::runner::{Outcome, run_chunked, run_many};
-use crate::model::{DynamicsModel, Friction, Integrator, Mode};
+use crate::model::{Contacts, DynamicsModel, Friction, Integrator, Mode};
 use crate::scene::{Scene, SceneError};
 
 /// The most combinations one sweep may run.
@@ -240,10 +240,12 @@ fn list(key: &str, range: &str) -> Result<Vary, String> {
 
 /// Optional scene keys that a sweep may vary although the base scene leaves them out (their
 /// default then stands in the base).
-const OPTIONAL_KEYS: [&str; 9] = [
+const OPTIONAL_KEYS: [&str; 11] = [
     "solver.dynamics",
     "solver.integrator",
     "solver.stride",
+    "solver.contacts",
+    "solver.tolerance",
     "block.inertia_x_kg_m2",
     "block.inertia_z_kg_m2",
     "block.inertia_xz_kg_m2",
@@ -276,6 +278,7 @@ fn words_of(key: &str) -> Option<Vec<&'static str>> {
     Some(match key {
         "solver.dynamics" => DynamicsModel::ALL.map(DynamicsModel::as_str).to_vec(),
         "solver.integrator" => Integrator::ALL.map(Integrator::as_str).to_vec(),
+        "solver.contacts" => Contacts::ALL.map(Contacts::as_str).to_vec(),
         "solver.mode" => Mode::ALL.map(Mode::as_str).to_vec(),
         "friction.model" => Friction::MODELS.to_vec(),
         "seismic.units" => vec!["g", "m/s2", "cm/s2"],
@@ -347,7 +350,19 @@ pub fn check_key(base: &Scene, key: &str, words: bool, values: &[f64]) -> Result
         None => Ok(()),
     };
     let takes_words = takes_words(key);
+    let kind = || {
+        Err(KeyError::new(
+            key,
+            if takes_words {
+                "the key takes words, as a list (KEY=A,B,…)"
+            } else {
+                "the key takes numbers"
+            },
+        ))
+    };
     match sec.get(name) {
+        // An optional key the scene leaves out takes values of its own kind all the same.
+        None if optional && takes_words != words => kind(),
         None if optional && INTEGER_KEYS.contains(&key) => whole(values),
         None if optional => Ok(()),
         None => {
@@ -360,14 +375,7 @@ pub fn check_key(base: &Scene, key: &str, words: bool, values: &[f64]) -> Result
                 ),
             ))
         }
-        Some(_) if takes_words != words => Err(KeyError::new(
-            key,
-            if takes_words {
-                "the key takes words, as a list (KEY=A,B,…)"
-            } else {
-                "the key takes numbers"
-            },
-        )),
+        Some(_) if takes_words != words => kind(),
         Some(toml::Value::String(_)) if takes_words => Ok(()),
         Some(toml::Value::Float(_)) => Ok(()),
         // A whole-number key (such as solver.stride) takes whole numbers only.
@@ -599,6 +607,46 @@ mod tests {
         assert!(e.reason.contains("given twice"), "{e}");
         let e = Sweep::new(base, vec![vary("solver.stride=1:2:3")]).unwrap_err();
         assert!(e.reason.contains("whole numbers"), "{e}");
+    }
+
+    #[test]
+    fn solver_keys_the_scene_leaves_out_can_be_varied_with_values_of_their_kind() {
+        // The default scene writes neither solver.tolerance nor solver.contacts; a sweep over
+        // them was refused ("no key", "`frame` is not a finite number").
+        let base = &Scene::default_scene();
+        assert!(document_value(base, "solver.tolerance").is_none());
+        assert!(document_value(base, "solver.contacts").is_none());
+        let tolerances = vec![vary("solver.tolerance=1e-3,1e-12")];
+        let rows = Sweep::new(base, tolerances).unwrap().run(|| (), || false);
+        let travel = |o: &Outcome| match o {
+            Outcome::Route(r) => r.travel_m,
+            other => panic!("{other:?}"),
+        };
+        let (coarse, fine) = (travel(&rows[0].outcome), travel(&rows[1].outcome));
+        // Each tolerance is the one the route ran with: the coarse one's travel is off the
+        // fine one's, by more than the fine one allows and less than the coarse one does.
+        assert!(
+            (coarse - fine).abs() > 1e-9 * fine && (coarse - fine).abs() < 1e-2 * fine,
+            "{coarse} {fine}"
+        );
+        let contacts = vary("solver.contacts=frame,base");
+        assert_eq!(contacts.cell(1.0), "base");
+        Sweep::new(base, vec![contacts]).unwrap();
+        // A key of words given numbers (a distribution's draws), and one of numbers given
+        // words, are refused before any route runs, whether the scene writes the key or not.
+        for key in [
+            "solver.dynamics",
+            "solver.integrator",
+            "solver.contacts",
+            "solver.mode",
+        ] {
+            let e = check_key(base, key, false, &[0.5]).unwrap_err();
+            assert!(e.reason.contains("takes words"), "{key}: {e}");
+        }
+        for key in ["solver.tolerance", "solver.dt_s"] {
+            let e = check_key(base, key, true, &[0.0]).unwrap_err();
+            assert!(e.reason.contains("takes numbers"), "{key}: {e}");
+        }
     }
 
     #[test]

@@ -194,7 +194,9 @@ impl RunSettings {
             return Err(ModelError::new(
                 "solver.dt_s",
                 format!(
-                    "the increment ({dt} s) is longer than the whole route (t_end_s = {t_end} s)"
+                    "the increment ({} s) is longer than the whole route (t_end_s = {} s)",
+                    crate::numeric::given(dt),
+                    crate::numeric::given(t_end)
                 ),
             ));
         }
@@ -241,7 +243,8 @@ impl RunSettings {
                 "solver.tolerance",
                 format!(
                     "must be a number from {MIN_TOLERANCE:e} to {MAX_TOLERANCE:e} (a step's error \
-                     as a fraction of the block's size), got {tol}"
+                     as a fraction of the block's size), got {}",
+                    crate::numeric::given(tol)
                 ),
             ));
         }
@@ -317,6 +320,13 @@ mod tests {
             assert_eq!(e.key, "solver.tolerance", "{tol}");
         }
         assert!(s(1e-3, 1.0).with_tolerance(1e-6).check().is_ok());
+        // Numbers far from 1 are said as given, not in 300 digits.
+        let e = s(1e300, 1.0).check().unwrap_err().to_string();
+        assert!(e.contains("(1e300 s)"), "{e}");
+        let e = s(1e-3, 1e-300).check().unwrap_err().to_string();
+        assert!(e.contains("t_end_s = 1e-300 s"), "{e}");
+        let e = s(1e-3, 1.0).with_tolerance(1e-300).check().unwrap_err();
+        assert!(e.to_string().ends_with("got 1e-300"), "{e}");
         assert_eq!("small-angle".parse::<Mode>(), Ok(Mode::SmallAngle));
         assert!("rigid".parse::<DynamicsModel>().is_err());
     }

@@ -219,8 +219,13 @@ impl Distribution {
                 // The kept mass must not vanish in round-off.
                 let n = Normal::new(mean, sd).map_err(|e| e.to_string())?;
                 if n.cdf(hi) - n.cdf(lo) < 1e-12 {
+                    let g = super::given;
                     return Err(format!(
-                        "[{lo}, {hi}] lies too far in the tail of normal({mean}, {sd})"
+                        "[{}, {}] lies too far in the tail of normal({}, {})",
+                        g(lo),
+                        g(hi),
+                        g(mean),
+                        g(sd)
                     ));
                 }
                 Ok(())
@@ -381,6 +386,11 @@ mod tests {
             ("triangular:0:5:4", "the mode 5"),
             ("lognormal:-1:1", "mean must be positive"),
             ("truncnormal:0:1:50:60", "too far in the tail"),
+            // Said as given, not in 300 digits.
+            (
+                "truncnormal:0.4:1e-300:5:6",
+                "[5, 6] lies too far in the tail of normal(0.4, 1e-300)",
+            ),
             // Draws past the largest double: refused, never written as inf or NaN.
             ("uniform:-1e308:1e308", "not all finite"),
             ("triangular:-1e308:0:1e308", "not all finite"),

@@ -1614,6 +1614,52 @@ fn a_grid_files_fault_after_blank_lines_is_named_at_its_own_line() {
 }
 
 #[test]
+fn a_grid_is_not_overwritten_by_its_own_roots() {
+    // Before: `roots --grid g.csv --out g.csv` replaced the poses by their roots, exit 0; a
+    // link to the grid did the same.
+    let grid = b"x_m,z_m,theta_deg\n0.1,0,1\n";
+    for out in ["g.csv", "./g.csv", "link.csv"] {
+        let dir = std::env::temp_dir().join(format!("slideroute-grid-self-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        std::fs::write(dir.join("g.csv"), grid).unwrap();
+        std::fs::hard_link(dir.join("g.csv"), dir.join("link.csv")).unwrap();
+        let ran = std::process::Command::new(env!("CARGO_BIN_EXE_slideroute"))
+            .current_dir(&dir)
+            .args(["roots", "--grid", "g.csv", "--out", out])
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&ran.stderr);
+        assert_eq!(ran.status.code(), Some(2), "{out}: {stderr}");
+        assert!(stderr.contains("is the grid itself"), "{out}: {stderr}");
+        assert_eq!(stderr.trim_end().lines().count(), 1, "{stderr}");
+        assert_eq!(std::fs::read(dir.join("g.csv")).unwrap(), grid);
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}
+
+#[test]
+fn a_grid_that_cannot_be_written_names_its_output() {
+    // Before: `cannot write: No space left on device`, naming no file.
+    if !std::path::Path::new("/dev/full").exists() {
+        return;
+    }
+    let (ran, dir) = run_with(
+        "grid-full",
+        &[("g.csv", b"x_m,z_m,theta_deg\n0.1,0,1\n")],
+        &["roots", "--grid", "g.csv", "--out", "/dev/full"],
+    );
+    assert_eq!(ran.code, Some(1), "{}", ran.stderr);
+    assert!(
+        ran.stderr
+            .starts_with("slideroute: /dev/full: cannot write"),
+        "{}",
+        ran.stderr
+    );
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
 fn an_obj_fault_names_the_line_of_its_vertex_or_face() {
     // Before: `valley.obj: triangle 174 has a corner that is not a finite number`, no line.
     let scene = scene_bytes("valley.toml");

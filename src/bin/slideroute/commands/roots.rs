@@ -53,8 +53,14 @@ fn roots_grid(scene: &Scene, mode: Mode, grid: &Path, out: &Path) -> Result<(), 
     let file = open_bounded(grid, u64::MAX - 1).map_err(|e| bad_input(format!("{name}: {e}")))?;
     let poses = grid_csv::PoseRows::new(std::io::BufReader::new(file), &name).map_err(bad_input)?;
     let out_name = out.display().to_string();
+    if same_file(grid, out) {
+        return Err(bad_input(format!(
+            "{out_name}: is the grid itself (--grid {name}): its poses would be replaced by \
+             their roots; give --out another file"
+        )));
+    }
     let target = Target::new(out).map_err(|e| failed(format!("{out_name}: {e}")))?;
-    let result = solve_grid(scene, mode, poses, target.writer(), CHUNK);
+    let result = solve_grid(scene, mode, poses, target.writer(), CHUNK, &out_name);
     match result {
         Ok(n) => {
             target
@@ -70,16 +76,32 @@ fn roots_grid(scene: &Scene, mode: Mode, grid: &Path, out: &Path) -> Result<(), 
     }
 }
 
-/// Every pose of `poses`, `chunk` at a time (on every core, in order), written to `out`; the
-/// number written.
+/// Whether `a` and `b` name one file (the same device and inode, through links or not); a
+/// path that is not there names no file.
+fn same_file(a: &Path, b: &Path) -> bool {
+    match (std::fs::metadata(a), std::fs::metadata(b)) {
+        #[cfg(unix)]
+        (Ok(a), Ok(b)) => {
+            use std::os::unix::fs::MetadataExt;
+            (a.dev(), a.ino()) == (b.dev(), b.ino())
+        }
+        #[cfg(not(unix))]
+        (Ok(_), Ok(_)) => std::fs::canonicalize(a).ok() == std::fs::canonicalize(b).ok(),
+        _ => false,
+    }
+}
+
+/// Every pose of `poses`, `chunk` at a time (on every core, in order), written to `out`
+/// (`out_name` in a failure's message); the number written.
 fn solve_grid<R: std::io::Read, W: std::io::Write>(
     scene: &Scene,
     mode: Mode,
     mut poses: grid_csv::PoseRows<R>,
     out: W,
     chunk: usize,
+    out_name: &str,
 ) -> Result<usize, CliError> {
-    let write_err = |e: csv::Error| failed(format!("cannot write: {e}"));
+    let write_err = |e: csv::Error| failed(format!("{out_name}: cannot write: {e}"));
     let mut w = grid_csv::RowWriter::new(out).map_err(write_err)?;
     let mut batch = Vec::with_capacity(chunk);
     let mut n = 0;
@@ -202,7 +224,7 @@ mod tests {
         let scene = Scene::default_scene();
         let poses = grid_csv::PoseRows::new(text.as_bytes(), "g.csv").map_err(bad_input)?;
         let mut out = Vec::new();
-        solve_grid(&scene, Mode::Exact, poses, &mut out, chunk)?;
+        solve_grid(&scene, Mode::Exact, poses, &mut out, chunk, "out.csv")?;
         Ok(String::from_utf8(out).unwrap())
     }
 
@@ -259,7 +281,7 @@ mod tests {
         for mode in [Mode::Exact, Mode::SmallAngle] {
             let poses = grid_csv::PoseRows::new(text.as_bytes(), "g.csv").unwrap();
             let mut batched = Vec::new();
-            solve_grid(&scene, mode, poses, &mut batched, 256).unwrap();
+            solve_grid(&scene, mode, poses, &mut batched, 256, "out.csv").unwrap();
             let poses: Vec<GridPose> = grid_csv::PoseRows::new(text.as_bytes(), "g.csv")
                 .unwrap()
                 .map(Result::unwrap)

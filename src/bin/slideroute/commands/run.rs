@@ -6,7 +6,7 @@ use crate::cli::RunArgs;
 use crate::exit::{CliError, bad_input, failed, interrupted, interrupted_after, out};
 use crate::output::folder::Folder;
 use crate::output::summary::RouteSummary;
-use slideroute::{Reason, Scene};
+use slideroute::{Contacts, Integrator, Reason, RunSettings, Scene};
 use std::ops::ControlFlow;
 
 /// Runs `slideroute run`.
@@ -16,6 +16,9 @@ pub fn run(args: &RunArgs) -> Result<(), CliError> {
     }
     let scene = with_dynamics(load(&args.scene)?, args)?;
     let sim = scene.simulation().map_err(bad_input)?;
+    if let Some(w) = many_rows(sim.settings()) {
+        eprintln!("slideroute: warning: {w}");
+    }
     // Locked before the work, so that a second run into the same folder is refused at once.
     let mut folder = Folder::open(&args.out_dir(), "run").map_err(failed)?;
     let bar = route_bar(args.quiet, sim.settings().t_end);
@@ -50,6 +53,34 @@ pub fn run(args: &RunArgs) -> Result<(), CliError> {
     Ok(())
 }
 
+/// Rows of route.csv past which a run says how large the file may grow.
+const MANY_ROWS: f64 = 1e6;
+
+/// About one row of route.csv (bytes): 25 columns, most of them numbers to 17 digits.
+const ROW_BYTES: f64 = 330.0;
+
+/// What a run recording more than [`MANY_ROWS`] rows says before it starts: how many and how
+/// large route.csv may grow (a route that ends earlier writes fewer), and where the steps are
+/// chosen against `solver.tolerance` (RK4 on the three points), that `dt_s` is the rows'
+/// interval only: a smaller one adds rows, not accuracy.
+fn many_rows(s: &RunSettings) -> Option<String> {
+    let rows = (s.t_end / s.dt / s.stride as f64).floor() + 1.0;
+    if rows <= MANY_ROWS {
+        return None;
+    }
+    let only_rows = if s.contacts == Contacts::Frame && s.integrator == Integrator::Rk4 {
+        " (the steps are chosen against solver.tolerance: a smaller dt_s adds rows, not \
+         accuracy)"
+    } else {
+        ""
+    };
+    Some(format!(
+        "solver.dt_s: up to {rows:.2e} rows of route.csv, about {:.1} GB{only_rows}; \
+         solver.stride = N keeps every N-th",
+        rows * ROW_BYTES / 1e9
+    ))
+}
+
 /// The scene with `--dynamics`'s model, saying so where that changes the scene's integrator
 /// (each dynamics takes its own).
 fn with_dynamics(scene: Scene, args: &RunArgs) -> Result<Scene, CliError> {
@@ -67,4 +98,43 @@ fn with_dynamics(scene: Scene, args: &RunArgs) -> Result<Scene, CliError> {
         );
     }
     Ok(scene)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn settings(keys: &[(&str, toml::Value)]) -> RunSettings {
+        let mut scene = Scene::default_scene();
+        for (k, v) in keys {
+            scene = scene.with(k, v.clone()).unwrap();
+        }
+        *scene.settings().unwrap()
+    }
+
+    #[test]
+    fn a_run_of_millions_of_rows_says_how_large_route_csv_may_grow() {
+        // Before: `--set solver.dt_s=2e-7` wrote a 7 GB route.csv without a word.
+        assert_eq!(many_rows(&settings(&[])), None);
+        let fine = many_rows(&settings(&[("solver.dt_s", 2e-7.into())])).unwrap();
+        // The default scene's 20 s at 2·10⁻⁷ s: 10⁸ rows and one, about 33 GB.
+        assert!(
+            fine.contains("1.00e8 rows") && fine.contains("33.0 GB"),
+            "{fine}"
+        );
+        assert!(fine.contains("not accuracy"), "{fine}");
+        // A stride thins them below the line.
+        let strided = [("solver.dt_s", 2e-7.into()), ("solver.stride", 1000.into())];
+        assert_eq!(many_rows(&settings(&strided)), None);
+        // The paper's own update steps by dt_s: its rows are its steps.
+        let paper = settings(&[
+            ("solver.dt_s", 1e-5.into()),
+            ("solver.dynamics", "paper".into()),
+        ]);
+        let paper = many_rows(&paper).unwrap();
+        assert!(
+            paper.contains("2.00e6 rows") && !paper.contains("accuracy"),
+            "{paper}"
+        );
+    }
 }

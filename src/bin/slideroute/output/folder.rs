@@ -252,6 +252,12 @@ impl Folder {
     /// Creates `dir` if needed and locks it for `command` (`run`, `sweep`, …: the name its
     /// files are recorded under); the error says why not, naming the folder.
     pub fn open(dir: &Path, command: &'static str) -> Result<Folder, String> {
+        if std::fs::metadata(dir).is_ok_and(|m| !m.is_dir()) {
+            return Err(format!(
+                "{}: is a file, not a folder: --out names the folder the outputs go into",
+                dir.display()
+            ));
+        }
         std::fs::create_dir_all(dir)
             .map_err(|e| format!("{}: cannot create: {e}", dir.display()))?;
         let path = dir.join(LOCK);
@@ -584,6 +590,20 @@ mod tests {
         drop(f);
         assert!(!d.join(LOCK).exists());
         let _ = std::fs::remove_dir_all(&d);
+    }
+
+    #[test]
+    fn an_out_that_is_a_file_is_refused_as_one_and_left_as_it_was() {
+        // Before: `out: cannot create: File exists (os error 17)`.
+        let d = temp("is-a-file");
+        std::fs::write(&d, "mine").unwrap();
+        let e = Folder::open(&d, "run").unwrap_err();
+        assert!(
+            e.ends_with("is a file, not a folder: --out names the folder the outputs go into"),
+            "{e}"
+        );
+        assert_eq!(std::fs::read_to_string(&d).unwrap(), "mine");
+        let _ = std::fs::remove_file(&d);
     }
 
     #[test]
