@@ -111,7 +111,7 @@ pub fn segment_distance_2(a: [f64; 2], b: [f64; 2], q: [f64; 2]) -> f64 {
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SurfaceError {
     /// No triangles at all.
-    #[error("the surface has no triangles")]
+    #[error("the surface has no triangles (an OBJ file gives them as `f` lines of vertex numbers)")]
     Empty,
     /// A triangle (its number) with a corner not a finite number.
     #[error("triangle {0} has a corner that is not a finite number")]

@@ -96,6 +96,42 @@ fn coeffs_table_is_readable() {
 }
 
 #[test]
+fn coeffs_at_a_displacement_past_what_the_system_can_be_evaluated_at_is_refused() {
+    // Before: `f1 = NaN`, `f2 = -inf` and X in 309 digits, exit 0 (and `null`s in --json).
+    for json in [false, true] {
+        let mut args = vec![
+            "coeffs",
+            "--x",
+            "1e308",
+            "--z",
+            "1e308",
+            "--theta-deg",
+            "1e308",
+        ];
+        if json {
+            args.push("--json");
+        }
+        let o = run(&args);
+        assert_bad_input(&o, &["--x 1e308", "is not a finite number there"]);
+        assert_eq!(stderr(&o).trim_end().lines().count(), 1, "{}", stderr(&o));
+        assert!(o.stdout.is_empty());
+    }
+    // Far, but finite: printed, X as given.
+    let o = run(&["coeffs", "--x", "1e10", "--z", "0", "--theta-deg", "0"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(String::from_utf8_lossy(&o.stdout).contains("X = 10000000000 m"));
+}
+
+#[test]
+fn roots_of_a_grid_refuse_json_rather_than_ignore_it() {
+    // Before: --json with --grid was ignored without a word.
+    let o = run(&["roots", "--grid", "g.csv", "--out", "o.csv", "--json"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--json"), "{}", stderr(&o));
+    assert_eq!(stderr(&o).trim_end().lines().count(), 1, "{}", stderr(&o));
+}
+
+#[test]
 fn coeffs_reads_a_scene_file() {
     let p = temp_file("shallow.toml", include_str!("../../scenes/shallow.toml"));
     let o = run(&[
@@ -1474,6 +1510,13 @@ fn a_change_of_dynamics_that_changes_the_integrator_says_so() {
         "{}",
         stderr(&o)
     );
+    // The default scene names no integrator: the one replaced is its dynamics' default, not
+    // the scene's (as the note said before).
+    assert!(
+        stderr(&o).contains("not the rigid-body dynamics' default \"rk4\""),
+        "{}",
+        stderr(&o)
+    );
     // The same dynamics as the scene's changes nothing and says nothing.
     let o = run(&[
         "run",
@@ -2057,6 +2100,11 @@ fn set_changes_a_scene_key_without_editing_the_file_and_names_what_is_wrong() {
         ("friction.mu_k=abc", vec!["friction.mu_k", "expected f64"]),
         ("friction.mu_k=-1", vec!["friction.mu_k"]),
         ("nonsense.key=1", vec!["nonsense", "unknown key"]),
+        // Before: `invalid type: string "99999999999999999999", expected i64`.
+        (
+            "solver.stride=99999999999999999999",
+            vec!["past the largest whole number", "9223372036854775807"],
+        ),
     ] {
         let o = run(&[
             "run",

@@ -370,7 +370,7 @@ pub struct RootsArgs {
     /// Where to write the batch results (CSV), with --grid.
     #[arg(long, value_name = "OUT.csv", requires = "grid")]
     pub out: Option<PathBuf>,
-    /// Print JSON instead of a table (single pose).
-    #[arg(long)]
+    /// Print JSON instead of a table (single pose; --grid writes CSV).
+    #[arg(long, conflicts_with = "grid")]
     pub json: bool,
 }

@@ -18,6 +18,16 @@ pub fn coeffs(args: &CoeffsArgs) -> Result<(), CliError> {
                 scene.origin()
             ))
         })?;
+    if let Some(name) = report.not_finite() {
+        let g = slideroute::internals::numeric::given;
+        return Err(bad_input(format!(
+            "--x {} --z {} --theta-deg {}: {name} is not a finite number there (the \
+             displacement is too large for the system to be evaluated)",
+            g(report.x_m),
+            g(report.z_m),
+            g(report.theta_deg)
+        )));
+    }
     if args.json {
         print_json(&report)
     } else {

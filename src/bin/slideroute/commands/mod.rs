@@ -59,6 +59,15 @@ fn setting(s: &str) -> Result<(String, toml::Value), CliError> {
         .parse::<toml::Table>()
         .ok()
         .and_then(|mut t| t.remove("v"));
+    // Digits that TOML does not take: a whole number past i64 (else read as a word, and
+    // refused as "invalid type: string").
+    let digits = value.strip_prefix(['+', '-']).unwrap_or(value);
+    if parsed.is_none() && !digits.is_empty() && digits.bytes().all(|b| b.is_ascii_digit()) {
+        return Err(bad_input(format!(
+            "--set {s}: {value} is past the largest whole number a scene takes ({})",
+            i64::MAX
+        )));
+    }
     Ok((
         key.to_string(),
         parsed.unwrap_or_else(|| toml::Value::String(value.to_string())),

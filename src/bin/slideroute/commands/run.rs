@@ -87,14 +87,25 @@ fn with_dynamics(scene: Scene, args: &RunArgs) -> Result<Scene, CliError> {
     let Some(model) = args.dynamics else {
         return Ok(scene);
     };
-    let before = scene.settings().map(|s| s.integrator);
+    let before = scene.settings().map(|s| (s.integrator, s.dynamics));
+    // Whether the scene's file names its integrator, or took its dynamics' default.
+    let written = scene
+        .document()
+        .get("solver")
+        .and_then(|s| s.get("integrator"))
+        .is_some();
     let scene = scene.with_dynamics(model).map_err(bad_input)?;
-    if let (Some(b), Some(after)) = (before, scene.settings().map(|s| s.integrator))
+    if let (Some((b, was)), Some(after)) = (before, scene.settings().map(|s| s.integrator))
         && b != after
     {
+        let whose = if written {
+            "the scene's".to_string()
+        } else {
+            format!("the {was} dynamics' default")
+        };
         eprintln!(
             "slideroute: note: --dynamics {model} integrates with \"{after}\" (its own \
-                 default), not the scene's \"{b}\""
+                 default), not {whose} \"{b}\""
         );
     }
     Ok(scene)

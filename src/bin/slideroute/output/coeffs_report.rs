@@ -64,12 +64,34 @@ impl CoeffReport {
     }
 }
 
+impl CoeffReport {
+    /// The name of the first coefficient that is not a finite number (a displacement so far
+    /// that the system overflows), if any.
+    pub fn not_finite(&self) -> Option<String> {
+        let half = |eq: &str, h: &[[f64; 3]; 3]| {
+            (0..9)
+                .find(|k| !h[k / 3][k % 3].is_finite())
+                .map(|k| format!("{eq} in half-angles, ta^{} tp^{}", k / 3, k % 3))
+        };
+        [&self.small_angle, &self.exact.eq13, &self.exact.eq14]
+            .into_iter()
+            .find_map(|o| o.0.iter().find(|(_, v)| !v.is_finite()))
+            .map(|(name, _)| name.clone())
+            .or_else(|| half("(13)", &self.exact.half_angle_eq13))
+            .or_else(|| half("(14)", &self.exact.half_angle_eq14))
+    }
+}
+
 impl fmt::Display for CoeffReport {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let g = slideroute::internals::numeric::given;
         writeln!(
             f,
             "scene {}: X = {} m, Z = {} m, θ = {}°",
-            self.scene, self.x_m, self.z_m, self.theta_deg
+            self.scene,
+            g(self.x_m),
+            g(self.z_m),
+            g(self.theta_deg)
         )?;
         writeln!(f, "small-angle system (15):")?;
         for (k, v) in &self.small_angle.0 {
