@@ -23,6 +23,9 @@ pub struct Ground {
     kind: Kind,
     /// The same ground in the collision library's shapes, built when first asked for.
     rock: OnceLock<Arc<Rock>>,
+    /// Each surface triangle's corners that are flat ([`flat_corners`]), found when first
+    /// asked for (by the block on its base only: loading a surface does not pay for them).
+    flat: OnceLock<Vec<[bool; 3]>>,
 }
 
 #[derive(Debug, Clone)]
@@ -53,6 +56,55 @@ impl Mesh {
             [x, z]
         })
     }
+}
+
+/// Which corners of each triangle are flat: by position (the corners' exact coordinates, so a
+/// surface given triangle by triangle is seen as one), a vertex whose triangles close a fan
+/// around it (each other corner of them met twice) and whose triangles' normals agree to
+/// [`FLAT`] radians. A vertex whose coordinates differ by round-off from triangle to triangle
+/// is not recognised, and stays a touch as before (only a cost).
+/// The largest angle (rad, as its sine) between the triangles around a vertex taken as one
+/// plane. A kink below it, skipped, lets a flat base sink at most 10⁻⁶ of a triangle's size
+/// into the rock there: within the gap of 10⁻⁶ of the block's size and the angle of 10⁻⁶ rad
+/// within which the base lies flush on its rock (`route/body/flush.rs`), for triangles smaller
+/// than the block. A surface
+/// written with nine decimals of a metre has kinks of round-off's size up to about 10⁻⁹ /
+/// its cell; one written to the millimetre, up to 10⁻³ / its cell, which this does not take for
+/// flat (its vertices stay touches, as before).
+const FLAT: f64 = 1e-6;
+
+fn flat_corners(vertices: &[[f64; 3]], triangles: &[[u32; 3]], faces: &[Plane]) -> Vec<[bool; 3]> {
+    use std::collections::HashMap;
+    let key = |v: u32| vertices[v as usize].map(f64::to_bits);
+    let mut around: HashMap<[u64; 3], Vec<(usize, usize)>> = HashMap::new();
+    for (k, t) in triangles.iter().enumerate() {
+        for (j, &v) in t.iter().enumerate() {
+            around.entry(key(v)).or_default().push((k, j));
+        }
+    }
+    let mut flat = vec![[false; 3]; triangles.len()];
+    for fan in around.values() {
+        let n = faces[fan[0].0].normal();
+        let bent = |k: usize| {
+            let m = faces[k].normal();
+            m.dot(&n) <= 0.0 || m.cross(&n).norm() > FLAT
+        };
+        if fan.len() < 3 || fan.iter().any(|&(k, _)| bent(k)) {
+            continue;
+        }
+        let mut others: HashMap<[u64; 3], usize> = HashMap::new();
+        for &(k, j) in fan {
+            for o in [(j + 1) % 3, (j + 2) % 3] {
+                *others.entry(key(triangles[k][o])).or_default() += 1;
+            }
+        }
+        if others.values().all(|&c| c == 2) {
+            for &(k, j) in fan {
+                flat[k][j] = true;
+            }
+        }
+    }
+    flat
 }
 
 /// The plan extent of a triangle's corners.
@@ -169,6 +221,7 @@ impl Ground {
             faces,
             kind: Kind::Planes,
             rock: OnceLock::new(),
+            flat: OnceLock::new(),
         }
     }
 
@@ -264,6 +317,7 @@ impl Ground {
                 tree,
             }),
             rock: OnceLock::new(),
+            flat: OnceLock::new(),
         })
     }
 
@@ -416,6 +470,20 @@ impl Ground {
         })
     }
 
+    /// Whether corner `j` of surface triangle `k` is flat (inside the surface, its triangles
+    /// all in one plane: [`flat_corners`]); false for a plane. The first call finds every
+    /// triangle's.
+    pub fn flat_corner(&self, k: usize, j: usize) -> bool {
+        match &self.kind {
+            Kind::Planes => false,
+            Kind::Surface(mesh) => self
+                .flat
+                .get_or_init(|| flat_corners(&mesh.vertices, &mesh.triangles, &self.faces))
+                .get(k)
+                .is_some_and(|f| f[j]),
+        }
+    }
+
     /// The plan corners of surface triangle `k` (none for a plane).
     pub fn triangle(&self, k: usize) -> Option<[[f64; 2]; 3]> {
         match &self.kind {
@@ -435,6 +503,62 @@ impl PartialEq for Ground {
 mod tests {
     use super::*;
     use std::f64::consts::PI;
+
+    /// A 4 × 4 grid of vertices 1 m apart at heights `y(i, j)`, two triangles a cell.
+    fn heights(y: impl Fn(usize, usize) -> f64) -> Ground {
+        let vertices = (0..16).map(|k| [(k / 4) as f64, y(k / 4, k % 4), (k % 4) as f64]);
+        let mut triangles = Vec::new();
+        for i in 0..3u32 {
+            for j in 0..3u32 {
+                let (a, b, c, d) = (
+                    4 * i + j,
+                    4 * (i + 1) + j,
+                    4 * (i + 1) + j + 1,
+                    4 * i + j + 1,
+                );
+                triangles.extend([[a, b, c], [a, c, d]]);
+            }
+        }
+        Ground::mesh(vertices.collect(), triangles).unwrap()
+    }
+
+    /// The vertices (by grid number) that some triangle has as a flat corner.
+    fn flat_vertices(g: &Ground) -> Vec<usize> {
+        let Kind::Surface(mesh) = &g.kind else {
+            panic!("a surface")
+        };
+        let mut flat: Vec<usize> = (0..mesh.triangles.len())
+            .flat_map(|k| {
+                (0..3)
+                    .filter(move |&j| g.flat_corner(k, j))
+                    .map(move |j| (k, j))
+            })
+            .map(|(k, j)| mesh.triangles[k][j] as usize)
+            .collect();
+        flat.sort_unstable();
+        flat.dedup();
+        flat
+    }
+
+    #[test]
+    fn a_vertex_inside_one_plane_of_the_rock_is_flat_and_no_other() {
+        // A tilted plane: the four inner vertices are flat, none on the border (their fans
+        // do not close).
+        let tilted = heights(|i, j| 0.3 * i as f64 - 0.1 * j as f64);
+        assert_eq!(flat_vertices(&tilted), [5, 6, 9, 10]);
+        // The corner vertex 0 raised by 10⁻⁴ m: a kink in the two triangles through it, which
+        // vertex 5's fan holds; 6, 9 and 10 keep a plane around them.
+        let raised = |h: f64| heights(move |i, j| if (i, j) == (0, 0) { h } else { 0.0 });
+        assert_eq!(flat_vertices(&raised(1e-4)), [6, 9, 10]);
+        // A kink of round-off's size is still flat; one over 10⁻⁶ rad is not.
+        assert_eq!(flat_vertices(&raised(1e-9)), [5, 6, 9, 10]);
+        assert_eq!(flat_vertices(&raised(1e-5)), [6, 9, 10]);
+        // The inner vertex 5 raised: every inner fan holds a triangle through it.
+        let bent = heights(|i, j| if (i, j) == (1, 1) { 1e-4 } else { 0.0 });
+        assert!(flat_vertices(&bent).is_empty());
+        // Planes have no corners.
+        assert!(!papers().flat_corner(0, 0));
+    }
 
     /// The paper's three planes as faces (`docs/conventions.md`).
     fn papers() -> Ground {

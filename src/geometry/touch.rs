@@ -185,7 +185,11 @@ fn surface_touches(
         };
         let plane = &ground.faces()[f];
         let v: [Vector3<f64>; 3] = tri.map(|[x, z]| Vector3::new(x, plane.height(x, z), z));
-        for g in &v {
+        for (j, g) in v.iter().enumerate() {
+            // Inside a plane of the rock the ground is linear: never touched there first.
+            if ground.flat_corner(f, j) {
+                continue;
+            }
             let b = to_body * (g - pose.cm);
             if !in_outline(base.outline, [b.x, b.z]) {
                 continue;

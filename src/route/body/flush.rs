@@ -114,6 +114,8 @@ pub(super) struct Bed<'a> {
 pub(super) struct Flush {
     pub patch: Patch,
     pub spots: Vec<Spot>,
+    /// Touches on the patch inside its members' hull, left out of the step's rows.
+    pub dropped: Vec<usize>,
 }
 
 /// The flush parts of the base at state `s` among its `touches`, each point's impulse started
@@ -181,7 +183,30 @@ pub(super) fn flush(
             for &i in &members {
                 used[i] = true;
             }
+            // The members' normal impulses matter to the patch only by their resultant, whose
+            // line lies in their points' convex hull; with one normal and gaps affine over the
+            // plane, an inside member's constraint is implied by the corners'. Only the hull's
+            // corners are kept (the others are left out of the step's rows).
+            let axes = tangents(&n);
+            let plan: Vec<[f64; 2]> = members
+                .iter()
+                .map(|&i| {
+                    let r = touches[i].on_base - s.pose.cm;
+                    [r.dot(&axes.0), r.dot(&axes.1)]
+                })
+                .collect();
+            let kept: Vec<usize> = hull_corners(&plan)
+                .into_iter()
+                .map(|k| members[k])
+                .collect();
+            let dropped: Vec<usize> = members
+                .iter()
+                .copied()
+                .filter(|i| !kept.contains(i))
+                .collect();
+            let members = kept;
             out.push(Flush {
+                dropped,
                 patch: Patch {
                     members,
                     axes: tangents(&n),
@@ -238,6 +263,7 @@ pub(super) fn flush(
                     points,
                 },
                 spots,
+                dropped: Vec::new(),
             });
         }
     }
@@ -297,6 +323,7 @@ pub(super) fn flush(
             }
             out.push(Flush {
                 spots,
+                dropped: Vec::new(),
                 patch: Patch {
                     members,
                     axes: tangents(&n),
@@ -306,6 +333,45 @@ pub(super) fn flush(
         }
     }
     out
+}
+
+/// The indices of the corners of the convex hull of `p` (Andrew's monotone chain; points on a
+/// hull edge or repeated are left out).
+pub(super) fn hull_corners(p: &[[f64; 2]]) -> Vec<usize> {
+    if p.len() <= 2 {
+        return (0..p.len()).collect();
+    }
+    let mut idx: Vec<usize> = (0..p.len()).collect();
+    idx.sort_by(|&a, &b| {
+        p[a][0]
+            .total_cmp(&p[b][0])
+            .then(p[a][1].total_cmp(&p[b][1]))
+    });
+    let cross = |o: usize, a: usize, b: usize| {
+        (p[a][0] - p[o][0]) * (p[b][1] - p[o][1]) - (p[a][1] - p[o][1]) * (p[b][0] - p[o][0])
+    };
+    let mut hull: Vec<usize> = Vec::new();
+    for pass in 0..2 {
+        let start = hull.len();
+        let order: Vec<usize> = if pass == 0 {
+            idx.clone()
+        } else {
+            idx.iter().rev().copied().collect()
+        };
+        for i in order {
+            while hull.len() >= start + 2
+                && cross(hull[hull.len() - 2], hull[hull.len() - 1], i) <= 0.0
+            {
+                hull.pop();
+            }
+            hull.push(i);
+        }
+        hull.pop();
+    }
+    if hull.is_empty() {
+        hull.push(idx[0]);
+    }
+    hull
 }
 
 /// Points of a patch that lie on one line (within `tol` of the line through the two farthest
@@ -359,6 +425,42 @@ mod tests {
     use super::*;
     use crate::geometry::{BodyPose, Footprint, Plane, touches};
     use nalgebra::{Matrix3, Rotation3};
+
+    #[test]
+    fn a_hull_keeps_its_corners_only() {
+        // A 3 × 2 rectangle's corners among points inside it, on its edges and repeated: the
+        // four corners, each once; then a triangle, two points and one.
+        let mut p = vec![[0.0, 0.0], [3.0, 0.0], [3.0, 2.0], [0.0, 2.0]];
+        let mut s = 7u64;
+        for _ in 0..200 {
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            let (u, v) = (
+                (s >> 11) as f64 / 2f64.powi(53),
+                (s >> 20) as f64 / 2f64.powi(44),
+            );
+            p.push([3.0 * u, 2.0 * v]);
+        }
+        p.extend([[1.5, 0.0], [3.0, 1.0], [0.0, 0.5], [3.0, 2.0], [0.0, 0.0]]);
+        let mut hull = hull_corners(&p);
+        hull.sort_unstable();
+        let corners: Vec<[f64; 2]> = hull.iter().map(|&k| p[k]).collect();
+        assert_eq!(corners.len(), 4, "{corners:?}");
+        for c in [[0.0, 0.0], [3.0, 0.0], [3.0, 2.0], [0.0, 2.0]] {
+            assert!(corners.contains(&c), "{c:?} in {corners:?}");
+        }
+        let mut t = hull_corners(&[[0.0, 0.0], [1.0, 0.2], [2.0, 0.0], [1.0, 1.0]]);
+        t.sort_unstable();
+        assert_eq!(t, [0, 2, 3]);
+        assert_eq!(hull_corners(&[[0.0, 0.0], [1.0, 0.0]]).len(), 2);
+        assert_eq!(hull_corners(&[[1.0, 1.0]]), [0]);
+        assert!(hull_corners(&[]).is_empty());
+        // Points on one line: its two ends.
+        let mut line = hull_corners(&[[0.0, 0.0], [1.0, 1.0], [2.0, 2.0], [3.0, 3.0]]);
+        line.sort_unstable();
+        assert_eq!(line, [0, 3]);
+    }
 
     /// A 4 m square base, its CM 1 m above it, at `pose` on level rock: the flush parts.
     fn flush_on_level(pose: BodyPose) -> Vec<Flush> {

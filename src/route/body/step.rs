@@ -220,7 +220,8 @@ impl Ctx<'_> {
     /// carry any force within their cones.
     fn supports(&self, pose: &BodyPose) -> Vec<Support> {
         let reach = SUPPORT_GAP * self.size;
-        self.touches(pose, reach, 0.0)
+        let all: Vec<Support> = self
+            .touches(pose, reach, 0.0)
             .touches
             .iter()
             .filter(|c| c.gap <= reach)
@@ -229,7 +230,33 @@ impl Ctx<'_> {
                 normal: c.normal,
                 mu: self.mu(c.face),
             })
-            .collect()
+            .collect();
+        // Supports of one normal (to 10⁻⁹ rad) and one μ hold what the corners of their hull
+        // (across the normal) hold: a force at a point inside is the convex combination of the
+        // same force, within the same cone, at the corners, with the same resultant and moment.
+        // So the static check's program has the corners only, however finely the rock under a
+        // flat part of the base is meshed.
+        let mut rest: Vec<usize> = (0..all.len()).collect();
+        let mut out = Vec::new();
+        while let Some(&first) = rest.first() {
+            let (n, mu) = (all[first].normal, all[first].mu);
+            let same = |m: &Vector3<f64>| m.dot(&n) > 0.0 && m.cross(&n).norm() <= 1e-9;
+            let (group, others): (Vec<usize>, Vec<usize>) = rest
+                .iter()
+                .partition(|&&i| same(&all[i].normal) && all[i].mu == mu);
+            rest = others;
+            let axes = crate::mechanics::impulses::tangents(&n);
+            let plan: Vec<[f64; 2]> = group
+                .iter()
+                .map(|&i| [all[i].arm.dot(&axes.0), all[i].arm.dot(&axes.1)])
+                .collect();
+            out.extend(
+                super::flush::hull_corners(&plan)
+                    .into_iter()
+                    .map(|k| all[group[k]]),
+            );
+        }
+        out
     }
 
     /// The yield acceleration of the block at rest at `pose` (`derivations/11-dam-loads.md`
@@ -283,6 +310,47 @@ impl Ctx<'_> {
         let reach_speed = v_free.norm() + w_free.norm() * self.size;
         let reach = 1e-3 * self.size + 2.0 * h * reach_speed;
         let found = self.touches(&s.pose, reach, h * reach_speed);
+        let body = Body {
+            inv_mass: 1.0 / mass,
+            inv_inertia,
+        };
+        let mu = |f: usize| self.mu(f);
+        let bed = Bed {
+            ground: self.ground,
+            quadrature: self.quadrature,
+            size: self.size,
+            mu: &mu,
+        };
+        // Where the base (or a cast base's relief) lies flush on its rock, it presses over the
+        // area lying there.
+        let mut flushes = flush(&bed, s, &found.touches, &warm.patch);
+        // The touches inside a flush patch's hull are left out (`flush`): the rows are the
+        // rest, the patches' members renumbered.
+        let mut found = found;
+        if flushes.iter().any(|f| !f.dropped.is_empty()) {
+            let mut keep = vec![true; found.touches.len()];
+            for f in &flushes {
+                for &i in &f.dropped {
+                    keep[i] = false;
+                }
+            }
+            let mut new_index = vec![usize::MAX; keep.len()];
+            let mut n = 0;
+            for (i, k) in keep.iter().enumerate() {
+                if *k {
+                    new_index[i] = n;
+                    n += 1;
+                }
+            }
+            for f in flushes.iter_mut() {
+                for m in f.patch.members.iter_mut() {
+                    *m = new_index[*m];
+                }
+                f.dropped.clear();
+            }
+            let mut k = keep.iter().copied();
+            found.touches.retain(|_| k.next().unwrap_or(true));
+        }
         let rows: Vec<ContactRow> = found
             .touches
             .iter()
@@ -303,20 +371,6 @@ impl Ctx<'_> {
                 row_of(c, s, self.mu(c.face), closing, guess)
             })
             .collect();
-        let body = Body {
-            inv_mass: 1.0 / mass,
-            inv_inertia,
-        };
-        let mu = |f: usize| self.mu(f);
-        let bed = Bed {
-            ground: self.ground,
-            quadrature: self.quadrature,
-            size: self.size,
-            mu: &mu,
-        };
-        // Where the base (or a cast base's relief) lies flush on its rock, it presses over the
-        // area lying there.
-        let flushes = flush(&bed, s, &found.touches, &warm.patch);
         let patches: Vec<Patch> = flushes.iter().map(|f| f.patch.clone()).collect();
         let (tol, sweeps) = self.solve;
         let solved =
