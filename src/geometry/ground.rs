@@ -471,7 +471,7 @@ impl Ground {
     }
 
     /// Whether corner `j` of surface triangle `k` is flat (inside the surface, its triangles
-    /// all in one plane: [`flat_corners`]); false for a plane. The first call finds every
+    /// all in one plane, within 10⁻⁶ rad); false for a plane. The first call finds every
     /// triangle's.
     pub fn flat_corner(&self, k: usize, j: usize) -> bool {
         match &self.kind {
