@@ -349,7 +349,7 @@ const SCAN_DEG: f64 = 4.0;
 /// its centre of mass `arm` from the frame's origin (m), with the coefficients of `friction`
 /// at the normal forces `statics` (N). The most ground acceleration held with the block pushed
 /// along u, k(u), is one cone program (the driving loads are those of one g along u, all
-/// else held); k_y is its least over u, found on a scan every [`SCAN_DEG`] and then by golden
+/// else held); k_y is its least over u, found on a scan every `SCAN_DEG` and then by golden
 /// section to 1e-9 rad about the least. None where no horizontal acceleration starts the
 /// block. k(u) is the radial extent of a convex set about the origin, smooth between the
 /// directions of its corners; a minimum narrower than the scan's step could be missed.

@@ -47,7 +47,7 @@ pub fn seconds(value: f64) -> Shown {
 #[derive(Debug, Clone, Copy)]
 pub struct Given(pub f64);
 
-/// [`Given`]: `value` as given.
+/// `Given`: `value` as given.
 pub fn given(value: f64) -> Given {
     Given(value)
 }

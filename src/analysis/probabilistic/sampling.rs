@@ -38,7 +38,7 @@ fn open(rng: &mut ChaCha8Rng) -> f64 {
     }
 }
 
-/// The rows of a design one at a time, the same as [`design`]'s, holding no row: plain Monte
+/// The rows of a design one at a time, the same as `design`'s, holding no row: plain Monte
 /// Carlo holds only its generator; a Latin hypercube holds each value's pairing of the strata
 /// (4 bytes a sample per value) and a generator per value, set where that value's points are
 /// drawn, so that the values come out as the whole design draws them (every pairing first,

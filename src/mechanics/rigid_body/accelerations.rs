@@ -47,7 +47,7 @@ pub struct Motion {
     pub creases: Creases,
     /// How friction's directions were had (a step crossing from one to another has its
     /// accelerations jump): bit j set where contact j's young slip had its direction slaved,
-    /// [`SETTLED_TOGETHER`] where the slow block's slips were settled together.
+    /// `SETTLED_TOGETHER` where the slow block's slips were settled together.
     pub regime: u8,
 }
 
@@ -95,7 +95,7 @@ pub struct State<'a> {
 /// follows it (the band would cost it its order).
 ///
 /// Before that, a block slow as a whole, barely speeding up or slowing down, has all its slips'
-/// directions settled together ([`Moving::settled_together`]).
+/// directions settled together (`Moving::settled_together`).
 ///
 /// The slaved direction d is the one the slip settles to within that time: the tangential
 /// acceleration it gives is parallel to it, (d × a_t)·n = 0, the root nearest the slip's own
