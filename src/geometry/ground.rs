@@ -58,21 +58,22 @@ impl Mesh {
     }
 }
 
-/// Which corners of each triangle are flat: by position (the corners' exact coordinates, so a
-/// surface given triangle by triangle is seen as one), a vertex whose triangles close a fan
-/// around it (each other corner of them met twice) and whose triangles' normals agree to
-/// [`FLAT`] radians. A vertex whose coordinates differ by round-off from triangle to triangle
-/// is not recognised, and stays a touch as before (only a cost).
 /// The largest angle (rad, as its sine) between the triangles around a vertex taken as one
 /// plane. A kink below it, skipped, lets a flat base sink at most 10⁻⁶ of a triangle's size
 /// into the rock there: within the gap of 10⁻⁶ of the block's size and the angle of 10⁻⁶ rad
 /// within which the base lies flush on its rock (`route/body/flush.rs`), for triangles smaller
-/// than the block. A surface
-/// written with nine decimals of a metre has kinks of round-off's size up to about 10⁻⁹ /
-/// its cell; one written to the millimetre, up to 10⁻³ / its cell, which this does not take for
-/// flat (its vertices stay touches, as before).
+/// than the block. A surface written with nine decimals of a metre has kinks of round-off's
+/// size up to about 10⁻⁹ / its cell; one written to the millimetre, up to 10⁻³ / its cell, which
+/// this does not take for flat (its vertices stay touches, as before).
 const FLAT: f64 = 1e-6;
 
+/// Which corners of each triangle are flat: by position (the corners' exact coordinates, so a
+/// surface given triangle by triangle is seen as one), a vertex whose triangles close a fan
+/// around it (each other corner of them met twice) and whose triangles' normals agree to
+/// [`FLAT`] radians. The ground is linear around such a vertex, so a flat base never touches
+/// there first (`derivations/13-base-contact.md` §2). A vertex whose coordinates differ by
+/// round-off from triangle to triangle is not recognised, and stays a touch as before (only a
+/// cost).
 fn flat_corners(vertices: &[[f64; 3]], triangles: &[[u32; 3]], faces: &[Plane]) -> Vec<[bool; 3]> {
     use std::collections::HashMap;
     let key = |v: u32| vertices[v as usize].map(f64::to_bits);
