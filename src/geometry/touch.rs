@@ -208,6 +208,11 @@ fn surface_touches(
             }
         }
         for e in 0..3 {
+            // An edge with a flat end lies inside one plane of the rock (both its triangles are
+            // in that end's fan): it is no ridge, and no crossing of it touches.
+            if ground.flat_corner(f, e) || ground.flat_corner(f, (e + 1) % 3) {
+                continue;
+            }
             let (ga, gb) = (
                 to_body * (v[e] - pose.cm),
                 to_body * (v[(e + 1) % 3] - pose.cm),
@@ -275,17 +280,19 @@ fn crossing(
     let d1 = [b[0] - a[0], b[1] - a[1]];
     let d2 = [gb.x - ga.x, gb.z - ga.z];
     let den = d1[0] * d2[1] - d1[1] * d2[0];
-    let scale = (d1[0].hypot(d1[1])) * (d2[0].hypot(d2[1]));
-    if den.abs() <= 1e-12 * scale {
-        return None;
-    }
     let r = [ga.x - a[0], ga.z - a[1]];
     let s = (r[0] * d2[1] - r[1] * d2[0]) / den;
     let t = (r[0] * d1[1] - r[1] * d1[0]) / den;
     // At an end of either edge the crossing is a corner on a face or a ground vertex under the
-    // base, which those touches hold (`geometry::relief` says why not here too).
+    // base, which those touches hold (`geometry::relief` says why not here too). (Parallel
+    // edges, den = 0, give no finite s and t; most pairs are told apart here, before the
+    // lengths the parallel test needs.)
     let inside = |u: f64| u > 1e-9 && u < 1.0 - 1e-9;
     if !inside(s) || !inside(t) {
+        return None;
+    }
+    let scale = (d1[0].hypot(d1[1])) * (d2[0].hypot(d2[1]));
+    if den.abs() <= 1e-12 * scale {
         return None;
     }
     let body = Vector3::new(a[0] + s * d1[0], -base.depth, a[1] + s * d1[1]);
