@@ -23,7 +23,7 @@ pub struct Ground {
     kind: Kind,
     /// The same ground in the collision library's shapes, built when first asked for.
     rock: OnceLock<Arc<Rock>>,
-    /// Each surface triangle's corners that are flat ([`flat_corners`]), found when first
+    /// Each surface triangle's corners that are flat ([`find_flat_corners`]), found when first
     /// asked for (by the block on its base only: loading a surface does not pay for them).
     flat: OnceLock<Vec<[bool; 3]>>,
 }
@@ -74,7 +74,11 @@ const FLAT: f64 = 1e-6;
 /// there first (`derivations/13-base-contact.md` §2). A vertex whose coordinates differ by
 /// round-off from triangle to triangle is not recognised, and stays a touch as before (only a
 /// cost).
-fn flat_corners(vertices: &[[f64; 3]], triangles: &[[u32; 3]], faces: &[Plane]) -> Vec<[bool; 3]> {
+fn find_flat_corners(
+    vertices: &[[f64; 3]],
+    triangles: &[[u32; 3]],
+    faces: &[Plane],
+) -> Vec<[bool; 3]> {
     use std::collections::HashMap;
     let key = |v: u32| vertices[v as usize].map(f64::to_bits);
     let mut around: HashMap<[u64; 3], Vec<(usize, usize)>> = HashMap::new();
@@ -471,17 +475,17 @@ impl Ground {
         })
     }
 
-    /// Whether corner `j` of surface triangle `k` is flat (inside the surface, its triangles
-    /// all in one plane, within 10⁻⁶ rad); false for a plane. The first call finds every
-    /// triangle's.
-    pub fn flat_corner(&self, k: usize, j: usize) -> bool {
+    /// Which corners of surface triangle `k` are flat (inside the surface, its triangles all in
+    /// one plane, within 10⁻⁶ rad); none for a plane. The first call finds every triangle's.
+    pub fn flat_corners(&self, k: usize) -> [bool; 3] {
         match &self.kind {
-            Kind::Planes => false,
+            Kind::Planes => [false; 3],
             Kind::Surface(mesh) => self
                 .flat
-                .get_or_init(|| flat_corners(&mesh.vertices, &mesh.triangles, &self.faces))
+                .get_or_init(|| find_flat_corners(&mesh.vertices, &mesh.triangles, &self.faces))
                 .get(k)
-                .is_some_and(|f| f[j]),
+                .copied()
+                .unwrap_or([false; 3]),
         }
     }
 
@@ -531,7 +535,7 @@ mod tests {
         let mut flat: Vec<usize> = (0..mesh.triangles.len())
             .flat_map(|k| {
                 (0..3)
-                    .filter(move |&j| g.flat_corner(k, j))
+                    .filter(move |&j| g.flat_corners(k)[j])
                     .map(move |j| (k, j))
             })
             .map(|(k, j)| mesh.triangles[k][j] as usize)
@@ -558,7 +562,7 @@ mod tests {
         let bent = heights(|i, j| if (i, j) == (1, 1) { 1e-4 } else { 0.0 });
         assert!(flat_vertices(&bent).is_empty());
         // Planes have no corners.
-        assert!(!papers().flat_corner(0, 0));
+        assert!(!papers().flat_corners(0)[0]);
     }
 
     /// The paper's three planes as faces (`docs/conventions.md`).

@@ -185,9 +185,10 @@ fn surface_touches(
         };
         let plane = &ground.faces()[f];
         let v: [Vector3<f64>; 3] = tri.map(|[x, z]| Vector3::new(x, plane.height(x, z), z));
+        let flat = ground.flat_corners(f);
         for (j, g) in v.iter().enumerate() {
             // Inside a plane of the rock the ground is linear: never touched there first.
-            if ground.flat_corner(f, j) {
+            if flat[j] {
                 continue;
             }
             let b = to_body * (g - pose.cm);
@@ -210,7 +211,7 @@ fn surface_touches(
         for e in 0..3 {
             // An edge with a flat end lies inside one plane of the rock (both its triangles are
             // in that end's fan): it is no ridge, and no crossing of it touches.
-            if ground.flat_corner(f, e) || ground.flat_corner(f, (e + 1) % 3) {
+            if flat[e] || flat[(e + 1) % 3] {
                 continue;
             }
             let (ga, gb) = (

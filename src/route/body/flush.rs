@@ -187,18 +187,11 @@ pub(super) fn flush(
             // line lies in their points' convex hull; with one normal and gaps affine over the
             // plane, an inside member's constraint is implied by the corners'. Only the hull's
             // corners are kept (the others are left out of the step's rows).
-            let axes = tangents(&n);
-            let plan: Vec<[f64; 2]> = members
-                .iter()
-                .map(|&i| {
-                    let r = touches[i].on_base - s.pose.cm;
-                    [r.dot(&axes.0), r.dot(&axes.1)]
-                })
-                .collect();
-            let kept: Vec<usize> = hull_corners(&plan)
-                .into_iter()
-                .map(|k| members[k])
-                .collect();
+            let kept: Vec<usize> =
+                hull_across(&n, members.iter().map(|&i| touches[i].on_base - s.pose.cm))
+                    .into_iter()
+                    .map(|k| members[k])
+                    .collect();
             let dropped: Vec<usize> = members
                 .iter()
                 .copied()
@@ -333,6 +326,17 @@ pub(super) fn flush(
         }
     }
     out
+}
+
+/// The indices of the corners of the convex hull of `points` seen along `n` (their coordinates
+/// on the plane across it), as [`hull_corners`] gives them.
+pub(super) fn hull_across(
+    n: &Vector3<f64>,
+    points: impl Iterator<Item = Vector3<f64>>,
+) -> Vec<usize> {
+    let axes = tangents(n);
+    let plan: Vec<[f64; 2]> = points.map(|r| [r.dot(&axes.0), r.dot(&axes.1)]).collect();
+    hull_corners(&plan)
 }
 
 /// The indices of the corners of the convex hull of `p` (Andrew's monotone chain; points on a

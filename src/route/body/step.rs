@@ -1,7 +1,7 @@
 //! One step of the body on its base (`derivations/13-base-contact.md` §4): the loads at the
 //! pose, the free velocities, the touches within reach, the contact impulses, the drift.
 
-use super::flush::{Bed, Quadrature, Spot, flush};
+use super::flush::{Bed, Quadrature, Spot, flush, hull_across};
 use super::state::BodyState;
 use crate::geometry::{
     BodyPose, Feature, Footprint, Ground, Relief, Touch, Touches, relief_touches, touches,
@@ -245,16 +245,8 @@ impl Ctx<'_> {
                 .iter()
                 .partition(|&&i| same(&all[i].normal) && all[i].mu == mu);
             rest = others;
-            let axes = crate::mechanics::impulses::tangents(&n);
-            let plan: Vec<[f64; 2]> = group
-                .iter()
-                .map(|&i| [all[i].arm.dot(&axes.0), all[i].arm.dot(&axes.1)])
-                .collect();
-            out.extend(
-                super::flush::hull_corners(&plan)
-                    .into_iter()
-                    .map(|k| all[group[k]]),
-            );
+            let corners = hull_across(&n, group.iter().map(|&i| all[i].arm));
+            out.extend(corners.into_iter().map(|k| all[group[k]]));
         }
         out
     }
@@ -334,14 +326,15 @@ impl Ctx<'_> {
                     keep[i] = false;
                 }
             }
-            let mut new_index = vec![usize::MAX; keep.len()];
-            let mut n = 0;
-            for (i, k) in keep.iter().enumerate() {
-                if *k {
-                    new_index[i] = n;
-                    n += 1;
-                }
-            }
+            // Each kept touch's number among the kept.
+            let new_index: Vec<usize> = keep
+                .iter()
+                .scan(0, |n, &k| {
+                    let here = *n;
+                    *n += usize::from(k);
+                    Some(here)
+                })
+                .collect();
             for f in flushes.iter_mut() {
                 for m in f.patch.members.iter_mut() {
                     *m = new_index[*m];
