@@ -1,8 +1,10 @@
 //! Small numerical kernels shared by the stages: eigenvalues of small Hessenberg matrices (one
 //! at a time, or many in lockstep),
 //! dense polynomial products, the resultant of two quadratics, the eigen-decomposition of a
-//! symmetric 2 × 2 matrix, and small square systems solved on fixed arrays.
+//! symmetric 2 × 2 matrix, small square systems solved on fixed arrays, and interpolation
+//! through a few nodes.
 
+pub mod barycentric;
 mod distribution;
 pub mod hessenberg;
 pub mod hessenberg_lanes;

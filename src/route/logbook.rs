@@ -60,6 +60,9 @@ pub(super) struct Book<'s> {
     pub switches: usize,
     /// The rigid body's integration steps: taken, and tried and shortened.
     pub steps: (usize, usize),
+    /// The recorded rows within the rigid body's steps that were interpolated
+    /// (`route/rigid/rows.rs`), not evaluated.
+    pub interpolated: usize,
     /// The energy balance (rigid-body dynamics).
     pub energy: Option<EnergyBalance>,
     /// A block on its base: where it rested, what carried it, how deep its base went.
@@ -104,6 +107,7 @@ impl<'s> Logbook<'s> {
             increments: 0,
             switches: 0,
             steps: (0, 0),
+            interpolated: 0,
             energy: None,
             base: None,
             anchors_broken: Vec::new(),

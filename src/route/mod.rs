@@ -163,6 +163,9 @@ pub struct Steps {
     /// Steps tried and taken again shorter (the error over the tolerance, the energy balance
     /// unresolved, a failure to locate).
     pub retried: usize,
+    /// Recorded rows within steps whose model values were interpolated between rows evaluated
+    /// in the same step (`derivations/08-rigid-body.md` §4a), not evaluated.
+    pub rows_interpolated: usize,
 }
 
 #[cfg(test)]

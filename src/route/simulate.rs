@@ -226,6 +226,7 @@ impl<'a> Runner<'a> {
                 steps: (o.steps != (0, 0)).then_some(super::Steps {
                     taken: o.steps.0,
                     retried: o.steps.1,
+                    rows_interpolated: o.interpolated,
                 }),
             },
         }

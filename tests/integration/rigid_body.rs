@@ -75,6 +75,61 @@ fn every_rigid_body_row_agrees_with_the_direct_pose_solver() {
 }
 
 #[test]
+fn rows_interpolated_within_a_step_agree_with_rows_the_model_gives_at_their_states() {
+    // The same steps whatever the rows' interval (no event before 3 s): rows every 1 ms, about
+    // twenty a step, are mostly interpolated (`route/rigid/rows.rs`); rows every 12 ms, one or
+    // two a step, are each the model evaluated at the step's dense state. At the times both
+    // have, every value agrees to within the interpolation's bound (10⁻⁴ of the tolerance of
+    // the value's scale) and the state's values to round-off.
+    let scene = rigid(&[(DT, 1e-3), (T_END, 3.0)]);
+    let computed = slideroute::Runner::new(&scene.simulation().unwrap()).run();
+    let steps = computed.diagnostics.steps.unwrap();
+    // Most of the rows are interpolated: five evaluated a step of about twenty.
+    assert!(
+        steps.rows_interpolated > 2000,
+        "{} of 3000 rows interpolated, {} steps",
+        steps.rows_interpolated,
+        steps.taken
+    );
+    let fine = computed.route;
+    let coarse = run(&rigid(&[(DT, 0.012), (T_END, 3.0)]));
+    assert_eq!(fine.increments, 3000);
+    let weight = 1.0e6 * 9.81; // `scenes/paper-like.toml`: 10⁶ kg
+    let mut compared = 0;
+    for c in &coarse.rows[1..] {
+        let k = (c.t_s / 1e-3).round() as usize;
+        let f = &fine.rows[k];
+        assert!((f.t_s - c.t_s).abs() < 1e-12, "{} against {}", f.t_s, c.t_s);
+        let state =
+            |r: &slideroute::Row| [r.x_m, r.z_m, r.theta_deg, r.vx_m_s, r.vz_m_s, r.omega_deg_s];
+        for (a, b) in state(f).iter().zip(state(c)) {
+            assert!(
+                (a - b).abs() <= 1e-12 * (1.0 + b.abs()),
+                "{}: {a} against {b}",
+                c.t_s
+            );
+        }
+        let pose = |r: &slideroute::Row| [r.y_m, r.alpha_deg, r.beta_deg, r.gamma_deg];
+        for (a, b) in pose(f).iter().zip(pose(c)) {
+            assert!((a - b).abs() <= 1e-13 * 57.3, "{}: {a} against {b}", c.t_s);
+        }
+        let forces = |r: &slideroute::Row| {
+            let (n, s) = (r.n_n.unwrap(), r.s_n.unwrap());
+            [n[0], n[1], n[2], s[0], s[1], s[2]]
+        };
+        for (a, b) in forces(f).iter().zip(forces(c)) {
+            assert!(
+                (a - b).abs() <= 2e-13 * weight,
+                "{}: {a} N against {b} N",
+                c.t_s
+            );
+        }
+        compared += 1;
+    }
+    assert_eq!(compared, 250);
+}
+
+#[test]
 fn rigid_body_moves_where_the_papers_frictional_system_has_no_solution() {
     // κ = 0 (a common foundation), and μ = 0.05 on the paper-like geometry: the paper's
     // dynamics ends with "no solution"; the rigid body gives a route to a stated physical end.

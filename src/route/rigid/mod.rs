@@ -30,6 +30,7 @@ mod ground;
 mod held_region;
 mod hold;
 mod rest;
+mod rows;
 mod state;
 mod substep;
 mod tendons;
@@ -107,6 +108,8 @@ pub(super) struct RigidBody<'a> {
     /// The recorded rows at the times strictly inside the last step (its dense output, each
     /// evaluated at its state), for a step longer than the rows' interval.
     within: Vec<Row>,
+    /// The recorded times inside the last step (a buffer kept from step to step).
+    times: Vec<f64>,
     /// The time the driver last advanced to: the row it asks for is this one's.
     shown_t: f64,
     /// What the energy balance is measured from: the start.
@@ -154,6 +157,7 @@ impl<'a> RigidBody<'a> {
             h,
             weights,
             within: Vec::new(),
+            times: Vec::new(),
             shown_t: 0.0,
             energy,
             round_off,

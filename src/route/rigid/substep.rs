@@ -2,22 +2,26 @@
 //! error estimate exceeds the tolerance or the energy balance says RK4 does not resolve the
 //! motion, or cut at an event and the event handled (`derivations/08-rigid-body.md` §3, §4a).
 //! A step may be longer than the interval of the recorded rows: the rows within it are its dense
-//! output, each evaluated at its own state.
+//! output, each evaluated at its own state, or, in a long step that holds no contact, evaluated
+//! at a few and the model's values interpolated between them (`rows.rs`).
 
 use super::evaluate::{Eval, Hold, evaluate};
 use super::events::{Bracket, Event, Heading, Span, bracket_event, confirmed, rk4_stages};
 use super::ground::{BeforeImpact, after_impact, ground_event};
 use super::hold::{Anchor, hold_anchor, hold_on_creases};
 use super::rest::Rest;
+use super::rows;
 use super::state::{RigidState, VALUES};
 use super::tendons::AT_CAPACITY;
 use super::{Ending, RigidBody};
+use crate::mechanics::rigid_body::Motion;
 use crate::model::Simulation;
 use crate::route::driver::recorded_within;
 use crate::route::dynamics::Flow;
 use crate::route::integrator::{error_ratio, hermite};
 use crate::route::logbook::Logbook;
 use crate::route::pose_finder::PoseFinder;
+use crate::route::row::Row;
 use crate::route::termination::{Reason, Stop};
 use nalgebra::Vector3;
 
@@ -364,8 +368,8 @@ impl RigidBody<'_> {
 
     /// No event in the step: take it unless its error estimate exceeds the tolerance or the
     /// energy balance moved by more than its own (then shorten the step and try again); a
-    /// sticking contact is held where it stuck. The rows the step passes are its dense output,
-    /// each evaluated at its state. The next step's length follows from this one's error.
+    /// sticking contact is held where it stuck. The rows the step passes are its dense output
+    /// (`rows_within`). The next step's length follows from this one's error.
     fn move_on<'f>(
         &mut self,
         finder: &mut PoseFinder<'f>,
@@ -409,11 +413,15 @@ impl RigidBody<'_> {
         let (mut next, mut next_ev) = (next, next_ev);
         hold_on_creases(&self.sim, &mut at_next, &mut next, &mut next_ev)
             .map_err(Ending::Failed)?;
-        if !self.rows_within(finder, h, &k1, (&next, &next_ev)) {
+        // Interpolated rows only where every event within the step is located (so that it is
+        // smooth), not past `MAX_EVENTS` or `MAX_SWITCHES`.
+        let smooth = resolve && self.switching;
+        let Some(interpolated) = self.rows_within(finder, h, &k1, (&next, &next_ev), smooth) else {
             // A row within the step off the model: shorter steps.
             self.h = 0.5 * h;
             return Ok(Substep::Retry);
-        }
+        };
+        o.interpolated += interpolated;
         *finder = at_next;
         self.go_to(o, next, next_ev);
         self.anchor = Anchor::after(&self.ev, self.anchor);
@@ -431,48 +439,101 @@ impl RigidBody<'_> {
 
     /// The recorded rows strictly inside the step of length `h` from the current state (its
     /// derivative `k1`) to `end`: the step's dense output (`integrator::hermite`) at each row's
-    /// time, evaluated there on a copy of `start`, the finder at the step's start. False where a
-    /// row's state is off the model.
+    /// time, evaluated there on a copy of `start`, the finder at the step's start — or, in a
+    /// step that holds no contact and passes at least `rows::FEWEST` rows, evaluated at a few
+    /// and the model's values interpolated between them (`rows.rs`) where the step is `smooth`
+    /// (every event within it located). The number of rows interpolated; `None` where an
+    /// evaluated row's state is off the model.
     fn rows_within(
         &mut self,
         start: &PoseFinder<'_>,
         h: f64,
         k1: &[f64; VALUES],
         (end, end_ev): (&RigidState, &Eval),
-    ) -> bool {
+        smooth: bool,
+    ) -> Option<usize> {
         self.within.clear();
         let t0 = self.t;
-        let mut times = recorded_within(self.sim.settings(), t0, t0 + h).peekable();
-        if times.peek().is_none() {
-            return true;
-        }
-        let (y0, y1) = (self.y.to_array(), end.to_array());
-        let k5 = end.derivative(&end_ev.motion);
-        let hold = Hold::of(&self.ev.motion);
-        let mut f = start.clone();
-        for t in times {
-            let y = RigidState::from_array(&hermite((&y0, k1), (&y1, &k5), h, (t - t0) / h));
-            let y = y.at(y0[8] + (t - t0));
-            // Held as the step's end is: a sticking contact where it stuck, a crease's contact
-            // on its second face.
-            let row = evaluate(&self.sim, &mut f, &y, hold).and_then(|mut e| {
-                let mut y = match self.anchor {
-                    Some(a) if e.motion.stuck == Some(a.contact) => {
-                        let held;
-                        (held, e) = hold_anchor(&self.sim, &mut f, e.accept(&y), e, a)?;
-                        held
-                    }
-                    _ => e.accept(&y),
-                };
-                hold_on_creases(&self.sim, &mut f, &mut y, &mut e)?;
-                Ok(e.row(t, &y))
-            });
-            match row {
-                Ok(r) => self.within.push(r),
-                Err(_) => return false,
+        let mut times = std::mem::take(&mut self.times);
+        times.clear();
+        times.extend(recorded_within(self.sim.settings(), t0, t0 + h));
+        let rows = 'rows: {
+            if times.is_empty() {
+                break 'rows Some(0);
             }
-        }
-        true
+            let (y0, y1) = (self.y.to_array(), end.to_array());
+            let k5 = end.derivative(&end_ev.motion);
+            let dense = |t: f64| {
+                let y = RigidState::from_array(&hermite((&y0, k1), (&y1, &k5), h, (t - t0) / h));
+                y.at(y0[8] + (t - t0))
+            };
+            let hold = Hold::of(&self.ev.motion);
+            let holds_none = |m: &Motion| m.stuck.is_none() && m.creases.is_empty();
+            if smooth
+                && times.len() >= rows::FEWEST
+                && self.anchor.is_none()
+                && holds_none(&self.ev.motion)
+                && holds_none(&end_ev.motion)
+            {
+                // Nothing held: a row's state is the dense output's as it is (`Eval::accept`
+                // changes no rate, `hold_anchor` and `hold_on_creases` nothing).
+                let mut f = start.clone();
+                let first = self.ev.row(t0, &self.y);
+                let last = end_ev.row(t0 + h, end);
+                let sim = &self.sim;
+                let exact = |t: f64| {
+                    let y = dense(t);
+                    evaluate(sim, &mut f, &y, hold).map(|e| e.row(t, &e.accept(&y)))
+                };
+                let state = |t: f64, like: &Row| {
+                    let y = dense(t);
+                    Row {
+                        t_s: t,
+                        x_m: y.x,
+                        z_m: y.z,
+                        theta_deg: y.theta.to_degrees(),
+                        vx_m_s: y.vx,
+                        vz_m_s: y.vz,
+                        omega_deg_s: y.omega.to_degrees(),
+                        ..*like
+                    }
+                };
+                let scale = (self.sim.l(), self.sim.settings().tolerance);
+                let (from, to) = ((t0, &first), (t0 + h, &last));
+                match rows::interpolate(&times, from, to, scale, exact, state, &mut self.within) {
+                    Ok(rows::Interpolated::Done) => {
+                        break 'rows Some(times.len() - rows::EVALUATED);
+                    }
+                    Ok(rows::Interpolated::Evaluate) => self.within.clear(),
+                    Err(_) => break 'rows None,
+                }
+            }
+            let mut f = start.clone();
+            for &t in &times {
+                let y = dense(t);
+                // Held as the step's end is: a sticking contact where it stuck, a crease's contact
+                // on its second face.
+                let row = evaluate(&self.sim, &mut f, &y, hold).and_then(|mut e| {
+                    let mut y = match self.anchor {
+                        Some(a) if e.motion.stuck == Some(a.contact) => {
+                            let held;
+                            (held, e) = hold_anchor(&self.sim, &mut f, e.accept(&y), e, a)?;
+                            held
+                        }
+                        _ => e.accept(&y),
+                    };
+                    hold_on_creases(&self.sim, &mut f, &mut y, &mut e)?;
+                    Ok(e.row(t, &y))
+                });
+                match row {
+                    Ok(r) => self.within.push(r),
+                    Err(_) => break 'rows None,
+                }
+            }
+            Some(0)
+        };
+        self.times = times;
+        rows
     }
 
     /// Takes the state `y`, evaluated as `e`, its travel booked.
