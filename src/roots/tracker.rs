@@ -134,6 +134,27 @@ fn norm(v: [f64; 2]) -> f64 {
     v[0].abs().max(v[1].abs())
 }
 
+/// One Newton update of the unsquared equations at `u`.
+#[inline]
+fn update(eqs: &Equations, u: [f64; 2], iterations: &mut usize) -> Result<[f64; 2], Refusal> {
+    let e = eqs.eval(u).ok_or(Refusal::NoRealQ)?;
+    *iterations += 1;
+    let [[a, b], [c, d]] = e.j;
+    let det = a * d - b * c;
+    let jmax = a.abs().max(b.abs()).max(c.abs()).max(d.abs());
+    if det.is_nan() || det.abs() <= 1e-13 * jmax * jmax {
+        return Err(Refusal::Singular);
+    }
+    let du = [
+        -(d * e.r[0] - b * e.r[1]) / det,
+        -(a * e.r[1] - c * e.r[0]) / det,
+    ];
+    if !norm(du).is_finite() {
+        return Err(Refusal::NoConvergence);
+    }
+    Ok(du)
+}
+
 /// Newton on the unsquared equations from `u0`, with the contraction test.
 #[inline]
 pub(crate) fn correct(
@@ -144,22 +165,8 @@ pub(crate) fn correct(
     let mut u = u0;
     let mut last = f64::INFINITY;
     for k in 0..MAX_ITERATIONS {
-        let e = eqs.eval(u).ok_or(Refusal::NoRealQ)?;
-        *iterations += 1;
-        let [[a, b], [c, d]] = e.j;
-        let det = a * d - b * c;
-        let jmax = a.abs().max(b.abs()).max(c.abs()).max(d.abs());
-        if det.is_nan() || det.abs() <= 1e-13 * jmax * jmax {
-            return Err(Refusal::Singular);
-        }
-        let du = [
-            -(d * e.r[0] - b * e.r[1]) / det,
-            -(a * e.r[1] - c * e.r[0]) / det,
-        ];
+        let du = update(eqs, u, iterations)?;
         let n = norm(du);
-        if !n.is_finite() {
-            return Err(Refusal::NoConvergence);
-        }
         let limit = if k == 1 { 0.25 } else { 0.5 };
         if k >= 1 && n > limit * last && n > 1e-13 {
             return Err(Refusal::NotContracting);
@@ -278,16 +285,35 @@ impl<'s> Tracker<'s> {
             let u_pred = self.predict(d);
             let eqs =
                 Equations::from_inputs(&Inputs::with_trig(&self.site, &self.trig, d), self.mode);
-            let result = correct(&eqs, u_pred, &mut self.stats.newton_iterations).and_then(|u| {
-                // Jump guard: with a secant predictor the correction is second order in the step.
-                let step = norm([u[0] - self.current.u[0], u[1] - self.current.u[1]]);
-                let corr = norm([u[0] - u_pred[0], u[1] - u_pred[1]]);
-                if self.previous.is_some() && corr > 0.5 * step + 1e-12 {
+            let here = self.current.u;
+            // Jump guard: with a first-order predictor the correction is second order in the
+            // step.
+            let guarded = |u: [f64; 2], pred: [f64; 2]| {
+                let step = norm([u[0] - here[0], u[1] - here[1]]);
+                let corr = norm([u[0] - pred[0], u[1] - pred[1]]);
+                if corr > 0.5 * step + 1e-12 {
                     Err(Refusal::Jump)
                 } else {
                     Ok(u)
                 }
+            };
+            let iterations = &mut self.stats.newton_iterations;
+            let mut result = correct(&eqs, u_pred, iterations).and_then(|u| match self.previous {
+                Some(_) => guarded(u, u_pred),
+                None => Ok(u),
             });
+            if matches!(result, Err(Refusal::Jump)) {
+                // The secant extrapolates along the last segment only: where the new one turns
+                // away from it (a held contact projected back, an integrator's stages, a pivot),
+                // its error is of the first order and halving the step does not help. Newton's
+                // first update from the current point is a first-order predictor along any
+                // segment (the tangent's, to first order); against it the correction is of the
+                // second order again.
+                result = update(&eqs, here, iterations).and_then(|du| {
+                    let tangent = [here[0] + du[0], here[1] + du[1]];
+                    correct(&eqs, tangent, iterations).and_then(|u| guarded(u, tangent))
+                });
+            }
             match result {
                 Ok(u) => {
                     self.previous = Some(self.current);
@@ -393,6 +419,35 @@ mod tests {
         }
         assert_eq!(t.stats.rejected, 0, "{:?}", t.stats);
         assert_eq!(t.stats.steps, 20, "{:?}", t.stats);
+    }
+
+    #[test]
+    fn a_path_that_turns_or_goes_back_is_followed_at_once_on_the_same_branch() {
+        // A held contact projected back, an integrator's stages, a pivot: the displacement
+        // turns away from the last segment, where the secant predicts wrong to first order and
+        // every step was refused as a jump and halved some twenty times. Each is taken at once
+        // (Newton's first update from the current point as the predictor), on the branch a
+        // tracker going straight there from the start finds.
+        let scene = Scene::default_scene();
+        let mut t = Tracker::new(&scene.site, Mode::Exact);
+        let path = [
+            (0.02, 0.0, 0.0),
+            (0.04, 0.0, 0.0),
+            (0.04, 0.0, 0.002),
+            (0.04, 0.003, 0.002),
+            (0.03, 0.003, 0.002),
+            (0.035, 0.001, 0.001),
+            (0.05, 0.001, 0.001),
+        ];
+        for &(x, z, theta) in &path {
+            let d = Displacement::new(x, z, theta);
+            let got = t.advance(d).unwrap().u;
+            let want = Tracker::new(&scene.site, Mode::Exact).advance(d).unwrap().u;
+            let off = norm([got[0] - want[0], got[1] - want[1]]);
+            assert!(off < 1e-12, "{d:?}: {got:?} against {want:?}");
+        }
+        assert_eq!(t.stats.rejected, 0, "{:?}", t.stats);
+        assert_eq!(t.stats.steps, path.len(), "{:?}", t.stats);
     }
 
     #[test]
