@@ -30,6 +30,7 @@ impl<const N: usize> Nodes<N> {
 
     /// The Lagrange basis at `x`: ℓⱼ(x), so that the interpolant of values fⱼ is Σ ℓⱼ fⱼ. At a
     /// node, the unit vector of that node.
+    #[inline]
     pub fn basis(&self, x: f64) -> [f64; N] {
         let mut l = [0.0; N];
         if let Some(j) = self.s.iter().position(|&s| s == x) {
@@ -50,6 +51,7 @@ impl<const N: usize> Nodes<N> {
 }
 
 /// The interpolant of the values `f` (one per node) at the basis `l` (`Nodes::basis`).
+#[inline]
 pub fn combine<const N: usize>(l: &[f64; N], f: &[f64; N]) -> f64 {
     l.iter().zip(f).map(|(a, b)| a * b).sum()
 }

@@ -2,9 +2,11 @@
 //! within a long step"): the model evaluated at a few of them, spread like Chebyshev–Lobatto
 //! points, and at one more where the interpolant's error is largest; the rest interpolated
 //! through those and the step's two ends, when that one more row says the interpolant is within
-//! 10⁻⁴ of the tolerance (never below the model's round-off). Their state (X, Z, θ and the
-//! rates) is the step's dense output either way; what is interpolated is what the model adds to
-//! it: the CM's height, the tilts and the reactions.
+//! 10⁻⁴ of the tolerance (never below the model's round-off). In a step that holds no contact
+//! their state (X, Z, θ and the rates) is the step's dense output either way, and what is
+//! interpolated is what the model adds to it: the CM's height, the tilts and the reactions; in
+//! a step that holds a sticking contact where it stuck, the hold moves the state as well, and
+//! every value is interpolated.
 
 use crate::numeric::barycentric::{Nodes, combine};
 use crate::route::row::Row;
@@ -34,9 +36,28 @@ const SHARE: f64 = 1e-4;
 /// normal reaction; at τ below 10⁻⁹ the bound `SHARE` τ would refuse every step on round-off).
 const ROUND_OFF: f64 = 1e-13;
 
-/// The values of a row the model adds to the step's state: the CM's height, the tilts α, β, γ,
-/// the normal reactions and the shears.
-const DERIVED: usize = 10;
+/// A row's numbers but its time: X, Y, Z, θ, α, β, γ, Ẋ, Ż, θ̇, the normal reactions and the
+/// shears.
+const FIELDS: usize = 16;
+
+/// Which of a row's numbers are interpolated.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum Values {
+    /// What the model adds to the step's state: the CM's height Y, the tilts, the reactions.
+    Model,
+    /// Every number (a held contact's projection moves the state too).
+    All,
+}
+
+impl Values {
+    /// The fields interpolated (indices into `fields`).
+    fn which(self) -> &'static [usize] {
+        match self {
+            Values::Model => &[1, 4, 5, 6, 10, 11, 12, 13, 14, 15],
+            Values::All => &[0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15],
+        }
+    }
+}
 
 /// What became of the rows within a step.
 #[derive(Debug)]
@@ -49,14 +70,20 @@ pub(super) enum Interpolated {
     Evaluate,
 }
 
-/// The values the model adds to the state in row `r`, if it has its reactions.
-fn derived(r: &Row) -> Option<[f64; DERIVED]> {
+/// A row's numbers but its time (`FIELDS`), if it has its reactions.
+fn fields(r: &Row) -> Option<[f64; FIELDS]> {
     let (n, s) = (r.n_n?, r.s_n?);
     Some([
+        r.x_m,
         r.y_m,
+        r.z_m,
+        r.theta_deg,
         r.alpha_deg,
         r.beta_deg,
         r.gamma_deg,
+        r.vx_m_s,
+        r.vz_m_s,
+        r.omega_deg_s,
         n[0],
         n[1],
         n[2],
@@ -66,17 +93,29 @@ fn derived(r: &Row) -> Option<[f64; DERIVED]> {
     ])
 }
 
-/// Row `r` with the values the model adds set to `v`.
-fn with_derived(r: Row, v: &[f64; DERIVED]) -> Row {
-    Row {
-        y_m: v[0],
-        alpha_deg: v[1],
-        beta_deg: v[2],
-        gamma_deg: v[3],
-        n_n: Some([v[4], v[5], v[6]]),
-        s_n: Some([v[7], v[8], v[9]]),
-        ..r
+/// Row `r` with the fields `which` set from `v`.
+fn with_fields(mut r: Row, v: &[f64; FIELDS], which: &[usize]) -> Row {
+    let (mut n, mut s) = (r.n_n.unwrap_or_default(), r.s_n.unwrap_or_default());
+    for &i in which {
+        let x = v[i];
+        match i {
+            0 => r.x_m = x,
+            1 => r.y_m = x,
+            2 => r.z_m = x,
+            3 => r.theta_deg = x,
+            4 => r.alpha_deg = x,
+            5 => r.beta_deg = x,
+            6 => r.gamma_deg = x,
+            7 => r.vx_m_s = x,
+            8 => r.vz_m_s = x,
+            9 => r.omega_deg_s = x,
+            10..13 => n[i - 10] = x,
+            _ => s[i - 13] = x,
+        }
     }
+    r.n_n = Some(n);
+    r.s_n = Some(s);
+    r
 }
 
 /// Whether two rows are of one kind: the same faces, creases and carrying points.
@@ -88,24 +127,28 @@ fn same_kind(a: &Row, b: &Row) -> bool {
 }
 
 /// The rows at `times` (increasing, strictly inside the step from `t0` to `t1`, at least
-/// `FEWEST` of them) into `out`: `first` and `last` the rows at the step's ends, `exact` the
-/// model's row at a time (called in increasing time), `state` the row of the step's dense state
-/// at a time (its other values as they come). `l` the block's size, `tolerance` the route's.
-/// An error is a node's row off the model.
+/// `FEWEST` of them) into `out`, the `values` interpolated: `first` and `last` the rows at the
+/// step's ends, `exact` the model's row at a time (called in increasing time), `state` the row
+/// of the step's dense state at a time (its other values as they come; those interpolated are
+/// set over them). `l` the block's size, `tolerance` the route's. An error is a node's row off
+/// the model.
+#[allow(clippy::too_many_arguments)]
 pub(super) fn interpolate(
     times: &[f64],
     (t0, first): (f64, &Row),
     (t1, last): (f64, &Row),
     (l, tolerance): (f64, f64),
+    values: Values,
     mut exact: impl FnMut(f64) -> Result<Row, Stop>,
     state: impl Fn(f64, &Row) -> Row,
     out: &mut Vec<Row>,
 ) -> Result<Interpolated, Stop> {
     out.clear();
     let h = t1 - t0;
-    let (Some(picked), Some(ends)) = (pick(times, t0, h), derived(first).zip(derived(last))) else {
+    let (Some(picked), Some(ends)) = (pick(times, t0, h), fields(first).zip(fields(last))) else {
         return Ok(Interpolated::Evaluate);
     };
+    let which = values.which();
     let s_of = |t: f64| (t - t0) / h;
     let mut s = [0.0; N];
     s[N - 1] = 1.0;
@@ -131,42 +174,35 @@ pub(super) fn interpolate(
     for (slot, &k) in evaluated.iter_mut().zip(&order) {
         *slot = (k, exact(times[k])?);
     }
-    let mut values = [[0.0; N]; DERIVED];
-    for (i, v) in values.iter_mut().enumerate() {
+    let mut nodal = [[0.0; N]; FIELDS];
+    for (i, v) in nodal.iter_mut().enumerate() {
         v[0] = ends.0[i];
         v[N - 1] = ends.1[i];
     }
     let mut checked = None;
     for (k, row) in &evaluated {
-        let Some(d) = derived(row).filter(|_| same_kind(row, first) && same_kind(row, last)) else {
+        let Some(d) = fields(row).filter(|_| same_kind(row, first) && same_kind(row, last)) else {
             return Ok(Interpolated::Evaluate);
         };
         match picked.iter().position(|p| p == k) {
-            Some(j) => values.iter_mut().zip(d).for_each(|(v, x)| v[j + 1] = x),
+            Some(j) => nodal.iter_mut().zip(d).for_each(|(v, x)| v[j + 1] = x),
             None => checked = Some(d),
         }
     }
     let Some(checked) = checked else {
         return Ok(Interpolated::Evaluate);
     };
-    // Each value's bound: 10⁻⁴ of the tolerance of its scale, not below its round-off.
-    let reactions = values[4..7]
-        .iter()
-        .flatten()
-        .fold(0.0_f64, |m, x| m.max(x.abs()));
-    let degree = 1f64.to_degrees();
-    let scales = [l, degree, degree, degree]
-        .into_iter()
-        .chain([reactions; 6]);
-    let share = (SHARE * tolerance).max(ROUND_OFF);
-    let bounds: Vec<f64> = scales.map(|x| share * x).collect();
-    let at = |t: f64| -> [f64; DERIVED] {
+    let bounds = bounds(&nodal, l, SHARE * tolerance);
+    let at = |t: f64| -> [f64; FIELDS] {
         let basis = nodes.basis(s_of(t));
-        std::array::from_fn(|i| combine(&basis, &values[i]))
+        std::array::from_fn(|i| combine(&basis, &nodal[i]))
     };
     let guess = at(times[check]);
     // (Not `>`: a value that is not a number is no agreement.)
-    if !(0..DERIVED).all(|i| (guess[i] - checked[i]).abs() <= bounds[i]) {
+    if !which
+        .iter()
+        .all(|&i| (guess[i] - checked[i]).abs() <= bounds[i])
+    {
         return Ok(Interpolated::Evaluate);
     }
     let mut next = evaluated.iter().peekable();
@@ -178,13 +214,36 @@ pub(super) fn interpolate(
         let v = at(t);
         // A contact whose normal reaction the interpolant takes below zero is the model's
         // to tell (a lift-off between the nodes).
-        if v[4..7].iter().any(|n| *n < 0.0) {
+        if v[10..13].iter().any(|n| *n < 0.0) {
             out.clear();
             return Ok(Interpolated::Evaluate);
         }
-        out.push(with_derived(state(t, first), &v));
+        out.push(with_fields(state(t, first), &v, which));
     }
     Ok(Interpolated::Done)
+}
+
+/// Each field's bound from its values at the nodes: `share` (10⁻⁴ of the tolerance, not below
+/// `ROUND_OFF`) of its scale — the block's size `l` for X, Y, Z, one radian for the angles, the
+/// largest speed at the nodes (of the CM, or of a point at `l` from it by the yaw rate) for the
+/// rates, the largest normal reaction at the nodes for the forces.
+fn bounds(nodal: &[[f64; N]; FIELDS], l: f64, share: f64) -> [f64; FIELDS] {
+    let largest = |range: std::ops::Range<usize>, by: f64| {
+        nodal[range]
+            .iter()
+            .flatten()
+            .fold(0.0_f64, |m, x| m.max(by * x.abs()))
+    };
+    let reactions = largest(10..13, 1.0);
+    let speed = largest(7..9, 1.0).max(largest(9..10, l.to_radians()));
+    let degree = 1f64.to_degrees();
+    let yaw_rate = (speed / l).to_degrees();
+    let share = share.max(ROUND_OFF);
+    let mut scale = [reactions; FIELDS];
+    scale[..10].copy_from_slice(&[
+        l, l, l, degree, degree, degree, degree, speed, speed, yaw_rate,
+    ]);
+    scale.map(|x| share * x)
 }
 
 /// The rows (indices into `times`) nearest the Chebyshev–Lobatto points inside the step from
@@ -215,24 +274,21 @@ mod tests {
     use super::*;
     use crate::route::termination::Reason;
 
-    /// A row whose model values are smooth functions of time, its state the time itself.
+    /// A row whose values are smooth functions of time, X the time itself.
     fn model(t: f64) -> Row {
-        let v: [f64; DERIVED] = std::array::from_fn(|i| {
-            let i = i as f64;
-            if i >= 4.0 {
-                1e6 * (2.0 + (0.7 * t + 0.1 * i).sin())
-            } else {
-                (1.3 * t + i).cos()
+        let v: [f64; FIELDS] = std::array::from_fn(|i| {
+            let k = i as f64;
+            match i {
+                0 => t,
+                10.. => 1e6 * (2.0 + (0.7 * t + 0.1 * k).sin()),
+                _ => (1.3 * t + k).cos(),
             }
         });
-        with_derived(
-            Row {
-                t_s: t,
-                x_m: t,
-                ..Row::default()
-            },
-            &v,
-        )
+        let at = Row {
+            t_s: t,
+            ..Row::default()
+        };
+        with_fields(at, &v, Values::All.which())
     }
 
     fn state(t: f64, template: &Row) -> Row {
@@ -250,11 +306,23 @@ mod tests {
     }
 
     /// The rows of a step from 0.5 s to 0.54 s with `n` rows inside, the model `m` (its ends
-    /// too), τ = 10⁻⁹ and L = 1 m: what became of them, and the rows.
+    /// too), τ = 10⁻⁹ and L = 1 m, the model's values interpolated: what became of them, and
+    /// the rows.
     fn step(
         n: usize,
         m: impl FnMut(f64) -> Result<Row, Stop>,
         ends: impl Fn(f64) -> Row,
+    ) -> (Result<Interpolated, Stop>, Vec<Row>) {
+        step_of(Values::Model, n, m, ends, state)
+    }
+
+    /// `step` with `values` interpolated and the dense state `state`.
+    fn step_of(
+        values: Values,
+        n: usize,
+        m: impl FnMut(f64) -> Result<Row, Stop>,
+        ends: impl Fn(f64) -> Row,
+        state: impl Fn(f64, &Row) -> Row,
     ) -> (Result<Interpolated, Stop>, Vec<Row>) {
         let (t0, h) = (0.5, 0.04);
         let mut out = Vec::new();
@@ -264,6 +332,7 @@ mod tests {
             (t0, &first),
             (t0 + h, &last),
             (1.0, 1e-9),
+            values,
             m,
             state,
             &mut out,
@@ -286,12 +355,12 @@ mod tests {
         assert!(calls.windows(2).all(|w| w[0] < w[1]), "{calls:?}");
         assert_eq!(out.len(), ts.len());
         for (r, &t) in out.iter().zip(&ts) {
-            let (a, b) = (derived(r).unwrap(), derived(&model(t)).unwrap());
+            let (a, b) = (fields(r).unwrap(), fields(&model(t)).unwrap());
             assert_eq!(r.t_s, t);
             // The state is the step's own at the row's time, whether interpolated or not.
             assert_eq!(r.x_m, t);
-            for i in 0..DERIVED {
-                let scale = if i < 4 { 1.0 } else { 3e6 };
+            for &i in Values::Model.which() {
+                let scale = if i >= 10 { 3e6 } else { 1.0 };
                 assert!(
                     (a[i] - b[i]).abs() <= 1e-12 * scale,
                     "{t} {i}: {}",
@@ -299,6 +368,31 @@ mod tests {
                 );
             }
         }
+    }
+
+    #[test]
+    fn in_a_step_that_holds_a_contact_every_value_is_interpolated() {
+        // The hold moves the state off the dense output: the state is interpolated too (the
+        // dense state gives the time alone here).
+        let ts = times(0.5, 0.04, 39);
+        let time_only = |t: f64, like: &Row| Row { t_s: t, ..*like };
+        let (got, out) = step_of(Values::All, 39, |t| Ok(model(t)), model, time_only);
+        assert!(matches!(got, Ok(Interpolated::Done)));
+        for (r, &t) in out.iter().zip(&ts) {
+            let (a, b) = (fields(r).unwrap(), fields(&model(t)).unwrap());
+            for i in 0..FIELDS {
+                let scale = if i >= 10 { 3e6 } else { 1.0 };
+                assert!(
+                    (a[i] - b[i]).abs() <= 1e-12 * scale,
+                    "{t} {i}: {}",
+                    a[i] - b[i]
+                );
+            }
+        }
+        // The model's values alone, the state left as it came.
+        let (_, out) = step_of(Values::Model, 39, |t| Ok(model(t)), model, time_only);
+        let moved = out.iter().zip(&ts).filter(|(r, t)| r.x_m != **t).count();
+        assert!(moved > 30, "{moved} rows keep the state they came with");
     }
 
     #[test]

@@ -2,8 +2,8 @@
 //! error estimate exceeds the tolerance or the energy balance says RK4 does not resolve the
 //! motion, or cut at an event and the event handled (`derivations/08-rigid-body.md` §3, §4a).
 //! A step may be longer than the interval of the recorded rows: the rows within it are its dense
-//! output, each evaluated at its own state, or, in a long step that holds no contact, evaluated
-//! at a few and the model's values interpolated between them (`rows.rs`).
+//! output, each evaluated at its own state, or, in a long step that holds no contact in a crease,
+//! evaluated at a few and the rest interpolated between them (`rows.rs`).
 
 use super::evaluate::{Eval, Hold, evaluate};
 use super::events::{Bracket, Event, Heading, Span, bracket_event, confirmed, rk4_stages};
@@ -440,9 +440,9 @@ impl RigidBody<'_> {
     /// The recorded rows strictly inside the step of length `h` from the current state (its
     /// derivative `k1`) to `end`: the step's dense output (`integrator::hermite`) at each row's
     /// time, evaluated there on a copy of `start`, the finder at the step's start — or, in a
-    /// step that holds no contact and passes at least `rows::FEWEST` rows, evaluated at a few
-    /// and the model's values interpolated between them (`rows.rs`) where the step is `smooth`
-    /// (every event within it located). The number of rows interpolated; `None` where an
+    /// step that holds no contact in a crease, and none sticking or the same one at both ends,
+    /// and passes at least `rows::FEWEST` rows, evaluated at a few and the rest interpolated
+    /// between them (`rows.rs`) where the step is `smooth` (every event within it located). The number of rows interpolated; `None` where an
     /// evaluated row's state is off the model.
     fn rows_within(
         &mut self,
@@ -468,22 +468,53 @@ impl RigidBody<'_> {
                 y.at(y0[8] + (t - t0))
             };
             let hold = Hold::of(&self.ev.motion);
-            let holds_none = |m: &Motion| m.stuck.is_none() && m.creases.is_empty();
-            if smooth
+            let (sim, anchor) = (&self.sim, self.anchor);
+            // The model's row at `t`, held as the step's end is: a sticking contact where it
+            // stuck, a crease's contact on its second face.
+            let row_at = |f: &mut PoseFinder<'_>, t: f64| {
+                let y = dense(t);
+                evaluate(sim, f, &y, hold).and_then(|mut e| {
+                    let mut y = match anchor {
+                        Some(a) if e.motion.stuck == Some(a.contact) => {
+                            let held;
+                            (held, e) = hold_anchor(sim, f, e.accept(&y), e, a)?;
+                            held
+                        }
+                        _ => e.accept(&y),
+                    };
+                    hold_on_creases(sim, f, &mut y, &mut e)?;
+                    Ok(e.row(t, &y))
+                })
+            };
+            let no_creases = |m: &Motion| m.creases.is_empty();
+            let stuck = |m: &Motion| m.stuck;
+            // What a row's state is: nothing held, the dense output's as it is (`Eval::accept`
+            // changes no rate, `hold_anchor` and `hold_on_creases` nothing), and the model's
+            // values are interpolated; a contact held where it stuck at both ends, the hold's,
+            // and every value is.
+            let values = match (anchor, stuck(&self.ev.motion), stuck(&end_ev.motion)) {
+                (None, None, None) => Some(rows::Values::Model),
+                (Some(a), Some(i), Some(j)) if i == a.contact && j == a.contact => {
+                    Some(rows::Values::All)
+                }
+                _ => None,
+            };
+            if let Some(values) = values
+                && smooth
                 && times.len() >= rows::FEWEST
-                && self.anchor.is_none()
-                && holds_none(&self.ev.motion)
-                && holds_none(&end_ev.motion)
+                && no_creases(&self.ev.motion)
+                && no_creases(&end_ev.motion)
             {
-                // Nothing held: a row's state is the dense output's as it is (`Eval::accept`
-                // changes no rate, `hold_anchor` and `hold_on_creases` nothing).
                 let mut f = start.clone();
                 let first = self.ev.row(t0, &self.y);
                 let last = end_ev.row(t0 + h, end);
-                let sim = &self.sim;
-                let exact = |t: f64| {
-                    let y = dense(t);
-                    evaluate(sim, &mut f, &y, hold).map(|e| e.row(t, &e.accept(&y)))
+                let exact = |t: f64| match values {
+                    // Nothing held: the model at the dense state, as `row_at` has it.
+                    rows::Values::Model => {
+                        let y = dense(t);
+                        evaluate(sim, &mut f, &y, hold).map(|e| e.row(t, &e.accept(&y)))
+                    }
+                    rows::Values::All => row_at(&mut f, t),
                 };
                 let state = |t: f64, like: &Row| {
                     let y = dense(t);
@@ -500,7 +531,16 @@ impl RigidBody<'_> {
                 };
                 let scale = (self.sim.l(), self.sim.settings().tolerance);
                 let (from, to) = ((t0, &first), (t0 + h, &last));
-                match rows::interpolate(&times, from, to, scale, exact, state, &mut self.within) {
+                match rows::interpolate(
+                    &times,
+                    from,
+                    to,
+                    scale,
+                    values,
+                    exact,
+                    state,
+                    &mut self.within,
+                ) {
                     Ok(rows::Interpolated::Done) => {
                         break 'rows Some(times.len() - rows::EVALUATED);
                     }
@@ -510,22 +550,7 @@ impl RigidBody<'_> {
             }
             let mut f = start.clone();
             for &t in &times {
-                let y = dense(t);
-                // Held as the step's end is: a sticking contact where it stuck, a crease's contact
-                // on its second face.
-                let row = evaluate(&self.sim, &mut f, &y, hold).and_then(|mut e| {
-                    let mut y = match self.anchor {
-                        Some(a) if e.motion.stuck == Some(a.contact) => {
-                            let held;
-                            (held, e) = hold_anchor(&self.sim, &mut f, e.accept(&y), e, a)?;
-                            held
-                        }
-                        _ => e.accept(&y),
-                    };
-                    hold_on_creases(&self.sim, &mut f, &mut y, &mut e)?;
-                    Ok(e.row(t, &y))
-                });
-                match row {
+                match row_at(&mut f, t) {
                     Ok(r) => self.within.push(r),
                     Err(_) => break 'rows None,
                 }
