@@ -70,27 +70,15 @@ pub(super) enum Interpolated {
     Evaluate,
 }
 
-/// A row's numbers but its time (`FIELDS`), if it has its reactions.
+/// A row's numbers but its time (`FIELDS`: `Row::values` after the time, in its order), if it
+/// has its reactions.
 fn fields(r: &Row) -> Option<[f64; FIELDS]> {
-    let (n, s) = (r.n_n?, r.s_n?);
-    Some([
-        r.x_m,
-        r.y_m,
-        r.z_m,
-        r.theta_deg,
-        r.alpha_deg,
-        r.beta_deg,
-        r.gamma_deg,
-        r.vx_m_s,
-        r.vz_m_s,
-        r.omega_deg_s,
-        n[0],
-        n[1],
-        n[2],
-        s[0],
-        s[1],
-        s[2],
-    ])
+    let values = r.values();
+    let mut f = [0.0; FIELDS];
+    for (f, v) in f.iter_mut().zip(&values[1..=FIELDS]) {
+        *f = (*v)?;
+    }
+    Some(f)
 }
 
 /// Row `r` with the fields `which` set from `v`.
