@@ -4,8 +4,8 @@
 //! θ in [−3°, 3°], exact mode), their pose systems' coefficients computed once:
 //!
 //! * criterion: the roots of the 4096 systems batched (`BatchSolver`: the resultant, the
-//!   companion matrices' eigenvalues in lockstep, y), and one system at a time
-//!   (`eigen::solve`, the same roots);
+//!   companion matrix's eigenvalues continued from the pose before as quadratic factors and
+//!   certified, else by QR; y), and one system at a time (`eigen::solve`, QR);
 //! * then, under `cargo bench` only, the CPU time a pose of each on this thread, and the same
 //!   solve in vectorised NumPy over all 4096 poses (`benches/numpy_roots.py`: the resultant in y
 //!   as a degree-8 polynomial in x, `np.linalg.eigvals` of the stacked companion matrices, y
@@ -50,7 +50,7 @@ fn batch(c: &mut Criterion) {
     let systems = systems();
     let mut g = c.benchmark_group("roots of 4096 poses");
     g.throughput(Throughput::Elements(POSES as u64));
-    g.bench_function("batched (lockstep QR)", |b| {
+    g.bench_function("batched (continued, certified)", |b| {
         let (mut solver, mut out) = (BatchSolver::new(), Vec::new());
         b.iter(|| solver.solve(black_box(&systems), &mut out))
     });
@@ -106,6 +106,7 @@ fn python() -> PathBuf {
 fn against_numpy(systems: &[(Coeffs, Coeffs)]) {
     let (mut solver, mut out) = (BatchSolver::new(), Vec::new());
     let batched = us_per_pose(|| solver.solve(black_box(systems), &mut out));
+    let (continued, by_qr) = (solver.continued, solver.by_qr);
     let alone = us_per_pose(|| {
         black_box(
             systems
@@ -141,8 +142,13 @@ fn against_numpy(systems: &[(Coeffs, Coeffs)]) {
         .output();
     let _ = std::fs::remove_dir_all(&dir);
     println!("\nCPU time a pose, one thread, {POSES} poses of the default scene (exact):");
-    println!("  ours, batched (lockstep QR):     {batched:.3} µs");
+    println!("  ours, batched (continued):       {batched:.3} µs");
     println!("  ours, one at a time:             {alone:.3} µs");
+    println!(
+        "  poses continued and certified: {:.2} % ({continued} of {})",
+        100.0 * continued as f64 / (continued + by_qr) as f64,
+        continued + by_qr
+    );
     let text = match run {
         Ok(o) if o.status.success() => String::from_utf8_lossy(&o.stdout).into_owned(),
         Ok(o) => {

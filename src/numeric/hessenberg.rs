@@ -15,9 +15,8 @@ pub const N: usize = 8;
 /// Sweeps per eigenvalue before the iteration is given up.
 pub(crate) const MAX_SWEEPS: usize = 30;
 
-/// Reading and writing entry (i, j) of a matrix: the steps of the iteration that the lockstep
-/// version (`hessenberg_lanes.rs`) shares with this one take any storage through it, so both
-/// run the same operations in the same order.
+/// Reading and writing entry (i, j) of a matrix: the steps of the iteration take their storage
+/// through it (one implementation, the fixed 1-based array).
 pub(crate) trait Entries {
     /// Entry (i, j), 1-based.
     fn at(&self, i: usize, j: usize) -> f64;
@@ -60,11 +59,6 @@ impl Hessenberg {
             a[j][j - 1] = 1.0;
         }
         Hessenberg { a, n }
-    }
-
-    /// The entries (1-based, row and column 0 unused) and the order.
-    pub(crate) fn parts(&self) -> (&[[f64; N + 1]; N + 1], usize) {
-        (&self.a, self.n)
     }
 
     /// Diagonal similarity by powers of 2 that makes row and column norms comparable.

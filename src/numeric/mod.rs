@@ -1,13 +1,13 @@
-//! Small numerical kernels shared by the stages: eigenvalues of small Hessenberg matrices (one
-//! at a time, or many in lockstep),
+//! Small numerical kernels shared by the stages: eigenvalues of small Hessenberg matrices, the
+//! roots of a polynomial continued from a nearby one's quadratic factors,
 //! dense polynomial products, the resultant of two quadratics, the eigen-decomposition of a
 //! symmetric 2 × 2 matrix, small square systems solved on fixed arrays, and interpolation
 //! through a few nodes.
 
+pub mod bairstow;
 pub mod barycentric;
 mod distribution;
 pub mod hessenberg;
-pub mod hessenberg_lanes;
 mod shown;
 pub mod small_solve;
 mod symmetric2;
@@ -43,6 +43,22 @@ pub fn poly_mul(a: &[f64], b: &[f64], out: &mut [f64]) {
 /// One kernel for the pose system's x-roots (`roots::eigen`) and the paper's reactions
 /// (`mechanics::reactions_paper`).
 pub fn quadratic_resultant(a: [&[f64]; 3], b: [&[f64]; 3]) -> ([f64; 9], [f64; 9], [f64; 9]) {
+    // Every coefficient quadratic in x (the pose system's case): fixed-size arithmetic.
+    fn fixed(c: [&[f64]; 3]) -> Option<[&[f64; 3]; 3]> {
+        Some([
+            c[0].try_into().ok()?,
+            c[1].try_into().ok()?,
+            c[2].try_into().ok()?,
+        ])
+    }
+    match (fixed(a), fixed(b)) {
+        (Some(a), Some(b)) => quadratic_resultant_3(a, b),
+        _ => quadratic_resultant_any(a, b),
+    }
+}
+
+/// [`quadratic_resultant`] for coefficients of any number of terms.
+fn quadratic_resultant_any(a: [&[f64]; 3], b: [&[f64]; 3]) -> ([f64; 9], [f64; 9], [f64; 9]) {
     // u·v − w·z (degree ≤ 8) and |u|·|v| + |w|·|z|.
     let cross = |u: &[f64], v: &[f64], w: &[f64], z: &[f64]| {
         let (mut l, mut r, mut la, mut ra) = ([0.0; 9], [0.0; 9], [0.0; 9], [0.0; 9]);
@@ -94,6 +110,41 @@ pub fn quadratic_resultant(a: [&[f64]; 3], b: [&[f64]; 3]) -> ([f64; 9], [f64; 9
     )
 }
 
+/// [`quadratic_resultant`] where every coefficient has three terms: the same operations in the
+/// same order on fixed arrays (the same bits; a test compares), without the slices' bounds and
+/// zeroing.
+fn quadratic_resultant_3(a: [&[f64; 3]; 3], b: [&[f64; 3]; 3]) -> ([f64; 9], [f64; 9], [f64; 9]) {
+    fn mul<const U: usize, const V: usize, const W: usize>(u: &[f64; U], v: &[f64; V]) -> [f64; W] {
+        let mut out = [0.0; W];
+        for i in 0..U {
+            for j in 0..V {
+                out[i + j] += u[i] * v[j];
+            }
+        }
+        out
+    }
+    let cross = |u: &[f64; 3], v: &[f64; 3], w: &[f64; 3], z: &[f64; 3]| {
+        let (l, r): ([f64; 5], [f64; 5]) = (mul(u, v), mul(w, z));
+        let abs = |c: &[f64; 3]| c.map(f64::abs);
+        let (la, ra): ([f64; 5], [f64; 5]) = (mul(&abs(u), &abs(v)), mul(&abs(w), &abs(z)));
+        let (mut val, mut mag) = ([0.0; 5], [0.0; 5]);
+        for k in 0..5 {
+            val[k] = l[k] - r[k];
+            mag[k] = la[k] + ra[k];
+        }
+        (val, mag)
+    };
+    let (c20, m20) = cross(a[2], b[0], a[0], b[2]);
+    let (c21, m21) = cross(a[2], b[1], a[1], b[2]);
+    let (c10, m10) = cross(a[1], b[0], a[0], b[1]);
+    let (sq, pr): ([f64; 9], [f64; 9]) = (mul(&c20, &c20), mul(&c21, &c10));
+    let mut res = [0.0; 9];
+    for k in 0..9 {
+        res[k] = sq[k] - pr[k];
+    }
+    (res, mul(&m20, &m20), mul(&m21, &m10))
+}
+
 /// All roots of the polynomial Σ c\[k\] x^k (lowest degree first) as (re, im), by the eigenvalues
 /// of its balanced companion matrix. Leading coefficients that are exactly zero are dropped;
 /// degree at most [`hessenberg::N`]. `None` if the QR iteration fails to converge.
@@ -115,6 +166,32 @@ pub fn poly_roots(c: &[f64]) -> Option<Vec<(f64, f64)>> {
 
 #[cfg(test)]
 mod tests {
+    use super::*;
+
+    #[test]
+    fn the_resultant_of_quadratic_coefficients_is_that_of_any_to_the_last_bit() {
+        let mut s = 5u64;
+        let mut uniform = || {
+            s = s
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (s >> 11) as f64 / (1u64 << 53) as f64 * 4.0 - 2.0
+        };
+        for _ in 0..1000 {
+            let mut c = [[0.0; 3]; 6];
+            c.iter_mut().flatten().for_each(|v| *v = uniform());
+            // Some exact zeros (signed zeros must match too).
+            c[1][2] = -0.0;
+            c[4][0] = 0.0;
+            let (a, b) = ([&c[0][..], &c[1], &c[2]], [&c[3][..], &c[4], &c[5]]);
+            let bits =
+                |r: ([f64; 9], [f64; 9], [f64; 9])| [r.0, r.1, r.2].map(|v| v.map(f64::to_bits));
+            assert_eq!(
+                bits(quadratic_resultant(a, b)),
+                bits(quadratic_resultant_any(a, b))
+            );
+        }
+    }
 
     #[test]
     fn the_resultant_of_two_quadratics_vanishes_where_they_share_a_root() {
@@ -128,8 +205,6 @@ mod tests {
         assert_eq!(&sq[..3], &[4.0, 4.0, 1.0]);
         assert_eq!(&pr[..3], &[0.0, 9.0, 0.0]);
     }
-
-    use super::*;
 
     #[test]
     fn wrap_folds_into_the_half_open_circle() {

@@ -107,6 +107,17 @@ fn modulus(z: C) -> f64 {
 /// Value (Horner) and Σ|terms| (in real arithmetic from |x|, |y|).
 #[inline]
 fn eval(c: &Coeffs, x: C, y: C) -> (C, f64) {
+    if x.im == 0.0 && y.im == 0.0 {
+        // Real: the same values in real arithmetic (an imaginary part of zero adds nothing).
+        let (x, y) = (x.re, y.re);
+        let (ax, ay) = (x.abs(), y.abs());
+        let (mut v, mut mag) = (0.0, 0.0);
+        for row in c.iter().rev() {
+            v = v * x + ((row[2] * y + row[1]) * y + row[0]);
+            mag = mag * ax + ((row[2].abs() * ay + row[1].abs()) * ay + row[0].abs());
+        }
+        return (C::new(v, 0.0), mag);
+    }
     let (ax, ay) = (modulus(x), modulus(y));
     let mut v = C::new(0.0, 0.0);
     let mut mag = 0.0;
@@ -362,6 +373,19 @@ pub(crate) fn resultant(p: &Coeffs, q: &Coeffs) -> Resultant {
     }
 }
 
+/// The eigenvalues of the companion matrix of the monic x^n + c[n−1] x^(n−1) + … + c[0]
+/// (n ≥ 1) into `wr`, `wi`, by balancing and the Francis QR iteration: how many, or `None` if
+/// the iteration does not converge.
+pub(crate) fn companion_eigenvalues(
+    c: &[f64],
+    wr: &mut [f64; 8],
+    wi: &mut [f64; 8],
+) -> Option<usize> {
+    let mut h = crate::numeric::hessenberg::Hessenberg::companion(c);
+    h.balance();
+    h.eigenvalues(wr, wi)
+}
+
 /// x-values of the roots as eigenvalues of the companion matrix of the [`resultant`]. The
 /// companion matrix is already upper Hessenberg, so balancing and the Francis QR iteration
 /// apply directly: no LU, no Hessenberg reduction, no allocation.
@@ -375,10 +399,8 @@ fn x_roots_resultant(p: &Coeffs, q: &Coeffs) -> Option<([C; 8], usize, usize)> {
     if deg == 0 {
         return Some((xs, 0, at_infinity));
     }
-    let mut h = crate::numeric::hessenberg::Hessenberg::companion(&monic[..deg]);
-    h.balance();
     let (mut wr, mut wi) = ([0.0; 8], [0.0; 8]);
-    let n = h.eigenvalues(&mut wr, &mut wi)?;
+    let n = companion_eigenvalues(&monic[..deg], &mut wr, &mut wi)?;
     for k in 0..n {
         xs[k] = C::new(wr[k], wi[k]);
     }
@@ -419,6 +441,115 @@ pub fn solve_pencil(p: &Coeffs, q: &Coeffs) -> RawRoots {
 /// For each x, the y that makes it a common root, then Newton refinement of (x, y).
 fn assign_y(p: &Coeffs, q: &Coeffs, xs: &[C], at_infinity: usize, keep_all: bool) -> RawRoots {
     assign_y_fixed(p, q, xs, at_infinity, keep_all).into()
+}
+
+/// [`assign_y_fixed`] where no two x are within 10⁻⁶ of each other (as certified roots are):
+/// y the common root of p(x, ·) and q(x, ·), y = −c20(x)/c21(x) with c20 = a2 b0 − a0 b2 and
+/// c21 = a2 b1 − a1 b2 (q's y² times p less p's times q is linear in y; [`common_y`]), refined
+/// by one Newton step on p(x, ·). Kept on [`assign_y_fixed`]'s terms: as it is where its
+/// relative residual is at most 10⁻¹², else polished by Newton on (p, q) and kept if that
+/// brings it below 10⁻⁶ onto no root already found. `None` as soon as a root is not so kept
+/// (c21 near zero: both quadratics alike at x; y large; a root that does not polish), and the
+/// caller takes [`assign_y_fixed`], which also decides what is at infinity.
+pub(crate) fn assign_y_distinct(
+    p: &Coeffs,
+    q: &Coeffs,
+    xs: &[C],
+    at_infinity: usize,
+) -> Option<FixedRoots> {
+    let mut roots = FixedRoots::new(at_infinity);
+    for (k, &x) in xs.iter().enumerate() {
+        // The second of a conjugate pair: the first's root, conjugate (p and q are real).
+        if k > 0 && x.im != 0.0 && x == xs[k - 1].conj() {
+            let r = roots.roots[roots.len - 1];
+            roots.push(RawRoot {
+                x,
+                y: r.y.conj(),
+                residual: r.residual,
+            });
+            continue;
+        }
+        // A real x has a real y: real arithmetic.
+        let (y, residual) = if x.im == 0.0 {
+            let (y, r) = common_y(p, q, x.re);
+            (C::new(y, 0.0), r)
+        } else {
+            common_y(p, q, x)
+        };
+        if residual <= 1e-12 {
+            roots.push(RawRoot { x, y, residual });
+        } else if residual < 1e-6 {
+            // Not yet at round-off (x carries its eigenvalue's error): Newton on (p, q), as
+            // `assign_y_fixed` polishes its best candidate, kept on the same terms.
+            let r = polish(p, q, x, y);
+            let duplicate = roots.roots().iter().any(|o| {
+                (o.x - r.x).norm().max((o.y - r.y).norm())
+                    < 1e-6 * (1.0 + r.x.norm().max(r.y.norm()))
+            });
+            if r.residual.is_nan() || r.residual >= 1e-6 || duplicate {
+                return None;
+            }
+            roots.push(r);
+        } else {
+            return None;
+        }
+    }
+    Some(roots)
+}
+
+/// A real or complex number, for [`common_y`].
+trait Scalar:
+    Copy
+    + std::ops::Add<Output = Self>
+    + std::ops::Sub<Output = Self>
+    + std::ops::Mul<Output = Self>
+    + std::ops::Div<Output = Self>
+    + std::ops::Neg<Output = Self>
+    + std::ops::Add<f64, Output = Self>
+    + std::ops::Mul<f64, Output = Self>
+{
+    fn modulus(self) -> f64;
+}
+
+impl Scalar for f64 {
+    #[inline]
+    fn modulus(self) -> f64 {
+        self.abs()
+    }
+}
+
+impl Scalar for C {
+    #[inline]
+    fn modulus(self) -> f64 {
+        modulus(self)
+    }
+}
+
+/// The common root y of p(x, ·) and q(x, ·) at x and its relative residual (as [`rel_residual`]):
+/// with P_j, Q_j the coefficients of y^j at x, y = −(P2 Q0 − P0 Q2)/(P2 Q1 − P1 Q2), then one
+/// Newton step on p(x, ·).
+#[inline]
+fn common_y<T: Scalar>(p: &Coeffs, q: &Coeffs, x: T) -> (T, f64) {
+    let ax = x.modulus();
+    let at = |c: &Coeffs, j: usize| (x * c[2][j] + c[1][j]) * x + c[0][j];
+    let (p0, p1, p2) = (at(p, 0), at(p, 1), at(p, 2));
+    let (q0, q1, q2) = (at(q, 0), at(q, 1), at(q, 2));
+    let y = -(p2 * q0 - p0 * q2) / (p2 * q1 - p1 * q2);
+    let y = y - ((p2 * y + p1) * y + p0) / (p2 * y * 2.0 + p1);
+    let ay = y.modulus();
+    // |value| / Σ|terms| of c at (x, y), its terms' sizes from |x| and |y|.
+    let rel = |c: &Coeffs, v: T| {
+        let size = |j: usize| (c[2][j].abs() * ax + c[1][j].abs()) * ax + c[0][j].abs();
+        let m = (size(2) * ay + size(1)) * ay + size(0);
+        if m > 0.0 {
+            v.modulus() / m
+        } else {
+            v.modulus()
+        }
+    };
+    let vp = (p2 * y + p1) * y + p0;
+    let vq = (q2 * y + q1) * y + q0;
+    (y, rel(p, vp).max(rel(q, vq)))
 }
 
 /// [`assign_y`] into fixed storage (at most one root per x, and at most 8 x).
