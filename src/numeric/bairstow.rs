@@ -176,28 +176,41 @@ fn newton(w: &[f64], (mut u, mut v): (f64, f64)) -> Option<(f64, f64)> {
         let (r1, r0, h1, h0) = divide_twice(w, u, v);
         // J [du, dv]ᵀ = −[r1, r0]ᵀ with J = [[−(h0 − u h1), −h1], [v h1, −h0]].
         let (j11, j12, j21, j22) = (-(h0 - u * h1), -h1, v * h1, -h0);
-        let det = j11 * j22 - j12 * j21;
-        if det == 0.0 || !det.is_finite() {
-            return None;
+        let (mut du, mut dv) = solve2(j11, j12, j21, j22, -r1, -r0);
+        if !(du.is_finite() && dv.is_finite()) {
+            // Each row scaled to entries of at most one: products of two rows' entries leave
+            // the doubles' range where the roots are large (entries grow as |root|^(d−2)).
+            let (s1, s2) = (j11.abs().max(j12.abs()), j21.abs().max(j22.abs()));
+            (du, dv) = solve2(j11 / s1, j12 / s1, j21 / s2, j22 / s2, -r1 / s1, -r0 / s2);
         }
-        let du = (-r1 * j22 + r0 * j12) / det;
-        let dv = (-r0 * j11 + r1 * j21) / det;
         u += du;
         v += dv;
-        let step = du.abs() + dv.abs();
-        let size = u.abs() + v.abs();
+        // The step relative to the factor's roots: their scale s = max(|u|, √|v|) (u is a sum
+        // of two roots, v a product), so du against s and dv against s².
+        let scale = u.abs().max(v.abs().sqrt()).max(f64::MIN_POSITIVE);
+        let step = (du.abs() / scale).max(dv.abs() / (scale * scale));
         if !step.is_finite() {
             return None;
         }
         // Converged: Newton's error after a step of 10⁻⁶ is of order its square (10⁻¹²), which
         // the certificate's Newton step on p itself takes to round-off; or a step no longer
         // shrinking once small.
-        if step <= 1e-6 * size || (step >= last && step <= 1e-4 * size) {
+        if step <= 1e-6 || (step >= last && step <= 1e-4) {
             return Some((u, v));
         }
         last = step;
     }
     None
+}
+
+/// The solution of [[a, b], [c, d]] [x, y]ᵀ = [e, f]ᵀ by Cramer's rule (NaN where singular).
+#[inline]
+fn solve2(a: f64, b: f64, c: f64, d: f64, e: f64, f: f64) -> (f64, f64) {
+    let det = a * d - b * c;
+    if det == 0.0 {
+        return (f64::NAN, f64::NAN);
+    }
+    ((e * d - b * f) / det, (a * f - e * c) / det)
 }
 
 /// The roots of x² + u x + v into `wr[..2]`, `wi[..2]` without cancellation; 2.
@@ -270,21 +283,40 @@ fn certify(c: &[f64], wr: &mut [f64], wi: &mut [f64]) -> Option<()> {
             (v.abs() + rounding * m, (v / d, 0.0))
         } else {
             let ((pr, pi), (dr, di), m) = eval(c, wr[i], wi[i]);
-            let den = dr * dr + di * di;
-            (
-                (pr * pr + pi * pi).sqrt() + rounding * m,
-                ((pr * dr + pi * di) / den, (pi * dr - pr * di) / den),
-            )
-        };
-        // |Π_{j≠i} (z_i − z_j)|², in real arithmetic.
-        let mut g2 = 1.0;
-        for j in 0..n {
-            if j != i {
-                let (ar, ai) = (wr[i] - wr[j], wi[i] - wi[j]);
-                g2 *= ar * ar + ai * ai;
+            // |p| and p / p' by their squares, or where those leave the doubles' range (the
+            // roots large or small), by `hypot` and p' scaled to at most one.
+            let (p2, den) = (pr * pr + pi * pi, dr * dr + di * di);
+            if p2.is_normal() && den.is_normal() {
+                (
+                    p2.sqrt() + rounding * m,
+                    ((pr * dr + pi * di) / den, (pi * dr - pr * di) / den),
+                )
+            } else {
+                let k = dr.abs().max(di.abs());
+                let (dr, di) = (dr / k, di / k);
+                let den = dr * dr + di * di;
+                (
+                    pr.hypot(pi) + rounding * m,
+                    ((pr * dr + pi * di) / den / k, (pi * dr - pr * di) / den / k),
+                )
             }
+        };
+        // |Π_{j≠i} (z_i − z_j)|, by its square in real arithmetic; where that leaves the range
+        // of doubles (roots beyond 10²² or within 10⁻²² of each other), modulus by modulus.
+        let gap = |j: usize| {
+            let (ar, ai) = (wr[i] - wr[j], wi[i] - wi[j]);
+            ar * ar + ai * ai
+        };
+        let others = (0..n).filter(|&j| j != i);
+        let mut g = others.clone().map(gap).product::<f64>().sqrt();
+        if !(g.is_normal()) {
+            g = others.map(|j| gap(j).sqrt()).product();
         }
-        radius[i] = n as f64 * p / g2.sqrt();
+        // A product still out of range bounds nothing: declined.
+        if !(g.is_normal()) {
+            return None;
+        }
+        radius[i] = n as f64 * p / g;
         let size = 1.0 + wr[i].abs() + wi[i].abs();
         if !(radius[i] <= RADIUS * size && sr.abs() + si.abs() <= radius[i]) {
             return None;
@@ -511,5 +543,24 @@ mod tests {
         }
         // Most seeds 1 % off converge and are certified.
         assert!(certified >= 450, "{certified} of {tried} certified");
+    }
+
+    #[test]
+    fn roots_far_beyond_the_range_of_their_products_square_are_still_certified_soundly() {
+        // Roots near 10²⁵: |Π (z_i − z_j)|² is about 10³⁵⁰, beyond the doubles; R's
+        // coefficients (up to 10²⁰⁰) and values are not.
+        let want: Vec<(f64, f64)> = WANT.iter().map(|&(a, b)| (a * 1e25, b * 1e25)).collect();
+        let c = from_roots(&want);
+        assert!(c.iter().all(|v| v.is_finite()));
+        let (wr, wi): (Vec<f64>, Vec<f64>) = want.iter().copied().unzip();
+        let mut seed = [(0.0, 0.0); 4];
+        assert!(factors_of(&wr, &wi, &mut seed));
+        let (mut gr, mut gi, mut found) = ([0.0; 8], [0.0; 8], [(0.0, 0.0); 4]);
+        assert_eq!(roots(&c, &seed, &mut gr, &mut gi, &mut found), Some(8));
+        // A root found twice and one missed, at that scale, is refused (its disk is not
+        // shrunk to nothing by an overflowing product).
+        let (mut wr, mut wi) = (wr, wi);
+        wr[0] = 2.001e25;
+        assert_eq!(certify(&c, &mut wr, &mut wi), None);
     }
 }
