@@ -108,7 +108,9 @@ fn modulus(z: C) -> f64 {
 #[inline]
 fn eval(c: &Coeffs, x: C, y: C) -> (C, f64) {
     if x.im == 0.0 && y.im == 0.0 {
-        // Real: the same values in real arithmetic (an imaginary part of zero adds nothing).
+        // Real: the same values in real arithmetic (an imaginary part of zero adds nothing;
+        // the same bits but for the sign of a zero, and moduli beyond about 10^±154, where the
+        // complex path's squares leave the doubles' range).
         let (x, y) = (x.re, y.re);
         let (ax, ay) = (x.abs(), y.abs());
         let (mut v, mut mag) = (0.0, 0.0);
@@ -459,11 +461,12 @@ pub(crate) fn assign_y_distinct(
 ) -> Option<FixedRoots> {
     let mut roots = FixedRoots::new(at_infinity);
     for (k, &x) in xs.iter().enumerate() {
-        // The second of a conjugate pair: the first's root, conjugate (p and q are real).
+        // The second of a conjugate pair: the first's root, conjugate (p and q are real; the
+        // first may have been polished off its x).
         if k > 0 && x.im != 0.0 && x == xs[k - 1].conj() {
             let r = roots.roots[roots.len - 1];
             roots.push(RawRoot {
-                x,
+                x: r.x.conj(),
                 y: r.y.conj(),
                 residual: r.residual,
             });
@@ -476,25 +479,35 @@ pub(crate) fn assign_y_distinct(
         } else {
             common_y(p, q, x)
         };
-        if residual <= 1e-12 {
-            roots.push(RawRoot { x, y, residual });
+        let r = if residual <= 1e-12 {
+            RawRoot { x, y, residual }
         } else if residual < 1e-6 {
             // Not yet at round-off (x carries its eigenvalue's error): Newton on (p, q), as
-            // `assign_y_fixed` polishes its best candidate, kept on the same terms.
-            let r = polish(p, q, x, y);
-            let duplicate = roots.roots().iter().any(|o| {
-                (o.x - r.x).norm().max((o.y - r.y).norm())
-                    < 1e-6 * (1.0 + r.x.norm().max(r.y.norm()))
-            });
-            if r.residual.is_nan() || r.residual >= 1e-6 || duplicate {
-                return None;
-            }
-            roots.push(r);
+            // `assign_y_fixed` polishes its best candidate.
+            polish(p, q, x, y)
         } else {
             return None;
+        };
+        // Kept on `assign_y_fixed`'s terms.
+        if r.residual.is_nan() || r.residual >= 1e-6 || lands_on(roots.roots(), &r) {
+            return None;
         }
+        roots.push(r);
     }
     Some(roots)
+}
+
+/// Whether the root `r` lands on one of `found`: within 10⁻⁶ of it in x and y, relative to
+/// 1 + max(|x|, |y|) — a root found again from another x, extraneous. (A bound by |re| + |im|
+/// first, which the moduli can only be below, spares most of the moduli.)
+fn lands_on(found: &[RawRoot], r: &RawRoot) -> bool {
+    let loose = std::f64::consts::SQRT_2 * 1e-6 * (1.0 + l1(r.x).max(l1(r.y)));
+    found.iter().any(|o| {
+        l1(o.x - r.x) < loose
+            && l1(o.y - r.y) < loose
+            && (o.x - r.x).norm().max((o.y - r.y).norm())
+                < 1e-6 * (1.0 + r.x.norm().max(r.y.norm()))
+    })
 }
 
 /// A real or complex number, for [`common_y`].
@@ -549,7 +562,9 @@ fn common_y<T: Scalar>(p: &Coeffs, q: &Coeffs, x: T) -> (T, f64) {
     };
     let vp = (p2 * y + p1) * y + p0;
     let vq = (q2 * y + q1) * y + q0;
-    (y, rel(p, vp).max(rel(q, vq)))
+    // A NaN on either side stays NaN (f64::max would drop it).
+    let (rp, rq) = (rel(p, vp), rel(q, vq));
+    (y, if rp >= rq || rp.is_nan() { rp } else { rq })
 }
 
 /// [`assign_y`] into fixed storage (at most one root per x, and at most 8 x).
@@ -640,13 +655,7 @@ pub(crate) fn assign_y_fixed(
                 // already found from another x is extraneous too.
                 // (A multiple root polishes only to about the square root of round-off.)
                 Some(r) if keep_all => roots.push(r),
-                Some(r)
-                    if r.residual < 1e-6
-                        && !roots.roots[..first_of_cluster].iter().any(|o: &RawRoot| {
-                            (o.x - r.x).norm().max((o.y - r.y).norm())
-                                < 1e-6 * (1.0 + r.x.norm().max(r.y.norm()))
-                        }) =>
-                {
+                Some(r) if r.residual < 1e-6 && !lands_on(&roots.roots[..first_of_cluster], &r) => {
                     roots.push(r)
                 }
                 _ => roots.at_infinity += 1,
@@ -703,6 +712,43 @@ mod tests {
         assert_eq!(r.roots.len(), 8);
         for t in &r.roots {
             assert!(t.residual < 1e-13, "{t:?}");
+        }
+    }
+
+    #[test]
+    fn roots_at_distinct_x_are_the_general_recoverys_and_a_polished_pair_stays_conjugate() {
+        let p = [[1.0, -2.0, 0.5], [0.3, 1.1, -0.7], [-1.2, 0.4, 0.9]];
+        let q = [[-0.5, 0.8, 1.3], [1.7, -0.2, 0.6], [0.1, -1.4, 0.35]];
+        let r = resultant(&p, &q);
+        let (mut wr, mut wi) = ([0.0; 8], [0.0; 8]);
+        let n = companion_eigenvalues(&r.monic[..r.deg], &mut wr, &mut wi).unwrap();
+        let xs: Vec<C> = (0..n).map(|k| C::new(wr[k], wi[k])).collect();
+        assert!(xs.iter().any(|x| x.im != 0.0), "no complex pair: {xs:?}");
+        // At the eigenvalues: the roots of the general recovery, to round-off.
+        let fast = assign_y_distinct(&p, &q, &xs, r.at_infinity).unwrap();
+        let general = assign_y_fixed(&p, &q, &xs, r.at_infinity, false);
+        assert_eq!(fast.at_infinity, general.at_infinity);
+        assert_eq!(fast.roots().len(), general.roots().len());
+        for (f, g) in fast.roots().iter().zip(general.roots()) {
+            assert!(
+                (f.x - g.x).norm() + (f.y - g.y).norm() < 1e-12,
+                "{f:?} {g:?}"
+            );
+        }
+        // Every x moved by 10⁻⁹ (pairs kept conjugate): each root is polished, the second of a
+        // pair the conjugate of the first as polished, and each residual is the one at the
+        // root reported.
+        let moved: Vec<C> = xs.iter().map(|x| C::new(x.re + 1e-9, x.im)).collect();
+        let fast = assign_y_distinct(&p, &q, &moved, r.at_infinity).unwrap();
+        assert_eq!(fast.roots().len(), n);
+        for (k, root) in fast.roots().iter().enumerate() {
+            assert!(root.residual <= 1e-12, "{root:?}");
+            let again = rel_residual(&p, &q, root.x, root.y);
+            assert!(again <= 1e-12, "{root:?}: {again:e} where it is");
+            if k > 0 && moved[k] == moved[k - 1].conj() {
+                let first = fast.roots()[k - 1];
+                assert_eq!((root.x, root.y), (first.x.conj(), first.y.conj()));
+            }
         }
     }
 

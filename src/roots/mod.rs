@@ -136,9 +136,9 @@ pub fn solve_all(site: &Site, d: Displacement, mode: Mode) -> Result<AllRoots, T
 }
 
 /// [`solve_all`] at each of `ds`, in order, each system's eigenvalues continued from the one
-/// before by `solver` and certified, else found by QR (`roots/batch.rs`): the same roots as one
-/// displacement at a time to their accuracy (10⁻⁹ on the default scene), the same counts,
-/// classification and selection.
+/// before by `solver` and certified, else found by QR (`roots/batch.rs`): the roots of one
+/// displacement at a time to within their certified disks (10⁻⁶ relative at most; 10⁻⁹ measured
+/// on the default scene, where the counts, classification and selection were the same).
 pub fn solve_all_batch(
     site: &Site,
     ds: &[Displacement],
