@@ -55,7 +55,7 @@ pub fn roots(
         stage += 1;
         // Deflate: w ← w / (x² + u x + v), its quotient.
         let mut q = [0.0; 9];
-        quotient(&w[..=d], u, v, &mut q);
+        divide_twice(&w[..=d], u, v, &mut q);
         w = q;
         d -= 2;
         k += quadratic(u, v, &mut wr[k..], &mut wi[k..]);
@@ -117,30 +117,13 @@ pub fn factors_of(wr: &[f64], wi: &[f64], out: &mut Factors) -> bool {
     true
 }
 
-/// The quotient of the monic `w` (degree d = `w.len()` − 1 ≥ 2) by x² + u x + v into
-/// `q[..d − 1]`, and the remainder r1 x + r0.
+/// The quotient q (into `q[..d − 1]`) and remainder r1 x + r0 of the monic `w` (degree d ≥ 3)
+/// by D = x² + u x + v (synthetic division), and the remainder h1 x + h0 of q by D: both
+/// divisions in one loop (q's coefficients come from the top down, so the second division
+/// follows two behind the first and the two recurrences overlap).
 #[inline]
-fn quotient(w: &[f64], u: f64, v: f64, q: &mut [f64; 9]) -> (f64, f64) {
+fn divide_twice(w: &[f64], u: f64, v: f64, q: &mut [f64; 9]) -> (f64, f64, f64, f64) {
     let d = w.len() - 1;
-    let (mut b1, mut b2) = (0.0, 0.0); // q[k + 1], q[k + 2]
-    for k in (0..d - 1).rev() {
-        let b = w[k + 2] - u * b1 - v * b2;
-        q[k] = b;
-        b2 = b1;
-        b1 = b;
-    }
-    // b1 = q[0], b2 = q[1].
-    (w[1] - u * b1 - v * b2, w[0] - v * b1)
-}
-
-/// The remainder r1 x + r0 of the monic `w` (degree d ≥ 3) by D = x² + u x + v, and the
-/// remainder h1 x + h0 of its quotient q by D: [`quotient`] twice, in one loop (q's
-/// coefficients come from the top down, so the second division follows two behind the first
-/// and the two recurrences overlap).
-#[inline]
-fn divide_twice(w: &[f64], u: f64, v: f64) -> (f64, f64, f64, f64) {
-    let d = w.len() - 1;
-    let mut q = [0.0; 9];
     let (mut b1, mut b2) = (0.0, 0.0); // q[k + 1], q[k + 2]
     let (mut g1, mut g2) = (0.0, 0.0); // the second quotient's g[k + 1], g[k + 2]
     for k in (0..d - 1).rev() {
@@ -173,7 +156,7 @@ fn newton(w: &[f64], (mut u, mut v): (f64, f64)) -> Option<(f64, f64)> {
     }
     let mut last = f64::INFINITY;
     for _ in 0..MAX_ITERATIONS {
-        let (r1, r0, h1, h0) = divide_twice(w, u, v);
+        let (r1, r0, h1, h0) = divide_twice(w, u, v, &mut [0.0; 9]);
         // J [du, dv]ᵀ = −[r1, r0]ᵀ with J = [[−(h0 − u h1), −h1], [v h1, −h0]].
         let (j11, j12, j21, j22) = (-(h0 - u * h1), -h1, v * h1, -h0);
         let (mut du, mut dv) = solve2(j11, j12, j21, j22, -r1, -r0);

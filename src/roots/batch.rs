@@ -56,44 +56,57 @@ impl BatchSolver {
     /// The roots of one system, continued from the last.
     fn one(&mut self, p: &Coeffs, q: &Coeffs) -> FixedRoots {
         let r = eigen::resultant(p, q);
-        let (mut wr, mut wi) = ([0.0; 8], [0.0; 8]);
-        let mut xs = [C::new(0.0, 0.0); 8];
         if r.deg == 0 {
             return eigen::assign_y_fixed(p, q, &[], r.at_infinity, false);
         }
         let monic = &r.monic[..r.deg];
-        if let Some(seed) = self.seed.filter(|s| s.deg == r.deg) {
-            let mut found = seed.factors;
-            if let Some(n) = bairstow::roots(monic, &seed.factors, &mut wr, &mut wi, &mut found) {
-                self.seed = Some(Seed {
-                    deg: r.deg,
-                    factors: found,
-                });
-                self.continued += 1;
-                for k in 0..n {
-                    xs[k] = C::new(wr[k], wi[k]);
-                }
-                return eigen::assign_y_distinct(p, q, &xs[..n], r.at_infinity).unwrap_or_else(
-                    || eigen::assign_y_fixed(p, q, &xs[..n], r.at_infinity, false),
-                );
-            }
-        }
-        // Afresh, as `eigen::solve`: balanced Francis QR on the companion matrix.
-        self.by_qr += 1;
-        let Some(n) = eigen::companion_eigenvalues(monic, &mut wr, &mut wi) else {
-            self.seed = None;
-            return FixedRoots::from(&eigen::solve(p, q));
-        };
+        let (mut wr, mut wi) = ([0.0; 8], [0.0; 8]);
         let mut factors = [(0.0, 0.0); 4];
-        self.seed = bairstow::factors_of(&wr[..n], &wi[..n], &mut factors).then_some(Seed {
+        let certified = self
+            .seed
+            .filter(|s| s.deg == r.deg)
+            .and_then(|s| bairstow::roots(monic, &s.factors, &mut wr, &mut wi, &mut factors));
+        let n = match certified {
+            Some(n) => {
+                self.continued += 1;
+                n
+            }
+            None => {
+                // Afresh, as `eigen::solve`: balanced Francis QR on the companion matrix.
+                self.by_qr += 1;
+                let Some(n) = eigen::companion_eigenvalues(monic, &mut wr, &mut wi) else {
+                    self.seed = None;
+                    return FixedRoots::from(&eigen::solve(p, q));
+                };
+                if !bairstow::factors_of(&wr[..n], &wi[..n], &mut factors) {
+                    self.seed = None;
+                    return eigen::assign_y_fixed(
+                        p,
+                        q,
+                        &xs_of(&wr, &wi)[..n],
+                        r.at_infinity,
+                        false,
+                    );
+                }
+                n
+            }
+        };
+        self.seed = Some(Seed {
             deg: r.deg,
             factors,
         });
-        for k in 0..n {
-            xs[k] = C::new(wr[k], wi[k]);
+        let xs = &xs_of(&wr, &wi)[..n];
+        match certified {
+            Some(_) => eigen::assign_y_distinct(p, q, xs, r.at_infinity)
+                .unwrap_or_else(|| eigen::assign_y_fixed(p, q, xs, r.at_infinity, false)),
+            None => eigen::assign_y_fixed(p, q, xs, r.at_infinity, false),
         }
-        eigen::assign_y_fixed(p, q, &xs[..n], r.at_infinity, false)
     }
+}
+
+/// The roots (re, im) as complex numbers.
+fn xs_of(wr: &[f64; 8], wi: &[f64; 8]) -> [C; 8] {
+    std::array::from_fn(|k| C::new(wr[k], wi[k]))
 }
 
 #[cfg(test)]

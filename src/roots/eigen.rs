@@ -107,19 +107,6 @@ fn modulus(z: C) -> f64 {
 /// Value (Horner) and Σ|terms| (in real arithmetic from |x|, |y|).
 #[inline]
 fn eval(c: &Coeffs, x: C, y: C) -> (C, f64) {
-    if x.im == 0.0 && y.im == 0.0 {
-        // Real: the same values in real arithmetic (an imaginary part of zero adds nothing;
-        // the same bits but for the sign of a zero, and moduli beyond about 10^±154, where the
-        // complex path's squares leave the doubles' range).
-        let (x, y) = (x.re, y.re);
-        let (ax, ay) = (x.abs(), y.abs());
-        let (mut v, mut mag) = (0.0, 0.0);
-        for row in c.iter().rev() {
-            v = v * x + ((row[2] * y + row[1]) * y + row[0]);
-            mag = mag * ax + ((row[2].abs() * ay + row[1].abs()) * ay + row[0].abs());
-        }
-        return (C::new(v, 0.0), mag);
-    }
     let (ax, ay) = (modulus(x), modulus(y));
     let mut v = C::new(0.0, 0.0);
     let mut mag = 0.0;
