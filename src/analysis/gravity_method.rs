@@ -204,40 +204,11 @@ pub fn gravity_method(c: &GravityCase) -> GravityVerdict {
         (n, shear, u, if n > 0.0 { m / n } else { f64::NEG_INFINITY })
     };
     let (n0, _, _, a0) = at(0.0);
-    // The crack: 3 a(T) − (b − T) changes sign from negative at T = 0.
-    let gap = |t: f64| 3.0 * at(t).3 - (b - t);
-    let mut t = 0.0;
-    let mut through = false;
-    if c.levels.crack && n0 > 0.0 && a0 < b / 3.0 {
-        const SCAN: usize = 1000;
-        let mut lo = 0.0;
-        let hi = (1..SCAN).map(|k| b * k as f64 / SCAN as f64).find(|&x| {
-            let found = gap(x) >= 0.0;
-            if !found {
-                lo = x;
-            }
-            found
-        });
-        match hi {
-            Some(mut hi) => {
-                for _ in 0..100 {
-                    let mid = 0.5 * (lo + hi);
-                    if gap(mid) >= 0.0 {
-                        hi = mid;
-                    } else {
-                        lo = mid;
-                    }
-                }
-                t = hi;
-            }
-            None => {
-                // No crack short of the toe holds the resultant: cracked through, the
-                // reservoir's head under the whole base.
-                through = true;
-                t = b;
-            }
-        }
-    }
+    let (t, through) = if c.levels.crack && n0 > 0.0 && a0 < b / 3.0 {
+        crack(b, |t| 3.0 * at(t).3 - (b - t))
+    } else {
+        (0.0, false)
+    };
     let (n, shear, uplift, a) = at(t);
     let floats = n <= 0.0;
     let overturns = floats || through || a <= 0.0 || a >= b;
@@ -251,14 +222,8 @@ pub fn gravity_method(c: &GravityCase) -> GravityVerdict {
     };
     let (heel, toe) = if overturns {
         (0.0, 0.0)
-    } else if compressed >= b {
-        let e = b / 2.0 - a;
-        let mean = n / (b * width);
-        (mean * (1.0 - 6.0 * e / b), mean * (1.0 + 6.0 * e / b))
-    } else if a <= b / 2.0 {
-        (0.0, 2.0 * n / (3.0 * a * width))
     } else {
-        (2.0 * n / (3.0 * (b - a) * width), 0.0)
+        base_pressures(n, a, b, width, compressed)
     };
     let sigma = if compressed > 0.0 {
         n / (compressed * width)
@@ -273,20 +238,9 @@ pub fn gravity_method(c: &GravityCase) -> GravityVerdict {
     } else {
         Some((n * tan_phi + c.cohesion_pa * compressed * width) / shear)
     };
-    // A faceted base: the loads on each face's plane, the least factor governing.
-    let lateral: f64 = c
-        .anchors
-        .iter()
-        .map(|a| a.prestress * a.direction().z)
-        .sum::<f64>()
-        + props.mass * c.gravity * (-(1.0 - c.kv) * c.up[2] + c.kh * c.downstream[2]);
-    // A face that does not face up (a wall, an overhang) carries no base.
-    let mut faces = [None; 3];
-    let upward = c.faces.iter().filter(|f| f.normal[1] > 1e-6);
-    for (slot, f) in faces.iter_mut().zip(upward) {
-        *slot = Some(on_face(f, [shear, -n, lateral], compressed * width));
-    }
+    let faces = on_faces(c, &props, [shear, -n], compressed * width);
     if !c.faces.is_empty() {
+        // A faceted base: the least factor of its faces governs.
         let least = faces
             .iter()
             .flatten()
@@ -320,6 +274,73 @@ pub fn gravity_method(c: &GravityCase) -> GravityVerdict {
         overturns,
         faces,
     }
+}
+
+/// The crack's length T on a base of length `b` where `gap(T)` = 3 a(T) − (b − T) changes sign
+/// from negative at T = 0: the smallest such T, by a scan and bisection; `(b, true)` where no
+/// crack short of the toe holds the resultant (cracked through, the reservoir's head under the
+/// whole base).
+fn crack(b: f64, gap: impl Fn(f64) -> f64) -> (f64, bool) {
+    const SCAN: usize = 1000;
+    let mut lo = 0.0;
+    let hi = (1..SCAN).map(|k| b * k as f64 / SCAN as f64).find(|&x| {
+        let found = gap(x) >= 0.0;
+        if !found {
+            lo = x;
+        }
+        found
+    });
+    let Some(mut hi) = hi else {
+        return (b, true);
+    };
+    for _ in 0..100 {
+        let mid = 0.5 * (lo + hi);
+        if gap(mid) >= 0.0 {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    (hi, false)
+}
+
+/// The pressures (Pa) at the heel and the toe of a base of length `b` and width `width` under
+/// the normal force `n` meeting it `a` from the toe, `compressed` of it in compression: the
+/// trapezoid N/(b w) (1 ± 6 e/b) where the whole base is, the triangle 2 N/(3 a w) at the end
+/// nearer the resultant where not.
+fn base_pressures(n: f64, a: f64, b: f64, width: f64, compressed: f64) -> (f64, f64) {
+    if compressed >= b {
+        let e = b / 2.0 - a;
+        let mean = n / (b * width);
+        (mean * (1.0 - 6.0 * e / b), mean * (1.0 + 6.0 * e / b))
+    } else if a <= b / 2.0 {
+        (0.0, 2.0 * n / (3.0 * a * width))
+    } else {
+        (2.0 * n / (3.0 * (b - a) * width), 0.0)
+    }
+}
+
+/// Each upward face's sliding under the loads `[shear, −N]` in the section's plane and the
+/// lateral force the anchors and the inclined weight give, the base's area in compression
+/// `area` (m²) on it. A face that does not face up (a wall, an overhang) carries no base.
+fn on_faces(
+    c: &GravityCase,
+    props: &MassProperties,
+    [shear, down]: [f64; 2],
+    area: f64,
+) -> [Option<FaceSliding>; 3] {
+    let lateral: f64 = c
+        .anchors
+        .iter()
+        .map(|a| a.prestress * a.direction().z)
+        .sum::<f64>()
+        + props.mass * c.gravity * (-(1.0 - c.kv) * c.up[2] + c.kh * c.downstream[2]);
+    let mut faces = [None; 3];
+    let upward = c.faces.iter().filter(|f| f.normal[1] > 1e-6);
+    for (slot, f) in faces.iter_mut().zip(upward) {
+        *slot = Some(on_face(f, [shear, down, lateral], area));
+    }
+    faces
 }
 
 /// The loads `r` (N: the resultant on the monolith other than its supports', in the base's
