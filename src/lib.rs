@@ -70,7 +70,7 @@ mod scene;
 
 pub use analysis::runner::{NOT_RUN, Outcome, RouteResult};
 pub use analysis::{run, run_observed};
-pub use geometry::{BodyPose, Displacement, Foundation, Frame, Ground, Plane, Pose, Site};
+pub use geometry::{BodyPose, Displacement, Frame, Ground, PaperPlanes, Plane, Pose, Site};
 pub use mechanics::static_friction::{FactorOfSafety, Limit};
 pub use model::{
     Base, Block, Contacts, DEFAULT_TOLERANCE, DynamicsModel, FaceStrength, Friction, Initial,

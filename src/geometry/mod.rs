@@ -38,7 +38,7 @@ pub use plane::Plane;
 pub use pose::Pose;
 pub use relief::{CastError, Relief, cast, relief_touches};
 pub use settle::{Rest, SettleError, set_down};
-pub use site::{Foundation, Frame, PaperSite, Site};
+pub use site::{Frame, PaperPlanes, PaperSite, Site};
 pub use touch::{
     BodyPose, Feature, Footprint, Touch, Touches, in_outline, plan_box, signed_area, touches,
 };

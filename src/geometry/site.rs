@@ -37,10 +37,10 @@ impl Frame {
     }
 }
 
-/// The three foundation planes: horizontal (vertex 0), plane 1 (vertex 1), plane 2 (vertex 2).
-/// Angles in radians.
+/// The paper's three foundation planes ξ, ζ, κ: horizontal (vertex 0), plane 1 (vertex 1),
+/// plane 2 (vertex 2). Angles in radians.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Foundation {
+pub struct PaperPlanes {
     /// ξ: true dip of plane 1, in (0, π/2).
     pub xi: f64,
     /// ζ: true dip of plane 2, in (0, π/2).
@@ -49,7 +49,7 @@ pub struct Foundation {
     pub kappa: f64,
 }
 
-impl Foundation {
+impl PaperPlanes {
     /// The upward unit normals of the horizontal plane, plane 1 and plane 2 (the planes under
     /// vertices 0, 1 and 2; `docs/conventions.md`, "The foundation").
     pub fn normals(&self) -> [Vector3<f64>; 3] {
@@ -69,7 +69,7 @@ pub struct PaperSite {
     /// The paper's frame.
     pub frame: Frame,
     /// The paper's three planes.
-    pub foundation: Foundation,
+    pub foundation: PaperPlanes,
 }
 
 /// What geometry takes of a scene: the contact triangle and the plane under each contact. A
@@ -89,14 +89,17 @@ pub struct Site {
 
 impl Site {
     /// The paper's site: the contacts of its frame, the horizontal plane, plane 1 and plane 2.
-    pub fn paper(frame: Frame, foundation: Foundation) -> Site {
+    pub fn paper(frame: Frame, planes: PaperPlanes) -> Site {
         let contacts = frame.vertices();
-        let normals = foundation.normals();
+        let normals = planes.normals();
         let start = |k: usize| Vector3::new(contacts[k][0], 0.0, contacts[k][1]);
         Site {
             contacts,
             planes: std::array::from_fn(|k| Plane::through(normals[k], start(k))),
-            paper: Some(PaperSite { frame, foundation }),
+            paper: Some(PaperSite {
+                frame,
+                foundation: planes,
+            }),
             l: frame.l(),
             ground: None,
         }

@@ -1,7 +1,7 @@
 //! `[frame]` and `[foundation]`: the contacts and the ground under them, as a [`Site`].
 
 use super::Reader;
-use crate::geometry::{Foundation, Frame, Ground, Plane, Site};
+use crate::geometry::{Frame, Ground, PaperPlanes, Plane, Site};
 use crate::scene::SceneError;
 use crate::scene::error::SceneErrorKind;
 use crate::scene::raw;
@@ -21,7 +21,7 @@ enum FrameIn {
 
 /// The foundation as given: the paper's three planes, a list of faces, or a surface.
 enum FoundationIn {
-    Paper(Foundation),
+    Paper(PaperPlanes),
     Faces(Vec<Plane>),
     Surface(Arc<Ground>),
 }
@@ -177,7 +177,7 @@ impl Reader<'_> {
     }
 
     /// The paper's three planes: dips strictly between 0° and 90°, κ strictly between −90° and 90°.
-    fn paper_foundation(&self, d: &raw::RawFoundation) -> Result<Foundation, SceneError> {
+    fn paper_foundation(&self, d: &raw::RawFoundation) -> Result<PaperPlanes, SceneError> {
         let dip = |key: &str, v: Option<f64>| {
             let v = self.need(key, v)?;
             self.check(
@@ -189,7 +189,7 @@ impl Reader<'_> {
             .map(f64::to_radians)
         };
         let kappa = self.need("foundation.kappa_deg", d.kappa_deg)?;
-        Ok(Foundation {
+        Ok(PaperPlanes {
             xi: dip("foundation.xi_deg", d.xi_deg)?,
             zeta: dip("foundation.zeta_deg", d.zeta_deg)?,
             kappa: self
