@@ -76,18 +76,32 @@ fn one_increment(c: &mut Criterion) {
     let sim = scene.simulation().unwrap();
     for method in [PoseMethod::Continuation, PoseMethod::AllRoots] {
         // Position the finder and the chosen reaction at X = 0.5 m, then time the next 1 mm.
-        let mut finder = PoseFinder::new(sim.site(), Mode::Exact, method);
+        let mut finder = PoseFinder::new(sim.first_body().site(), Mode::Exact, method);
         let mut prev = None;
         for k in 1..=500 {
             let d = Displacement::new(1e-3 * k as f64, 0.0, -1e-4 * k as f64);
-            let ev = evaluate(&sim, &mut finder, d, prev.as_ref(), None).unwrap();
+            let ev = evaluate(
+                (&sim, sim.first_body()),
+                &mut finder,
+                d,
+                prev.as_ref(),
+                None,
+            )
+            .unwrap();
             prev = Some(ev.reaction);
         }
         let next = Displacement::new(0.501, 0.0, -0.0501);
         c.bench_function(&format!("one increment ({})", method.as_str()), |b| {
             b.iter(|| {
                 let mut f = finder.clone();
-                evaluate(&sim, &mut f, black_box(next), prev.as_ref(), None).unwrap()
+                evaluate(
+                    (&sim, sim.first_body()),
+                    &mut f,
+                    black_box(next),
+                    prev.as_ref(),
+                    None,
+                )
+                .unwrap()
             })
         });
     }

@@ -18,12 +18,18 @@
 //! # Ok::<(), slideroute::SceneError>(())
 //! ```
 //!
-//! **From typed parts.** A [`Simulation`] is the model — the [`Site`] (the contacts and the
-//! ground under them), the [`Block`], its [`Loads`], the [`Friction`] and the joint's
-//! [`Strengths`], the [`Initial`] motion, a ground-motion [`Record`] — and its [`RunSettings`],
-//! built by [`Simulation::builder`] (or [`Scene::simulation`]) and checked once, every fault a
-//! [`ModelError`]. [`simulate`] runs it and cannot fail; a [`Runner`] also reports progress, may
-//! be stopped, streams the rows and says how the computation went ([`Diagnostics`]).
+//! **From typed parts.** A [`Simulation`] is the model: its bodies — each [`Body`] a [`Block`]
+//! with its [`Loads`], its [`Initial`] motion, its [`Base`] and anchors, and its three-point
+//! frame on the rock (a [`Site`]: the contacts and the planes under them) —, the [`Foundation`]
+//! they stand on (the rock as a [`Ground`], and a ground-motion [`Record`] shaking it), the
+//! [`Joint`]s between bodies, what every pair of surfaces carries ([`Strengths`]: each rock
+//! face's [`Friction`] criterion and cohesion, each joint's), and its [`RunSettings`]. It is
+//! built by [`Simulation::builder`] and [`Body::builder`] (or [`Scene::simulation`]) and checked
+//! once, every fault a [`ModelError`]. [`simulate`] runs it and cannot fail; a [`Runner`] also
+//! reports progress, may be stopped, streams the rows and says how the computation went
+//! ([`Diagnostics`]). The paper's dynamics and the three-point frame follow one body; a
+//! simulation of several bodies (on their bases) is a valid model whose route, for now, ends at
+//! once ([`Reason`]'s `SeveralBodies`).
 //!
 //! **Many routes.** A sweep of scene keys ([`sweep`]), a probabilistic analysis
 //! ([`probabilistic`]), the load cases of a guideline ([`check`]) and the paper's dynamics
@@ -73,11 +79,11 @@ pub use analysis::{run, run_observed};
 pub use geometry::{BodyPose, Displacement, Frame, Ground, PaperPlanes, Plane, Pose, Site};
 pub use mechanics::static_friction::{FactorOfSafety, Limit};
 pub use model::{
-    Base, Block, Contacts, DEFAULT_TOLERANCE, DynamicsModel, FaceStrength, Friction, Initial,
-    Integrator, Levels, Loads, MAX_INCREMENTS, MAX_TOLERANCE, MIN_TOLERANCE, MassProperties, Mode,
-    ModelError, Monolith, REFERENCE_STEP, Record, Resultant, RockAnchor, RunSettings,
-    STRAND_MODULUS_PA, Section, Simulation, SimulationBuilder, Strengths, Tendon, UnknownName,
-    WaterLoads,
+    Base, Block, Body, BodyBuilder, Contacts, DEFAULT_TOLERANCE, DynamicsModel, FaceStrength,
+    Foundation, Friction, Initial, Integrator, Joint, Levels, Loads, MAX_INCREMENTS, MAX_TOLERANCE,
+    MIN_TOLERANCE, MassProperties, Mode, ModelError, Monolith, PairStrength, REFERENCE_STEP,
+    Record, Resultant, RockAnchor, RunSettings, STRAND_MODULUS_PA, Section, Simulation,
+    SimulationBuilder, Strengths, Surface, Tendon, UnknownName, WaterLoads,
 };
 pub use route::{
     AnchorBreak, BaseReport, Carrying, Computed, Diagnostics, EnergyBalance, KEPT_ROWS,

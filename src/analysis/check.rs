@@ -6,8 +6,8 @@
 
 use super::gravity_method::{BaseFace, GravityCase, GravityVerdict, gravity_method};
 use crate::mechanics::static_friction::{FactorOfSafety, Limit};
-use crate::model::Friction;
 use crate::model::Mode;
+use crate::model::Strengths;
 use crate::model::{Category, Guideline, LoadCase};
 use crate::route::PoseMethod;
 use crate::route::faces_of;
@@ -142,7 +142,7 @@ pub(super) fn cases_of(scene: &Scene) -> std::borrow::Cow<'_, [LoadCase]> {
 /// friction criterion: in the axes of its base where it starts — where `route` set it down on
 /// its base (`contacts = "base"`), else the three-point frame's start — on the faces under it.
 pub(super) fn gravity_case(s: &Scene, category: Category, route: &Route) -> Option<GravityCase> {
-    let (m, loads, friction) = (s.monolith()?, s.loads()?, s.friction()?);
+    let (m, loads, strengths) = (s.monolith()?, s.loads()?, s.strengths()?);
     let water = loads.water?;
     let (axes, under) = match &route.base {
         Some(b) => {
@@ -168,11 +168,11 @@ pub(super) fn gravity_case(s: &Scene, category: Category, route: &Route) -> Opti
         gravity: loads.gravity,
         kh: loads.kh,
         kv: loads.kv,
-        friction: *friction,
-        cohesion_pa: s.strengths().cohesion_pa,
+        friction: strengths.friction,
+        cohesion_pa: strengths.cohesion_pa,
         category,
         anchors: s.anchors().to_vec(),
-        faces: faces_under(s, friction, &axes, &under),
+        faces: faces_under(s, strengths, &axes, &under),
         up: axes.map(|e| e.y),
         downstream: axes.map(|e| e.x),
     })
@@ -187,10 +187,10 @@ fn start_axes(s: &Scene) -> [Vector3<f64>; 3] {
 }
 
 /// The faces `under` the monolith, each once, with its normal in the base's axes `axes` at
-/// the start and its own criterion or `friction`.
+/// the start and its criterion and cohesion under `strengths`.
 fn faces_under(
     s: &Scene,
-    friction: &Friction,
+    strengths: &Strengths,
     axes: &[Vector3<f64>; 3],
     under: &[u32],
 ) -> Vec<BaseFace> {
@@ -207,19 +207,12 @@ fn faces_under(
         let Some(normal) = normal else {
             continue;
         };
-        let strengths = s.strengths();
-        let (own, cohesion_pa) = strengths
-            .faces
-            .iter()
-            .find(|f| f.faces.contains(&face))
-            .map_or((*friction, strengths.cohesion_pa), |f| {
-                (f.friction, f.cohesion_pa)
-            });
+        let own = strengths.face(face);
         faces.push(BaseFace {
             face,
             normal: axes.map(|e| e.dot(&normal)),
-            friction: own,
-            cohesion_pa,
+            friction: own.criterion,
+            cohesion_pa: own.cohesion_pa,
         });
     }
     faces

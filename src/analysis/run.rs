@@ -72,10 +72,10 @@ mod tests {
             .unwrap();
         let sim = other.simulation().unwrap();
         assert!(matches!(
-            sim.friction(),
+            sim.strengths().friction,
             Friction::BartonChoubey { jrc: 10.0, .. }
         ));
-        assert_eq!(sim.initial().vx, 0.5);
+        assert_eq!(sim.first_body().initial().vx, 0.5);
         // A full one runs, infallibly, to the same route as `run`.
         let sim = default.simulation().unwrap();
         assert_eq!(crate::route::simulate(&sim), run(&default).unwrap());

@@ -2,7 +2,7 @@
 
 use super::ContactGeometry;
 use crate::geometry::LocalFrame;
-use crate::model::{Block, Loads, Simulation, Tendon};
+use crate::model::{Block, Body, Loads, Tendon};
 use nalgebra::Vector3;
 
 /// The loads on the block at one pose (N, N·m; moments about the base point under the CM, the
@@ -31,15 +31,21 @@ impl Applied {
         Applied::shaken(loads, block, frame, [0.0; 3])
     }
 
-    /// With the foundation accelerating at `ground` (g, along X, Y, Z; a ground-motion
-    /// record): in the foundation's frame the block feels −m g `ground` more at its centre of
-    /// mass, the horizontal part driving (as k_h), the vertical held (as k_v).
-    pub fn shaken(loads: &Loads, block: &Block, frame: &LocalFrame, ground: [f64; 3]) -> Self {
+    /// With the foundation accelerating at `acceleration` (g, along X, Y, Z; a ground-motion
+    /// record): in the foundation's frame the block feels −m g `acceleration` more at its
+    /// centre of mass, the horizontal part driving (as k_h), the vertical held (as k_v).
+    pub fn shaken(
+        loads: &Loads,
+        block: &Block,
+        frame: &LocalFrame,
+        acceleration: [f64; 3],
+    ) -> Self {
         let f = loads.hydraulic_force;
         let mg = block.mass * loads.gravity;
         let weight = Vector3::new(0.0, -mg, 0.0);
-        let horizontal = Vector3::new((loads.kh - ground[0]) * mg, 0.0, -ground[2] * mg);
-        let vertical = Vector3::new(0.0, (loads.kv - ground[1]) * mg, 0.0);
+        let a = acceleration;
+        let horizontal = Vector3::new((loads.kh - a[0]) * mg, 0.0, -a[2] * mg);
+        let vertical = Vector3::new(0.0, (loads.kv - a[1]) * mg, 0.0);
         // From the base point under the CM to the CM.
         let arm = frame.j * loads.cm_height;
         Applied {
@@ -53,11 +59,11 @@ impl Applied {
         }
     }
 
-    /// The loads of `sim` on its block at the contacts `geom`, the foundation accelerating at
-    /// `ground` (g): [`Applied::shaken`] and the anchors' tendons' pull at the pose.
-    pub fn of(sim: &Simulation, geom: &ContactGeometry, ground: [f64; 3]) -> Self {
-        Applied::shaken(sim.loads(), sim.block(), &geom.frame, ground).with_tendons(
-            sim.tendons(),
+    /// The loads on `body` at the contacts `geom`, the foundation accelerating at
+    /// `acceleration` (g): [`Applied::shaken`] and the anchors' tendons' pull at the pose.
+    pub fn of(body: &Body, geom: &ContactGeometry, acceleration: [f64; 3]) -> Self {
+        Applied::shaken(body.loads(), body.block(), &geom.frame, acceleration).with_tendons(
+            body.tendons(),
             &geom.frame,
             &geom.origin,
         )

@@ -38,7 +38,7 @@ pub struct ContactGeometry {
 
 impl ContactGeometry {
     /// The contacts of `pose` on the planes with upward unit normals `normals` (as
-    /// [`crate::model::Simulation::normals`], computed once).
+    /// [`crate::model::Body::normals`], computed once).
     pub fn new(normals: &[Vector3<f64>; 3], pose: &Pose) -> Self {
         ContactGeometry {
             frame: pose.frame,

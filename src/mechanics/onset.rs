@@ -11,14 +11,14 @@
 
 use super::ContactGeometry;
 use super::loads::Applied;
-use crate::model::Strength;
+use crate::model::{ContactStrength, ContactStrengths};
 
 /// (FS, D, R); FS is `f64::INFINITY` when D ≤ 0.
 pub fn factor_of_safety(
     geom: &ContactGeometry,
     applied: &Applied,
     c: &[f64; 3],
-    friction: &Strength,
+    friction: &[ContactStrength],
 ) -> (f64, f64, f64) {
     let i = &geom.frame.i;
     let mut driving = applied.total_force().dot(i);
@@ -51,13 +51,20 @@ mod tests {
         let pose =
             Pose::from_tilts(s.site.as_paper().unwrap(), Default::default(), 0.0, 0.0).unwrap();
         let geom = ContactGeometry::new(&s.site().normals(), &pose);
-        let applied = Applied::new(d.loads(), d.block(), &geom.frame);
+        let applied = Applied::new(d.first_body().loads(), d.first_body().block(), &geom.frame);
         let c = frictionless_normals(&geom, &applied).unwrap();
         let g = &s.site.as_paper().unwrap().foundation;
-        let driving =
-            d.loads().hydraulic_force - c[1] * g.xi.sin() - c[2] * g.zeta.sin() * g.kappa.cos();
+        let driving = d.first_body().loads().hydraulic_force
+            - c[1] * g.xi.sin()
+            - c[2] * g.zeta.sin() * g.kappa.cos();
         let want = 0.4 * (c[0] + c[1] + c[2]) / driving;
-        let (fs, dd, _) = factor_of_safety(&geom, &applied, &c, &d.strength([0, 1, 2], false));
+        let (fs, dd, _) = factor_of_safety(
+            &geom,
+            &applied,
+            &c,
+            &d.first_body()
+                .frame_strength(d.strengths(), [0, 1, 2], false),
+        );
         assert!((fs - want).abs() < 1e-12 * want, "{fs} vs {want}");
         assert!((dd - driving).abs() < 1e-6);
     }

@@ -22,7 +22,7 @@ use super::ContactGeometry;
 use super::loads::Applied;
 use super::statics::ratios;
 use crate::model::Block;
-use crate::model::Strength;
+use crate::model::{ContactStrength, ContactStrengths};
 use crate::numeric::{poly_mul, poly_roots, wrap_angle as wrap};
 use nalgebra::{Matrix3, Matrix3x4, SMatrix, Vector3, Vector4};
 
@@ -464,7 +464,7 @@ fn prologue(
     applied: &Applied,
     block: &Block,
     c: &[f64; 3],
-    friction: &Strength,
+    friction: &[ContactStrength],
 ) -> Result<([f64; 3], Option<Reaction>), ReactionsError> {
     if let Some(k) = (0..3).find(|&k| c[k] <= 0.0) {
         return Err(ReactionsError::LiftOff(k));
@@ -490,7 +490,7 @@ fn prologue(
 }
 
 /// Per-contact friction coefficients at N0 = j.
-fn mu_at(friction: &Strength, m: &[f64; 3], j: f64) -> [f64; 3] {
+fn mu_at(friction: &[ContactStrength], m: &[f64; 3], j: f64) -> [f64; 3] {
     [0, 1, 2].map(|i| friction.coefficient(i, j * m[i]))
 }
 
@@ -500,7 +500,7 @@ fn settle(
     geom: &ContactGeometry,
     applied: &Applied,
     m: &[f64; 3],
-    friction: &Strength,
+    friction: &[ContactStrength],
     mut p: Point,
 ) -> Option<Point> {
     if !friction.is_stress_dependent() {
@@ -527,7 +527,7 @@ fn reaction_at(
     applied: &Applied,
     block: &Block,
     m: &[f64; 3],
-    friction: &Strength,
+    friction: &[ContactStrength],
     sys: &System,
     p: Point,
 ) -> Reaction {
@@ -543,7 +543,7 @@ pub fn all_solutions(
     applied: &Applied,
     block: &Block,
     c: &[f64; 3],
-    friction: &Strength,
+    friction: &[ContactStrength],
 ) -> Result<Vec<Reaction>, ReactionsError> {
     let (m, frictionless) = prologue(geom, applied, block, c, friction)?;
     if let Some(r) = frictionless {
@@ -568,7 +568,7 @@ pub fn follow(
     applied: &Applied,
     block: &Block,
     c: &[f64; 3],
-    friction: &Strength,
+    friction: &[ContactStrength],
     previous: &Reaction,
 ) -> Result<Option<Reaction>, ReactionsError> {
     let (m, frictionless) = prologue(geom, applied, block, c, friction)?;

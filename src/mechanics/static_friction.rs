@@ -25,7 +25,7 @@
 
 use super::ContactGeometry;
 use super::loads::Applied;
-use crate::model::{Settling, Strength};
+use crate::model::{ContactStrength, ContactStrengths, Settling};
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::{
     DefaultSettings, DefaultSolver, IPSolver, SolverStatus, SupportedConeT::NonnegativeConeT,
@@ -265,7 +265,7 @@ fn extreme_t(
 pub fn at_rest(
     geom: &ContactGeometry,
     applied: &Applied,
-    friction: &Strength,
+    friction: &[ContactStrength],
 ) -> Result<HoldingRange, StaticError> {
     let c = super::statics::frictionless_normals(geom, applied).unwrap_or([1.0; 3]);
     check(geom, applied, friction, &c)
@@ -276,12 +276,12 @@ pub fn at_rest(
 pub fn check(
     geom: &ContactGeometry,
     applied: &Applied,
-    friction: &Strength,
+    friction: &[ContactStrength],
     statics: &[f64; 3],
 ) -> Result<HoldingRange, StaticError> {
     let w = applied.weight.norm();
     let mut mu = friction.coefficients(statics);
-    let cohesion = &friction.cohesion_n;
+    let cohesion = &friction.cohesions();
     let stress_dependent = friction.is_stress_dependent();
     let hi = if stress_dependent {
         // The normals are per unit weight: the coefficients are those at λ·W.
@@ -323,10 +323,10 @@ pub fn check(
 pub fn reach(
     geom: &ContactGeometry,
     applied: &Applied,
-    friction: &Strength,
+    friction: &[ContactStrength],
 ) -> Result<Option<f64>, StaticError> {
     let mu = friction.coefficients(&[1.0; 3]);
-    let (t, _) = extreme_t(geom, applied, &mu, &friction.cohesion_n, -1.0)?;
+    let (t, _) = extreme_t(geom, applied, &mu, &friction.cohesions(), -1.0)?;
     Ok((!t.is_nan()).then_some(t))
 }
 
@@ -357,11 +357,11 @@ pub fn yield_acceleration(
     geom: &ContactGeometry,
     applied: &Applied,
     (weight, arm): (f64, Vector3<f64>),
-    friction: &Strength,
+    friction: &[ContactStrength],
     statics: &[f64; 3],
 ) -> Result<Option<YieldAcceleration>, StaticError> {
     let mu = friction.coefficients(statics);
-    let cohesion = &friction.cohesion_n;
+    let cohesion = &friction.cohesions();
     let pushed = |angle: f64| -> Result<f64, StaticError> {
         let u = Vector3::new(angle.cos(), 0.0, angle.sin()) * weight;
         let unit = Applied {
@@ -455,9 +455,16 @@ mod tests {
             ("loads.eccentricity_m", 0.0),
         ]);
         let d = s.simulation().unwrap();
-        let applied = Applied::new(d.loads(), d.block(), &g.frame);
+        let applied = Applied::new(d.first_body().loads(), d.first_body().block(), &g.frame);
         let c = frictionless_normals(&g, &applied).unwrap();
-        let st = check(&g, &applied, &d.strength([0, 1, 2], false), &c).unwrap();
+        let st = check(
+            &g,
+            &applied,
+            &d.first_body()
+                .frame_strength(d.strengths(), [0, 1, 2], false),
+            &c,
+        )
+        .unwrap();
         let want = 0.4 * 9.81e6 / 8e6;
         assert!(
             (st.factor_of_safety - want).abs() < 1e-3 * want,
@@ -472,9 +479,16 @@ mod tests {
         for (mu_k, holds) in [(2.0, true), (0.0, false)] {
             let (s, g) = start(&[("friction.mu_k", mu_k)]);
             let d = s.simulation().unwrap();
-            let applied = Applied::new(d.loads(), d.block(), &g.frame);
+            let applied = Applied::new(d.first_body().loads(), d.first_body().block(), &g.frame);
             let c = frictionless_normals(&g, &applied).unwrap();
-            let st = check(&g, &applied, &d.strength([0, 1, 2], false), &c).unwrap();
+            let st = check(
+                &g,
+                &applied,
+                &d.first_body()
+                    .frame_strength(d.strengths(), [0, 1, 2], false),
+                &c,
+            )
+            .unwrap();
             assert_eq!(st.holds(), holds, "{st:?}");
         }
     }

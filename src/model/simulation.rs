@@ -1,55 +1,49 @@
-//! A simulation: the physical model and how it is run, checked once when it is built.
+//! A simulation: the bodies, the rock they stand on, the joints between them, what every pair
+//! of surfaces carries, and how it is run — checked once when it is built.
 
-use super::anchor::{RockAnchor, Tendon};
 use super::base::Base;
-use super::block::Block;
+use super::body::Body;
 use super::error::ModelError;
-use super::friction::{Friction, Strength, Strengths};
-use super::initial::Initial;
-use super::loads::Loads;
-use super::monolith::Monolith;
-use super::record::Record;
+use super::foundation::Foundation;
+use super::friction::Friction;
+use super::joint::{Joint, check_joints};
 use super::settings::{Contacts, DynamicsModel, RunSettings};
-use crate::geometry::{LocalFrame, Site};
-use nalgebra::Vector3;
+use super::strength::Strengths;
+use crate::geometry::Site;
 use std::sync::Arc;
 
-/// What a route is computed from: the site (the contacts and the ground under them), the
-/// block, its loads, what the faces carry in shear, the motion at the start, the ground's
-/// shaking, and the run settings — every part present and checked, and their combination one
-/// the dynamics can run. Built by [`Simulation::builder`] from typed parts, or from a scene
-/// file by the scene reader; its fields are private, so that running one checks nothing again.
+/// What a route is computed from: the bodies (a one-body scene is a one-element list), the
+/// foundation (the rock and its shaking), the joints between bodies, what every pair of
+/// surfaces carries in shear, and the run settings — every part present and checked, and their
+/// combination one the dynamics can run. Built by [`Simulation::builder`] from typed parts, or
+/// from a scene file by the scene reader; its fields are private, so that running one checks
+/// nothing again.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Simulation {
     name: String,
-    site: Site,
-    block: Block,
-    loads: Loads,
-    friction: Friction,
+    /// At least one.
+    bodies: Vec<Body>,
+    foundation: Foundation,
+    joints: Vec<Joint>,
     strengths: Strengths,
     settings: RunSettings,
-    initial: Initial,
-    record: Option<Arc<Record>>,
-    /// The record run as it is and reversed (`seismic.polarity = "both"`).
-    both_polarities: bool,
-    /// The base the block touches the ground with (`contacts = "base"`).
-    base: Option<Base>,
-    /// The upward unit normals of the planes under contacts 0, 1, 2, computed once.
-    normals: [Vector3<f64>; 3],
-    /// `[[anchor]]`: post-tensioned anchors through a monolith into the rock.
-    tendons: Vec<Tendon>,
 }
 
 /// The parts of a [`Simulation`], set one by one and checked together by
 /// [`SimulationBuilder::build`].
 ///
 /// ```
-/// use slideroute::{Block, DynamicsModel, Friction, Loads, RunSettings, Simulation, Site};
+/// use slideroute::{Block, Body, DynamicsModel, Foundation, Friction, Loads};
+/// use slideroute::{RunSettings, Simulation};
 /// # let site = slideroute::Scene::default_scene().site().clone();
-/// let sim = Simulation::builder(site)
-///     .name("my monolith")
+/// let body = Body::builder(site.clone())
 ///     .block(Block::plate(1.0e6, 1.1e7))
 ///     .loads(Loads::plain(8.0e6, 1.0, 9.81))
+///     .build()?;
+/// let sim = Simulation::builder()
+///     .name("my monolith")
+///     .body(body)
+///     .foundation(Foundation::under(&site))
 ///     .friction(Friction::coulomb(0.4))
 ///     .settings(RunSettings::new(DynamicsModel::RigidBody, 1e-3, 2.0))
 ///     .build()?;
@@ -57,43 +51,21 @@ pub struct Simulation {
 /// # assert!(route.travel_m > 0.0);
 /// # Ok::<(), slideroute::ModelError>(())
 /// ```
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Default)]
 #[must_use]
 pub struct SimulationBuilder {
-    name: String,
-    site: Site,
-    block: Option<Block>,
-    loads: Option<Loads>,
-    friction: Option<Friction>,
-    strengths: Strengths,
+    name: Option<String>,
+    bodies: Vec<Body>,
+    foundation: Option<Foundation>,
+    joints: Vec<Joint>,
+    strengths: Option<Strengths>,
     settings: Option<RunSettings>,
-    initial: Initial,
-    record: Option<Arc<Record>>,
-    both_polarities: bool,
-    base: Option<Base>,
-    tendons: Vec<Tendon>,
-    /// The first anchor that is not on the monolith, found when the anchors were given.
-    anchor_fault: Option<ModelError>,
 }
 
 impl Simulation {
-    /// A builder on `site`, named "unnamed", at rest, with no cohesion and no shaking until told.
-    pub fn builder(site: Site) -> SimulationBuilder {
-        SimulationBuilder {
-            name: "unnamed".to_string(),
-            site,
-            block: None,
-            loads: None,
-            friction: None,
-            strengths: Strengths::default(),
-            settings: None,
-            initial: Initial::default(),
-            record: None,
-            both_polarities: false,
-            base: None,
-            tendons: Vec::new(),
-            anchor_fault: None,
-        }
+    /// A builder named "unnamed", with no body, no joint and no cohesion until told.
+    pub fn builder() -> SimulationBuilder {
+        SimulationBuilder::default()
     }
 
     /// Its name (the scene's), written into routes.
@@ -101,35 +73,32 @@ impl Simulation {
         &self.name
     }
 
-    /// The contacts and the ground under them.
-    pub fn site(&self) -> &Site {
-        &self.site
+    /// The bodies, in their order (at least one).
+    pub fn bodies(&self) -> &[Body] {
+        &self.bodies
     }
 
-    /// The block's mass properties.
-    pub fn block(&self) -> &Block {
-        &self.block
+    /// The first body: the one the paper's dynamics and the three-point frame follow (they
+    /// take a simulation of one body only).
+    pub fn first_body(&self) -> &Body {
+        // `build` refuses a simulation without a body, and nothing else makes one.
+        &self.bodies[0]
     }
 
-    /// The loads.
-    pub fn loads(&self) -> &Loads {
-        &self.loads
+    /// The rock the bodies stand on, and its shaking.
+    pub fn foundation(&self) -> &Foundation {
+        &self.foundation
     }
 
-    /// The friction criterion of every face without its own.
-    pub fn friction(&self) -> &Friction {
-        &self.friction
+    /// The joints between bodies.
+    pub fn joints(&self) -> &[Joint] {
+        &self.joints
     }
 
-    /// Every face's criterion and cohesion.
+    /// What every pair of surfaces carries: each rock face's criterion and cohesion, and each
+    /// joint's.
     pub fn strengths(&self) -> &Strengths {
         &self.strengths
-    }
-
-    /// What the contacts on `faces` carry (each face's criterion; the cohesion when `bonded`:
-    /// at rest, never yet slid).
-    pub fn strength(&self, faces: [u32; 3], bonded: bool) -> Strength {
-        self.strengths.at(&self.friction, faces, bonded)
     }
 
     /// The run settings: mode, dynamics, integrator, dt, t_end, stride.
@@ -137,170 +106,64 @@ impl Simulation {
         &self.settings
     }
 
-    /// The motion at t = 0.
-    pub fn initial(&self) -> &Initial {
-        &self.initial
-    }
-
-    /// The ground-motion record, when the foundation is shaken.
-    pub fn record(&self) -> Option<&Record> {
-        self.record.as_deref()
-    }
-
-    /// Whether the record is to be run as it is and reversed, the larger permanent
-    /// displacement reported (`seismic.polarity = "both"`).
-    pub fn both_polarities(&self) -> bool {
-        self.both_polarities
-    }
-
     /// The same simulation under one polarity of its record: reversed (every acceleration
     /// negated) or as it is, run once.
     pub fn one_polarity(&self, reversed: bool) -> Result<Simulation, ModelError> {
-        let record = match (&self.record, reversed) {
-            (Some(r), true) => Some(Arc::new(r.scaled(-1.0)?)),
-            (r, _) => r.clone(),
-        };
         Ok(Simulation {
-            record,
-            both_polarities: false,
+            foundation: self.foundation.one_polarity(reversed)?,
             ..self.clone()
         })
-    }
-
-    /// The foundation's acceleration (g, along X, Y, Z) at time t: the record's, or none.
-    pub fn ground(&self, t: f64) -> [f64; 3] {
-        self.record.as_ref().map_or([0.0; 3], |r| r.at(t))
-    }
-
-    /// The base the block touches the ground with: set where the run settings say
-    /// `contacts = "base"` (the one given, or the bounding rectangle of the frame's contacts).
-    pub fn base(&self) -> Option<&Base> {
-        self.base.as_ref()
-    }
-
-    /// The friction criterion of face `face` (its own, or the default).
-    pub fn face_friction(&self, face: u32) -> Friction {
-        self.strengths
-            .faces
-            .iter()
-            .find(|f| f.faces.contains(&face))
-            .map_or(self.friction, |f| f.friction)
-    }
-
-    /// The upward unit normals of the planes under contacts 0, 1, 2 at the start.
-    pub fn normals(&self) -> &[Vector3<f64>; 3] {
-        &self.normals
-    }
-
-    /// The frame's length scale L (m).
-    pub fn l(&self) -> f64 {
-        self.site.l()
-    }
-
-    /// The anchors' tendons, as the route has them (fixed in the rock, broken) or, before, as
-    /// given.
-    pub fn tendons(&self) -> &[Tendon] {
-        &self.tendons
-    }
-
-    /// The same simulation with every tendon fixed in the rock where the block is at
-    /// (`origin`, `frame`): the route's start.
-    pub fn tendons_fixed_at(&self, origin: &Vector3<f64>, frame: &LocalFrame) -> Simulation {
-        Simulation {
-            tendons: self
-                .tendons
-                .iter()
-                .map(|t| t.fixed_at(origin, frame))
-                .collect(),
-            ..self.clone()
-        }
-    }
-
-    /// The same simulation with tendon `k` broken.
-    pub fn tendon_broken(&self, k: usize) -> Simulation {
-        let mut tendons = self.tendons.clone();
-        if let Some(t) = tendons.get_mut(k) {
-            t.broken = true;
-        }
-        Simulation {
-            tendons,
-            ..self.clone()
-        }
     }
 }
 
 impl SimulationBuilder {
     /// Its name, written into routes.
     pub fn name(mut self, name: impl Into<String>) -> Self {
-        self.name = name.into();
+        self.name = Some(name.into());
         self
     }
 
-    /// The block's mass properties.
-    pub fn block(mut self, block: Block) -> Self {
-        self.block = Some(block);
+    /// One more body (the first is body 0).
+    pub fn body(mut self, body: Body) -> Self {
+        self.bodies.push(body);
         self
     }
 
-    /// The loads.
-    pub fn loads(mut self, loads: Loads) -> Self {
-        self.loads = Some(loads);
+    /// The rock the bodies stand on, and its shaking.
+    pub fn foundation(mut self, foundation: Foundation) -> Self {
+        self.foundation = Some(foundation);
         self
     }
 
-    /// The friction criterion of every face without its own.
+    /// One more joint between two bodies.
+    pub fn joint(mut self, joint: Joint) -> Self {
+        self.joints.push(joint);
+        self
+    }
+
+    /// The friction criterion of every face without its own (the default of
+    /// [`SimulationBuilder::strengths`], or of no cohesion and no face of its own).
     pub fn friction(mut self, friction: Friction) -> Self {
-        self.friction = Some(friction);
+        self.strengths = Some(match self.strengths {
+            Some(mut s) => {
+                s.friction = friction;
+                s
+            }
+            None => Strengths::new(friction),
+        });
         self
     }
 
-    /// Faces with their own criterion, and the joint's cohesion (none by default).
+    /// What the rock's faces carry: the default criterion and cohesion, and faces with their
+    /// own (replacing a criterion given before by [`SimulationBuilder::friction`]).
     pub fn strengths(mut self, strengths: Strengths) -> Self {
-        self.strengths = strengths;
+        self.strengths = Some(strengths);
         self
     }
 
     /// How the route is run.
     pub fn settings(mut self, settings: RunSettings) -> Self {
         self.settings = Some(settings);
-        self
-    }
-
-    /// The motion at t = 0 (at rest by default).
-    pub fn initial(mut self, initial: Initial) -> Self {
-        self.initial = initial;
-        self
-    }
-
-    /// The foundation's shaking (none by default).
-    pub fn record(mut self, record: impl Into<Arc<Record>>) -> Self {
-        self.record = Some(record.into());
-        self
-    }
-
-    /// The record run as it is and reversed, the larger permanent displacement reported
-    /// (`seismic.polarity = "both"`; `route::Runner::run`).
-    pub fn both_polarities(mut self) -> Self {
-        self.both_polarities = true;
-        self
-    }
-
-    /// The base the block touches the ground with under `contacts = "base"` (without one, the
-    /// bounding rectangle of the frame's contacts at the centre of mass's height).
-    pub fn base(mut self, base: Base) -> Self {
-        self.base = Some(base);
-        self
-    }
-
-    /// Post-tensioned anchors through `monolith` into the rock (`[[anchor]]`; the rigid body
-    /// follows them, on its three contacts or its base, the paper's dynamics not), each checked
-    /// against its section when built.
-    pub fn anchors(mut self, monolith: &Monolith, anchors: &[RockAnchor]) -> Self {
-        self.anchor_fault = anchors
-            .iter()
-            .enumerate()
-            .find_map(|(k, a)| a.check(k, &monolith.section).err());
-        self.tendons = anchors.iter().map(|a| Tendon::on(monolith, *a)).collect();
         self
     }
 
@@ -313,88 +176,99 @@ impl SimulationBuilder {
                 format!("missing: a simulation needs {part} (SimulationBuilder::{key})"),
             )
         };
-        let block = self.block.ok_or_else(|| missing("the block", "block"))?;
-        let loads = self.loads.ok_or_else(|| missing("the loads", "loads"))?;
-        let friction = self
-            .friction
+        if self.bodies.is_empty() {
+            return Err(missing("a body", "body"));
+        }
+        let foundation = self
+            .foundation
+            .ok_or_else(|| missing("the rock its bodies stand on", "foundation"))?;
+        let strengths = self
+            .strengths
             .ok_or_else(|| missing("a friction criterion", "friction"))?;
         let settings = self
             .settings
             .ok_or_else(|| missing("run settings", "settings"))?;
-        block.check()?;
-        loads.check()?;
-        friction.check("friction")?;
-        self.strengths.check(face_count(&self.site))?;
+        check_rock(&self.bodies, &foundation)?;
+        strengths.check(foundation.face_count())?;
         settings.check()?;
         settings.check_runnable()?;
-        self.initial.check()?;
-        check_ratios(self.site.l(), &block, &loads)?;
+        let count = self.bodies.len();
+        check_one_body(&settings, count)?;
         check_rigid_only(
             settings.dynamics,
-            self.record.is_some(),
-            self.strengths.has_cohesion(),
+            foundation.record().is_some(),
+            strengths.has_cohesion(),
         )?;
-        if let Some(e) = self.anchor_fault {
-            return Err(e);
-        }
-        check_anchor_ratios(&block, &loads, &self.tendons)?;
-        check_anchored(&settings, !self.tendons.is_empty())?;
-        let base = match settings.contacts {
-            Contacts::Frame => None,
+        let anchored = self.bodies.iter().any(|b| !b.tendons().is_empty());
+        check_anchored(&settings, anchored)?;
+        let bodies = match settings.contacts {
+            Contacts::Frame => self.bodies.into_iter().map(|b| b.with_base(None)).collect(),
             Contacts::Base => {
-                check_base_friction(&friction, &self.strengths)?;
-                match self.base {
-                    Some(b) => Some(b),
-                    None => Some(Base::around(self.site.contacts(), loads.cm_height)?),
-                }
+                check_base_friction(&strengths)?;
+                self.bodies
+                    .into_iter()
+                    .map(|b| {
+                        let base = match b.base() {
+                            Some(base) => base.clone(),
+                            None => Base::around(b.site().contacts(), b.loads().cm_height)?,
+                        };
+                        Ok(b.with_base(Some(base)))
+                    })
+                    .collect::<Result<_, ModelError>>()?
             }
         };
+        check_joints(&self.joints, count)?;
+        let pairs = self
+            .joints
+            .iter()
+            .map(|j| (j.bodies, j.strength()))
+            .collect();
         Ok(Simulation {
-            name: self.name,
-            base,
-            normals: self.site.normals(),
-            site: self.site,
-            block,
-            loads,
-            friction,
-            strengths: self.strengths,
+            name: self.name.unwrap_or_else(|| "unnamed".to_string()),
+            bodies,
+            foundation,
+            strengths: strengths.with_joints(pairs),
+            joints: self.joints,
             settings,
-            initial: self.initial,
-            both_polarities: self.both_polarities && self.record.is_some(),
-            record: self.record,
-            tendons: self.tendons,
         })
     }
 }
 
-/// Each anchor's prestress within [`MAX_RATIO`] of the weight, and its E A within
-/// [`MAX_RATIO`]² of it (a strain of 10⁻⁶ then pulls at most [`MAX_RATIO`] weights): a
-/// tendon's pull is a number the contact problem can take.
-fn check_anchor_ratios(b: &Block, l: &Loads, tendons: &[Tendon]) -> Result<(), ModelError> {
-    let weight = b.mass * l.gravity;
-    for (k, t) in tendons.iter().enumerate() {
-        let a = &t.anchor;
-        if a.prestress > MAX_RATIO * weight {
-            return Err(ModelError::new(
-                format!("anchor[{k}].prestress_n"),
-                format!(
-                    "{:e} N is more than {MAX_RATIO:e} times the weight ({weight:e} N)",
-                    a.prestress
-                ),
-            ));
-        }
-        let ea = a.modulus * a.steel_area;
-        if ea > MAX_RATIO * MAX_RATIO * weight {
-            return Err(ModelError::new(
-                format!("anchor[{k}].steel_area_m2"),
-                format!(
-                    "E A = {ea:e} N is more than {:e} times the weight ({weight:e} N)",
-                    MAX_RATIO * MAX_RATIO
-                ),
-            ));
-        }
+/// The paper's dynamics and the three-point frame (`contacts = "frame"`, whatever the dynamics)
+/// follow one body; several are taken only by the body model (`contacts = "base"`, which the
+/// rigid body's dynamics alone runs).
+fn check_one_body(settings: &RunSettings, bodies: usize) -> Result<(), ModelError> {
+    if bodies > 1 && settings.contacts == Contacts::Frame {
+        return Err(ModelError::new(
+            "solver.contacts",
+            format!(
+                "{bodies} bodies: the paper's dynamics and the three-point frame follow one \
+                 body; several bodies take contacts = \"base\""
+            ),
+        ));
     }
     Ok(())
+}
+
+/// Each body whose frame stands on a ground of faces or a surface stands on the foundation's:
+/// the frame's faces are the rock's, numbered as the strengths name them.
+fn check_rock(bodies: &[Body], foundation: &Foundation) -> Result<(), ModelError> {
+    let rock = foundation.ground();
+    let other = bodies.iter().position(|b| {
+        b.site()
+            .shared_ground()
+            .is_some_and(|g| !(Arc::ptr_eq(g, rock) || **g == **rock))
+    });
+    match other {
+        Some(k) => Err(ModelError::new(
+            "foundation",
+            format!(
+                "body {k}'s three-point frame stands on another rock than the foundation's \
+                 (Foundation::under its site gives the one it stands on)"
+            ),
+        )),
+        None => Ok(()),
+    }
 }
 
 /// Anchors are followed by the rigid body, on its three contacts or its base (the tendon's
@@ -417,8 +291,9 @@ pub(crate) fn check_anchored(settings: &RunSettings, anchored: bool) -> Result<(
 /// What a base's contacts take for now: Coulomb friction on every face, no cohesion (a
 /// stress-dependent criterion needs each contact's normal force, which a base's many contacts
 /// share by impulses; cohesion needs a bonded area).
-fn check_base_friction(friction: &Friction, strengths: &Strengths) -> Result<(), ModelError> {
-    let criteria = std::iter::once(friction).chain(strengths.faces.iter().map(|f| &f.friction));
+fn check_base_friction(strengths: &Strengths) -> Result<(), ModelError> {
+    let criteria =
+        std::iter::once(&strengths.friction).chain(strengths.faces.iter().map(|f| &f.friction));
     if criteria.clone().any(Friction::is_stress_dependent) {
         return Err(ModelError::new(
             "solver.contacts",
@@ -439,95 +314,6 @@ fn check_base_friction(friction: &Friction, strengths: &Strengths) -> Result<(),
 /// How many faces the ground under `site` has: the paper's three planes, or a ground's faces.
 pub(crate) fn face_count(site: &Site) -> usize {
     site.ground().map_or(3, |(g, _)| g.faces().len())
-}
-
-/// The most a derived ratio may be, either way: the water load against the weight, and a
-/// moment of inertia against m L². Each input is finite and positive on its own, but together
-/// they can leave the mechanics nothing to compute with (a mass of 1e308 kg makes the weight
-/// infinite and the contact problem singular; a water load of 1e308 N makes the cone program
-/// fail). A dam monolith's ratios are of order one.
-const MAX_RATIO: f64 = 1e6;
-
-/// What follows from the inputs: the weight m g is a finite, normal number, the water load is
-/// within [`MAX_RATIO`] of it, and each moment of inertia within [`MAX_RATIO`] of m L² either
-/// way (`scale` is L, m). The error names the key to change.
-pub(crate) fn check_ratios(scale: f64, b: &Block, l: &Loads) -> Result<(), ModelError> {
-    let weight = b.mass * l.gravity;
-    if !weight.is_normal() {
-        let key = if b.mass > l.gravity {
-            "block.mass_kg"
-        } else {
-            "loads.gravity_m_s2"
-        };
-        return Err(ModelError::new(
-            key,
-            // Said in words: an infinite weight printed would be `inf` in a sweep's table.
-            format!(
-                "the weight m g is {} (mass {:e} kg, gravity {:e} m/s²)",
-                if weight.is_infinite() {
-                    "beyond the largest number"
-                } else {
-                    "too small to compute with"
-                },
-                b.mass,
-                l.gravity
-            ),
-        ));
-    }
-    if l.hydraulic_force > MAX_RATIO * weight {
-        return Err(ModelError::new(
-            "loads.hydraulic_force_n",
-            format!(
-                "{:e} N is more than {MAX_RATIO:e} times the weight ({weight:e} N, from a mass of \
-                 {:e} kg)",
-                l.hydraulic_force, b.mass
-            ),
-        ));
-    }
-    // The water's moment about the CM against the weight's over the block: c = 1e12 m (a
-    // moment 1e11 times the weight's) spun the block so that a 0.2 s route took a minute.
-    let moment = l.hydraulic_force * l.eccentricity.abs();
-    if moment > MAX_RATIO * weight * scale {
-        return Err(ModelError::new(
-            "loads.eccentricity_m",
-            // F and c given, not their product, which may be past the largest number.
-            format!(
-                "the water's moment F c (F = {:e} N, c = {:e} m) is more than {MAX_RATIO:e} \
-                 times the weight's over the block, m g L = {:e} N·m",
-                l.hydraulic_force,
-                l.eccentricity,
-                weight * scale
-            ),
-        ));
-    }
-    let ml2 = b.mass * scale * scale;
-    for (key, i) in [
-        ("block.inertia_kg_m2", b.inertia),
-        ("block.inertia_x_kg_m2", b.inertia_x),
-        ("block.inertia_z_kg_m2", b.inertia_z),
-    ] {
-        let ratio = i / ml2;
-        if !(ratio.is_finite() && (1.0 / MAX_RATIO..=MAX_RATIO).contains(&ratio)) {
-            // A ratio or m L² past the largest number said in words, not `inf`.
-            let shown = |v: f64| {
-                if v.is_finite() {
-                    format!("{v:e}")
-                } else {
-                    "past the largest number".to_string()
-                }
-            };
-            return Err(ModelError::new(
-                key,
-                format!(
-                    "{i:e} kg·m² against m L² = {} kg·m²: a ratio of {}, outside 1e-6 … 1e6 (a \
-                     monolith's is of order 0.1)",
-                    shown(ml2),
-                    shown(ratio)
-                ),
-            ));
-        }
-    }
-    Ok(())
 }
 
 /// What only the rigid body's dynamics follows: a ground-motion record (it moves the foundation
@@ -563,15 +349,28 @@ pub(crate) fn check_rigid_only(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::model::{Integrator, Mode};
+    use crate::model::{Block, BodyBuilder, Integrator, Joint, Loads, Mode, Record};
 
-    fn builder() -> SimulationBuilder {
-        let site = crate::scene::Scene::default_scene().site().clone();
-        Simulation::builder(site)
+    fn site() -> Site {
+        crate::scene::Scene::default_scene().site().clone()
+    }
+
+    fn body() -> BodyBuilder {
+        Body::builder(site())
             .block(Block::plate(1e6, 1.1e7))
             .loads(Loads::plain(8e6, 1.0, 9.81))
+    }
+
+    fn builder() -> SimulationBuilder {
+        Simulation::builder()
+            .body(body().build().unwrap())
+            .foundation(Foundation::under(&site()))
             .friction(Friction::coulomb(0.4))
             .settings(RunSettings::new(DynamicsModel::RigidBody, 1e-3, 1.0))
+    }
+
+    fn on_base() -> RunSettings {
+        RunSettings::new(DynamicsModel::RigidBody, 1e-3, 1.0).with_contacts(Contacts::Base)
     }
 
     #[test]
@@ -579,22 +378,33 @@ mod tests {
         let scene = crate::scene::Scene::default_scene();
         let from_file = scene.simulation().unwrap();
         let settings = RunSettings::new(DynamicsModel::RigidBody, 1e-3, 20.0);
-        let built = builder()
+        let block = Block::plate(1e6, 11e6).with_axes(5.5e6, 5.5e6, 0.0);
+        let built = Simulation::builder()
             .name("paper-like")
-            .block(Block::plate(1e6, 11e6).with_axes(5.5e6, 5.5e6, 0.0))
+            .body(body().name("block").block(block).build().unwrap())
+            .foundation(Foundation::under(&site()))
+            .friction(Friction::coulomb(0.4))
             .settings(settings)
             .build()
             .unwrap();
         assert_eq!(built, from_file);
+        assert_eq!(built.bodies().len(), 1);
     }
 
     #[test]
     fn a_missing_part_or_parts_that_do_not_go_together_are_refused_naming_the_key() {
-        let site = crate::scene::Scene::default_scene().site().clone();
-        let e = Simulation::builder(site).build().unwrap_err();
-        assert_eq!(e.key, "block");
-        let e = builder().block(Block::plate(0.0, 1.0)).build().unwrap_err();
-        assert_eq!(e.key, "block.mass_kg");
+        assert_eq!(Simulation::builder().build().unwrap_err().key, "body");
+        let e = Simulation::builder()
+            .body(body().build().unwrap())
+            .build()
+            .unwrap_err();
+        assert_eq!(e.key, "foundation");
+        let e = Simulation::builder()
+            .body(body().build().unwrap())
+            .foundation(Foundation::under(&site()))
+            .build()
+            .unwrap_err();
+        assert_eq!(e.key, "friction");
         let small =
             RunSettings::new(DynamicsModel::RigidBody, 1e-3, 1.0).with_mode(Mode::SmallAngle);
         assert_eq!(
@@ -606,27 +416,29 @@ mod tests {
         let record = Record::new(vec![(0.0, [0.0; 3]), (1.0, [0.1, 0.0, 0.0])]).unwrap();
         let e = builder()
             .settings(paper)
-            .record(record)
+            .foundation(Foundation::under(&site()).shaken(record))
             .build()
             .unwrap_err();
         assert_eq!(e.key, "seismic.record");
-        let e = builder()
-            .loads(Loads::plain(1e20, 1.0, 9.81))
-            .build()
-            .unwrap_err();
-        assert_eq!(e.key, "loads.hydraulic_force_n");
         let e = builder()
             .friction(Friction::coulomb(f64::NAN))
             .build()
             .unwrap_err();
         assert_eq!(e.key, "friction.mu_k");
+        let barton = Friction::barton_choubey(10.0, 50e6, 0.5, 2.0);
+        let e = builder()
+            .friction(barton)
+            .settings(on_base())
+            .build()
+            .unwrap_err();
+        assert_eq!(e.key, "solver.contacts");
     }
 
     #[test]
     fn a_waters_moment_a_million_times_the_weights_is_refused_naming_the_eccentricity() {
         // Before, c = 1e12 m was taken, and its route of 0.2 s took a minute of sweeps.
         for c in [1e12, -9.2e18, f64::MAX] {
-            let e = builder()
+            let e = body()
                 .loads(Loads::plain(8e6, c, 9.81))
                 .build()
                 .unwrap_err();
@@ -635,17 +447,82 @@ mod tests {
             assert!(!e.reason.contains("inf"), "{}", e.reason);
         }
         // F c = 8e12 N·m against 1e6 m g L ≈ 1e14 N·m: taken. No water, any c.
-        assert!(
-            builder()
-                .loads(Loads::plain(8e6, 1e6, 9.81))
-                .build()
-                .is_ok()
+        assert!(body().loads(Loads::plain(8e6, 1e6, 9.81)).build().is_ok());
+        assert!(body().loads(Loads::plain(0.0, 1e300, 9.81)).build().is_ok());
+    }
+
+    #[test]
+    fn two_bodies_on_their_bases_make_a_simulation_with_a_joint_between_them() {
+        let sim = builder()
+            .body(body().name("right").build().unwrap())
+            .joint(Joint::new([0, 1], Friction::coulomb(0.7)).with_cohesion(2e5))
+            .settings(on_base())
+            .build()
+            .unwrap();
+        assert_eq!(sim.bodies().len(), 2);
+        assert_eq!(sim.bodies()[1].name(), "right");
+        // Each body without a base of its own stands on its frame's bounding rectangle.
+        for b in sim.bodies() {
+            let base = b.base().unwrap();
+            assert_eq!(base.depth(), b.loads().cm_height);
+        }
+        // The joint's strength is the pair's; a rock face against a body, the rock's.
+        use crate::model::Surface::{Body as B, Rock};
+        let joint = sim.strengths().between(B(1), B(0));
+        assert_eq!(joint.criterion, Friction::coulomb(0.7));
+        assert_eq!(joint.cohesion_pa, 2e5);
+        assert_eq!(
+            sim.strengths().between(Rock(1), B(1)).criterion,
+            Friction::coulomb(0.4)
         );
-        assert!(
-            builder()
-                .loads(Loads::plain(0.0, 1e300, 9.81))
+        // A joint naming a body the simulation does not have is refused by its key.
+        let e = builder()
+            .body(body().build().unwrap())
+            .joint(Joint::new([0, 2], Friction::coulomb(0.7)))
+            .settings(on_base())
+            .build()
+            .unwrap_err();
+        assert_eq!(e.key, "joint[0].bodies");
+    }
+
+    #[test]
+    fn a_frame_on_another_rock_than_the_foundations_is_refused() {
+        use crate::geometry::{Ground, Plane};
+        let path =
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("scenes/paper-like-faces.toml");
+        let scene = crate::scene::Scene::from_file(&path).unwrap();
+        let site = scene.site().clone();
+        let on = |foundation: Foundation| {
+            Simulation::builder()
+                .body(
+                    Body::builder(site.clone())
+                        .block(Block::plate(1e6, 1.1e7))
+                        .loads(Loads::plain(8e6, 1.0, 9.81))
+                        .build()
+                        .unwrap(),
+                )
+                .foundation(foundation)
+                .friction(Friction::coulomb(0.4))
+                .settings(RunSettings::new(DynamicsModel::RigidBody, 1e-3, 1.0))
                 .build()
-                .is_ok()
-        );
+        };
+        let level = Plane::through(nalgebra::Vector3::y(), nalgebra::Vector3::zeros());
+        let elsewhere = Foundation::new(Arc::new(Ground::planes(vec![level])));
+        assert_eq!(on(elsewhere).unwrap_err().key, "foundation");
+        assert!(on(Foundation::under(&site)).is_ok());
+    }
+
+    #[test]
+    fn several_bodies_are_refused_by_the_dynamics_that_follow_one() {
+        let two = || builder().body(body().build().unwrap());
+        for settings in [
+            RunSettings::new(DynamicsModel::RigidBody, 1e-3, 1.0),
+            RunSettings::new(DynamicsModel::Paper, 1e-3, 1.0),
+        ] {
+            let e = two().settings(settings).build().unwrap_err();
+            assert_eq!(e.key, "solver.contacts");
+            assert!(e.reason.contains("follow one body"), "{e}");
+        }
+        assert!(two().settings(on_base()).build().is_ok());
     }
 }

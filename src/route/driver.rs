@@ -58,26 +58,30 @@ pub(super) fn drive<'a, 's, M: Dynamics<'a>>(
 ) -> Logbook<'s> {
     let start_pose = finder.pose();
     let mut o = increments_of::<M>(sim, finder, progress, log);
+    // The three-point frame's values at the start, of the one body it follows.
+    let [body] = sim.bodies() else {
+        M::explain_end(&mut o);
+        return o;
+    };
+    let strength = body.frame_strength(sim.strengths(), faces_of(body.site()), true);
     if o.fs.is_none() {
         // One factor of safety whatever the dynamics: the friction cones' at the start.
         let check = start_pose.and_then(|pose| {
-            let geom = ContactGeometry::new(sim.normals(), &pose);
-            let applied = Applied::of(sim, &geom, [0.0; 3]);
-            let strength = sim.strength(faces_of(sim.site()), true);
+            let geom = ContactGeometry::new(body.normals(), &pose);
+            let applied = Applied::of(body, &geom, [0.0; 3]);
             static_friction::at_rest(&geom, &applied, &strength).ok()
         });
         o.fs = check.as_ref().map(|c| c.factor_of_safety());
         o.fs_limit = check.and_then(|c| c.limit());
     }
-    if sim.record().is_some() && sim.settings().contacts == Contacts::Frame {
+    if sim.foundation().record().is_some() && sim.settings().contacts == Contacts::Frame {
         // What a Newmark user reports first: the yield acceleration at the start.
         o.yield_acceleration = start_pose.and_then(|pose| {
-            let geom = ContactGeometry::new(sim.normals(), &pose);
-            let applied = Applied::of(sim, &geom, [0.0; 3]);
-            let strength = sim.strength(faces_of(sim.site()), true);
+            let geom = ContactGeometry::new(body.normals(), &pose);
+            let applied = Applied::of(body, &geom, [0.0; 3]);
             let statics = frictionless_normals(&geom, &applied).unwrap_or([1.0; 3]);
-            let weight = sim.block().mass * sim.loads().gravity;
-            let arm = geom.frame.j * sim.loads().cm_height;
+            let weight = body.block().mass * body.loads().gravity;
+            let arm = geom.frame.j * body.loads().cm_height;
             static_friction::yield_acceleration(&geom, &applied, (weight, arm), &strength, &statics)
                 .ok()
                 .flatten()

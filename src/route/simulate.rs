@@ -109,7 +109,7 @@ impl<'a> Runner<'a> {
     /// the one of the longer permanent displacement again as asked (three routes; progress
     /// counts a third for each).
     pub fn run(self) -> Computed {
-        if self.sim.both_polarities() {
+        if self.sim.foundation().both_polarities() {
             self.both()
         } else {
             self.one()
@@ -173,7 +173,7 @@ impl<'a> Runner<'a> {
         let started = Instant::now();
         let sim = self.sim;
         let settings = *sim.settings();
-        let mut finder = PoseFinder::new(sim.site(), settings.mode, self.method);
+        let mut finder = PoseFinder::new(sim.first_body().site(), settings.mode, self.method);
         let sink = self.sink.as_deref_mut().map(|s| s as &mut dyn FnMut(&Row));
         let log = Logbook::new(sink, self.keep_every);
         // One driver; the model is the only difference.
@@ -188,11 +188,13 @@ impl<'a> Runner<'a> {
         };
         // Newmark's permanent displacement and rotation, when the foundation was shaken.
         let start = o.first_row().map_or((0.0, 0.0), |r| (r.x_m, r.z_m));
+        let record = sim.foundation().record();
         let permanent = o
             .last_row()
-            .filter(|_| sim.record().is_some())
+            .filter(|_| record.is_some())
             .map(|r| ([r.x_m - start.0, r.z_m - start.1], r.theta_deg));
-        let intensity = sim.record().map(|r| Intensity::of(r, sim.loads().gravity));
+        let gravity = sim.first_body().loads().gravity;
+        let intensity = record.map(|r| Intensity::of(r, gravity));
         let route = Route {
             scene: sim.name().to_string(),
             mode: settings.mode,

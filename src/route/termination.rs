@@ -49,11 +49,13 @@ pub enum Reason {
     Overturned,
     /// A base touching the ground: part of it went over no ground (off the surveyed surface).
     BaseOffGround,
+    /// Several bodies: their dynamics together is not computed yet (the route ends at t = 0).
+    SeveralBodies,
 }
 
 impl Reason {
     /// Every reason, in the order declared.
-    pub const ALL: [Reason; 19] = [
+    pub const ALL: [Reason; 20] = [
         Reason::DoesNotSlide,
         Reason::NoFrictionSolution,
         Reason::Stopped,
@@ -73,6 +75,7 @@ impl Reason {
         Reason::Interrupted,
         Reason::Overturned,
         Reason::BaseOffGround,
+        Reason::SeveralBodies,
     ];
 
     /// The reason written `text` ([`Reason::as_str`]), if any.
@@ -102,6 +105,7 @@ impl Reason {
             Reason::Interrupted => "interrupted",
             Reason::Overturned => "the block overturned",
             Reason::BaseOffGround => "the base left the surveyed ground",
+            Reason::SeveralBodies => "several bodies (not computed yet)",
         }
     }
 }
@@ -189,7 +193,8 @@ mod tests {
                 | Reason::ContactForcesUndetermined
                 | Reason::Interrupted
                 | Reason::Overturned
-                | Reason::BaseOffGround => true,
+                | Reason::BaseOffGround
+                | Reason::SeveralBodies => true,
             };
             assert!(listed);
             assert_eq!(Reason::parse(r.as_str()), Some(r));

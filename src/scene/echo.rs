@@ -26,7 +26,7 @@ impl Scene {
         self.as_given(&mut t, &["frame", "foundation"]);
         self.block_as_used(&mut t);
         self.loads_as_used(&mut t);
-        if let Some(fr) = &self.friction {
+        if let Some(fr) = self.friction() {
             t.insert("friction".into(), self.friction_as_used(fr));
         }
         if let Some(s) = &self.settings {
@@ -200,10 +200,9 @@ impl Scene {
             ]),
         };
         if let Value::Table(table) = &mut v {
-            let st = &self.strengths;
-            if st.has_cohesion() {
+            if let Some(st) = self.strengths().filter(|s| s.has_cohesion()) {
                 table.insert("cohesion_pa".into(), f(st.cohesion_pa));
-                table.insert("cohesion_area_m2".into(), f(st.shares_m2.iter().sum()));
+                table.insert("cohesion_area_m2".into(), f(self.shares_m2.iter().sum()));
             }
             if let Some(faces) = self.source.get("friction").and_then(|f| f.get("face")) {
                 table.insert("face".into(), faces.clone());

@@ -42,7 +42,6 @@ pub struct Scene {
     pub(crate) site: Site,
     pub(crate) block: Option<Block>,
     pub(crate) loads: Option<Loads>,
-    pub(crate) friction: Option<Friction>,
     pub(crate) settings: Option<RunSettings>,
     /// `[initial]`: the motion at t = 0 (absent: at rest).
     pub(crate) initial: Initial,
@@ -59,8 +58,11 @@ pub struct Scene {
     /// `seismic.polarity = "both"`: the record run as it is and reversed, the larger
     /// permanent displacement reported.
     pub(crate) both_polarities: bool,
-    /// `[friction]`'s cohesion and `[[friction.face]]`.
-    pub(crate) strengths: Strengths,
+    /// `[friction]`: the default criterion and cohesion, and `[[friction.face]]`.
+    pub(crate) strengths: Option<Strengths>,
+    /// The bonded area each of the frame's contacts stands for (m²; `friction.cohesion_area_m2`
+    /// or the monolith's base, shared among the contacts).
+    pub(crate) shares_m2: [f64; 3],
     /// `[uncertain]`: the distributions of a probabilistic analysis, by key name.
     pub(crate) uncertain: Vec<crate::numeric::Uncertain>,
     /// `[base]`, or a monolith's base rectangle: the footprint under `contacts = "base"`.
@@ -81,10 +83,9 @@ impl PartialEq for Scene {
             &self.site,
             &self.block,
             &self.loads,
-            &self.friction,
             &self.settings,
             &self.initial,
-            &self.strengths,
+            (&self.strengths, &self.shares_m2),
             (self.record.as_deref(), self.both_polarities),
             &self.uncertain,
             &self.base,
@@ -94,10 +95,9 @@ impl PartialEq for Scene {
             &other.site,
             &other.block,
             &other.loads,
-            &other.friction,
             &other.settings,
             &other.initial,
-            &other.strengths,
+            (&other.strengths, &other.shares_m2),
             (other.record.as_deref(), other.both_polarities),
             &other.uncertain,
             &other.base,
@@ -340,9 +340,9 @@ impl Scene {
         self.record.as_deref()
     }
 
-    /// `[friction]`'s cohesion and `[[friction.face]]`: every face's criterion and cohesion.
-    pub fn strengths(&self) -> &Strengths {
-        &self.strengths
+    /// `[friction]` and `[[friction.face]]`, when given: every face's criterion and cohesion.
+    pub fn strengths(&self) -> Option<&Strengths> {
+        self.strengths.as_ref()
     }
 
     /// `[monolith]`, when given.
@@ -372,9 +372,9 @@ impl Scene {
         self.loads.as_ref()
     }
 
-    /// `[friction]`, when given.
+    /// `[friction]`'s criterion of faces without their own, when given.
     pub fn friction(&self) -> Option<&Friction> {
-        self.friction.as_ref()
+        self.strengths.as_ref().map(|s| &s.friction)
     }
 
     /// `[solver]`, the run settings, when given.
@@ -420,7 +420,7 @@ impl Scene {
                 ));
             }
         }
-        if let Some(Friction::Coulomb { mu_k }) = self.friction
+        if let Some(Friction::Coulomb { mu_k }) = self.friction().copied()
             && mu_k > 2.0
         {
             w.push(format!(

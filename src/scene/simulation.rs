@@ -1,9 +1,9 @@
-//! A scene that can be run: its [`Simulation`], every section it needs present and their
-//! combination one the dynamics can run.
+//! A scene that can be run: its [`Simulation`] of one body, every section it needs present and
+//! their combination one the dynamics can run.
 
 use super::error::SceneErrorKind;
 use super::{Scene, SceneError};
-use crate::model::Simulation;
+use crate::model::{Body, Foundation, ModelError, Simulation};
 
 impl Scene {
     /// The scene's simulation, or an error naming the first missing section or the setting that
@@ -21,30 +21,35 @@ impl Scene {
         // building checks them once more only as cheap comparisons.
         let block = self.block.ok_or_else(|| missing("block"))?;
         let loads = self.loads.ok_or_else(|| missing("loads"))?;
-        let friction = self.friction.ok_or_else(|| missing("friction"))?;
+        let strengths = self.strengths.clone().ok_or_else(|| missing("friction"))?;
         let settings = self.settings.ok_or_else(|| missing("solver"))?;
-        let mut builder = Simulation::builder(self.site.clone())
-            .name(self.name.clone())
+        let model = |e: ModelError| SceneError::new(&self.origin, e.key, e.reason);
+        let mut body = Body::builder(self.site.clone())
+            .name("block")
             .block(block)
             .loads(loads)
-            .friction(friction)
-            .strengths(self.strengths.clone())
-            .settings(settings)
-            .initial(self.initial);
-        if let Some(record) = &self.record {
-            builder = builder.record(record.clone());
-            if self.both_polarities {
-                builder = builder.both_polarities();
-            }
-        }
+            .initial(self.initial)
+            .shares_m2(self.shares_m2);
         if let Some(base) = &self.base {
-            builder = builder.base(base.clone());
+            body = body.base(base.clone());
         }
         if let (Some(m), false) = (&self.monolith, self.anchors.is_empty()) {
-            builder = builder.anchors(m, &self.anchors);
+            body = body.anchors(m, &self.anchors);
         }
-        builder
+        let mut foundation = Foundation::under(&self.site);
+        if let Some(record) = &self.record {
+            foundation = foundation.shaken(record.clone());
+            if self.both_polarities {
+                foundation = foundation.reversed_too();
+            }
+        }
+        Simulation::builder()
+            .name(self.name.clone())
+            .body(body.build().map_err(model)?)
+            .foundation(foundation)
+            .strengths(strengths)
+            .settings(settings)
             .build()
-            .map_err(|e| SceneError::new(&self.origin, e.key, e.reason))
+            .map_err(model)
     }
 }

@@ -249,7 +249,7 @@ fn negative_friction_parameters_are_named() {
     assert_names(&bc, "friction.phi_r_deg", "0°");
     let ok = bc.replace("phi_r_deg = -3.0", "phi_r_deg = 30.0");
     let s = Scene::from_toml(&ok, "d").unwrap();
-    assert!(matches!(s.friction, Some(Friction::BartonChoubey { .. })));
+    assert!(matches!(s.friction(), Some(Friction::BartonChoubey { .. })));
 }
 
 #[test]

@@ -405,7 +405,7 @@ contacts = "base"
 /// tilts of the frame's sides — and samples it densely against the ground.
 fn assert_rows_out_of_ground(scene: &Scene, route: &Route, limit: f64) {
     let sim = scene.simulation().unwrap();
-    let base = sim.base().unwrap();
+    let base = sim.first_body().base().unwrap();
     let ground: Ground = match scene.site().shared_ground() {
         Some(g) => (**g).clone(),
         None => Ground::planes(scene.site().planes().to_vec()),
@@ -634,7 +634,7 @@ fn a_monolith_outline_is_read_from_the_heel_and_stands_its_centre_of_mass_high()
     );
     let scene = Scene::from_toml(&text, "monolith with an outline").unwrap();
     let sim = scene.simulation().unwrap();
-    let base = sim.base().unwrap();
+    let base = sim.first_body().base().unwrap();
     // The section's centre of mass by hand, from the file's own dimensions.
     let monolith = scene.document()["monolith"].as_table().unwrap();
     let (b, h, c) = (

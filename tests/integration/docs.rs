@@ -258,12 +258,12 @@ fn every_code_name_a_document_quotes_is_in_the_code() {
 
 #[test]
 fn the_code_name_scan_finds_paths_and_names_and_skips_words() {
-    let text = "the driver (`drive`), `Strength::settle`, `RigidBody::new()`, `route.csv`, \
+    let text = "the driver (`drive`), `ContactStrengths::settle`, `RigidBody::new()`, `route.csv`, \
                 `slideroute run`, `accelerations_in_crease` and `x`";
     assert_eq!(
         quoted_code_names(text),
         vec![
-            "Strength::settle",
+            "ContactStrengths::settle",
             "RigidBody::new",
             "accelerations_in_crease"
         ]

@@ -20,7 +20,8 @@ fn at(scene: &Scene, d: Displacement) -> (ContactGeometry, Applied, [f64; 3]) {
     let pose = roots::classify::pose(scene.site(), d, Mode::Exact, p.u).unwrap();
     let geom = ContactGeometry::new(&scene.site().normals(), &pose);
     let dy = scene.simulation().unwrap();
-    let applied = Applied::new(dy.loads(), dy.block(), &geom.frame);
+    let body = dy.first_body();
+    let applied = Applied::new(body.loads(), body.block(), &geom.frame);
     let c = statics::frictionless_normals(&geom, &applied).expect("statics");
     (geom, applied, c)
 }
@@ -32,12 +33,13 @@ fn paper_like(mu: f64) -> Scene {
 fn solutions(scene: &Scene, d: Displacement) -> (ContactGeometry, Applied, Vec<Reaction>) {
     let (geom, applied, c) = at(scene, d);
     let dy = scene.simulation().unwrap();
+    let body = dy.first_body();
     let sols = reactions_paper::all_solutions(
         &geom,
         &applied,
-        dy.block(),
+        body.block(),
         &c,
-        &dy.strength([0, 1, 2], false),
+        &body.frame_strength(dy.strengths(), [0, 1, 2], false),
     )
     .unwrap();
     (geom, applied, sols)

@@ -11,7 +11,7 @@ use super::kinematics::{Inertia, Twist, longest_arm, twist, unit};
 use super::slip_start::{all_slipping, from_rest, slaved_direction, slip_start};
 use crate::mechanics::ContactGeometry;
 use crate::mechanics::loads::Applied;
-use crate::model::{Block, Settling, Strength};
+use crate::model::{Block, ContactStrength, ContactStrengths, Settling};
 use nalgebra::Vector3;
 
 /// Everything the rigid-body dynamics gives at one state.
@@ -66,7 +66,7 @@ pub struct State<'a> {
     /// Mass and inertia.
     pub block: &'a Block,
     /// Each contact's friction criterion and cohesion.
-    pub strength: &'a Strength,
+    pub strength: &'a [ContactStrength],
 }
 
 /// The accelerations at a pose with rates (Ẋ, Ż, θ̇), with contacts riding `creases`, for an
@@ -205,7 +205,7 @@ pub fn accelerations_releasing(
 /// A moving block's contact problem: each shear opposes its contact's slip velocity.
 struct Moving<'a> {
     ctx: &'a Ctx<'a>,
-    friction: &'a Strength,
+    friction: &'a [ContactStrength],
     twist: &'a Twist,
     slip: &'a [Vector3<f64>; 3],
     /// The rates (Ẋ, Ż, θ̇).

@@ -8,7 +8,7 @@ use crate::geometry::{Displacement, Pose, direct};
 use crate::mechanics::ContactGeometry;
 use crate::mechanics::loads::Applied;
 use crate::model::Friction;
-use crate::model::{Simulation, Strength};
+use crate::model::{ContactStrength, Simulation};
 use crate::scene::Scene;
 use nalgebra::Vector3;
 
@@ -25,15 +25,21 @@ struct AtPose {
     sim: Simulation,
     geom: ContactGeometry,
     applied: Applied,
-    strength: Strength,
+    strength: [ContactStrength; 3],
 }
 
 impl AtPose {
     fn new(scene: &Scene, d: Displacement) -> AtPose {
         let sim = scene.simulation().unwrap();
         let geom = at(scene, d);
-        let applied = Applied::new(sim.loads(), sim.block(), &geom.frame);
-        let strength = sim.strength([0, 1, 2], false);
+        let applied = Applied::new(
+            sim.first_body().loads(),
+            sim.first_body().block(),
+            &geom.frame,
+        );
+        let strength = sim
+            .first_body()
+            .frame_strength(sim.strengths(), [0, 1, 2], false);
         AtPose {
             sim,
             geom,
@@ -47,7 +53,7 @@ impl AtPose {
         let state = State {
             geom: &self.geom,
             applied: &self.applied,
-            block: self.sim.block(),
+            block: self.sim.first_body().block(),
             strength: &self.strength,
         };
         accelerations(&state, rates, 0.0, Creases::NONE).unwrap()
@@ -122,7 +128,7 @@ fn frictionless_accelerations_keep_contact_accelerations_on_the_planes() {
         + (0..3)
             .map(|i| geom.n[i] * m.normal[i])
             .sum::<Vector3<f64>>();
-    assert!((total / at.sim.block().mass - m.accel).norm() < 1e-12);
+    assert!((total / at.sim.first_body().block().mass - m.accel).norm() < 1e-12);
 }
 
 #[test]
@@ -202,12 +208,12 @@ fn one_contact_stick_satisfies_newton_euler_and_its_constraints() {
     let scene = Scene::default_scene();
     let d = scene.simulation().unwrap();
     let geom = at(&scene, Displacement::new(0.5, 0.1, 0.05));
-    let applied = Applied::new(d.loads(), d.block(), &geom.frame);
-    let inertia = Inertia::new(d.block(), &geom).unwrap();
+    let applied = Applied::new(d.first_body().loads(), d.first_body().block(), &geom.frame);
+    let inertia = Inertia::new(d.first_body().block(), &geom).unwrap();
     let ctx = Ctx {
         geom: &geom,
         inertia,
-        mass: d.block().mass,
+        mass: d.first_body().block().mass,
         force: applied.force + applied.weight,
         torque: applied.moment,
         centripetal: [Vector3::zeros(); 3],
@@ -233,7 +239,7 @@ fn one_contact_stick_satisfies_newton_euler_and_its_constraints() {
             assert!((s.shear[j].norm() - 0.4 * s.lambda[j]).abs() < 1e-6 * s.lambda[j]);
         }
     }
-    assert!((f - s.a * d.block().mass).norm() < 1e-6 * f.norm().max(1.0));
+    assert!((f - s.a * d.first_body().block().mass).norm() < 1e-6 * f.norm().max(1.0));
     assert!((m - inertia.world * s.e).norm() < 1e-6 * m.norm().max(1.0));
 }
 
@@ -253,7 +259,11 @@ fn groove(dip: f64) -> (crate::model::Simulation, ContactGeometry, Crease, Appli
         face: 1,
     };
     let sim = scene.simulation().unwrap();
-    let applied = Applied::new(sim.loads(), sim.block(), &geom.frame);
+    let applied = Applied::new(
+        sim.first_body().loads(),
+        sim.first_body().block(),
+        &geom.frame,
+    );
     (sim, geom, crease, applied)
 }
 
@@ -265,8 +275,8 @@ fn frictionless_in_a_groove_the_block_slides_along_it_and_turns_about_its_contac
     // reaction R at contact 2 (x2 = 4 m ahead of the CM) gives m Z̈ = R with Z̈ = −x2 θ̈ and
     // I θ̈ = cF + x2 R, so θ̈ = cF / (I + m x2²).
     let (d, geom, crease, applied) = groove(30f64.to_radians());
-    let (block, loads) = (d.block(), d.loads());
-    let frictionless = Strength::from(Friction::Coulomb { mu_k: 0.0 });
+    let (block, loads) = (d.first_body().block(), d.first_body().loads());
+    let frictionless = [ContactStrength::from(Friction::Coulomb { mu_k: 0.0 }); 3];
     let m = accelerations(
         &State {
             geom: &geom,
@@ -317,9 +327,9 @@ fn sliding_in_a_groove_both_faces_rub_and_every_constraint_holds() {
     // slip — the wedge: per unit of vertical load, μ / cos δ instead of μ.
     let dip = 35f64.to_radians();
     let (d, geom, crease, applied) = groove(dip);
-    let (block, loads) = (d.block(), d.loads());
+    let (block, loads) = (d.first_body().block(), d.first_body().loads());
     let mu = 0.4;
-    let friction = Strength::from(Friction::Coulomb { mu_k: mu });
+    let friction = [ContactStrength::from(Friction::Coulomb { mu_k: mu }); 3];
     let m = accelerations(
         &State {
             geom: &geom,
@@ -376,8 +386,8 @@ fn a_crease_lets_go_of_the_face_that_pulls() {
     // A shallow groove (2°) cannot hold the lateral push of a strong turn: one face's
     // reaction would pull. Which one depends on which face is the crease's second.
     let (d, geom, crease, applied) = groove(2f64.to_radians());
-    let block = d.block();
-    let frictionless = Strength::from(Friction::Coulomb { mu_k: 0.0 });
+    let block = d.first_body().block();
+    let frictionless = [ContactStrength::from(Friction::Coulomb { mu_k: 0.0 }); 3];
     let run = |geom: &ContactGeometry, crease: Crease| {
         accelerations(
             &State {
@@ -416,7 +426,7 @@ fn a_frictionless_impact_is_the_crease_projection_and_friction_takes_more() {
     // projection in the kinetic-energy metric); with friction, every contact is still on
     // its faces after it, and it takes more kinetic energy, never adding any.
     let (d, geom, crease, _) = groove(30f64.to_radians());
-    let block = d.block();
+    let block = d.first_body().block();
     let inertia = Inertia::new(block, &geom).unwrap();
     let creases = Creases::from(crease);
     let law = |mu: f64| ImpactLaw {
@@ -456,7 +466,7 @@ fn an_impact_with_friction_takes_energy_and_stops_the_contacts_on_their_faces() 
     // velocity into its faces, and the kinetic energy taken is what it books, more than
     // none and at most all there was.
     let (d, geom, crease, _) = groove(30f64.to_radians());
-    let block = d.block();
+    let block = d.first_body().block();
     let inertia = Inertia::new(block, &geom).unwrap();
     let creases = Creases::from(crease);
     for mu in [0.2, 0.8, 2.0] {
@@ -498,7 +508,7 @@ fn an_impact_lets_a_face_go_only_if_its_contact_would_leave_it_fast_enough() {
     // faster than the law's crease release speed; otherwise held (the forces just after
     // decide).
     let (d, geom, crease, _) = groove(30f64.to_radians());
-    let block = d.block();
+    let block = d.first_body().block();
     let creases = Creases::from(crease);
     let rates = [0.0, -1.0, 0.0];
     let go = |crease_release_speed: f64| {
@@ -533,7 +543,7 @@ fn running_over_a_ridge_is_a_hop_kept_on_the_face_beyond_or_a_lift_at_the_speed_
     let before = ContactGeometry::new(&[level; 3], &pose);
     let after = ContactGeometry::new(&[level, beyond, level], &pose);
     let sim = scene.simulation().unwrap();
-    let block = sim.block();
+    let block = sim.first_body().block();
     let v = 2.0;
     let law = |release_speed| ImpactLaw {
         mu: [0.0; 3],
@@ -587,7 +597,7 @@ fn the_crease_projection_stops_the_contact_at_the_second_face_and_takes_only_tha
     // the projection says it removed (a projection in the kinetic-energy metric keeps the
     // part of the motion that is free and drops the rest, ½|Δv|²_M).
     let (d, geom, crease, _) = groove(30f64.to_radians());
-    let block = d.block();
+    let block = d.first_body().block();
     let inertia = Inertia::new(block, &geom).unwrap();
     for rates in [[1.0, 0.3, 0.0], [0.2, -0.5, 0.05], [0.0, 0.0, 0.1]] {
         let before = twist(&geom, rates).unwrap();

@@ -36,7 +36,7 @@ use crate::geometry::penetration::{deepest_of, samples};
 use crate::geometry::{
     BodyPose, CastError, Footprint, Ground, Relief, SettleError, cast, set_down,
 };
-use crate::model::{Base, Simulation, Tendon};
+use crate::model::{Base, Body, Simulation, Tendon};
 use flush::Quadrature;
 use nalgebra::{Matrix3, Vector3};
 use state::BodyState;
@@ -63,6 +63,8 @@ const RELIEF_SAMPLES: usize = 3;
 /// A block on its base under way.
 pub(super) struct OnBase<'a> {
     sim: &'a Simulation,
+    /// The body it follows.
+    body: &'a Body,
     base: &'a Base,
     ground: Arc<Ground>,
     inertia: Matrix3<f64>,
@@ -93,6 +95,7 @@ impl<'a> OnBase<'a> {
     fn ctx(&self) -> Ctx<'_> {
         Ctx {
             sim: self.sim,
+            body: self.body,
             ground: &self.ground,
             base: footprint(self.base),
             relief: self.relief.as_ref(),
@@ -113,9 +116,9 @@ impl<'a> OnBase<'a> {
 
     /// The energy balance and the deepest penetration, into the logbook.
     fn seal(&self, o: &mut Logbook<'_>) {
-        let mass = self.sim.block().mass;
+        let mass = self.body.block().mass;
         let kinetic = self.s.kinetic(mass, &self.inertia);
-        let potential = mass * self.sim.loads().gravity * (self.s.pose.cm.y - self.origin.0);
+        let potential = mass * self.body.loads().gravity * (self.s.pose.cm.y - self.origin.0);
         let (wa, wc) = (self.s.work_applied, self.s.work_contacts);
         o.energy = Some(EnergyBalance {
             work_hydraulic_j: wa,
@@ -133,7 +136,7 @@ impl<'a> OnBase<'a> {
     /// Whether the block in state `s` is slow: its speed, and its turning at its size, below
     /// [`SLOW`] of what its weight gives it in a step `h`.
     fn slow(&self, s: &BodyState, h: f64) -> bool {
-        let g = self.sim.loads().gravity;
+        let g = self.body.loads().gravity;
         s.v.norm() + s.w.norm() * self.size <= SLOW * g * h
     }
 
@@ -157,7 +160,11 @@ impl<'a> OnBase<'a> {
     /// At rest under a record: the route goes on while the record does, and ends once it is
     /// over — "stopped" if the block moved, else it never slid.
     fn rest_until_the_record_ends<'s>(&self, o: Logbook<'s>) -> Flow<'s> {
-        let over = self.sim.record().is_none_or(|r| self.t >= r.end());
+        let over = self
+            .sim
+            .foundation()
+            .record()
+            .is_none_or(|r| self.t >= r.end());
         if !over {
             return Flow::Go(o);
         }
@@ -168,7 +175,7 @@ impl<'a> OnBase<'a> {
         };
         let detail = format!(
             "the ground-motion record ended at {:.6} s; {what} and static friction holds it",
-            self.sim.record().map_or(0.0, |r| r.end())
+            self.sim.foundation().record().map_or(0.0, |r| r.end())
         );
         self.end(o, reason, detail)
     }
@@ -214,22 +221,23 @@ fn footprint(base: &Base) -> Footprint<'_> {
     }
 }
 
-/// The ground under the block: the site's faces or surface, or the paper's three planes (the
-/// highest of them, the paper's valley).
-fn ground_of(sim: &Simulation) -> Arc<Ground> {
-    match sim.site().shared_ground() {
-        Some(g) => Arc::clone(g),
-        None => Arc::new(Ground::planes(sim.site().planes().to_vec())),
-    }
-}
-
 impl<'a> Dynamics<'a> for OnBase<'a> {
     fn start<'s>(
         sim: &'a Simulation,
         _finder: &mut PoseFinder<'_>,
         o: Logbook<'s>,
     ) -> Start<'s, Self> {
-        let Some(base) = sim.base() else {
+        let [body] = sim.bodies() else {
+            return Start::Ended(o.end(
+                Reason::SeveralBodies,
+                0.0,
+                format!(
+                    "{} bodies: the dynamics of several bodies together is not computed yet",
+                    sim.bodies().len()
+                ),
+            ));
+        };
+        let Some(base) = body.base() else {
             return Start::Ended(o.end(
                 Reason::ContactForcesUndetermined,
                 0.0,
@@ -243,12 +251,13 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
             cm: Vector3::new(0.0, base.depth(), 0.0),
             rotation: Matrix3::identity(),
         };
-        let ground = ground_of(sim);
-        let mut body = OnBase {
+        let ground = Arc::clone(sim.foundation().ground());
+        let mut on = OnBase {
             sim,
+            body,
             base,
             ground,
-            inertia: sim.block().tensor(),
+            inertia: body.block().tensor(),
             size,
             quadrature: Quadrature::of(base),
             relief: None,
@@ -261,7 +270,7 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
             resting: false,
             tendons: Vec::new(),
         };
-        let rest = match set_down(&body.ground, footprint(base), flat, 1e-10 * size) {
+        let rest = match set_down(&on.ground, footprint(base), flat, 1e-10 * size) {
             Ok(r) => r,
             Err(e) => {
                 let reason = match e {
@@ -271,24 +280,24 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
                         Reason::ContactForcesUndetermined
                     }
                 };
-                return body.refused(o, reason, format!("the block cannot be set down: {e}"));
+                return on.refused(o, reason, format!("the block cannot be set down: {e}"));
             }
         };
-        body.s = BodyState::at_rest(rest.pose);
+        on.s = BodyState::at_rest(rest.pose);
         // Anchors: each tendon's bond fixed in the rock where the block rests.
         let frame = rest.pose.frame();
-        body.tendons = sim
+        on.tendons = body
             .tendons()
             .iter()
-            .map(|t| t.fixed_at(&body.under_cm(), &frame))
+            .map(|t| t.fixed_at(&on.under_cm(), &frame))
             .collect();
         if base.is_cast() {
-            match cast(&body.ground, &base.triangles(), &rest.pose) {
+            match cast(&on.ground, &base.triangles(), &rest.pose) {
                 Ok(relief) => {
-                    body.size = body.size.max(relief.reach());
-                    body.samples = relief.samples(RELIEF_SAMPLES);
-                    body.quadrature = Quadrature::of_relief(&relief);
-                    body.relief = Some(relief);
+                    on.size = on.size.max(relief.reach());
+                    on.samples = relief.samples(RELIEF_SAMPLES);
+                    on.quadrature = Quadrature::of_relief(&relief);
+                    on.relief = Some(relief);
                 }
                 Err(e) => {
                     let reason = match e {
@@ -296,7 +305,7 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
                         CastError::Steep(_) => Reason::ContactForcesUndetermined,
                     };
                     let detail = format!("the base cannot be cast onto its rock: {e}");
-                    return body.refused(o, reason, detail);
+                    return on.refused(o, reason, detail);
                 }
             }
         }
@@ -306,18 +315,15 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
             max_penetration_m: f64::NEG_INFINITY,
             outline_m: base.outline().to_vec(),
         });
-        let init = sim.initial();
-        body.s.v = Vector3::new(init.vx, 0.0, init.vz);
-        body.s.w = Vector3::new(0.0, -init.omega, 0.0);
-        body.origin = (
-            rest.pose.cm.y,
-            body.s.kinetic(sim.block().mass, &body.inertia),
-        );
+        let init = body.initial();
+        on.s.v = Vector3::new(init.vx, 0.0, init.vz);
+        on.s.w = Vector3::new(0.0, -init.omega, 0.0);
+        on.origin = (rest.pose.cm.y, on.s.kinetic(body.block().mass, &on.inertia));
         // What carries it at rest, each touch with its share of the weight over a step: the
         // first step's warm start.
         let h = sim.settings().dt;
-        let weight = body.ctx().weight_impulse(h);
-        body.last = Stepped {
+        let weight = on.ctx().weight_impulse(h);
+        on.last = Stepped {
             impulses: rest
                 .carrying
                 .iter()
@@ -326,14 +332,14 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
             h,
             ..Stepped::default()
         };
-        o.push(body.row());
-        let shaken = sim.record().is_some_and(|r| r.end() > 0.0);
-        if sim.record().is_some() {
+        o.push(on.row());
+        let shaken = sim.foundation().record().is_some_and(|r| r.end() > 0.0);
+        if sim.foundation().record().is_some() {
             // What a Newmark user reports first: the yield acceleration where it rests.
-            o.yield_acceleration = body.ctx().yield_acceleration(&rest.pose).ok().flatten();
+            o.yield_acceleration = on.ctx().yield_acceleration(&rest.pose).ok().flatten();
         }
-        if init.at_rest() && !shaken && body.held(0.0, h) {
-            body.seal(&mut o);
+        if init.at_rest() && !shaken && on.held(0.0, h) {
+            on.seal(&mut o);
             o.energy = Some(EnergyBalance::default());
             return Start::Ended(o.end(
                 Reason::DoesNotSlide,
@@ -342,8 +348,8 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
             ));
         }
         // Shaken from rest: at rest until the record moves it.
-        body.resting = init.at_rest() && shaken;
-        Start::Moving(body, o)
+        on.resting = init.at_rest() && shaken;
+        Start::Moving(on, o)
     }
 
     fn advance<'s>(
@@ -409,12 +415,12 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
                 format!("the base tilted {tilt:.1}° from level, beyond {OVERTURN_DEG}°"),
             );
         }
-        let shaken = self.sim.record().is_some();
+        let shaken = self.sim.foundation().record().is_some();
         if shaken && self.slow(&self.s, h) {
             // Come to rest (or at rest for an instant as its motion turns): at rest from here,
             // its last kinetic energy (under 1e-6 of the weight's over a step) booked with
             // the contacts' work; the next step from rest says whether it stays.
-            let mass = self.sim.block().mass;
+            let mass = self.body.block().mass;
             self.s.work_contacts -= self.s.kinetic(mass, &self.inertia);
             self.s.v = Vector3::zeros();
             self.s.w = Vector3::zeros();
@@ -441,11 +447,11 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
         let p0 = self.under_cm();
         let v0 = self.s.v + self.s.w.cross(&(p0 - pose.cm));
         let frame = self
-            .sim
+            .body
             .site()
             .contacts()
             .map(|[x, z]| pose.point(&Vector3::new(x, -depth, z)));
-        let contacts = self.sim.site().contacts();
+        let contacts = self.body.site().contacts();
         let elevation = |a: usize, b: usize| {
             let mut d = frame[b] - frame[a];
             if !(d.norm() > 0.0 && d.norm().is_finite()) {

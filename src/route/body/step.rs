@@ -10,12 +10,14 @@ use crate::mechanics::held::{Support, held, reach};
 use crate::mechanics::impulses::{self, Body, ContactRow, Patch};
 use crate::mechanics::loads::Applied;
 use crate::mechanics::static_friction::{StaticError, YieldAcceleration, least_over_directions};
-use crate::model::{Simulation, Tendon};
+use crate::model::{self, Simulation, Tendon};
 use nalgebra::{Matrix3, Vector3};
 
-/// What a step is taken with: the simulation, the ground, the base, the body's inertia.
+/// What a step is taken with: the simulation, the body, the ground, the base, the body's
+/// inertia.
 pub(super) struct Ctx<'a> {
     pub sim: &'a Simulation,
+    pub body: &'a model::Body,
     pub ground: &'a Ground,
     pub base: Footprint<'a>,
     /// A base cast onto its rock: its underside, which then touches the ground in place of the
@@ -191,15 +193,19 @@ impl Ctx<'_> {
     /// The loads at `pose` and time `t`: the force (N) and the moment about the CM (N·m), and
     /// the force without the weight.
     pub fn loads(&self, pose: &BodyPose, t: f64) -> (Vector3<f64>, Vector3<f64>, Vector3<f64>) {
-        let (force, moment) = self.loads_under(pose, self.sim.ground(t));
-        let weight = Vector3::new(0.0, -self.sim.block().mass * self.sim.loads().gravity, 0.0);
+        let (force, moment) = self.loads_under(pose, self.sim.foundation().acceleration(t));
+        let weight = Vector3::new(
+            0.0,
+            -self.body.block().mass * self.body.loads().gravity,
+            0.0,
+        );
         (force, moment, force - weight)
     }
 
     /// μ of face `face`: its Coulomb coefficient (a base takes no stress-dependent criterion;
     /// `Simulation::builder` refuses one).
     fn mu(&self, face: usize) -> f64 {
-        match self.sim.face_friction(face as u32) {
+        match self.sim.strengths().face(face as u32).criterion {
             crate::model::Friction::Coulomb { mu_k } => mu_k,
             other => other.coefficient(1.0),
         }
@@ -212,7 +218,7 @@ impl Ctx<'_> {
     /// `derivations/13-base-contact.md`); whether that law holds it too is the step's to say.
     pub fn equilibrium(&self, pose: &BodyPose, t: f64) -> Result<bool, StaticError> {
         let (force, moment, _) = self.loads(pose, t);
-        let weight = self.sim.block().mass * self.sim.loads().gravity;
+        let weight = self.body.block().mass * self.body.loads().gravity;
         held(&self.supports(pose), force, moment, weight, self.size)
     }
 
@@ -261,7 +267,7 @@ impl Ctx<'_> {
         pose: &BodyPose,
     ) -> Result<Option<YieldAcceleration>, StaticError> {
         let supports = self.supports(pose);
-        let weight = self.sim.block().mass * self.sim.loads().gravity;
+        let weight = self.body.block().mass * self.body.loads().gravity;
         let (force, moment) = self.loads_under(pose, [0.0; 3]);
         least_over_directions(|angle: f64| {
             // The ground accelerating along −u pushes the block along u.
@@ -273,12 +279,12 @@ impl Ctx<'_> {
         })
     }
 
-    /// The loads at `pose` with the ground accelerating at `ground` (g along X, Y, Z): the force
-    /// (N) and the moment about the CM (N·m).
-    fn loads_under(&self, pose: &BodyPose, ground: [f64; 3]) -> (Vector3<f64>, Vector3<f64>) {
+    /// The loads at `pose` with the foundation accelerating at `acceleration` (g along X, Y, Z):
+    /// the force (N) and the moment about the CM (N·m).
+    fn loads_under(&self, pose: &BodyPose, acceleration: [f64; 3]) -> (Vector3<f64>, Vector3<f64>) {
         let frame = pose.frame();
         let origin = pose.point(&Vector3::new(0.0, -self.base.depth, 0.0));
-        let applied = Applied::shaken(self.sim.loads(), self.sim.block(), &frame, ground)
+        let applied = Applied::shaken(self.body.loads(), self.body.block(), &frame, acceleration)
             .with_tendons(self.tendons, &frame, &origin)
             .about(&(frame.j * self.base.depth));
         (applied.total_force(), applied.total_moment())
@@ -286,13 +292,13 @@ impl Ctx<'_> {
 
     /// The weight's impulse over a step `h` (N·s): the scale of a step's impulses.
     pub fn weight_impulse(&self, h: f64) -> f64 {
-        self.sim.block().mass * self.sim.loads().gravity * h
+        self.body.block().mass * self.body.loads().gravity * h
     }
 
     /// One step of `h` (s) from state `s` at time `t`, the impulses started from those of the
     /// last step, `warm`.
     pub fn step(&self, s: &mut BodyState, t: f64, h: f64, warm: &Stepped) -> Stepped {
-        let mass = self.sim.block().mass;
+        let mass = self.body.block().mass;
         let inertia = s.world_inertia(&self.inertia);
         let inv_inertia = inertia.try_inverse().unwrap_or_else(Matrix3::zeros);
         let (force, moment, driving) = self.loads(&s.pose, t);

@@ -18,7 +18,7 @@ use super::row::{Row, faces_of};
 use super::termination::{Reason, Stop};
 use crate::mechanics::loads::Applied;
 use crate::mechanics::onset::factor_of_safety;
-use crate::model::{Integrator, Simulation};
+use crate::model::{Body, Integrator, Simulation};
 use crate::route::integrator::error_ratio;
 
 fn row(s: &State, ev: Option<&Evaluation>, pose: &crate::geometry::Pose, faces: [u32; 3]) -> Row {
@@ -47,6 +47,8 @@ fn row(s: &State, ev: Option<&Evaluation>, pose: &crate::geometry::Pose, faces: 
 /// accelerations) at it; with RK4, how many substeps the last increment took.
 pub(super) struct Paper<'a> {
     sim: &'a Simulation,
+    /// The body it follows.
+    body: &'a Body,
     state: State,
     ev: Evaluation,
     pieces: usize,
@@ -81,9 +83,9 @@ struct Crossing<'f> {
 
 /// The paper's resisting-over-driving ratio (`mechanics::onset`) at evaluation `ev`, with the
 /// driving and resisting forces: at the start, and at a stop to tell whether the block stays.
-fn paper_ratio(sim: &Simulation, ev: &Evaluation) -> (f64, f64, f64) {
-    let applied = Applied::new(sim.loads(), sim.block(), &ev.geom.frame);
-    let strength = sim.strength(faces_of(sim.site()), false);
+fn paper_ratio((sim, body): (&Simulation, &Body), ev: &Evaluation) -> (f64, f64, f64) {
+    let applied = Applied::new(body.loads(), body.block(), &ev.geom.frame);
+    let strength = body.frame_strength(sim.strengths(), faces_of(body.site()), false);
     factor_of_safety(&ev.geom, &applied, &ev.statics, &strength)
 }
 
@@ -98,7 +100,7 @@ fn crosses(a: &[f64; 3], s: &State, n: &State) -> bool {
 /// solution): single RK4 steps of the part's length from `s`, to 1e-12 of `h`. The part's
 /// length, the state there, its evaluation and the finder at it; none where no part can be.
 fn longest_part<'f>(
-    sim: &Simulation,
+    sim: (&Simulation, &Body),
     base: &PoseFinder<'f>,
     (s, ev): (&State, &Evaluation),
     h: f64,
@@ -155,8 +157,8 @@ impl Paper<'_> {
         (t_to, dt): (f64, f64),
         o: &mut Logbook<'_>,
     ) -> Result<Stepped<'f>, (Stop, Option<Box<Stepped<'f>>>)> {
-        let sim = self.sim;
-        let (l, tol) = (sim.l(), sim.settings().tolerance);
+        let sim = (self.sim, self.body);
+        let (l, tol) = (self.body.l(), self.sim.settings().tolerance);
         // X and Z against τ L, θ against τ rad; the rates not weighed (as the rigid body's).
         let weights = [1.0 / (tol * l), 1.0 / (tol * l), 1.0 / tol, 0.0, 0.0, 0.0];
         let first_acc = self.ev.acc;
@@ -213,7 +215,7 @@ impl Paper<'_> {
                         // the integrator's (its stages far from the motion), as the rigid
                         // body's: the increment is taken again in shorter substeps, and only a
                         // substep of the reference step or shorter ends the route.
-                        let reference = sim.settings().reference_step();
+                        let reference = self.sim.settings().reference_step();
                         if h > reference * (1.0 + 1e-12) && pieces < MAX_PIECES {
                             break;
                         }
@@ -291,11 +293,13 @@ impl<'a> Dynamics<'a> for Paper<'a> {
         finder: &mut PoseFinder<'_>,
         mut o: Logbook<'s>,
     ) -> Start<'s, Self> {
+        let body = sim.first_body();
+        let init = body.initial();
         // At rest, or moving as the scene's [initial] says.
         let state = State {
-            vx: sim.initial().vx,
-            vz: sim.initial().vz,
-            omega: sim.initial().omega,
+            vx: init.vx,
+            vz: init.vz,
+            omega: init.omega,
             ..State::default()
         };
         // The start: pose, statics and whether the block slides at all (a block that starts
@@ -307,17 +311,18 @@ impl<'a> Dynamics<'a> for Paper<'a> {
                 "the flat start pose has no root to follow".into(),
             ));
         };
-        let ev = match evaluate(sim, finder, state.displacement(), None, velocity(&state)) {
+        let pair = (sim, body);
+        let ev = match evaluate(pair, finder, state.displacement(), None, velocity(&state)) {
             Ok(ev) => ev,
             Err(Stop { reason, detail, .. }) => {
-                o.push(row(&state, None, &start_pose, faces_of(sim.site())));
+                o.push(row(&state, None, &start_pose, faces_of(body.site())));
                 return Start::Ended(o.end(reason, 0.0, detail));
             }
         };
-        let (fs, driving, resisting) = paper_ratio(sim, &ev);
+        let (fs, driving, resisting) = paper_ratio(pair, &ev);
         o.paper_ratio = fs.is_finite().then_some(fs);
-        o.push(row(&state, Some(&ev), &ev.pose, faces_of(sim.site())));
-        if sim.initial().at_rest() && (fs >= 1.0 || ev.reaction.accel <= 0.0) {
+        o.push(row(&state, Some(&ev), &ev.pose, faces_of(body.site())));
+        if init.at_rest() && (fs >= 1.0 || ev.reaction.accel <= 0.0) {
             let detail = if driving <= 0.0 {
                 format!("nothing drives the block: net driving force along x' is {driving:.6e} N")
             } else if fs >= 1.0 {
@@ -335,6 +340,7 @@ impl<'a> Dynamics<'a> for Paper<'a> {
         Start::Moving(
             Paper {
                 sim,
+                body,
                 state,
                 ev,
                 pieces: 1,
@@ -350,11 +356,12 @@ impl<'a> Dynamics<'a> for Paper<'a> {
         t_to: f64,
         mut o: Logbook<'s>,
     ) -> Flow<'s> {
-        let sim = self.sim;
+        let sim = (self.sim, self.body);
         let (state, ev) = (self.state, self.ev);
         // The increment ends at t_to (exactly t_end for the last one).
-        let dt = t_to - (k - 1) as f64 * sim.settings().dt;
-        let stepped = match sim.settings().integrator {
+        let settings = self.sim.settings();
+        let dt = t_to - (k - 1) as f64 * settings.dt;
+        let stepped = match settings.integrator {
             Integrator::Paper => {
                 // Time as k·dt (t_end at the last), not a running sum.
                 let next = State {
@@ -427,7 +434,7 @@ impl<'a> Dynamics<'a> for Paper<'a> {
             &self.state,
             Some(&self.ev),
             &self.ev.pose,
-            faces_of(self.sim.site()),
+            faces_of(self.body.site()),
         )
     }
 
@@ -483,7 +490,7 @@ impl Paper<'_> {
         start_t: f64,
         mut o: Logbook<'s>,
     ) -> Result<Flow<'s>, Logbook<'s>> {
-        let sim = self.sim;
+        let sim = (self.sim, self.body);
         // Where the paper's update (accelerations frozen over the (sub)step) brings it to
         // zero: (v + a τ)·a = 0 (with RK4, to first order in τ).
         let (v, a) = ([c.from.vx, c.from.vz], [c.ev.acc[0], c.ev.acc[1]]);
@@ -517,7 +524,7 @@ impl Paper<'_> {
             &stop,
             Some(&stop_ev),
             &stop_ev.pose,
-            faces_of(sim.site()),
+            faces_of(self.body.site()),
         ));
         let detail = format!(
             "speed reached zero at t = {:.6} s; factor of safety there {fs_here:.4}",

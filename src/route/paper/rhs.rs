@@ -18,7 +18,7 @@ use crate::geometry::{Displacement, Pose};
 use crate::mechanics::loads::Applied;
 use crate::mechanics::reactions_paper::{self, Reaction, ReactionsError};
 use crate::mechanics::{ContactGeometry, statics};
-use crate::model::Simulation;
+use crate::model::{Body, Simulation};
 use crate::numeric::fixed;
 use crate::route::pose_finder::{PoseFinder, PoseMethod};
 use crate::route::row::faces_of;
@@ -47,18 +47,18 @@ pub struct Evaluation {
 /// the reaction chosen at the last state (continuity); `velocity` the current CM velocity and
 /// angular velocity (None at rest).
 pub fn evaluate(
-    sim: &Simulation,
+    (sim, body): (&Simulation, &Body),
     tracker: &mut PoseFinder<'_>,
     d: Displacement,
     previous: Option<&Reaction>,
     velocity: Option<(Vector3<f64>, Vector3<f64>)>,
 ) -> Result<Evaluation, Stop> {
     let pose = tracker.pose_at(d)?;
-    let geom = ContactGeometry::new(sim.normals(), &pose);
-    let applied = Applied::new(sim.loads(), sim.block(), &geom.frame);
+    let geom = ContactGeometry::new(body.normals(), &pose);
+    let applied = Applied::new(body.loads(), body.block(), &geom.frame);
     // The paper's dynamics keeps the start's planes (their normals above), and their faces'
     // criteria; it knows no cohesion (refused when the scene is read).
-    let friction = sim.strength(faces_of(sim.site()), false);
+    let friction = body.frame_strength(sim.strengths(), faces_of(body.site()), false);
     let c = statics::frictionless_normals(&geom, &applied).ok_or_else(|| Stop {
         contact: None,
         reason: Reason::NoAdmissibleRoot,
@@ -71,14 +71,15 @@ pub fn evaluate(
     };
     let followed = match previous {
         Some(p) if tracker.method() == PoseMethod::Continuation => {
-            reactions_paper::follow(&geom, &applied, sim.block(), &c, &friction, p).map_err(lift)?
+            reactions_paper::follow(&geom, &applied, body.block(), &c, &friction, p)
+                .map_err(lift)?
         }
         _ => None,
     };
     let (reaction, fresh) = match followed {
         Some(r) => (r, false),
         None => {
-            let all = reactions_paper::all_solutions(&geom, &applied, sim.block(), &c, &friction)
+            let all = reactions_paper::all_solutions(&geom, &applied, body.block(), &c, &friction)
                 .map_err(lift)?;
             let k = reactions_paper::select(&geom, &all, previous.map(|p| &p.angles), velocity)
                 .ok_or_else(|| Stop {

@@ -2,12 +2,12 @@
 //! holds them to, the loads, and the accelerations with the contact forces
 //! (`mechanics::rigid_body`); and the RK4 step through it.
 
+use super::Model;
 use super::state::RigidState;
 use crate::geometry::Pose;
 use crate::mechanics::ContactGeometry;
 use crate::mechanics::loads::Applied;
 use crate::mechanics::rigid_body::{self, Creases, Motion, RigidError};
-use crate::model::Simulation;
 use crate::route::pose_finder::PoseFinder;
 use crate::route::row::{Row, faces_of};
 use crate::route::termination::{Reason, Stop};
@@ -125,7 +125,7 @@ impl Hold {
 /// it takes in `Eval::removed`) so that it stays stuck while its cone allows. `hold.creases`:
 /// contacts riding creases; their velocities into their second faces are projected out likewise.
 pub(super) fn evaluate(
-    sim: &Simulation,
+    sim: &Model<'_>,
     finder: &mut PoseFinder<'_>,
     y: &RigidState,
     hold: Hold,
@@ -133,7 +133,8 @@ pub(super) fn evaluate(
     let stuck = hold.stuck;
     let pose = finder.pose_at(y.displacement())?;
     let geom = body_geometry(sim, &finder.site().normals(), &pose);
-    let applied = Applied::of(sim, &geom, sim.ground(y.t)).about(&geom.cm_offset);
+    let applied =
+        Applied::of(sim.body(), &geom, sim.foundation().acceleration(y.t)).about(&geom.cm_offset);
     let mut rates = y.rates();
     let mut removed = 0.0;
     if let Some(i) = stuck.or(hold.released) {
@@ -143,20 +144,20 @@ pub(super) fn evaluate(
         // released at this moment starts to slip from zero, not from that drift (of round-off's
         // size, it would set the young slip's direction and turn it round at once).
         (rates, removed) =
-            rigid_body::pivot_rates(&geom, sim.block(), rates, i).map_err(stop_of)?;
+            rigid_body::pivot_rates(&geom, sim.body().block(), rates, i).map_err(stop_of)?;
     }
     let riding = hold.creases.without(stuck);
     if !riding.is_empty() {
         let (r, into) =
-            rigid_body::crease_rates(&geom, sim.block(), rates, &riding).map_err(stop_of)?;
+            rigid_body::crease_rates(&geom, sim.body().block(), rates, &riding).map_err(stop_of)?;
         (rates, removed) = (r, removed + into);
     }
     let faces = faces_of(finder.site());
     let at = rigid_body::State {
         geom: &geom,
         applied: &applied,
-        block: sim.block(),
-        strength: &sim.strength(faces, false),
+        block: sim.body().block(),
+        strength: &sim.frame_strength(faces, false),
     };
     let step = sim.settings().reference_step();
     let motion = rigid_body::accelerations_releasing(&at, rates, step, hold.creases, hold.released)
@@ -174,15 +175,15 @@ pub(super) fn evaluate(
 /// point the pose is of (`derivations/11-dam-loads.md` §1): Newton–Euler about the centre of
 /// mass. The static checks keep the arms from the base point, with the loads' moments about it.
 pub(super) fn body_geometry(
-    sim: &Simulation,
+    sim: &Model<'_>,
     normals: &[Vector3<f64>; 3],
     pose: &Pose,
 ) -> ContactGeometry {
-    ContactGeometry::new(normals, pose).centred(sim.loads().cm_height)
+    ContactGeometry::new(normals, pose).centred(sim.body().loads().cm_height)
 }
 
 /// The height of the centre of mass (m) at `pose`: the base point's and the monolith's ȳ along
 /// j′. Gravity's work is m g times its fall.
-pub(super) fn cm_y(sim: &Simulation, pose: &Pose) -> f64 {
-    pose.cm.y + sim.loads().cm_height * pose.frame.j.y
+pub(super) fn cm_y(sim: &Model<'_>, pose: &Pose) -> f64 {
+    pose.cm.y + sim.body().loads().cm_height * pose.frame.j.y
 }

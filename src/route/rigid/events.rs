@@ -2,10 +2,10 @@
 //! ([`Heading`]), met at a stage of the RK4 step ([`rk4_stages`]) and located by bisection on the step
 //! length ([`bracket_event`]).
 
+use super::Model;
 use super::evaluate::{Eval, Hold, evaluate};
 use super::state::{RigidState, VALUES};
 use crate::mechanics::rigid_body::Motion;
-use crate::model::Simulation;
 use crate::route::integrator::hermite;
 use crate::route::pose_finder::PoseFinder;
 use crate::route::termination::Stop;
@@ -90,7 +90,7 @@ pub(super) struct Bracket {
 /// 1e-12·dt, for the longest step that neither meets an event of `heading` (at its end or at
 /// one of its stages) nor fails.
 pub(super) fn bracket_event(
-    sim: &Simulation,
+    sim: &Model<'_>,
     finder: &PoseFinder<'_>,
     span: Span<'_>,
     heading: &Heading<'_>,
@@ -152,7 +152,7 @@ pub(super) fn bracket_event(
 /// where Coulomb friction jumps and the step's result means nothing (its later stages push on
 /// with friction turned round).
 pub(super) fn rk4_stages(
-    sim: &Simulation,
+    sim: &Model<'_>,
     finder: &PoseFinder<'_>,
     y: &RigidState,
     k1: &[f64; VALUES],
@@ -204,7 +204,7 @@ pub(super) struct AtStage {
 /// trial step whose stop was met only at a middle stage is taken again at half its length
 /// before any bisection (`RigidBody::substep`).
 pub(super) fn confirmed(
-    sim: &Simulation,
+    sim: &Model<'_>,
     finder: &PoseFinder<'_>,
     heading: &Heading<'_>,
     (y0, k1): (&RigidState, &[f64; VALUES]),

@@ -4,10 +4,11 @@
 //! (`derivations/10-faces.md` §4–6).
 
 use super::Ending;
+use super::Model;
 use super::evaluate::{Hold, body_geometry, stop_of};
 use super::state::RigidState;
 use crate::mechanics::rigid_body::{self, Crease, Creases, Impact, ImpactLaw, RigidError};
-use crate::model::Simulation;
+use crate::model::ContactStrengths;
 use crate::route::pose_finder::PoseFinder;
 use crate::route::row::faces_of;
 use crate::route::termination::{Reason, Stop};
@@ -40,7 +41,7 @@ pub(super) struct BeforeImpact {
 /// ends the route there ("contact lifted off", or "ran over a ridge" for the contact that
 /// crossed it).
 pub(super) fn after_impact(
-    sim: &Simulation,
+    sim: &Model<'_>,
     finder: &mut PoseFinder<'_>,
     y: &RigidState,
     before: &BeforeImpact,
@@ -56,7 +57,7 @@ pub(super) fn after_impact(
     let moving = body_geometry(sim, &before.faces, &pose);
     let creases = hold.creases.without(hold.stuck);
     // Each contact's friction coefficient at its normal force before the impact.
-    let friction = sim.strength(faces_of(finder.site()), false);
+    let friction = sim.frame_strength(faces_of(finder.site()), false);
     let mu = if friction.is_frictionless() {
         [0.0; 3]
     } else {
@@ -64,18 +65,19 @@ pub(super) fn after_impact(
     };
     // A release slower than a hop of HOP·L under gravity is not a lift; one from a crease
     // slower than GRAZE·√(g L) is a graze.
-    let g = sim.loads().gravity;
+    let body = sim.body();
+    let g = body.loads().gravity;
     let law = ImpactLaw {
         mu,
-        release_speed: (2.0 * g * HOP * sim.l()).sqrt(),
-        crease_release_speed: GRAZE * (g * sim.l()).sqrt(),
+        release_speed: (2.0 * g * HOP * body.l()).sqrt(),
+        crease_release_speed: GRAZE * (g * body.l()).sqrt(),
     };
     let Impact {
         rates,
         removed,
         creases,
         moved,
-    } = match rigid_body::impact(&moving, &geom, sim.block(), y.rates(), &creases, &law) {
+    } = match rigid_body::impact(&moving, &geom, body.block(), y.rates(), &creases, &law) {
         Ok(after) => after,
         Err(RigidError::ImpactLifts {
             contact,
@@ -159,7 +161,7 @@ const GRAZE: f64 = 1e-4;
 /// impact; the finder moves to the new site where a contact changes its face. `None` for any
 /// other failure.
 pub(super) fn ground_event(
-    sim: &Simulation,
+    sim: &Model<'_>,
     finder: &mut PoseFinder<'_>,
     y: &RigidState,
     stop: &Stop,
@@ -213,7 +215,7 @@ pub(super) fn ground_event(
 /// that face (a plane, or a surface's triangle within `MEETS` of the contact in plan), found at
 /// the pose there without the regions' check. `None` if no face is within `MEETS` of a contact.
 fn met_face(
-    sim: &Simulation,
+    sim: &Model<'_>,
     finder: &PoseFinder<'_>,
     y: &RigidState,
     creases: &Creases,
@@ -224,7 +226,7 @@ fn met_face(
     let pose = f.pose_at(y.displacement()).ok()?;
     let planes = site.planes();
     let all = ground.faces();
-    let near = MEETS * sim.l();
+    let near = MEETS * sim.body().l();
     (0..3)
         .filter(|&k| creases.at(k).is_none())
         .flat_map(|k| {
@@ -251,7 +253,7 @@ fn met_face(
 /// nearest in plan to a triangle not parallel to its own face (within `MEETS`·L), and that
 /// triangle. `None` where there is none.
 fn ridge_face(
-    sim: &Simulation,
+    sim: &Model<'_>,
     finder: &PoseFinder<'_>,
     y: &RigidState,
     creases: &Creases,
@@ -267,7 +269,7 @@ fn ridge_face(
         .filter_map(|k| {
             let v = pose.vertices[k];
             ground
-                .faces_by_distance(v.x, v.z, MEETS * sim.l())
+                .faces_by_distance(v.x, v.z, MEETS * sim.body().l())
                 .into_iter()
                 .find(|&(j, _)| !all[j].is_parallel(&planes[k], PARALLEL))
                 .map(|(j, d)| (k, j, d))

@@ -20,10 +20,11 @@
 //! Constant friction coefficients only (with or without cohesion): a stress-dependent
 //! criterion's cones move with the normal forces, and its block is checked sample by sample.
 
+use super::Model;
 use crate::mechanics::ContactGeometry;
 use crate::mechanics::loads::Applied;
 use crate::mechanics::static_friction::{self, StaticError};
-use crate::model::{Simulation, Strength};
+use crate::model::{ContactStrength, ContactStrengths};
 use nalgebra::Vector3;
 
 /// The reach along each direction is taken this much short of the cone programs' (whose
@@ -54,18 +55,18 @@ impl HeldRegion {
     /// in; `held` the ground acceleration it is known to be held under. None for a
     /// stress-dependent criterion.
     pub fn at(
-        sim: &Simulation,
+        sim: &Model<'_>,
         geom: &ContactGeometry,
-        strength: &Strength,
+        strength: &[ContactStrength],
         held: [f64; 3],
     ) -> Result<Option<HeldRegion>, StaticError> {
-        let Some(record) = sim.record() else {
+        let Some(record) = sim.foundation().record() else {
             return Ok(None);
         };
         if strength.is_stress_dependent() {
             return Ok(None);
         }
-        let loads = |a: [f64; 3]| Applied::of(sim, geom, a);
+        let loads = |a: [f64; 3]| Applied::of(sim.body(), geom, a);
         let zero = [0.0; 3];
         let centre = if reach(geom, &loads, strength, zero, [1.0, 0.0, 0.0])?.is_some() {
             zero
@@ -168,16 +169,16 @@ use std::f64::consts::PI;
 /// `to − from` (`mechanics::static_friction::reach`). None for a stress-dependent criterion
 /// (whose held set is not that program's).
 pub(super) fn exit(
-    sim: &Simulation,
+    sim: &Model<'_>,
     geom: &ContactGeometry,
-    strength: &Strength,
+    strength: &[ContactStrength],
     from: [f64; 3],
     to: [f64; 3],
 ) -> Result<Option<f64>, StaticError> {
     if strength.is_stress_dependent() {
         return Ok(None);
     }
-    let loads = |a: [f64; 3]| Applied::of(sim, geom, a);
+    let loads = |a: [f64; 3]| Applied::of(sim.body(), geom, a);
     let along = change(&loads, from, std::array::from_fn(|c| to[c] - from[c]));
     Ok(Some(
         static_friction::reach(geom, &along, strength)?.map_or(0.0, |s| s.max(0.0)),
@@ -219,7 +220,7 @@ fn gauge(v: f64, up: f64, down: f64) -> f64 {
 fn reach(
     geom: &ContactGeometry,
     loads: &dyn Fn([f64; 3]) -> Applied,
-    strength: &Strength,
+    strength: &[ContactStrength],
     centre: [f64; 3],
     d: [f64; 3],
 ) -> Result<Option<f64>, StaticError> {
@@ -243,6 +244,7 @@ fn reach(
 mod tests {
     use super::*;
     use crate::geometry::Pose;
+    use crate::model::Simulation;
     use crate::route::row::faces_of;
     use crate::scene::Scene;
 
@@ -258,8 +260,9 @@ mod tests {
         let pose =
             Pose::from_tilts(s.site.as_paper().unwrap(), Default::default(), 0.0, 0.0).unwrap();
         let geom = ContactGeometry::new(&s.site().normals(), &pose);
-        let strength = sim.strength(faces_of(sim.site()), true);
-        let r = HeldRegion::at(&sim, &geom, &strength, [0.0; 3])
+        let model = Model::new(&sim);
+        let strength = model.frame_strength(faces_of(s.site()), true);
+        let r = HeldRegion::at(&model, &geom, &strength, [0.0; 3])
             .unwrap()
             .unwrap();
         (sim, geom, r)
@@ -267,8 +270,9 @@ mod tests {
 
     /// Whether the cone program holds the block under ground acceleration `a` (g).
     fn cones_hold(sim: &Simulation, geom: &ContactGeometry, a: [f64; 3]) -> bool {
-        let applied = Applied::shaken(sim.loads(), sim.block(), &geom.frame, a);
-        let strength = sim.strength(faces_of(sim.site()), true);
+        let body = sim.first_body();
+        let applied = Applied::shaken(body.loads(), body.block(), &geom.frame, a);
+        let strength = body.frame_strength(sim.strengths(), faces_of(body.site()), true);
         static_friction::at_rest(geom, &applied, &strength)
             .unwrap()
             .holds()

@@ -3,11 +3,11 @@
 //! face — each by the least change of (X, Z, L θ) that puts it back, a move of the size of the
 //! integrator's error.
 
+use super::Model;
 use super::evaluate::{Eval, Hold, body_geometry, evaluate, stop_of};
 use super::state::RigidState;
 use crate::mechanics::ContactGeometry;
 use crate::mechanics::rigid_body;
-use crate::model::Simulation;
 use crate::route::pose_finder::PoseFinder;
 use crate::route::termination::Stop;
 use nalgebra::{DMatrix, DVector, Vector3};
@@ -41,14 +41,14 @@ impl Anchor {
 /// that returns the contact's horizontal position to the anchor (Gauss–Newton with the contact's
 /// velocity map as the Jacobian; the contact stays on its plane through the pose).
 pub(super) fn hold_anchor(
-    sim: &Simulation,
+    sim: &Model<'_>,
     finder: &mut PoseFinder<'_>,
     mut y: RigidState,
     mut ev: Eval,
     anchor: Anchor,
 ) -> Result<(RigidState, Eval), Stop> {
     let (i, at) = (anchor.contact, anchor.at);
-    let l = sim.l();
+    let l = sim.body().l();
     for _ in 0..4 {
         let p = ev.pose.vertices[i];
         let r = [at.x - p.x, at.z - p.z];
@@ -80,12 +80,12 @@ pub(super) fn hold_anchor(
 /// (X, Z, L θ) that removes their distances from those faces (Gauss–Newton with the contacts'
 /// velocity maps, the minimum-norm step, as [`hold_anchor`] does for a sticking contact).
 pub(super) fn hold_on_creases(
-    sim: &Simulation,
+    sim: &Model<'_>,
     finder: &mut PoseFinder<'_>,
     y: &mut RigidState,
     ev: &mut Eval,
 ) -> Result<(), Stop> {
-    let l = sim.l();
+    let l = sim.body().l();
     for _ in 0..4 {
         let creases = ev.motion.creases.without(ev.motion.stuck);
         if creases.is_empty() {

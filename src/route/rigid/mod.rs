@@ -42,31 +42,71 @@ use super::row::{Row, faces_of};
 use super::termination::{Reason, Stop};
 use crate::mechanics::ContactGeometry;
 use crate::mechanics::static_friction::Limit;
-use crate::model::Simulation;
+use crate::model::{Body, ContactStrength, Foundation, RunSettings, Simulation};
 use energy::EnergyOrigin;
 use evaluate::{Eval, Hold, cm_y, evaluate};
 use hold::Anchor;
 use rest::{rest_eval, rest_row, static_check};
 use state::RigidState;
-use std::ops::Deref;
 use std::rc::Rc;
 
-/// The simulation a route follows: the one given, or the route's own once the route has changed
-/// it — its anchors' tendons fixed in the rock where it starts, one of them broken
+/// What a route follows: the simulation (its foundation, strengths and settings) and its one
+/// body as the route has it — the one given, or the route's own once the route has changed it:
+/// its anchors' tendons fixed in the rock where it starts, one of them broken
 /// (`derivations/11-dam-loads.md` §10). Cloned for nothing either way.
 #[derive(Clone)]
-pub(super) enum Model<'a> {
-    Given(&'a Simulation),
-    Own(Rc<Simulation>),
+pub(super) struct Model<'a> {
+    sim: &'a Simulation,
+    body: Followed<'a>,
 }
 
-impl Deref for Model<'_> {
-    type Target = Simulation;
-    fn deref(&self) -> &Simulation {
-        match self {
-            Model::Given(s) => s,
-            Model::Own(s) => s,
+/// The body a route follows: the simulation's, or the route's own copy.
+#[derive(Clone)]
+enum Followed<'a> {
+    Given(&'a Body),
+    Own(Rc<Body>),
+}
+
+impl<'a> Model<'a> {
+    /// The simulation's one body, as given.
+    fn new(sim: &'a Simulation) -> Self {
+        Model {
+            sim,
+            body: Followed::Given(sim.first_body()),
         }
+    }
+
+    /// The same simulation with the route's own `body`.
+    fn with_body(&self, body: Body) -> Self {
+        Model {
+            sim: self.sim,
+            body: Followed::Own(Rc::new(body)),
+        }
+    }
+
+    /// The body the route follows.
+    pub(super) fn body(&self) -> &Body {
+        match &self.body {
+            Followed::Given(b) => b,
+            Followed::Own(b) => b,
+        }
+    }
+
+    /// The rock and its shaking.
+    pub(super) fn foundation(&self) -> &'a Foundation {
+        self.sim.foundation()
+    }
+
+    /// The run settings.
+    pub(super) fn settings(&self) -> &'a RunSettings {
+        self.sim.settings()
+    }
+
+    /// What the body's three contacts on the rock's faces `faces` carry, with the cohesion
+    /// when `bonded` (never yet slid).
+    pub(super) fn frame_strength(&self, faces: [u32; 3], bonded: bool) -> [ContactStrength; 3] {
+        self.body()
+            .frame_strength(self.sim.strengths(), faces, bonded)
     }
 }
 
@@ -138,10 +178,10 @@ impl<'a> RigidBody<'a> {
     /// At the start, in state `y` evaluated as `ev`, the energy measured from `energy`; resting
     /// while a record's loads change, or moving.
     fn new(sim: Model<'a>, y: RigidState, ev: Eval, energy: EnergyOrigin, resting: bool) -> Self {
-        let mass = sim.block().mass;
+        let mass = sim.body().block().mass;
         let (h, round_off) = (
             sim.settings().reference_step(),
-            64.0 * f64::EPSILON * mass * sim.loads().gravity * sim.l(),
+            64.0 * f64::EPSILON * mass * sim.body().loads().gravity * sim.body().l(),
         );
         let weights = substep::error_weights(&sim);
         RigidBody {
@@ -170,7 +210,7 @@ impl<'a> RigidBody<'a> {
 
     /// The energy balance at state `y` evaluated as `e`.
     fn balance(&self, y: &RigidState, e: &Eval) -> EnergyBalance {
-        let mass = self.sim.block().mass;
+        let mass = self.sim.body().block().mass;
         self.energy.balance(
             y,
             e.motion.twist.kinetic_energy(mass, &e.motion.inertia),
@@ -191,10 +231,11 @@ impl<'a> Dynamics<'a> for RigidBody<'a> {
         finder: &mut PoseFinder<'_>,
         mut o: Logbook<'s>,
     ) -> Start<'s, Self> {
-        let mass = sim.block().mass;
-        let init = sim.initial();
-        let y = RigidState::start(init);
-        let faces = faces_of(sim.site());
+        let sim = Model::new(sim);
+        let mass = sim.body().block().mass;
+        let init = *sim.body().initial();
+        let y = RigidState::start(&init);
+        let faces = faces_of(sim.body().site());
         // The start: at rest, held or not by static friction (decided before any acceleration
         // is sought: a held block has no consistent way to slip); or moving as `[initial]`
         // says, when it goes on until it stops (the factor of safety is reported all the same).
@@ -206,14 +247,15 @@ impl<'a> Dynamics<'a> for RigidBody<'a> {
             ));
         };
         // Anchors: each tendon's bond fixed in the rock where the block starts.
-        let sim = if sim.tendons().is_empty() {
-            Model::Given(sim)
+        let sim = if sim.body().tendons().is_empty() {
+            sim
         } else {
-            Model::Own(Rc::new(
-                sim.tendons_fixed_at(&start_pose.cm, &start_pose.frame),
-            ))
+            sim.with_body(
+                sim.body()
+                    .tendons_fixed_at(&start_pose.cm, &start_pose.frame),
+            )
         };
-        let geom = ContactGeometry::new(sim.normals(), &start_pose);
+        let geom = ContactGeometry::new(sim.body().normals(), &start_pose);
         let check = match static_check(&sim, &geom, 0.0, faces, true) {
             Ok(c) => c,
             Err(Stop { reason, detail, .. }) => {
@@ -223,9 +265,9 @@ impl<'a> Dynamics<'a> for RigidBody<'a> {
         };
         o.fs = Some(check.factor_of_safety());
         o.fs_limit = check.limit();
-        let shaken = sim.record().is_some_and(|r| r.end() > 0.0);
+        let shaken = sim.foundation().record().is_some_and(|r| r.end() > 0.0);
         let start_cm_y = cm_y(&sim, &start_pose);
-        let gravity = sim.loads().gravity;
+        let gravity = sim.body().loads().gravity;
         let origin = |kinetic: f64| EnergyOrigin {
             kinetic,
             cm_y: start_cm_y,

@@ -2,6 +2,7 @@
 //! what a stop comes to ([`RigidBody::come_to_rest`]), and an increment held at rest while a
 //! ground-motion record shakes the foundation ([`RigidBody::rest`]).
 
+use super::Model;
 use super::RigidBody;
 use super::evaluate::{Eval, Hold, body_geometry, cm_y, evaluate, stop_of};
 use super::held_region::{self, HeldRegion};
@@ -12,7 +13,6 @@ use crate::mechanics::ContactGeometry;
 use crate::mechanics::loads::Applied;
 use crate::mechanics::rigid_body::{self, Creases, Motion};
 use crate::mechanics::static_friction::{self, HoldingRange, StaticError};
-use crate::model::Simulation;
 use crate::route::dynamics::Flow;
 use crate::route::logbook::Logbook;
 use crate::route::pose_finder::PoseFinder;
@@ -34,14 +34,14 @@ pub(super) fn barely_exceeded(check: &HoldingRange) -> bool {
 /// The static check at a pose at time t (the loads of a ground-motion record then), the
 /// contacts on `faces`, with the joint's cohesion when `bonded` (never yet slid).
 pub(super) fn static_check(
-    sim: &Simulation,
+    sim: &Model<'_>,
     geom: &ContactGeometry,
     t: f64,
     faces: [u32; 3],
     bonded: bool,
 ) -> Result<HoldingRange, Stop> {
-    let applied = Applied::of(sim, geom, sim.ground(t));
-    let strength = sim.strength(faces, bonded);
+    let applied = Applied::of(sim.body(), geom, sim.foundation().acceleration(t));
+    let strength = sim.frame_strength(faces, bonded);
     static_friction::at_rest(geom, &applied, &strength).map_err(static_stop)
 }
 
@@ -80,13 +80,13 @@ pub(super) fn rest_row(t: f64, y: &RigidState, pose: &Pose, faces: [u32; 3]) -> 
 /// The evaluation of the block held at rest at `pose` (no motion; the normal reactions of a
 /// holding state of `check`).
 pub(super) fn rest_eval(
-    sim: &Simulation,
+    sim: &Model<'_>,
     finder: &PoseFinder<'_>,
     pose: Pose,
     check: &HoldingRange,
 ) -> Result<Eval, Stop> {
     let geom = body_geometry(sim, &finder.site().normals(), &pose);
-    let inertia = rigid_body::Inertia::new(sim.block(), &geom).map_err(stop_of)?;
+    let inertia = rigid_body::Inertia::new(sim.body().block(), &geom).map_err(stop_of)?;
     let zero = Vector3::zeros();
     Ok(Eval {
         pose,
@@ -151,7 +151,7 @@ impl RigidBody<'_> {
         o: &mut Logbook<'_>,
     ) -> Rest {
         let model = self.sim.clone();
-        let (sim, from): (&Simulation, _) = (&model, &self.ev);
+        let (sim, from): (&Model<'_>, _) = (&model, &self.ev);
         let stop_pose = match finder.pose_at(stopped.displacement()) {
             Ok(p) => p,
             Err(e) => return Rest::Failed(e),
@@ -169,7 +169,7 @@ impl RigidBody<'_> {
         let held = |o: &mut Logbook<'_>, finder: &PoseFinder<'_>, why: String| {
             o.push(rest_row(t_event, stopped, &stop_pose, from.faces));
             o.energy = Some(balance);
-            if sim.record().is_some_and(|r| t_event < r.end()) {
+            if sim.foundation().record().is_some_and(|r| t_event < r.end()) {
                 match rest_eval(sim, finder, stop_pose, &check) {
                     Ok(e) => Rest::Rests(Box::new(e), t_event),
                     Err(stop) => Rest::Failed(stop),
@@ -225,7 +225,8 @@ impl RigidBody<'_> {
         mut o: Logbook<'s>,
     ) -> Flow<'s> {
         let model = self.sim.clone();
-        let sim: &Simulation = &model;
+        let sim: &Model<'_> = &model;
+        let foundation = sim.foundation();
         let geom = ContactGeometry::new(&finder.site().normals(), &self.ev.pose);
         // The joint's cohesion holds until the block first slides.
         let (faces, bonded) = (self.ev.faces, o.travel == 0.0);
@@ -234,15 +235,15 @@ impl RigidBody<'_> {
         if self.region.is_none() {
             // Where it came to rest: the ground accelerations it is certainly held under (a
             // failed cone program leaves every sample to the static check).
-            let strength = sim.strength(faces, bonded);
-            self.region = HeldRegion::at(sim, &geom, &strength, sim.ground(self.t))
+            let strength = sim.frame_strength(faces, bonded);
+            self.region = HeldRegion::at(sim, &geom, &strength, foundation.acceleration(self.t))
                 .ok()
                 .flatten();
         }
         let region = self.region.as_ref();
         // Held at time t: inside the region, or by the static check.
         let held = |t: f64| match region {
-            Some(r) if r.holds(sim.ground(t)) => Ok(true),
+            Some(r) if r.holds(foundation.acceleration(t)) => Ok(true),
             _ => holds(t),
         };
         // The record's samples within the increment, where its loads turn: the block is held
@@ -251,7 +252,7 @@ impl RigidBody<'_> {
         let mut at = self.t;
         let mut slips = None;
         while at < t_target {
-            let next = match sim.record().and_then(|r| r.next_sample(at)) {
+            let next = match foundation.record().and_then(|r| r.next_sample(at)) {
                 Some(s) if s < t_target => s,
                 _ => t_target,
             };
@@ -268,8 +269,9 @@ impl RigidBody<'_> {
             // Held at lo, not at hi, the record linear between: where the segment of its
             // accelerations leaves the held set, by one cone program (for a stress-dependent
             // criterion, by bisection to a millionth of the interval).
-            let strength = sim.strength(faces, bonded);
-            let exit = held_region::exit(sim, &geom, &strength, sim.ground(lo), sim.ground(hi));
+            let strength = sim.frame_strength(faces, bonded);
+            let (a_lo, a_hi) = (foundation.acceleration(lo), foundation.acceleration(hi));
+            let exit = held_region::exit(sim, &geom, &strength, a_lo, a_hi);
             let onset = match exit {
                 Ok(Some(s)) => lo + s.clamp(0.0, 1.0) * (hi - lo),
                 Ok(None) => {
@@ -325,7 +327,7 @@ impl RigidBody<'_> {
         }
         self.t = t_target;
         self.y.t = t_target;
-        if sim.record().is_some_and(|r| t_target < r.end()) {
+        if foundation.record().is_some_and(|r| t_target < r.end()) {
             return Flow::Go(o);
         }
         // Held through the record's end: the route ends, with the factor of safety there.
@@ -347,7 +349,7 @@ impl RigidBody<'_> {
             format!(
                 "the ground-motion record ended at {:.6} s; {what} and static friction \
                  holds it (factor of safety {})",
-                sim.record().map_or(0.0, |r| r.end()),
+                foundation.record().map_or(0.0, |r| r.end()),
                 check.factor_of_safety()
             ),
         ))

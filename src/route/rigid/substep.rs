@@ -13,9 +13,9 @@ use super::rest::Rest;
 use super::rows;
 use super::state::{RigidState, VALUES};
 use super::tendons::AT_CAPACITY;
-use super::{Ending, RigidBody};
+use super::{Ending, Model, RigidBody};
 use crate::mechanics::rigid_body::Motion;
-use crate::model::Simulation;
+
 use crate::route::driver::recorded_within;
 use crate::route::dynamics::Flow;
 use crate::route::integrator::{error_ratio, hermite};
@@ -70,8 +70,8 @@ const SAFETY: f64 = 0.9;
 /// accelerations jump, and an estimate of the rates' error, first order there, would shrink the
 /// step to the shortest at every switch; the positions' error, of second order there, keeps the
 /// steps the motion needs, and the energy balance watches the rates.
-pub(super) fn error_weights(sim: &Simulation) -> [f64; VALUES] {
-    let (l, tol) = (sim.l(), sim.settings().tolerance);
+pub(super) fn error_weights(sim: &Model<'_>) -> [f64; VALUES] {
+    let (l, tol) = (sim.body().l(), sim.settings().tolerance);
     let none = f64::INFINITY;
     [l, l, 1.0, none, none, none, none, none, none, l].map(|s| 1.0 / (tol * s))
 }
@@ -177,7 +177,12 @@ impl RigidBody<'_> {
             // A ground-motion record's samples are where its loads may turn: steps end on them
             // (RK4 keeps its order between them); and none goes past the route's end.
             let t_end = self.sim.settings().t_end;
-            let until = match self.sim.record().and_then(|r| r.next_sample(self.t)) {
+            let until = match self
+                .sim
+                .foundation()
+                .record()
+                .and_then(|r| r.next_sample(self.t))
+            {
                 Some(s) if s < t_end => s,
                 _ => t_end,
             };
@@ -241,7 +246,7 @@ impl RigidBody<'_> {
         if self.break_tendons(finder, o)? {
             return Ok(Substep::Event);
         }
-        let mass = self.sim.block().mass;
+        let mass = self.sim.body().block().mass;
         let motion = self.ev.motion;
         let ke = motion.twist.kinetic_energy(mass, &motion.inertia);
         self.ke_max = self.ke_max.max(ke);
@@ -316,7 +321,7 @@ impl RigidBody<'_> {
         heading: &Heading<'_>,
     ) -> Trial<'f> {
         let model = self.sim.clone();
-        let sim: &Simulation = &model;
+        let sim: &Model<'_> = &model;
         let hold = Hold::of(&self.ev.motion);
         let k1 = self.y.derivative(&self.ev.motion);
         let mut at_next = finder.clone();
@@ -531,7 +536,7 @@ impl RigidBody<'_> {
                         ..*like
                     }
                 };
-                let scale = (self.sim.l(), self.sim.settings().tolerance);
+                let scale = (self.sim.body().l(), self.sim.settings().tolerance);
                 let (from, to) = ((t0, &first), (t0 + h, &last));
                 match rows::interpolate(
                     &times,
@@ -585,7 +590,7 @@ impl RigidBody<'_> {
         o: &mut Logbook<'_>,
     ) -> Result<Substep, Ending> {
         let model = self.sim.clone();
-        let sim: &Simulation = &model;
+        let sim: &Model<'_> = &model;
         let hold = Hold::of(&self.ev.motion);
         let span = Span {
             y: &self.y,
@@ -639,7 +644,7 @@ impl RigidBody<'_> {
         // energy at REST of the largest it had is the stop itself: as a block comes to rest its
         // contacts' slips pass through zero one after another ever faster (the Zeno behaviour
         // of Coulomb friction), and the travel left is of order REST of the stopping distance.
-        let mass = sim.block().mass;
+        let mass = sim.body().block().mass;
         let ke = (self.ev.motion.twist).kinetic_energy(mass, &self.ev.motion.inertia);
         let event = match found.or(at_end).or(trial.crossed).unwrap_or(Event::Stop) {
             Event::Pivot(_) if ke <= REST * self.ke_max => Event::Stop,
@@ -743,7 +748,7 @@ impl RigidBody<'_> {
         o: &mut Logbook<'_>,
     ) -> Result<Option<Substep>, Ending> {
         let model = self.sim.clone();
-        let sim: &Simulation = &model;
+        let sim: &Model<'_> = &model;
         let held = Hold::of(&self.ev.motion);
         let before = BeforeImpact {
             normal_n: self.ev.motion.normal,
@@ -797,9 +802,9 @@ impl RigidBody<'_> {
                 let (w, v) = (m.twist.w, m.twist.v + m.twist.w.cross(&r));
                 let a = m.accel + m.ang_accel.cross(&r) + w.cross(&w.cross(&r));
                 // Off it, or along it to round-off on the block's scale.
-                let g = sim.loads().gravity;
+                let g = sim.body().loads().gravity;
                 let off = |u: Vector3<f64>, scale: f64| left.dot(&u) >= -1e-9 * scale;
-                if !(off(v, (g * sim.l()).sqrt()) && off(a, g)) {
+                if !(off(v, (g * sim.body().l()).sqrt()) && off(a, g)) {
                     return None;
                 }
                 *finder = f;
@@ -873,7 +878,7 @@ impl RigidBody<'_> {
         let stopped = y_lo.stopped();
         // A tendon that reached its capacity as the block stopped breaks before the block is
         // found held (the force peaks as the motion stops).
-        if !self.sim.tendons().is_empty()
+        if !self.sim.body().tendons().is_empty()
             && let Ok(pose) = finder.clone().pose_at(stopped.displacement())
         {
             self.break_tendons_at(&pose, t_event, o);

@@ -7,12 +7,11 @@
 //! the tendons before it asks whether friction holds the block (the force peaks there).
 
 use super::evaluate::{Eval, Hold, evaluate};
-use super::{Ending, Model, RigidBody};
+use super::{Ending, RigidBody};
 use crate::geometry::Pose;
 use crate::route::AnchorBreak;
 use crate::route::logbook::Logbook;
 use crate::route::pose_finder::PoseFinder;
-use std::rc::Rc;
 
 /// A tendon within this fraction of its capacity has reached it; a substep that carries one
 /// further past is too long (down to the shortest substep).
@@ -23,6 +22,7 @@ impl RigidBody<'_> {
     /// at the evaluation `e`.
     pub(super) fn past_capacity(&self, e: &Eval, margin: f64) -> Option<usize> {
         self.sim
+            .body()
             .tendons()
             .iter()
             .position(|t| t.past_capacity(&e.pose.cm, &e.pose.frame, margin))
@@ -34,11 +34,12 @@ impl RigidBody<'_> {
         let mut broke = false;
         while let Some(k) = self
             .sim
+            .body()
             .tendons()
             .iter()
             .position(|t| t.past_capacity(&pose.cm, &pose.frame, -AT_CAPACITY))
         {
-            self.sim = Model::Own(Rc::new(self.sim.tendon_broken(k)));
+            self.sim = self.sim.with_body(self.sim.body().tendon_broken(k));
             o.anchors_broken.push(AnchorBreak { anchor: k, t_s: t });
             broke = true;
         }

@@ -108,16 +108,16 @@ impl Reader<'_> {
         Ok(criterion)
     }
 
-    /// `[friction]`'s cohesion and `[[friction.face]]`: each face's criterion and cohesion, and
-    /// each contact's share of the bonded area.
+    /// `[friction]`: the default criterion and cohesion and `[[friction.face]]`, each face's
+    /// criterion and cohesion; and each of the frame's contacts' share of the bonded area.
     pub(super) fn strengths(
         &self,
         f: &RawFriction,
         site: &Site,
         monolith: Option<&Monolith>,
-    ) -> Result<Strengths, SceneError> {
-        let cohesion_pa = f.cohesion_pa.unwrap_or(0.0);
-        let mut faces = Vec::new();
+    ) -> Result<(Strengths, [f64; 3]), SceneError> {
+        let mut out = Strengths::new(self.friction(f)?);
+        out.cohesion_pa = f.cohesion_pa.unwrap_or(0.0);
         for (k, face) in f.face.as_deref().unwrap_or(&[]).iter().enumerate() {
             let prefix = format!("friction.face[{k}]");
             let listed = self.need(&format!("{prefix}.faces"), face.faces.clone())?;
@@ -126,30 +126,26 @@ impl Reader<'_> {
                 let model = keys.model.or(f.model.as_deref());
                 self.criterion(&prefix, &CriterionKeys { model, ..keys })?
             } else {
-                self.friction(f)?
+                out.friction
             };
-            faces.push(FaceStrength {
+            out.faces.push(FaceStrength {
                 faces: listed,
                 friction,
-                cohesion_pa: face.cohesion_pa.unwrap_or(cohesion_pa),
+                cohesion_pa: face.cohesion_pa.unwrap_or(out.cohesion_pa),
             });
         }
-        let mut out = Strengths {
-            cohesion_pa,
-            shares_m2: [0.0; 3],
-            faces,
-        };
         out.check(model::face_count(site))
             .map_err(|e| self.model(e))?;
         if out.has_cohesion() {
-            out.shares_m2 = self.shares(f, site, monolith)?;
+            Ok((out, self.shares(f, site, monolith)?))
         } else if f.cohesion_area_m2.is_some() {
-            return Err(self.invalid(
+            Err(self.invalid(
                 "friction.cohesion_area_m2",
                 "an area without cohesion: give friction.cohesion_pa too",
-            ));
+            ))
+        } else {
+            Ok((out, [0.0; 3]))
         }
-        Ok(out)
     }
 
     /// The bonded area each contact stands for: the area (given, or the monolith's base) times

@@ -307,7 +307,7 @@ impl Reader<'_> {
         match s.polarity.as_deref() {
             None | Some("normal") => {}
             Some("reversed") => k = -k,
-            // Run as it is and reversed (`Simulation::both_polarities`).
+            // Run as it is and reversed (`Foundation::both_polarities`).
             Some("both") => {}
             Some(other) => {
                 return Err(self.invalid(

@@ -20,7 +20,7 @@ use super::error::SceneErrorKind;
 use super::files::{Files, Sources};
 use super::raw::RawScene;
 use super::{Scene, SceneError};
-use crate::model::{self, Contacts, ModelError, UnknownName};
+use crate::model::{self, Contacts, ModelError, Strengths, UnknownName};
 use std::path::Path;
 
 /// What reading one document needs: where it came from (named in every error), the folder the
@@ -153,21 +153,20 @@ impl Reader<'_> {
                  contacts = \"base\" (the three-point frame has no base)",
             ));
         }
-        let friction = raw
-            .friction
-            .as_ref()
-            .map(|f| self.friction(f))
-            .transpose()?;
-        let strengths = match &raw.friction {
-            Some(f) => self.strengths(f, &site, monolith.as_ref())?,
-            None => Default::default(),
+        let (strengths, shares_m2) = match &raw.friction {
+            Some(f) => {
+                let (s, shares) = self.strengths(f, &site, monolith.as_ref())?;
+                (Some(s), shares)
+            }
+            None => (None, [0.0; 3]),
         };
         // `[solver]` is optional: without it, or without a key of it, the defaults.
         let settings =
             Some(self.solver(raw.solver.as_ref().unwrap_or(&Default::default()), contacts)?);
         let initial = self.initial(raw.initial.as_ref())?;
         if let Some(s) = &settings {
-            model::check_rigid_only(s.dynamics, record.is_some(), strengths.has_cohesion())
+            let cohesion = strengths.as_ref().is_some_and(Strengths::has_cohesion);
+            model::check_rigid_only(s.dynamics, record.is_some(), cohesion)
                 .map_err(|e| self.model(e))?;
         }
         if let (Some(b), Some(l)) = (&block, &loads) {
@@ -189,7 +188,6 @@ impl Reader<'_> {
             site,
             block,
             loads,
-            friction,
             settings,
             initial,
             source,
@@ -203,6 +201,7 @@ impl Reader<'_> {
                     .is_some_and(|s| s.polarity.as_deref() == Some("both")),
             record,
             strengths,
+            shares_m2,
             uncertain,
             base,
             monolith,

@@ -216,7 +216,7 @@ pub fn view_of(scene: &Scene, route: &Route) -> Result<View3d, ViewError> {
     let on_base = route.rows[0].corners_carrying.is_some();
     let sim = scene.simulation().ok();
     let base: Option<Base> = if on_base {
-        sim.as_ref().and_then(|s| s.base()).cloned()
+        sim.as_ref().and_then(|s| s.first_body().base()).cloned()
     } else {
         scene.base().cloned()
     };

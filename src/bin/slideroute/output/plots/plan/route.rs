@@ -148,7 +148,7 @@ pub(super) fn outlines_of(scene: &Scene, rows: &[Row], report: Option<&BaseRepor
         ..Outlines::default()
     };
     let sim = scene.simulation().ok();
-    if let Some(base) = sim.as_ref().and_then(|s| s.base()) {
+    if let Some(base) = sim.as_ref().and_then(|s| s.first_body().base()) {
         for (corners, touching) in drawn.filter_map(|r| base_corners(scene, base, r)) {
             out.shapes.push(corners);
             out.touches.extend(touching);
@@ -323,7 +323,7 @@ mod tests {
         let scene = Scene::from_file(&path).unwrap();
         // The footprint is the base the block stands on when it runs on its base.
         let sim = scene.simulation().unwrap();
-        let base = sim.base().unwrap().outline();
+        let base = sim.first_body().base().unwrap().outline();
         let foot = footprint(&scene).unwrap();
         assert_eq!(foot.len(), base.len());
         for (p, q) in foot.iter().zip(base) {
