@@ -17,16 +17,16 @@
 //! pivot (a contact's slip reverses), a release (a sticking contact's cone no longer holds it)
 //! or a failure (a state off the model) — found by bisection on the step length (`events.rs`),
 //! and shortened where the energy balance says RK4 does not resolve the motion
-//! (`derivations/08-rigid-body.md` §3). The ground's events — a contact meeting a face, running
-//! over a ridge, let go by a crease — and their impacts are in `ground.rs`. At a stop the
-//! velocity is set to exactly zero. A sticking contact is held where it stuck, and a contact in a
-//! crease on its second face (`hold.rs`), their slip projected out as an impulse would (the
-//! energy that takes booked as friction work), so that they stay put whatever dt.
+//! (`derivations/08-rigid-body.md` §3). The events of the rock's faces — a contact meeting a
+//! face, running over a ridge, let go by a crease — and their impacts are in `faces.rs`. At a
+//! stop the velocity is set to exactly zero. A sticking contact is held where it stuck, and a
+//! contact in a crease on its second face (`hold.rs`), their slip projected out as an impulse
+//! would (the energy that takes booked as friction work), so that they stay put whatever dt.
 
 mod energy;
 mod evaluate;
 mod events;
-mod ground;
+mod faces;
 mod held_region;
 mod hold;
 mod rest;

@@ -7,7 +7,7 @@
 
 use super::evaluate::{Eval, Hold, evaluate};
 use super::events::{Bracket, Event, Heading, Span, bracket_event, confirmed, rk4_stages};
-use super::ground::{BeforeImpact, after_impact, ground_event};
+use super::faces::{BeforeImpact, after_impact, face_event};
 use super::hold::{Anchor, hold_anchor, hold_on_creases};
 use super::rest::Rest;
 use super::rows;
@@ -600,9 +600,9 @@ impl RigidBody<'_> {
         };
         let bracket = bracket_event(sim, finder, span, heading);
         if let (Some(stop), None) = (trial.failed, bracket.found) {
-            // A failure that is the ground's event (a contact meeting a face, a crease letting
-            // go) changes what the contacts are held to and the route goes on; any other ends
-            // it, told as it is first met: at the bracket's end, not the step's.
+            // A failure that is an event of the rock's faces (a contact meeting a face, a crease
+            // letting go) changes what the contacts are held to and the route goes on; any other
+            // ends it, told as it is first met: at the bracket's end, not the step's.
             if let Some(next) = self.crease_event(finder, k, &bracket, &stop, o)? {
                 return Ok(next);
             }
@@ -724,7 +724,7 @@ impl RigidBody<'_> {
     }
 
     /// A failure just past the last state that stands (the bracket's `y_lo`, `lo` into the
-    /// substep), that is an event of the ground (`derivations/10-faces.md` §4–6):
+    /// substep), that is an event of the rock's faces (`derivations/10-faces.md` §4–6):
     ///
     /// * a contact reached a face: it rides the crease from `y_lo` on, its velocity into the
     ///   face taken by perfectly inelastic, frictional impulses (the energy booked as friction
@@ -756,7 +756,7 @@ impl RigidBody<'_> {
         };
         // The route may end at the impact: on the site before it.
         let unchanged = finder.clone();
-        let Some((hold, met)) = ground_event(sim, finder, &bracket.y_lo, stop, held) else {
+        let Some((hold, met)) = face_event(sim, finder, &bracket.y_lo, stop, held) else {
             return Ok(None);
         };
         let (y_lo, hold) = match after_impact(sim, finder, &bracket.y_lo, &before, met, hold)? {
@@ -795,7 +795,7 @@ impl RigidBody<'_> {
                     contact: Some(c.contact),
                 };
                 let mut f = finder.clone();
-                let (h, _) = ground_event(sim, &mut f, &y_lo, &stop, hold)?;
+                let (h, _) = face_event(sim, &mut f, &y_lo, &stop, hold)?;
                 let (y, e) = settle(&mut f, h).ok()?;
                 let m = &e.motion;
                 let r = e.pose.vertices[c.contact] - e.pose.cm;
@@ -824,7 +824,7 @@ impl RigidBody<'_> {
                         after = Some(e);
                         break;
                     }
-                    hold = ground_event(sim, finder, &y_lo, &next, hold)
+                    hold = face_event(sim, finder, &y_lo, &next, hold)
                         .ok_or(Ending::Failed(next))?
                         .0;
                 }

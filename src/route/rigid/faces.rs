@@ -1,6 +1,6 @@
-//! Events of the ground: a contact meeting another face (it rides the crease), running over a
-//! surface's ridge (it goes on along the face beyond), or let go by one of its crease's faces,
-//! and the frictional, perfectly inelastic impact that follows a contact's meeting a face
+//! Events of the rock's faces: a contact meeting another face (it rides the crease), running
+//! over a surface's ridge (it goes on along the face beyond), or let go by one of its crease's
+//! faces, and the frictional, perfectly inelastic impact that follows a contact's meeting a face
 //! (`derivations/10-faces.md` §4–6).
 
 use super::Ending;
@@ -14,8 +14,8 @@ use crate::route::row::faces_of;
 use crate::route::termination::{Reason, Stop};
 use nalgebra::Vector3;
 
-/// A contact's change of face at an event of the ground that makes an impact: it met face
-/// `face` (and rides the crease), or, at a surface's ridge, went on along it.
+/// A contact's change of face at an event of the rock's faces that makes an impact: it met
+/// face `face` (and rides the crease), or, at a surface's ridge, went on along it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(super) struct Met {
     contact: usize,
@@ -157,10 +157,10 @@ const HOP: f64 = 1e-4;
 const GRAZE: f64 = 1e-4;
 
 /// What a failure `stop` at `y` changes in what the contacts are held to (`held`), if it is an
-/// event of the ground (see `RigidBody::crease_event`), and the contact whose change makes an
-/// impact; the finder moves to the new site where a contact changes its face. `None` for any
+/// event of the rock's faces (see `RigidBody::crease_event`), and the contact whose change makes
+/// an impact; the finder moves to the new site where a contact changes its face. `None` for any
 /// other failure.
-pub(super) fn ground_event(
+pub(super) fn face_event(
     sim: &Model<'_>,
     finder: &mut PoseFinder<'_>,
     y: &RigidState,
