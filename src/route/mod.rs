@@ -183,4 +183,29 @@ mod tests {
         assert_ne!(a.route, c, "a result that differs makes them differ");
         assert_eq!(simulate(&sim), a.route);
     }
+
+    #[test]
+    fn a_simulation_of_two_bodies_ends_at_the_start_saying_their_dynamics_is_not_computed_yet() {
+        use crate::model::{Contacts, Simulation};
+        let one = crate::scene::Scene::default_scene().simulation().unwrap();
+        let body = one.first_body().clone();
+        let sim = Simulation::builder()
+            .body(body.clone())
+            .body(body)
+            .foundation(one.foundation().clone())
+            .strengths(one.strengths().clone())
+            .settings(one.settings().with_contacts(Contacts::Base))
+            .build()
+            .unwrap();
+        let route = simulate(&sim);
+        assert_eq!(route.termination.reason, Reason::SeveralBodies);
+        assert_eq!(route.termination.t_s, 0.0);
+        assert!(
+            route.termination.detail.contains("not computed yet"),
+            "{}",
+            route.termination.detail
+        );
+        // No one body's frame speaks for both: no factor of safety at the start.
+        assert!(route.rows.is_empty() && route.factor_of_safety.is_none());
+    }
 }
