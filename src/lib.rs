@@ -79,11 +79,11 @@ pub use analysis::{run, run_observed};
 pub use geometry::{BodyPose, Displacement, Frame, Ground, PaperPlanes, Plane, Pose, Site};
 pub use mechanics::static_friction::{FactorOfSafety, Limit};
 pub use model::{
-    Base, Block, Body, BodyBuilder, Contacts, DEFAULT_TOLERANCE, DynamicsModel, FaceStrength,
-    Foundation, Friction, Initial, Integrator, Joint, Levels, Loads, MAX_INCREMENTS, MAX_TOLERANCE,
-    MIN_TOLERANCE, MassProperties, Mode, ModelError, Monolith, PairStrength, REFERENCE_STEP,
-    Record, Resultant, RockAnchor, RunSettings, STRAND_MODULUS_PA, Section, Simulation,
-    SimulationBuilder, Strengths, Surface, Tendon, UnknownName, WaterLoads,
+    Base, Block, Body, BodyBuilder, ContactStrength, Contacts, DEFAULT_TOLERANCE, DynamicsModel,
+    FaceStrength, Foundation, Friction, Initial, Integrator, Joint, Levels, Loads, MAX_INCREMENTS,
+    MAX_TOLERANCE, MIN_TOLERANCE, MassProperties, Mode, ModelError, Monolith, PairStrength,
+    REFERENCE_STEP, Record, Resultant, RockAnchor, RunSettings, STRAND_MODULUS_PA, Section,
+    Simulation, SimulationBuilder, Strengths, Surface, Tendon, UnknownName, WaterLoads,
 };
 pub use route::{
     AnchorBreak, BaseReport, Carrying, Computed, Diagnostics, EnergyBalance, KEPT_ROWS,
