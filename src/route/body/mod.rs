@@ -228,14 +228,9 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
         o: Logbook<'s>,
     ) -> Start<'s, Self> {
         let [body] = sim.bodies() else {
-            return Start::Ended(o.end(
-                Reason::SeveralBodies,
-                0.0,
-                format!(
-                    "{} bodies: the dynamics of several bodies together is not computed yet",
-                    sim.bodies().len()
-                ),
-            ));
+            let n = sim.bodies().len();
+            let detail = format!("{n} bodies: their dynamics together is not computed yet");
+            return Start::Ended(o.end(Reason::SeveralBodies, 0.0, detail));
         };
         let Some(base) = body.base() else {
             return Start::Ended(o.end(
