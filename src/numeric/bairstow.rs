@@ -27,7 +27,7 @@ const RADIUS: f64 = 1e-6;
 /// The quadratic factors x² + u x + v, as (u, v), in the order they are divided out.
 pub type Factors = [(f64, f64); 4];
 
-/// The roots of x^n + c[n−1] x^(n−1) + … + c[0] (n = `c.len()` ≤ 8) into `wr`, `wi` (real and
+/// The roots of xⁿ + c₍ₙ₋₁₎ xⁿ⁻¹ + … + c₀ (n = `c.len()` ≤ 8) into `wr`, `wi` (real and
 /// imaginary parts), each quadratic factor's Newton iteration started from `seed`'s factor of
 /// the same place (the factors of a nearby polynomial of the same degree, e.g. from
 /// [`factors_of`]); the factors found into `found` (a seed for the next). How many roots (n),
