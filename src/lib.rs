@@ -36,6 +36,11 @@
 //! beside the rigid body's ([`compare`]) run through one runner, the command line and Python
 //! alike; each of many routes comes to a [`RouteResult`], or an [`Outcome`] without one.
 //!
+//! **Their files** (`output`, with the `output` feature): the folders the command line writes —
+//! `route.csv`, `summary.json`, the pictures (`plots`), the route in 3-D (`view`), a check's
+//! `report.html`, the tables of sweeps and samples — written whole or not at all into a locked
+//! folder, by the writers the command line and Python both call.
+//!
 //! **The poses behind it** ([`poses`]). The coefficients of the pose system (`SmallAngle`'s
 //! f1–f12 of (15), `Exact`), all its roots by eigenvalues (`solve_all`), the physical one
 //! followed by continuation (`Tracker`), and the independent direct solver every test measures
@@ -58,7 +63,7 @@
 //! Data flows one way, one private module per stage (`ARCHITECTURE.md` says where each lives):
 //! scene → model → geometry → coefficients (generated at build time by `codegen/`) → roots →
 //! pose → mechanics (loads, friction, reactions) → route (one driver, a dynamics model each) →
-//! analysis (many routes). Units are SI; angles are radians in these types and degrees in every
+//! analysis (many routes) → output (their files and pictures). Units are SI; angles are radians in these types and degrees in every
 //! file a person reads or writes.
 
 #![forbid(unsafe_code)]
@@ -70,6 +75,8 @@ mod geometry;
 mod mechanics;
 mod model;
 mod numeric;
+#[cfg(feature = "output")]
+pub mod output;
 mod roots;
 mod route;
 mod scene;
@@ -139,9 +146,9 @@ pub mod probabilistic {
     };
 }
 
-/// Every stage with everything in it, so that the command line can report the stages and the
-/// tests and benchmarks can measure them one by one: not an interface to build on, and behind
-/// the `internals` feature (which the command line's `cli` feature turns on).
+/// Every stage with everything in it, so that the tests and benchmarks can measure them one by
+/// one: not an interface to build on, and behind the `internals` feature (which only the tests
+/// and benchmarks turn on).
 #[cfg(feature = "internals")]
 #[doc(hidden)]
 pub mod internals {

@@ -10,7 +10,7 @@ pub const MAX_SCENE_BYTES: u64 = 1 << 20;
 
 /// Opens `path` for reading if it is a regular file of at most `limit` bytes; the error, for
 /// people, says why not (without the path: the caller names the file).
-pub fn open_bounded(path: &Path, limit: u64) -> Result<impl Read, String> {
+pub fn open_bounded(path: &Path, limit: u64) -> Result<impl Read + use<>, String> {
     // The kind is asked before opening: opening a FIFO with no writer blocks.
     let meta = std::fs::metadata(path).map_err(|e| format!("cannot read the file: {e}"))?;
     if !meta.is_file() {

@@ -104,8 +104,8 @@ fn cycle(graph: &BTreeMap<String, BTreeSet<String>>) -> Option<Vec<String>> {
 /// The stages each stage may import, from the bottom up (ARCHITECTURE.md, "Data flow"). The
 /// model, the geometry, the coefficients, the roots and the mechanics never import the scene
 /// (the input layer builds the model, not the other way round), nor the route or the analyses
-/// above them.
-const MAY_IMPORT: [(&str, &[&str]); 9] = [
+/// above them. The output (files and pictures) is the top: no stage may import it.
+const MAY_IMPORT: [(&str, &[&str]); 10] = [
     ("numeric", &[]),
     ("geometry", &["numeric"]),
     ("model", &["geometry", "numeric"]),
@@ -131,6 +131,20 @@ const MAY_IMPORT: [(&str, &[&str]); 9] = [
             "mechanics",
             "model",
             "numeric",
+            "route",
+            "scene",
+        ],
+    ),
+    (
+        "output",
+        &[
+            "analysis",
+            "coeffs",
+            "geometry",
+            "mechanics",
+            "model",
+            "numeric",
+            "roots",
             "route",
             "scene",
         ],
@@ -255,6 +269,66 @@ fn the_layer_check_finds_an_import_from_below() {
             "plots: a stage the layers do not list"
         ]
     );
+}
+
+#[test]
+fn no_stage_of_the_library_imports_the_output() {
+    // The files and pictures are the top of the house: the command line and Python call them,
+    // nothing below does.
+    let (between, _) = import_graphs();
+    assert!(between.contains_key("output"), "{between:?}");
+    let importers: Vec<&String> = between
+        .iter()
+        .filter(|(_, to)| to.contains("output"))
+        .map(|(stage, _)| stage)
+        .collect();
+    assert!(importers.is_empty(), "{importers:?} import the output");
+    assert!(
+        MAY_IMPORT
+            .iter()
+            .all(|(_, allowed)| !allowed.contains(&"output"))
+    );
+}
+
+/// The lines of `text` without their comments.
+fn without_comments(text: &str) -> String {
+    text.lines()
+        .map(|l| l.split("//").next().unwrap_or(""))
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+#[test]
+fn the_command_line_uses_the_public_interface_only() {
+    // The binary reached into every stage through `internals` to write its files; its files
+    // are now the library's `output`, and it names no internal stage.
+    let bin = Path::new(env!("CARGO_MANIFEST_DIR")).join("src/bin");
+    let mut files = Vec::new();
+    let mut stack = vec![bin];
+    while let Some(dir) = stack.pop() {
+        for e in std::fs::read_dir(&dir).unwrap() {
+            let p = e.unwrap().path();
+            if p.is_dir() {
+                stack.push(p);
+            } else if p.extension().is_some_and(|x| x == "rs") {
+                files.push(p);
+            }
+        }
+    }
+    assert!(files.len() >= 10, "{files:?}");
+    let naming: Vec<&PathBuf> = files
+        .iter()
+        .filter(|p| without_comments(&std::fs::read_to_string(p).unwrap()).contains("internals"))
+        .collect();
+    assert!(naming.is_empty(), "{naming:?} name slideroute::internals");
+    // Nor does its feature turn the internals on.
+    let manifest =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("Cargo.toml")).unwrap();
+    let cli = manifest
+        .lines()
+        .find(|l| l.starts_with("cli = ["))
+        .expect("the cli feature");
+    assert!(!cli.contains("internals"), "{cli}");
 }
 
 #[test]

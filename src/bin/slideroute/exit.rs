@@ -4,6 +4,7 @@
 //! it (as `head` does), like other Unix tools; standard output written without panicking; and
 //! the interruption by Ctrl-C or SIGTERM.
 
+use slideroute::output::OutputError;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -27,6 +28,18 @@ pub fn bad_input(msg: impl ToString) -> CliError {
 /// An output that could not be written: exit 1.
 pub fn failed(msg: impl ToString) -> CliError {
     CliError::Failed(msg.to_string())
+}
+
+/// What the library's writers could not do: an input they were asked of that cannot be used
+/// is bad input (exit 2); a file that could not be written is a failure (exit 1), and so is an
+/// interruption, which names the files already written whole.
+pub fn output_error(e: OutputError) -> CliError {
+    match e {
+        OutputError::Input(msg) => CliError::BadInput(msg),
+        OutputError::Write(msg) => CliError::Failed(msg),
+        OutputError::Interrupted { what, written } if written.is_empty() => CliError::Failed(what),
+        OutputError::Interrupted { what, written } => interrupted_after(&what, &written),
+    }
 }
 
 /// A scene that cannot be used: bad input, each of its faults on its own line.

@@ -1,12 +1,11 @@
 //! The `slideroute` command line: parses (`cli.rs`), calls the command (`commands/`), and ends
-//! with the exit code its result calls for (`exit.rs`).
+//! with the exit code its result calls for (`exit.rs`). Its files and pictures are the
+//! library's (`slideroute::output`); it keeps the arguments, the progress bars, Ctrl-C and the
+//! exit codes.
 
 mod cli;
 mod commands;
 mod exit;
-mod output;
-mod report;
-mod sweep;
 
 use clap::Parser as _;
 use cli::{Cli, Command};

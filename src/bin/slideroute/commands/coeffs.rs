@@ -4,7 +4,7 @@
 use super::{displacement, load, print_json};
 use crate::cli::CoeffsArgs;
 use crate::exit::{CliError, bad_input, out};
-use crate::output::CoeffReport;
+use slideroute::output::{CoeffReport, number};
 
 /// Runs `slideroute coeffs`.
 pub fn coeffs(args: &CoeffsArgs) -> Result<(), CliError> {
@@ -19,13 +19,12 @@ pub fn coeffs(args: &CoeffsArgs) -> Result<(), CliError> {
             ))
         })?;
     if let Some(name) = report.not_finite() {
-        let g = slideroute::internals::numeric::given;
         return Err(bad_input(format!(
             "--x {} --z {} --theta-deg {}: {name} is not a finite number there (the \
              displacement is too large for the system to be evaluated)",
-            g(report.x_m),
-            g(report.z_m),
-            g(report.theta_deg)
+            number(report.x_m),
+            number(report.z_m),
+            number(report.theta_deg)
         )));
     }
     if args.json {

@@ -1,6 +1,6 @@
-//! One file per command: each reads its arguments, calls the library, writes its files and
-//! prints its summary. What they share is here: the scene a command reads, the progress bar,
-//! a displacement from flags, and a route's folder of files.
+//! One file per command: each reads its arguments, calls the library, has it write its files
+//! (`slideroute::output`) and prints its summary. What they share is here: the scene a command
+//! reads, the progress bar, a displacement from flags, and JSON on standard output.
 
 pub mod check;
 pub mod coeffs;
@@ -14,9 +14,7 @@ pub mod sweep;
 
 use crate::cli::{PoseArgs, SceneArg};
 use crate::exit::{CliError, bad_input, failed, outln, scene_faults};
-use crate::output::folder::Folder;
-use slideroute::{Computed, Displacement, DynamicsModel, Scene};
-use std::path::PathBuf;
+use slideroute::{Displacement, DynamicsModel, Scene};
 
 /// The scene of `arg` (the embedded default without a file), its likely mistakes warned of on
 /// standard error.
@@ -135,76 +133,17 @@ pub fn displacement(p: &PoseArgs) -> Result<Displacement, CliError> {
     ))
 }
 
+/// Says each of `warnings` (what a writer left out, and why) on standard error.
+pub fn warn_all(warnings: &[String]) {
+    for w in warnings {
+        eprintln!("slideroute: warning: {w}");
+    }
+}
+
 /// `value` as pretty JSON on standard output.
 pub fn print_json(value: &impl serde::Serialize) -> Result<(), CliError> {
     let s = serde_json::to_string_pretty(value)
         .map_err(|e| failed(format!("cannot write JSON: {e}")))?;
     outln!("{s}");
     Ok(())
-}
-
-/// The route of `sim` with every row streamed into `name` (route.csv) in `folder` as it is
-/// computed, keeping at most [`KEPT_ROWS`](slideroute::KEPT_ROWS) rows in memory for the
-/// pictures and the summary: a route of any length in bounded memory. `progress` as
-/// [`Runner::progress`](slideroute::Runner::progress).
-pub fn stream_route_csv(
-    folder: &mut Folder,
-    name: &str,
-    sim: &slideroute::Simulation,
-    progress: impl FnMut(f64) -> std::ops::ControlFlow<()>,
-) -> Result<(PathBuf, Computed), String> {
-    use crate::output::route_files::CsvRows;
-    let mut computed = None;
-    let path = folder.write_with(name, |tmp| {
-        let file = std::fs::File::create(tmp)
-            .map_err(|e| format!("{}: cannot write: {e}", tmp.display()))?;
-        let mut rows = CsvRows::new(file).map_err(|e| format!("{name}: {e}"))?;
-        let run = slideroute::Runner::new(sim)
-            .progress(progress)
-            .stream(1, |r| rows.push(r))
-            .keep_at_most(slideroute::KEPT_ROWS)
-            .run();
-        computed = Some(run);
-        rows.finish().map_err(|e| format!("{name}: {e}"))
-    })?;
-    let computed = computed.ok_or_else(|| format!("{name}: no route"))?;
-    Ok((path, computed))
-}
-
-/// The pictures of `computed`'s route (unless `no_plots`), the route in 3-D, route.html and
-/// route.glb (unless `no_3d`), and summary.json (with the manifest, last) into the locked output
-/// folder, beside route.csv, each whole or absent, replacing an earlier run's outputs there.
-pub fn write_route_folder(
-    mut folder: Folder,
-    scene: &Scene,
-    computed: &Computed,
-    no_plots: bool,
-    no_3d: bool,
-) -> Result<Vec<PathBuf>, String> {
-    use crate::output::route_files;
-    let mut files = Vec::new();
-    if !no_3d {
-        files.extend(crate::output::view::write_route_view(
-            &mut folder,
-            scene,
-            &computed.route,
-        )?);
-    }
-    #[cfg(feature = "plots")]
-    if !no_plots {
-        let staging = folder.staging()?;
-        let staged = crate::output::plots::write_route_plots(&staging, scene, &computed.route)?;
-        files.extend(folder.adopt_all(staged)?);
-    }
-    #[cfg(not(feature = "plots"))]
-    let _ = no_plots;
-    let manifest = route_files::Manifest::new(scene, &folder);
-    files.push(route_files::write_json_with_manifest(
-        &mut folder,
-        "summary.json",
-        computed,
-        &manifest,
-    )?);
-    folder.finish()?;
-    Ok(files)
 }

@@ -1,20 +1,14 @@
 //! `slideroute probabilistic`: uncertain scene keys sampled from their distributions, every
 //! sample's route in parallel (the library's `slideroute::probabilistic`), `samples.csv`,
-//! `probabilistic.json` and the pictures.
+//! `probabilistic.json` and the pictures (`slideroute::output::ProbabilisticFiles`).
 
-use super::{load_with, progress_bar};
+use super::{load_with, progress_bar, warn_all};
 use crate::cli::ProbabilisticArgs;
-use crate::exit::{
-    CliError, bad_input, failed, interrupted, interrupted_after, many_interrupted_after, outln,
-};
-use crate::output::folder::Folder;
-use crate::output::route_files::{Manifest, write_json_with_manifest};
-use crate::output::samples_files::SamplesCsv;
-use crate::output::view::many::MAX_FAN_PATHS;
+use crate::exit::{CliError, bad_input, interrupted, many_interrupted_after, outln, output_error};
 use slideroute::Scene;
+use slideroute::output::{OutputFolder, ProbabilisticFiles};
 use slideroute::probabilistic::{
-    Design, Limits, MAX_SAMPLES, Sample, Sampling, Summary, Tally, Uncertain, check_uncertain,
-    merged,
+    Design, Limits, MAX_SAMPLES, Sampling, Summary, Uncertain, check_uncertain, merged,
 };
 
 /// Runs `slideroute probabilistic`.
@@ -42,7 +36,7 @@ pub fn probabilistic(args: &ProbabilisticArgs) -> Result<(), CliError> {
         )));
     }
     let uncertain = uncertain(&base, &args.dist)?;
-    let mut folder = Folder::open(&args.out, "probabilistic").map_err(failed)?;
+    let folder = OutputFolder::open(&args.out, "probabilistic").map_err(output_error)?;
     let bar = progress_bar(args.quiet, args.samples as u64, "probabilistic", "samples");
     let design = Design {
         scene: &base,
@@ -51,112 +45,18 @@ pub fn probabilistic(args: &ProbabilisticArgs) -> Result<(), CliError> {
         seed: args.seed,
         sampling: args.sampling,
     };
-    // Each sample, as it comes, written to samples.csv and tallied (its values kept in a
-    // temporary file in the staging folder past a few MB); the first routes kept for the fans.
-    let mut tally = Tally::new(&design, limits, Some(folder.staging().map_err(failed)?));
-    let mut kept: Vec<Sample> = Vec::new();
-    let csv_path = folder
-        .write_with("samples.csv", |tmp| {
-            let file = std::fs::File::create(tmp)
-                .map_err(|e| format!("{}: cannot write: {e}", tmp.display()))?;
-            let mut csv = SamplesCsv::new(std::io::BufWriter::new(file), &uncertain)
-                .map_err(|e| format!("samples.csv: {e}"))?;
-            design.run_each(
-                || bar.inc(1),
-                interrupted,
-                |s| {
-                    csv.push(&s).map_err(|e| format!("samples.csv: {e}"))?;
-                    tally
-                        .add(&s)
-                        .map_err(|e| format!("the samples' temporary file: {e}"))?;
-                    if kept.len() < MAX_FAN_PATHS && s.outcome.route().is_some() {
-                        kept.push(s);
-                    }
-                    Ok::<(), String>(())
-                },
-            )?;
-            csv.finish().map_err(|e| format!("samples.csv: {e}"))
-        })
-        .map_err(failed)?;
+    let written = ProbabilisticFiles::new(&design, limits)
+        .pictures(!args.no_plots)
+        .view(!args.no_3d)
+        .write(folder, || bar.inc(1), interrupted);
     bar.finish_and_clear();
-    // Summed up whole after an interrupted run (its samples not run counted); a Ctrl-C while
-    // millions of routes are summed up stops it.
-    if !interrupted() {
-        tally.stop_when(interrupted);
-    }
-    let summary = tally.finish().map_err(|e| {
-        if e.kind() == std::io::ErrorKind::Interrupted {
-            interrupted_after(
-                "interrupted while the samples were summed up (probabilistic.json not written)",
-                std::slice::from_ref(&csv_path),
-            )
-        } else {
-            failed(format!("the samples' temporary file: {e}"))
-        }
-    })?;
-    let mut written = vec![csv_path];
-    // The scene as written, drawn in black on the fan (route-fan.svg and route-fan.html).
-    let drawn_plots = cfg!(feature = "plots") && !args.no_plots;
-    let nominal = if (drawn_plots || !args.no_3d) && !interrupted() {
-        slideroute::run(&base).ok()
-    } else {
-        None
-    };
-    #[cfg(feature = "plots")]
-    if drawn_plots && !interrupted() {
-        let staging = folder.staging().map_err(failed)?;
-        let fs = |each: &mut dyn FnMut(Option<f64>)| {
-            tally
-                .factors_of_safety(|v| each(Some(v).filter(|v| !v.is_nan())))
-                .map_err(|e| format!("the samples' temporary file: {e}"))
-        };
-        let staged = crate::output::plots::write_probabilistic_plots(
-            &staging,
-            &base,
-            nominal.as_ref(),
-            &kept,
-            &fs,
-            &summary,
-        )
-        .map_err(failed)?;
-        written.extend(folder.adopt_all(staged).map_err(failed)?);
-    }
-    if !args.no_3d && !interrupted() {
-        let (paths, _) = crate::output::view::many::cm_paths(kept.iter().map(|s| &s.outcome));
-        let routes = summary.routes;
-        let mut notes = vec![format!(
-            "{} samples, seed {}; the foundation is drawn as the scene writes it",
-            summary.samples, summary.seed
-        )];
-        notes.extend(
-            summary
-                .distributions
-                .iter()
-                .map(|g| format!("{}: {}", g.key, g.distribution)),
-        );
-        let page = crate::output::view::many::fan_page(
-            &base,
-            nominal.as_ref(),
-            &paths,
-            routes,
-            "sampled routes",
-            notes,
-        );
-        written.extend(
-            crate::output::view::many::write_page(&mut folder, "route-fan.html", &page)
-                .map_err(failed)?,
-        );
-    }
-    let manifest = Manifest::new(&base, &folder);
-    let json = write_json_with_manifest(&mut folder, "probabilistic.json", &summary, &manifest)
-        .map_err(failed)?;
-    folder.finish().map_err(failed)?;
-    written.push(json);
+    let (summary, written) = written.map_err(output_error)?;
+    warn_all(&written.warnings);
     if interrupted() {
-        return Err(many_interrupted_after("samples", &written));
+        return Err(many_interrupted_after("samples", &written.files));
     }
     if !args.quiet {
-        print_summary(&summary, args.sampling, &written)?;
+        print_summary(&summary, args.sampling, &written.files)?;
     }
     Ok(())
 }

@@ -4,11 +4,9 @@
 
 use super::{displacement, load, print_json};
 use crate::cli::RootsArgs;
-use crate::exit::{CliError, bad_input, failed, interrupted, out};
-use crate::output::RootsReport;
-use crate::output::grid_csv::{self, GridPose};
+use crate::exit::{CliError, bad_input, failed, interrupted, out, output_error};
 use rayon::prelude::*;
-use slideroute::internals::scene::input::open_bounded;
+use slideroute::output::{GridPose, GridPoses, GridRows, RootsReport};
 use slideroute::poses::{BatchSolver, solve_all_batch};
 use slideroute::{Displacement, Mode, Scene};
 use std::path::Path;
@@ -50,8 +48,7 @@ const CHUNK: usize = 4096;
 fn roots_grid(scene: &Scene, mode: Mode, grid: &Path, out: &Path) -> Result<(), CliError> {
     let name = grid.display().to_string();
     // Only a regular file, of any length (a line is bounded instead).
-    let file = open_bounded(grid, u64::MAX - 1).map_err(|e| bad_input(format!("{name}: {e}")))?;
-    let poses = grid_csv::PoseRows::new(std::io::BufReader::new(file), &name).map_err(bad_input)?;
+    let poses = GridPoses::open(grid).map_err(output_error)?;
     let out_name = out.display().to_string();
     if same_file(grid, out) {
         return Err(bad_input(format!(
@@ -96,19 +93,19 @@ fn same_file(a: &Path, b: &Path) -> bool {
 fn solve_grid<R: std::io::Read, W: std::io::Write>(
     scene: &Scene,
     mode: Mode,
-    mut poses: grid_csv::PoseRows<R>,
+    mut poses: GridPoses<R>,
     out: W,
     chunk: usize,
     out_name: &str,
 ) -> Result<usize, CliError> {
     let write_err = |e: csv::Error| failed(format!("{out_name}: cannot write: {e}"));
-    let mut w = grid_csv::RowWriter::new(out).map_err(write_err)?;
+    let mut w = GridRows::new(out).map_err(write_err)?;
     let mut batch = Vec::with_capacity(chunk);
     let mut n = 0;
     loop {
         batch.clear();
         for pose in poses.by_ref().take(chunk) {
-            batch.push(pose.map_err(bad_input)?);
+            batch.push(pose.map_err(output_error)?);
         }
         if batch.is_empty() {
             break;
@@ -223,7 +220,7 @@ mod tests {
 
     fn rows(text: &str, chunk: usize) -> Result<String, CliError> {
         let scene = Scene::default_scene();
-        let poses = grid_csv::PoseRows::new(text.as_bytes(), "g.csv").map_err(bad_input)?;
+        let poses = GridPoses::from_reader(text.as_bytes(), "g.csv").map_err(output_error)?;
         let mut out = Vec::new();
         solve_grid(&scene, Mode::Exact, poses, &mut out, chunk, "out.csv")?;
         Ok(String::from_utf8(out).unwrap())
@@ -276,7 +273,8 @@ mod tests {
             Displacement::new(0.2, 0.04, 0.5f64.to_radians()),
         )
         .unwrap();
-        let alpha = third.selected.unwrap().alpha_deg;
+        let third = serde_json::to_value(&third).unwrap();
+        let alpha = third["selected"]["alpha_deg"].as_f64().unwrap();
         let row: f64 = whole
             .lines()
             .nth(3)
@@ -316,10 +314,10 @@ mod tests {
         }
         let scene = Scene::default_scene();
         for mode in [Mode::Exact, Mode::SmallAngle] {
-            let poses = grid_csv::PoseRows::new(text.as_bytes(), "g.csv").unwrap();
+            let poses = GridPoses::from_reader(text.as_bytes(), "g.csv").unwrap();
             let mut batched = Vec::new();
             solve_grid(&scene, mode, poses, &mut batched, 256, "out.csv").unwrap();
-            let poses: Vec<GridPose> = grid_csv::PoseRows::new(text.as_bytes(), "g.csv")
+            let poses: Vec<GridPose> = GridPoses::from_reader(text.as_bytes(), "g.csv")
                 .unwrap()
                 .map(Result::unwrap)
                 .collect();
@@ -327,7 +325,7 @@ mod tests {
                 .iter()
                 .map(|p| report(&scene, mode, p.displacement()).unwrap())
                 .collect();
-            let mut w = grid_csv::RowWriter::new(Vec::new()).unwrap();
+            let mut w = GridRows::new(Vec::new()).unwrap();
             w.rows(&poses, &alone).unwrap();
             let alone = w.finish().unwrap();
             assert!(String::from_utf8_lossy(&alone).contains("no admissible root"));

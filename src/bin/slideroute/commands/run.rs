@@ -1,11 +1,10 @@
 //! `slideroute run`: one route, its rows streamed to route.csv as they are computed, then its
 //! pictures and summary.json; `--compare-dynamics` is `compare.rs`.
 
-use super::{ROUTE_STEPS, load, route_bar, stream_route_csv, write_route_folder};
+use super::{ROUTE_STEPS, load, route_bar, warn_all};
 use crate::cli::RunArgs;
-use crate::exit::{CliError, bad_input, failed, interrupted, interrupted_after, out};
-use crate::output::folder::Folder;
-use crate::output::summary::RouteSummary;
+use crate::exit::{CliError, bad_input, interrupted, interrupted_after, out, output_error};
+use slideroute::output::{OutputFolder, RouteFiles};
 use slideroute::{Contacts, Integrator, Reason, RunSettings, Scene};
 use std::ops::ControlFlow;
 
@@ -20,7 +19,7 @@ pub fn run(args: &RunArgs) -> Result<(), CliError> {
         eprintln!("slideroute: warning: {w}");
     }
     // Locked before the work, so that a second run into the same folder is refused at once.
-    let mut folder = Folder::open(&args.out_dir(), "run").map_err(failed)?;
+    let mut folder = OutputFolder::open(&args.out_dir(), "run").map_err(output_error)?;
     let bar = route_bar(args.quiet, sim.settings().t_end);
     let progress = |f: f64| {
         bar.set_position((f * ROUTE_STEPS as f64) as u64);
@@ -30,25 +29,21 @@ pub fn run(args: &RunArgs) -> Result<(), CliError> {
             ControlFlow::Continue(())
         }
     };
-    let csv_path = stream_route_csv(&mut folder, "route.csv", &sim, progress);
+    let route_files = RouteFiles::new(&scene)
+        .pictures(!args.no_plots)
+        .view(!args.no_3d);
+    let csv_path = route_files.stream(&mut folder, &sim, progress);
     bar.finish_and_clear();
-    let (csv_path, computed) = csv_path.map_err(failed)?;
-    let mut files = vec![csv_path];
-    files.extend(
-        write_route_folder(folder, &scene, &computed, args.no_plots, args.no_3d).map_err(failed)?,
-    );
+    let (csv_path, computed) = csv_path.map_err(output_error)?;
+    let written = route_files.write(folder, &computed).map_err(output_error)?;
+    warn_all(&written.warnings);
+    let files: Vec<_> = std::iter::once(csv_path).chain(written.files).collect();
     let route = &computed.route;
     if route.termination.reason == Reason::Interrupted {
         return Err(interrupted_after(&route.termination.detail, &files));
     }
     if !args.quiet {
-        out!(
-            "{}",
-            RouteSummary {
-                computed: &computed,
-                files: &files
-            }
-        );
+        out!("{}", computed.summary(&files));
     }
     Ok(())
 }
@@ -154,12 +149,11 @@ mod tests {
         // The default scene's route written as route.csv is: its bytes a row within a fifth of
         // ROW_BYTES (a run of dt_s = 2·10⁻⁷ s wrote 7.07 GB in 21.8 M rows, 324 bytes a row).
         let route = slideroute::run(&Scene::default_scene()).unwrap();
-        let mut bytes = Vec::new();
-        let mut csv = crate::output::route_files::CsvRows::new(&mut bytes).unwrap();
+        let mut csv = slideroute::output::RouteCsv::new(Vec::new()).unwrap();
         for r in &route.rows {
             csv.push(r);
         }
-        csv.finish().unwrap();
+        let bytes = csv.finish().unwrap();
         assert!(route.rows.len() > 1000, "{}", route.rows.len());
         let per_row = bytes.len() as f64 / route.rows.len() as f64;
         assert!(
