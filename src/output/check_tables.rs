@@ -236,62 +236,7 @@ impl fmt::Display for CheckTable<'_> {
             .filter(|r| r.gravity.is_some())
             .collect();
         if !gravity.is_empty() {
-            writeln!(
-                f,
-                "  sliding FS: (N tan φ + c L w)/T on the base, L its part in compression (the \
-                 guideline's gravity method{})",
-                if gravity.iter().any(|r| r
-                    .loads
-                    .and_then(|l| l.water)
-                    .is_some_and(|w| w.levels.crack))
-                {
-                    ", a crack let open where the base would be in tension"
-                } else {
-                    ""
-                }
-            )?;
-            // A faceted or sloping base: the factor on each face under the monolith.
-            for r in &gravity {
-                let Some(g) = r.gravity else { continue };
-                let faces: Vec<_> = g.faces.iter().flatten().collect();
-                if faces.len() < 2 && faces.iter().all(|f| f.dip_deg.abs() < 1e-9) {
-                    continue;
-                }
-                let each: Vec<String> = faces
-                    .iter()
-                    .map(|f| {
-                        format!(
-                            "face {} (dip {}° towards {}°) {}{}",
-                            f.face,
-                            fixed(f.dip_deg, 1),
-                            fixed(f.dip_direction_deg, 1),
-                            f.sliding_fs
-                                .map_or("unbounded".to_string(), |v| fixed(v, 3).to_string()),
-                            if f.sliding_fs.is_some() {
-                                format!(
-                                    ", pushed towards {}° plunging {}°",
-                                    fixed(f.slide_trend_deg, 1),
-                                    fixed(f.slide_plunge_deg, 1)
-                                )
-                            } else {
-                                String::new()
-                            }
-                        )
-                    })
-                    .collect();
-                writeln!(
-                    f,
-                    "  {} slides on each face (the least governs): {}",
-                    r.case.name,
-                    each.join("; ")
-                )?;
-            }
-            writeln!(
-                f,
-                "  resultant and base pressures (effective, compression positive):"
-            )?;
-            let rows: Vec<Vec<String>> = gravity.iter().map(|r| Self::base(r)).collect();
-            table(f, &BASE, &rows, 1)?;
+            gravity_method(f, &gravity)?;
         }
         writeln!(
             f,
@@ -300,60 +245,130 @@ impl fmt::Display for CheckTable<'_> {
              the block slides, or tips onto two contacts"
         )?;
         for r in self.results.iter().filter(|r| !r.passes) {
-            if let Some(g) = &r.gravity {
-                let mut why = Vec::new();
-                if g.sliding_fs.is_some_and(|v| v < r.case.required_fs) {
-                    why.push("sliding".to_string());
-                }
-                if g.overturns {
-                    why.push("its resultant leaves the base: it tips".to_string());
-                } else if !g.resultant_passes {
-                    why.push(format!(
-                        "{:.1} % of its base in compression, {} % asked",
-                        g.base_in_compression_pct, g.required_compression_pct
-                    ));
-                }
-                if why.is_empty() {
-                    why.push("its base pressure exceeds the allowable bearing stress".to_string());
-                }
-                writeln!(f, "  {} fails: {}", r.case.name, why.join("; "))?;
-            }
-            let t = &r.run.route.termination;
-            let last = r.run.route.rows.last();
-            if r.run.route.increments == 0 {
-                if t.reason == crate::Reason::DoesNotSlide {
-                    writeln!(
-                        f,
-                        "  {}: static friction holds the block at the start",
-                        r.case.name
-                    )?;
-                } else {
-                    writeln!(
-                        f,
-                        "  {}: the route ends at the start: {}: {}",
-                        r.case.name, t.reason, t.detail
-                    )?;
-                }
-                continue;
-            }
-            writeln!(
-                f,
-                "  {} slides: {} at t = {} s, travel {} m, yaw θ = {}°",
-                r.case.name,
-                t.reason,
-                seconds(t.t_s),
-                fixed(r.run.route.travel_m, 3),
-                fixed(last.map_or(0.0, |l| l.theta_deg), 3)
-            )?;
-            for b in &r.run.route.anchors_broken {
-                writeln!(
-                    f,
-                    "    anchor {} broke at its capacity at t = {} s",
-                    b.anchor,
-                    seconds(b.t_s)
-                )?;
-            }
+            failing(f, r)?;
         }
         Ok(())
     }
+}
+
+/// The gravity method's lines of the cases that have it: what the sliding factor is, each face
+/// of a faceted or sloping base, and the resultant and base pressures.
+fn gravity_method(f: &mut fmt::Formatter<'_>, gravity: &[&CaseResult]) -> fmt::Result {
+    writeln!(
+        f,
+        "  sliding FS: (N tan φ + c L w)/T on the base, L its part in compression (the \
+         guideline's gravity method{})",
+        if gravity.iter().any(|r| r
+            .loads
+            .and_then(|l| l.water)
+            .is_some_and(|w| w.levels.crack))
+        {
+            ", a crack let open where the base would be in tension"
+        } else {
+            ""
+        }
+    )?;
+    for r in gravity {
+        faces(f, r)?;
+    }
+    writeln!(
+        f,
+        "  resultant and base pressures (effective, compression positive):"
+    )?;
+    let rows: Vec<Vec<String>> = gravity.iter().map(|r| CheckTable::base(r)).collect();
+    table(f, &BASE, &rows, 1)
+}
+
+/// A faceted or sloping base: the factor on each face under the monolith (nothing for one
+/// level face).
+fn faces(f: &mut fmt::Formatter<'_>, r: &CaseResult) -> fmt::Result {
+    let Some(g) = r.gravity else { return Ok(()) };
+    let faces: Vec<_> = g.faces.iter().flatten().collect();
+    if faces.len() < 2 && faces.iter().all(|f| f.dip_deg.abs() < 1e-9) {
+        return Ok(());
+    }
+    let each: Vec<String> = faces
+        .iter()
+        .map(|f| {
+            format!(
+                "face {} (dip {}° towards {}°) {}{}",
+                f.face,
+                fixed(f.dip_deg, 1),
+                fixed(f.dip_direction_deg, 1),
+                f.sliding_fs
+                    .map_or("unbounded".to_string(), |v| fixed(v, 3).to_string()),
+                if f.sliding_fs.is_some() {
+                    format!(
+                        ", pushed towards {}° plunging {}°",
+                        fixed(f.slide_trend_deg, 1),
+                        fixed(f.slide_plunge_deg, 1)
+                    )
+                } else {
+                    String::new()
+                }
+            )
+        })
+        .collect();
+    writeln!(
+        f,
+        "  {} slides on each face (the least governs): {}",
+        r.case.name,
+        each.join("; ")
+    )
+}
+
+/// Why a failing case fails by the gravity method, and where its route went.
+fn failing(f: &mut fmt::Formatter<'_>, r: &CaseResult) -> fmt::Result {
+    if let Some(g) = &r.gravity {
+        let mut why = Vec::new();
+        if g.sliding_fs.is_some_and(|v| v < r.case.required_fs) {
+            why.push("sliding".to_string());
+        }
+        if g.overturns {
+            why.push("its resultant leaves the base: it tips".to_string());
+        } else if !g.resultant_passes {
+            why.push(format!(
+                "{:.1} % of its base in compression, {} % asked",
+                g.base_in_compression_pct, g.required_compression_pct
+            ));
+        }
+        if why.is_empty() {
+            why.push("its base pressure exceeds the allowable bearing stress".to_string());
+        }
+        writeln!(f, "  {} fails: {}", r.case.name, why.join("; "))?;
+    }
+    let t = &r.run.route.termination;
+    let last = r.run.route.rows.last();
+    if r.run.route.increments == 0 {
+        if t.reason == crate::Reason::DoesNotSlide {
+            return writeln!(
+                f,
+                "  {}: static friction holds the block at the start",
+                r.case.name
+            );
+        }
+        return writeln!(
+            f,
+            "  {}: the route ends at the start: {}: {}",
+            r.case.name, t.reason, t.detail
+        );
+    }
+    writeln!(
+        f,
+        "  {} slides: {} at t = {} s, travel {} m, yaw θ = {}°",
+        r.case.name,
+        t.reason,
+        seconds(t.t_s),
+        fixed(r.run.route.travel_m, 3),
+        fixed(last.map_or(0.0, |l| l.theta_deg), 3)
+    )?;
+    for b in &r.run.route.anchors_broken {
+        writeln!(
+            f,
+            "    anchor {} broke at its capacity at t = {} s",
+            b.anchor,
+            seconds(b.t_s)
+        )?;
+    }
+    Ok(())
 }

@@ -2,9 +2,9 @@
 //! what factor of safety, at what cost, and what was written. Numbers at a precision for people
 //! (the files keep every digit).
 
-use crate::Computed;
 use crate::compare::Comparison;
 use crate::numeric::{fixed, seconds};
+use crate::{Computed, Route};
 use std::fmt;
 use std::path::PathBuf;
 
@@ -82,58 +82,7 @@ impl fmt::Display for RouteSummary<'_> {
                 seconds(b.t_s)
             )?;
         }
-        if let (Some(d), Some(rot)) = (r.permanent_displacement_m, r.permanent_rotation_deg) {
-            let xz = r.permanent_displacement_xz_m.unwrap_or([0.0; 2]);
-            writeln!(
-                f,
-                "  permanent displacement {} m (X {} m, Z {} m), rotation {}° (relative to the \
-                 shaken foundation)",
-                fixed(d, 3),
-                fixed(xz[0], 3),
-                fixed(xz[1], 3),
-                fixed(rot, 3)
-            )?;
-        }
-        if let Some(p) = &r.polarities {
-            let length = |d: [f64; 2]| fixed(d[0].hypot(d[1]), 3);
-            writeln!(
-                f,
-                "  both polarities: {} m as recorded, {} m reversed; this route is the {} one",
-                length(p.normal_xz_m),
-                length(p.reversed_xz_m),
-                p.reported
-            )?;
-        }
-        if let Some(y) = &r.yield_acceleration {
-            writeln!(
-                f,
-                "  yield acceleration ky {} g at the start (the block pushed along {}° from X \
-                 towards Z, the ground accelerating the other way)",
-                fixed(y.ky_g, 4),
-                fixed(y.push_deg, 1)
-            )?;
-        }
-        if let Some(m) = &r.record_intensity {
-            // A component without shaking (none given, or all zero) is a dash, not a duration
-            // of 0 s.
-            let three = |v: [f64; 3], places: usize| {
-                (0..3)
-                    .map(|c| match m.pga_g[c] > 0.0 {
-                        true => fixed(v[c], places).to_string(),
-                        false => "—".to_string(),
-                    })
-                    .collect::<Vec<_>>()
-                    .join(" / ")
-            };
-            writeln!(
-                f,
-                "  record (X / Y / Z): PGA {} g, PGV {} m/s, Arias intensity {} m/s, D5–95 {} s",
-                three(m.pga_g, 3),
-                three(m.pgv_m_s, 3),
-                three(m.arias_m_s, 3),
-                three(m.d5_95_s, 2)
-            )?;
-        }
+        shaking(f, r)?;
         if let Some(fs) = r.factor_of_safety {
             writeln!(f, "  factor of safety {fs} (friction cones at the start)")?;
         }
@@ -152,25 +101,89 @@ impl fmt::Display for RouteSummary<'_> {
             r.integrator.as_str(),
             fixed(self.computed.diagnostics.wall_s, 3),
         )?;
-        // A block that never moved has no energy to account for.
-        if let Some(e) = r.energy.filter(|_| r.increments > 0) {
-            let kinetic = if e.kinetic_initial_j != 0.0 {
-                format!(
-                    "kinetic {:.6e} J (from {:.6e} J)",
-                    e.kinetic_j, e.kinetic_initial_j
-                )
-            } else {
-                format!("kinetic {:.6e} J", e.kinetic_j)
-            };
-            writeln!(
-                f,
-                "  energy: hydraulic work {:.6e} J, friction work {:.6e} J, {kinetic}, \
-                 potential change {:.6e} J, balance residual {:.3e} J",
-                e.work_hydraulic_j, e.work_friction_j, e.potential_change_j, e.residual_j
-            )?;
-        }
+        energy(f, r)?;
         writeln!(f, "  wrote {}", written(self.files))
     }
+}
+
+/// Under a ground-motion record: the permanent displacement and rotation, both polarities, the
+/// yield acceleration and the record's intensity.
+fn shaking(f: &mut fmt::Formatter<'_>, r: &Route) -> fmt::Result {
+    if let (Some(d), Some(rot)) = (r.permanent_displacement_m, r.permanent_rotation_deg) {
+        let xz = r.permanent_displacement_xz_m.unwrap_or([0.0; 2]);
+        writeln!(
+            f,
+            "  permanent displacement {} m (X {} m, Z {} m), rotation {}° (relative to the \
+             shaken foundation)",
+            fixed(d, 3),
+            fixed(xz[0], 3),
+            fixed(xz[1], 3),
+            fixed(rot, 3)
+        )?;
+    }
+    if let Some(p) = &r.polarities {
+        let length = |d: [f64; 2]| fixed(d[0].hypot(d[1]), 3);
+        writeln!(
+            f,
+            "  both polarities: {} m as recorded, {} m reversed; this route is the {} one",
+            length(p.normal_xz_m),
+            length(p.reversed_xz_m),
+            p.reported
+        )?;
+    }
+    if let Some(y) = &r.yield_acceleration {
+        writeln!(
+            f,
+            "  yield acceleration ky {} g at the start (the block pushed along {}° from X \
+             towards Z, the ground accelerating the other way)",
+            fixed(y.ky_g, 4),
+            fixed(y.push_deg, 1)
+        )?;
+    }
+    if let Some(m) = &r.record_intensity {
+        // A component without shaking (none given, or all zero) is a dash, not a duration
+        // of 0 s.
+        let three = |v: [f64; 3], places: usize| {
+            (0..3)
+                .map(|c| match m.pga_g[c] > 0.0 {
+                    true => fixed(v[c], places).to_string(),
+                    false => "—".to_string(),
+                })
+                .collect::<Vec<_>>()
+                .join(" / ")
+        };
+        writeln!(
+            f,
+            "  record (X / Y / Z): PGA {} g, PGV {} m/s, Arias intensity {} m/s, D5–95 {} s",
+            three(m.pga_g, 3),
+            three(m.pgv_m_s, 3),
+            three(m.arias_m_s, 3),
+            three(m.d5_95_s, 2)
+        )?;
+    }
+    Ok(())
+}
+
+/// The energy balance of a block that moved (one that never moved has none to account for).
+fn energy(f: &mut fmt::Formatter<'_>, r: &Route) -> fmt::Result {
+    // A block that never moved has no energy to account for.
+    if let Some(e) = r.energy.filter(|_| r.increments > 0) {
+        let kinetic = if e.kinetic_initial_j != 0.0 {
+            format!(
+                "kinetic {:.6e} J (from {:.6e} J)",
+                e.kinetic_j, e.kinetic_initial_j
+            )
+        } else {
+            format!("kinetic {:.6e} J", e.kinetic_j)
+        };
+        writeln!(
+            f,
+            "  energy: hydraulic work {:.6e} J, friction work {:.6e} J, {kinetic}, \
+             potential change {:.6e} J, balance residual {:.3e} J",
+            e.work_hydraulic_j, e.work_friction_j, e.potential_change_j, e.residual_j
+        )?;
+    }
+    Ok(())
 }
 
 /// The summary of both dynamics' routes of one scene, where they part, and the files written.

@@ -252,17 +252,30 @@ struct Chart<'a> {
 
 /// plan.svg, profile.svg, angles.svg, reactions.svg in `dir`.
 pub(crate) fn write_route_plots(dir: &Path, scene: &Scene, route: &Route) -> Res<Vec<PathBuf>> {
-    let thin = thinned(&route.rows);
-    let rows = &thin;
+    let rows = thinned(&route.rows);
     let t: Vec<f64> = rows.iter().map(|r| r.t_s).collect();
+    let s = distance(&rows);
     let notes = route_notes(route);
     let mut out = Vec::new();
 
     let p = dir.join("plan.svg");
     plan(&p, scene, route)?;
     out.push(p);
+    for c in charts(&rows, &t, &s) {
+        let p = dir.join(c.file);
+        let title = format!("{}: {}", route.scene, c.title);
+        if moved(route) {
+            series::lines(&p, &title, c.axes, c.x, &c.series, &notes)?;
+        } else {
+            sheet::message(&p, series::SIZE, &title, &still_words(route, c.lacks))?;
+        }
+        out.push(p);
+    }
+    Ok(out)
+}
 
-    // Distance travelled by the CM (3-D path length).
+/// The distance travelled by the CM to each row (its 3-D path's length).
+fn distance(rows: &[Row]) -> Vec<f64> {
     let mut s = Vec::with_capacity(rows.len());
     let mut acc = 0.0;
     for (k, r) in rows.iter().enumerate() {
@@ -273,13 +286,19 @@ pub(crate) fn write_route_plots(dir: &Path, scene: &Scene, route: &Route) -> Res
         }
         s.push(acc);
     }
+    s
+}
+
+/// The pictures of `rows` against time `t` or distance `s`: the CM profile, the angles and the
+/// reactions.
+fn charts<'a>(rows: &[Row], t: &'a [f64], s: &'a [f64]) -> [Chart<'a>; 3] {
     let column = |f: fn(&Row) -> f64| rows.iter().map(f).collect();
     let mn = |pick: fn(&Row) -> Option<[f64; 3]>, i: usize| -> Vec<f64> {
         rows.iter()
             .map(|r| pick(r).map_or(f64::NAN, |v| v[i] / 1e6))
             .collect()
     };
-    let reaction_names = [
+    const REACTIONS: [&str; 6] = [
         "N0 normal, contact 0",
         "N1 normal, contact 1",
         "N2 normal, contact 2",
@@ -287,7 +306,7 @@ pub(crate) fn write_route_plots(dir: &Path, scene: &Scene, route: &Route) -> Res
         "S1 shear, contact 1",
         "S2 shear, contact 2",
     ];
-    let charts = [
+    [
         Chart {
             file: "profile.svg",
             title: "elevation of the centre of mass",
@@ -295,7 +314,7 @@ pub(crate) fn write_route_plots(dir: &Path, scene: &Scene, route: &Route) -> Res
                 x: "distance travelled by the CM (m)",
                 y: "CM height Y (m)",
             },
-            x: &s,
+            x: s,
             series: vec![Series {
                 name: "CM height",
                 values: column(|r| r.y_m),
@@ -310,7 +329,7 @@ pub(crate) fn write_route_plots(dir: &Path, scene: &Scene, route: &Route) -> Res
                 x: "time (s)",
                 y: "angle (°)",
             },
-            x: &t,
+            x: t,
             series: vec![
                 Series {
                     name: "α: tilt of x′ (side 01 of the paper's frame)",
@@ -342,10 +361,10 @@ pub(crate) fn write_route_plots(dir: &Path, scene: &Scene, route: &Route) -> Res
                 x: "time (s)",
                 y: "force (MN)",
             },
-            x: &t,
+            x: t,
             series: (0..6)
                 .map(|k| Series {
-                    name: reaction_names[k],
+                    name: REACTIONS[k],
                     values: if k < 3 {
                         mn(|r| r.n_n, k)
                     } else {
@@ -356,18 +375,7 @@ pub(crate) fn write_route_plots(dir: &Path, scene: &Scene, route: &Route) -> Res
                 .collect(),
             lacks: "reactions over time",
         },
-    ];
-    for c in charts {
-        let p = dir.join(c.file);
-        let title = format!("{}: {}", route.scene, c.title);
-        if moved(route) {
-            series::lines(&p, &title, c.axes, c.x, &c.series, &notes)?;
-        } else {
-            sheet::message(&p, series::SIZE, &title, &still_words(route, c.lacks))?;
-        }
-        out.push(p);
-    }
-    Ok(out)
+    ]
 }
 
 #[cfg(test)]

@@ -5,8 +5,11 @@
 //! header, then a JSON chunk padded with spaces and a BIN chunk padded with zeros, each to four
 //! bytes.
 
-use super::View3d;
+use super::{PoseAt, View3d};
 use gltf_json as json;
+use json::accessor::Type;
+use json::buffer::Target;
+use json::mesh::{Mode, Semantic};
 use json::validation::Checked::Valid;
 use json::validation::USize64;
 
@@ -169,35 +172,48 @@ pub const CM_PATH: &str = "cm-path";
 
 /// The binary glTF of `view`.
 pub fn glb(view: &View3d) -> Result<Vec<u8>, GlbError> {
-    use json::accessor::Type;
-    use json::buffer::Target;
-    use json::mesh::{Mode, Semantic};
     let first = view.poses.first().ok_or(GlbError::NoPoses)?;
-    let mut root = json::Root {
-        asset: json::Asset {
-            generator: Some(format!("slideroute {}", env!("CARGO_PKG_VERSION"))),
-            version: "2.0".to_string(),
-            ..Default::default()
-        },
-        ..Default::default()
-    };
-    let buffer = root.push(json::Buffer {
-        byte_length: USize64(0),
-        extensions: Default::default(),
-        extras: Default::default(),
-        name: None,
-        uri: None,
-    });
-    let mut b = Builder {
-        root,
-        bin: Vec::new(),
-        buffer,
-    };
+    let mut b = Builder::new();
     let mut nodes = Vec::new();
+    nodes.extend(b.foundation(view)?);
+    let block = b.block(view, first)?;
+    nodes.push(block);
+    nodes.extend(b.cm_path(view)?);
+    b.animation(view, first, block)?;
+    b.container(&view.name, nodes)
+}
 
-    // The foundation, in world axes, a colour a corner.
-    if !view.ground.triangles.is_empty() {
-        let positions = b.accessor(
+impl Builder {
+    /// An empty glTF of one buffer, the BIN chunk.
+    fn new() -> Builder {
+        let mut root = json::Root {
+            asset: json::Asset {
+                generator: Some(format!("slideroute {}", env!("CARGO_PKG_VERSION"))),
+                version: "2.0".to_string(),
+                ..Default::default()
+            },
+            ..Default::default()
+        };
+        let buffer = root.push(json::Buffer {
+            byte_length: USize64(0),
+            extensions: Default::default(),
+            extras: Default::default(),
+            name: None,
+            uri: None,
+        });
+        Builder {
+            root,
+            bin: Vec::new(),
+            buffer,
+        }
+    }
+
+    /// The foundation's node, in world axes, a colour a corner; none without triangles.
+    fn foundation(&mut self, view: &View3d) -> Result<Option<json::Index<json::Node>>, GlbError> {
+        if view.ground.triangles.is_empty() {
+            return Ok(None);
+        }
+        let positions = self.accessor(
             Some(&f32s(&view.ground.positions)),
             None,
             Type::Vec3,
@@ -211,7 +227,7 @@ pub fn glb(view: &View3d) -> Result<Vec<u8>, GlbError> {
             .iter()
             .flat_map(|c| c.map(linear))
             .collect();
-        let colors = b.accessor(
+        let colors = self.accessor(
             Some(&colors),
             None,
             Type::Vec3,
@@ -219,17 +235,9 @@ pub fn glb(view: &View3d) -> Result<Vec<u8>, GlbError> {
             Some(Target::ArrayBuffer),
             false,
         )?;
-        let indices: Vec<u32> = view.ground.triangles.iter().flatten().copied().collect();
-        let indices = b.accessor(
-            None,
-            Some(&indices),
-            Type::Scalar,
-            1,
-            Some(Target::ElementArrayBuffer),
-            false,
-        )?;
-        let material = b.material("rock", [1.0, 1.0, 1.0, 1.0], true);
-        let mesh = b.mesh(
+        let indices = self.triangles(&view.ground.triangles)?;
+        let material = self.material("rock", [1.0, 1.0, 1.0, 1.0], true);
+        let mesh = self.mesh(
             FOUNDATION,
             vec![
                 (Semantic::Positions, positions),
@@ -239,58 +247,74 @@ pub fn glb(view: &View3d) -> Result<Vec<u8>, GlbError> {
             material,
             Mode::Triangles,
         );
-        nodes.push(b.root.push(json::Node {
+        Ok(Some(self.root.push(json::Node {
             mesh: Some(mesh),
             name: Some(FOUNDATION.to_string()),
             ..Default::default()
-        }));
+        })))
     }
 
-    // The block, in its own axes, at its first pose.
-    let positions = b.accessor(
-        Some(&f32s(&view.block.positions)),
-        None,
-        Type::Vec3,
-        3,
-        Some(Target::ArrayBuffer),
-        true,
-    )?;
-    let indices: Vec<u32> = view.block.triangles.iter().flatten().copied().collect();
-    let indices = b.accessor(
-        None,
-        Some(&indices),
-        Type::Scalar,
-        1,
-        Some(Target::ElementArrayBuffer),
-        false,
-    )?;
-    let concrete = b.material(
-        "concrete",
-        [linear(0.74), linear(0.72), linear(0.68), 1.0],
-        false,
-    );
-    let mesh = b.mesh(
-        BLOCK,
-        vec![(Semantic::Positions, positions)],
-        Some(indices),
-        concrete,
-        Mode::Triangles,
-    );
-    let block = b.root.push(json::Node {
-        mesh: Some(mesh),
-        name: Some(BLOCK.to_string()),
-        translation: Some(first.at.map(|v| v as f32)),
-        rotation: Some(json::scene::UnitQuaternion(
-            first.rotation.map(|v| v as f32),
-        )),
-        ..Default::default()
-    });
-    nodes.push(block);
+    /// The triangles' corners' numbers as an accessor of indices.
+    fn triangles(
+        &mut self,
+        triangles: &[[u32; 3]],
+    ) -> Result<json::Index<json::Accessor>, GlbError> {
+        let indices: Vec<u32> = triangles.iter().flatten().copied().collect();
+        self.accessor(
+            None,
+            Some(&indices),
+            Type::Scalar,
+            1,
+            Some(Target::ElementArrayBuffer),
+            false,
+        )
+    }
 
-    // The CM path.
-    let cm: Vec<[f64; 3]> = view.poses.iter().map(|p| p.cm).collect();
-    if cm.len() >= 2 {
-        let path = b.accessor(
+    /// The block's node, in its own axes, at its first pose: the node the animation moves.
+    fn block(
+        &mut self,
+        view: &View3d,
+        first: &PoseAt,
+    ) -> Result<json::Index<json::Node>, GlbError> {
+        let positions = self.accessor(
+            Some(&f32s(&view.block.positions)),
+            None,
+            Type::Vec3,
+            3,
+            Some(Target::ArrayBuffer),
+            true,
+        )?;
+        let indices = self.triangles(&view.block.triangles)?;
+        let concrete = self.material(
+            "concrete",
+            [linear(0.74), linear(0.72), linear(0.68), 1.0],
+            false,
+        );
+        let mesh = self.mesh(
+            BLOCK,
+            vec![(Semantic::Positions, positions)],
+            Some(indices),
+            concrete,
+            Mode::Triangles,
+        );
+        Ok(self.root.push(json::Node {
+            mesh: Some(mesh),
+            name: Some(BLOCK.to_string()),
+            translation: Some(first.at.map(|v| v as f32)),
+            rotation: Some(json::scene::UnitQuaternion(
+                first.rotation.map(|v| v as f32),
+            )),
+            ..Default::default()
+        }))
+    }
+
+    /// The CM path's node, a line through the poses' centres of mass; none for one pose.
+    fn cm_path(&mut self, view: &View3d) -> Result<Option<json::Index<json::Node>>, GlbError> {
+        let cm: Vec<[f64; 3]> = view.poses.iter().map(|p| p.cm).collect();
+        if cm.len() < 2 {
+            return Ok(None);
+        }
+        let path = self.accessor(
             Some(&f32s(&cm)),
             None,
             Type::Vec3,
@@ -298,28 +322,37 @@ pub fn glb(view: &View3d) -> Result<Vec<u8>, GlbError> {
             Some(Target::ArrayBuffer),
             true,
         )?;
-        let red = b.material("cm-path", [linear(0.82), 0.0, linear(0.1), 1.0], false);
-        let mesh = b.mesh(
+        let red = self.material("cm-path", [linear(0.82), 0.0, linear(0.1), 1.0], false);
+        let mesh = self.mesh(
             CM_PATH,
             vec![(Semantic::Positions, path)],
             None,
             red,
             Mode::LineStrip,
         );
-        nodes.push(b.root.push(json::Node {
+        Ok(Some(self.root.push(json::Node {
             mesh: Some(mesh),
             name: Some(CM_PATH.to_string()),
             ..Default::default()
-        }));
+        })))
     }
 
-    // The route: the block's translation and rotation at each pose's time, from the start.
-    if view.poses.len() >= 2 {
+    /// The route: the `block` node's translation and rotation at each pose's time from the
+    /// start, linear between them; none for one pose.
+    fn animation(
+        &mut self,
+        view: &View3d,
+        first: &PoseAt,
+        block: json::Index<json::Node>,
+    ) -> Result<(), GlbError> {
+        if view.poses.len() < 2 {
+            return Ok(());
+        }
         let t0 = first.t_s;
         let times: Vec<f32> = view.poses.iter().map(|p| (p.t_s - t0) as f32).collect();
-        let times = b.accessor(Some(&times), None, Type::Scalar, 1, None, true)?;
+        let times = self.accessor(Some(&times), None, Type::Scalar, 1, None, true)?;
         let at: Vec<[f64; 3]> = view.poses.iter().map(|p| p.at).collect();
-        let at = b.accessor(Some(&f32s(&at)), None, Type::Vec3, 3, None, false)?;
+        let at = self.accessor(Some(&f32s(&at)), None, Type::Vec3, 3, None, false)?;
         // Each quaternion on the side of the one before, so that no step turns the long way.
         let mut q: Vec<[f64; 4]> = view.poses.iter().map(|p| p.rotation).collect();
         for k in 1..q.len() {
@@ -328,7 +361,7 @@ pub fn glb(view: &View3d) -> Result<Vec<u8>, GlbError> {
                 q[k] = q[k].map(|v| -v);
             }
         }
-        let q = b.accessor(Some(&f32s(&q)), None, Type::Vec4, 4, None, false)?;
+        let q = self.accessor(Some(&f32s(&q)), None, Type::Vec4, 4, None, false)?;
         let sampler = |output| json::animation::Sampler {
             extensions: Default::default(),
             extras: Default::default(),
@@ -347,7 +380,7 @@ pub fn glb(view: &View3d) -> Result<Vec<u8>, GlbError> {
             extensions: Default::default(),
             extras: Default::default(),
         };
-        b.root.push(json::Animation {
+        self.root.push(json::Animation {
             extensions: Default::default(),
             extras: Default::default(),
             channels: vec![
@@ -357,38 +390,47 @@ pub fn glb(view: &View3d) -> Result<Vec<u8>, GlbError> {
             name: Some("route".to_string()),
             samplers: vec![sampler(at), sampler(q)],
         });
+        Ok(())
     }
 
-    let scene = b.root.push(json::Scene {
-        extensions: Default::default(),
-        extras: Default::default(),
-        name: Some(view.name.clone()),
-        nodes,
-    });
-    b.root.scene = Some(scene);
-    let Builder {
-        mut root, mut bin, ..
-    } = b;
-    while bin.len() % 4 != 0 {
-        bin.push(0);
+    /// The scene `name` of `nodes`, and the whole as the container: a 12-byte header, the JSON
+    /// chunk padded with spaces and the BIN chunk padded with zeros, each to four bytes.
+    fn container(
+        mut self,
+        name: &str,
+        nodes: Vec<json::Index<json::Node>>,
+    ) -> Result<Vec<u8>, GlbError> {
+        let scene = self.root.push(json::Scene {
+            extensions: Default::default(),
+            extras: Default::default(),
+            name: Some(name.to_string()),
+            nodes,
+        });
+        self.root.scene = Some(scene);
+        let Builder {
+            mut root, mut bin, ..
+        } = self;
+        while bin.len() % 4 != 0 {
+            bin.push(0);
+        }
+        root.buffers[0].byte_length = USize64::from(bin.len());
+        let mut text = json::serialize::to_vec(&root)?;
+        while text.len() % 4 != 0 {
+            text.push(b' ');
+        }
+        let total = 12 + 8 + text.len() + 8 + bin.len();
+        let total = u32::try_from(total).map_err(|_| GlbError::TooLarge)?;
+        let size = |n: usize| u32::try_from(n).map_err(|_| GlbError::TooLarge);
+        let mut out = Vec::with_capacity(total as usize);
+        out.extend_from_slice(b"glTF");
+        out.extend_from_slice(&2u32.to_le_bytes());
+        out.extend_from_slice(&total.to_le_bytes());
+        out.extend_from_slice(&size(text.len())?.to_le_bytes());
+        out.extend_from_slice(b"JSON");
+        out.extend_from_slice(&text);
+        out.extend_from_slice(&size(bin.len())?.to_le_bytes());
+        out.extend_from_slice(b"BIN\0");
+        out.extend_from_slice(&bin);
+        Ok(out)
     }
-    root.buffers[0].byte_length = USize64::from(bin.len());
-    let mut text = json::serialize::to_vec(&root)?;
-    while text.len() % 4 != 0 {
-        text.push(b' ');
-    }
-    let total = 12 + 8 + text.len() + 8 + bin.len();
-    let total = u32::try_from(total).map_err(|_| GlbError::TooLarge)?;
-    let size = |n: usize| u32::try_from(n).map_err(|_| GlbError::TooLarge);
-    let mut out = Vec::with_capacity(total as usize);
-    out.extend_from_slice(b"glTF");
-    out.extend_from_slice(&2u32.to_le_bytes());
-    out.extend_from_slice(&total.to_le_bytes());
-    out.extend_from_slice(&size(text.len())?.to_le_bytes());
-    out.extend_from_slice(b"JSON");
-    out.extend_from_slice(&text);
-    out.extend_from_slice(&size(bin.len())?.to_le_bytes());
-    out.extend_from_slice(b"BIN\0");
-    out.extend_from_slice(&bin);
-    Ok(out)
 }

@@ -191,6 +191,45 @@ pub fn rotation_of_row(row: &Row, contacts: &[[f64; 2]; 3]) -> Option<Matrix3<f6
 
 /// The view of `route` on `scene`.
 pub fn view_of(scene: &Scene, route: &Route) -> Result<View3d, ViewError> {
+    usable(route)?;
+    let site = scene.site();
+    let contacts = *site.contacts();
+    let l = site.l();
+    let body = BlockView::of(scene, route, &contacts, l);
+    let placed = placed(&route.rows, &contacts);
+    let travel = travels(&placed, body.cm_above, route.travel_m);
+    let poses = kept_poses(&placed, &travel, &body, l);
+    let force = force_arrow(scene, &placed[0], &body.block, l);
+    let extent = plan_extent(
+        placed.iter().map(|(row, _)| [row.x_m, row.z_m]),
+        reach_of(&body.block),
+        l,
+    );
+    let ground = ground_mesh(scene, extent);
+    Ok(View3d {
+        name: route.scene.clone(),
+        dynamics: route.dynamics.to_string(),
+        l_m: l,
+        ground,
+        extent,
+        block: body.block,
+        shape: body.shape,
+        points: body.points,
+        corners: body.on_base,
+        poses,
+        force,
+        reason: serde_json::to_value(route.termination.reason)
+            .ok()
+            .and_then(|v| v.as_str().map(str::to_string))
+            .unwrap_or_default(),
+        end_t_s: route.termination.t_s,
+        travel_m: route.travel_m,
+        detail: route.termination.detail.clone(),
+    })
+}
+
+/// Whether `route` has rows to show, each with finite numbers where the view reads them.
+fn usable(route: &Route) -> Result<(), ViewError> {
     if route.rows.is_empty() {
         return Err(ViewError::NoRows);
     }
@@ -209,72 +248,111 @@ pub fn view_of(scene: &Scene, route: &Route) -> Result<View3d, ViewError> {
     }) {
         return Err(ViewError::NotFinite);
     }
-    let site = scene.site();
-    let contacts = *site.contacts();
-    let l = site.l();
-    let on_base = route.rows[0].corners_carrying.is_some();
-    let sim = scene.simulation().ok();
-    let base: Option<Base> = if on_base {
-        sim.as_ref().and_then(|s| s.first_body().base()).cloned()
-    } else {
-        scene.base().cloned()
-    };
-    let (block, shape) = block_mesh(scene, base.as_ref(), &contacts, l);
-    let points: Vec<[f64; 3]> = match (&base, on_base) {
-        (Some(b), true) => b.outline().iter().map(|&[x, z]| [x, 0.0, z]).collect(),
-        _ => contacts.iter().map(|&[x, z]| [x, 0.0, z]).collect(),
-    };
-    let cm_above = match (&base, on_base) {
-        (Some(b), true) => b.depth(),
-        _ => 0.0,
-    };
+    Ok(())
+}
 
-    // Every row's pose (the travel is summed over all of them), then the kept ones.
+/// The block as the view draws it: its mesh and shape, the points whose state it shows (a
+/// base's corners or the frame's contacts) in the node's axes, and how far above the node's
+/// origin its centre of mass stands.
+struct BlockView {
+    block: Mesh,
+    shape: BlockShape,
+    points: Vec<[f64; 3]>,
+    on_base: bool,
+    cm_above: f64,
+}
+
+impl BlockView {
+    /// The block of `scene` as `route` carried it (on its base where the rows say so).
+    fn of(scene: &Scene, route: &Route, contacts: &[[f64; 2]; 3], l: f64) -> BlockView {
+        let on_base = route.rows[0].corners_carrying.is_some();
+        let sim = scene.simulation().ok();
+        let base: Option<Base> = if on_base {
+            sim.as_ref().and_then(|s| s.first_body().base()).cloned()
+        } else {
+            scene.base().cloned()
+        };
+        let (block, shape) = block_mesh(scene, base.as_ref(), contacts, l);
+        let points: Vec<[f64; 3]> = match (&base, on_base) {
+            (Some(b), true) => b.outline().iter().map(|&[x, z]| [x, 0.0, z]).collect(),
+            _ => contacts.iter().map(|&[x, z]| [x, 0.0, z]).collect(),
+        };
+        let cm_above = match (&base, on_base) {
+            (Some(b), true) => b.depth(),
+            _ => 0.0,
+        };
+        BlockView {
+            block,
+            shape,
+            points,
+            on_base,
+            cm_above,
+        }
+    }
+}
+
+/// Every row with its body-to-world rotation: a row whose tilts fit no rotation keeps the one
+/// before it (at the start: its yaw).
+fn placed(rows: &[Row], contacts: &[[f64; 2]; 3]) -> Vec<(Row, Matrix3<f64>)> {
     let mut last: Option<Matrix3<f64>> = None;
-    let mut placed: Vec<(Row, Matrix3<f64>)> = Vec::with_capacity(route.rows.len());
-    for row in &route.rows {
-        // A row whose tilts fit no rotation keeps the one before it (at the start: its yaw).
-        let r = rotation_of_row(row, &contacts).or(last).unwrap_or_else(|| {
+    let mut placed: Vec<(Row, Matrix3<f64>)> = Vec::with_capacity(rows.len());
+    for row in rows {
+        let r = rotation_of_row(row, contacts).or(last).unwrap_or_else(|| {
             Rotation3::from_axis_angle(&Vector3::y_axis(), -row.theta_deg.to_radians()).into_inner()
         });
         placed.push((*row, r));
         last = Some(r);
     }
-    let at = |row: &Row| Vector3::new(row.x_m, row.y_m, row.z_m);
-    let cm_of = |row: &Row, r: &Matrix3<f64>| at(row) + r.column(1) * cm_above;
+    placed
+}
+
+/// The row's point (m).
+fn at(row: &Row) -> Vector3<f64> {
+    Vector3::new(row.x_m, row.y_m, row.z_m)
+}
+
+/// The centre of mass at a placed row, `cm_above` the row's point along y′.
+fn cm_of((row, r): &(Row, Matrix3<f64>), cm_above: f64) -> Vector3<f64> {
+    at(row) + r.column(1) * cm_above
+}
+
+/// The CM path's length to each row, summed over all of them; the chords between recorded rows
+/// fall a little short of the route's own path, so they are scaled to end at `travel_m`.
+fn travels(placed: &[(Row, Matrix3<f64>)], cm_above: f64, travel_m: f64) -> Vec<f64> {
     let mut travel = Vec::with_capacity(placed.len());
     let mut sum = 0.0;
-    for (k, (row, r)) in placed.iter().enumerate() {
+    for k in 0..placed.len() {
         if k > 0 {
-            let (prev, pr) = &placed[k - 1];
-            sum += (cm_of(row, r) - cm_of(prev, pr)).norm();
+            sum += (cm_of(&placed[k], cm_above) - cm_of(&placed[k - 1], cm_above)).norm();
         }
         travel.push(sum);
     }
-    // The chords between recorded rows fall a little short of the route's own path: scale them
-    // so the last is the route's travel.
-    let scale = if sum > 0.0 && route.travel_m.is_finite() {
-        route.travel_m / sum
+    let scale = if sum > 0.0 && travel_m.is_finite() {
+        travel_m / sum
     } else {
         1.0
     };
+    travel.into_iter().map(|t| t * scale).collect()
+}
 
+/// The poses kept of the placed rows, at most [`MAX_POSES`] evenly, the last among them, each
+/// with its points' state.
+fn kept_poses(
+    placed: &[(Row, Matrix3<f64>)],
+    travel: &[f64],
+    body: &BlockView,
+    l: f64,
+) -> Vec<PoseAt> {
     let every = placed.len().div_ceil(MAX_POSES - 1).max(1);
     let kept: Vec<usize> = (0..placed.len())
         .filter(|k| k % every == 0 || k + 1 == placed.len())
         .collect();
-    let world = |k: usize, p: &[f64; 3]| {
-        let (row, r) = &placed[k];
-        at(row) + r * Vector3::new(p[0], p[1], p[2])
-    };
-    let still = 1e-7 * l;
-    let poses: Vec<PoseAt> = kept
-        .iter()
+    kept.iter()
         .enumerate()
         .map(|(i, &k)| {
             let (row, r) = &placed[k];
             let q = UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix(r));
-            let cm = cm_of(row, r);
+            let cm = cm_of(&placed[k], body.cm_above);
             // A contact sticks where it does not move between this kept pose and its
             // neighbour (the next one for the first).
             let other = if i + 1 < kept.len() && i == 0 {
@@ -284,68 +362,59 @@ pub fn view_of(scene: &Scene, route: &Route) -> Result<View3d, ViewError> {
             } else {
                 None
             };
-            let touch = (0..points.len())
-                .map(|c| {
-                    if on_base {
-                        let carrying = row.corners_carrying.unwrap_or(0);
-                        return if c < 32 && carrying & (1 << c) != 0 {
-                            Touch::Carrying
-                        } else {
-                            Touch::Off
-                        };
-                    }
-                    if row.n_n.is_some_and(|n| n.get(c).is_some_and(|n| *n <= 0.0)) {
-                        return Touch::Off;
-                    }
-                    match other {
-                        Some(o) if (world(k, &points[c]) - world(o, &points[c])).norm() > still => {
-                            Touch::Slipping
-                        }
-                        _ => Touch::Sticking,
-                    }
-                })
-                .collect();
             PoseAt {
                 t_s: row.t_s,
                 at: [row.x_m, row.y_m, row.z_m],
                 rotation: [q.i, q.j, q.k, q.w],
                 cm: [cm.x, cm.y, cm.z],
-                travel_m: travel[k] * scale,
+                travel_m: travel[k],
                 theta_deg: row.theta_deg,
                 alpha_deg: row.alpha_deg,
                 beta_deg: row.beta_deg,
-                touch,
+                touch: touches(placed, k, other, body, 1e-7 * l),
             }
         })
-        .collect();
+        .collect()
+}
 
-    let force = force_arrow(scene, &placed[0], &block, l);
-    let extent = plan_extent(
-        placed.iter().map(|(row, _)| [row.x_m, row.z_m]),
-        reach_of(&block),
-        l,
-    );
-    let ground = ground_mesh(scene, extent);
-    Ok(View3d {
-        name: route.scene.clone(),
-        dynamics: route.dynamics.to_string(),
-        l_m: l,
-        ground,
-        extent,
-        block,
-        shape,
-        points,
-        corners: on_base,
-        poses,
-        force,
-        reason: serde_json::to_value(route.termination.reason)
-            .ok()
-            .and_then(|v| v.as_str().map(str::to_string))
-            .unwrap_or_default(),
-        end_t_s: route.termination.t_s,
-        travel_m: route.travel_m,
-        detail: route.termination.detail.clone(),
-    })
+/// The state of each of the body's points at placed row `k`: a base's corner carrying or off
+/// as the row says; a contact off where its normal reaction is none, else slipping where it
+/// moved more than `still` (m) since the `other` kept pose, else sticking.
+fn touches(
+    placed: &[(Row, Matrix3<f64>)],
+    k: usize,
+    other: Option<usize>,
+    body: &BlockView,
+    still: f64,
+) -> Vec<Touch> {
+    let world = |k: usize, p: &[f64; 3]| {
+        let (row, r) = &placed[k];
+        at(row) + r * Vector3::new(p[0], p[1], p[2])
+    };
+    let row = &placed[k].0;
+    (0..body.points.len())
+        .map(|c| {
+            if body.on_base {
+                let carrying = row.corners_carrying.unwrap_or(0);
+                return if c < 32 && carrying & (1 << c) != 0 {
+                    Touch::Carrying
+                } else {
+                    Touch::Off
+                };
+            }
+            if row.n_n.is_some_and(|n| n.get(c).is_some_and(|n| *n <= 0.0)) {
+                return Touch::Off;
+            }
+            match other {
+                Some(o)
+                    if (world(k, &body.points[c]) - world(o, &body.points[c])).norm() > still =>
+                {
+                    Touch::Slipping
+                }
+                _ => Touch::Sticking,
+            }
+        })
+        .collect()
 }
 
 /// The block's mesh in its node's axes (base on y′ = 0): the monolith's section over its
