@@ -39,6 +39,7 @@ import sys as _sys
 import types as _types
 import typing as _t
 from dataclasses import dataclass as _dataclass
+from dataclasses import field as _field
 
 import numpy as _np
 
@@ -46,6 +47,7 @@ from . import _native
 from ._errors import (
     InputError,
     InputTypeError,
+    OutputError,
     RouteError,
     SceneError,
     SceneFileNotFoundError,
@@ -84,6 +86,7 @@ __all__ = [
     "InputError",
     "InputTypeError",
     "RouteError",
+    "OutputError",
     "__version__",
 ]
 
@@ -298,8 +301,8 @@ class Scene:
         before it starts with :class:`InputError`; :meth:`route_chunks` reads any length."""
         limit = _whole("max_rows", max_rows, 1, 2**62)
         with _progress(progress, f"route of {self.name}") as tell:
-            columns, summary = self._s.route(dynamics, tell, limit)
-        return Route(columns=columns, summary=summary)
+            columns, summary, files = self._s.route(dynamics, tell, limit)
+        return Route(columns=columns, summary=summary, _files=files)
 
     def route_chunks(
         self, rows: int = 16_384, dynamics: "Optional[str]" = None
@@ -328,8 +331,10 @@ class Scene:
         rows. Each case's route runs (a case that fails shows where the monolith would go).
         ``progress(done, total)`` is told how many cases are done."""
         with _progress(progress, f"check of {self.name}") as tell:
-            guideline, cases, columns = self._s.check(tell)
-        return Check(scene=self.name, guideline=guideline, cases=cases, columns=columns)
+            guideline, cases, columns, files = self._s.check(tell)
+        return Check(
+            scene=self.name, guideline=guideline, cases=cases, columns=columns, _files=files
+        )
 
     def roots(
         self, x_m: float, z_m: float, theta_deg: float, mode: "Optional[str]" = None
@@ -449,13 +454,53 @@ class RouteChunks:
         return f"<RouteChunks: {done}>"
 
 
+def _written_by(files: "Any", what: str) -> "Any":
+    """What writes the files of a result: the extension's, or an error saying why there is
+    none (a result made by hand or unpickled holds only its numbers)."""
+    if files is None:
+        raise InputError(
+            f"this {what} holds its numbers only (made by hand or unpickled): compute it again "
+            "to write its files",
+            what,
+        )
+    return files
+
+
 @_dataclass(frozen=True, repr=False)
 class Route:
     """A route: ``columns`` (``t_s``, ``x_m``, ``z_m``, ``theta_deg``, … as ``route.csv`` has
-    them; NaN where a value could not be had) and ``summary`` (as ``summary.json`` has it)."""
+    them; NaN where a value could not be had) and ``summary`` (as ``summary.json`` has it).
+    :meth:`write` writes its files as ``slideroute run`` does, :meth:`plot_plan` its plan
+    view."""
 
     columns: "Dict[str, np.ndarray]"
     summary: "Dict[str, Any]"
+    _files: "Any" = _field(default=None, compare=False)
+
+    def __reduce__(self) -> "Tuple[Any, ...]":
+        # Pickled as its numbers (a Dask worker's result): its files are written where it
+        # was computed.
+        return (Route, (self.columns, self.summary))
+
+    def write(
+        self, folder: "Union[str, os.PathLike[str]]", pictures: bool = True, view: bool = True
+    ) -> "List[str]":
+        """Writes the route's files into ``folder`` as ``slideroute run`` does, the same bytes:
+        ``route.csv`` (every row), the route in 3-D (``route.html``, ``route.glb``; unless
+        ``view=False``), the pictures (``plan.svg``, ``profile.svg``, ``angles.svg``,
+        ``reactions.svg``; unless ``pictures=False``) and ``summary.json`` with its manifest,
+        last. Each file appears whole or not at all; the folder is locked while it is written,
+        and the files an earlier run wrote there and this one did not are removed. Gives the
+        paths written; what was left out (a route with nothing to show in 3-D) is a warning. A
+        folder that cannot be written raises :class:`OutputError` (an ``OSError``)."""
+        files = _written_by(self._files, "route")
+        return files.write(_os.fspath(folder), self.columns, bool(pictures), bool(view))
+
+    def plot_plan(self, path: "Union[str, os.PathLike[str]]") -> None:
+        """Draws the plan view from above (``plan.svg``, like the paper's Figure 12: the
+        foundation shaded and named, the CM's path, the block's outline as it goes, the water's
+        push) to ``path`` (SVG), whole or not at all."""
+        _written_by(self._files, "route").plot_plan(_os.fspath(path))
 
     @property
     def reason(self) -> str:
@@ -575,12 +620,35 @@ class Check:
     ``heel_pressure_pa``, ``toe_pressure_pa``, ``crack_length_m``, …, ``passes`` and ``loads``
     — and ``columns``, ``check.csv``'s rows (numbers as floats, NaN where a case has none,
     ``sliding_fs`` and ``load_multiple`` +inf where unbounded and -inf where not holdable; the
-    route's end as ``reason`` and ``reason_text``, as :class:`Samples` has them)."""
+    route's end as ``reason`` and ``reason_text``, as :class:`Samples` has them).
+    :meth:`write_report` writes its files as ``slideroute check`` does, :meth:`table` gives
+    the tables it prints."""
 
     scene: str
     guideline: "Dict[str, Any]"
     cases: "List[Dict[str, Any]]"
     columns: "Dict[str, Any]"
+    _files: "Any" = _field(default=None, compare=False)
+
+    def __reduce__(self) -> "Tuple[Any, ...]":
+        return (Check, (self.scene, self.guideline, self.cases, self.columns))
+
+    def write_report(
+        self, folder: "Union[str, os.PathLike[str]]", pictures: bool = True, view: bool = True
+    ) -> "List[str]":
+        """Writes the check's files into ``folder`` as ``slideroute check`` does, the same
+        bytes: each failing case's route in ``case-N/`` (with its pictures and 3-D view unless
+        turned off), ``check.csv``, ``report.html`` (a page to hand in: each case's section
+        drawn with its water, loads and resultant, the loads and verdicts with the guideline
+        each comes from) and ``check.json`` with its manifest, last; each whole or not at all.
+        Gives the paths written. Ctrl-C stops it with ``KeyboardInterrupt`` (the check's own
+        files not written); a folder that cannot be written raises :class:`OutputError`."""
+        files = _written_by(self._files, "check")
+        return files.write_report(_os.fspath(folder), bool(pictures), bool(view))
+
+    def table(self) -> str:
+        """The check's tables as ``slideroute check`` prints them."""
+        return _written_by(self._files, "check").table()
 
     @property
     def passes(self) -> bool:

@@ -8,7 +8,8 @@ wrong type a :class:`TypeError`, a value that cannot be used a :class:`ValueErro
     │   └── SceneFileNotFoundError (FileNotFoundError)   .filename
     ├── InputError (ValueError)                  .name (also .key)
     │   └── InputTypeError (TypeError)
-    └── RouteError (RuntimeError)
+    ├── RouteError (RuntimeError)
+    └── OutputError (OSError)
 """
 
 from __future__ import annotations
@@ -78,3 +79,9 @@ class InputTypeError(InputError, TypeError):
 
 class RouteError(SlideRouteError, RuntimeError):
     """A computation that failed for a reason other than its inputs."""
+
+
+class OutputError(SlideRouteError, OSError):
+    """A file or folder the outputs could not be written to, named in the message: a full disk,
+    a file where the folder goes, a link where an output goes (never followed), a folder another
+    run is writing into."""

@@ -1,9 +1,10 @@
 //! The package's exceptions (`slideroute._errors`), made from the library's errors: a scene
 //! that cannot be used (`SceneError`, naming its key), an argument that cannot be used
-//! (`InputError`, naming it), a failure of the computation itself (`RouteError`). As Python's
-//! own: a file that does not exist is also a `FileNotFoundError` (`SceneFileNotFoundError`),
-//! a value of the wrong type also a `TypeError` (`SceneTypeError`, `InputTypeError`) whose
-//! message names Python's types.
+//! (`InputError`, naming it), a failure of the computation itself (`RouteError`), a file that
+//! could not be written (`OutputError`). As Python's own: a file that does not exist is also a
+//! `FileNotFoundError` (`SceneFileNotFoundError`), a value of the wrong type also a `TypeError`
+//! (`SceneTypeError`, `InputTypeError`) whose message names Python's types, a file that could
+//! not be written an `OSError`.
 
 use pyo3::prelude::*;
 use slideroute::SceneErrorKind;
@@ -19,6 +20,7 @@ enum Class {
     InputError,
     InputTypeError,
     RouteError,
+    OutputError,
 }
 
 /// A Python exception of `slideroute._errors`: `class(*args)`.
@@ -171,6 +173,20 @@ pub fn input_type_error(py: Python<'_>, name: &str, message: impl Into<String>) 
         Class::InputTypeError,
         vec![message.into(), name.to_string()],
     )
+}
+
+/// Outputs the library's writers could not write, as `OutputError(message)` (an `OSError`
+/// naming the file or folder); an input they were asked of that cannot be used as
+/// `InputError`; a writing stopped by Ctrl-C as `KeyboardInterrupt`.
+pub fn output_error(py: Python<'_>, e: slideroute::output::OutputError) -> PyErr {
+    use slideroute::output::OutputError;
+    match e {
+        OutputError::Input(message) => raise(py, Class::InputError, vec![message, String::new()]),
+        OutputError::Write(message) => raise(py, Class::OutputError, vec![message]),
+        OutputError::Interrupted { what, .. } => {
+            pyo3::exceptions::PyKeyboardInterrupt::new_err(what)
+        }
+    }
 }
 
 /// A failure of the computation itself, as `RouteError(message, "")`.

@@ -1,5 +1,6 @@
 //! `slideroute._native`: the library's scene, route, roots, pose, sweep and probabilistic
-//! analysis for Python, through the library's public interface alone. Plain Python values and
+//! analysis for Python, and their files (`outputs.rs`), through the library's public interface
+//! alone. Plain Python values and
 //! NumPy arrays go out; the Python package (`python/slideroute/__init__.py`) wraps them in
 //! classes with docstrings and pandas DataFrames. Long computations release the interpreter's
 //! lock and run on every core (`watch.rs`); the sweep and the probabilistic analysis are the
@@ -7,6 +8,7 @@
 
 mod columns;
 mod errors;
+mod outputs;
 mod probabilistic;
 mod route_chunks;
 mod scene;
@@ -58,6 +60,8 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     numpy::PyArray1::<f64>::zeros(m.py(), 0, false);
     m.add_class::<scene::PyScene>()?;
     m.add_class::<route_chunks::PyRouteChunks>()?;
+    m.add_class::<outputs::PyRouteFiles>()?;
+    m.add_class::<outputs::PyCheckFiles>()?;
     m.add_function(wrap_pyfunction!(probabilistic::sample_values, m)?)?;
     m.add_function(wrap_pyfunction!(probabilistic::run_samples, m)?)?;
     m.add_function(wrap_pyfunction!(probabilistic::distributions, m)?)?;

@@ -4,6 +4,7 @@
 
 use crate::columns::{Row, columns_of, reason_code};
 use crate::errors::{input_error, input_type_error, key_error, scene_error};
+use crate::outputs::{PyCheckFiles, PyRouteFiles};
 use crate::watch::interruptible;
 use crate::{json, named};
 use numpy::{PyArray1, PyReadonlyArray1};
@@ -20,6 +21,15 @@ const MAX_ROUTE_ROWS: usize = 1_000_000;
 
 /// Bytes a row of `Scene.route`'s arrays takes: 25 doubles.
 const ROW_BYTES: usize = 8 * slideroute::Row::COLUMNS.len();
+
+/// A check as Python receives it: the guideline, the cases and the columns, and what writes its
+/// files.
+type Checked<'py> = (
+    Bound<'py, PyAny>,
+    Bound<'py, PyAny>,
+    Bound<'py, PyDict>,
+    PyCheckFiles,
+);
 
 /// A scene: the contact frame, the foundation, the block, its loads and friction, the solver.
 #[pyclass(frozen, module = "slideroute._native", name = "Scene")]
@@ -144,8 +154,9 @@ impl PyScene {
             .collect()
     }
 
-    /// The route: (columns, summary) with columns `Row::COLUMNS` as float arrays (NaN where a
-    /// value could not be had) and the summary as `summary.json` has it. `progress(done,
+    /// The route: (columns, summary, files) with columns `Row::COLUMNS` as float arrays (NaN
+    /// where a value could not be had), the summary as `summary.json` has it, and what writes
+    /// its files (`RouteFiles`). `progress(done,
     /// total)` is told how many increments of dt are done; Ctrl-C stops the route with
     /// `KeyboardInterrupt`. A route that may record more than `max_rows` rows (from t_end, dt
     /// and stride) is refused before it starts: its arrays would take 200 bytes a row
@@ -158,7 +169,7 @@ impl PyScene {
         dynamics: Option<&str>,
         progress: Option<Bound<'py, PyAny>>,
         max_rows: usize,
-    ) -> PyResult<(Bound<'py, PyDict>, Bound<'py, PyAny>)> {
+    ) -> PyResult<(Bound<'py, PyDict>, Bound<'py, PyAny>, PyRouteFiles)> {
         let scene = self.with_dynamics(py, dynamics)?;
         let sim = scene.simulation().map_err(|e| scene_error(py, &e))?;
         let settings = sim.settings();
@@ -203,7 +214,8 @@ impl PyScene {
         for (name, v) in slideroute::Row::COLUMNS.iter().zip(cols) {
             columns.set_item(*name, PyArray1::from_vec(py, v))?;
         }
-        Ok((columns, json(py, &computed)?))
+        let summary = json(py, &computed)?;
+        Ok((columns, summary, PyRouteFiles { scene, computed }))
     }
 
     /// The route read in chunks of at most `rows` rows (columns as [`PyScene::route`] gives
@@ -244,13 +256,14 @@ impl PyScene {
 
     /// The load cases checked by their guideline, as `slideroute check` does: (guideline,
     /// cases as `check.json` has them, columns as `check.csv` has them with the route's end as
-    /// `reason` and `reason_text`). `progress(done, total)` is told how many cases are done.
+    /// `reason` and `reason_text`, what writes its files). `progress(done, total)` is told how
+    /// many cases are done.
     #[pyo3(signature = (progress = None))]
     fn check<'py>(
         &self,
         py: Python<'py>,
         progress: Option<Bound<'py, PyAny>>,
-    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>, Bound<'py, PyDict>)> {
+    ) -> PyResult<Checked<'py>> {
         let scene = &self.inner;
         let total = scene.cases().len().max(1);
         let progress = progress.as_ref().map(|f| (f, total));
@@ -259,7 +272,12 @@ impl PyScene {
         })?
         .map_err(|e| scene_error(py, &e))?;
         let columns = check_columns(py, &results)?;
-        Ok((json(py, scene.guideline())?, json(py, &results)?, columns))
+        let (guideline, cases) = (json(py, scene.guideline())?, json(py, &results)?);
+        let files = PyCheckFiles {
+            scene: scene.clone(),
+            results,
+        };
+        Ok((guideline, cases, columns, files))
     }
 
     /// Every root of the pose system at one displacement (`mode`: "exact" or "small-angle",
