@@ -191,4 +191,31 @@ mod tests {
         assert!(!line.contains("NaN") && !line.contains("inf"), "{line}");
         assert!(line.contains(",,,1,"), "{line}");
     }
+
+    #[test]
+    fn a_row_given_as_its_values_is_written_as_the_row_is() {
+        // Python holds a route as columns, a value that could not be had NaN: its route.csv
+        // must be the bytes of the rows'.
+        let scene = crate::Scene::default_scene()
+            .with("solver.t_end_s", 0.3)
+            .unwrap();
+        let mut rows = crate::analysis::run(&scene).unwrap().rows;
+        let mut odd = rows[1];
+        odd.n_n = None;
+        odd.crease = [None, Some(2), None];
+        odd.x_m = -0.0;
+        odd.z_m = 1e-300;
+        rows.push(odd);
+        let (mut by_row, mut by_values) = (Vec::new(), RouteCsv::new(Vec::new()).unwrap());
+        write_csv(&mut by_row, &rows).unwrap();
+        for r in &rows {
+            by_values.push_values(r.values().map(|v| v.unwrap_or(f64::NAN)));
+        }
+        let by_values = by_values.finish().unwrap();
+        assert!(by_row.len() > 1000);
+        assert_eq!(
+            String::from_utf8(by_values).unwrap(),
+            String::from_utf8(by_row).unwrap()
+        );
+    }
 }
