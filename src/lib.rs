@@ -63,8 +63,9 @@
 //! Data flows one way, one private module per stage (`ARCHITECTURE.md` says where each lives):
 //! scene → model → geometry → coefficients (generated at build time by `codegen/`) → roots →
 //! pose → mechanics (loads, friction, reactions) → route (one driver, a dynamics model each) →
-//! analysis (many routes) → output (their files and pictures). Units are SI; angles are radians in these types and degrees in every
-//! file a person reads or writes.
+//! analysis (many routes) → output (their files and pictures, the one stage that is public).
+//! Units are SI; angles are radians in these types and degrees in every file a person reads or
+//! writes.
 
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]

@@ -34,11 +34,11 @@ struct ExactReport {
 pub struct CoeffReport {
     /// The scene's name.
     pub scene: String,
-    /// The displacement: X (m), Z (m) and θ (degrees).
+    /// X: the CM's displacement along X (m).
     pub x_m: f64,
-    /// Z (m).
+    /// Z: the CM's displacement along Z (m).
     pub z_m: f64,
-    /// θ (degrees).
+    /// θ: the yaw (degrees).
     pub theta_deg: f64,
     small_angle: Ordered<f64>,
     exact: ExactReport,
