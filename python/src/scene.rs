@@ -11,6 +11,7 @@ use numpy::{PyArray1, PyReadonlyArray1};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use rayon::prelude::*;
+use slideroute::check::CaseResult;
 use slideroute::sweep::{Sweep, Vary};
 use slideroute::{Displacement, DynamicsModel, FactorOfSafety, Mode, Runner};
 use std::ops::ControlFlow;
@@ -516,89 +517,18 @@ fn type_name(v: &Bound<'_, PyAny>) -> String {
 /// The cases as `check.csv` has them, column by column: numbers as floats (NaN where the case
 /// has none; a sliding factor or load multiple ±∞ where unbounded or not holdable), the route's
 /// end as `reason` (its machine name) and `reason_text`.
-fn check_columns<'py>(
-    py: Python<'py>,
-    results: &[slideroute::check::CaseResult],
-) -> PyResult<Bound<'py, PyDict>> {
+fn check_columns<'py>(py: Python<'py>, results: &[CaseResult]) -> PyResult<Bound<'py, PyDict>> {
     let out = PyDict::new(py);
-    let num = |f: &dyn Fn(&slideroute::check::CaseResult) -> Option<f64>| -> Vec<f64> {
-        results.iter().map(|r| f(r).unwrap_or(f64::NAN)).collect()
-    };
-    let water = |r: &slideroute::check::CaseResult| {
-        r.loads
-            .as_ref()
-            .and_then(|l| l.water.as_ref())
-            .map(|w| w.levels)
-    };
-    out.set_item(
-        "case",
-        results
-            .iter()
-            .map(|r| r.case.name.clone())
-            .collect::<Vec<_>>(),
-    )?;
-    out.set_item(
-        "category",
-        results
-            .iter()
-            .map(|r| r.case.category.as_str())
-            .collect::<Vec<_>>(),
-    )?;
-    type Column<'a> = (
-        &'a str,
-        &'a dyn Fn(&slideroute::check::CaseResult) -> Option<f64>,
-    );
-    let numbers: [Column; 16] = [
-        ("headwater_m", &|r| water(r).map(|w| w.headwater)),
-        ("tailwater_m", &|r| water(r).map(|w| w.tailwater)),
-        ("kh", &|r| r.loads.as_ref().map(|l| l.kh)),
-        ("kv", &|r| r.loads.as_ref().map(|l| l.kv)),
-        ("hydraulic_force_n", &|r| {
-            r.loads.as_ref().map(|l| l.hydraulic_force_n)
-        }),
-        ("uplift_n", &|r| {
-            r.gravity
-                .map(|g| g.uplift_n)
-                .or(r.loads.as_ref().map(|l| l.uplift_n))
-        }),
-        ("weight_n", &|r| r.loads.as_ref().map(|l| l.weight_n)),
-        ("horizontal_n", &|r| match (&r.gravity, &r.loads) {
-            (Some(g), _) => Some(g.shear_n),
-            (None, Some(l)) => Some(l.hydraulic_force_n + l.kh * l.weight_n),
-            _ => None,
-        }),
-        ("sliding_fs", &|r| {
-            r.gravity.map(|g| g.sliding_fs.unwrap_or(f64::INFINITY))
-        }),
-        ("resultant_from_heel_m", &|r| {
-            r.gravity.and_then(|g| g.resultant_from_heel_m)
-        }),
-        ("base_in_compression_pct", &|r| {
-            r.gravity.map(|g| g.base_in_compression_pct)
-        }),
-        ("heel_pressure_pa", &|r| {
-            r.gravity.map(|g| g.heel_pressure_pa)
-        }),
-        ("toe_pressure_pa", &|r| r.gravity.map(|g| g.toe_pressure_pa)),
-        ("crack_length_m", &|r| r.gravity.map(|g| g.crack_length_m)),
-        ("load_multiple", &|r| {
-            r.factor_of_safety.map(|f| match f {
-                FactorOfSafety::Finite { value } => value,
-                FactorOfSafety::Unbounded => f64::INFINITY,
-                FactorOfSafety::NotHoldable => f64::NEG_INFINITY,
-            })
-        }),
-        ("anchor_force_n", &|r| r.gravity.map(|g| g.anchor_force_n)),
-    ];
-    for (name, f) in numbers {
-        out.set_item(name, PyArray1::from_vec(py, num(f)))?;
+    let texts = |f: fn(&CaseResult) -> &str| results.iter().map(f).collect::<Vec<_>>();
+    out.set_item("case", texts(|r| &r.case.name))?;
+    out.set_item("category", texts(|r| r.case.category.as_str()))?;
+    for (name, f) in CHECK_NUMBERS {
+        let column = results.iter().map(|r| f(r).unwrap_or(f64::NAN)).collect();
+        out.set_item(name, PyArray1::from_vec(py, column))?;
     }
     out.set_item(
         "load_multiple_limit",
-        results
-            .iter()
-            .map(|r| r.load_multiple_limit.map_or("", |l| l.as_str()))
-            .collect::<Vec<_>>(),
+        texts(|r| r.load_multiple_limit.map_or("", |l| l.as_str())),
     )?;
     out.set_item(
         "required_fs",
@@ -608,26 +538,75 @@ fn check_columns<'py>(
         "passes",
         results.iter().map(|r| r.passes).collect::<Vec<_>>(),
     )?;
-    fn route(r: &slideroute::check::CaseResult) -> &slideroute::Route {
-        &r.run.route
-    }
     out.set_item(
         "reason",
         results
             .iter()
-            .map(|r| reason_code(route(r).termination.reason))
+            .map(|r| reason_code(r.run.route.termination.reason))
             .collect::<Vec<_>>(),
     )?;
     out.set_item(
         "reason_text",
-        results
-            .iter()
-            .map(|r| route(r).termination.reason.as_str())
-            .collect::<Vec<_>>(),
+        texts(|r| r.run.route.termination.reason.as_str()),
     )?;
     out.set_item(
         "travel_m",
-        PyArray1::from_vec(py, results.iter().map(|r| route(r).travel_m).collect()),
+        PyArray1::from_vec(py, results.iter().map(|r| r.run.route.travel_m).collect()),
     )?;
     Ok(out)
 }
+
+/// The water levels of a case, where it has water.
+fn water(r: &CaseResult) -> Option<slideroute::Levels> {
+    r.loads
+        .as_ref()
+        .and_then(|l| l.water.as_ref())
+        .map(|w| w.levels)
+}
+
+/// check.csv's numeric columns, each by its name and how a case gives it (none: NaN).
+type CheckNumber = (&'static str, fn(&CaseResult) -> Option<f64>);
+
+/// The numeric columns of [`check_columns`], in check.csv's order.
+const CHECK_NUMBERS: [CheckNumber; 16] = [
+    ("headwater_m", |r| water(r).map(|w| w.headwater)),
+    ("tailwater_m", |r| water(r).map(|w| w.tailwater)),
+    ("kh", |r| r.loads.as_ref().map(|l| l.kh)),
+    ("kv", |r| r.loads.as_ref().map(|l| l.kv)),
+    ("hydraulic_force_n", |r| {
+        r.loads.as_ref().map(|l| l.hydraulic_force_n)
+    }),
+    ("uplift_n", |r| {
+        r.gravity
+            .map(|g| g.uplift_n)
+            .or(r.loads.as_ref().map(|l| l.uplift_n))
+    }),
+    ("weight_n", |r| r.loads.as_ref().map(|l| l.weight_n)),
+    ("horizontal_n", |r| match (&r.gravity, &r.loads) {
+        (Some(g), _) => Some(g.shear_n),
+        (None, Some(l)) => Some(l.hydraulic_force_n + l.kh * l.weight_n),
+        _ => None,
+    }),
+    ("sliding_fs", |r| {
+        r.gravity.map(|g| g.sliding_fs.unwrap_or(f64::INFINITY))
+    }),
+    ("resultant_from_heel_m", |r| {
+        r.gravity.and_then(|g| g.resultant_from_heel_m)
+    }),
+    ("base_in_compression_pct", |r| {
+        r.gravity.map(|g| g.base_in_compression_pct)
+    }),
+    ("heel_pressure_pa", |r| {
+        r.gravity.map(|g| g.heel_pressure_pa)
+    }),
+    ("toe_pressure_pa", |r| r.gravity.map(|g| g.toe_pressure_pa)),
+    ("crack_length_m", |r| r.gravity.map(|g| g.crack_length_m)),
+    ("load_multiple", |r| {
+        r.factor_of_safety.map(|f| match f {
+            FactorOfSafety::Finite { value } => value,
+            FactorOfSafety::Unbounded => f64::INFINITY,
+            FactorOfSafety::NotHoldable => f64::NEG_INFINITY,
+        })
+    }),
+    ("anchor_force_n", |r| r.gravity.map(|g| g.anchor_force_n)),
+];
