@@ -72,6 +72,7 @@
 
 mod analysis;
 mod coeffs;
+mod contact;
 mod geometry;
 mod mechanics;
 mod model;
@@ -158,6 +159,9 @@ pub mod internals {
     }
     pub mod coeffs {
         pub use crate::coeffs::*;
+    }
+    pub mod contact {
+        pub use crate::contact::*;
     }
     pub mod geometry {
         pub use crate::geometry::*;

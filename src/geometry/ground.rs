@@ -61,10 +61,10 @@ impl Mesh {
 /// The largest angle (rad, as its sine) between the triangles around a vertex taken as one
 /// plane. A kink below it, skipped, lets a flat base sink at most 10⁻⁶ of a triangle's size
 /// into the rock there: within the gap of 10⁻⁶ of the block's size and the angle of 10⁻⁶ rad
-/// within which the base lies flush on its rock (`route/body/flush.rs`), for triangles smaller
-/// than the block. A surface written with nine decimals of a metre has kinks of round-off's
-/// size up to about 10⁻⁹ / its cell; one written to the millimetre, up to 10⁻³ / its cell, which
-/// this does not take for flat (its vertices stay touches, as before).
+/// within which the base lies flush on its rock (`geometry/contact/patch.rs`), for triangles
+/// smaller than the block. A surface written with nine decimals of a metre has kinks of
+/// round-off's size up to about 10⁻⁹ / its cell; one written to the millimetre, up to 10⁻³ / its
+/// cell, which this does not take for flat (its vertices stay touches, as before).
 const FLAT: f64 = 1e-6;
 
 /// Which corners of each triangle are flat: by position (the corners' exact coordinates, so a

@@ -10,9 +10,12 @@
 //! * [`touch`], [`settle`], [`penetration`]: a flat base against the ground: where they touch,
 //!   where it rests, how deep it went by an independent check.
 //! * [`relief`]: a base cast onto its rock, its underside the ground's own surface.
+//! * [`contact`]: the narrow phase of the bodies against the rock, and the patches where an
+//!   underside lies flush on it.
 //! * [`rock`]: the ground in the collision library's shapes (`parry3d-f64`), the independent
 //!   check of the touches and of how deep the base went.
 
+pub mod contact;
 pub mod direct;
 pub mod frame;
 pub mod ground;

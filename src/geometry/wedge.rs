@@ -64,8 +64,8 @@ pub(crate) fn rock_edge(ground: &Ground, f: usize, p: &Vector3<f64>, q: &Vector3
 /// still touch. A ridge of the rock lying along a flat base's face (a crest under a block that
 /// rests on it, rolling by hundredths of a degree) meets the base's rim at each end with a
 /// normal on the arc's end, now inside, now outside by round-off or the roll: those ends carry
-/// the line (`route::body::flush`'s `along_one_line`). Edges that do not touch are far outside
-/// (a cast base's edge along the rock's edge it was cast from: 78°).
+/// the line (`geometry::contact::patch`'s `along_one_line`). Edges that do not touch are far
+/// outside (a cast base's edge along the rock's edge it was cast from: 78°).
 pub(crate) const SLACK: f64 = 0.01;
 
 /// Whether the unit vector `n` lies on the shorter great-circle arc from `a` to `b` (unit,

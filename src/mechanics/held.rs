@@ -10,9 +10,14 @@
 //! (Clarabel). It is the rigid body's criterion: a base lying flush over an area is held by it
 //! exactly when it is held by forces at the area's corners, since a force inside the hull of
 //! points on one plane splits among them within their cones with the same resultant and moment.
+//!
+//! A stress-dependent criterion's μ_i is its secant coefficient S(λ_i)/λ_i at the support's own
+//! normal force, settled with the program's forces as the frame's are (`static_friction.rs`):
+//! the program at μ, μ at its forces, until μ changes by less than [`SETTLED`].
 
-use super::impulses::tangents;
 use super::static_friction::StaticError;
+use crate::geometry::contact::{hull_across, tangents};
+use crate::model::Friction;
 use clarabel::algebra::CscMatrix;
 use clarabel::solver::{
     DefaultSettings, DefaultSolver, IPSolver, SolverStatus, SupportedConeT::NonnegativeConeT,
@@ -27,9 +32,16 @@ pub struct Support {
     pub arm: Vector3<f64>,
     /// n: unit normal into the block.
     pub normal: Vector3<f64>,
-    /// μ.
-    pub mu: f64,
+    /// The friction criterion there.
+    pub criterion: Friction,
 }
+
+/// A stress-dependent criterion's coefficients are settled when no solve changes one by more
+/// than this.
+pub const SETTLED: f64 = 1e-10;
+
+/// The most programs solved to settle them.
+const MOST_SOLVES: usize = 50;
 
 /// Whether the `supports` hold the block against the force `force` (N, the weight included)
 /// and the moment `moment` about its centre of mass (N·m). `weight` (N) and `size` (m) scale
@@ -45,8 +57,11 @@ pub fn held(
         return Ok(false);
     }
     check_scales(weight, size)?;
-    let (p, b) = Program::of(supports, force, moment, weight, size);
-    p.feasible(&b)
+    let found = settled(supports, weight, |mu| {
+        let (p, b) = Program::of(supports, mu, force, moment, (weight, size));
+        p.solve(&b, 0, false)
+    })?;
+    Ok(found.is_some())
 }
 
 /// The most of a further load the `supports` hold: the largest s ≥ 0 for which the force
@@ -65,26 +80,93 @@ pub fn reach(
         return Ok(Some(0.0));
     }
     check_scales(weight, size)?;
-    let (mut p, mut b) = Program::of(supports, force, moment, weight, size);
-    // Column s: the further load on the six equations; s ≥ 0 and s ≤ FAR as two more rows.
-    let col = p.columns.len();
-    p.columns.push(Vec::new());
-    for (r, v) in (extra.0 / weight)
-        .iter()
-        .chain((extra.1 / (weight * size)).iter())
-        .enumerate()
-    {
-        p.put(r, col, *v);
-    }
-    let (low, high) = (p.rows(), p.rows() + 1);
-    p.put(low, col, -1.0);
-    p.put(high, col, 1.0);
-    b.extend([0.0, FAR]);
-    match p.maximise_last(&b, 2)? {
+    let found = settled(supports, weight, |mu| {
+        let (mut p, mut b) = Program::of(supports, mu, force, moment, (weight, size));
+        // Column s: the further load on the six equations; s ≥ 0 and s ≤ FAR as two more rows.
+        let col = p.columns.len();
+        p.columns.push(Vec::new());
+        for (r, v) in (extra.0 / weight)
+            .iter()
+            .chain((extra.1 / (weight * size)).iter())
+            .enumerate()
+        {
+            p.put(r, col, *v);
+        }
+        let (low, high) = (p.rows(), p.rows() + 1);
+        p.put(low, col, -1.0);
+        p.put(high, col, 1.0);
+        b.extend([0.0, FAR]);
+        p.solve(&b, 2, true)
+    })?;
+    match found {
         None => Ok(Some(0.0)),
         Some(s) if s >= FAR * (1.0 - 1e-6) => Ok(None),
         Some(s) => Ok(Some(s.max(0.0))),
     }
+}
+
+/// The supports that hold what all of `all` hold: of each set of one normal (to 10⁻⁹ rad) and
+/// one criterion, the corners of their hull across the normal. A force at a point inside is
+/// the convex combination of the same force, within the same cone, at the corners, with the
+/// same resultant and moment; so the program has the corners only, however finely the rock
+/// under a flat part of the base is meshed.
+pub fn hull_supports(all: &[Support]) -> Vec<Support> {
+    let mut rest: Vec<usize> = (0..all.len()).collect();
+    let mut out = Vec::new();
+    while let Some(&first) = rest.first() {
+        let (n, criterion) = (all[first].normal, all[first].criterion);
+        let same = |m: &Vector3<f64>| m.dot(&n) > 0.0 && m.cross(&n).norm() <= 1e-9;
+        let (group, others): (Vec<usize>, Vec<usize>) = rest
+            .iter()
+            .partition(|&&i| same(&all[i].normal) && all[i].criterion == criterion);
+        rest = others;
+        let corners = hull_across(&n, group.iter().map(|&i| all[i].arm));
+        out.extend(corners.into_iter().map(|k| all[group[k]]));
+    }
+    out
+}
+
+/// What `program` gives at the supports' coefficients (its value, None where it is
+/// infeasible): at once where each criterion's is a constant (Coulomb's μ), else at the
+/// coefficients settled with the normal forces `program`'s solution gives each support (from
+/// the weight shared equally; at most [`MOST_SOLVES`] programs, the last one's value).
+fn settled(
+    supports: &[Support],
+    weight: f64,
+    mut program: impl FnMut(&[f64]) -> Result<Option<(f64, Vec<f64>)>, StaticError>,
+) -> Result<Option<f64>, StaticError> {
+    let constant: Option<Vec<f64>> = supports
+        .iter()
+        .map(|s| match s.criterion {
+            Friction::Coulomb { mu_k } => Some(mu_k),
+            _ => None,
+        })
+        .collect();
+    if let Some(mu) = constant {
+        return Ok(program(&mu)?.map(|(v, _)| v));
+    }
+    let share = weight / supports.len() as f64;
+    let mut mu: Vec<f64> = supports
+        .iter()
+        .map(|s| s.criterion.coefficient(share))
+        .collect();
+    let mut value = None;
+    for _ in 0..MOST_SOLVES {
+        let Some((v, x)) = program(&mu)? else {
+            return Ok(None);
+        };
+        value = Some(v);
+        let mut change: f64 = 0.0;
+        for (i, s) in supports.iter().enumerate() {
+            let next = s.criterion.coefficient(x[3 * i].max(0.0) * weight);
+            change = change.max((next - mu[i]).abs());
+            mu[i] = next;
+        }
+        if change < SETTLED {
+            break;
+        }
+    }
+    Ok(value)
 }
 
 /// The largest further load [`reach`] looks for (in units of the further load).
@@ -112,10 +194,10 @@ impl Program {
     /// weight·sizes): its matrix and right-hand side.
     fn of(
         supports: &[Support],
+        mu: &[f64],
         force: Vector3<f64>,
         moment: Vector3<f64>,
-        weight: f64,
-        size: f64,
+        (weight, size): (f64, f64),
     ) -> (Program, Vec<f64>) {
         let mut p = Program::new(supports.len());
         // A force `dir` (in weights) at `arm` on the six equations, in column `col`.
@@ -133,7 +215,7 @@ impl Program {
                 on_equations(&mut p, col, &s.arm, dir);
                 // The cone's rows: s = (μ λ, a, b) = −A x; and λ ≥ 0 (the cone alone lets a
                 // frictionless contact pull).
-                p.put(cone + k, col, if k == 0 { -s.mu } else { -1.0 });
+                p.put(cone + k, col, if k == 0 { -mu[i] } else { -1.0 });
                 if k == 0 {
                     p.put(floor, col, -1.0);
                 }
@@ -175,20 +257,16 @@ impl Program {
         }
     }
 
-    /// Whether A x + s = b has a solution with s in the cones (Clarabel, no objective).
-    fn feasible(self, b: &[f64]) -> Result<bool, StaticError> {
-        Ok(self.solve(b, 0, false)?.is_some())
-    }
-
-    /// The largest last variable of A x + s = b with s in the cones, where the last `more` rows
-    /// are further non-negative ones; None where there is no solution.
-    fn maximise_last(self, b: &[f64], more: usize) -> Result<Option<f64>, StaticError> {
-        self.solve(b, more, true)
-    }
-
-    /// Solves the program (Clarabel), minimising −(last variable) if `maximise`: that variable
-    /// at the solution (zero without an objective), None where it is infeasible.
-    fn solve(mut self, b: &[f64], more: usize, maximise: bool) -> Result<Option<f64>, StaticError> {
+    /// Solves A x + s = b with s in the cones, where the last `more` rows are further
+    /// non-negative ones (Clarabel), maximising the last variable if `maximise`: that variable
+    /// at the solution (zero without an objective) and the solution x, None where it is
+    /// infeasible.
+    fn solve(
+        mut self,
+        b: &[f64],
+        more: usize,
+        maximise: bool,
+    ) -> Result<Option<(f64, Vec<f64>)>, StaticError> {
         let n = self.columns.len();
         let mut colptr = Vec::with_capacity(n + 1);
         let (mut rowval, mut nzval) = (Vec::new(), Vec::new());
@@ -218,11 +296,10 @@ impl Program {
             .map_err(|e| StaticError::Solver(e.to_string()))?;
         solver.solve();
         match solver.solution.status {
-            SolverStatus::Solved | SolverStatus::AlmostSolved => Ok(Some(if maximise {
-                solver.solution.x[n - 1]
-            } else {
-                0.0
-            })),
+            SolverStatus::Solved | SolverStatus::AlmostSolved => {
+                let x = std::mem::take(&mut solver.solution.x);
+                Ok(Some((if maximise { x[n - 1] } else { 0.0 }, x)))
+            }
             SolverStatus::PrimalInfeasible | SolverStatus::AlmostPrimalInfeasible => Ok(None),
             other => Err(StaticError::Solver(format!("{other:?}"))),
         }
@@ -242,7 +319,7 @@ mod tests {
             .map(|&(x, z)| Support {
                 arm: Vector3::new(x, -d, z),
                 normal: Vector3::y(),
-                mu,
+                criterion: Friction::coulomb(mu),
             })
             .collect()
     }
@@ -301,7 +378,7 @@ mod tests {
         assert!(!holds(&s, Vector3::zeros(), Vector3::zeros()));
         // With friction above tan 10° it is.
         for c in &mut s {
-            c.mu = 1.01 * dip.tan();
+            c.criterion = Friction::coulomb(1.01 * dip.tan());
         }
         assert!(holds(&s, Vector3::zeros(), Vector3::zeros()));
     }

@@ -105,17 +105,19 @@ fn cycle(graph: &BTreeMap<String, BTreeSet<String>>) -> Option<Vec<String>> {
 /// model, the geometry, the coefficients, the roots and the mechanics never import the scene
 /// (the input layer builds the model, not the other way round), nor the route or the analyses
 /// above them. The output (files and pictures) is the top: no stage may import it.
-const MAY_IMPORT: [(&str, &[&str]); 10] = [
+const MAY_IMPORT: [(&str, &[&str]); 11] = [
     ("numeric", &[]),
     ("geometry", &["numeric"]),
     ("model", &["geometry", "numeric"]),
     ("coeffs", &["geometry", "model", "numeric"]),
     ("roots", &["coeffs", "geometry", "model", "numeric"]),
-    ("mechanics", &["geometry", "model", "numeric"]),
+    ("contact", &["geometry", "model", "numeric"]),
+    ("mechanics", &["contact", "geometry", "model", "numeric"]),
     (
         "route",
         &[
             "coeffs",
+            "contact",
             "geometry",
             "mechanics",
             "model",

@@ -1,12 +1,13 @@
 //! The normals of a corner in a crease: two or three faces at one point of the body, solved
 //! together and exactly in a sweep (`derivations/13-base-contact.md` §4).
 
-use super::{Body, ContactRow, Solved};
+use super::{Body, Solved};
+use crate::contact::ContactRow;
 use nalgebra::{Matrix3, Vector3};
 
-/// The rows next to row `i` at the same point of the body (the same arm).
+/// The rows next to row `i` at the same point of the same bodies.
 pub(super) fn point_group(rows: &[ContactRow], i: usize) -> std::ops::Range<usize> {
-    let same = |j: usize| rows[j].arm == rows[i].arm;
+    let same = |j: usize| rows[j].same_point(&rows[i]);
     let mut start = i;
     while start > 0 && same(start - 1) {
         start -= 1;
@@ -18,44 +19,72 @@ pub(super) fn point_group(rows: &[ContactRow], i: usize) -> std::ops::Range<usiz
     start..end
 }
 
-/// The normal impulses of the first three contacts of `group` at one point of the body (a
+/// The normal impulses of the first three rows of `group` at one point of the bodies (a
 /// fourth and more, which no ground of faces gives a corner but at a point where four planes
-/// meet, go alone), the others held: the
-/// small linear complementarity problem W p + q ≥ 0, p ≥ 0, p ⟂ (W p + q), solved exactly by
-/// trying each set of contacts that push (W the group's normal effective inverse mass, q their
-/// closing velocities without their own impulses). Where no set fits (a singular W: faces
-/// whose normals are not independent), each contact alone.
+/// meet, go alone), the others held: the small linear complementarity problem W p + q ≥ 0,
+/// p ≥ 0, p ⟂ (W p + q), solved exactly by trying each set of rows that push (W the group's
+/// normal effective inverse mass, q their closing velocities without their own impulses).
+/// Where no set fits (a singular W: faces whose normals are not independent), each row alone.
 pub(super) fn normal_at_point(
     out: &mut Solved,
     rows: &[ContactRow],
     group: std::ops::Range<usize>,
-    body: &Body,
-    apply: &impl Fn(&mut Solved, &ContactRow, Vector3<f64>),
+    bodies: &[Body],
 ) {
     let g = group.len().min(3);
     let idx: Vec<usize> = group.clone().take(g).collect();
-    let r = rows[idx[0]].arm;
-    let u = out.v + out.w.cross(&r);
-    let k = |a: &Vector3<f64>, b: &Vector3<f64>| {
-        body.inv_mass * a.dot(b) + r.cross(a).dot(&(body.inv_inertia * r.cross(b)))
+    let first = &rows[idx[0]];
+    let (a, b) = (&first.a, first.b.as_ref());
+    let u = out.velocity(a, b);
+    let k = |x: &Vector3<f64>, y: &Vector3<f64>| {
+        let ka = bodies[a.body].k(&a.arm, x, y);
+        match b {
+            None => ka,
+            Some(b) => ka + bodies[b.body].k(&b.arm, x, y),
+        }
     };
     let mut w = Matrix3::zeros();
     let mut q = Vector3::zeros();
-    for (a, &ia) in idx.iter().enumerate() {
-        for (b, &ib) in idx.iter().enumerate() {
-            w[(a, b)] = k(&rows[ia].normal, &rows[ib].normal);
+    for (i, &ia) in idx.iter().enumerate() {
+        for (j, &ib) in idx.iter().enumerate() {
+            w[(i, j)] = k(&rows[ia].normal, &rows[ib].normal);
         }
     }
-    for (a, &ia) in idx.iter().enumerate() {
-        let held: f64 = (0..g).map(|b| w[(a, b)] * out.normal[idx[b]]).sum();
-        q[a] = rows[ia].normal.dot(&u) + rows[ia].closing - held;
+    for (i, &ia) in idx.iter().enumerate() {
+        let held: f64 = (0..g).map(|j| w[(i, j)] * out.normal[idx[j]]).sum();
+        q[i] = rows[ia].normal.dot(&u) + rows[ia].closing - held;
     }
-    let mut found = None;
+    let Some(p) = pushing_set(&w, &q, g) else {
+        for &i in &idx {
+            let c = &rows[i];
+            let u = out.velocity(&c.a, c.b.as_ref());
+            let pn_old = out.normal[i];
+            let pn = (pn_old - (c.normal.dot(&u) + c.closing) / k(&c.normal, &c.normal)).max(0.0);
+            out.apply(bodies, &c.a, c.b.as_ref(), c.normal * (pn - pn_old));
+            out.normal[i] = pn;
+        }
+        return;
+    };
+    for (i, &r) in idx.iter().enumerate() {
+        let c = &rows[r];
+        out.apply(
+            bodies,
+            &c.a,
+            c.b.as_ref(),
+            c.normal * (p[i] - out.normal[r]),
+        );
+        out.normal[r] = p[i];
+    }
+}
+
+/// The solution of the complementarity problem of the first `g` rows of W p + q by its active
+/// sets, the first set that fits; None where none does.
+fn pushing_set(w: &Matrix3<f64>, q: &Vector3<f64>, g: usize) -> Option<Vector3<f64>> {
     for set in 0u32..(1 << g) {
         let pushes = |a: usize| set & (1 << a) != 0;
         let mut p = Vector3::zeros();
         if set != 0 {
-            // W and q of the contacts that push, the others' rows and columns the identity's
+            // W and q of the rows that push, the others' rows and columns the identity's
             // (their p stays zero): one 3 × 3 solve, on the stack.
             let ws = Matrix3::from_fn(|a, b| {
                 if pushes(a) && pushes(b) {
@@ -82,31 +111,16 @@ pub(super) fn normal_at_point(
             }
         });
         if fits {
-            found = Some(p);
-            break;
+            return Some(p);
         }
     }
-    let Some(p) = found else {
-        for &i in &idx {
-            let c = &rows[i];
-            let u = out.v + out.w.cross(&c.arm);
-            let pn_old = out.normal[i];
-            let pn = (pn_old - (c.normal.dot(&u) + c.closing) / k(&c.normal, &c.normal)).max(0.0);
-            apply(out, c, c.normal * (pn - pn_old));
-            out.normal[i] = pn;
-        }
-        return;
-    };
-    for (a, &i) in idx.iter().enumerate() {
-        let c = &rows[i];
-        apply(out, c, c.normal * (p[a] - out.normal[i]));
-        out.normal[i] = p[a];
-    }
+    None
 }
 
 #[cfg(test)]
 mod tests {
     use super::super::*;
+    use crate::contact::Shear;
 
     #[test]
     fn a_corner_in_a_v_groove_is_held_by_both_faces_as_the_statics_of_the_groove_say() {
@@ -123,15 +137,26 @@ mod tests {
             let n1 = Vector3::new(-a.sin(), a.cos(), 0.0);
             let n2 = Vector3::new(b.sin(), b.cos(), 0.0);
             let row = |n: Vector3<f64>| ContactRow {
-                arm: Vector3::zeros(),
+                a: Side {
+                    body: 0,
+                    arm: Vector3::zeros(),
+                },
+                b: None,
                 normal: n,
-                mu: 0.0,
+                shear: Shear::none(),
                 closing: 0.0,
                 guess: Vector3::zeros(),
             };
-            let v = Vector3::new(0.0, -g * h, 0.0);
-            let s = solve(&body, v, Vector3::zeros(), &[row(n1), row(n2)], 1e-14, 50);
-            assert!(s.v.norm() < 1e-14, "{}", s.v);
+            let free = Motion {
+                v: Vector3::new(0.0, -g * h, 0.0),
+                w: Vector3::zeros(),
+            };
+            let until = Until {
+                tol: 1e-14,
+                max_sweeps: 50,
+            };
+            let s = solve(&[body], &[free], &[row(n1), row(n2)], &[], until);
+            assert!(s.motion[0].v.norm() < 1e-14, "{}", s.motion[0].v);
             // The two normals' statics by Cramer's rule in (X, Y).
             let det = n1.x * n2.y - n2.x * n1.y;
             let w = m * g * h;

@@ -3,37 +3,9 @@
 //! it, and the friction at the points.
 
 use super::super::pressure;
-use super::{Body, ContactRow, Frame, Solved, apply_at, frame_at, friction_at};
+use super::{Body, Frame, Solved, frame_at, friction_at};
+use crate::contact::{ContactRow, Patch, Side};
 use nalgebra::Vector3;
-
-/// A base lying flush on its rock (`derivations/13-base-contact.md` §9): the rows on it carry
-/// the base's normal impulse, whose resultant [`pressure::spread`] shares over the base's area
-/// as a rigid base on a uniform bed does; the friction then acts at the base's quadrature
-/// points, each within μ times its share, and not at the rows. Where no such pressure has the
-/// rows' resultant (it is at the edge of the points' hull: the base about to tip), the rows
-/// carry their own friction, as without a patch.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Patch {
-    /// The rows on the flush base.
-    pub members: Vec<usize>,
-    /// Two unit axes in the base's plane (with the rows' normal, a right-handed frame).
-    pub axes: (Vector3<f64>, Vector3<f64>),
-    /// The quadrature points of the base over the flush rock.
-    pub points: Vec<PatchPoint>,
-}
-
-/// One quadrature point of a flush base.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PatchPoint {
-    /// r: from the CM to the point (m).
-    pub arm: Vector3<f64>,
-    /// Its weight: the area it stands for (m²).
-    pub weight: f64,
-    /// μ of the rock under it.
-    pub mu: f64,
-    /// Where the solve starts: its friction impulse at the last step (N·s, world), or zero.
-    pub guess: Vector3<f64>,
-}
 
 /// A flush patch within the sweeps: its points' frames and shares, and whether its points or
 /// its rows carry the friction.
@@ -54,7 +26,7 @@ pub(super) struct Spreading<'a> {
 
 impl<'a> Spreading<'a> {
     pub(super) fn new(
-        body: &Body,
+        bodies: &[Body],
         (number, patch): (usize, &'a Patch),
         rows: &[ContactRow],
     ) -> Spreading<'a> {
@@ -70,7 +42,13 @@ impl<'a> Spreading<'a> {
             frames: patch
                 .points
                 .iter()
-                .map(|p| frame_at(body, &p.arm, &normal, (e1, e2)))
+                .map(|p| {
+                    let at = Side {
+                        body: patch.body,
+                        arm: p.arm,
+                    };
+                    frame_at(bodies, (&at, None), &normal, (e1, e2))
+                })
                 .collect(),
             bed: pressure::Bed::new(
                 &patch
@@ -95,7 +73,7 @@ impl<'a> Spreading<'a> {
     pub(super) fn sweep(
         &mut self,
         out: &mut Solved,
-        body: &Body,
+        bodies: &[Body],
         rows: &[ContactRow],
         may_return: bool,
     ) -> bool {
@@ -108,8 +86,8 @@ impl<'a> Spreading<'a> {
         let mut centre = [0.0; 2];
         for &i in &self.patch.members {
             let share = out.normal[i] / total;
-            centre[0] += share * rows[i].arm.dot(&e1);
-            centre[1] += share * rows[i].arm.dot(&e2);
+            centre[0] += share * rows[i].a.arm.dot(&e1);
+            centre[1] += share * rows[i].a.arm.dot(&e2);
         }
         let fits = self
             .bed
@@ -120,20 +98,20 @@ impl<'a> Spreading<'a> {
                 // The rows' friction goes over to the points.
                 for &i in &self.patch.members {
                     let old = std::mem::take(&mut out.tangential[i]);
-                    apply_at(out, body, &rows[i].arm, -old);
+                    out.apply(bodies, &rows[i].a, rows[i].b.as_ref(), -old);
                 }
             }
             for (k, p) in self.patch.points.iter().enumerate() {
                 let was = out.patch[at][k];
                 let old = was - normal * normal.dot(&was);
-                let radius = p.mu * self.shares[k];
+                let radius = p.shear.radius(self.shares[k]);
+                let point = self.point(p.arm);
                 let new = friction_at(
                     out,
-                    body,
-                    &p.arm,
+                    bodies,
+                    (&point, None),
                     &self.frames[k],
-                    radius,
-                    old,
+                    (radius, old),
                     &mut self.nus[k],
                 );
                 out.patch[at][k] = normal * self.shares[k] + new;
@@ -141,19 +119,31 @@ impl<'a> Spreading<'a> {
         } else if self.on {
             for (k, p) in self.patch.points.iter().enumerate() {
                 let old = std::mem::take(&mut out.patch[at][k]);
-                apply_at(out, body, &p.arm, -(old - normal * normal.dot(&old)));
+                let point = self.point(p.arm);
+                out.apply(bodies, &point, None, -(old - normal * normal.dot(&old)));
             }
         }
         let hand_back = self.on && !fits;
         self.on = fits;
         hand_back
     }
+
+    /// The patch's body's side at `arm`.
+    fn point(&self, arm: Vector3<f64>) -> Side {
+        Side {
+            body: self.patch.body,
+            arm,
+        }
+    }
 }
 
 #[cfg(test)]
 mod tests {
-    use super::super::{Body, ContactRow, solve, solve_with_patches, tangents};
+    use super::super::Body;
+    use super::super::tests::{coulomb, ground_row, one_body};
     use super::*;
+    use crate::contact::PatchPoint;
+    use crate::geometry::contact::tangents;
     use crate::model::Base;
     use nalgebra::Matrix3;
 
@@ -171,13 +161,7 @@ mod tests {
         let rows: Vec<ContactRow> = base
             .outline()
             .iter()
-            .map(|&[x, z]| ContactRow {
-                arm: Vector3::new(x, -1.0, z),
-                normal: Vector3::y(),
-                mu,
-                closing: 0.0,
-                guess: Vector3::zeros(),
-            })
+            .map(|&[x, z]| ground_row(Vector3::new(x, -1.0, z), Vector3::y(), coulomb(mu)))
             .collect();
         let points: Vec<PatchPoint> = base
             .quadrature(2)
@@ -185,7 +169,7 @@ mod tests {
             .map(|([x, z], weight)| PatchPoint {
                 arm: Vector3::new(x, -1.0, z),
                 weight,
-                mu,
+                shear: coulomb(mu),
                 guess: Vector3::zeros(),
             })
             .collect();
@@ -199,14 +183,19 @@ mod tests {
                 .sum::<f64>()
             / base.area();
         let patch = Patch {
+            body: 0,
             members: (0..4).collect(),
             axes: tangents(&Vector3::y()),
             points,
         };
         let (v, spin) = (Vector3::new(0.0, -g * h, 0.0), Vector3::new(0.0, w, 0.0));
-        let flush = solve_with_patches(&body, (v, spin), &rows, &[patch], 1e-12, 400);
-        let corners = solve(&body, v, spin, &rows, 1e-12, 400);
-        ((w - flush.w.y) * i / h, (w - corners.w.y) * i / h, moment)
+        let flush = one_body(&body, (v, spin), &rows, &[patch], 1e-12, 400);
+        let corners = one_body(&body, (v, spin), &rows, &[], 1e-12, 400);
+        (
+            (w - flush.motion[0].w.y) * i / h,
+            (w - corners.motion[0].w.y) * i / h,
+            moment,
+        )
     }
 
     #[test]

@@ -19,7 +19,6 @@
 //! (no ground motion), it overturns (its base tilts beyond [`OVERTURN_DEG`]), its base goes
 //! over no ground, or the time limit.
 
-mod flush;
 pub(super) mod report;
 mod state;
 mod step;
@@ -32,12 +31,12 @@ use super::logbook::{EnergyBalance, Logbook};
 use super::pose_finder::PoseFinder;
 use super::row::Row;
 use super::termination::Reason;
+use crate::geometry::contact::Quadrature;
 use crate::geometry::penetration::{deepest_of, samples};
 use crate::geometry::{
     BodyPose, CastError, Footprint, Ground, Relief, SettleError, cast, set_down,
 };
 use crate::model::{Base, Body, Simulation, Tendon};
-use flush::Quadrature;
 use nalgebra::{Matrix3, Vector3};
 use state::BodyState;
 use std::cell::Cell;

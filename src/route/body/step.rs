@@ -1,17 +1,22 @@
 //! One step of the body on its base (`derivations/13-base-contact.md` §4): the loads at the
-//! pose, the free velocities, the touches within reach, the contact impulses, the drift.
+//! pose and the free velocities, then the contact pipeline stage by stage — the narrow phase
+//! (the touches within reach), the patches where the base lies flush, the contact pairs with
+//! their strengths, the rows, the impulse solve — and the velocities it leaves, the drift and
+//! the pose moved out of the ground.
 
-use super::flush::{Bed, Quadrature, Spot, flush, hull_across};
 use super::state::BodyState;
-use crate::geometry::{
-    BodyPose, Feature, Footprint, Ground, Relief, Touch, Touches, relief_touches, touches,
-};
-use crate::mechanics::held::{Support, held, reach};
-use crate::mechanics::impulses::{self, Body, ContactRow, Patch};
+use crate::contact::{self, ContactPair, ContactRow, Patch};
+use crate::geometry::contact::{self as narrow, Bed, Placed, Quadrature, Reduced, Spot, Underside};
+use crate::geometry::{BodyPose, Feature, Footprint, Ground, Relief, Touch, Touches};
+use crate::mechanics::held::{Support, held, hull_supports, reach};
+use crate::mechanics::impulses::{self, Body, Motion, Solved, Until};
 use crate::mechanics::loads::Applied;
 use crate::mechanics::static_friction::{StaticError, YieldAcceleration, least_over_directions};
-use crate::model::{self, Simulation, Tendon};
+use crate::model::{self, Friction, Simulation, Surface, Tendon};
 use nalgebra::{Matrix3, Vector3};
+
+/// The body's number among the bodies: the route follows the first.
+const BODY: usize = 0;
 
 /// What a step is taken with: the simulation, the body, the ground, the base, the body's
 /// inertia.
@@ -43,8 +48,8 @@ pub(super) struct Stepped {
     /// The touches the step was solved with, each with its impulse (N·s, world): what carries
     /// the block, and the next step's warm start.
     pub impulses: Vec<(Touch, Vector3<f64>)>,
-    /// The impulse of each quadrature point where the base lay flush (N·s, world; its share of
-    /// the normal impulse and its friction): the next step's warm start.
+    /// The impulse of each point where the base lay flush (N·s, world; its share of the
+    /// normal impulse and its friction): the next step's warm start.
     pub patch: Vec<(Spot, Vector3<f64>)>,
     /// Corners of the base over no ground.
     pub off_ground: Vec<usize>,
@@ -76,57 +81,27 @@ impl Stepped {
     }
 }
 
-/// The impulse solve's row of touch `c` of the body in state `s`.
-fn row_of(c: &Touch, s: &BodyState, mu: f64, closing: f64, guess: Vector3<f64>) -> ContactRow {
-    ContactRow {
-        arm: c.on_base - s.pose.cm,
-        normal: c.normal,
-        mu,
-        closing,
-        guess,
-    }
+/// The body before its contacts in a step: its inverse mass and inertia, its free velocities
+/// (the loads alone), the loads' moment and their force without the weight, and how far its
+/// touches are sought.
+struct Free {
+    body: Body,
+    motion: Motion,
+    moment: Vector3<f64>,
+    driving: Vector3<f64>,
+    /// The gap within which a touch is a row (m).
+    reach: f64,
+    /// How far a point of the base may go within the step (m).
+    drift: f64,
 }
 
-/// The work of a step's contact impulses (J, ≤ 0): friction's at the mean of the slip before
-/// the step and the slip it leaves, ½ P_t · (u_t + u_t⁺) (exact for a rigid body whose
-/// velocities the impulse takes from u to u⁺: a block braked by friction at its base, and an
-/// impact that stops or turns the slip), and an impact's, ½ P_n (u_n + u_n⁺) with u_n the
-/// contact's approach before the step (−½ m_eff u_n² for a contact closed inelastically; zero
-/// for one that stays closed, whose impulse only holds the weight). The energy balance's
-/// residual is then the step's own error, of the order of the loads' change of velocity in a
-/// step: nothing at rest.
-fn contact_work(
-    rows: &[ContactRow],
-    patches: &[Patch],
-    solved: &impulses::Solved,
-    (v0, w0): (Vector3<f64>, Vector3<f64>),
-) -> f64 {
-    // The flush patches' friction at their points (their normal shares are the rows').
-    let rubbed: f64 = patches
-        .iter()
-        .zip(&solved.patch)
-        .flat_map(|(p, imps)| {
-            let n = p.axes.0.cross(&p.axes.1);
-            p.points.iter().zip(imps).map(move |(q, imp)| {
-                let after = solved.v + solved.w.cross(&q.arm);
-                let before = v0 + w0.cross(&q.arm);
-                0.5 * (imp - n * n.dot(imp)).dot(&(after + before))
-            })
-        })
-        .sum();
-    rubbed
-        + rows
-            .iter()
-            .enumerate()
-            .map(|(i, c)| {
-                let after = solved.v + solved.w.cross(&c.arm);
-                let before = v0 + w0.cross(&c.arm);
-                let pn = solved.normal[i];
-                let approach = c.normal.dot(&before).min(0.0);
-                0.5 * solved.tangential[i].dot(&(after + before))
-                    + 0.5 * pn * (approach + c.normal.dot(&after))
-            })
-            .sum::<f64>()
+/// What the step's contacts are: the touches kept, the patches geometry found among them, and
+/// the rows and patches of the solve.
+struct Contacts {
+    found: Touches,
+    flush: Vec<narrow::Patch>,
+    rows: Vec<ContactRow>,
+    patches: Vec<Patch>,
 }
 
 /// The impulse solve of a step: it stops when a sweep changes no impulse by more than this
@@ -146,13 +121,37 @@ const SUPPORT_GAP: f64 = 1e-6;
 const DEPTH_TOL: f64 = 1e-8;
 
 impl Ctx<'_> {
-    /// The base's touches at `pose` within `reach` (m), each point meeting the faces it may
-    /// reach within a `drift` (m): the flat footprint's, or a cast base's relief's.
-    fn touches(&self, pose: &BodyPose, reach: f64, drift: f64) -> Touches {
-        match self.relief {
-            Some(relief) => relief_touches(self.ground, relief, pose, reach, drift),
-            None => touches(self.ground, self.base, pose, reach, drift),
+    /// The body at `pose` as the narrow phase sees it: the flat footprint, or a cast base's
+    /// relief.
+    fn placed(&self, pose: &BodyPose) -> Placed<'_> {
+        Placed {
+            body: BODY,
+            pose: *pose,
+            underside: match self.relief {
+                Some(relief) => Underside::Cast(relief),
+                None => Underside::Flat(self.base),
+            },
         }
+    }
+
+    /// The base's touches at `pose` within `reach` (m), each point meeting the faces it may
+    /// reach within a `drift` (m).
+    fn touches(&self, pose: &BodyPose, reach: f64, drift: f64) -> Touches {
+        self.placed(pose).on_rock(self.ground, reach, drift)
+    }
+
+    /// The friction criterion between the body and the rock's face `face`.
+    fn criterion(&self, face: usize) -> Friction {
+        let rock = Surface::Rock(face as u32);
+        self.sim
+            .strengths()
+            .between(rock, Surface::Body(BODY))
+            .criterion
+    }
+
+    /// The contact pairs of the `placed` body's `touches` on the rock.
+    fn pairs(&self, placed: &Placed<'_>, touches: &[Touch]) -> Vec<ContactPair> {
+        contact::on_rock(placed.body, touches, &|f| self.criterion(f))
     }
 
     /// Moves the pose out of the ground where the step's drift left it in (by the curvature of
@@ -161,17 +160,14 @@ impl Ctx<'_> {
     /// the distances to close; the velocities are kept (post-stabilisation).
     fn project_out(&self, s: &mut BodyState, body: &Body) {
         for _ in 0..4 {
-            let found = self.touches(&s.pose, 0.0, 0.0);
+            let placed = self.placed(&s.pose);
+            let found = placed.on_rock(self.ground, 0.0, 0.0);
             let worst = found.touches.iter().map(|t| t.gap).fold(0.0, f64::min);
             if worst >= -DEPTH_TOL * self.size {
                 return;
             }
-            // Frictionless, each gap the distance to close.
-            let rows: Vec<ContactRow> = found
-                .touches
-                .iter()
-                .map(|c| row_of(c, s, 0.0, c.gap, Vector3::zeros()))
-                .collect();
+            let pairs = self.pairs(&placed, &found.touches);
+            let rows = contact::closing_rows(&pairs, &[s.pose.cm]);
             let body = Body {
                 inv_inertia: s
                     .world_inertia(&self.inertia)
@@ -179,8 +175,15 @@ impl Ctx<'_> {
                     .unwrap_or(body.inv_inertia),
                 ..*body
             };
-            let moved =
-                impulses::solve(&body, Vector3::zeros(), Vector3::zeros(), &rows, 1e-12, 400);
+            let still = Motion {
+                v: Vector3::zeros(),
+                w: Vector3::zeros(),
+            };
+            let until = Until {
+                tol: 1e-12,
+                max_sweeps: 400,
+            };
+            let moved = impulses::solve(&[body], &[still], &rows, &[], until).motion[BODY];
             let (v, w) = (s.v, s.w);
             s.v = moved.v;
             s.w = moved.w;
@@ -202,15 +205,6 @@ impl Ctx<'_> {
         (force, moment, force - weight)
     }
 
-    /// μ of face `face`: its Coulomb coefficient (a base takes no stress-dependent criterion;
-    /// `Simulation::builder` refuses one).
-    fn mu(&self, face: usize) -> f64 {
-        match self.sim.strengths().face(face as u32).criterion {
-            crate::model::Friction::Coulomb { mu_k } => mu_k,
-            other => other.coefficient(1.0),
-        }
-    }
-
     /// Whether a rigid equilibrium of the block at rest at `pose` under the loads at time `t`
     /// exists (`mechanics::held`): forces at the touches within [`SUPPORT_GAP`] of the base's
     /// size, each within its cone, that balance the loads. Necessary for static friction to
@@ -223,7 +217,8 @@ impl Ctx<'_> {
     }
 
     /// The touches within [`SUPPORT_GAP`] of the base's size at `pose`, as supports free to
-    /// carry any force within their cones.
+    /// carry any force within their cones: of those with one normal and one criterion, their
+    /// hull's corners (`mechanics::held::hull_supports`).
     fn supports(&self, pose: &BodyPose) -> Vec<Support> {
         let reach = SUPPORT_GAP * self.size;
         let all: Vec<Support> = self
@@ -234,27 +229,10 @@ impl Ctx<'_> {
             .map(|c| Support {
                 arm: c.on_base - pose.cm,
                 normal: c.normal,
-                mu: self.mu(c.face),
+                criterion: self.criterion(c.face),
             })
             .collect();
-        // Supports of one normal (to 10⁻⁹ rad) and one μ hold what the corners of their hull
-        // (across the normal) hold: a force at a point inside is the convex combination of the
-        // same force, within the same cone, at the corners, with the same resultant and moment.
-        // So the static check's program has the corners only, however finely the rock under a
-        // flat part of the base is meshed.
-        let mut rest: Vec<usize> = (0..all.len()).collect();
-        let mut out = Vec::new();
-        while let Some(&first) = rest.first() {
-            let (n, mu) = (all[first].normal, all[first].mu);
-            let same = |m: &Vector3<f64>| m.dot(&n) > 0.0 && m.cross(&n).norm() <= 1e-9;
-            let (group, others): (Vec<usize>, Vec<usize>) = rest
-                .iter()
-                .partition(|&&i| same(&all[i].normal) && all[i].mu == mu);
-            rest = others;
-            let corners = hull_across(&n, group.iter().map(|&i| all[i].arm));
-            out.extend(corners.into_iter().map(|k| all[group[k]]));
-        }
-        out
+        hull_supports(&all)
     }
 
     /// The yield acceleration of the block at rest at `pose` (`derivations/11-dam-loads.md`
@@ -295,107 +273,99 @@ impl Ctx<'_> {
         self.body.block().mass * self.body.loads().gravity * h
     }
 
-    /// One step of `h` (s) from state `s` at time `t`, the impulses started from those of the
-    /// last step, `warm`.
-    pub fn step(&self, s: &mut BodyState, t: f64, h: f64, warm: &Stepped) -> Stepped {
+    /// The body in state `s` at time `t` over a step `h` before its contacts: the loads alone
+    /// give its free velocities (the gyroscopic couple explicit), and its speed how far its
+    /// touches are sought.
+    fn free(&self, s: &BodyState, t: f64, h: f64) -> Free {
         let mass = self.body.block().mass;
         let inertia = s.world_inertia(&self.inertia);
         let inv_inertia = inertia.try_inverse().unwrap_or_else(Matrix3::zeros);
         let (force, moment, driving) = self.loads(&s.pose, t);
-        // The free velocities: the loads alone (the gyroscopic couple explicit).
-        let v_free = s.v + force * (h / mass);
-        let w_free = s.w + inv_inertia * (moment - s.w.cross(&(inertia * s.w))) * h;
-        let reach_speed = v_free.norm() + w_free.norm() * self.size;
-        let reach = 1e-3 * self.size + 2.0 * h * reach_speed;
-        let found = self.touches(&s.pose, reach, h * reach_speed);
-        let body = Body {
-            inv_mass: 1.0 / mass,
-            inv_inertia,
-        };
-        let mu = |f: usize| self.mu(f);
+        let v = s.v + force * (h / mass);
+        let w = s.w + inv_inertia * (moment - s.w.cross(&(inertia * s.w))) * h;
+        let reach_speed = v.norm() + w.norm() * self.size;
+        Free {
+            body: Body {
+                inv_mass: 1.0 / mass,
+                inv_inertia,
+            },
+            motion: Motion { v, w },
+            moment,
+            driving,
+            reach: 1e-3 * self.size + 2.0 * h * reach_speed,
+            drift: h * reach_speed,
+        }
+    }
+
+    /// The contact pipeline of a step of `h` at `pose`, the touches sought within `reach` and
+    /// `drift` of the free motion, each row and point started from the last step's, `warm`:
+    /// the narrow phase, the patches where the base lies flush (their inner touches left out),
+    /// the pairs with their strengths, the rows and the solve's patches.
+    fn contacts(&self, pose: &BodyPose, h: f64, free: &Free, warm: &Stepped) -> Contacts {
+        let placed = self.placed(pose);
+        let found = placed.on_rock(self.ground, free.reach, free.drift);
         let bed = Bed {
             ground: self.ground,
             quadrature: self.quadrature,
             size: self.size,
-            mu: &mu,
         };
-        // Where the base (or a cast base's relief) lies flush on its rock, it presses over the
-        // area lying there.
-        let mut flushes = flush(&bed, s, &found.touches, &warm.patch);
-        // The touches inside a flush patch's hull are left out (`flush`): the rows are the
-        // rest, the patches' members renumbered.
-        let mut found = found;
-        if flushes.iter().any(|f| !f.dropped.is_empty()) {
-            let mut keep = vec![true; found.touches.len()];
-            for f in &flushes {
-                for &i in &f.dropped {
-                    keep[i] = false;
-                }
-            }
-            // Each kept touch's number among the kept.
-            let new_index: Vec<usize> = keep
-                .iter()
-                .scan(0, |n, &k| {
-                    let here = *n;
-                    *n += usize::from(k);
-                    Some(here)
-                })
-                .collect();
-            for f in flushes.iter_mut() {
-                for m in f.patch.members.iter_mut() {
-                    *m = new_index[*m];
-                }
-                f.dropped.clear();
-            }
-            let mut k = keep.iter().copied();
-            found.touches.retain(|_| k.next().unwrap_or(true));
+        let Reduced {
+            touches: found,
+            patches: flush,
+        } = narrow::reduce(&bed, pose, found);
+        let pairs = self.pairs(&placed, &found.touches);
+        let rows = contact::rows(&pairs, &[pose.cm], h, &warm.impulses);
+        let criterion = |f: usize| self.criterion(f);
+        let strength = (&criterion as &dyn Fn(usize) -> Friction, h);
+        let patches = contact::patches((placed.body, 0), &flush, strength, &warm.patch, self.size);
+        Contacts {
+            found,
+            flush,
+            rows,
+            patches,
         }
-        let rows: Vec<ContactRow> = found
-            .touches
-            .iter()
-            .enumerate()
-            .map(|(i, c)| {
-                // A gap closes at most to zero within the step; a depth (round-off, the
-                // curvature of a turn) is undone over a few steps, not thrown out in one.
-                let closing = if c.gap >= 0.0 { c.gap } else { 0.2 * c.gap } / h;
-                // The same touch at the last step: found in the same place while the touches
-                // stay the same (a base at rest on hundreds of surface vertices), else sought.
-                let same = |t: &Touch| t.feature == c.feature && t.face == c.face;
-                let guess = warm
-                    .impulses
-                    .get(i)
-                    .filter(|(t, _)| same(t))
-                    .or_else(|| warm.impulses.iter().find(|(t, _)| same(t)))
-                    .map_or_else(Vector3::zeros, |(_, p)| *p);
-                row_of(c, s, self.mu(c.face), closing, guess)
-            })
-            .collect();
-        let patches: Vec<Patch> = flushes.iter().map(|f| f.patch.clone()).collect();
-        let (tol, sweeps) = self.solve;
-        let solved =
-            impulses::solve_with_patches(&body, (v_free, w_free), &rows, &patches, tol, sweeps);
-        let (v0, w0) = (s.v, s.w);
-        s.v = solved.v;
-        s.w = solved.w;
-        s.work_applied += h * (driving.dot(&s.v) + moment.dot(&s.w));
-        s.work_contacts += contact_work(&rows, &patches, &solved, (v0, w0));
-        s.drift(h);
-        self.project_out(s, &body);
+    }
+
+    /// One step of `h` (s) from state `s` at time `t`, the impulses started from those of the
+    /// last step, `warm`.
+    pub fn step(&self, s: &mut BodyState, t: f64, h: f64, warm: &Stepped) -> Stepped {
+        let free = self.free(s, t, h);
+        let c = self.contacts(&s.pose, h, &free, warm);
+        let (tol, max_sweeps) = self.solve;
+        let until = Until { tol, max_sweeps };
+        let solved = impulses::solve(&[free.body], &[free.motion], &c.rows, &c.patches, until);
+        self.integrate(s, h, &free, (&c, &solved));
         Stepped {
-            impulses: found
+            impulses: c
+                .found
                 .touches
                 .into_iter()
                 .zip(&solved.normal)
                 .zip(&solved.tangential)
                 .map(|((t, pn), pt)| (t, t.normal * *pn + pt))
                 .collect(),
-            patch: flushes
+            patch: c
+                .flush
                 .iter()
                 .zip(&solved.patch)
-                .flat_map(|(f, imps)| f.spots.iter().copied().zip(imps.iter().copied()))
+                .flat_map(|(p, imps)| p.points.iter().map(|q| q.spot).zip(imps.iter().copied()))
                 .collect(),
-            off_ground: found.off_ground,
+            off_ground: c.found.off_ground,
             h,
         }
+    }
+
+    /// The state `s` after a step of `h` whose contacts `c` the solve `solved`: the velocities
+    /// it leaves, the work of the loads and of the contacts, the drift, the pose moved out of
+    /// the ground.
+    fn integrate(&self, s: &mut BodyState, h: f64, free: &Free, (c, solved): (&Contacts, &Solved)) {
+        let before = Motion { v: s.v, w: s.w };
+        let after = solved.motion[BODY];
+        s.v = after.v;
+        s.w = after.w;
+        s.work_applied += h * (free.driving.dot(&s.v) + free.moment.dot(&s.w));
+        s.work_contacts += impulses::work(&c.rows, &c.patches, solved, &[before]);
+        s.drift(h);
+        self.project_out(s, &free.body);
     }
 }

@@ -1,0 +1,99 @@
+//! The patches the impulse solve sees (`derivations/13-base-contact.md` §9): a body's flush
+//! part or points on a plane, its rows' normal impulse spread over its points as a uniform bed
+//! spreads it, each point with its friction and where it starts.
+
+use super::row::Shear;
+use crate::geometry::contact::{self, Spot};
+use crate::model::Friction;
+use nalgebra::Vector3;
+
+/// A touch among others on one plane starts from the last step's friction at the same features
+/// within this fraction of the body's size.
+const WARM_REACH: f64 = 0.05;
+
+/// A body lying flush on its rock (`derivations/13-base-contact.md` §9): the rows on it carry
+/// the body's normal impulse, whose resultant `mechanics::pressure::spread` shares over its
+/// points as a rigid base on a uniform bed does; the friction then acts at the points, each
+/// within its disc at its share, and not at the rows. Where no such pressure has the rows'
+/// resultant (it is at the edge of the points' hull: the base about to tip), the rows carry
+/// their own friction, as without a patch.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Patch {
+    /// The body lying there (its rows are against the rock).
+    pub body: usize,
+    /// The rows on it.
+    pub members: Vec<usize>,
+    /// Two unit axes in its plane (with the rows' normal, a right-handed frame).
+    pub axes: (Vector3<f64>, Vector3<f64>),
+    /// Its points.
+    pub points: Vec<PatchPoint>,
+}
+
+/// One point of a patch.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PatchPoint {
+    /// r: from the body's centre of mass to the point (m).
+    pub arm: Vector3<f64>,
+    /// Its weight: the area it stands for (m²), its length along an edge (m), or one.
+    pub weight: f64,
+    /// What its friction may carry.
+    pub shear: Shear,
+    /// Where the solve starts: its friction impulse at the last step (N·s, world), or zero.
+    pub guess: Vector3<f64>,
+}
+
+/// Body `body`'s patches from geometry's `found` over a step of `h` (s), their members
+/// numbered from `first_row` (the body's first row), each point with the criterion of the
+/// rock's face under it and the impulse it carried at the last step, `warm` (by point; a
+/// touch among others on one plane, at the same features nearest to it within a twentieth of
+/// the body's `size`, m: a crossing slides along its edges as the block moves).
+pub fn patches(
+    (body, first_row): (usize, usize),
+    found: &[contact::Patch],
+    (criterion_of, h): (&dyn Fn(usize) -> Friction, f64),
+    warm: &[(Spot, Vector3<f64>)],
+    size: f64,
+) -> Vec<Patch> {
+    found
+        .iter()
+        .map(|p| Patch {
+            body,
+            members: p.members.iter().map(|m| m + first_row).collect(),
+            axes: p.axes,
+            points: p
+                .points
+                .iter()
+                .map(|q| PatchPoint {
+                    arm: q.arm,
+                    weight: q.weight,
+                    shear: Shear {
+                        criterion: criterion_of(q.face),
+                        h,
+                    },
+                    guess: warm_at(&q.spot, warm, size),
+                })
+                .collect(),
+        })
+        .collect()
+}
+
+/// The last step's impulse at `spot` among `warm`, or zero.
+fn warm_at(spot: &Spot, warm: &[(Spot, Vector3<f64>)], size: f64) -> Vector3<f64> {
+    match spot {
+        Spot::Area(_) | Spot::Edge(..) => warm
+            .iter()
+            .find(|(w, _)| w == spot)
+            .map_or_else(Vector3::zeros, |(_, p)| *p),
+        Spot::Touch(feature, face, body) => warm
+            .iter()
+            .filter_map(|(w, p)| match w {
+                Spot::Touch(f, g, at) if f == feature && g == face => {
+                    Some(((at - body).norm(), *p))
+                }
+                _ => None,
+            })
+            .filter(|(d, _)| *d <= WARM_REACH * size)
+            .min_by(|a, b| a.0.total_cmp(&b.0))
+            .map_or_else(Vector3::zeros, |(_, p)| p),
+    }
+}
