@@ -57,17 +57,21 @@ pub fn held(
         return Ok(false);
     }
     check_scales(weight, size)?;
-    let found = settled(supports, weight, |mu| {
-        let (p, b) = Program::of(supports, mu, force, moment, (weight, size));
-        p.solve(&b, 0, false)
-    })?;
-    Ok(found.is_some())
+    match constant(supports) {
+        Some(mu) => {
+            let (p, b) = Program::of(supports, &mu, force, moment, (weight, size));
+            Ok(p.solve(&b, 0, false)?.is_some())
+        }
+        None => Ok(settled(supports, force, moment, (weight, size))?.is_some()),
+    }
 }
 
 /// The most of a further load the `supports` hold: the largest s ≥ 0 for which the force
 /// `force` + s `extra.0` and the moment `moment` + s `extra.1` (N, N·m about the centre of
-/// mass) are held (`derivations/13-base-contact.md` §6, one cone program maximising s). Zero
-/// where the loads as given are not held; None where any multiple up to [`FAR`] is.
+/// mass) are held (`derivations/13-base-contact.md` §6, one cone program maximising s), a
+/// stress-dependent criterion's coefficients those settled at the loads as given (as the
+/// frame's yield acceleration takes them at its normal forces at rest). Zero where the loads
+/// as given are not held; None where any multiple up to [`FAR`] is.
 pub fn reach(
     supports: &[Support],
     force: Vector3<f64>,
@@ -80,28 +84,32 @@ pub fn reach(
         return Ok(Some(0.0));
     }
     check_scales(weight, size)?;
-    let found = settled(supports, weight, |mu| {
-        let (mut p, mut b) = Program::of(supports, mu, force, moment, (weight, size));
-        // Column s: the further load on the six equations; s ≥ 0 and s ≤ FAR as two more rows.
-        let col = p.columns.len();
-        p.columns.push(Vec::new());
-        for (r, v) in (extra.0 / weight)
-            .iter()
-            .chain((extra.1 / (weight * size)).iter())
-            .enumerate()
-        {
-            p.put(r, col, *v);
-        }
-        let (low, high) = (p.rows(), p.rows() + 1);
-        p.put(low, col, -1.0);
-        p.put(high, col, 1.0);
-        b.extend([0.0, FAR]);
-        p.solve(&b, 2, true)
-    })?;
-    match found {
+    let mu = match constant(supports) {
+        Some(mu) => mu,
+        None => match settled(supports, force, moment, (weight, size))? {
+            Some(mu) => mu,
+            None => return Ok(Some(0.0)),
+        },
+    };
+    let (mut p, mut b) = Program::of(supports, &mu, force, moment, (weight, size));
+    // Column s: the further load on the six equations; s ≥ 0 and s ≤ FAR as two more rows.
+    let col = p.columns.len();
+    p.columns.push(Vec::new());
+    for (r, v) in (extra.0 / weight)
+        .iter()
+        .chain((extra.1 / (weight * size)).iter())
+        .enumerate()
+    {
+        p.put(r, col, *v);
+    }
+    let (low, high) = (p.rows(), p.rows() + 1);
+    p.put(low, col, -1.0);
+    p.put(high, col, 1.0);
+    b.extend([0.0, FAR]);
+    match p.solve(&b, 2, true)? {
         None => Ok(Some(0.0)),
-        Some(s) if s >= FAR * (1.0 - 1e-6) => Ok(None),
-        Some(s) => Ok(Some(s.max(0.0))),
+        Some((s, _)) if s >= FAR * (1.0 - 1e-6) => Ok(None),
+        Some((s, _)) => Ok(Some(s.max(0.0))),
     }
 }
 
@@ -126,36 +134,38 @@ pub fn hull_supports(all: &[Support]) -> Vec<Support> {
     out
 }
 
-/// What `program` gives at the supports' coefficients (its value, None where it is
-/// infeasible): at once where each criterion's is a constant (Coulomb's μ), else at the
-/// coefficients settled with the normal forces `program`'s solution gives each support (from
-/// the weight shared equally; at most [`MOST_SOLVES`] programs, the last one's value).
-fn settled(
-    supports: &[Support],
-    weight: f64,
-    mut program: impl FnMut(&[f64]) -> Result<Option<(f64, Vec<f64>)>, StaticError>,
-) -> Result<Option<f64>, StaticError> {
-    let constant: Option<Vec<f64>> = supports
+/// Each support's μ where every criterion's is a constant (Coulomb's); None where one
+/// depends on the normal stress.
+fn constant(supports: &[Support]) -> Option<Vec<f64>> {
+    supports
         .iter()
         .map(|s| match s.criterion {
             Friction::Coulomb { mu_k } => Some(mu_k),
             _ => None,
         })
-        .collect();
-    if let Some(mu) = constant {
-        return Ok(program(&mu)?.map(|(v, _)| v));
-    }
+        .collect()
+}
+
+/// Each support's secant coefficient at its normal force, settled with the forces of the
+/// feasibility program under `force` and `moment` (from the weight shared equally; at most
+/// [`MOST_SOLVES`] programs): the coefficients where the program holds the block at each;
+/// None where one does not.
+fn settled(
+    supports: &[Support],
+    force: Vector3<f64>,
+    moment: Vector3<f64>,
+    (weight, size): (f64, f64),
+) -> Result<Option<Vec<f64>>, StaticError> {
     let share = weight / supports.len() as f64;
     let mut mu: Vec<f64> = supports
         .iter()
         .map(|s| s.criterion.coefficient(share))
         .collect();
-    let mut value = None;
     for _ in 0..MOST_SOLVES {
-        let Some((v, x)) = program(&mu)? else {
+        let (p, b) = Program::of(supports, &mu, force, moment, (weight, size));
+        let Some((_, x)) = p.solve(&b, 0, false)? else {
             return Ok(None);
         };
-        value = Some(v);
         let mut change: f64 = 0.0;
         for (i, s) in supports.iter().enumerate() {
             let next = s.criterion.coefficient(x[3 * i].max(0.0) * weight);
@@ -166,7 +176,7 @@ fn settled(
             break;
         }
     }
-    Ok(value)
+    Ok(Some(mu))
 }
 
 /// The largest further load [`reach`] looks for (in units of the further load).
@@ -416,5 +426,29 @@ mod tests {
             reach(&s, -Vector3::y() * W, Vector3::zeros(), down, W, 2.0).unwrap(),
             None
         );
+    }
+
+    #[test]
+    fn a_push_is_held_up_to_what_a_stress_dependent_criterion_gives_each_corner_at_its_share() {
+        // Barton–Choubey at four corners in the plane of the CM (nothing tips the block): each
+        // carries W/4, whose secant coefficient μ(W/4) = tan(JRC log10(JCS A / (W/4)) + φr)
+        // holds a push up to μ(W/4) W, settled from the program's forces; the reach of a push
+        // is that multiple.
+        let criterion = Friction::barton_choubey(10.0, 5.0e7, 30f64.to_radians(), 0.01);
+        let mut s = corners(1.0, 0.0, 0.0);
+        for c in &mut s {
+            c.criterion = criterion;
+        }
+        let sigma = W / 4.0 / 0.01;
+        let mu = (10.0 * (5.0e7 / sigma).log10() + 30.0).to_radians().tan();
+        assert!((criterion.coefficient(W / 4.0) - mu).abs() < 1e-12);
+        let push = |h: f64| holds(&s, Vector3::new(h * W, 0.0, 0.0), Vector3::zeros());
+        assert!(push(0.99 * mu));
+        assert!(!push(1.01 * mu));
+        let along = (Vector3::new(W, 0.0, 0.0), Vector3::zeros());
+        let r = reach(&s, -Vector3::y() * W, Vector3::zeros(), along, W, 2.0).unwrap();
+        assert!((r.unwrap() - mu).abs() < 1e-6, "{r:?} against {mu}");
+        // At the weight's whole, a coefficient JRC log10(4) = 6° flatter would hold less.
+        assert!(criterion.coefficient(W) < 0.9 * mu);
     }
 }

@@ -288,19 +288,9 @@ pub(crate) fn check_anchored(settings: &RunSettings, anchored: bool) -> Result<(
     Ok(())
 }
 
-/// What a base's contacts take for now: Coulomb friction on every face, no cohesion (a
-/// stress-dependent criterion needs each contact's normal force, which a base's many contacts
-/// share by impulses; cohesion needs a bonded area).
+/// What a base's contacts take for now: every friction criterion (each touch's the face's,
+/// at its own normal force), no cohesion (cohesion needs a bonded area).
 fn check_base_friction(strengths: &Strengths) -> Result<(), ModelError> {
-    let criteria =
-        std::iter::once(&strengths.friction).chain(strengths.faces.iter().map(|f| &f.friction));
-    if criteria.clone().any(Friction::is_stress_dependent) {
-        return Err(ModelError::new(
-            "solver.contacts",
-            "a base touching the ground (contacts = \"base\") takes Coulomb friction only; \
-             use contacts = \"frame\" for a stress-dependent criterion",
-        ));
-    }
     if strengths.has_cohesion() {
         return Err(ModelError::new(
             "friction.cohesion_pa",
@@ -425,13 +415,23 @@ mod tests {
             .build()
             .unwrap_err();
         assert_eq!(e.key, "friction.mu_k");
+        // A base takes every criterion, but no cohesion yet.
         let barton = Friction::barton_choubey(10.0, 50e6, 0.5, 2.0);
+        assert!(
+            builder()
+                .friction(barton)
+                .settings(on_base())
+                .build()
+                .is_ok()
+        );
+        let mut bonded = Strengths::new(barton);
+        bonded.cohesion_pa = 2e5;
         let e = builder()
-            .friction(barton)
+            .strengths(bonded)
             .settings(on_base())
             .build()
             .unwrap_err();
-        assert_eq!(e.key, "solver.contacts");
+        assert_eq!(e.key, "friction.cohesion_pa");
     }
 
     #[test]

@@ -165,6 +165,65 @@ fn a_block_kicked_against_a_push_it_cannot_hold_turns_back_where_it_comes_to_res
 }
 
 #[test]
+fn a_block_pushed_along_level_rock_under_barton_choubey_slides_as_its_coefficient_at_its_stress_says()
+ {
+    // The 4 m square block, its CM in its base, on level rock under Barton–Choubey (JRC 10,
+    // JCS 50 MPa, φr 30°), each contact standing for 2/3 m²: the area of each of the base's 24
+    // quadrature points, over which the flush base presses evenly (nothing turns it: the push
+    // and the friction both act in the plane of its CM), each at the base's mean stress
+    // σ = W / A. Pushed through its CM by 1.5 times what friction at that stress holds, it
+    // slides at a = 0.5 g μ(σ), μ(σ) = tan(JRC log10(JCS / σ) + φr) the criterion's own
+    // coefficient there; and as a block under Coulomb's μ(σ) does, to the impulse solve's
+    // tolerance. (Before, a base took Coulomb friction only.)
+    let (g, t, h) = (9.81f64, 1.0, 1e-3);
+    let w = 1e6 * g;
+    let sigma = w / 16.0;
+    let mu = (10.0 * (5.0e7 / sigma).log10() + 30.0).to_radians().tan();
+    let pushed = |text: String, by: f64| {
+        text.replace(
+            "hydraulic_force_n = 0.0",
+            &format!("hydraulic_force_n = {}", by * mu * w),
+        )
+    };
+    let barton = |by: f64| {
+        let text = pushed(block_scene(&plane(0.0, 0.0), mu, "", t, h), by)
+            .replace(
+                &format!("model = \"coulomb\"\nmu_k = {mu}"),
+                "model = \"barton-choubey\"\njrc = 10.0\njcs_pa = 5.0e7\nphi_r_deg = 30.0\n\
+                 contact_area_m2 = 0.6666666666666666",
+            )
+            .replace("[solver]", "[solver]\ncontacts = \"base\"");
+        assert!(text.contains("barton-choubey"), "{text}");
+        run(&text)
+    };
+    // Pushed by half of it, it is held.
+    assert_eq!(barton(0.5).termination.reason, Reason::DoesNotSlide);
+    let route = barton(1.5);
+    assert_eq!(route.termination.reason, Reason::TimeLimit);
+    // The steps' semi-implicit Euler at a constant acceleration: ½ a t (t + h), a first-order
+    // h/t past ½ a t².
+    let exact = 0.5 * 0.5 * g * mu * t * (t + h);
+    let last = route.rows.last().unwrap();
+    assert!(
+        (last.x_m - exact).abs() < 1e-6 * exact,
+        "{} against {exact}",
+        last.x_m
+    );
+    assert!(
+        last.z_m.abs() < 1e-9 && last.theta_deg.abs() < 1e-6,
+        "{last:?}"
+    );
+    let coulomb = run(&pushed(block_scene(&plane(0.0, 0.0), mu, "", t, h), 1.5));
+    let same = coulomb.rows.last().unwrap();
+    assert!(
+        (last.x_m - same.x_m).abs() < 1e-9 * exact,
+        "{} against {} under Coulomb",
+        last.x_m,
+        same.x_m
+    );
+}
+
+#[test]
 fn a_block_twisted_beyond_its_beds_friction_turns_though_forces_at_its_corners_could_hold_it() {
     // A 4 m square base on level rock, μ = 0.4, pushed by 0.05 W with a couple of 8.3 MN·m
     // (17 m off its centre). Forces at its corners could hold a couple of μ W √2 a = 11.1 MN·m,

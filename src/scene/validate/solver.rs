@@ -29,8 +29,9 @@ impl Reader<'_> {
             .as_ref()
             .is_some_and(|f| f.plane.is_some() || f.surface.is_some());
         let body = faces || raw.monolith.is_some();
-        // A base takes Coulomb friction without cohesion (`derivations/13-base-contact.md` §8):
-        // a scene with another criterion or with cohesion stays on its frame unless told.
+        // A base takes no cohesion (`derivations/13-base-contact.md` §8), and a scene with a
+        // stress-dependent criterion has always had its frame: either stays on its frame
+        // unless told.
         let coulomb = |model: Option<&str>, cohesion: Option<f64>| {
             model.is_none_or(|m| m == "coulomb") && cohesion.is_none_or(|c| c == 0.0)
         };
