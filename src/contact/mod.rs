@@ -21,7 +21,7 @@ pub mod row;
 
 pub use pair::{ContactPair, on_rock};
 pub use patch::{Patch, patches};
-pub use row::{ContactRow, Side, closing_rows, rows};
+pub use row::{ContactRow, Side, Warm, closing_rows, rows};
 // The rest of the types, for the tests and `internals`: the route builds them through the
 // functions above.
 #[cfg_attr(not(feature = "internals"), allow(unused_imports))]

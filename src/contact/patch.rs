@@ -2,7 +2,7 @@
 //! part or points on a plane, its rows' normal impulse spread over its points as a uniform bed
 //! spreads it, each point with its friction and where it starts.
 
-use super::row::Shear;
+use super::row::{Shear, Warm};
 use crate::geometry::contact::{self, Spot};
 use crate::model::Friction;
 use nalgebra::Vector3;
@@ -43,16 +43,17 @@ pub struct PatchPoint {
 }
 
 /// Body `body`'s patches from geometry's `found` over a step of `h` (s), their members
-/// numbered from `first_row` (the body's first row), each point with the criterion of the
-/// rock's face under it and the impulse it carried at the last step, `warm` (by point; a
-/// touch among others on one plane, at the same features nearest to it within a twentieth of
-/// the body's `size`, m: a crossing slides along its edges as the block moves).
+/// numbered from `first_row` (the body's first row), each point with the criterion
+/// `criterion_of` gives the rock's face under it and the impulse it carried at the last step
+/// (`warm`, by point; a touch among others on one plane, at the same features nearest to it
+/// within a twentieth of the body's size: a crossing slides along its edges as the block
+/// moves).
 pub fn patches(
     (body, first_row): (usize, usize),
     found: &[contact::Patch],
-    (criterion_of, h): (&dyn Fn(usize) -> Friction, f64),
-    warm: &[(Spot, Vector3<f64>)],
-    size: f64,
+    criterion_of: &dyn Fn(usize) -> Friction,
+    h: f64,
+    warm: &Warm<'_>,
 ) -> Vec<Patch> {
     found
         .iter()
@@ -70,7 +71,7 @@ pub fn patches(
                         criterion: criterion_of(q.face),
                         h,
                     },
-                    guess: warm_at(&q.spot, warm, size),
+                    guess: warm_at(&q.spot, warm.points, warm.size),
                 })
                 .collect(),
         })

@@ -4,6 +4,7 @@
 
 use super::pair::{Against, ContactPair};
 use crate::geometry::Touch;
+use crate::geometry::contact::Spot;
 use crate::model::Friction;
 use nalgebra::Vector3;
 
@@ -73,6 +74,17 @@ impl ContactRow {
     }
 }
 
+/// What one body's rows and patch points start from: the impulses of its last step.
+#[derive(Debug, Clone, Copy)]
+pub struct Warm<'a> {
+    /// Each touch the last step was solved with, in its order then, with its impulse (N·s).
+    pub touches: &'a [(Touch, Vector3<f64>)],
+    /// Each patch point's impulse (N·s).
+    pub points: &'a [(Spot, Vector3<f64>)],
+    /// The body's size (m): how far a touch among points on a plane is sought again.
+    pub size: f64,
+}
+
 /// The sides of pair `c` with the bodies' centres of mass `cms` (world, by body number).
 fn sides(c: &ContactPair, cms: &[Vector3<f64>]) -> (Side, Option<Side>) {
     let a = Side {
@@ -90,15 +102,16 @@ fn sides(c: &ContactPair, cms: &[Vector3<f64>]) -> (Side, Option<Side>) {
 /// The rows of a step of `h` (s) of one body's `pairs`, in their order, with the bodies'
 /// centres of mass `cms`: a gap closes at most to zero within the step, a depth (round-off,
 /// the curvature of a turn) is undone over a few steps, not thrown out in one. Each starts
-/// from the impulse the same touch carried at the last step, `warm` (the body's touches in
-/// their order then, each with its impulse): found in the same place while the touches stay
-/// the same (a base at rest on hundreds of surface vertices), else sought.
+/// from the impulse the same touch carried at the last step (`warm`): found in the same place
+/// while the touches stay the same (a base at rest on hundreds of surface vertices), else
+/// sought.
 pub fn rows(
     pairs: &[ContactPair],
     cms: &[Vector3<f64>],
     h: f64,
-    warm: &[(Touch, Vector3<f64>)],
+    warm: &Warm<'_>,
 ) -> Vec<ContactRow> {
+    let warm = warm.touches;
     pairs
         .iter()
         .enumerate()
@@ -210,6 +223,11 @@ mod tests {
         };
         // The last step's: corner 1 and 0 on face 2 (in another order), corner 2 on face 4.
         let warm = [touch(1, 2, 5.0), touch(0, 2, 7.0), touch(2, 4, 9.0)];
+        let warm = Warm {
+            touches: &warm,
+            points: &[],
+            size: 1.0,
+        };
         let r = rows(&pairs, &[cm], h, &warm);
         assert_eq!(r[0].guess.y, 7.0);
         assert_eq!(r[1].guess.y, 5.0);
@@ -236,7 +254,12 @@ mod tests {
             ..pair(1, 0, Vector3::new(1.0, 2.01, 0.0), 0, 0.01)
         };
         let cms = [Vector3::new(0.0, 1.0, 0.0), Vector3::new(0.5, 3.0, 0.0)];
-        let r = rows(&[c], &cms, 1e-3, &[])[0];
+        let none = Warm {
+            touches: &[],
+            points: &[],
+            size: 1.0,
+        };
+        let r = rows(&[c], &cms, 1e-3, &none)[0];
         assert_eq!(r.a.body, 1);
         assert!((r.a.arm - Vector3::new(0.5, -0.99, 0.0)).norm() < 1e-15);
         let b = r.b.unwrap();

@@ -36,11 +36,12 @@ pub(super) fn normal_at_point(
     let first = &rows[idx[0]];
     let (a, b) = (&first.a, first.b.as_ref());
     let u = out.velocity(a, b);
+    let (body_a, other) = (&bodies[a.body], b.map(|b| (&bodies[b.body], &b.arm)));
     let k = |x: &Vector3<f64>, y: &Vector3<f64>| {
-        let ka = bodies[a.body].k(&a.arm, x, y);
-        match b {
+        let ka = body_a.k(&a.arm, x, y);
+        match other {
             None => ka,
-            Some(b) => ka + bodies[b.body].k(&b.arm, x, y),
+            Some((body_b, arm_b)) => ka + body_b.k(arm_b, x, y),
         }
     };
     let mut w = Matrix3::zeros();

@@ -47,6 +47,7 @@ pub struct Body {
 impl Body {
     /// The velocity along `a` that a unit impulse along `b` at `arm` gives the body's point
     /// there: its effective inverse mass between the two directions.
+    #[inline]
     fn k(&self, arm: &Vector3<f64>, a: &Vector3<f64>, b: &Vector3<f64>) -> f64 {
         self.inv_mass * a.dot(b) + arm.cross(a).dot(&(self.inv_inertia * arm.cross(b)))
     }
@@ -63,6 +64,7 @@ pub struct Motion {
 
 impl Motion {
     /// The velocity of the body's point at `arm` from its centre of mass (m/s).
+    #[inline]
     pub fn at(&self, arm: &Vector3<f64>) -> Vector3<f64> {
         self.v + self.w.cross(arm)
     }
@@ -100,6 +102,7 @@ pub struct Solved {
 
 impl Solved {
     /// The velocity of the point of side `a` less that of side `b` (the rock's: zero).
+    #[inline(always)]
     fn velocity(&self, a: &Side, b: Option<&Side>) -> Vector3<f64> {
         let u = self.motion[a.body].at(&a.arm);
         match b {
@@ -109,17 +112,20 @@ impl Solved {
     }
 
     /// Adds the impulse `p` at side `a` and −`p` at side `b` to the bodies' velocities.
+    #[inline(always)]
     fn apply(&mut self, bodies: &[Body], a: &Side, b: Option<&Side>, p: Vector3<f64>) {
-        let on = |m: &mut Motion, s: &Side, p: Vector3<f64>| {
-            let body = &bodies[s.body];
-            m.v += p * body.inv_mass;
-            m.w += body.inv_inertia * s.arm.cross(&p);
-        };
-        on(&mut self.motion[a.body], a, p);
+        push(&mut self.motion[a.body], &bodies[a.body], &a.arm, p);
         if let Some(b) = b {
-            on(&mut self.motion[b.body], b, -p);
+            push(&mut self.motion[b.body], &bodies[b.body], &b.arm, -p);
         }
     }
+}
+
+/// Adds the impulse `p` at `arm` to the velocities `m` of `body`.
+#[inline(always)]
+fn push(m: &mut Motion, body: &Body, arm: &Vector3<f64>, p: Vector3<f64>) {
+    m.v += p * body.inv_mass;
+    m.w += body.inv_inertia * arm.cross(&p);
 }
 
 /// Over-relaxation of the normal updates in the first sweeps: a corner in a crease is two
@@ -147,13 +153,24 @@ fn frame_at(
     n: &Vector3<f64>,
     t: (Vector3<f64>, Vector3<f64>),
 ) -> Frame {
-    let k = |x: &Vector3<f64>, y: &Vector3<f64>| {
-        let ka = bodies[a.body].k(&a.arm, x, y);
-        match b {
-            None => ka,
-            Some(b) => ka + bodies[b.body].k(&b.arm, x, y),
+    let body_a = &bodies[a.body];
+    match b {
+        None => frame_of(|x, y| body_a.k(&a.arm, x, y), n, t),
+        Some(b) => {
+            let body_b = &bodies[b.body];
+            frame_of(|x, y| body_a.k(&a.arm, x, y) + body_b.k(&b.arm, x, y), n, t)
         }
-    };
+    }
+}
+
+/// The frame of normal `n` and tangents `t` whose effective inverse mass between two
+/// directions is `k`.
+#[inline]
+fn frame_of(
+    k: impl Fn(&Vector3<f64>, &Vector3<f64>) -> f64,
+    n: &Vector3<f64>,
+    t: (Vector3<f64>, Vector3<f64>),
+) -> Frame {
     let (t1, t2) = t;
     Frame {
         t1,
@@ -170,6 +187,7 @@ fn frame_at(
 
 /// Replaces the friction impulse `old` between sides `a` and `b` by the least-energy one
 /// within `radius`, the others held (the criterion's law for this point), and returns it.
+#[inline(always)]
 fn friction_at(
     out: &mut Solved,
     bodies: &[Body],

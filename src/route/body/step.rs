@@ -5,8 +5,9 @@
 //! the pose moved out of the ground.
 
 use super::state::BodyState;
-use crate::contact::{self, ContactPair, ContactRow, Patch};
-use crate::geometry::contact::{self as narrow, Bed, Placed, Quadrature, Reduced, Spot, Underside};
+use crate::contact::{self, ContactPair, ContactRow, Patch, Warm};
+use crate::geometry::contact::{self as geometric, Bed, Placed, Quadrature, Reduced, Spot};
+use crate::geometry::contact::{Underside, reduce};
 use crate::geometry::{BodyPose, Feature, Footprint, Ground, Relief, Touch, Touches};
 use crate::mechanics::held::{Support, held, hull_supports, reach};
 use crate::mechanics::impulses::{self, Body, Motion, Solved, Until};
@@ -99,7 +100,7 @@ struct Free {
 /// the rows and patches of the solve.
 struct Contacts {
     found: Touches,
-    flush: Vec<narrow::Patch>,
+    flush: Vec<geometric::Patch>,
     rows: Vec<ContactRow>,
     patches: Vec<Patch>,
 }
@@ -302,8 +303,10 @@ impl Ctx<'_> {
     /// the narrow phase, the patches where the base lies flush (their inner touches left out),
     /// the pairs with their strengths, the rows and the solve's patches.
     fn contacts(&self, pose: &BodyPose, h: f64, free: &Free, warm: &Stepped) -> Contacts {
+        // The narrow phase: the touches within reach.
         let placed = self.placed(pose);
         let found = placed.on_rock(self.ground, free.reach, free.drift);
+        // The patches where the base lies flush, the touches inside a face's hull left out.
         let bed = Bed {
             ground: self.ground,
             quadrature: self.quadrature,
@@ -312,12 +315,18 @@ impl Ctx<'_> {
         let Reduced {
             touches: found,
             patches: flush,
-        } = narrow::reduce(&bed, pose, found);
+        } = reduce(&bed, pose, found);
+        // The pairs, each with its face's criterion; the rows and the solve's patches, each
+        // started from the last step.
         let pairs = self.pairs(&placed, &found.touches);
-        let rows = contact::rows(&pairs, &[pose.cm], h, &warm.impulses);
+        let warm = Warm {
+            touches: &warm.impulses,
+            points: &warm.patch,
+            size: self.size,
+        };
+        let rows = contact::rows(&pairs, &[pose.cm], h, &warm);
         let criterion = |f: usize| self.criterion(f);
-        let strength = (&criterion as &dyn Fn(usize) -> Friction, h);
-        let patches = contact::patches((placed.body, 0), &flush, strength, &warm.patch, self.size);
+        let patches = contact::patches((placed.body, 0), &flush, &criterion, h, &warm);
         Contacts {
             found,
             flush,
@@ -355,9 +364,9 @@ impl Ctx<'_> {
         }
     }
 
-    /// The state `s` after a step of `h` whose contacts `c` the solve `solved`: the velocities
-    /// it leaves, the work of the loads and of the contacts, the drift, the pose moved out of
-    /// the ground.
+    /// The state `s` after a step of `h` whose contacts `c` were solved as `solved`: the
+    /// velocities they leave, the work of the loads and of the contacts, the drift, the pose
+    /// moved out of the ground.
     fn integrate(&self, s: &mut BodyState, h: f64, free: &Free, (c, solved): (&Contacts, &Solved)) {
         let before = Motion { v: s.v, w: s.w };
         let after = solved.motion[BODY];
