@@ -5,6 +5,7 @@
 //! geometry of contact (`src/geometry/contact/`: the narrow phase and the patches) and the
 //! solve (`src/mechanics/impulses/`):
 //!
+//! * [`bodies`]: the bodies of a simulation as the narrow phase sees them.
 //! * [`pair`]: a [`ContactPair`] — which body, against a face of the rock or another body, the
 //!   point, the unit normal, the gap, the features and the pair's friction criterion.
 //! * [`row`]: a [`ContactRow`] — body `a`, body `b` or the rock, each body's arm, the normal,
@@ -14,15 +15,16 @@
 //!   warm start.
 //! * [`quadrature`]: a body's quadrature points, from its base or its cast relief.
 
+pub mod bodies;
 pub mod pair;
 pub mod patch;
 pub mod quadrature;
 pub mod row;
 
-pub use pair::{ContactPair, on_rock};
+pub use pair::{ContactPair, on_rock, rock_criterion};
 pub use patch::{Patch, patches};
 pub use row::{ContactRow, Side, Warm, closing_rows, rows};
-// The rest of the types, for the tests and `internals`: the route builds them through the
-// functions above.
+// The rest, for the tests and `internals`: the route builds these types through the functions
+// above, and follows one body (`placed` gives every body of a simulation).
 #[cfg_attr(not(feature = "internals"), allow(unused_imports))]
-pub use {pair::Against, patch::PatchPoint, row::Shear};
+pub use {bodies::placed, pair::Against, patch::PatchPoint, row::Shear};

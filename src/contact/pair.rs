@@ -3,7 +3,7 @@
 
 use crate::geometry::contact::BodyTouch;
 use crate::geometry::{BodyPose, Feature, Touch};
-use crate::model::Friction;
+use crate::model::{Friction, Strengths, Surface};
 use nalgebra::Vector3;
 
 /// What a body touches.
@@ -89,15 +89,17 @@ impl ContactPair {
     }
 }
 
+/// The friction criterion between face `face` of the rock and body `body` (`Strengths::between`).
+pub fn rock_criterion(strengths: &Strengths, face: usize, body: usize) -> Friction {
+    let rock = Surface::Rock(face as u32);
+    strengths.between(rock, Surface::Body(body)).criterion
+}
+
 /// Body `body`'s pairs on the rock from its `touches`, in their order, each with the criterion
-/// `criterion_of` gives its face.
-pub fn on_rock(
-    body: usize,
-    touches: &[Touch],
-    criterion_of: &dyn Fn(usize) -> Friction,
-) -> Vec<ContactPair> {
+/// between its face and the body.
+pub fn on_rock(body: usize, touches: &[Touch], strengths: &Strengths) -> Vec<ContactPair> {
     touches
         .iter()
-        .map(|t| ContactPair::on_rock(body, t, criterion_of(t.face)))
+        .map(|t| ContactPair::on_rock(body, t, rock_criterion(strengths, t.face, body)))
         .collect()
 }

@@ -2,9 +2,10 @@
 //! part or points on a plane, its rows' normal impulse spread over its points as a uniform bed
 //! spreads it, each point with its friction and where it starts.
 
+use super::pair::rock_criterion;
 use super::row::{Shear, Warm};
 use crate::geometry::contact::{self, Spot};
-use crate::model::Friction;
+use crate::model::Strengths;
 use nalgebra::Vector3;
 
 /// A touch among others on one plane starts from the last step's friction at the same features
@@ -43,15 +44,14 @@ pub struct PatchPoint {
 }
 
 /// Body `body`'s patches from geometry's `found` over a step of `h` (s), their members
-/// numbered from `first_row` (the body's first row), each point with the criterion
-/// `criterion_of` gives the rock's face under it and the impulse it carried at the last step
-/// (`warm`, by point; a touch among others on one plane, at the same features nearest to it
-/// within a twentieth of the body's size: a crossing slides along its edges as the block
-/// moves).
+/// numbered from `first_row` (the body's first row), each point with the criterion between the
+/// rock's face under it and the body and the impulse it carried at the last step (`warm`, by
+/// point; a touch among others on one plane, at the same features nearest to it within a
+/// twentieth of the body's size: a crossing slides along its edges as the block moves).
 pub fn patches(
     (body, first_row): (usize, usize),
     found: &[contact::Patch],
-    criterion_of: &dyn Fn(usize) -> Friction,
+    strengths: &Strengths,
     h: f64,
     warm: &Warm<'_>,
 ) -> Vec<Patch> {
@@ -68,7 +68,7 @@ pub fn patches(
                     arm: q.arm,
                     weight: q.weight,
                     shear: Shear {
-                        criterion: criterion_of(q.face),
+                        criterion: rock_criterion(strengths, q.face, body),
                         h,
                     },
                     guess: warm_at(&q.spot, warm.points, warm.size),

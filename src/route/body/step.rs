@@ -13,7 +13,7 @@ use crate::mechanics::held::{Support, held, hull_supports, reach};
 use crate::mechanics::impulses::{self, Body, Motion, Solved, Until};
 use crate::mechanics::loads::Applied;
 use crate::mechanics::static_friction::{StaticError, YieldAcceleration, least_over_directions};
-use crate::model::{self, Friction, Simulation, Surface, Tendon};
+use crate::model::{self, Simulation, Tendon};
 use nalgebra::{Matrix3, Vector3};
 
 /// The body's number among the bodies: the route follows the first.
@@ -141,18 +141,9 @@ impl Ctx<'_> {
         self.placed(pose).on_rock(self.ground, reach, drift)
     }
 
-    /// The friction criterion between the body and the rock's face `face`.
-    fn criterion(&self, face: usize) -> Friction {
-        let rock = Surface::Rock(face as u32);
-        self.sim
-            .strengths()
-            .between(rock, Surface::Body(BODY))
-            .criterion
-    }
-
     /// The contact pairs of the `placed` body's `touches` on the rock.
     fn pairs(&self, placed: &Placed<'_>, touches: &[Touch]) -> Vec<ContactPair> {
-        contact::on_rock(placed.body, touches, &|f| self.criterion(f))
+        contact::on_rock(placed.body, touches, self.sim.strengths())
     }
 
     /// Moves the pose out of the ground where the step's drift left it in (by the curvature of
@@ -230,7 +221,7 @@ impl Ctx<'_> {
             .map(|c| Support {
                 arm: c.on_base - pose.cm,
                 normal: c.normal,
-                criterion: self.criterion(c.face),
+                criterion: contact::rock_criterion(self.sim.strengths(), c.face, BODY),
             })
             .collect();
         hull_supports(&all)
@@ -325,8 +316,8 @@ impl Ctx<'_> {
             size: self.size,
         };
         let rows = contact::rows(&pairs, &[pose.cm], h, &warm);
-        let criterion = |f: usize| self.criterion(f);
-        let patches = contact::patches((placed.body, 0), &flush, &criterion, h, &warm);
+        let strengths = self.sim.strengths();
+        let patches = contact::patches((placed.body, 0), &flush, strengths, h, &warm);
         Contacts {
             found,
             flush,
