@@ -468,10 +468,11 @@ def _written_by(files: "Any", what: str) -> "Any":
 
 @_dataclass(frozen=True, repr=False)
 class Route:
-    """A route: ``columns`` (``t_s``, ``x_m``, ``z_m``, ``theta_deg``, … as ``route.csv`` has
-    them; NaN where a value could not be had) and ``summary`` (as ``summary.json`` has it).
-    :meth:`write` writes its files as ``slideroute run`` does, :meth:`plot_plan` its plan
-    view."""
+    """A route: ``columns`` (``body``, ``t_s``, ``x_m``, ``z_m``, ``theta_deg``, … as
+    ``route.csv`` has them; NaN where a value could not be had) and ``summary`` (as
+    ``summary.json`` has it). ``body`` is the number of the body a row is of, from 0: a scene of
+    one block has 0 in every row. :meth:`write` writes its files as ``slideroute run`` does,
+    :meth:`plot_plan` its plan view."""
 
     columns: "Dict[str, np.ndarray]"
     summary: "Dict[str, Any]"

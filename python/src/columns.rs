@@ -1,5 +1,6 @@
 //! Rows of many routes — a sweep's combinations, a design's samples — as columns of NumPy
-//! arrays and lists (as `sweep.csv` and `samples.csv` have them), and back.
+//! arrays and lists (as `sweep.csv` and `samples.csv` have them), and back; and the rows of one
+//! route as `route.csv`'s columns ([`RouteColumns`]).
 
 use crate::errors::input_error;
 use numpy::PyArray1;
@@ -22,6 +23,37 @@ impl<'a> From<&'a Sample> for Row<'a> {
             values: &s.values,
             outcome: &s.outcome,
         }
+    }
+}
+
+/// A route's rows as `route.csv`'s columns (`Row::COLUMNS`, in its order: `body`, the number of
+/// the body a row is of, first), filled a row at a time: float arrays, NaN where a value could
+/// not be had.
+pub struct RouteColumns(Vec<Vec<f64>>);
+
+impl RouteColumns {
+    /// No rows yet, room for `rows` of them.
+    pub fn with_capacity(rows: usize) -> Self {
+        RouteColumns(vec![
+            Vec::with_capacity(rows);
+            slideroute::Row::COLUMNS.len()
+        ])
+    }
+
+    /// One row more.
+    pub fn push(&mut self, row: &slideroute::Row) {
+        for (col, v) in self.0.iter_mut().zip(row.values()) {
+            col.push(v.unwrap_or(f64::NAN));
+        }
+    }
+
+    /// The columns by name, as NumPy arrays.
+    pub fn into_dict(self, py: Python<'_>) -> PyResult<Bound<'_, PyDict>> {
+        let out = PyDict::new(py);
+        for (name, v) in slideroute::Row::COLUMNS.iter().zip(self.0) {
+            out.set_item(*name, PyArray1::from_vec(py, v))?;
+        }
+        Ok(out)
     }
 }
 

@@ -2,8 +2,8 @@
 //! its rows handed over a few chunks at a time, so that a route of any length is read in
 //! bounded memory — the chunks the caller keeps are the caller's.
 
+use crate::columns::RouteColumns;
 use crate::errors::{route_error, scene_error};
-use numpy::PyArray1;
 use pyo3::exceptions::PyStopIteration;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -99,19 +99,13 @@ fn compute(scene: &slideroute::Scene, size: usize, tx: &SyncSender<Message>, hal
     let _ = tx.send(Message::Done(Box::new(computed)));
 }
 
-/// `rows` as columns (`Row::COLUMNS`, NaN where a value could not be had).
+/// `rows` as `route.csv`'s columns ([`RouteColumns`]).
 pub fn columns<'py>(py: Python<'py>, rows: &[Row]) -> PyResult<Bound<'py, PyDict>> {
-    let mut cols = vec![Vec::with_capacity(rows.len()); Row::COLUMNS.len()];
+    let mut cols = RouteColumns::with_capacity(rows.len());
     for row in rows {
-        for (col, v) in cols.iter_mut().zip(row.values()) {
-            col.push(v.unwrap_or(f64::NAN));
-        }
+        cols.push(row);
     }
-    let out = PyDict::new(py);
-    for (name, v) in Row::COLUMNS.iter().zip(cols) {
-        out.set_item(*name, PyArray1::from_vec(py, v))?;
-    }
-    Ok(out)
+    cols.into_dict(py)
 }
 
 #[pymethods]

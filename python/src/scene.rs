@@ -2,7 +2,7 @@
 //! one displacement or many, a sweep of its keys, the factor of safety at its start and its load
 //! cases checked by their guideline.
 
-use crate::columns::{Row, columns_of, reason_code};
+use crate::columns::{RouteColumns, Row, columns_of, reason_code};
 use crate::errors::{input_error, input_type_error, key_error, scene_error};
 use crate::outputs::{PyCheckFiles, PyRouteFiles};
 use crate::watch::interruptible;
@@ -20,7 +20,7 @@ use std::path::Path;
 /// The rows `Scene.route` gives at most unless told otherwise: 10⁶ (200 MB of arrays).
 const MAX_ROUTE_ROWS: usize = 1_000_000;
 
-/// Bytes a row of `Scene.route`'s arrays takes: 25 doubles.
+/// Bytes a row of `Scene.route`'s arrays takes: a double a column.
 const ROW_BYTES: usize = 8 * slideroute::Row::COLUMNS.len();
 
 /// A check as Python receives it: the guideline, the cases and the columns, and what writes its
@@ -192,7 +192,7 @@ impl PyScene {
         }
         let progress = progress.as_ref().map(|f| (f, increments));
         let (cols, computed) = interruptible(py, progress, |watch| {
-            let mut cols: Vec<Vec<f64>> = vec![Vec::new(); slideroute::Row::COLUMNS.len()];
+            let mut cols = RouteColumns::with_capacity(0);
             let computed = Runner::new(&sim)
                 .progress(|part| {
                     watch.set((part * increments as f64).round() as usize);
@@ -202,19 +202,12 @@ impl PyScene {
                         ControlFlow::Continue(())
                     }
                 })
-                .stream(1, |row| {
-                    for (col, v) in cols.iter_mut().zip(row.values()) {
-                        col.push(v.unwrap_or(f64::NAN));
-                    }
-                })
+                .stream(1, |row| cols.push(row))
                 .keep_at_most(slideroute::KEPT_ROWS)
                 .run();
             (cols, computed)
         })?;
-        let columns = PyDict::new(py);
-        for (name, v) in slideroute::Row::COLUMNS.iter().zip(cols) {
-            columns.set_item(*name, PyArray1::from_vec(py, v))?;
-        }
+        let columns = cols.into_dict(py)?;
         let summary = json(py, &computed)?;
         Ok((columns, summary, PyRouteFiles { scene, computed }))
     }

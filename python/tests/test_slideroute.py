@@ -80,8 +80,16 @@ def test_a_route_as_a_dataframe_has_the_rows_and_columns_of_the_arrays():
     r = slideroute.Scene.default().with_keys({"solver.t_end_s": 1.0}).route()
     df = r.to_pandas()
     assert isinstance(df, pd.DataFrame)
-    assert df.shape == (len(r), 25)
+    assert df.shape == (len(r), 26)
     np.testing.assert_array_equal(df["x_m"].to_numpy(), r.columns["x_m"])
+
+
+def test_every_row_of_a_one_block_route_is_of_body_0_in_the_first_column():
+    r = slideroute.Scene.default().with_keys({"solver.t_end_s": 0.2}).route()
+    assert list(r.columns)[0] == "body"
+    assert len(r) > 10 and np.all(r.columns["body"] == 0)
+    chunks = list(slideroute.Scene.default().with_keys({"solver.t_end_s": 0.2}).route_chunks(rows=50))
+    assert all(list(c)[0] == "body" and np.all(c["body"] == 0) for c in chunks)
 
 
 def test_a_block_on_its_base_says_where_it_rested_and_how_deep_its_base_went():

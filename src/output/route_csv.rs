@@ -21,7 +21,7 @@ use std::io::Write;
 ///     csv.push(row);
 /// }
 /// let text = String::from_utf8(csv.finish()?)?;
-/// assert!(text.starts_with("t_s,x_m,"));
+/// assert!(text.starts_with("body,t_s,x_m,"));
 /// assert_eq!(text.lines().count(), route.rows.len() + 1);
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
@@ -179,7 +179,7 @@ mod tests {
             last.contains(",-0.0,1e-300,1.7976931348623157e+308,"),
             "{last}"
         );
-        assert!(last.starts_with(&format!("{},1e+21,", gap.t_s)), "{last}");
+        assert!(last.starts_with(&format!("0,{},1e+21,", gap.t_s)), "{last}");
         assert!(
             last.contains(",9007199254740992.0,") && last.contains(",-9007199254740991,0.5,"),
             "{last}"

@@ -6,6 +6,9 @@ use serde::Serialize;
 /// start at rest, without reactions.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Default)]
 pub struct Row {
+    /// The body the row is of: its number in the simulation's bodies, from 0 (a scene of one
+    /// block: 0).
+    pub body: u32,
     /// Time (s).
     pub t_s: f64,
     /// The CM's X (m).
@@ -50,7 +53,8 @@ pub struct Row {
 impl Row {
     /// The names of a row's values, with their units, in the order of [`Row::values`]: the
     /// header of `route.csv`.
-    pub const COLUMNS: [&'static str; 25] = [
+    pub const COLUMNS: [&'static str; 26] = [
+        "body",
         "t_s",
         "x_m",
         "y_m",
@@ -80,9 +84,10 @@ impl Row {
 
     /// The row's values in the order of [`Row::COLUMNS`]; `None` for reactions that could not
     /// be had and for a contact on no crease.
-    pub fn values(&self) -> [Option<f64>; 25] {
-        let mut v = [None; 25];
+    pub fn values(&self) -> [Option<f64>; 26] {
+        let mut v = [None; 26];
         let scalars = [
+            f64::from(self.body),
             self.t_s,
             self.x_m,
             self.y_m,
@@ -99,13 +104,13 @@ impl Row {
             v[k] = Some(x);
         }
         for k in 0..3 {
-            v[11 + k] = self.n_n.map(|n| n[k]);
-            v[14 + k] = self.s_n.map(|s| s[k]);
-            v[17 + k] = Some(f64::from(self.faces[k]));
-            v[20 + k] = self.crease[k].map(f64::from);
+            v[12 + k] = self.n_n.map(|n| n[k]);
+            v[15 + k] = self.s_n.map(|s| s[k]);
+            v[18 + k] = Some(f64::from(self.faces[k]));
+            v[21 + k] = self.crease[k].map(f64::from);
         }
-        v[23] = self.corners_carrying.map(f64::from);
-        v[24] = self.points_carrying.map(f64::from);
+        v[24] = self.corners_carrying.map(f64::from);
+        v[25] = self.points_carrying.map(f64::from);
         v
     }
 }
@@ -125,6 +130,7 @@ mod tests {
     #[test]
     fn each_value_of_a_row_stands_under_its_own_column_name() {
         let r = Row {
+            body: 2,
             t_s: 1.0,
             x_m: 2.0,
             y_m: 3.0,
@@ -144,6 +150,8 @@ mod tests {
             points_carrying: Some(3),
         };
         let at = |name: &str| r.values()[Row::COLUMNS.iter().position(|c| *c == name).unwrap()];
+        assert_eq!(Row::COLUMNS[0], "body");
+        assert_eq!(at("body"), Some(2.0));
         assert_eq!(at("t_s"), Some(r.t_s));
         assert_eq!(at("theta_deg"), Some(r.theta_deg));
         assert_eq!(at("omega_deg_s"), Some(r.omega_deg_s));
@@ -160,7 +168,7 @@ mod tests {
             ..r
         };
         let v = lost.values();
-        assert!(v[11..17].iter().all(Option::is_none));
-        assert_eq!(v.iter().filter(|x| x.is_some()).count(), 11 + 3 + 1 + 2);
+        assert!(v[12..18].iter().all(Option::is_none));
+        assert_eq!(v.iter().filter(|x| x.is_some()).count(), 12 + 3 + 1 + 2);
     }
 }

@@ -422,7 +422,7 @@ fn run_writes_route_csv_and_summary_json() {
     let header = csv.lines().next().unwrap();
     assert_eq!(
         header,
-        "t_s,x_m,y_m,z_m,theta_deg,alpha_deg,beta_deg,gamma_deg,vx_m_s,vz_m_s,omega_deg_s,n0_n,n1_n,n2_n,s0_n,s1_n,s2_n,face0,face1,face2,crease_face0,crease_face1,crease_face2,corners_carrying,points_carrying"
+        "body,t_s,x_m,y_m,z_m,theta_deg,alpha_deg,beta_deg,gamma_deg,vx_m_s,vz_m_s,omega_deg_s,n0_n,n1_n,n2_n,s0_n,s1_n,s2_n,face0,face1,face2,crease_face0,crease_face1,crease_face2,corners_carrying,points_carrying"
     );
     // The paper's planes: contact k on plane k, no crease.
     let second = csv.lines().nth(1).unwrap();
@@ -784,8 +784,8 @@ fn a_kicked_scene_ends_stopped_with_its_last_row_at_rest() {
     assert_eq!(summary["energy"]["kinetic_j"].as_f64().unwrap(), 0.0);
     let csv = std::fs::read_to_string(dir.join("route.csv")).unwrap();
     let last: Vec<&str> = csv.lines().last().unwrap().split(',').collect();
-    // vx_m_s, vz_m_s, omega_deg_s are columns 9–11.
-    assert_eq!(&last[8..11], &["0", "0", "0"], "{last:?}");
+    // vx_m_s, vz_m_s, omega_deg_s are columns 10–12 (after the body's).
+    assert_eq!(&last[9..12], &["0", "0", "0"], "{last:?}");
 }
 
 #[test]
@@ -1220,15 +1220,16 @@ fn an_interrupted_run_stops_at_the_next_increment_and_writes_what_it_computed() 
     // route.csv is whole: every line has all its fields, and the last row is the last state.
     let csv = std::fs::read_to_string(out.join("route.csv")).unwrap();
     assert!(
-        csv.lines().all(|l| l.split(',').count() == 25),
+        csv.lines().all(|l| l.split(',').count() == 26),
         "a cut line"
     );
+    // The time, after the body's number.
     let last: f64 = csv
         .lines()
         .last()
         .unwrap()
         .split(',')
-        .next()
+        .nth(1)
         .unwrap()
         .parse()
         .unwrap();
@@ -1348,7 +1349,7 @@ fn an_interrupted_comparison_writes_both_routes_as_far_as_they_went() {
     for sub in ["paper", "rigid-body"] {
         let csv = std::fs::read_to_string(out.join(sub).join("route.csv")).unwrap();
         assert!(
-            csv.lines().all(|l| l.split(',').count() == 25),
+            csv.lines().all(|l| l.split(',').count() == 26),
             "{sub}: a cut line"
         );
     }
@@ -1703,11 +1704,12 @@ fn a_shaken_scene_reports_newmarks_permanent_displacement_and_rotation() {
         .last()
         .unwrap()
         .split(',')
-        .take(5)
+        .take(6)
         .map(|x| x.parse().unwrap())
         .collect();
-    assert!((d - last[1].hypot(last[3])).abs() < 1e-9, "{d} {last:?}");
-    assert!((rot - last[4]).abs() < 1e-9, "{rot} {last:?}");
+    // body, t_s, x_m, y_m, z_m, theta_deg.
+    assert!((d - last[2].hypot(last[4])).abs() < 1e-9, "{d} {last:?}");
+    assert!((rot - last[5]).abs() < 1e-9, "{rot} {last:?}");
     // The record is echoed with the scene.
     assert_eq!(
         v["manifest"]["scene"]["seismic"]["record"],

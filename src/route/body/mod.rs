@@ -462,6 +462,7 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
             .last
             .carrying_summary(self.ctx().weight_impulse(self.last.h));
         Row {
+            body: 0,
             t_s: self.t,
             x_m: p0.x,
             y_m: p0.y,

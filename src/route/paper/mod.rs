@@ -23,6 +23,7 @@ use crate::route::integrator::error_ratio;
 
 fn row(s: &State, ev: Option<&Evaluation>, pose: &crate::geometry::Pose, faces: [u32; 3]) -> Row {
     Row {
+        body: 0,
         t_s: s.t,
         x_m: s.x,
         y_m: pose.cm.y,

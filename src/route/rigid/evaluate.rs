@@ -41,6 +41,7 @@ impl Eval {
     /// The row of state `y` evaluated here, at `t`.
     pub fn row(&self, t: f64, y: &RigidState) -> Row {
         Row {
+            body: 0,
             t_s: t,
             x_m: y.x,
             y_m: self.pose.cm.y,

@@ -57,6 +57,7 @@ fn static_stop(err: StaticError) -> Stop {
 /// A row at rest (velocities zero; reactions not computed: static friction is indeterminate).
 pub(super) fn rest_row(t: f64, y: &RigidState, pose: &Pose, faces: [u32; 3]) -> Row {
     Row {
+        body: 0,
         t_s: t,
         x_m: y.x,
         y_m: pose.cm.y,

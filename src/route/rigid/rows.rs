@@ -70,12 +70,12 @@ pub(super) enum Interpolated {
     Evaluate,
 }
 
-/// A row's numbers but its time (`FIELDS`: `Row::values` after the time, in its order), if it
-/// has its reactions.
+/// A row's numbers but its body and its time (`FIELDS`: `Row::values` after those two, in its
+/// order), if it has its reactions.
 fn fields(r: &Row) -> Option<[f64; FIELDS]> {
     let values = r.values();
     let mut f = [0.0; FIELDS];
-    for (f, v) in f.iter_mut().zip(&values[1..=FIELDS]) {
+    for (f, v) in f.iter_mut().zip(&values[2..2 + FIELDS]) {
         *f = (*v)?;
     }
     Some(f)
@@ -106,9 +106,11 @@ fn with_fields(mut r: Row, v: &[f64; FIELDS], which: &[usize]) -> Row {
     r
 }
 
-/// Whether two rows are of one kind: the same faces, creases and carrying points.
+/// Whether two rows are of one kind: of the same body, on the same faces, creases and carrying
+/// points.
 fn same_kind(a: &Row, b: &Row) -> bool {
-    a.faces == b.faces
+    a.body == b.body
+        && a.faces == b.faces
         && a.crease == b.crease
         && a.corners_carrying == b.corners_carrying
         && a.points_carrying == b.points_carrying
