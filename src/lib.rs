@@ -94,10 +94,13 @@ pub use model::{
     REFERENCE_STEP, Record, Resultant, RockAnchor, RunSettings, STRAND_MODULUS_PA, Section,
     Simulation, SimulationBuilder, Strengths, Surface, Tendon, UnknownName, WaterLoads,
 };
+pub use route::models::{
+    BaseReport, Carrying, OVERTURN_DEG, OnBaseReport, PaperReport, Resting, RigidBodyReport,
+    pose_of_row,
+};
 pub use route::{
-    AnchorBreak, BaseReport, Carrying, Computed, Diagnostics, EnergyBalance, KEPT_ROWS,
-    OVERTURN_DEG, PoseMethod, Reason, Resting, Route, Row, Runner, Steps, Termination, pose_of_row,
-    simulate,
+    AnchorBreak, Computed, Diagnostics, EnergyBalance, KEPT_ROWS, PoseMethod, Reason, Report,
+    Route, Row, Runner, Steps, Termination, simulate,
 };
 pub use scene::{LoadsUsed, Scene, SceneError, SceneErrorKind};
 

@@ -10,8 +10,8 @@ use crate::model::Mode;
 use crate::model::Strengths;
 use crate::model::{Category, Guideline, LoadCase};
 use crate::route::PoseMethod;
-use crate::route::faces_of;
 use crate::route::pose_finder::PoseFinder;
+use crate::route::three_point::faces_of;
 use crate::route::{Computed, Route, Runner};
 use crate::scene::{LoadsUsed, Scene, SceneError};
 use nalgebra::Vector3;
@@ -144,7 +144,7 @@ pub(super) fn cases_of(scene: &Scene) -> std::borrow::Cow<'_, [LoadCase]> {
 pub(super) fn gravity_case(s: &Scene, category: Category, route: &Route) -> Option<GravityCase> {
     let (m, loads, strengths) = (s.monolith()?, s.loads()?, s.strengths()?);
     let water = loads.water?;
-    let (axes, under) = match &route.base {
+    let (axes, under) = match route.base() {
         Some(b) => {
             let r = b.resting.rotation;
             let col = |k: usize| Vector3::new(r[0][k], r[1][k], r[2][k]);

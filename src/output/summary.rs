@@ -86,7 +86,7 @@ impl fmt::Display for RouteSummary<'_> {
         if let Some(fs) = r.factor_of_safety {
             writeln!(f, "  factor of safety {fs} (friction cones at the start)")?;
         }
-        if let Some(ratio) = r.paper_ratio {
+        if let Some(ratio) = r.paper_ratio() {
             writeln!(
                 f,
                 "  the paper's resisting/driving ratio along x' at the start {ratio:.4}"
@@ -167,7 +167,7 @@ fn shaking(f: &mut fmt::Formatter<'_>, r: &Route) -> fmt::Result {
 /// The energy balance of a block that moved (one that never moved has none to account for).
 fn energy(f: &mut fmt::Formatter<'_>, r: &Route) -> fmt::Result {
     // A block that never moved has no energy to account for.
-    if let Some(e) = r.energy.filter(|_| r.increments > 0) {
+    if let Some(e) = r.energy().filter(|_| r.increments > 0) {
         let kinetic = if e.kinetic_initial_j != 0.0 {
             format!(
                 "kinetic {:.6e} J (from {:.6e} J)",

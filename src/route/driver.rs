@@ -1,17 +1,12 @@
 //! The one route loop: the increments of dt up to t_end (the last one shorter, so that the route
 //! ends exactly there), the stride of the recorded rows, progress and interruption, the time
-//! limit, and the factor of safety at the start, for any [`Dynamics`].
+//! limit, and the measures at the start asked of the model, for any [`Dynamics`].
 
 use super::dynamics::{Dynamics, Flow, Start};
 use super::logbook::Logbook;
 use super::pose_finder::PoseFinder;
-use super::row::faces_of;
 use super::termination::Reason;
-use crate::mechanics::ContactGeometry;
-use crate::mechanics::loads::Applied;
-use crate::mechanics::static_friction;
-use crate::mechanics::statics::frictionless_normals;
-use crate::model::{Contacts, RunSettings, Simulation};
+use crate::model::{RunSettings, Simulation};
 use std::ops::ControlFlow;
 
 /// The number of increments of dt that reach `t_end`: the last may be shorter, so that the route
@@ -48,45 +43,17 @@ pub(super) fn recorded_within(
         .map(|(_, t)| t)
 }
 
-/// Drives model `M` from its start to the end of its route, then adds the factor of safety at
-/// the start (if the model has not) and the model's word on how it ended.
+/// Drives model `M` from its start to the end of its route, then asks it for the measures at
+/// the start its start has not given, and for its word on how the route ended.
 pub(super) fn drive<'a, 's, M: Dynamics<'a>>(
     sim: &'a Simulation,
     finder: &mut PoseFinder<'_>,
     progress: impl FnMut(f64) -> ControlFlow<()>,
-    log: Logbook<'s>,
-) -> Logbook<'s> {
+    log: Logbook<'s, M::Report>,
+) -> Logbook<'s, M::Report> {
     let start_pose = finder.pose();
     let mut o = increments_of::<M>(sim, finder, progress, log);
-    // The three-point frame's values at the start, of the one body it follows.
-    let [body] = sim.bodies() else {
-        M::explain_end(&mut o);
-        return o;
-    };
-    let strength = body.frame_strength(sim.strengths(), faces_of(body.site()), true);
-    if o.fs.is_none() {
-        // One factor of safety whatever the dynamics: the friction cones' at the start.
-        let check = start_pose.and_then(|pose| {
-            let geom = ContactGeometry::new(body.normals(), &pose);
-            let applied = Applied::of(body, &geom, [0.0; 3]);
-            static_friction::at_rest(&geom, &applied, &strength).ok()
-        });
-        o.fs = check.as_ref().map(|c| c.factor_of_safety());
-        o.fs_limit = check.and_then(|c| c.limit());
-    }
-    if sim.foundation().record().is_some() && sim.settings().contacts == Contacts::Frame {
-        // What a Newmark user reports first: the yield acceleration at the start.
-        o.yield_acceleration = start_pose.and_then(|pose| {
-            let geom = ContactGeometry::new(body.normals(), &pose);
-            let applied = Applied::of(body, &geom, [0.0; 3]);
-            let statics = frictionless_normals(&geom, &applied).unwrap_or([1.0; 3]);
-            let weight = body.block().mass * body.loads().gravity;
-            let arm = geom.frame.j * body.loads().cm_height;
-            static_friction::yield_acceleration(&geom, &applied, (weight, arm), &strength, &statics)
-                .ok()
-                .flatten()
-        });
-    }
+    M::at_start(sim, start_pose.as_ref(), &mut o);
     M::explain_end(&mut o);
     o
 }
@@ -96,8 +63,8 @@ fn increments_of<'a, 's, M: Dynamics<'a>>(
     sim: &'a Simulation,
     finder: &mut PoseFinder<'_>,
     mut progress: impl FnMut(f64) -> ControlFlow<()>,
-    log: Logbook<'s>,
-) -> Logbook<'s> {
+    log: Logbook<'s, M::Report>,
+) -> Logbook<'s, M::Report> {
     let settings = *sim.settings();
     let (mut model, mut o) = match M::start(sim, finder, log) {
         Start::Moving(model, o) => (model, o),

@@ -1,44 +1,29 @@
 //! What a route's loop produces, whatever the dynamics: the rows (streamed to a sink, a bounded
-//! number kept), how the route ended, and the quantities gathered along it.
+//! number kept), how the route ended, the quantities every route gathers along it, and the
+//! model's own report (of a type the model names: the logbook knows none of them).
 
 use super::row::Row;
 use super::termination::{Reason, Termination};
 use crate::mechanics::static_friction::{FactorOfSafety, YieldAcceleration};
-use serde::Serialize;
 
-/// Energy bookkeeping of a rigid-body route (J), from the start to its last state.
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
-pub struct EnergyBalance {
-    /// Work of the applied loads other than gravity's pull: the water's force and its couples,
-    /// the pseudo-static and a record's inertial forces, the anchors' tendons.
-    pub work_hydraulic_j: f64,
-    /// Work of friction (≤ 0).
-    pub work_friction_j: f64,
-    /// Kinetic energy at the end.
-    pub kinetic_j: f64,
-    /// Kinetic energy at the start (0 unless the scene's `[initial]` sets the block moving).
-    pub kinetic_initial_j: f64,
-    /// Change of potential energy m g ΔY_cm.
-    pub potential_change_j: f64,
-    /// W_h + W_f − (kinetic − initial kinetic + potential change): zero up to the integrator's
-    /// error.
-    pub residual_j: f64,
-}
-
-/// What a route's loop produced (either dynamics), before the diagnostics are added. Rows go
+/// What a route's loop produced (any dynamics), before the diagnostics are added. Rows go
 /// through [`Logbook::push`]: each to the sink, if any (streamed as computed), and every
-/// `keep_every`-th (and the last) kept in `rows`.
+/// `keep_every`-th (and the last) kept in `rows`. `R` is what the model adds to its route, its
+/// report (`Dynamics::Report`), filled in by the model as the route goes.
 ///
 /// The logbook passes through every increment by value (`Dynamics::advance` takes it and gives
 /// it back, or ends the route with it), so its contents are boxed: a move is a pointer's, not
 /// the 864 bytes of its rows and reports (about a tenth of a default run's instructions were
 /// such copies).
-pub(super) struct Logbook<'s>(Box<Book<'s>>);
+pub(super) struct Logbook<'s, R>(Box<Book<'s, R>>);
+
+/// Where a route's rows go as they are made (streamed), beside those the logbook keeps.
+pub(super) type Sink<'s> = &'s mut dyn FnMut(&Row);
 
 /// The contents of a [`Logbook`], reached through it.
-pub(super) struct Book<'s> {
+pub(super) struct Book<'s, R> {
     rows: Vec<Row>,
-    sink: Option<&'s mut dyn FnMut(&Row)>,
+    sink: Option<Sink<'s>>,
     keep_every: usize,
     pushed: usize,
     last: Option<Row>,
@@ -49,45 +34,34 @@ pub(super) struct Book<'s> {
     pub fs: Option<FactorOfSafety>,
     /// What limits it: sliding or tipping.
     pub fs_limit: Option<crate::mechanics::static_friction::Limit>,
-    /// The paper's resisting-over-driving ratio at the start (paper's dynamics).
-    pub paper_ratio: Option<f64>,
-    /// With a ground-motion record on the three-point frame, the yield acceleration at the
-    /// start.
+    /// With a ground-motion record, the yield acceleration at the start, where the model gives
+    /// one.
     pub yield_acceleration: Option<YieldAcceleration>,
     pub travel: f64,
     pub increments: usize,
-    /// How often the paper's frictional solution was chosen afresh (paper's dynamics).
-    pub switches: usize,
-    /// The rigid body's integration steps: taken, and tried and shortened.
-    pub steps: (usize, usize),
-    /// The recorded rows within the rigid body's steps that were interpolated
-    /// (`route/rigid/rows.rs`), not evaluated.
-    pub interpolated: usize,
-    /// The energy balance (rigid-body dynamics).
-    pub energy: Option<EnergyBalance>,
-    /// A block on its base: where it rested, what carried it, how deep its base went.
-    pub base: Option<super::body::report::BaseReport>,
     /// The anchors' tendons broken so far.
     pub anchors_broken: Vec<super::AnchorBreak>,
+    /// What the model adds to its route.
+    pub report: R,
 }
 
-impl<'s> std::ops::Deref for Logbook<'s> {
-    type Target = Book<'s>;
-    fn deref(&self) -> &Book<'s> {
+impl<'s, R> std::ops::Deref for Logbook<'s, R> {
+    type Target = Book<'s, R>;
+    fn deref(&self) -> &Book<'s, R> {
         &self.0
     }
 }
 
-impl std::ops::DerefMut for Logbook<'_> {
+impl<R> std::ops::DerefMut for Logbook<'_, R> {
     fn deref_mut(&mut self) -> &mut Self::Target {
         &mut self.0
     }
 }
 
-impl<'s> Logbook<'s> {
-    /// Nothing yet: ends at the time limit unless told otherwise. Rows go to `sink` (if any)
-    /// and every `keep_every`-th is kept.
-    pub fn new(sink: Option<&'s mut dyn FnMut(&Row)>, keep_every: usize) -> Self {
+impl<'s, R: Default> Logbook<'s, R> {
+    /// Nothing yet: ends at the time limit unless told otherwise, the model's report its
+    /// default. Rows go to `sink` (if any) and every `keep_every`-th is kept.
+    pub fn new(sink: Option<Sink<'s>>, keep_every: usize) -> Self {
         Logbook(Box::new(Book {
             rows: Vec::new(),
             sink,
@@ -102,16 +76,35 @@ impl<'s> Logbook<'s> {
             },
             fs: None,
             yield_acceleration: None,
-            paper_ratio: None,
             travel: 0.0,
             increments: 0,
-            switches: 0,
-            steps: (0, 0),
-            interpolated: 0,
-            energy: None,
-            base: None,
             anchors_broken: Vec::new(),
             fs_limit: None,
+            report: R::default(),
+        }))
+    }
+}
+
+impl<'s, R> Logbook<'s, R> {
+    /// The same logbook, the model's report turned into `S` by `into` (once, at the route's
+    /// end: the models' reports into one type).
+    pub fn map_report<S>(self, into: impl FnOnce(R) -> S) -> Logbook<'s, S> {
+        let b = *self.0;
+        Logbook(Box::new(Book {
+            rows: b.rows,
+            sink: b.sink,
+            keep_every: b.keep_every,
+            pushed: b.pushed,
+            last: b.last,
+            first: b.first,
+            termination: b.termination,
+            fs: b.fs,
+            fs_limit: b.fs_limit,
+            yield_acceleration: b.yield_acceleration,
+            travel: b.travel,
+            increments: b.increments,
+            anchors_broken: b.anchors_broken,
+            report: into(b.report),
         }))
     }
 

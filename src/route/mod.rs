@@ -1,25 +1,32 @@
 //! The failure route (paper §7) of a [`Simulation`](crate::model::Simulation): one driver loop
-//! (`driver.rs`) runs a dynamics model (`dynamics.rs`) — the paper's (`paper/`) or the rigid
-//! body's (`rigid/`) — from its start, increment by increment, until the route ends for a
-//! stated reason (`termination.rs`), recording rows in a logbook (`row.rs`, `logbook.rs`); `simulate.rs` picks
-//! the model and says how the computation went.
+//! (`driver.rs`) runs a dynamics model (`dynamics.rs`) — the paper's (`paper/`), the rigid
+//! body's on its three-point frame (`rigid/`, with what the two share of the frame in
+//! `three_point.rs`) or the block's on its base (`body/`) — from its start, increment by
+//! increment, until the route ends for a stated reason (`termination.rs`), recording rows in a
+//! logbook (`row.rs`, `logbook.rs`). Every model meets its events through one layer
+//! (`events.rs`) and rests through another (`rest.rs`). `models.rs` is the one place that picks
+//! the model from the settings and knows what each reports; `simulate.rs` runs it and says how
+//! the computation went.
 
 mod body;
 mod driver;
 mod dynamics;
+mod energy;
 pub mod integrator;
 mod logbook;
+pub(crate) mod models;
 pub mod paper;
 pub mod pose_finder;
 mod rigid;
 mod row;
 mod simulate;
 pub mod termination;
+pub(crate) mod three_point;
 
-pub use body::{BaseReport, Carrying, OVERTURN_DEG, Resting, pose_of_row};
-pub use logbook::EnergyBalance;
+pub use energy::EnergyBalance;
+pub use models::Report;
 pub use pose_finder::PoseMethod;
-pub use row::{Row, faces_of};
+pub use row::Row;
 pub use simulate::{KEPT_ROWS, Runner, simulate};
 pub use termination::{Reason, Termination};
 
@@ -57,17 +64,15 @@ pub struct Route {
     /// block slide, or tips it onto two contacts.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub factor_of_safety_limit: Option<crate::mechanics::static_friction::Limit>,
-    /// The paper's dynamics only: its resisting capacity over driving force along x' at the start
-    /// (`mechanics::onset`), a different quantity (absent where nothing drives the block along x').
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub paper_ratio: Option<f64>,
     /// Length of the CM path (m).
     pub travel_m: f64,
     /// Increments taken.
     pub increments: usize,
-    /// Energy balance (rigid-body dynamics only).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub energy: Option<EnergyBalance>,
+    /// What the dynamics model adds to its route: the paper's onset ratio, an energy balance,
+    /// where a base rested… ([`Report`]; read through `Route::energy`, `Route::paper_ratio`,
+    /// `Route::base`, `Route::steps`). Its numbers stand among the route's in summary.json.
+    #[serde(flatten)]
+    pub report: Report,
     /// With a ground-motion record, Newmark's permanent displacement: the horizontal distance
     /// of the CM at the route's end from its start, relative to the foundation (m).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -92,10 +97,6 @@ pub struct Route {
     /// and reversed; the route is the one of the longer.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub polarities: Option<Polarities>,
-    /// A block on its base (`contacts = "base"`): where it rested before any load, what carried
-    /// it, and the deepest its base went into the ground.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub base: Option<BaseReport>,
     /// The anchors' tendons that broke at their capacity, in the order they broke.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub anchors_broken: Vec<AnchorBreak>,
@@ -123,24 +124,45 @@ pub struct Polarities {
 }
 
 /// A route and how its computation went ([`Runner::run`]): written side by side (summary.json
-/// keeps one flat object), compared apart.
-#[derive(Debug, Clone, Serialize)]
+/// keeps one flat object, [`Computed`]'s `Serialize`), compared apart.
+#[derive(Debug, Clone)]
 pub struct Computed {
     /// The route.
-    #[serde(flatten)]
     pub route: Route,
     /// How it was computed.
-    #[serde(flatten)]
     pub diagnostics: Diagnostics,
 }
 
+impl Serialize for Computed {
+    /// summary.json: one flat object — the route's numbers, its model's report among them, then
+    /// how it was computed — in the order the file has always had: the model's count of friction
+    /// solutions chosen afresh first among the computation's numbers, its integration steps
+    /// last (both asked of the report, whatever the model).
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        #[derive(Serialize)]
+        struct Flat<'a> {
+            #[serde(flatten)]
+            route: &'a Route,
+            friction_switches: usize,
+            #[serde(flatten)]
+            diagnostics: &'a Diagnostics,
+            steps: Option<Steps>,
+        }
+        Flat {
+            route: &self.route,
+            friction_switches: self.route.report.friction_switches(),
+            diagnostics: &self.diagnostics,
+            steps: self.route.report.steps(),
+        }
+        .serialize(s)
+    }
+}
+
 /// How one computation of a route went: its cost and the pose method's statistics. They vary
-/// from run to run (the time) or with the method, not with the physics.
+/// from run to run (the time) or with the method, not with the physics. (The model's own counts
+/// — its steps, the paper's friction solutions chosen afresh — are in its [`Report`].)
 #[derive(Debug, Clone, PartialEq, Default, Serialize)]
 pub struct Diagnostics {
-    /// How often the followed friction solution was lost and chosen afresh by the rule (the
-    /// paper's dynamics).
-    pub friction_switches: usize,
     /// Continuation statistics: accepted and rejected steps, Newton iterations (continuation
     /// method only).
     pub tracker: Option<crate::roots::TrackStats>,
@@ -149,13 +171,10 @@ pub struct Diagnostics {
     pub end_jacobian_condition: Option<f64>,
     /// Wall-clock time of the computation (s).
     pub wall_s: f64,
-    /// The integration steps taken (each chosen against the tolerance), and those tried and
-    /// taken again shorter: the rigid body's, and the paper's dynamics' RK4 substeps; none for
-    /// the paper's own update and the block on its base, whose steps are the increments.
-    pub steps: Option<Steps>,
 }
 
-/// The integration steps of a route chosen against the tolerance (`Diagnostics::steps`).
+/// The integration steps of a route chosen against the tolerance (`Report::steps`): the rigid
+/// body's, and the paper's dynamics' RK4 substeps.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
 pub struct Steps {
     /// Steps taken.
@@ -166,6 +185,31 @@ pub struct Steps {
     /// Recorded rows within steps whose model values were interpolated between rows evaluated
     /// in the same step (`derivations/08-rigid-body.md` §4a), not evaluated.
     pub rows_interpolated: usize,
+}
+
+impl Steps {
+    /// The steps, where any was taken or tried (none for a route that never stepped).
+    pub fn if_any(self) -> Option<Steps> {
+        ((self.taken, self.retried) != (0, 0)).then_some(self)
+    }
+}
+
+impl Route {
+    /// The energy balance, where the model keeps one (the rigid body's, the block on its base).
+    pub fn energy(&self) -> Option<EnergyBalance> {
+        self.report.energy()
+    }
+
+    /// The paper's resisting-over-driving ratio along x' at the start (`mechanics::onset`; the
+    /// paper's dynamics only, absent where nothing drives the block along x').
+    pub fn paper_ratio(&self) -> Option<f64> {
+        self.report.paper_ratio()
+    }
+
+    /// The integration steps, where the model chose them against the tolerance and took any.
+    pub fn steps(&self) -> Option<Steps> {
+        self.report.steps()
+    }
 }
 
 #[cfg(test)]

@@ -115,14 +115,6 @@ impl Row {
     }
 }
 
-/// The face each contact of `site` rests on (see [`Row::faces`]).
-pub fn faces_of(site: &crate::geometry::Site) -> [u32; 3] {
-    match site.ground() {
-        Some((_, faces)) => faces.map(|f| f as u32),
-        None => [0, 1, 2],
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

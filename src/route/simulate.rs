@@ -2,15 +2,11 @@
 //! pose method, reports progress (and may be told to stop), streams the rows as they are
 //! computed, and says how the computation went ([`Diagnostics`]).
 
-use super::body::OnBase;
-use super::driver::drive;
-use super::logbook::Logbook;
-use super::paper::Paper;
+use super::models;
 use super::pose_finder::{PoseFinder, PoseMethod};
-use super::rigid::RigidBody;
 use super::row::Row;
 use super::{Computed, Diagnostics, Polarities, Route};
-use crate::model::{Contacts, DynamicsModel, Intensity, Simulation};
+use crate::model::{Intensity, Simulation};
 use std::ops::ControlFlow;
 use std::time::Instant;
 
@@ -175,17 +171,8 @@ impl<'a> Runner<'a> {
         let settings = *sim.settings();
         let mut finder = PoseFinder::new(sim.first_body().site(), settings.mode, self.method);
         let sink = self.sink.as_deref_mut().map(|s| s as &mut dyn FnMut(&Row));
-        let log = Logbook::new(sink, self.keep_every);
-        // One driver; the model is the only difference.
-        let mut o = match (settings.contacts, settings.dynamics) {
-            (Contacts::Base, _) => drive::<OnBase>(sim, &mut finder, &mut self.progress, log),
-            (Contacts::Frame, DynamicsModel::Paper) => {
-                drive::<Paper>(sim, &mut finder, &mut self.progress, log)
-            }
-            (Contacts::Frame, DynamicsModel::RigidBody) => {
-                drive::<RigidBody>(sim, &mut finder, &mut self.progress, log)
-            }
-        };
+        // One driver; the model, picked by the settings, is the only difference.
+        let mut o = models::drive(sim, &mut finder, &mut self.progress, sink, self.keep_every);
         // Newmark's permanent displacement and rotation, when the foundation was shaken.
         let start = o.first_row().map_or((0.0, 0.0), |r| (r.x_m, r.z_m));
         let record = sim.foundation().record();
@@ -205,31 +192,23 @@ impl<'a> Runner<'a> {
             termination: o.termination.clone(),
             factor_of_safety: o.fs,
             factor_of_safety_limit: o.fs_limit,
-            paper_ratio: o.paper_ratio,
             travel_m: o.travel,
             increments: o.increments,
-            energy: o.energy,
+            report: o.report.clone(),
             permanent_displacement_m: permanent.map(|p| p.0[0].hypot(p.0[1])),
             permanent_rotation_deg: permanent.map(|p| p.1),
             permanent_displacement_xz_m: permanent.map(|p| p.0),
             record_intensity: intensity,
             yield_acceleration: o.yield_acceleration,
             polarities: None,
-            base: o.base.take(),
             anchors_broken: std::mem::take(&mut o.anchors_broken),
         };
         Computed {
             route,
             diagnostics: Diagnostics {
-                friction_switches: o.switches,
                 tracker: finder.stats(),
                 end_jacobian_condition: finder.jacobian_condition(),
                 wall_s: started.elapsed().as_secs_f64(),
-                steps: (o.steps != (0, 0)).then_some(super::Steps {
-                    taken: o.steps.0,
-                    retried: o.steps.1,
-                    rows_interpolated: o.interpolated,
-                }),
             },
         }
     }

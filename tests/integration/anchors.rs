@@ -143,7 +143,7 @@ fn a_vertical_anchor_stretches_as_the_monolith_slides_and_holds_it_back_as_the_1
     assert!(r.anchors_broken.is_empty());
     // The tendon's work is booked with the loads': the energy balance closes, to the step
     // control's tolerance (a tendon's work left out would be of the order of its 1e6 J).
-    let e = r.energy.unwrap();
+    let e = r.energy().unwrap();
     assert!(
         e.residual_j.abs() < 1e-8 * e.work_hydraulic_j.abs(),
         "{e:?}"

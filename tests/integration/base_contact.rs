@@ -69,7 +69,7 @@ fn a_block_on_a_plane_dipping_downstream_starts_on_it_and_slides_at_g_sin_less_m
             let route = run(&block_scene(&plane(20.0, 0.0), mu, "", t, dt));
             assert_eq!(route.termination.reason, Reason::TimeLimit);
             // It rests on the plane before it moves: its base tilted by the dip, down along +X.
-            let rest = &route.base.as_ref().unwrap().resting;
+            let rest = &route.base().unwrap().resting;
             assert!((rest.tilt_deg - 20.0).abs() < 1e-9, "{}", rest.tilt_deg);
             let last = route.rows.last().unwrap();
             // Straight down the dip: no yaw, no sideways drift (to the impulse solve's tolerance).
@@ -93,7 +93,7 @@ fn a_block_on_a_plane_dipping_downstream_starts_on_it_and_slides_at_g_sin_less_m
 fn a_block_on_a_plane_dipping_less_than_its_friction_angle_rests_there() {
     let route = run(&block_scene(&plane(20.0, 0.0), 0.5, "", 1.0, 1e-3));
     assert_eq!(route.termination.reason, Reason::DoesNotSlide);
-    let rest = &route.base.as_ref().unwrap().resting;
+    let rest = &route.base().unwrap().resting;
     assert_eq!(rest.carrying.len(), 4, "{:?}", rest.carrying);
     let shares: f64 = rest.carrying.iter().map(|c| c.share).sum();
     // The shares carry the weight along Y: each normal is cos 20° up.
@@ -125,7 +125,7 @@ fn a_kicked_block_on_level_ground_stops_where_friction_says() {
     // The friction work is the kinetic energy it took: booked at the mean of each step's slip
     // before and after, ½ P_t (u + u⁺), it is exact step by step (at the slip after alone it
     // was ½ (μ g h)² m a step off, 0.2 % here).
-    let e = route.energy.unwrap();
+    let e = route.energy().unwrap();
     let kinetic = 0.5 * 1e6 * v * v;
     assert!(
         (e.work_friction_j + kinetic).abs() < 1e-7 * kinetic,
@@ -387,7 +387,7 @@ fn a_block_sliding_off_a_step_drops_lands_and_slides_on_to_a_stop_out_of_the_roc
     assert!(route.rows.iter().any(|r| r.corners_carrying == Some(0b110)));
     // The energy: what it had and the drop, taken by friction and the landing's impacts, to
     // the step's first order.
-    let e = route.energy.unwrap();
+    let e = route.energy().unwrap();
     let given = 0.5 * 1e6 * 144.0 + 1e6 * 9.81 * 0.3;
     assert!((e.potential_change_j + 1e6 * 9.81 * 0.3).abs() < 1e-3);
     assert!(e.residual_j.abs() < 0.01 * given, "{e:?}");
@@ -659,7 +659,7 @@ fn every_row_of_the_whole_body_scenes_is_out_of_the_rock_and_ends_for_a_physical
         let route = slideroute::run(&scene).unwrap();
         assert_physical_and_out_of_rock(name, &scene, &route);
         // The energy balance closes to the first-order step's error.
-        let e = route.energy.unwrap();
+        let e = route.energy().unwrap();
         let work = e.work_hydraulic_j.abs().max(e.work_friction_j.abs());
         assert!(e.residual_j.abs() < 1e-3 * work, "{name}: {e:?}");
     }
@@ -677,7 +677,7 @@ pub(crate) fn assert_physical_and_out_of_rock(name: &str, scene: &Scene, route: 
         route.termination
     );
     let l = scene.l();
-    let report = route.base.as_ref().unwrap();
+    let report = route.base().unwrap();
     assert!(report.max_penetration_m <= 1e-6 * l, "{name}: {report:?}");
     assert_rows_out_of_ground(scene, route, 1e-6 * l);
 }
@@ -743,10 +743,10 @@ fn a_monolith_climbing_a_six_degree_face_on_its_base_needs_no_tracker_and_keeps_
     let steps = tracked as f64 / route.increments as f64;
     assert!(steps < 5.0, "{steps} tracker steps an increment");
     // Its base rests on the 6° face as well as the level one, and stays out of the rock.
-    let report = route.base.as_ref().unwrap();
+    let report = route.base().unwrap();
     assert!(report.resting.tilt_deg > 1.0, "{}", report.resting.tilt_deg);
     assert!(report.max_penetration_m <= 1e-6 * scene.l());
-    let e = route.energy.unwrap();
+    let e = route.energy().unwrap();
     assert!(
         e.residual_j.abs() < 1e-3 * e.work_hydraulic_j.abs(),
         "{e:?}"

@@ -105,7 +105,7 @@ fn a_base_cast_on_asperities_rides_up_their_flanks_as_a_block_up_an_incline() {
         last.theta_deg.abs() < 1e-6 && last.z_m.abs() < 1e-6,
         "{last:?}"
     );
-    let summary = route.base.as_ref().unwrap();
+    let summary = route.base().unwrap();
     assert!(
         summary.max_penetration_m < 1e-6 * 4.0,
         "{}",
@@ -185,7 +185,7 @@ fn a_block_cast_on_teeth_and_pushed_off_its_centre_turns_over_them_out_of_the_ro
         .map(|r| r.y_m - first.y_m)
         .fold(0.0, f64::max);
     assert!(top >= h - 1e-6, "{top} {h}");
-    let e = route.energy.unwrap();
+    let e = route.energy().unwrap();
     assert!(e.residual_j.abs() < 1e-3 * e.work_hydraulic_j, "{e:?}");
 }
 
@@ -302,7 +302,7 @@ fn the_energy_balance_of_a_block_riding_over_teeth_closes_at_the_first_order_of_
         std::fs::write(&file, text).unwrap();
         let route = slideroute::run(&Scene::from_file(&file).unwrap()).unwrap();
         assert!(route.rows.last().unwrap().x_m > 1.0, "not past the crest");
-        let e = route.energy.unwrap();
+        let e = route.energy().unwrap();
         e.residual_j / e.work_hydraulic_j
     };
     let (coarse, fine) = (residual(1e-3), residual(5e-4));

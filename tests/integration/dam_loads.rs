@@ -442,7 +442,7 @@ fn a_monolith_turning_about_its_raised_centre_of_mass_keeps_its_energy_balance()
         .with("solver.contacts", "frame")
         .unwrap();
     let r = slideroute::run(&s).unwrap();
-    let e = r.energy.unwrap();
+    let e = r.energy().unwrap();
     assert!(r.travel_m > 3.0, "{}", r.travel_m);
     assert!(
         e.residual_j.abs() < 1e-9 * e.work_hydraulic_j.abs(),

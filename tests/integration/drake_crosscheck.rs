@@ -572,7 +572,7 @@ fn follows_drake(
         .join("target/crosscheck")
         .join(format!("{name}.{}.summary.json", drake.0));
     std::fs::create_dir_all(summary.parent().unwrap()).unwrap();
-    let json = serde_json::json!({ "base": r.base.as_ref().unwrap() });
+    let json = serde_json::json!({ "base": r.base().unwrap() });
     std::fs::write(&summary, json.to_string()).unwrap();
     let [mid, plus, minus] =
         ["0", "0.001", "-0.001"].map(|d| drake_samples(drake, scene_file, horizon, &summary, d));

@@ -125,7 +125,7 @@ fn on_the_papers_faces_contact_2_rides_the_crease_then_plane_1_alone_until_conta
     assert!(checked > 3000, "{checked}");
     // The energy balance closes: the crease's projections book what they take as friction
     // work.
-    let e = r.energy.unwrap();
+    let e = r.energy().unwrap();
     assert!(e.residual_j.abs() < 1e-6 * e.work_hydraulic_j, "{e:?}");
     // At 3 s, where Drake's refined path has travelled 4.578 m (horizontal) and turned 2.067°.
     let (travel, theta) = at_time(&r, 3.0);
@@ -225,7 +225,7 @@ fn assert_rows_on_their_faces(s: &Scene, r: &Route) -> Vec<[u32; 3]> {
         }
         near = Some(p);
     }
-    let e = r.energy.unwrap();
+    let e = r.energy().unwrap();
     assert!(e.residual_j.abs() < 1e-6 * e.work_hydraulic_j, "{e:?}");
     assert!(e.work_friction_j < 0.0);
     seen

@@ -77,7 +77,7 @@ fn a_rectangular_pulse_slides_the_block_newmarks_distance_and_it_stops() {
     let stop = r.termination.t_s;
     assert!((stop - 1.0).abs() < 0.01, "stopped at {stop} s");
     // The energy balance: the record's inertial force does the work friction takes.
-    let e = r.energy.unwrap();
+    let e = r.energy().unwrap();
     assert!(e.residual_j.abs() < 1e-6 * e.work_friction_j.abs(), "{e:?}");
 }
 
@@ -296,7 +296,7 @@ fn a_stop_whose_loads_barely_exceed_the_cones_rests_instead_of_ending_the_route(
         r.termination
     );
     assert!(r.termination.t_s > 3.0, "{:?}", r.termination);
-    let e = r.energy.unwrap();
+    let e = r.energy().unwrap();
     assert!(e.residual_j.abs() < 1e-6 * e.work_friction_j.abs(), "{e:?}");
 }
 
@@ -313,7 +313,7 @@ fn a_shaken_routes_energy_balances_whatever_the_rows_interval() {
     let mut ends = Vec::new();
     for dt in [1e-3, 0.133] {
         let r = run(&scene.with("solver.dt_s", dt).unwrap());
-        let e = r.energy.expect("an energy balance");
+        let e = r.energy().expect("an energy balance");
         let largest = [
             e.work_hydraulic_j,
             e.work_friction_j,

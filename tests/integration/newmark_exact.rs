@@ -106,7 +106,7 @@ fn balanced(name: &str, route: &Route) {
 
 /// The route's energy balance closed to `bound` of the larger work.
 fn balanced_to(name: &str, route: &Route, bound: f64) {
-    let e = route.energy.expect("an energy balance");
+    let e = route.energy().expect("an energy balance");
     let scale = e.work_hydraulic_j.abs().max(e.work_friction_j.abs());
     assert!(
         e.residual_j.abs() <= bound * scale,
@@ -377,7 +377,7 @@ fn two_way_case(
         .permanent_displacement_xz_m
         .ok_or(format!("{name}: no displacement"))?;
     let turned = route.permanent_rotation_deg.unwrap_or(f64::NAN);
-    let e = route.energy.ok_or(format!("{name}: no energy balance"))?;
+    let e = route.energy().ok_or(format!("{name}: no energy balance"))?;
     let end = &route.termination;
     if (0..2).any(|k| (got[k] - want[k]).abs() > 1e-3 * size + 1e-6) {
         Err(format!(
@@ -636,7 +636,7 @@ fn real_case(file: &std::path::Path, axis: &str, mu: f64, push: f64) -> Result<(
         .ok_or(format!("{name}: none"))?;
     let (along, across) = if axis == "x" { (x, z) } else { (z, x) };
     let tolerance = 1e-3 * want.abs() + 1e-6;
-    let e = route.energy.ok_or(format!("{name}: no energy balance"))?;
+    let e = route.energy().ok_or(format!("{name}: no energy balance"))?;
     let scale = e.work_hydraulic_j.abs().max(e.work_friction_j.abs());
     let end = &route.termination;
     if (along - want).abs() > tolerance || across.abs() > tolerance {

@@ -40,7 +40,7 @@ fn frictionless_rigid_body_conserves_energy_to_its_tolerance() {
             "{:?}",
             r.termination
         );
-        let e = r.energy.unwrap();
+        let e = r.energy().unwrap();
         assert_eq!(e.work_friction_j, 0.0);
         (e.residual_j.abs(), e.work_hydraulic_j)
     };
@@ -59,7 +59,7 @@ fn frictionless_rigid_body_conserves_energy_to_its_tolerance() {
 fn with_friction_the_energy_lost_equals_the_friction_work() {
     let s = rigid(&[(DT, 1e-3), (T_END, 3.0)]);
     let r = run(&s);
-    let e = r.energy.unwrap();
+    let e = r.energy().unwrap();
     println!("{e:?}");
     assert!(e.work_friction_j < -1e7, "friction did work: {e:?}");
     // W_h + W_f − ΔT − ΔV = 0 to the integrator's error.
@@ -83,7 +83,7 @@ fn rows_interpolated_within_a_step_agree_with_rows_the_model_gives_at_their_stat
     // the value's scale) and the state's values to round-off.
     let scene = rigid(&[(DT, 1e-3), (T_END, 3.0)]);
     let computed = slideroute::Runner::new(&scene.simulation().unwrap()).run();
-    let steps = computed.diagnostics.steps.unwrap();
+    let steps = computed.route.steps().unwrap();
     // Most of the rows are interpolated: five evaluated a step of about twenty.
     assert!(
         steps.rows_interpolated > 2000,
@@ -263,7 +263,7 @@ fn a_kicked_block_stops_where_the_sliding_block_closed_form_says() {
         let r = run(&s);
         assert_eq!(r.termination.reason, Reason::Stopped, "{:?}", r.termination);
         assert!(ends_at_rest(&r));
-        let e = r.energy.unwrap();
+        let e = r.energy().unwrap();
         assert_eq!(e.kinetic_j, 0.0);
         // ½ m v0², plus the small tilting the planes' dips bring into the twist.
         let k0 = 0.5 * 1e6 * v0 * v0;
@@ -302,7 +302,7 @@ fn a_kicked_block_on_the_paper_like_foundation_stops_and_is_held() {
         "{}",
         r.termination.t_s
     );
-    let e = r.energy.unwrap();
+    let e = r.energy().unwrap();
     assert!(e.residual_j.abs() < 1e-6 * e.work_friction_j.abs(), "{e:?}");
     common::assert_rows_match_direct(&s, &r.rows);
 }
@@ -431,7 +431,7 @@ fn a_block_under_way_is_not_stopped_by_a_pivot_met_again_at_once_whatever_the_to
             "tolerance {tol}: {:?}",
             r.termination
         );
-        let e = r.energy.unwrap();
+        let e = r.energy().unwrap();
         assert!(
             e.residual_j.abs() < 1e-6 * e.work_hydraulic_j,
             "tolerance {tol}: the balance is off by {} J of {} J",
@@ -621,7 +621,7 @@ fn energy_on_a_sticking_pivot_route_falls_with_the_tolerance() {
             "{:?}",
             r.termination
         );
-        r.energy.unwrap().residual_j.abs()
+        r.energy().unwrap().residual_j.abs()
     };
     let (a, b, c) = (residual(1e-7), residual(1e-9), residual(1e-11));
     println!("residuals {a:.3e} {b:.3e} {c:.3e} J");
@@ -660,8 +660,8 @@ fn the_factor_of_safety_is_the_cones_whatever_the_dynamics_and_typed_where_it_ha
     assert_eq!(paper.factor_of_safety, rigid_body.factor_of_safety);
     let fs = rigid_body.factor_of_safety.unwrap().value().unwrap();
     assert!((fs - 0.8624).abs() < 1e-3, "{fs}");
-    assert!((paper.paper_ratio.unwrap() - 0.7333).abs() < 1e-3);
-    assert_eq!(rigid_body.paper_ratio, None);
+    assert!((paper.paper_ratio().unwrap() - 0.7333).abs() < 1e-3);
+    assert_eq!(rigid_body.paper_ratio(), None);
     // μ = 0.05 on 20° and 25° dips: the weight alone slides the block (it printed "-inf").
     let slippery = run(&rigid(&[(MU, 0.05), (DT, 1e-3), (T_END, 0.05)]));
     assert_eq!(slippery.factor_of_safety, Some(FactorOfSafety::NotHoldable));
@@ -699,7 +699,7 @@ fn kicked_blocks_stop_without_chatter_and_keep_their_energy_balance() {
         let r = run(&s);
         assert_eq!(r.termination.reason, Reason::Stopped, "{mu} {force} {v0}");
         assert!(ends_at_rest(&r));
-        let e = r.energy.unwrap();
+        let e = r.energy().unwrap();
         worst = worst.max(e.residual_j.abs() / e.work_friction_j.abs());
     }
     assert!(
@@ -715,7 +715,7 @@ fn a_released_contact_slips_without_chatter_whatever_dt() {
     // at the same moment.
     for dt in [2e-3, 1e-3, 0.5e-3] {
         let r = run(&scene_file("pivot-released", &[(DT, dt), (T_END, 3.0)]));
-        let e = r.energy.unwrap();
+        let e = r.energy().unwrap();
         assert!(
             e.residual_j.abs() < 1e-8 * e.work_hydraulic_j,
             "dt {dt}: residual {} J of {} J",
@@ -755,7 +755,7 @@ fn a_slip_friction_stops_within_a_step_beside_a_sliding_block_pivots_instead_of_
         "{:?}",
         r.termination
     );
-    let e = r.energy.unwrap();
+    let e = r.energy().unwrap();
     assert!(
         e.residual_j.abs() < 1e-7 * e.work_hydraulic_j,
         "residual {} J of {} J",

@@ -44,7 +44,7 @@ fn zero_force_does_not_slide() {
     assert_eq!(r.termination.reason, Reason::DoesNotSlide);
     // Nothing drives the block: the paper's ratio has no value, and the factor of safety (the
     // friction cones') says in words that no multiple of the load starts it.
-    assert_eq!(r.paper_ratio, None);
+    assert_eq!(r.paper_ratio(), None);
     assert_eq!(r.factor_of_safety, Some(FactorOfSafety::Unbounded));
     assert_eq!(r.increments, 0);
 }
@@ -54,10 +54,10 @@ fn force_below_the_onset_threshold_does_not_slide_and_above_it_slides() {
     // Paper-like: driving (F − 2.338 MN) against capacity 4.152 MN; the threshold is 6.490 MN.
     let below = run(&with(&[(FORCE, 6.4e6)]));
     assert_eq!(below.termination.reason, Reason::DoesNotSlide);
-    assert!(below.paper_ratio.unwrap() > 1.0);
+    assert!(below.paper_ratio().unwrap() > 1.0);
     let above = run(&with(&[(FORCE, 6.6e6)]));
     assert_ne!(above.termination.reason, Reason::DoesNotSlide);
-    assert!(above.paper_ratio.unwrap() < 1.0);
+    assert!(above.paper_ratio().unwrap() < 1.0);
     assert!(above.travel_m > 0.1);
 }
 
@@ -151,7 +151,7 @@ fn the_papers_rk4_keeps_to_its_tolerance_whatever_the_increment() {
         );
         let sim = s.simulation().unwrap();
         let c = slideroute::Runner::new(&sim).run();
-        let steps = c.diagnostics.steps.map_or(0, |s| s.taken);
+        let steps = c.route.steps().map_or(0, |s| s.taken);
         (c.route, steps)
     };
     let (fine, _) = rows(1e-4, slideroute::MAX_TOLERANCE);
@@ -544,7 +544,7 @@ fn a_kicked_block_stops_exactly_at_rest() {
         let s = with(&[(FORCE, 3.0e6), ("initial.vx_m_s", 0.3), ("solver.dt_s", dt)]);
         let r = run(&s);
         assert_eq!(r.termination.reason, Reason::Stopped, "{:?}", r.termination);
-        assert!(r.paper_ratio.unwrap() > 1.0);
+        assert!(r.paper_ratio().unwrap() > 1.0);
         let [.., before, last] = &r.rows[..] else {
             panic!("too few rows")
         };

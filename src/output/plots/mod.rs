@@ -113,7 +113,7 @@ fn still_words(route: &Route, what: &str) -> Vec<String> {
             "{} does not slide: static friction {} holds the block under its weight and the \
              water load ({}).",
             route.scene,
-            if route.base.is_some() {
+            if route.base().is_some() {
                 "under its base"
             } else {
                 "within the three contacts' cones"
@@ -187,7 +187,7 @@ fn plan(path: &Path, scene: &Scene, route: &Route) -> Res<()> {
                 who: "the route".into(),
                 rows: &rows,
                 color: COLORS[0],
-                base: route.base.as_ref(),
+                base: route.base(),
             }],
             fan: None,
             notes: &route_notes(route),
@@ -220,14 +220,14 @@ pub(crate) fn compare_plan(path: &Path, scene: &Scene, c: &crate::compare::Compa
                     who: "rigid body".into(),
                     rows: &rigid,
                     color: COLORS[0],
-                    base: c.rigid_body.route.base.as_ref(),
+                    base: c.rigid_body.route.base(),
                 },
                 Track {
                     name: name("paper's dynamics", &c.paper.route),
                     who: "paper's dynamics".into(),
                     rows: &paper,
                     color: COLORS[3],
-                    base: c.paper.route.base.as_ref(),
+                    base: c.paper.route.base(),
                 },
             ],
             fan: None,

@@ -100,7 +100,7 @@ pub(super) fn route_fan(
             who: "the scene as written".into(),
             rows: &rows,
             color: RGBColor(0, 0, 0),
-            base: r.base.as_ref(),
+            base: r.base(),
         })
         .into_iter()
         .collect();

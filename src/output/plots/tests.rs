@@ -304,7 +304,7 @@ fn a_monolith_held_on_its_base_is_said_to_be_held_under_its_base_not_by_three_co
     let held = with_keys(&scene_file("monolith.toml"), &[("water.headwater_m", 6.0)]).unwrap();
     let (dir, route) = route_pictures("held-base", &held);
     assert_eq!(route.termination.reason, Reason::DoesNotSlide);
-    assert!(route.base.is_some());
+    assert!(route.base().is_some());
     let words: String = texts(&read(&dir, "profile.svg"))
         .into_iter()
         .map(|t| t.text + " ")
@@ -376,7 +376,7 @@ fn the_plan_view_of_a_block_on_its_base_draws_its_base_and_where_it_touched() {
         .with("solver.t_end_s", 1.0)
         .unwrap();
     let (dir, route) = route_pictures("on-base", &scene);
-    let corners = route.base.as_ref().unwrap().outline_m.len();
+    let corners = route.base().unwrap().outline_m.len();
     let svg = read(&dir, "plan.svg");
     // The base's outline: a closed path of its corners and the first again, at each drawn pose.
     let closed = svg
@@ -497,7 +497,7 @@ fn a_monolith_on_its_frame_is_drawn_with_its_base_outline_not_the_contact_triang
         .with_dynamics(crate::DynamicsModel::Paper)
         .unwrap();
     let (dir, route) = route_pictures("monolith-frame", &scene);
-    assert!(route.base.is_none());
+    assert!(route.base().is_none());
     let svg = read(&dir, "plan.svg");
     let outlines = closed_polylines(&svg);
     let base = outlines

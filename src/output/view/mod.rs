@@ -16,7 +16,7 @@ pub(crate) mod many;
 
 use super::{OutputError, OutputFolder, Written};
 use crate::model::Base;
-use crate::route::pose_of_row;
+use crate::route::models::pose_of_row;
 use crate::{Route, Row, Scene};
 use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector3};
 

@@ -408,7 +408,7 @@ fn work_precision(
                     }
                     times.sort_by(f64::total_cmp);
                     let c: Computed = last.ok_or("no run")?;
-                    let steps = c.diagnostics.steps.map_or(c.route.increments, |s| s.taken);
+                    let steps = c.route.steps().map_or(c.route.increments, |s| s.taken);
                     let r = c.route;
                     let ratio = (dt / reference_at.0).round() as usize;
                     points.push(Point {

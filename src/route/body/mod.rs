@@ -27,21 +27,39 @@ pub use report::{BaseReport, Carrying, Resting, pose_of_row};
 
 use super::AnchorBreak;
 use super::dynamics::{Dynamics, Flow, Start};
-use super::logbook::{EnergyBalance, Logbook};
+use super::energy::EnergyBalance;
+use super::logbook::Logbook;
 use super::pose_finder::PoseFinder;
 use super::row::Row;
 use super::termination::Reason;
+use super::three_point::factor_of_safety_at_start;
 use crate::geometry::contact::Quadrature;
 use crate::geometry::penetration::{deepest_of, samples};
 use crate::geometry::{
-    BodyPose, CastError, Footprint, Ground, Relief, SettleError, cast, set_down,
+    BodyPose, CastError, Footprint, Ground, Pose, Relief, SettleError, cast, set_down,
 };
 use crate::model::{Base, Body, Simulation, Tendon};
 use nalgebra::{Matrix3, Vector3};
+use serde::Serialize;
 use state::BodyState;
 use std::cell::Cell;
 use std::sync::Arc;
 use step::{Ctx, HELD_SOLVE, STEP_SOLVE, Stepped};
+
+/// What the block on its base adds to its route.
+#[derive(Debug, Clone, PartialEq, Default, Serialize)]
+pub struct OnBaseReport {
+    /// The energy balance from the start to the route's last state.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub energy: Option<EnergyBalance>,
+    /// Where it rested before any load, what carried it, and the deepest its base went into the
+    /// ground (none where it could not be set down).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub base: Option<BaseReport>,
+}
+
+/// The block on its base's logbook.
+type Log<'s> = Logbook<'s, OnBaseReport>;
 
 /// The tilt of the base from level beyond which the block has overturned (degrees).
 pub const OVERTURN_DEG: f64 = 60.0;
@@ -114,20 +132,17 @@ impl<'a> OnBase<'a> {
     }
 
     /// The energy balance and the deepest penetration, into the logbook.
-    fn seal(&self, o: &mut Logbook<'_>) {
+    fn seal(&self, o: &mut Log<'_>) {
         let mass = self.body.block().mass;
         let kinetic = self.s.kinetic(mass, &self.inertia);
         let potential = mass * self.body.loads().gravity * (self.s.pose.cm.y - self.origin.0);
-        let (wa, wc) = (self.s.work_applied, self.s.work_contacts);
-        o.energy = Some(EnergyBalance {
-            work_hydraulic_j: wa,
-            work_friction_j: wc,
-            kinetic_j: kinetic,
-            kinetic_initial_j: self.origin.1,
-            potential_change_j: potential,
-            residual_j: wa + wc - (kinetic - self.origin.1) - potential,
-        });
-        if let Some(b) = o.base.as_mut() {
+        let works = (self.s.work_applied, self.s.work_contacts);
+        o.report.energy = Some(EnergyBalance::of(
+            works,
+            (self.origin.1, kinetic),
+            potential,
+        ));
+        if let Some(b) = o.report.base.as_mut() {
             b.max_penetration_m = b.max_penetration_m.max(self.deepest.get());
         }
     }
@@ -158,7 +173,7 @@ impl<'a> OnBase<'a> {
 
     /// At rest under a record: the route goes on while the record does, and ends once it is
     /// over — "stopped" if the block moved, else it never slid.
-    fn rest_until_the_record_ends<'s>(&self, o: Logbook<'s>) -> Flow<'s> {
+    fn rest_until_the_record_ends<'s>(&self, o: Log<'s>) -> Flow<'s, OnBaseReport> {
         let over = self
             .sim
             .foundation()
@@ -181,7 +196,7 @@ impl<'a> OnBase<'a> {
 
     /// Lets go every tendon whose force has reached its capacity at the present pose, each
     /// booked in the logbook (located to the step: the block on its base steps at dt).
-    fn break_tendons(&mut self, o: &mut Logbook<'_>) {
+    fn break_tendons(&mut self, o: &mut Log<'_>) {
         let frame = self.s.pose.frame();
         let origin = self.under_cm();
         for (k, t) in self.tendons.iter_mut().enumerate() {
@@ -201,12 +216,17 @@ impl<'a> OnBase<'a> {
     }
 
     /// The route ended before it began, at the pose the block has (`reason`, `detail`).
-    fn refused<'s>(&self, o: Logbook<'s>, reason: Reason, detail: String) -> Start<'s, Self> {
+    fn refused<'s>(
+        &self,
+        o: Log<'s>,
+        reason: Reason,
+        detail: String,
+    ) -> Start<'s, Self, OnBaseReport> {
         let row = self.row();
         Start::Ended(o.finish(row, reason, 0.0, detail))
     }
 
-    fn end<'s>(&self, mut o: Logbook<'s>, reason: Reason, detail: String) -> Flow<'s> {
+    fn end<'s>(&self, mut o: Log<'s>, reason: Reason, detail: String) -> Flow<'s, OnBaseReport> {
         let row = self.row();
         self.seal(&mut o);
         Flow::Ended(o.finish(row, reason, self.t, detail))
@@ -221,11 +241,13 @@ fn footprint(base: &Base) -> Footprint<'_> {
 }
 
 impl<'a> Dynamics<'a> for OnBase<'a> {
+    type Report = OnBaseReport;
+
     fn start<'s>(
         sim: &'a Simulation,
         _finder: &mut PoseFinder<'_>,
-        o: Logbook<'s>,
-    ) -> Start<'s, Self> {
+        o: Log<'s>,
+    ) -> Start<'s, Self, OnBaseReport> {
         let [body] = sim.bodies() else {
             let n = sim.bodies().len();
             let detail = format!("{n} bodies: their dynamics together is not computed yet");
@@ -304,7 +326,7 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
             }
         }
         let mut o = o;
-        o.base = Some(BaseReport {
+        o.report.base = Some(BaseReport {
             resting: Resting::of(&rest),
             max_penetration_m: f64::NEG_INFINITY,
             outline_m: base.outline().to_vec(),
@@ -334,7 +356,7 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
         }
         if init.at_rest() && !shaken && on.held(0.0, h) {
             on.seal(&mut o);
-            o.energy = Some(EnergyBalance::default());
+            o.report.energy = Some(EnergyBalance::default());
             return Start::Ended(o.end(
                 Reason::DoesNotSlide,
                 0.0,
@@ -351,8 +373,8 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
         _finder: &mut PoseFinder<'_>,
         _k: usize,
         t_to: f64,
-        mut o: Logbook<'s>,
-    ) -> Flow<'s> {
+        mut o: Log<'s>,
+    ) -> Flow<'s, OnBaseReport> {
         let h = t_to - self.t;
         let before = self.under_cm();
         let mut s = self.s;
@@ -483,7 +505,14 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
         }
     }
 
-    fn close(&self, o: &mut Logbook<'_>) {
+    fn close(&self, o: &mut Log<'_>) {
         self.seal(o);
+    }
+
+    /// The factor of safety at the start on the block's reporting triangle, the three-point
+    /// frame's (one factor of safety whatever the model); its yield acceleration is its base's
+    /// own, found where it rests (`start`).
+    fn at_start(sim: &'a Simulation, start: Option<&Pose>, o: &mut Log<'_>) {
+        factor_of_safety_at_start(sim, start, o);
     }
 }

@@ -11,15 +11,40 @@ pub use rhs::{Evaluation, evaluate, velocity};
 pub use state::State;
 pub use step::{paper_step, rk4_step};
 
+use super::Steps;
 use super::dynamics::{Dynamics, Flow, Start};
 use super::logbook::Logbook;
 use super::pose_finder::PoseFinder;
-use super::row::{Row, faces_of};
+use super::row::Row;
 use super::termination::{Reason, Stop};
+use super::three_point::{faces_of, factor_of_safety_at_start, yield_acceleration_at_start};
+use crate::geometry::Pose;
 use crate::mechanics::loads::Applied;
 use crate::mechanics::onset::factor_of_safety;
 use crate::model::{Body, Integrator, Simulation};
 use crate::route::integrator::error_ratio;
+use serde::Serialize;
+
+/// What the paper's dynamics adds to its route.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct PaperReport {
+    /// Its resisting capacity over driving force along x' at the start (`mechanics::onset`), a
+    /// quantity other than the factor of safety every route has (absent where nothing drives
+    /// the block along x').
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub paper_ratio: Option<f64>,
+    /// How often the followed friction solution was lost and chosen afresh by the rule
+    /// (summary.json writes it with the computation's numbers, `Report::friction_switches`).
+    #[serde(skip)]
+    pub friction_switches: usize,
+    /// RK4's substeps, chosen against the tolerance (none with the paper's own update; written
+    /// with the computation's numbers, `Report::steps`).
+    #[serde(skip)]
+    pub steps: Steps,
+}
+
+/// The paper's logbook.
+type Log<'s> = Logbook<'s, PaperReport>;
 
 fn row(s: &State, ev: Option<&Evaluation>, pose: &crate::geometry::Pose, faces: [u32; 3]) -> Row {
     Row {
@@ -156,7 +181,7 @@ impl Paper<'_> {
         &mut self,
         finder: &mut PoseFinder<'f>,
         (t_to, dt): (f64, f64),
-        o: &mut Logbook<'_>,
+        o: &mut Log<'_>,
     ) -> Result<Stepped<'f>, (Stop, Option<Box<Stepped<'f>>>)> {
         let sim = (self.sim, self.body);
         let (l, tol) = (self.body.l(), self.sim.settings().tolerance);
@@ -220,7 +245,7 @@ impl Paper<'_> {
                         if h > reference * (1.0 + 1e-12) && pieces < MAX_PIECES {
                             break;
                         }
-                        o.steps.0 += taken;
+                        o.report.steps.taken += taken;
                         // The route ends where the model does, inside this substep: its longest
                         // part that can be taken.
                         let part = longest_part(sim, base, (s, ev), h);
@@ -272,7 +297,7 @@ impl Paper<'_> {
                 taken += 1;
             }
             if taken == pieces {
-                o.steps.0 += pieces;
+                o.report.steps.taken += pieces;
                 // Twice the substep multiplies the estimate by 16: halve their number only
                 // where that would leave it under half the tolerance.
                 self.pieces = if pieces > 1 && 16.0 * worst < 0.5 {
@@ -282,18 +307,20 @@ impl Paper<'_> {
                 };
                 return Ok(done);
             }
-            o.steps.1 += taken + 1;
+            o.report.steps.retried += taken + 1;
             pieces *= 2;
         }
     }
 }
 
 impl<'a> Dynamics<'a> for Paper<'a> {
+    type Report = PaperReport;
+
     fn start<'s>(
         sim: &'a Simulation,
         finder: &mut PoseFinder<'_>,
-        mut o: Logbook<'s>,
-    ) -> Start<'s, Self> {
+        mut o: Log<'s>,
+    ) -> Start<'s, Self, PaperReport> {
         let body = sim.first_body();
         let init = body.initial();
         // At rest, or moving as the scene's [initial] says.
@@ -321,7 +348,7 @@ impl<'a> Dynamics<'a> for Paper<'a> {
             }
         };
         let (fs, driving, resisting) = paper_ratio(pair, &ev);
-        o.paper_ratio = fs.is_finite().then_some(fs);
+        o.report.paper_ratio = fs.is_finite().then_some(fs);
         o.push(row(&state, Some(&ev), &ev.pose, faces_of(body.site())));
         if init.at_rest() && (fs >= 1.0 || ev.reaction.accel <= 0.0) {
             let detail = if driving <= 0.0 {
@@ -355,8 +382,8 @@ impl<'a> Dynamics<'a> for Paper<'a> {
         finder: &mut PoseFinder<'_>,
         k: usize,
         t_to: f64,
-        mut o: Logbook<'s>,
-    ) -> Flow<'s> {
+        mut o: Log<'s>,
+    ) -> Flow<'s, PaperReport> {
         let sim = (self.sim, self.body);
         let (state, ev) = (self.state, self.ev);
         // The increment ends at t_to (exactly t_end for the last one).
@@ -407,14 +434,14 @@ impl<'a> Dynamics<'a> for Paper<'a> {
                 }
                 // The substeps taken before the one that could not be: the route ends there.
                 if let Some(t) = taken {
-                    o.switches += t.switches;
+                    o.report.friction_switches += t.switches;
                     o.travel += t.travel;
                     (self.state, self.ev) = (t.next, t.ev);
                 }
                 return Flow::Ended(o.finish(self.row(), reason, self.state.t, detail));
             }
         };
-        o.switches += switches;
+        o.report.friction_switches += switches;
         o.increments = k;
         // Stopped where the velocity along the acceleration passes through zero and friction
         // holds (`stop_in`).
@@ -439,10 +466,16 @@ impl<'a> Dynamics<'a> for Paper<'a> {
         )
     }
 
+    /// The frame's factor of safety at the start and, under a record, its yield acceleration.
+    fn at_start(sim: &'a Simulation, start: Option<&Pose>, o: &mut Log<'_>) {
+        factor_of_safety_at_start(sim, start, o);
+        yield_acceleration_at_start(sim, start, o);
+    }
+
     /// Where the paper's dynamics cannot start or continue the block, the detail says so and names
     /// the rigid body's: its kinematics hold only where its frictional system has a
     /// solution and its contacts stay on their planes, which is not physics ending the route.
-    fn explain_end(o: &mut Logbook<'_>) {
+    fn explain_end(o: &mut Log<'_>) {
         let fs = o.fs;
         let t = &mut o.termination;
         let hint = match t.reason {
@@ -489,8 +522,8 @@ impl Paper<'_> {
         finder: &PoseFinder<'_>,
         c: Crossing<'_>,
         start_t: f64,
-        mut o: Logbook<'s>,
-    ) -> Result<Flow<'s>, Logbook<'s>> {
+        mut o: Log<'s>,
+    ) -> Result<Flow<'s, PaperReport>, Log<'s>> {
         let sim = (self.sim, self.body);
         // Where the paper's update (accelerations frozen over the (sub)step) brings it to
         // zero: (v + a τ)·a = 0 (with RK4, to first order in τ).

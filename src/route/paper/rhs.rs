@@ -21,8 +21,8 @@ use crate::mechanics::{ContactGeometry, statics};
 use crate::model::{Body, Simulation};
 use crate::numeric::fixed;
 use crate::route::pose_finder::{PoseFinder, PoseMethod};
-use crate::route::row::faces_of;
 use crate::route::termination::{Reason, Stop};
+use crate::route::three_point::faces_of;
 use nalgebra::Vector3;
 
 /// Everything known at one state.

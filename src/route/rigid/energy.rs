@@ -2,7 +2,7 @@
 //! change of kinetic and potential energy since the start (`derivations/08-rigid-body.md` §3).
 
 use super::state::RigidState;
-use crate::route::logbook::EnergyBalance;
+use crate::route::energy::EnergyBalance;
 
 /// What the balance is measured from: the start's kinetic energy (J) and the CM's height there
 /// (m), with the block's weight.
@@ -22,13 +22,10 @@ impl EnergyOrigin {
     /// `cm_y` (m).
     pub fn balance(&self, y: &RigidState, kinetic: f64, cm_y: f64) -> EnergyBalance {
         let potential = self.mass * self.gravity * (cm_y - self.cm_y);
-        EnergyBalance {
-            work_hydraulic_j: y.work_applied,
-            work_friction_j: y.work_friction,
-            kinetic_j: kinetic,
-            kinetic_initial_j: self.kinetic,
-            potential_change_j: potential,
-            residual_j: y.work_applied + y.work_friction - (kinetic - self.kinetic) - potential,
-        }
+        EnergyBalance::of(
+            (y.work_applied, y.work_friction),
+            (self.kinetic, kinetic),
+            potential,
+        )
     }
 }

@@ -9,8 +9,9 @@ use crate::mechanics::ContactGeometry;
 use crate::mechanics::loads::Applied;
 use crate::mechanics::rigid_body::{self, Creases, Motion, RigidError};
 use crate::route::pose_finder::PoseFinder;
-use crate::route::row::{Row, faces_of};
+use crate::route::row::Row;
 use crate::route::termination::{Reason, Stop};
+use crate::route::three_point::faces_of;
 use nalgebra::Vector3;
 
 /// One evaluation of the rigid-body right-hand side.

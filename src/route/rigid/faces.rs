@@ -10,8 +10,8 @@ use super::state::RigidState;
 use crate::mechanics::rigid_body::{self, Crease, Creases, Impact, ImpactLaw, RigidError};
 use crate::model::ContactStrengths;
 use crate::route::pose_finder::PoseFinder;
-use crate::route::row::faces_of;
 use crate::route::termination::{Reason, Stop};
+use crate::route::three_point::faces_of;
 use nalgebra::Vector3;
 
 /// A contact's change of face at an event of the rock's faces that makes an impact: it met

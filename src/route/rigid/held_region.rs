@@ -245,7 +245,7 @@ mod tests {
     use super::*;
     use crate::geometry::Pose;
     use crate::model::Simulation;
-    use crate::route::row::faces_of;
+    use crate::route::three_point::faces_of;
     use crate::scene::Scene;
 
     /// A scene of the repository with `keys` set, its simulation, its contact geometry at the

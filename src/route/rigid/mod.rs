@@ -35,11 +35,15 @@ mod state;
 mod substep;
 mod tendons;
 
+use super::Steps;
 use super::dynamics::{Dynamics, Flow, Start};
-use super::logbook::{EnergyBalance, Logbook};
+use super::energy::EnergyBalance;
+use super::logbook::Logbook;
 use super::pose_finder::PoseFinder;
-use super::row::{Row, faces_of};
+use super::row::Row;
 use super::termination::{Reason, Stop};
+use super::three_point::{faces_of, factor_of_safety_at_start, yield_acceleration_at_start};
+use crate::geometry::Pose;
 use crate::mechanics::ContactGeometry;
 use crate::mechanics::static_friction::Limit;
 use crate::model::{Body, ContactStrength, Foundation, RunSettings, Simulation};
@@ -47,8 +51,24 @@ use energy::EnergyOrigin;
 use evaluate::{Eval, Hold, cm_y, evaluate};
 use hold::Anchor;
 use rest::{rest_eval, rest_row, static_check};
+use serde::Serialize;
 use state::RigidState;
 use std::rc::Rc;
+
+/// What the rigid body adds to its route.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
+pub struct RigidBodyReport {
+    /// The energy balance from the start to the route's last state.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub energy: Option<EnergyBalance>,
+    /// Its steps, chosen against the tolerance (written with the computation's numbers in
+    /// summary.json, `Report::steps`).
+    #[serde(skip)]
+    pub steps: Steps,
+}
+
+/// The rigid body's logbook.
+pub(super) type Log<'s> = Logbook<'s, RigidBodyReport>;
 
 /// What a route follows: the simulation (its foundation, strengths and settings) and its one
 /// body as the route has it — the one given, or the route's own once the route has changed it:
@@ -219,18 +239,20 @@ impl<'a> RigidBody<'a> {
     }
 
     /// The route ended by a failure at the current state.
-    fn fail<'s>(&self, mut o: Logbook<'s>, s: Stop) -> Logbook<'s> {
-        o.energy = Some(self.balance(&self.y, &self.ev));
+    fn fail<'s>(&self, mut o: Log<'s>, s: Stop) -> Log<'s> {
+        o.report.energy = Some(self.balance(&self.y, &self.ev));
         o.finish(self.ev.row(self.t, &self.y), s.reason, self.t, s.detail)
     }
 }
 
 impl<'a> Dynamics<'a> for RigidBody<'a> {
+    type Report = RigidBodyReport;
+
     fn start<'s>(
         sim: &'a Simulation,
         finder: &mut PoseFinder<'_>,
-        mut o: Logbook<'s>,
-    ) -> Start<'s, Self> {
+        mut o: Log<'s>,
+    ) -> Start<'s, Self, RigidBodyReport> {
         let sim = Model::new(sim);
         let mass = sim.body().block().mass;
         let init = *sim.body().initial();
@@ -295,7 +317,7 @@ impl<'a> Dynamics<'a> for RigidBody<'a> {
                     check.factor_of_safety()
                 ),
             );
-            done.energy = Some(EnergyBalance::default());
+            done.report.energy = Some(EnergyBalance::default());
             return Start::Ended(done);
         }
         let ev = match evaluate(&sim, finder, &y, Hold::default()) {
@@ -326,8 +348,8 @@ impl<'a> Dynamics<'a> for RigidBody<'a> {
         finder: &mut PoseFinder<'_>,
         k: usize,
         t_to: f64,
-        o: Logbook<'s>,
-    ) -> Flow<'s> {
+        o: Log<'s>,
+    ) -> Flow<'s, RigidBodyReport> {
         self.shown_t = t_to;
         self.substeps(finder, k, t_to, o)
     }
@@ -347,7 +369,15 @@ impl<'a> Dynamics<'a> for RigidBody<'a> {
         }
     }
 
-    fn close(&self, o: &mut Logbook<'_>) {
-        o.energy = Some(self.balance(&self.y, &self.ev));
+    fn close(&self, o: &mut Log<'_>) {
+        o.report.energy = Some(self.balance(&self.y, &self.ev));
+    }
+
+    /// The frame's factor of safety at the start where the start did not reach it (no start
+    /// pose to check, or a start that ended before its static check) and, under a record, its
+    /// yield acceleration.
+    fn at_start(sim: &'a Simulation, start: Option<&Pose>, o: &mut Log<'_>) {
+        factor_of_safety_at_start(sim, start, o);
+        yield_acceleration_at_start(sim, start, o);
     }
 }

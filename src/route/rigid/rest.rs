@@ -8,16 +8,17 @@ use super::evaluate::{Eval, Hold, body_geometry, cm_y, evaluate, stop_of};
 use super::held_region::{self, HeldRegion};
 use super::hold::Anchor;
 use super::state::RigidState;
+use super::{Log, RigidBodyReport};
 use crate::geometry::Pose;
 use crate::mechanics::ContactGeometry;
 use crate::mechanics::loads::Applied;
 use crate::mechanics::rigid_body::{self, Creases, Motion};
 use crate::mechanics::static_friction::{self, HoldingRange, StaticError};
 use crate::route::dynamics::Flow;
-use crate::route::logbook::Logbook;
 use crate::route::pose_finder::PoseFinder;
-use crate::route::row::{Row, faces_of};
+use crate::route::row::Row;
 use crate::route::termination::{Reason, Stop};
+use crate::route::three_point::faces_of;
 use nalgebra::Vector3;
 
 /// How far below 1 the factor of safety of a block at rest may be and the block still be
@@ -149,7 +150,7 @@ impl RigidBody<'_> {
         stopped: &RigidState,
         k: usize,
         t_event: f64,
-        o: &mut Logbook<'_>,
+        o: &mut Log<'_>,
     ) -> Rest {
         let model = self.sim.clone();
         let (sim, from): (&Model<'_>, _) = (&model, &self.ev);
@@ -167,9 +168,9 @@ impl RigidBody<'_> {
         // At rest there: its energy balance and its row; while a record shakes the foundation it
         // rests, else the route ends "stopped" for `why`.
         let balance = self.energy.balance(stopped, 0.0, cm_y(sim, &stop_pose));
-        let held = |o: &mut Logbook<'_>, finder: &PoseFinder<'_>, why: String| {
+        let held = |o: &mut Log<'_>, finder: &PoseFinder<'_>, why: String| {
             o.push(rest_row(t_event, stopped, &stop_pose, from.faces));
-            o.energy = Some(balance);
+            o.report.energy = Some(balance);
             if sim.foundation().record().is_some_and(|r| t_event < r.end()) {
                 match rest_eval(sim, finder, stop_pose, &check) {
                     Ok(e) => Rest::Rests(Box::new(e), t_event),
@@ -208,7 +209,7 @@ impl RigidBody<'_> {
                 )
             }
             Err(Stop { reason, detail, .. }) => {
-                o.energy = Some(balance);
+                o.report.energy = Some(balance);
                 Rest::Ended(reason, t_event, detail)
             }
         }
@@ -223,8 +224,8 @@ impl RigidBody<'_> {
         &mut self,
         finder: &mut PoseFinder<'_>,
         t_target: f64,
-        mut o: Logbook<'s>,
-    ) -> Flow<'s> {
+        mut o: Log<'s>,
+    ) -> Flow<'s, RigidBodyReport> {
         let model = self.sim.clone();
         let sim: &Model<'_> = &model;
         let foundation = sim.foundation();
@@ -338,7 +339,7 @@ impl RigidBody<'_> {
         };
         let moved = o.travel > 0.0;
         o.push(rest_row(self.t, &self.y, &self.ev.pose, self.ev.faces));
-        o.energy = Some(self.balance(&self.y, &self.ev));
+        o.report.energy = Some(self.balance(&self.y, &self.ev));
         let (reason, what) = if moved {
             (Reason::Stopped, "the block came to rest")
         } else {

@@ -14,12 +14,12 @@ use super::rows;
 use super::state::{RigidState, VALUES};
 use super::tendons::AT_CAPACITY;
 use super::{Ending, Model, RigidBody};
+use super::{Log, RigidBodyReport};
 use crate::mechanics::rigid_body::Motion;
 
 use crate::route::driver::recorded_within;
 use crate::route::dynamics::Flow;
 use crate::route::integrator::{error_ratio, hermite};
-use crate::route::logbook::Logbook;
 use crate::route::pose_finder::PoseFinder;
 use crate::route::row::Row;
 use crate::route::termination::{Reason, Stop};
@@ -154,8 +154,8 @@ impl RigidBody<'_> {
         finder: &mut PoseFinder<'_>,
         k: usize,
         t_target: f64,
-        mut o: Logbook<'s>,
-    ) -> Flow<'s> {
+        mut o: Log<'s>,
+    ) -> Flow<'s, RigidBodyReport> {
         let mut events = 0usize;
         let mut switches = 0usize;
         self.switching = true;
@@ -191,7 +191,7 @@ impl RigidBody<'_> {
             match self.substep(finder, k, left, resolve, &mut o) {
                 Ok(step @ (Substep::Event | Substep::Switch)) => {
                     self.through = false;
-                    o.steps.0 += 1;
+                    o.report.steps.taken += 1;
                     match step {
                         Substep::Switch => switches += 1,
                         _ => events += 1,
@@ -215,10 +215,10 @@ impl RigidBody<'_> {
                         ));
                     }
                 }
-                Ok(Substep::Retry) => o.steps.1 += 1,
+                Ok(Substep::Retry) => o.report.steps.retried += 1,
                 Ok(Substep::Moved) => {
                     self.through = false;
-                    o.steps.0 += 1;
+                    o.report.steps.taken += 1;
                 }
                 Err(Ending::Failed(stop)) => return Flow::Ended(self.fail(o, stop)),
                 Err(Ending::At(reason, t, detail)) => {
@@ -241,7 +241,7 @@ impl RigidBody<'_> {
         k: usize,
         (left, to_target): (f64, f64),
         resolve: bool,
-        o: &mut Logbook<'_>,
+        o: &mut Log<'_>,
     ) -> Result<Substep, Ending> {
         if self.break_tendons(finder, o)? {
             return Ok(Substep::Event);
@@ -380,7 +380,7 @@ impl RigidBody<'_> {
         finder: &mut PoseFinder<'f>,
         trial: Trial<'f>,
         resolve: bool,
-        o: &mut Logbook<'_>,
+        o: &mut Log<'_>,
     ) -> Result<Substep, Ending> {
         let Trial {
             h,
@@ -426,7 +426,7 @@ impl RigidBody<'_> {
             self.h = 0.5 * h;
             return Ok(Substep::Retry);
         };
-        o.interpolated += interpolated;
+        o.report.steps.rows_interpolated += interpolated;
         *finder = at_next;
         self.go_to(o, next, next_ev);
         self.anchor = Anchor::after(&self.ev, self.anchor);
@@ -569,7 +569,7 @@ impl RigidBody<'_> {
     }
 
     /// Takes the state `y`, evaluated as `e`, its travel booked.
-    fn go_to(&mut self, o: &mut Logbook<'_>, y: RigidState, e: Eval) {
+    fn go_to(&mut self, o: &mut Log<'_>, y: RigidState, e: Eval) {
         o.travel += (y.travel - self.y.travel).max(0.0);
         self.y = y;
         self.ev = e;
@@ -587,7 +587,7 @@ impl RigidBody<'_> {
         at_end: Option<Event>,
         resolve: bool,
         heading: &Heading<'_>,
-        o: &mut Logbook<'_>,
+        o: &mut Log<'_>,
     ) -> Result<Substep, Ending> {
         let model = self.sim.clone();
         let sim: &Model<'_> = &model;
@@ -745,7 +745,7 @@ impl RigidBody<'_> {
         k: usize,
         bracket: &Bracket,
         stop: &Stop,
-        o: &mut Logbook<'_>,
+        o: &mut Log<'_>,
     ) -> Result<Option<Substep>, Ending> {
         let model = self.sim.clone();
         let sim: &Model<'_> = &model;
@@ -848,7 +848,7 @@ impl RigidBody<'_> {
         k: usize,
         bracket: &Bracket,
         stop: Stop,
-        o: &mut Logbook<'_>,
+        o: &mut Log<'_>,
     ) -> Ending {
         let (lo, y_lo) = (bracket.lo, bracket.y_lo);
         if lo > 0.0 {
@@ -860,7 +860,7 @@ impl RigidBody<'_> {
         let t_end = self.t + lo;
         o.push(self.ev.row(t_end, &self.y));
         o.increments = k;
-        o.energy = Some(self.balance(&self.y, &self.ev));
+        o.report.energy = Some(self.balance(&self.y, &self.ev));
         Ending::At(stop.reason, t_end, stop.detail)
     }
 
@@ -873,7 +873,7 @@ impl RigidBody<'_> {
         k: usize,
         y_lo: RigidState,
         t_event: f64,
-        o: &mut Logbook<'_>,
+        o: &mut Log<'_>,
     ) -> Result<Substep, Ending> {
         let stopped = y_lo.stopped();
         // A tendon that reached its capacity as the block stopped breaks before the block is

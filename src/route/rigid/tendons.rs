@@ -6,11 +6,11 @@
 //! capacity; there the tendon is let go and the state evaluated again without it. A stop checks
 //! the tendons before it asks whether friction holds the block (the force peaks there).
 
+use super::Log;
 use super::evaluate::{Eval, Hold, evaluate};
 use super::{Ending, RigidBody};
 use crate::geometry::Pose;
 use crate::route::AnchorBreak;
-use crate::route::logbook::Logbook;
 use crate::route::pose_finder::PoseFinder;
 
 /// A tendon within this fraction of its capacity has reached it; a substep that carries one
@@ -30,7 +30,7 @@ impl RigidBody<'_> {
 
     /// Breaks every tendon that has reached its capacity with the block at `pose` at time `t`,
     /// each booked in the logbook (the caller evaluates the state again). Whether any broke.
-    pub(super) fn break_tendons_at(&mut self, pose: &Pose, t: f64, o: &mut Logbook<'_>) -> bool {
+    pub(super) fn break_tendons_at(&mut self, pose: &Pose, t: f64, o: &mut Log<'_>) -> bool {
         let mut broke = false;
         while let Some(k) = self
             .sim
@@ -51,7 +51,7 @@ impl RigidBody<'_> {
     pub(super) fn break_tendons(
         &mut self,
         finder: &mut PoseFinder<'_>,
-        o: &mut Logbook<'_>,
+        o: &mut Log<'_>,
     ) -> Result<bool, Ending> {
         let pose = self.ev.pose;
         let broke = self.break_tendons_at(&pose, self.t, o);

@@ -8,7 +8,7 @@ use super::P;
 use crate::geometry::direct;
 use crate::model::Base;
 use crate::output::plots::sheet;
-use crate::route::pose_of_row;
+use crate::route::models::pose_of_row;
 use crate::{BaseReport, Displacement, Pose, Row, Scene};
 use nalgebra::Vector3;
 
@@ -276,7 +276,7 @@ mod tests {
             .with("solver.t_end_s", 0.5)
             .unwrap();
         let route = crate::analysis::run(&scene).unwrap();
-        let report = route.base.as_ref().unwrap();
+        let report = route.base().unwrap();
         let drawn = outlines_of(&scene, &route.rows, Some(report));
         assert!(drawn.on_base);
         assert!(drawn.shapes.len() >= 2);
