@@ -353,3 +353,186 @@ fn the_cycle_finder_finds_a_cycle() {
         vec!["rhs", "state"]
     );
 }
+
+/// The contact models' rooms in `src/route/`: each model's own folders and files, and the names
+/// that are that model's (its types, its modules, what only it uses). Outside a model's room no
+/// file of the route names them: the driver, the logbook, the event and rest layers work with
+/// any model. `route/models.rs`, the one place that picks a model from the settings, names
+/// them all.
+const ROOMS: [(&str, &[&str], &[&str]); 2] = [
+    (
+        "the three-point frame",
+        &["route/paper/", "route/rigid/", "route/three_point.rs"],
+        &[
+            "Contacts::Frame",
+            "Paper",
+            "PaperReport",
+            "RigidBody",
+            "RigidBodyReport",
+            "faces_of",
+            "paper::",
+            "rigid::",
+            "three_point::",
+        ],
+    ),
+    (
+        "the base",
+        &["route/body/"],
+        &[
+            "Contacts::Base",
+            "OnBase",
+            "OnBaseReport",
+            "BaseReport",
+            "body::",
+        ],
+    ),
+];
+
+/// The one room that picks a model from the settings.
+const SELECTION: &str = "route/models.rs";
+
+/// A room's file that may name another room's module: the block on its base reports through the
+/// three-point frame's points (route.csv's tilts, the factor of safety at the start), and asks
+/// the frame's own room for them.
+const MAY_NAME: [(&str, &str); 1] = [("route/body/", "three_point::")];
+
+/// Whether `token` stands in `text` as a name of its own: not inside a longer identifier
+/// (`body::` is not in `rigid_body::`, `Paper` not in `PaperPlanes`).
+fn names(text: &str, token: &str) -> bool {
+    let part = |c: char| c.is_alphanumeric() || c == '_';
+    text.match_indices(token).any(|(k, _)| {
+        let before = text[..k].chars().next_back();
+        let after = text[k + token.len()..].chars().next();
+        !before.is_some_and(part) && (token.ends_with("::") || !after.is_some_and(part))
+    })
+}
+
+/// What each file of the route (its path from `src/`, its code) names of a contact model outside
+/// that model's room. A module's declaration (`mod body;`) is the tree's shape, not a use.
+fn named_outside_their_rooms(files: &[(String, String)]) -> Vec<String> {
+    let mut out = Vec::new();
+    for (path, text) in files {
+        if !path.starts_with("route/") || path == SELECTION {
+            continue;
+        }
+        let code: String = text
+            .lines()
+            .filter(|l| {
+                let l = l.trim_start();
+                let l = ["pub(crate) ", "pub(super) ", "pub "]
+                    .iter()
+                    .fold(l, |l, p| l.strip_prefix(p).unwrap_or(l));
+                !(l.starts_with("mod ") && l.trim_end().ends_with(';'))
+            })
+            .collect::<Vec<_>>()
+            .join("\n");
+        for (room, places, tokens) in ROOMS {
+            if places.iter().any(|p| path.starts_with(p)) {
+                continue;
+            }
+            for token in tokens {
+                let allowed = MAY_NAME
+                    .iter()
+                    .any(|(from, t)| path.starts_with(from) && t == token);
+                if !allowed && names(&code, token) {
+                    out.push(format!("{path} names `{token}` of {room}"));
+                }
+            }
+        }
+    }
+    out
+}
+
+/// The route's files: their paths from `src/` and their code (no tests, no comments).
+fn route_files() -> Vec<(String, String)> {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = Vec::new();
+    sources(&src.join("route"), &mut files);
+    files
+        .iter()
+        .map(|p| {
+            let rel = p
+                .strip_prefix(&src)
+                .unwrap()
+                .to_string_lossy()
+                .replace('\\', "/");
+            (rel, code(p))
+        })
+        .collect()
+}
+
+#[test]
+fn no_file_of_the_route_names_a_contact_model_outside_that_models_room() {
+    let files = route_files();
+    assert!(files.len() >= 30, "{} files", files.len());
+    // The scan sees the models where they are named: the selection names every room's types.
+    let models = &files.iter().find(|(p, _)| p == SELECTION).unwrap().1;
+    for token in ["OnBase", "Paper", "RigidBody"] {
+        assert!(
+            names(models, token),
+            "{SELECTION} names no `{token}`: the scan is broken"
+        );
+    }
+    assert_eq!(named_outside_their_rooms(&files), Vec::<String>::new());
+}
+
+#[test]
+fn the_room_check_finds_a_model_named_outside_its_room() {
+    let file = |path: &str, code: &str| (path.to_string(), code.to_string());
+    let clean = [
+        file(
+            "route/driver.rs",
+            "use crate::mechanics::rigid_body::Motion;",
+        ),
+        file(
+            "route/mod.rs",
+            "mod body;\npub mod paper;\npub(crate) mod three_point;",
+        ),
+        file(
+            "route/models.rs",
+            "use super::body::OnBase; use super::rigid::RigidBody;",
+        ),
+        file(
+            "route/rigid/substep.rs",
+            "use crate::route::three_point::faces_of;",
+        ),
+        file(
+            "route/body/mod.rs",
+            "use super::three_point::factor_of_safety_at_start;",
+        ),
+        file("route/events.rs", "use crate::geometry::PaperPlanes;"),
+        file(
+            "analysis/check.rs",
+            "use crate::route::three_point::faces_of;",
+        ),
+    ];
+    assert_eq!(named_outside_their_rooms(&clean), Vec::<String>::new());
+    let injected = [
+        file(
+            "route/driver.rs",
+            "if sim.settings().contacts == Contacts::Frame {",
+        ),
+        file(
+            "route/logbook.rs",
+            "pub base: Option<super::body::report::BaseReport>,",
+        ),
+        file("route/mod.rs", "pub use body::OnBase;"),
+        file("route/rest.rs", "fn held(b: &RigidBody<'_>) {}"),
+        file("route/rigid/events.rs", "use crate::route::body::OnBase;"),
+        file("route/body/mod.rs", "use super::three_point::faces_of;"),
+    ];
+    assert_eq!(
+        named_outside_their_rooms(&injected),
+        [
+            "route/driver.rs names `Contacts::Frame` of the three-point frame",
+            "route/logbook.rs names `BaseReport` of the base",
+            "route/logbook.rs names `body::` of the base",
+            "route/mod.rs names `OnBase` of the base",
+            "route/mod.rs names `body::` of the base",
+            "route/rest.rs names `RigidBody` of the three-point frame",
+            "route/rigid/events.rs names `OnBase` of the base",
+            "route/rigid/events.rs names `body::` of the base",
+            "route/body/mod.rs names `faces_of` of the three-point frame",
+        ]
+    );
+}
