@@ -518,7 +518,7 @@ fn the_room_check_finds_a_model_named_outside_its_room() {
         ),
         file("route/mod.rs", "pub use body::OnBase;"),
         file("route/rest.rs", "fn held(b: &RigidBody<'_>) {}"),
-        file("route/rigid/events.rs", "use crate::route::body::OnBase;"),
+        file("route/rigid/heading.rs", "use crate::route::body::OnBase;"),
         file("route/body/mod.rs", "use super::three_point::faces_of;"),
     ];
     assert_eq!(
@@ -530,8 +530,8 @@ fn the_room_check_finds_a_model_named_outside_its_room() {
             "route/mod.rs names `OnBase` of the base",
             "route/mod.rs names `body::` of the base",
             "route/rest.rs names `RigidBody` of the three-point frame",
-            "route/rigid/events.rs names `OnBase` of the base",
-            "route/rigid/events.rs names `body::` of the base",
+            "route/rigid/heading.rs names `OnBase` of the base",
+            "route/rigid/heading.rs names `body::` of the base",
             "route/body/mod.rs names `faces_of` of the three-point frame",
         ]
     );

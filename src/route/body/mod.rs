@@ -30,6 +30,7 @@ use super::dynamics::{Dynamics, Flow, Start};
 use super::energy::EnergyBalance;
 use super::logbook::Logbook;
 use super::pose_finder::PoseFinder;
+use super::rest::{self, AtRest};
 use super::row::Row;
 use super::termination::Reason;
 use super::three_point::factor_of_safety_at_start;
@@ -174,23 +175,17 @@ impl<'a> OnBase<'a> {
     /// At rest under a record: the route goes on while the record does, and ends once it is
     /// over — "stopped" if the block moved, else it never slid.
     fn rest_until_the_record_ends<'s>(&self, o: Log<'s>) -> Flow<'s, OnBaseReport> {
-        let over = self
-            .sim
-            .foundation()
-            .record()
-            .is_none_or(|r| self.t >= r.end());
-        if !over {
+        if rest::shaking(self.sim.foundation(), self.t) {
             return Flow::Go(o);
         }
-        let (reason, what) = if o.travel > 0.0 {
-            (Reason::Stopped, "the block came to rest on its base")
-        } else {
-            (Reason::DoesNotSlide, "the block never slid")
-        };
-        let detail = format!(
-            "the ground-motion record ended at {:.6} s; {what} and static friction holds it",
-            self.sim.foundation().record().map_or(0.0, |r| r.end())
-        );
+        // Its holding is a rigid equilibrium on its touches and a step from rest that leaves
+        // it slow (`held`): no multiple of the loads, so no factor of safety in the words.
+        let (reason, detail) = AtRest::RecordOver {
+            moved: o.travel > 0.0,
+            on: " on its base",
+            holding: None,
+        }
+        .words(self.sim.foundation());
         self.end(o, reason, detail)
     }
 
@@ -349,7 +344,7 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
             ..Stepped::default()
         };
         o.push(on.row());
-        let shaken = sim.foundation().record().is_some_and(|r| r.end() > 0.0);
+        let shaken = rest::shaking(sim.foundation(), 0.0);
         if sim.foundation().record().is_some() {
             // What a Newmark user reports first: the yield acceleration where it rests.
             o.yield_acceleration = on.ctx().yield_acceleration(&rest.pose).ok().flatten();
@@ -357,11 +352,9 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
         if init.at_rest() && !shaken && on.held(0.0, h) {
             on.seal(&mut o);
             o.report.energy = Some(EnergyBalance::default());
-            return Start::Ended(o.end(
-                Reason::DoesNotSlide,
-                0.0,
-                "static friction holds the block where it rests on its base".into(),
-            ));
+            let why = "static friction holds the block where it rests on its base".into();
+            let (reason, why) = AtRest::NeverSlid(why).words(sim.foundation());
+            return Start::Ended(o.end(reason, 0.0, why));
         }
         // Shaken from rest: at rest until the record moves it.
         on.resting = init.at_rest() && shaken;
@@ -446,11 +439,9 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
         if !shaken && self.slow(&self.s, h) && self.held(self.t, h) {
             self.s.v = Vector3::zeros();
             self.s.w = Vector3::zeros();
-            return self.end(
-                o,
-                Reason::Stopped,
-                "the block stopped and static friction holds it on its base".into(),
-            );
+            let why = "the block stopped and static friction holds it on its base".into();
+            let (reason, why) = AtRest::Stopped(why).words(self.sim.foundation());
+            return self.end(o, reason, why);
         }
         Flow::Go(o)
     }

@@ -13,17 +13,22 @@ pub use step::{paper_step, rk4_step};
 
 use super::Steps;
 use super::dynamics::{Dynamics, Flow, Start};
+use super::events::{Until, bisect};
 use super::logbook::Logbook;
 use super::pose_finder::PoseFinder;
+use super::rest::AtRest;
 use super::row::Row;
 use super::termination::{Reason, Stop};
-use super::three_point::{faces_of, factor_of_safety_at_start, yield_acceleration_at_start};
+use super::three_point::{
+    faces_of, factor_of_safety_at_start, frame_row, yield_acceleration_at_start,
+};
 use crate::geometry::Pose;
 use crate::mechanics::loads::Applied;
 use crate::mechanics::onset::factor_of_safety;
 use crate::model::{Body, Integrator, Simulation};
 use crate::route::integrator::error_ratio;
 use serde::Serialize;
+use std::convert::Infallible;
 
 /// What the paper's dynamics adds to its route.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
@@ -46,27 +51,14 @@ pub struct PaperReport {
 /// The paper's logbook.
 type Log<'s> = Logbook<'s, PaperReport>;
 
-fn row(s: &State, ev: Option<&Evaluation>, pose: &crate::geometry::Pose, faces: [u32; 3]) -> Row {
-    Row {
-        body: 0,
-        t_s: s.t,
-        x_m: s.x,
-        y_m: pose.cm.y,
-        z_m: s.z,
-        theta_deg: s.theta.to_degrees(),
-        alpha_deg: pose.alpha.to_degrees(),
-        beta_deg: pose.beta.to_degrees(),
-        gamma_deg: pose.gamma.to_degrees(),
-        vx_m_s: s.vx,
-        vz_m_s: s.vz,
-        omega_deg_s: s.omega.to_degrees(),
-        n_n: ev.map(|e| e.reaction.normal.map(|v| v.norm())),
-        s_n: ev.map(|e| e.reaction.shear.map(|v| v.norm())),
-        faces,
-        crease: [None; 3],
-        corners_carrying: None,
-        points_carrying: None,
-    }
+/// The row of state `s` at `pose`, with the reactions of `ev` where it was evaluated.
+fn row(s: &State, ev: Option<&Evaluation>, pose: &Pose, faces: [u32; 3]) -> Row {
+    let reactions = ev.map(|e| {
+        let r = &e.reaction;
+        (r.normal.map(|v| v.norm()), r.shear.map(|v| v.norm()))
+    });
+    let state = [s.x, s.z, s.theta, s.vx, s.vz, s.omega];
+    frame_row(s.t, state, pose, (faces, [None; 3]), reactions)
 }
 
 /// The paper's dynamics under way: the state and the evaluation (pose, reactions,
@@ -121,9 +113,10 @@ fn crosses(a: &[f64; 3], s: &State, n: &State) -> bool {
     along([s.vx, s.vz]) < 0.0 && along([n.vx, n.vz]) >= 0.0
 }
 
-/// Bisection for the longest part of a substep of length `h` from `s` (evaluated as `ev`) that
-/// can be taken when the whole cannot (a contact left its plane, the frictional system has no
-/// solution): single RK4 steps of the part's length from `s`, to 1e-12 of `h`. The part's
+/// The event layer's bisection for the longest part of a substep of length `h` from `s`
+/// (evaluated as `ev`) that can be taken when the whole cannot (a contact left its plane, the
+/// frictional system has no solution): single RK4 steps of the part's length from `s`, to 1e-12
+/// of `h`. The part's
 /// length, the state there, its evaluation and the finder at it; none where no part can be.
 fn longest_part<'f>(
     sim: (&Simulation, &Body),
@@ -147,18 +140,17 @@ fn longest_part<'f>(
         )?;
         Ok::<_, Stop>((len, next, end, f))
     };
-    let (mut lo, mut hi) = (0.0, h);
+    // Some 40 halvings reach 1e-12 of the substep.
     let mut best = None;
-    while hi - lo > 1e-12 * h {
-        let mid = 0.5 * (lo + hi);
-        match part(mid) {
+    let Ok(_) = bisect::<Infallible>((0.0, h), Until::width(1e-12 * h, 64), |mid| {
+        Ok(match part(mid) {
             Ok(p) => {
-                lo = mid;
                 best = Some(p);
+                false
             }
-            Err(_) => hi = mid,
-        }
-    }
+            Err(_) => true,
+        })
+    });
     best
 }
 
@@ -363,7 +355,8 @@ impl<'a> Dynamics<'a> for Paper<'a> {
                     ev.reaction.accel
                 )
             };
-            return Start::Ended(o.end(Reason::DoesNotSlide, 0.0, detail));
+            let (reason, detail) = AtRest::NeverSlid(detail).words(sim.foundation());
+            return Start::Ended(o.end(reason, 0.0, detail));
         }
         Start::Moving(
             Paper {
@@ -564,6 +557,7 @@ impl Paper<'_> {
             "speed reached zero at t = {:.6} s; factor of safety there {fs_here:.4}",
             stop.t
         );
-        Ok(Flow::Ended(o.end(Reason::Stopped, stop.t, detail)))
+        let (reason, detail) = AtRest::Stopped(detail).words(self.sim.foundation());
+        Ok(Flow::Ended(o.end(reason, stop.t, detail)))
     }
 }

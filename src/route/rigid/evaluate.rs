@@ -11,7 +11,7 @@ use crate::mechanics::rigid_body::{self, Creases, Motion, RigidError};
 use crate::route::pose_finder::PoseFinder;
 use crate::route::row::Row;
 use crate::route::termination::{Reason, Stop};
-use crate::route::three_point::faces_of;
+use crate::route::three_point::{faces_of, frame_row};
 use nalgebra::Vector3;
 
 /// One evaluation of the rigid-body right-hand side.
@@ -41,26 +41,10 @@ impl Eval {
 
     /// The row of state `y` evaluated here, at `t`.
     pub fn row(&self, t: f64, y: &RigidState) -> Row {
-        Row {
-            body: 0,
-            t_s: t,
-            x_m: y.x,
-            y_m: self.pose.cm.y,
-            z_m: y.z,
-            theta_deg: y.theta.to_degrees(),
-            alpha_deg: self.pose.alpha.to_degrees(),
-            beta_deg: self.pose.beta.to_degrees(),
-            gamma_deg: self.pose.gamma.to_degrees(),
-            vx_m_s: y.vx,
-            vz_m_s: y.vz,
-            omega_deg_s: y.omega.to_degrees(),
-            n_n: Some(self.motion.normal),
-            s_n: Some(self.motion.shear.map(|s| s.norm())),
-            faces: self.faces,
-            crease: self.motion.creases.faces(),
-            corners_carrying: None,
-            points_carrying: None,
-        }
+        let m = &self.motion;
+        let on = (self.faces, m.creases.faces());
+        let reactions = Some((m.normal, m.shear.map(|s| s.norm())));
+        frame_row(t, y.frame_state(), &self.pose, on, reactions)
     }
 }
 

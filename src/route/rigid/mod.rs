@@ -11,11 +11,11 @@
 //! (`mechanics::rigid_body::twist`).
 //!
 //! Stick and slip at the block level: at rest (the start, or when the motion stops), the block
-//! stays put when static friction within the three cones can hold it (`rest.rs`); otherwise it
+//! stays put when static friction within the three cones can hold it (`at_rest.rs`, on the rest layer, `route/rest.rs`); otherwise it
 //! slips from rest in the direction that reproduces itself. While sliding, an increment is
 //! taken in substeps (`substep.rs`), each checked for events — a stop (the twist reverses), a
 //! pivot (a contact's slip reverses), a release (a sticking contact's cone no longer holds it)
-//! or a failure (a state off the model) — found by bisection on the step length (`events.rs`),
+//! or a failure (a state off the model) — found by bisection on the step length (`heading.rs`, by the event layer's bisection, `route/events.rs`),
 //! and shortened where the energy balance says RK4 does not resolve the motion
 //! (`derivations/08-rigid-body.md` §3). The events of the rock's faces — a contact meeting a
 //! face, running over a ridge, let go by a crease — and their impacts are in `faces.rs`. At a
@@ -23,13 +23,13 @@
 //! contact in a crease on its second face (`hold.rs`), their slip projected out as an impulse
 //! would (the energy that takes booked as friction work), so that they stay put whatever dt.
 
+mod at_rest;
 mod energy;
 mod evaluate;
-mod events;
 mod faces;
+mod heading;
 mod held_region;
 mod hold;
-mod rest;
 mod rows;
 mod state;
 mod substep;
@@ -40,17 +40,18 @@ use super::dynamics::{Dynamics, Flow, Start};
 use super::energy::EnergyBalance;
 use super::logbook::Logbook;
 use super::pose_finder::PoseFinder;
+use super::rest::{self, AtRest};
 use super::row::Row;
 use super::termination::{Reason, Stop};
 use super::three_point::{faces_of, factor_of_safety_at_start, yield_acceleration_at_start};
 use crate::geometry::Pose;
 use crate::mechanics::ContactGeometry;
-use crate::mechanics::static_friction::Limit;
+use crate::mechanics::static_friction::{HoldingRange, Limit};
 use crate::model::{Body, ContactStrength, Foundation, RunSettings, Simulation};
+use at_rest::{rest_eval, rest_row, static_check};
 use energy::EnergyOrigin;
 use evaluate::{Eval, Hold, cm_y, evaluate};
 use hold::Anchor;
-use rest::{rest_eval, rest_row, static_check};
 use serde::Serialize;
 use state::RigidState;
 use std::rc::Rc;
@@ -181,17 +182,27 @@ pub(super) struct RigidBody<'a> {
     round_off: f64,
     /// Held at rest by static friction while a ground-motion record's loads change: each
     /// increment checks the friction cones again, and the block slips when they no longer hold
-    /// it (`rest.rs`).
+    /// it (`at_rest.rs`, on the rest layer, `route/rest.rs`).
     resting: bool,
     /// While resting: the ground accelerations it is certainly held under where it rests
     /// (`held_region.rs`), found at its first increment at rest.
     region: Option<held_region::HeldRegion>,
     /// Whether the next step locates a switch of friction's regime as an event
-    /// (`events.rs`'s `Event::Switch`): not past `MAX_SWITCHES` in an increment, nor after a
+    /// (`route/events.rs`'s `Event::Switch`): not past `MAX_SWITCHES` in an increment, nor after a
     /// switch met again at the moment of the last.
     switching: bool,
     /// The moment of the last switch located.
     switched_at: f64,
+}
+
+/// What the energy balance is measured from: the start at `pose`, its kinetic energy `kinetic`.
+fn start_origin(sim: &Model<'_>, pose: &Pose, kinetic: f64) -> EnergyOrigin {
+    EnergyOrigin {
+        kinetic,
+        cm_y: cm_y(sim, pose),
+        mass: sim.body().block().mass,
+        gravity: sim.body().loads().gravity,
+    }
 }
 
 impl<'a> RigidBody<'a> {
@@ -228,6 +239,72 @@ impl<'a> RigidBody<'a> {
         }
     }
 
+    /// At rest at the start in state `y` at `pose` on `faces`, and held there by static friction
+    /// (`check`): under a record that shakes the foundation it rests while the record's loads
+    /// change; else the route ends, "does not slide".
+    fn held_at_start<'s>(
+        sim: Model<'a>,
+        finder: &PoseFinder<'_>,
+        (y, pose, faces): (RigidState, Pose, [u32; 3]),
+        check: &HoldingRange,
+        mut o: Log<'s>,
+    ) -> Start<'s, Self, RigidBodyReport> {
+        o.push(rest_row(0.0, &y, &pose, faces));
+        if rest::shaking(sim.foundation(), 0.0) {
+            // Held for now: it rests while the record's loads change.
+            let ev = match rest_eval(&sim, finder, pose, check) {
+                Ok(e) => e,
+                Err(Stop { reason, detail, .. }) => {
+                    return Start::Ended(o.end(reason, 0.0, detail));
+                }
+            };
+            let origin = start_origin(&sim, &pose, 0.0);
+            return Start::Moving(RigidBody::new(sim, y, ev, origin, true), o);
+        }
+        let why = format!(
+            "static friction within the three cones holds the block: factor of safety {}",
+            check.factor_of_safety()
+        );
+        let (reason, why) = AtRest::NeverSlid(why).words(sim.foundation());
+        let mut done = o.end(reason, 0.0, why);
+        done.report.energy = Some(EnergyBalance::default());
+        Start::Ended(done)
+    }
+
+    /// Not held at the start (`check`), or set moving by `[initial]`: the block slips from rest,
+    /// or moves on, from its evaluation in state `y` at `pose`. Where it has none the route
+    /// ends there: "the block overturned" where it was at rest and its loads tip it onto two
+    /// contacts, which the frame cannot follow (its base can).
+    fn moving_at_start<'s>(
+        sim: Model<'a>,
+        finder: &mut PoseFinder<'_>,
+        (y, pose, faces): (RigidState, Pose, [u32; 3]),
+        check: &HoldingRange,
+        mut o: Log<'s>,
+    ) -> Start<'s, Self, RigidBodyReport> {
+        let ev = match evaluate(&sim, finder, &y, Hold::default()) {
+            Ok(e) => e,
+            Err(Stop { reason, detail, .. }) => {
+                o.push(rest_row(0.0, &y, &pose, faces));
+                if sim.body().initial().at_rest() && check.limit() == Some(Limit::Tips) {
+                    let detail = format!(
+                        "the loads tip the block onto two contacts at the start (the load \
+                         multiple {} is limited by tipping; on three contacts: {detail}); the \
+                         block on its base follows it (solver.contacts = \"base\")",
+                        check.factor_of_safety()
+                    );
+                    return Start::Ended(o.end(Reason::Overturned, 0.0, detail));
+                }
+                return Start::Ended(o.end(reason, 0.0, detail));
+            }
+        };
+        o.push(ev.row(0.0, &y));
+        let mass = sim.body().block().mass;
+        let kinetic = ev.motion.twist.kinetic_energy(mass, &ev.motion.inertia);
+        let origin = start_origin(&sim, &pose, kinetic);
+        Start::Moving(RigidBody::new(sim, y, ev, origin, false), o)
+    }
+
     /// The energy balance at state `y` evaluated as `e`.
     fn balance(&self, y: &RigidState, e: &Eval) -> EnergyBalance {
         let mass = self.sim.body().block().mass;
@@ -254,9 +331,7 @@ impl<'a> Dynamics<'a> for RigidBody<'a> {
         mut o: Log<'s>,
     ) -> Start<'s, Self, RigidBodyReport> {
         let sim = Model::new(sim);
-        let mass = sim.body().block().mass;
-        let init = *sim.body().initial();
-        let y = RigidState::start(&init);
+        let y = RigidState::start(sim.body().initial());
         let faces = faces_of(sim.body().site());
         // The start: at rest, held or not by static friction (decided before any acceleration
         // is sought: a held block has no consistent way to slip); or moving as `[initial]`
@@ -287,60 +362,11 @@ impl<'a> Dynamics<'a> for RigidBody<'a> {
         };
         o.fs = Some(check.factor_of_safety());
         o.fs_limit = check.limit();
-        let shaken = sim.foundation().record().is_some_and(|r| r.end() > 0.0);
-        let start_cm_y = cm_y(&sim, &start_pose);
-        let gravity = sim.body().loads().gravity;
-        let origin = |kinetic: f64| EnergyOrigin {
-            kinetic,
-            cm_y: start_cm_y,
-            mass,
-            gravity,
-        };
-        if init.at_rest() && check.holds() && shaken {
-            // Held for now: it rests while the record's loads change.
-            o.push(rest_row(0.0, &y, &start_pose, faces));
-            let ev = match rest_eval(&sim, finder, start_pose, &check) {
-                Ok(e) => e,
-                Err(Stop { reason, detail, .. }) => {
-                    return Start::Ended(o.end(reason, 0.0, detail));
-                }
-            };
-            return Start::Moving(RigidBody::new(sim, y, ev, origin(0.0), true), o);
+        let at = (y, start_pose, faces);
+        if sim.body().initial().at_rest() && check.holds() {
+            return RigidBody::held_at_start(sim, finder, at, &check, o);
         }
-        if init.at_rest() && check.holds() {
-            o.push(rest_row(0.0, &y, &start_pose, faces));
-            let mut done = o.end(
-                Reason::DoesNotSlide,
-                0.0,
-                format!(
-                    "static friction within the three cones holds the block: factor of safety {}",
-                    check.factor_of_safety()
-                ),
-            );
-            done.report.energy = Some(EnergyBalance::default());
-            return Start::Ended(done);
-        }
-        let ev = match evaluate(&sim, finder, &y, Hold::default()) {
-            Ok(e) => e,
-            Err(Stop { reason, detail, .. }) => {
-                o.push(rest_row(0.0, &y, &start_pose, faces));
-                if init.at_rest() && check.limit() == Some(Limit::Tips) {
-                    // No motion on three contacts: the loads tip the block, which the frame
-                    // cannot follow (its base can).
-                    let detail = format!(
-                        "the loads tip the block onto two contacts at the start (the load \
-                         multiple {} is limited by tipping; on three contacts: {detail}); the \
-                         block on its base follows it (solver.contacts = \"base\")",
-                        check.factor_of_safety()
-                    );
-                    return Start::Ended(o.end(Reason::Overturned, 0.0, detail));
-                }
-                return Start::Ended(o.end(reason, 0.0, detail));
-            }
-        };
-        o.push(ev.row(0.0, &y));
-        let kinetic = ev.motion.twist.kinetic_energy(mass, &ev.motion.inertia);
-        Start::Moving(RigidBody::new(sim, y, ev, origin(kinetic), false), o)
+        RigidBody::moving_at_start(sim, finder, at, &check, o)
     }
 
     fn advance<'s>(

@@ -53,6 +53,11 @@ impl RigidState {
         [self.vx, self.vz, self.omega]
     }
 
+    /// X, Z, θ and their rates: what a row on the three-point frame shows of the state.
+    pub fn frame_state(&self) -> [f64; 6] {
+        [self.x, self.z, self.theta, self.vx, self.vz, self.omega]
+    }
+
     /// The same state with its rates replaced.
     pub fn with_rates(self, [vx, vz, omega]: [f64; 3]) -> RigidState {
         RigidState {

@@ -5,11 +5,11 @@
 //! output, each evaluated at its own state, or, in a long step that holds no contact in a crease,
 //! evaluated at a few and the rest interpolated between them (`rows.rs`).
 
+use super::at_rest::Rest;
 use super::evaluate::{Eval, Hold, evaluate};
-use super::events::{Bracket, Event, Heading, Span, bracket_event, confirmed, rk4_stages};
 use super::faces::{BeforeImpact, after_impact, face_event};
+use super::heading::{Bracket, Heading, Span, bracket_event, confirmed, rk4_stages};
 use super::hold::{Anchor, hold_anchor, hold_on_creases};
-use super::rest::Rest;
 use super::rows;
 use super::state::{RigidState, VALUES};
 use super::tendons::AT_CAPACITY;
@@ -19,8 +19,10 @@ use crate::mechanics::rigid_body::Motion;
 
 use crate::route::driver::recorded_within;
 use crate::route::dynamics::Flow;
+use crate::route::events::{Event, cut_at};
 use crate::route::integrator::{error_ratio, hermite};
 use crate::route::pose_finder::PoseFinder;
+use crate::route::rest;
 use crate::route::row::Row;
 use crate::route::termination::{Reason, Stop};
 use nalgebra::Vector3;
@@ -39,7 +41,7 @@ const MAX_EVENTS: usize = 16;
 
 /// Events at one moment, the route not moving on between them, past which the route ends
 /// there ("the contact forces are not determined"): a contact that leaves a crease and meets
-/// the crease's other face again at once would otherwise loop for ever (issue #27, a record on
+/// the crease's other face again at once would otherwise loop for ever (met under a record on
 /// faces). Three events at one moment are the most a consistent motion takes (an impact that
 /// lifts a contact off its face and puts it on the next, `crease_event`), so 64 is none of them.
 const EVENTS_AT_ONE_MOMENT: usize = 64;
@@ -66,7 +68,7 @@ const SAFETY: f64 = 0.9;
 /// position and its path against the block's size L and the yaw in radians, each over the
 /// tolerance. The rates, the works and the time are not weighed: where friction switches within
 /// a step (a contact starting to stick, or a switch of friction's regime past `MAX_SWITCHES` in
-/// an increment; below it a switch is located as an event, `events::Event::Switch`), the
+/// an increment; below it a switch is located as an event, `Event::Switch`), the
 /// accelerations jump, and an estimate of the rates' error, first order there, would shrink the
 /// step to the shortest at every switch; the positions' error, of second order there, keeps the
 /// steps the motion needs, and the energy balance watches the rates.
@@ -176,16 +178,7 @@ impl RigidBody<'_> {
             self.switching &= switches < MAX_SWITCHES;
             // A ground-motion record's samples are where its loads may turn: steps end on them
             // (RK4 keeps its order between them); and none goes past the route's end.
-            let t_end = self.sim.settings().t_end;
-            let until = match self
-                .sim
-                .foundation()
-                .record()
-                .and_then(|r| r.next_sample(self.t))
-            {
-                Some(s) if s < t_end => s,
-                _ => t_end,
-            };
+            let until = rest::next_turn(self.sim.foundation(), self.t, self.sim.settings().t_end);
             let before = self.t;
             let left = (until - self.t, t_target - self.t);
             match self.substep(finder, k, left, resolve, &mut o) {
@@ -646,7 +639,7 @@ impl RigidBody<'_> {
         // of Coulomb friction), and the travel left is of order REST of the stopping distance.
         let mass = sim.body().block().mass;
         let ke = (self.ev.motion.twist).kinetic_energy(mass, &self.ev.motion.inertia);
-        let event = match found.or(at_end).or(trial.crossed).unwrap_or(Event::Stop) {
+        let event = match cut_at(found, at_end, trial.crossed) {
             Event::Pivot(_) if ke <= REST * self.ke_max => Event::Stop,
             // The same pivot again at the same moment: the contact's slip, not held by its cone,
             // starts so as to pass through zero again at once. Where the block is settling

@@ -1,6 +1,8 @@
-//! The block at rest: the static check of the friction cones (`mechanics::static_friction`),
-//! what a stop comes to ([`RigidBody::come_to_rest`]), and an increment held at rest while a
-//! ground-motion record shakes the foundation ([`RigidBody::rest`]).
+//! The rigid body at rest, on the rest layer (`route/rest.rs`): the static check of the friction
+//! cones (`mechanics::static_friction`), what a stop comes to ([`RigidBody::come_to_rest`]), and
+//! an increment held at rest while a ground-motion record shakes the foundation
+//! ([`RigidBody::rest`]): the record's samples walked, the onset of slip, the slip from rest
+//! there, the end once the record is over.
 
 use super::Model;
 use super::RigidBody;
@@ -16,9 +18,10 @@ use crate::mechanics::rigid_body::{self, Creases, Motion};
 use crate::mechanics::static_friction::{self, HoldingRange, StaticError};
 use crate::route::dynamics::Flow;
 use crate::route::pose_finder::PoseFinder;
+use crate::route::rest::{self, AtRest, row_at_rest};
 use crate::route::row::Row;
 use crate::route::termination::{Reason, Stop};
-use crate::route::three_point::faces_of;
+use crate::route::three_point::{faces_of, frame_row};
 use nalgebra::Vector3;
 
 /// How far below 1 the factor of safety of a block at rest may be and the block still be
@@ -55,28 +58,16 @@ fn static_stop(err: StaticError) -> Stop {
     }
 }
 
-/// A row at rest (velocities zero; reactions not computed: static friction is indeterminate).
+/// A row at rest (the rest layer's: velocities zero; reactions not computed, static friction is
+/// indeterminate).
 pub(super) fn rest_row(t: f64, y: &RigidState, pose: &Pose, faces: [u32; 3]) -> Row {
-    Row {
-        body: 0,
-        t_s: t,
-        x_m: y.x,
-        y_m: pose.cm.y,
-        z_m: y.z,
-        theta_deg: y.theta.to_degrees(),
-        alpha_deg: pose.alpha.to_degrees(),
-        beta_deg: pose.beta.to_degrees(),
-        gamma_deg: pose.gamma.to_degrees(),
-        vx_m_s: 0.0,
-        vz_m_s: 0.0,
-        omega_deg_s: 0.0,
-        n_n: None,
-        s_n: None,
-        faces,
-        crease: [None; 3],
-        corners_carrying: None,
-        points_carrying: None,
-    }
+    row_at_rest(frame_row(
+        t,
+        y.frame_state(),
+        pose,
+        (faces, [None; 3]),
+        None,
+    ))
 }
 
 /// The evaluation of the block held at rest at `pose` (no motion; the normal reactions of a
@@ -171,13 +162,14 @@ impl RigidBody<'_> {
         let held = |o: &mut Log<'_>, finder: &PoseFinder<'_>, why: String| {
             o.push(rest_row(t_event, stopped, &stop_pose, from.faces));
             o.report.energy = Some(balance);
-            if sim.foundation().record().is_some_and(|r| t_event < r.end()) {
+            if rest::shaking(sim.foundation(), t_event) {
                 match rest_eval(sim, finder, stop_pose, &check) {
                     Ok(e) => Rest::Rests(Box::new(e), t_event),
                     Err(stop) => Rest::Failed(stop),
                 }
             } else {
-                Rest::Ended(Reason::Stopped, t_event, why)
+                let (reason, why) = AtRest::Stopped(why).words(sim.foundation());
+                Rest::Ended(reason, t_event, why)
             }
         };
         if check.holds() {
@@ -216,15 +208,15 @@ impl RigidBody<'_> {
     }
 
     /// An increment at rest, to `t_target`, while a ground-motion record shakes the
-    /// foundation: the friction cones are checked with the loads then. Held, the block stays
-    /// (and the route ends "stopped" once the record is over); not held, it slips from rest at
-    /// the moment the cones stop holding it (found by bisection; `self.resting` is then false
-    /// and the increment goes on in substeps).
+    /// foundation: the friction cones are checked with the loads then, at each of the record's
+    /// samples (`rest::first_unheld`). Held, the block stays (and the route ends once the record
+    /// is over); not held, it slips from rest at the moment the cones stop holding it
+    /// (`rest::onset`; `self.resting` is then false and the increment goes on in substeps).
     pub(super) fn rest<'s>(
         &mut self,
         finder: &mut PoseFinder<'_>,
         t_target: f64,
-        mut o: Log<'s>,
+        o: Log<'s>,
     ) -> Flow<'s, RigidBodyReport> {
         let model = self.sim.clone();
         let sim: &Model<'_> = &model;
@@ -248,25 +240,10 @@ impl RigidBody<'_> {
             Some(r) if r.holds(foundation.acceleration(t)) => Ok(true),
             _ => holds(t),
         };
-        // The record's samples within the increment, where its loads turn: the block is held
-        // at each (between them the loads are linear in time, and held by convexity), the last
-        // at t_target.
-        let mut at = self.t;
-        let mut slips = None;
-        while at < t_target {
-            let next = match foundation.record().and_then(|r| r.next_sample(at)) {
-                Some(s) if s < t_target => s,
-                _ => t_target,
-            };
-            match held(next) {
-                Ok(true) => at = next,
-                Ok(false) => {
-                    slips = Some((at, next));
-                    break;
-                }
-                Err(s) => return Flow::Ended(self.fail(o, s)),
-            }
-        }
+        let slips = match rest::first_unheld(foundation, (self.t, t_target), held) {
+            Ok(s) => s,
+            Err(s) => return Flow::Ended(self.fail(o, s)),
+        };
         if let Some((lo, hi)) = slips {
             // Held at lo, not at hi, the record linear between: where the segment of its
             // accelerations leaves the held set, by one cone program (for a stress-dependent
@@ -275,85 +252,95 @@ impl RigidBody<'_> {
             let (a_lo, a_hi) = (foundation.acceleration(lo), foundation.acceleration(hi));
             let exit = held_region::exit(sim, &geom, &strength, a_lo, a_hi);
             let onset = match exit {
-                Ok(Some(s)) => lo + s.clamp(0.0, 1.0) * (hi - lo),
-                Ok(None) => {
-                    let (mut held, mut not) = (lo, hi);
-                    for _ in 0..20 {
-                        let mid = 0.5 * (held + not);
-                        match holds(mid) {
-                            Ok(true) => held = mid,
-                            Ok(false) => not = mid,
-                            Err(s) => return Flow::Ended(self.fail(o, s)),
-                        }
-                    }
-                    not
-                }
-                Err(e) => return Flow::Ended(self.fail(o, static_stop(e))),
+                Ok(exit) => rest::onset((lo, hi), exit, holds),
+                Err(e) => Err(static_stop(e)),
             };
-            // Just past the onset the loads exceed the cones by the cone program's tolerance,
-            // too little for a consistent direction of slip: the start is sought a little later,
-            // at lengths doubling from a billionth of the interval, within the increment.
-            let mut late = 1e-9 * (hi - lo);
-            let mut tried = onset;
-            loop {
-                let y = self.y.at(tried);
-                match evaluate(sim, finder, &y, Hold::default()) {
-                    Ok(e) => {
-                        self.y = y;
-                        self.t = tried;
-                        self.ev = e;
-                        self.resting = false;
-                        self.slip_peak = 0.0;
-                        self.region = None;
-                        self.anchor = Anchor::after(&self.ev, None);
-                        self.h = sim.settings().reference_step();
-                        return Flow::Go(o);
-                    }
-                    Err(s) if tried >= t_target => {
-                        // Over the cones by too little for a consistent start of slip: held
-                        // for this increment, checked again at the next.
-                        let barely = check_at(t_target).is_ok_and(|c| barely_exceeded(&c));
-                        if s.reason == Reason::ContactForcesUndetermined && barely {
-                            self.t = t_target;
-                            self.y.t = t_target;
-                            return Flow::Go(o);
-                        }
-                        return Flow::Ended(self.fail(o, s));
-                    }
-                    Err(_) => {
-                        tried = (onset + late).min(t_target);
-                        late *= 2.0;
-                    }
+            return match onset {
+                Ok(onset) => {
+                    let barely = || check_at(t_target).is_ok_and(|c| barely_exceeded(&c));
+                    self.slip_from_rest(finder, (onset, hi - lo), t_target, barely, o)
                 }
-            }
+                Err(s) => Flow::Ended(self.fail(o, s)),
+            };
         }
         self.t = t_target;
         self.y.t = t_target;
-        if foundation.record().is_some_and(|r| t_target < r.end()) {
+        if rest::shaking(foundation, t_target) {
             return Flow::Go(o);
         }
         // Held through the record's end: the route ends, with the factor of safety there.
-        let check = match check_at(t_target) {
-            Ok(c) => c,
-            Err(s) => return Flow::Ended(self.fail(o, s)),
-        };
+        match check_at(t_target) {
+            Ok(check) => self.rested_through_the_record(check, o),
+            Err(s) => Flow::Ended(self.fail(o, s)),
+        }
+    }
+
+    /// The block slips from rest at `onset` (within the interval of `width` the onset was found
+    /// in): just past the onset the loads exceed the cones by the cone program's tolerance, too
+    /// little for a consistent direction of slip, so the start is sought a little later, at
+    /// lengths doubling from a billionth of the interval, within the increment to `t_target`.
+    /// At `t_target` still none: held for this increment if the loads exceed the cones there by
+    /// too little (`barely`), else the route ends.
+    fn slip_from_rest<'s>(
+        &mut self,
+        finder: &mut PoseFinder<'_>,
+        (onset, width): (f64, f64),
+        t_target: f64,
+        barely: impl Fn() -> bool,
+        o: Log<'s>,
+    ) -> Flow<'s, RigidBodyReport> {
+        let model = self.sim.clone();
+        let sim: &Model<'_> = &model;
+        let mut late = 1e-9 * width;
+        let mut tried = onset;
+        loop {
+            let y = self.y.at(tried);
+            match evaluate(sim, finder, &y, Hold::default()) {
+                Ok(e) => {
+                    self.y = y;
+                    self.t = tried;
+                    self.ev = e;
+                    self.resting = false;
+                    self.slip_peak = 0.0;
+                    self.region = None;
+                    self.anchor = Anchor::after(&self.ev, None);
+                    self.h = sim.settings().reference_step();
+                    return Flow::Go(o);
+                }
+                Err(s) if tried >= t_target => {
+                    // Over the cones by too little for a consistent start of slip: held
+                    // for this increment, checked again at the next.
+                    if s.reason == Reason::ContactForcesUndetermined && barely() {
+                        self.t = t_target;
+                        self.y.t = t_target;
+                        return Flow::Go(o);
+                    }
+                    return Flow::Ended(self.fail(o, s));
+                }
+                Err(_) => {
+                    tried = (onset + late).min(t_target);
+                    late *= 2.0;
+                }
+            }
+        }
+    }
+
+    /// Held at rest through the record's end (`check` the static check there): the route ends,
+    /// "stopped" if the block had moved, else "does not slide" (`rest::AtRest::RecordOver`).
+    fn rested_through_the_record<'s>(
+        &self,
+        check: HoldingRange,
+        mut o: Log<'s>,
+    ) -> Flow<'s, RigidBodyReport> {
         let moved = o.travel > 0.0;
         o.push(rest_row(self.t, &self.y, &self.ev.pose, self.ev.faces));
         o.report.energy = Some(self.balance(&self.y, &self.ev));
-        let (reason, what) = if moved {
-            (Reason::Stopped, "the block came to rest")
-        } else {
-            (Reason::DoesNotSlide, "the block never slid")
-        };
-        Flow::Ended(o.end(
-            reason,
-            self.t,
-            format!(
-                "the ground-motion record ended at {:.6} s; {what} and static friction \
-                 holds it (factor of safety {})",
-                foundation.record().map_or(0.0, |r| r.end()),
-                check.factor_of_safety()
-            ),
-        ))
+        let (reason, detail) = AtRest::RecordOver {
+            moved,
+            on: "",
+            holding: Some(check.factor_of_safety()),
+        }
+        .words(self.sim.foundation());
+        Flow::Ended(o.end(reason, self.t, detail))
     }
 }

@@ -1,14 +1,17 @@
-//! The events within a rigid-body step — a stop, a pivot, a release — how they are recognised
-//! ([`Heading`]), met at a stage of the RK4 step ([`rk4_stages`]) and located by bisection on the step
-//! length ([`bracket_event`]).
+//! The rigid body's events within a step — a stop, a pivot, a release, a switch of friction's
+//! regime (`route/events.rs`'s [`Event`]) — recognised against the motion at the step's start
+//! ([`Heading`]), met at a stage of the RK4 step ([`rk4_stages`]) and located by the event
+//! layer's bisection on the step length ([`bracket_event`]).
 
 use super::Model;
 use super::evaluate::{Eval, Hold, evaluate};
 use super::state::{RigidState, VALUES};
 use crate::mechanics::rigid_body::Motion;
+use crate::route::events::{Event, Until, bisect, met_first};
 use crate::route::integrator::hermite;
 use crate::route::pose_finder::PoseFinder;
 use crate::route::termination::Stop;
+use std::convert::Infallible;
 
 /// The motion at the start of a step, against which the events of the step are recognised:
 /// a stop — a later twist t has reversed, ⟨t, before⟩ ≤ 0 in the kinetic-energy inner
@@ -21,23 +24,6 @@ pub(super) struct Heading<'a> {
     pub mass: f64,
     /// Whether a switch of friction's regime is an event.
     pub switches: bool,
-}
-
-/// What happened within a step.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(super) enum Event {
-    /// The whole motion reversed: the block stopped.
-    Stop,
-    /// The slip of this contact passed through zero while the block moved on.
-    Pivot(usize),
-    /// The contact that stuck at the start of the step can no longer be held by its friction
-    /// cone: it starts to slip.
-    Release(usize),
-    /// Friction's regime ([`Motion::regime`]: young slips' directions slaved or free, a slow
-    /// block's slips settled together or not) is no longer the step's start's: the
-    /// accelerations jump there, a first-order error in a step across it that its error
-    /// estimate does not see. Nothing changes at it; the step ends there.
-    Switch,
 }
 
 impl Heading<'_> {
@@ -86,9 +72,10 @@ pub(super) struct Bracket {
     pub failure: Option<Stop>,
 }
 
-/// Event location: bisection on the length of the step `span` between 0 and its length, down to
-/// 1e-12·dt, for the longest step that neither meets an event of `heading` (at its end or at
-/// one of its stages) nor fails.
+/// Event location: the event layer's bisection on the length of the step `span` between 0 and
+/// its length, down to 1e-12·dt, for the longest step that neither meets an event of `heading`
+/// (at its end or at one of its stages, the first met as `events::met_first` orders them) nor
+/// fails.
 pub(super) fn bracket_event(
     sim: &Model<'_>,
     finder: &PoseFinder<'_>,
@@ -102,15 +89,7 @@ pub(super) fn bracket_event(
         let e = evaluate(sim, &mut f, &yh, hold)?;
         let seen = crossed
             .and_then(|c| confirmed(sim, finder, heading, (span.y, span.k1), (&yh, &e), len, c));
-        // A stop or a pivot met at a stage comes before a switch told at the end: the step
-        // passed through it, and its end, where friction was turned round in the later
-        // stages, is no state to go on from (taken as the switch's, it had left the block of a
-        // closed form 1.6e-5 m/s off at a stop and reversal).
-        let event = match (heading.event(&e.motion), seen) {
-            (Some(Event::Switch), Some(at_stage)) => Some(at_stage),
-            (at_end, at_stage) => at_end.or(at_stage),
-        };
-        Ok((event, yh, k4))
+        Ok((met_first(heading.event(&e.motion), seen), yh, k4))
     };
     let mut b = Bracket {
         lo: 0.0,
@@ -121,28 +100,26 @@ pub(super) fn bracket_event(
         found: None,
         failure: None,
     };
-    for _ in 0..60 {
-        if b.hi - b.lo <= 1e-12 * sim.settings().dt {
-            break;
-        }
-        let mid = 0.5 * (b.lo + b.hi);
-        match reaches(mid) {
+    let until = Until::width(1e-12 * sim.settings().dt, 60);
+    let Ok((lo, hi)) = bisect::<Infallible>((b.lo, b.hi), until, |mid| {
+        Ok(match reaches(mid) {
             Ok((None, ym, k4)) => {
-                b.lo = mid;
                 b.y_lo = ym;
                 b.k4_lo = k4;
+                false
             }
             Ok((event, ym, _)) => {
-                b.hi = mid;
                 b.y_hi = ym;
                 b.found = event;
+                true
             }
             Err(stop) => {
-                b.hi = mid;
                 b.failure = Some(stop);
+                true
             }
-        }
-    }
+        })
+    });
+    (b.lo, b.hi) = (lo, hi);
     b
 }
 
