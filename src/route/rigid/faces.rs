@@ -5,7 +5,8 @@
 
 use super::Ending;
 use super::Model;
-use super::evaluate::{Hold, body_geometry, stop_of};
+use super::evaluate::{Eval, Hold, body_geometry, evaluate, stop_of};
+use super::hold::hold_on_creases;
 use super::state::RigidState;
 use crate::mechanics::rigid_body::{self, Crease, Creases, Impact, ImpactLaw, RigidError};
 use crate::model::ContactStrengths;
@@ -56,28 +57,20 @@ pub(super) fn after_impact(
     let geom = body_geometry(sim, &finder.site().normals(), &pose);
     let moving = body_geometry(sim, &before.faces, &pose);
     let creases = hold.creases.without(hold.stuck);
-    // Each contact's friction coefficient at its normal force before the impact.
-    let friction = sim.frame_strength(faces_of(finder.site()), false);
-    let mu = if friction.is_frictionless() {
-        [0.0; 3]
-    } else {
-        friction.coefficients(&before.normal_n)
-    };
-    // A release slower than a hop of HOP·L under gravity is not a lift; one from a crease
-    // slower than GRAZE·√(g L) is a graze.
-    let body = sim.body();
-    let g = body.loads().gravity;
-    let law = ImpactLaw {
-        mu,
-        release_speed: (2.0 * g * HOP * body.l()).sqrt(),
-        crease_release_speed: GRAZE * (g * body.l()).sqrt(),
-    };
+    let law = impact_law(sim, finder, before);
     let Impact {
         rates,
         removed,
         creases,
         moved,
-    } = match rigid_body::impact(&moving, &geom, body.block(), y.rates(), &creases, &law) {
+    } = match rigid_body::impact(
+        &moving,
+        &geom,
+        sim.body().block(),
+        y.rates(),
+        &creases,
+        &law,
+    ) {
         Ok(after) => after,
         Err(RigidError::ImpactLifts {
             contact,
@@ -85,37 +78,7 @@ pub(super) fn after_impact(
             speed_m_s,
         }) => {
             let off = faces_of(finder.site())[contact];
-            let held = format!("(held, its impulse would be {impulse_n_s:.6e} N·s)");
-            let (reason, detail) = match met {
-                Met { ridge: true, .. } if contact == met.contact => (
-                    Reason::ContactOverRidge,
-                    format!(
-                        "contact {contact} runs over a ridge onto face {off} and leaves it at \
-                         {speed_m_s:.3e} m/s {held}"
-                    ),
-                ),
-                Met { ridge: true, .. } => (
-                    Reason::ContactLiftedOff,
-                    format!(
-                        "contact {} running over a ridge onto face {} lifts contact {contact} \
-                         off face {off} at {speed_m_s:.3e} m/s {held}",
-                        met.contact, met.face
-                    ),
-                ),
-                Met { ridge: false, .. } => (
-                    Reason::ContactLiftedOff,
-                    format!(
-                        "the impact of contact {} on face {} lifts contact {contact} off face \
-                         {off} at {speed_m_s:.3e} m/s {held}",
-                        met.contact, met.face
-                    ),
-                ),
-            };
-            return Ok(Err(Stop {
-                reason,
-                detail,
-                contact: Some(contact),
-            }));
+            return Ok(Err(lifted(met, (contact, off), impulse_n_s, speed_m_s)));
         }
         Err(e) => return Err(Ending::Failed(stop_of(e))),
     };
@@ -137,6 +100,158 @@ pub(super) fn after_impact(
         None => creases,
     };
     Ok(Ok((z, Hold { creases, ..hold })))
+}
+
+/// The law of an impact on the site of `finder`: each contact's friction coefficient at its
+/// normal force before it (`before`); a release slower than a hop of HOP·L under gravity is not
+/// a lift, one from a crease slower than GRAZE·√(g L) a graze.
+fn impact_law(sim: &Model<'_>, finder: &PoseFinder<'_>, before: &BeforeImpact) -> ImpactLaw {
+    let friction = sim.frame_strength(faces_of(finder.site()), false);
+    let mu = if friction.is_frictionless() {
+        [0.0; 3]
+    } else {
+        friction.coefficients(&before.normal_n)
+    };
+    let body = sim.body();
+    let g = body.loads().gravity;
+    ImpactLaw {
+        mu,
+        release_speed: (2.0 * g * HOP * body.l()).sqrt(),
+        crease_release_speed: GRAZE * (g * body.l()).sqrt(),
+    }
+}
+
+/// Where an impact at `met` would need face `off` to pull contact `contact` on it faster than a
+/// hop (its impulse `impulse_n_s`, N·s, the speed it would leave at, m/s): the stop that ends
+/// the route there, "ran over a ridge" for the contact that crossed it, else "contact lifted
+/// off".
+fn lifted(met: Met, (contact, off): (usize, u32), impulse_n_s: f64, speed_m_s: f64) -> Stop {
+    let held = format!("(held, its impulse would be {impulse_n_s:.6e} N·s)");
+    let (reason, detail) = match met {
+        Met { ridge: true, .. } if contact == met.contact => (
+            Reason::ContactOverRidge,
+            format!(
+                "contact {contact} runs over a ridge onto face {off} and leaves it at \
+                 {speed_m_s:.3e} m/s {held}"
+            ),
+        ),
+        Met { ridge: true, .. } => (
+            Reason::ContactLiftedOff,
+            format!(
+                "contact {} running over a ridge onto face {} lifts contact {contact} \
+                 off face {off} at {speed_m_s:.3e} m/s {held}",
+                met.contact, met.face
+            ),
+        ),
+        Met { ridge: false, .. } => (
+            Reason::ContactLiftedOff,
+            format!(
+                "the impact of contact {} on face {} lifts contact {contact} off face \
+                 {off} at {speed_m_s:.3e} m/s {held}",
+                met.contact, met.face
+            ),
+        ),
+    };
+    Stop {
+        reason,
+        detail,
+        contact: Some(contact),
+    }
+}
+
+/// The state just after an event of the ground at `y`, its contacts held to `hold`: evaluated
+/// there, each crease's contact put back on its second face — or, where that calls for the next
+/// event at once (a contact that meets a steeper face is lifted off its own by the impact; a
+/// contact in a crease that can neither stay nor slip leaves a face), after up to three such
+/// events at the same moment.
+pub(super) fn after_events(
+    sim: &Model<'_>,
+    finder: &mut PoseFinder<'_>,
+    y: &RigidState,
+    hold: Hold,
+) -> Result<(RigidState, Eval), Ending> {
+    let mut hold = hold;
+    let mut after = None;
+    for _ in 0..3 {
+        match settle(sim, finder, y, hold) {
+            Ok(e) => {
+                after = Some(e);
+                break;
+            }
+            Err(next) => {
+                if let Some(e) = leave_a_face(sim, finder, y, hold, &next) {
+                    after = Some(e);
+                    break;
+                }
+                hold = face_event(sim, finder, y, &next, hold)
+                    .ok_or(Ending::Failed(next))?
+                    .0;
+            }
+        }
+    }
+    match after {
+        Some(e) => Ok(e),
+        None => settle(sim, finder, y, hold).map_err(Ending::Failed),
+    }
+}
+
+/// The state `y` just after an event of the ground, evaluated holding `hold`, each crease's
+/// contact put back on its second face (which may itself call for the next event).
+fn settle(
+    sim: &Model<'_>,
+    finder: &mut PoseFinder<'_>,
+    y: &RigidState,
+    hold: Hold,
+) -> Result<(RigidState, Eval), Stop> {
+    let mut at = evaluate(sim, finder, y, hold)?;
+    let mut settled = at.accept(y);
+    hold_on_creases(sim, finder, &mut settled, &mut at)?;
+    Ok((settled, at))
+}
+
+/// A contact riding a crease that can neither stay at it nor slip from it along a direction
+/// consistent with its friction (`next`, why the state `y` just after could not be settled): it
+/// leaves one of the two faces, the first (its own, then the crease's second) that it moves off
+/// rather than into; the state then, the finder on its site. None where it leaves neither.
+fn leave_a_face(
+    sim: &Model<'_>,
+    finder: &mut PoseFinder<'_>,
+    y: &RigidState,
+    hold: Hold,
+    next: &Stop,
+) -> Option<(RigidState, Eval)> {
+    let c = next
+        .contact
+        .filter(|_| next.reason == Reason::ContactForcesUndetermined)
+        .and_then(|i| hold.creases.at(i))?;
+    let own = finder.site().normals()[c.contact];
+    [
+        (Reason::CreaseTakesOver, own),
+        (Reason::CreaseLetsGo, c.normal),
+    ]
+    .into_iter()
+    .find_map(|(reason, left)| {
+        let stop = Stop {
+            reason,
+            detail: String::new(),
+            contact: Some(c.contact),
+        };
+        let mut f = finder.clone();
+        let (h, _) = face_event(sim, &mut f, y, &stop, hold)?;
+        let (y, e) = settle(sim, &mut f, y, h).ok()?;
+        let m = &e.motion;
+        let r = e.pose.vertices[c.contact] - e.pose.cm;
+        let (w, v) = (m.twist.w, m.twist.v + m.twist.w.cross(&r));
+        let a = m.accel + m.ang_accel.cross(&r) + w.cross(&w.cross(&r));
+        // Off it, or along it to round-off on the block's scale.
+        let g = sim.body().loads().gravity;
+        let off = |u: Vector3<f64>, scale: f64| left.dot(&u) >= -1e-9 * scale;
+        if !(off(v, (g * sim.body().l()).sqrt()) && off(a, g)) {
+            return None;
+        }
+        *finder = f;
+        Some((y, e))
+    })
 }
 
 /// The highest hop, as a fraction of L, that an impact may give a contact without ending the

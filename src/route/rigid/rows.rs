@@ -135,26 +135,8 @@ pub(super) fn interpolate(
 ) -> Result<Interpolated, Stop> {
     out.clear();
     let h = t1 - t0;
-    let (Some(picked), Some(ends)) = (pick(times, t0, h), fields(first).zip(fields(last))) else {
-        return Ok(Interpolated::Evaluate);
-    };
-    let which = values.which();
-    let s_of = |t: f64| (t - t0) / h;
-    let mut s = [0.0; N];
-    s[N - 1] = 1.0;
-    for (j, &k) in picked.iter().enumerate() {
-        s[j + 1] = s_of(times[k]);
-    }
-    let Some(nodes) = Nodes::new(s) else {
-        return Ok(Interpolated::Evaluate);
-    };
-    // The row where the nodal polynomial is largest: there the interpolant is checked.
-    let Some(check) = (0..times.len())
-        .filter(|k| !picked.contains(k))
-        .max_by(|&a, &b| {
-            let w = |k: usize| nodes.nodal(s_of(times[k])).abs();
-            w(a).total_cmp(&w(b))
-        })
+    let (Some((picked, nodes, check)), Some(ends)) =
+        (nodes_in(times, t0, h), fields(first).zip(fields(last)))
     else {
         return Ok(Interpolated::Evaluate);
     };
@@ -164,27 +146,13 @@ pub(super) fn interpolate(
     for (slot, &k) in evaluated.iter_mut().zip(&order) {
         *slot = (k, exact(times[k])?);
     }
-    let mut nodal = [[0.0; N]; FIELDS];
-    for (i, v) in nodal.iter_mut().enumerate() {
-        v[0] = ends.0[i];
-        v[N - 1] = ends.1[i];
-    }
-    let mut checked = None;
-    for (k, row) in &evaluated {
-        let Some(d) = fields(row).filter(|_| same_kind(row, first) && same_kind(row, last)) else {
-            return Ok(Interpolated::Evaluate);
-        };
-        match picked.iter().position(|p| p == k) {
-            Some(j) => nodal.iter_mut().zip(d).for_each(|(v, x)| v[j + 1] = x),
-            None => checked = Some(d),
-        }
-    }
-    let Some(checked) = checked else {
+    let Some((nodal, checked)) = nodal_values(&evaluated, &picked, ends, (first, last)) else {
         return Ok(Interpolated::Evaluate);
     };
+    let which = values.which();
     let bounds = bounds(&nodal, l, SHARE * tolerance);
     let at = |t: f64| -> [f64; FIELDS] {
-        let basis = nodes.basis(s_of(t));
+        let basis = nodes.basis((t - t0) / h);
         std::array::from_fn(|i| combine(&basis, &nodal[i]))
     };
     let guess = at(times[check]);
@@ -195,22 +163,82 @@ pub(super) fn interpolate(
     {
         return Ok(Interpolated::Evaluate);
     }
+    let row = |t: f64, v: &[f64; FIELDS]| with_fields(state(t, first), v, which);
+    Ok(fill(times, &evaluated, at, row, out))
+}
+
+/// The nodes inside a step from `t0` of length `h` among the rows at `times`: the rows picked
+/// near the Chebyshev–Lobatto points, the nodes (with the step's two ends) in the step's
+/// fraction s, and the row where the nodal polynomial is largest, where the interpolant is
+/// checked; none where the rows are too few or the nodes do not make an interpolant.
+fn nodes_in(times: &[f64], t0: f64, h: f64) -> Option<([usize; INSIDE], Nodes<N>, usize)> {
+    let picked = pick(times, t0, h)?;
+    let s_of = |t: f64| (t - t0) / h;
+    let mut s = [0.0; N];
+    s[N - 1] = 1.0;
+    for (j, &k) in picked.iter().enumerate() {
+        s[j + 1] = s_of(times[k]);
+    }
+    let nodes = Nodes::new(s)?;
+    let check = (0..times.len())
+        .filter(|k| !picked.contains(k))
+        .max_by(|&a, &b| {
+            let w = |k: usize| nodes.nodal(s_of(times[k])).abs();
+            w(a).total_cmp(&w(b))
+        })?;
+    Some((picked, nodes, check))
+}
+
+/// Each field's values at the nodes — the step's ends' `ends` and those of the rows `evaluated`
+/// at the `picked` rows — and the check row's; none where an evaluated row has no reactions,
+/// is of another kind than the step's ends (`first`, `last`), or the check is missing.
+fn nodal_values(
+    evaluated: &[(usize, Row); INSIDE + 1],
+    picked: &[usize; INSIDE],
+    ends: ([f64; FIELDS], [f64; FIELDS]),
+    (first, last): (&Row, &Row),
+) -> Option<([[f64; N]; FIELDS], [f64; FIELDS])> {
+    let mut nodal = [[0.0; N]; FIELDS];
+    for (i, v) in nodal.iter_mut().enumerate() {
+        v[0] = ends.0[i];
+        v[N - 1] = ends.1[i];
+    }
+    let mut checked = None;
+    for (k, row) in evaluated {
+        let d = fields(row).filter(|_| same_kind(row, first) && same_kind(row, last))?;
+        match picked.iter().position(|p| p == k) {
+            Some(j) => nodal.iter_mut().zip(d).for_each(|(v, x)| v[j + 1] = x),
+            None => checked = Some(d),
+        }
+    }
+    Some((nodal, checked?))
+}
+
+/// The rows at `times` into `out`: the rows `evaluated` as they are, the others the
+/// interpolant's values `at` their time set over the dense state's `row`; none, and `Evaluate`,
+/// where an interpolated normal reaction is below zero (a lift-off between the nodes is the
+/// model's to tell).
+fn fill(
+    times: &[f64],
+    evaluated: &[(usize, Row); INSIDE + 1],
+    at: impl Fn(f64) -> [f64; FIELDS],
+    row: impl Fn(f64, &[f64; FIELDS]) -> Row,
+    out: &mut Vec<Row>,
+) -> Interpolated {
     let mut next = evaluated.iter().peekable();
     for (k, &t) in times.iter().enumerate() {
-        if let Some((_, row)) = next.next_if(|(j, _)| *j == k) {
-            out.push(*row);
+        if let Some((_, r)) = next.next_if(|(j, _)| *j == k) {
+            out.push(*r);
             continue;
         }
         let v = at(t);
-        // A contact whose normal reaction the interpolant takes below zero is the model's
-        // to tell (a lift-off between the nodes).
         if v[10..13].iter().any(|n| *n < 0.0) {
             out.clear();
-            return Ok(Interpolated::Evaluate);
+            return Interpolated::Evaluate;
         }
-        out.push(with_fields(state(t, first), &v, which));
+        out.push(row(t, &v));
     }
-    Ok(Interpolated::Done)
+    Interpolated::Done
 }
 
 /// Each field's bound from its values at the nodes: `share` (10⁻⁴ of the tolerance, not below
