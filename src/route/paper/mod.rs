@@ -6,6 +6,7 @@
 mod rhs;
 mod state;
 mod step;
+mod substeps;
 
 pub use rhs::{Evaluation, evaluate, velocity};
 pub use state::State;
@@ -13,7 +14,6 @@ pub use step::{paper_step, rk4_step};
 
 use super::Steps;
 use super::dynamics::{Dynamics, Flow, Start};
-use super::events::{Until, bisect};
 use super::logbook::Logbook;
 use super::pose_finder::PoseFinder;
 use super::rest::AtRest;
@@ -26,9 +26,7 @@ use crate::geometry::Pose;
 use crate::mechanics::loads::Applied;
 use crate::mechanics::onset::factor_of_safety;
 use crate::model::{Body, Integrator, Simulation};
-use crate::route::integrator::error_ratio;
 use serde::Serialize;
-use std::convert::Infallible;
 
 /// What the paper's dynamics adds to its route.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
@@ -72,10 +70,6 @@ pub(super) struct Paper<'a> {
     pieces: usize,
 }
 
-/// The most substeps RK4 takes over one increment (2¹²): where even these leave a substep's
-/// error estimate over the tolerance, the increment is taken in this many.
-const MAX_PIECES: usize = 1 << 12;
-
 /// An increment taken: the state and the evaluation at its end, how often the friction solution
 /// was chosen afresh on the way, the CM's travel (chords at the substeps' ends), and where the
 /// velocity along the increment's first acceleration passed through zero, if it did.
@@ -107,202 +101,38 @@ fn paper_ratio((sim, body): (&Simulation, &Body), ev: &Evaluation) -> (f64, f64,
     factor_of_safety(&ev.geom, &applied, &ev.statics, &strength)
 }
 
+impl<'f> Stepped<'f> {
+    /// The (sub)step of length `h` from the state so far, its stages from the finder `base`, to
+    /// `next`, evaluated there as `end`, taken: the crossing kept if it is the first of the
+    /// increment (the velocity along the increment's first acceleration `first_acc` through
+    /// zero), the friction solutions chosen afresh counted, the chord travelled.
+    fn take(
+        &mut self,
+        (next, end): (State, Evaluation),
+        h: f64,
+        first_acc: &[f64; 3],
+        base: &PoseFinder<'f>,
+    ) {
+        let chord = (end.pose.cm - self.ev.pose.cm).norm();
+        if self.crossing.is_none() && crosses(first_acc, &self.next, &next) {
+            self.crossing = Some(Crossing {
+                from: self.next,
+                ev: self.ev,
+                h,
+                travel: self.travel,
+                at: Some(base.clone()),
+            });
+        }
+        self.switches += usize::from(end.fresh);
+        self.travel += chord;
+        (self.next, self.ev) = (next, end);
+    }
+}
+
 /// Whether the velocity along `a` passes from below zero to zero or above between `s` and `n`.
 fn crosses(a: &[f64; 3], s: &State, n: &State) -> bool {
     let along = |w: [f64; 2]| w[0] * a[0] + w[1] * a[1];
     along([s.vx, s.vz]) < 0.0 && along([n.vx, n.vz]) >= 0.0
-}
-
-/// The event layer's bisection for the longest part of a substep of length `h` from `s`
-/// (evaluated as `ev`) that can be taken when the whole cannot (a contact left its plane, the
-/// frictional system has no solution): single RK4 steps of the part's length from `s`, to 1e-12
-/// of `h`. The part's
-/// length, the state there, its evaluation and the finder at it; none where no part can be.
-fn longest_part<'f>(
-    sim: (&Simulation, &Body),
-    base: &PoseFinder<'f>,
-    (s, ev): (&State, &Evaluation),
-    h: f64,
-) -> Option<(f64, State, Evaluation, PoseFinder<'f>)> {
-    let prev = ev.reaction;
-    let part = |len: f64| {
-        let (next, _) = rk4_step(s, &ev.acc, len, |q: &State| {
-            let mut g = base.clone();
-            evaluate(sim, &mut g, q.displacement(), Some(&prev), velocity(q)).map(|e| e.acc)
-        })?;
-        let mut f = base.clone();
-        let end = evaluate(
-            sim,
-            &mut f,
-            next.displacement(),
-            Some(&prev),
-            velocity(&next),
-        )?;
-        Ok::<_, Stop>((len, next, end, f))
-    };
-    // Some 40 halvings reach 1e-12 of the substep.
-    let mut best = None;
-    let Ok(_) = bisect::<Infallible>((0.0, h), Until::width(1e-12 * h, 64), |mid| {
-        Ok(match part(mid) {
-            Ok(p) => {
-                best = Some(p);
-                false
-            }
-            Err(_) => true,
-        })
-    });
-    best
-}
-
-impl Paper<'_> {
-    /// RK4 over the increment from the state to `t_to` (of length `dt`), in as many equal
-    /// substeps as the tolerance asks: each substep's error estimated as the rigid body's is
-    /// (`derivations/08-rigid-body.md` §4a), h/6 (k4 − k5) on X, Z against `solver.tolerance`
-    /// of the block's size and on θ against the tolerance in radians, at no cost beyond the
-    /// evaluation at the substep's end, which the next substep starts from. An increment whose
-    /// substep is over the tolerance is taken again in twice as many (up to [`MAX_PIECES`]); the
-    /// next increment starts with as many as this one took, or half as many where half would
-    /// have done by the estimate. Where one substep an increment does (the default increment
-    /// of 1 ms), the route is the increment's single RK4 step, as before. The travel is summed
-    /// over the substeps' chords, the friction solutions chosen afresh counted at each, and the
-    /// substep where the block may stop is kept for the stop's search. A substep that cannot be
-    /// taken ends the route: with the substeps taken before it, or at the increment's start.
-    /// `finder` follows the substeps' ends, and is put back at the increment's start when it is
-    /// taken again.
-    fn rk4_within<'f>(
-        &mut self,
-        finder: &mut PoseFinder<'f>,
-        (t_to, dt): (f64, f64),
-        o: &mut Log<'_>,
-    ) -> Result<Stepped<'f>, (Stop, Option<Box<Stepped<'f>>>)> {
-        let sim = (self.sim, self.body);
-        let (l, tol) = (self.body.l(), self.sim.settings().tolerance);
-        // X and Z against τ L, θ against τ rad; the rates not weighed (as the rigid body's).
-        let weights = [1.0 / (tol * l), 1.0 / (tol * l), 1.0 / tol, 0.0, 0.0, 0.0];
-        let first_acc = self.ev.acc;
-        let mut pieces = self.pieces.clamp(1, MAX_PIECES);
-        // The finder at the increment's start: the first substep's stages start from it, and an
-        // increment taken again in more substeps starts from it again (one copy an increment, as
-        // a single RK4 step needs for its stages).
-        let start = finder.clone();
-        let mut again = false;
-        loop {
-            if again {
-                *finder = start.clone();
-            }
-            again = true;
-            let mut done = Stepped {
-                next: self.state,
-                ev: self.ev,
-                switches: 0,
-                travel: 0.0,
-                crossing: None,
-            };
-            let h = dt / pieces as f64;
-            let mut worst: f64 = 0.0;
-            let mut taken = 0;
-            while taken < pieces {
-                let (s, ev) = (&done.next, &done.ev);
-                let later;
-                let base = if taken == 0 {
-                    &start
-                } else {
-                    later = finder.clone();
-                    &later
-                };
-                let prev = ev.reaction;
-                let stepped = rk4_step(s, &ev.acc, h, |q: &State| {
-                    let mut g = base.clone();
-                    evaluate(sim, &mut g, q.displacement(), Some(&prev), velocity(q)).map(|e| e.acc)
-                })
-                .and_then(|(next, k4)| {
-                    // The last substep ends at t_to itself, not at a running sum.
-                    let next = if taken + 1 == pieces {
-                        State { t: t_to, ..next }
-                    } else {
-                        next
-                    };
-                    let at = next.displacement();
-                    let end = evaluate(sim, finder, at, Some(&ev.reaction), velocity(&next))?;
-                    Ok((next, k4, end))
-                });
-                let (next, k4, end) = match stepped {
-                    Ok(x) => x,
-                    Err(stop) => {
-                        // A substep longer than the reference step that cannot be taken may be
-                        // the integrator's (its stages far from the motion), as the rigid
-                        // body's: the increment is taken again in shorter substeps, and only a
-                        // substep of the reference step or shorter ends the route.
-                        let reference = self.sim.settings().reference_step();
-                        if h > reference * (1.0 + 1e-12) && pieces < MAX_PIECES {
-                            break;
-                        }
-                        o.report.steps.taken += taken;
-                        // The route ends where the model does, inside this substep: its longest
-                        // part that can be taken.
-                        let part = longest_part(sim, base, (s, ev), h);
-                        let ended = match part {
-                            Some((len, next, end, f)) => {
-                                // A stop within the part is the route's end if friction holds
-                                // there (`advance`, `stop_in`), as in any substep.
-                                if done.crossing.is_none() && crosses(&first_acc, s, &next) {
-                                    done.crossing = Some(Crossing {
-                                        from: *s,
-                                        ev: *ev,
-                                        h: len,
-                                        travel: done.travel,
-                                        at: Some(base.clone()),
-                                    });
-                                }
-                                done.switches += usize::from(end.fresh);
-                                done.travel += (end.pose.cm - done.ev.pose.cm).norm();
-                                (done.next, done.ev) = (next, end);
-                                *finder = f;
-                                true
-                            }
-                            None => taken > 0,
-                        };
-                        return Err((stop, ended.then(|| Box::new(done))));
-                    }
-                };
-                let k5 = [
-                    next.vx, next.vz, next.omega, end.acc[0], end.acc[1], end.acc[2],
-                ];
-                let ratio = error_ratio(&weights, h, &k4, &k5);
-                if ratio > 1.0 && pieces < MAX_PIECES {
-                    break;
-                }
-                worst = worst.max(ratio);
-                let chord = (end.pose.cm - ev.pose.cm).norm();
-                if done.crossing.is_none() && crosses(&first_acc, s, &next) {
-                    done.crossing = Some(Crossing {
-                        from: *s,
-                        ev: *ev,
-                        h,
-                        travel: done.travel,
-                        at: Some(base.clone()),
-                    });
-                }
-                done.switches += usize::from(end.fresh);
-                done.travel += chord;
-                (done.next, done.ev) = (next, end);
-                taken += 1;
-            }
-            if taken == pieces {
-                o.report.steps.taken += pieces;
-                // Twice the substep multiplies the estimate by 16: halve their number only
-                // where that would leave it under half the tolerance.
-                self.pieces = if pieces > 1 && 16.0 * worst < 0.5 {
-                    pieces / 2
-                } else {
-                    pieces
-                };
-                return Ok(done);
-            }
-            o.report.steps.retried += taken + 1;
-            pieces *= 2;
-        }
-    }
 }
 
 impl<'a> Dynamics<'a> for Paper<'a> {
