@@ -37,7 +37,7 @@ use super::three_point::factor_of_safety_at_start;
 use crate::geometry::contact::Quadrature;
 use crate::geometry::penetration::{deepest_of, samples};
 use crate::geometry::{
-    BodyPose, CastError, Footprint, Ground, Pose, Relief, SettleError, cast, set_down,
+    BodyPose, CastError, Footprint, Ground, Pose, Relief, Rest, SettleError, cast, set_down,
 };
 use crate::model::{Base, Body, Simulation, Tendon};
 use nalgebra::{Matrix3, Vector3};
@@ -110,6 +110,148 @@ pub(super) struct OnBase<'a> {
 }
 
 impl<'a> OnBase<'a> {
+    /// The block on `base` not yet set down: flat, its base's lowest point at the origin's
+    /// height, at rest, nothing carrying it.
+    fn unset(sim: &'a Simulation, body: &'a Body, base: &'a Base) -> Self {
+        let size = (0..base.outline().len())
+            .map(|k| footprint(base).corner(k).norm())
+            .fold(base.depth(), f64::max);
+        let flat = BodyPose {
+            cm: Vector3::new(0.0, base.depth(), 0.0),
+            rotation: Matrix3::identity(),
+        };
+        let ground = Arc::clone(sim.foundation().ground());
+        OnBase {
+            sim,
+            body,
+            base,
+            ground,
+            inertia: body.block().tensor(),
+            size,
+            quadrature: Quadrature::of(base),
+            relief: None,
+            samples: samples(base.outline(), base.depth(), PENETRATION_SAMPLES),
+            s: BodyState::at_rest(flat),
+            t: 0.0,
+            last: Stepped::default(),
+            origin: (flat.cm.y, 0.0),
+            deepest: Cell::new(f64::NEG_INFINITY),
+            resting: false,
+            tendons: Vec::new(),
+        }
+    }
+
+    /// The block set down on its rock under its own weight (`geometry::settle`), its anchors'
+    /// tendons fixed in the rock where it rests, a cast base cast onto the rock there
+    /// (`geometry::relief`): where it rests, or why it cannot (the reason and the words).
+    fn rest_on_the_rock(&mut self) -> Result<Rest, (Reason, String)> {
+        let (base, flat) = (self.base, self.s.pose);
+        let rest =
+            set_down(&self.ground, footprint(base), flat, 1e-10 * self.size).map_err(|e| {
+                let reason = match e {
+                    SettleError::OffGround(_) => Reason::BaseOffGround,
+                    SettleError::Tips(_) => Reason::Overturned,
+                    SettleError::Solver(_) | SettleError::NotSettled(_) => {
+                        Reason::ContactForcesUndetermined
+                    }
+                };
+                (reason, format!("the block cannot be set down: {e}"))
+            })?;
+        self.s = BodyState::at_rest(rest.pose);
+        // Anchors: each tendon's bond fixed in the rock where the block rests.
+        let frame = rest.pose.frame();
+        self.tendons = self
+            .body
+            .tendons()
+            .iter()
+            .map(|t| t.fixed_at(&self.under_cm(), &frame))
+            .collect();
+        if base.is_cast() {
+            let relief = cast(&self.ground, &base.triangles(), &rest.pose).map_err(|e| {
+                let reason = match e {
+                    CastError::OffGround { .. } => Reason::BaseOffGround,
+                    CastError::Steep(_) => Reason::ContactForcesUndetermined,
+                };
+                (
+                    reason,
+                    format!("the base cannot be cast onto its rock: {e}"),
+                )
+            })?;
+            self.size = self.size.max(relief.reach());
+            self.samples = relief.samples(RELIEF_SAMPLES);
+            self.quadrature = Quadrature::of_relief(&relief);
+            self.relief = Some(relief);
+        }
+        Ok(rest)
+    }
+
+    /// The block set going from where it rests (`rest`): the scene's initial motion, the energy
+    /// balance's origin, and the first step's warm start — what carries it at rest, each touch
+    /// with its share of the weight over a step of `h`.
+    fn set_going(&mut self, rest: &Rest, h: f64) {
+        let init = self.body.initial();
+        self.s.v = Vector3::new(init.vx, 0.0, init.vz);
+        self.s.w = Vector3::new(0.0, -init.omega, 0.0);
+        self.origin = (
+            rest.pose.cm.y,
+            self.s.kinetic(self.body.block().mass, &self.inertia),
+        );
+        let weight = self.ctx().weight_impulse(h);
+        self.last = Stepped {
+            impulses: rest
+                .carrying
+                .iter()
+                .map(|(t, share)| (*t, t.normal * (share * weight)))
+                .collect(),
+            h,
+            ..Stepped::default()
+        };
+    }
+
+    /// Where the step just taken leaves the model: part of the base over no ground, or the
+    /// block overturned (its base tilted beyond [`OVERTURN_DEG`]); the reason and the words.
+    fn off_the_model(&self) -> Option<(Reason, String)> {
+        if let Some(&k) = self.last.off_ground.first() {
+            let point = match self.relief {
+                Some(_) => "vertex",
+                None => "corner",
+            };
+            let detail = format!("{point} {k} of the base went over no ground");
+            return Some((Reason::BaseOffGround, detail));
+        }
+        if self.tilt_deg() > OVERTURN_DEG {
+            let tilt = self.tilt_deg();
+            let detail = format!("the base tilted {tilt:.1}° from level, beyond {OVERTURN_DEG}°");
+            return Some((Reason::Overturned, detail));
+        }
+        None
+    }
+
+    /// After a step of `h` that left the block slow: under a record it comes to rest (or is at
+    /// rest for an instant as its motion turns) and rests from here; without one, where static
+    /// friction holds it, the route ends "stopped". Else the route goes on.
+    fn stopped_or_resting<'s>(&mut self, o: Log<'s>, h: f64) -> Flow<'s, OnBaseReport> {
+        let shaken = self.sim.foundation().record().is_some();
+        if shaken && self.slow(&self.s, h) {
+            // Its last kinetic energy (under 1e-6 of the weight's over a step) booked with the
+            // contacts' work; the next step from rest says whether it stays.
+            let mass = self.body.block().mass;
+            self.s.work_contacts -= self.s.kinetic(mass, &self.inertia);
+            self.s.v = Vector3::zeros();
+            self.s.w = Vector3::zeros();
+            self.resting = true;
+            return self.rest_until_the_record_ends(o);
+        }
+        if !shaken && self.slow(&self.s, h) && self.held(self.t, h) {
+            self.s.v = Vector3::zeros();
+            self.s.w = Vector3::zeros();
+            let why = "the block stopped and static friction holds it on its base".into();
+            let (reason, why) = AtRest::Stopped(why).words(self.sim.foundation());
+            return self.end(o, reason, why);
+        }
+        Flow::Go(o)
+    }
+
     fn ctx(&self) -> Ctx<'_> {
         Ctx {
             sim: self.sim,
@@ -228,6 +370,18 @@ impl<'a> OnBase<'a> {
     }
 }
 
+/// What a step left not finite, if anything: the velocity, or the pose.
+fn not_finite(s: &BodyState) -> Option<&'static str> {
+    let finite = |m: &[f64]| m.iter().all(|x| x.is_finite());
+    if !(finite(s.v.as_slice()) && finite(s.w.as_slice())) {
+        return Some("velocity");
+    }
+    if !(finite(s.pose.cm.as_slice()) && finite(s.pose.rotation.as_slice())) {
+        return Some("pose");
+    }
+    None
+}
+
 fn footprint(base: &Base) -> Footprint<'_> {
     Footprint {
         outline: base.outline(),
@@ -255,96 +409,21 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
                 "the simulation has no base".into(),
             ));
         };
-        let size = (0..base.outline().len())
-            .map(|k| footprint(base).corner(k).norm())
-            .fold(base.depth(), f64::max);
-        let flat = BodyPose {
-            cm: Vector3::new(0.0, base.depth(), 0.0),
-            rotation: Matrix3::identity(),
-        };
-        let ground = Arc::clone(sim.foundation().ground());
-        let mut on = OnBase {
-            sim,
-            body,
-            base,
-            ground,
-            inertia: body.block().tensor(),
-            size,
-            quadrature: Quadrature::of(base),
-            relief: None,
-            samples: samples(base.outline(), base.depth(), PENETRATION_SAMPLES),
-            s: BodyState::at_rest(flat),
-            t: 0.0,
-            last: Stepped::default(),
-            origin: (flat.cm.y, 0.0),
-            deepest: Cell::new(f64::NEG_INFINITY),
-            resting: false,
-            tendons: Vec::new(),
-        };
-        let rest = match set_down(&on.ground, footprint(base), flat, 1e-10 * size) {
+        let mut on = OnBase::unset(sim, body, base);
+        let rest = match on.rest_on_the_rock() {
             Ok(r) => r,
-            Err(e) => {
-                let reason = match e {
-                    SettleError::OffGround(_) => Reason::BaseOffGround,
-                    SettleError::Tips(_) => Reason::Overturned,
-                    SettleError::Solver(_) | SettleError::NotSettled(_) => {
-                        Reason::ContactForcesUndetermined
-                    }
-                };
-                return on.refused(o, reason, format!("the block cannot be set down: {e}"));
-            }
+            Err((reason, detail)) => return on.refused(o, reason, detail),
         };
-        on.s = BodyState::at_rest(rest.pose);
-        // Anchors: each tendon's bond fixed in the rock where the block rests.
-        let frame = rest.pose.frame();
-        on.tendons = body
-            .tendons()
-            .iter()
-            .map(|t| t.fixed_at(&on.under_cm(), &frame))
-            .collect();
-        if base.is_cast() {
-            match cast(&on.ground, &base.triangles(), &rest.pose) {
-                Ok(relief) => {
-                    on.size = on.size.max(relief.reach());
-                    on.samples = relief.samples(RELIEF_SAMPLES);
-                    on.quadrature = Quadrature::of_relief(&relief);
-                    on.relief = Some(relief);
-                }
-                Err(e) => {
-                    let reason = match e {
-                        CastError::OffGround { .. } => Reason::BaseOffGround,
-                        CastError::Steep(_) => Reason::ContactForcesUndetermined,
-                    };
-                    let detail = format!("the base cannot be cast onto its rock: {e}");
-                    return on.refused(o, reason, detail);
-                }
-            }
-        }
         let mut o = o;
         o.report.base = Some(BaseReport {
             resting: Resting::of(&rest),
             max_penetration_m: f64::NEG_INFINITY,
             outline_m: base.outline().to_vec(),
         });
-        let init = body.initial();
-        on.s.v = Vector3::new(init.vx, 0.0, init.vz);
-        on.s.w = Vector3::new(0.0, -init.omega, 0.0);
-        on.origin = (rest.pose.cm.y, on.s.kinetic(body.block().mass, &on.inertia));
-        // What carries it at rest, each touch with its share of the weight over a step: the
-        // first step's warm start.
         let h = sim.settings().dt;
-        let weight = on.ctx().weight_impulse(h);
-        on.last = Stepped {
-            impulses: rest
-                .carrying
-                .iter()
-                .map(|(t, share)| (*t, t.normal * (share * weight)))
-                .collect(),
-            h,
-            ..Stepped::default()
-        };
+        on.set_going(&rest, h);
         o.push(on.row());
-        let shaken = rest::shaking(sim.foundation(), 0.0);
+        let (init, shaken) = (body.initial(), rest::shaking(sim.foundation(), 0.0));
         if sim.foundation().record().is_some() {
             // What a Newmark user reports first: the yield acceleration where it rests.
             o.yield_acceleration = on.ctx().yield_acceleration(&rest.pose).ok().flatten();
@@ -378,20 +457,9 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
         let stepped = self.ctx().step(&mut s, self.t, h, &self.last);
         // A step that leaves a velocity or the pose not finite ends the route at the last
         // state that was (no row of NaN).
-        let finite = |m: &[f64]| m.iter().all(|x| x.is_finite());
-        if !(finite(s.v.as_slice()) && finite(s.w.as_slice())) {
-            return self.end(
-                o,
-                Reason::ContactForcesUndetermined,
-                format!("the step from t = {} s gave no finite velocity", self.t),
-            );
-        }
-        if !(finite(s.pose.cm.as_slice()) && finite(s.pose.rotation.as_slice())) {
-            return self.end(
-                o,
-                Reason::ContactForcesUndetermined,
-                format!("the step from t = {} s gave no finite pose", self.t),
-            );
+        if let Some(what) = not_finite(&s) {
+            let detail = format!("the step from t = {} s gave no finite {what}", self.t);
+            return self.end(o, Reason::ContactForcesUndetermined, detail);
         }
         if self.resting && self.slow(&s, h) {
             // Held under the record's loads now: it stays where it rests.
@@ -405,45 +473,10 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
         self.last = stepped;
         self.break_tendons(&mut o);
         o.travel += (self.under_cm() - before).norm();
-        if let Some(&k) = self.last.off_ground.first() {
-            let point = match self.relief {
-                Some(_) => "vertex",
-                None => "corner",
-            };
-            return self.end(
-                o,
-                Reason::BaseOffGround,
-                format!("{point} {k} of the base went over no ground"),
-            );
+        if let Some((reason, detail)) = self.off_the_model() {
+            return self.end(o, reason, detail);
         }
-        if self.tilt_deg() > OVERTURN_DEG {
-            let tilt = self.tilt_deg();
-            return self.end(
-                o,
-                Reason::Overturned,
-                format!("the base tilted {tilt:.1}° from level, beyond {OVERTURN_DEG}°"),
-            );
-        }
-        let shaken = self.sim.foundation().record().is_some();
-        if shaken && self.slow(&self.s, h) {
-            // Come to rest (or at rest for an instant as its motion turns): at rest from here,
-            // its last kinetic energy (under 1e-6 of the weight's over a step) booked with
-            // the contacts' work; the next step from rest says whether it stays.
-            let mass = self.body.block().mass;
-            self.s.work_contacts -= self.s.kinetic(mass, &self.inertia);
-            self.s.v = Vector3::zeros();
-            self.s.w = Vector3::zeros();
-            self.resting = true;
-            return self.rest_until_the_record_ends(o);
-        }
-        if !shaken && self.slow(&self.s, h) && self.held(self.t, h) {
-            self.s.v = Vector3::zeros();
-            self.s.w = Vector3::zeros();
-            let why = "the block stopped and static friction holds it on its base".into();
-            let (reason, why) = AtRest::Stopped(why).words(self.sim.foundation());
-            return self.end(o, reason, why);
-        }
-        Flow::Go(o)
+        self.stopped_or_resting(o, h)
     }
 
     fn row(&self) -> Row {
