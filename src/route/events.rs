@@ -23,7 +23,7 @@
 /// longer the smooth one the step's start set out on, and the route goes on from the event (or
 /// ends there) as the model decides. A contact meeting another face (and the impact that
 /// follows), running over a ridge or let go by a crease is met as a state off the model,
-/// located as a failure and taken by the model as an event of the ground (`rigid/ground.rs`);
+/// located as a failure and taken by the model as an event of the rock's faces (`rigid/faces.rs`);
 /// the record's end is met at rest (`rest.rs`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(super) enum Event {

@@ -17,7 +17,9 @@
 //!
 //! The route ends only where the physics does: the block stops and static friction holds it
 //! (no ground motion), it overturns (its base tilts beyond [`OVERTURN_DEG`]), its base goes
-//! over no ground, or the time limit.
+//! over no ground, or the time limit; at rest it ends in the rest layer's words
+//! (`route/rest.rs`), and it reports its tilts and its factor of safety at the start through the
+//! three-point frame's points (`route/three_point.rs`).
 
 pub(super) mod report;
 mod state;

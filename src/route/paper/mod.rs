@@ -1,7 +1,10 @@
 //! The paper's dynamics (§5–7; `[solver] dynamics = "paper"`): translation along x' and
 //! turning about y', with the paper's frictional reactions (`mechanics::reactions_paper`), the
-//! paper's update (33)–(38) or RK4 (`step.rs`), its right-hand side (`rhs.rs`). A dynamics model
-//! (`route/dynamics.rs`) the driver (`driver.rs`) runs.
+//! paper's update (33)–(38) or RK4 (`step.rs`; over an increment in substeps chosen against the
+//! tolerance, `substeps.rs`), its right-hand side (`rhs.rs`). A dynamics model
+//! (`route/dynamics.rs`) the driver (`driver.rs`) runs; it stops and rests through the route's
+//! event and rest layers (`route/events.rs`, `route/rest.rs`), on the three-point frame's room
+//! (`route/three_point.rs`).
 
 mod rhs;
 mod state;

@@ -159,11 +159,11 @@ fn lifted(met: Met, (contact, off): (usize, u32), impulse_n_s: f64, speed_m_s: f
     }
 }
 
-/// The state just after an event of the ground at `y`, its contacts held to `hold`: evaluated
-/// there, each crease's contact put back on its second face — or, where that calls for the next
-/// event at once (a contact that meets a steeper face is lifted off its own by the impact; a
-/// contact in a crease that can neither stay nor slip leaves a face), after up to three such
-/// events at the same moment.
+/// The state just after an event of the rock's faces at `y`, its contacts held to `hold`:
+/// evaluated there, each crease's contact put back on its second face — or, where that calls for
+/// the next event at once (a contact that meets a steeper face is lifted off its own by the
+/// impact; a contact in a crease that can neither stay nor slip leaves a face), after up to three
+/// such events at the same moment.
 pub(super) fn after_events(
     sim: &Model<'_>,
     finder: &mut PoseFinder<'_>,
@@ -195,7 +195,7 @@ pub(super) fn after_events(
     }
 }
 
-/// The state `y` just after an event of the ground, evaluated holding `hold`, each crease's
+/// The state `y` just after an event of the rock's faces, evaluated holding `hold`, each crease's
 /// contact put back on its second face (which may itself call for the next event).
 fn settle(
     sim: &Model<'_>,

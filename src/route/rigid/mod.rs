@@ -11,17 +11,19 @@
 //! (`mechanics::rigid_body::twist`).
 //!
 //! Stick and slip at the block level: at rest (the start, or when the motion stops), the block
-//! stays put when static friction within the three cones can hold it (`at_rest.rs`, on the rest layer, `route/rest.rs`); otherwise it
-//! slips from rest in the direction that reproduces itself. While sliding, an increment is
-//! taken in substeps (`substep.rs`), each checked for events — a stop (the twist reverses), a
-//! pivot (a contact's slip reverses), a release (a sticking contact's cone no longer holds it)
-//! or a failure (a state off the model) — found by bisection on the step length (`heading.rs`, by the event layer's bisection, `route/events.rs`),
-//! and shortened where the energy balance says RK4 does not resolve the motion
-//! (`derivations/08-rigid-body.md` §3). The events of the rock's faces — a contact meeting a
-//! face, running over a ridge, let go by a crease — and their impacts are in `faces.rs`. At a
-//! stop the velocity is set to exactly zero. A sticking contact is held where it stuck, and a
-//! contact in a crease on its second face (`hold.rs`), their slip projected out as an impulse
-//! would (the energy that takes booked as friction work), so that they stay put whatever dt.
+//! stays put when static friction within the three cones can hold it (`at_rest.rs`, on the rest
+//! layer, `route/rest.rs`); otherwise it slips from rest in the direction that reproduces
+//! itself. While sliding, an increment is taken in substeps (`substep.rs`), each checked for
+//! events — a stop (the twist reverses), a pivot (a contact's slip reverses), a release (a
+//! sticking contact's cone no longer holds it) or a failure (a state off the model) —
+//! recognised in `heading.rs` and found by the event layer's bisection on the step length
+//! (`route/events.rs`), and shortened where the energy balance says RK4 does not resolve the
+//! motion (`derivations/08-rigid-body.md` §3). The events of the rock's faces — a contact
+//! meeting a face, running over a ridge, let go by a crease — and their impacts are in
+//! `faces.rs`. At a stop the velocity is set to exactly zero. A sticking contact is held where
+//! it stuck, and a contact in a crease on its second face (`hold.rs`), their slip projected out
+//! as an impulse would (the energy that takes booked as friction work), so that they stay put
+//! whatever dt.
 
 mod at_rest;
 mod energy;
