@@ -263,3 +263,107 @@ fn a_point_sliding_under_a_stress_dependent_criterion_is_braked_by_its_shear_at_
     // steeper.
     assert!((criterion.coefficient(0.1 * w) - coefficient) * g > 0.5);
 }
+
+#[test]
+fn a_block_sliding_on_another_through_their_joint_is_braked_by_the_joints_friction_not_the_rocks() {
+    // Two 2 m cubes of a simulation on level rock of μ 0.6: body 1 (2000 kg) on the rock,
+    // body 0 (1000 kg) on body 1, their joint of μ 0.2. Body 0 slides at 2 m/s along +X; one
+    // step of gravity. The pipeline as the route runs it: the rock's touches by the narrow
+    // phase, the joint's by hand (no narrow phase between bodies yet), each pair's criterion
+    // from the simulation's strengths, the rows, the solve. Body 0 loses 0.2 g h of speed, not
+    // 0.6 g h; body 1, which the joint drags by 0.2 · 1000 g h and the rock may hold by
+    // 0.6 · 3000 g h, stays still.
+    use crate::contact::{ContactPair, Warm, on_rock, placed, rows};
+    use crate::geometry::contact::{BodyTouch, all_on_rock};
+    use crate::geometry::{BodyPose, Feature, Ground, Plane, Site};
+    use crate::model::{
+        Base, Block, Contacts, DynamicsModel, Foundation, Joint, Loads, RunSettings, Simulation,
+        Surface,
+    };
+    use std::sync::Arc;
+    let (h, g) = (1e-3, 9.81);
+    let level = Plane::through(Vector3::y(), Vector3::zeros());
+    let ground = Arc::new(Ground::planes(vec![level]));
+    let site = Site::on_ground(
+        [[-1.0, 1.0], [1.0, 1.0], [1.0, -1.0]],
+        Arc::clone(&ground),
+        [0; 3],
+    );
+    let cube = |mass: f64| {
+        crate::model::Body::builder(site.clone())
+            .block(Block::plate(mass, mass * 8.0 / 12.0))
+            .loads(Loads::plain(0.0, 0.0, g))
+            .base(Base::rectangle([-1.0, 1.0], [-1.0, 1.0], 1.0).unwrap())
+            .build()
+            .unwrap()
+    };
+    let sim = Simulation::builder()
+        .body(cube(1000.0))
+        .body(cube(2000.0))
+        .joint(Joint::new([0, 1], Friction::coulomb(0.2)))
+        .foundation(Foundation::new(Arc::clone(&ground)))
+        .friction(Friction::coulomb(0.6))
+        .settings(RunSettings::new(DynamicsModel::RigidBody, h, 1.0).with_contacts(Contacts::Base))
+        .build()
+        .unwrap();
+    let at = |y: f64| BodyPose {
+        cm: Vector3::new(0.0, y, 0.0),
+        rotation: Matrix3::identity(),
+    };
+    let poses = [at(3.0), at(1.0)];
+    let on = all_on_rock(&ground, &placed(&sim, &poses), 1e-9);
+    assert!(
+        on[0].touches.is_empty() && on[1].touches.len() == 4,
+        "{on:?}"
+    );
+    let mut pairs = on_rock(1, &on[1].touches, sim.strengths());
+    let joint = sim.strengths().between(Surface::Body(0), Surface::Body(1));
+    let corners = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)];
+    pairs.extend(corners.iter().enumerate().map(|(k, &(x, z))| {
+        // Body 0's base corner k on body 1's top, where its top corner k is.
+        let t = BodyTouch {
+            bodies: [0, 1],
+            on_first: Vector3::new(x, 2.0, z),
+            normal: Vector3::y(),
+            gap: 0.0,
+            features: [Feature::Corner(k), Feature::Corner(k)],
+        };
+        ContactPair::between(&t, &poses[0], joint.criterion)
+    }));
+    assert!(
+        pairs[..4]
+            .iter()
+            .all(|p| p.criterion == Friction::coulomb(0.6))
+    );
+    assert!(
+        pairs[4..]
+            .iter()
+            .all(|p| p.criterion == Friction::coulomb(0.2))
+    );
+    let cms = poses.map(|p| p.cm);
+    let none = Warm {
+        touches: &[],
+        points: &[],
+        size: 2.0,
+    };
+    let rows = rows(&pairs, &cms, h, &none);
+    let free = |vx: f64| Motion {
+        v: Vector3::new(vx, -g * h, 0.0),
+        w: Vector3::zeros(),
+    };
+    let until = Until {
+        tol: 1e-14,
+        max_sweeps: 5000,
+    };
+    let s = solve(
+        &[cube_of(1000.0), cube_of(2000.0)],
+        &[free(2.0), free(0.0)],
+        &rows,
+        &[],
+        until,
+    );
+    let [top, under] = [s.motion[0], s.motion[1]];
+    assert!((top.v.x - (2.0 - 0.2 * g * h)).abs() < 1e-9, "{top:?}");
+    assert!(top.v.y.abs() < 1e-12 && top.w.norm() < 1e-9, "{top:?}");
+    assert!(under.v.norm() < 1e-9 && under.w.norm() < 1e-9, "{under:?}");
+}
