@@ -3,7 +3,7 @@
 //! 10⁵ samples at 5 ms (500 s): weak shaking throughout and three strong bursts, on a block
 //! pushed to 0.9 of its friction (μ = 1, k_y = 0.1 g) on a level face, the route's increment the
 //! record's interval. Against it, the exact one-dimensional solution of the same continuous
-//! problem (`tests/integration/common/newmark.rs`), the figure issue #27 asks the route to be
+//! problem (`tests/integration/common/newmark.rs`), the figure the route is asked to be
 //! within ten times of: the block is held for all but a few seconds, and a held block is
 //! checked against the friction cones sample by sample by a few multiplications
 //! (`src/route/rigid/held_region.rs`).

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Random whole-body scenes for slideroute's base contact (derivations/13-base-contact.md), run
-through the command line and held to what issue #26 asks of every route, whatever the scene:
+through the command line and held to what is asked of every route, whatever the scene:
 
 - it ends for a physical reason (`time-limit`, `stopped`, `does-not-slide`, `base-off-ground`,
   `overturned`), never at a three-point limit and never refused after its scene was accepted;

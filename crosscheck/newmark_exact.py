@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Records against the exact solution (issue #27): the route on synthetic records beside
+"""Records against the exact solution: the route on synthetic records beside
 Newmark's one-dimensional block with a constant push, solved in closed form.
 
 A block on one level face, three points of the paper's frame, pushed along X through its centre

@@ -45,8 +45,8 @@ def test_the_dask_example_on_two_workers_gives_the_in_process_results():
 
 
 def test_a_seed_gives_the_same_samples_from_a_file_flags_a_dict_and_dask(tmp_path):
-    # Issue #29: the [uncertain] table was sampled in sorted key order, --dist, Python dicts and
-    # the Dask example in the order given. Here: the same three distributions from the scene's
+    # The [uncertain] table, --dist, Python dicts and Dask must draw alike whatever the order
+    # the keys are given in. Here: the same three distributions from the scene's
     # table, from --dist flags in another order, from a Python dict in a third, and over Dask.
     import csv
     import os

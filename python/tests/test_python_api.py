@@ -1,4 +1,4 @@
-"""What a Python user expects of the package (issue #29): the built-in exceptions, one spelling
+"""What a Python user expects of the package: the built-in exceptions, one spelling
 of each end, short representations, a clean namespace, the factor of safety and the load
 cases' check without a route, and progress."""
 
@@ -350,7 +350,7 @@ def test_the_install_says_it_builds_for_minutes():
     assert "few minutes" in setup and "install -v" in setup
 
 
-# Arguments out of range (issue #32 item 10) -------------------------------------------------
+# Arguments out of range --------------------------------------------------------------------------
 
 
 def test_whole_number_arguments_out_of_range_are_input_errors_naming_them():
@@ -406,7 +406,7 @@ def test_a_scene_dict_holding_none_is_refused_naming_its_key():
         slideroute.Scene.from_dict({**slideroute.Scene.default().to_dict(), "case": [{"name": None}]})
 
 
-# A route of any length (issue #32 item 2) ---------------------------------------------------
+# A route of any length ---------------------------------------------------------------------------
 
 
 def test_a_route_read_in_chunks_is_the_route_read_whole_and_its_summary():

@@ -476,7 +476,7 @@ def test_progress_is_told_how_far_the_work_is_and_may_stop_it():
 
 
 def test_a_seed_gives_each_key_the_same_values_whatever_order_the_dict_gives_them():
-    # Issue #29: the scene's table was sampled in sorted key order, a dict in its own.
+    # The scene's table and a dict in another order draw the same samples.
     s = slideroute.Scene.from_file(SCENES / "paper-like.toml")
     a = {"loads.eccentricity_m": "uniform:0:2", "friction.mu_k": "uniform:0.3:0.5"}
     b = dict(reversed(list(a.items())))

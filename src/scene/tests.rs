@@ -987,8 +987,7 @@ fn a_bad_surface_is_named_with_its_file_and_reason() {
 
 #[test]
 fn a_scene_without_solver_or_its_mode_runs_with_the_documented_defaults() {
-    // Issue #29: `[solver]` and `mode` were required although the README calls exact the
-    // default.
+    // `[solver]` and `mode` may be left out: the README calls exact the default.
     let without = GOOD.split("[solver]").next().unwrap();
     let s = Scene::from_toml(without, "dam.toml").unwrap();
     let settings = *s.settings().unwrap();
@@ -1009,7 +1008,7 @@ fn a_scene_without_solver_or_its_mode_runs_with_the_documented_defaults() {
 
 #[test]
 fn a_scene_with_several_mistakes_is_told_of_each_at_once() {
-    // Issue #29: errors came one at a time where several keys were wrong.
+    // Several wrong keys are reported together, not one at a time.
     let text = with("xi_deg = 20.0", "xi_deg = 95.0")
         .replacen("mu_k = 0.40", "mu_k = -0.4", 1)
         .replacen("dt_s = 1.0e-3", "dt_s = -1.0", 1)

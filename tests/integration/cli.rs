@@ -318,8 +318,8 @@ fn roots_grid_writes_one_row_per_pose_in_order() {
 
 #[test]
 fn a_grid_that_fails_part_way_leaves_an_earlier_output_whole_and_no_temporary() {
-    // Issue #32 item 9: `roots --grid --out FILE` wrote in place, so a fault (or a full disk)
-    // part way truncated an earlier good file.
+    // `roots --grid --out FILE` must not write in place: a fault (or a full disk) part way
+    // would truncate an earlier good file.
     let dir = temp_dir("grid-keep");
     std::fs::create_dir_all(&dir).unwrap();
     let out = dir.join("poses-out.csv");
@@ -2219,7 +2219,7 @@ fn a_reservoir_above_the_crest_is_refused_naming_the_key_and_the_case() {
 
 #[test]
 fn each_command_writes_its_own_default_folder_and_keeps_the_others_files() {
-    // Issue #29: both wrote into `out/`, and the sweep removed the route's files.
+    // Each command has its own default folder: a sweep must not remove a route's files.
     let dir = temp_dir("defaults");
     std::fs::create_dir_all(&dir).unwrap();
     let at = |args: &[&str]| {
@@ -2268,8 +2268,8 @@ fn each_command_writes_its_own_default_folder_and_keeps_the_others_files() {
 
 #[test]
 fn a_command_into_a_folder_removes_only_what_the_same_command_wrote_there() {
-    // Issue #29 (and #32 item 1): a sweep into a project folder deleted the person's own
-    // summary.json and plan.svg, and a run into a folder a sweep wrote deleted sweep.csv.
+    // A sweep into a project folder must not delete the person's own summary.json and
+    // plan.svg, nor a run into a folder a sweep wrote delete sweep.csv.
     let dir = temp_dir("own-files");
     std::fs::create_dir_all(&dir).unwrap();
     for (name, text) in [("summary.json", "mine"), ("plan.svg", "mine")] {
@@ -2332,7 +2332,7 @@ fn a_command_into_a_folder_removes_only_what_the_same_command_wrote_there() {
 
 #[test]
 fn every_command_line_fault_is_one_line_in_the_one_style_naming_the_command_help() {
-    // Issue #29: clap's errors (`error: …`, a usage block) beside `slideroute: …`.
+    // One style of error: not clap's (`error: …`, a usage block) beside `slideroute: …`.
     for (args, needle, help) in [
         (
             &["sweep"][..],
@@ -2382,7 +2382,7 @@ fn every_command_line_fault_is_one_line_in_the_one_style_naming_the_command_help
 
 #[test]
 fn the_same_value_has_the_same_metavar_in_every_command_and_no_help_names_the_code() {
-    // Issue #29: `<MODEL>` in one command and `<DYNAMICS>` in another; `<M>` beside `<METRES>`.
+    // One name per argument: not `<MODEL>` in one command and `<DYNAMICS>` in another.
     let mut seen: std::collections::BTreeMap<String, String> = Default::default();
     for command in [
         "run",

@@ -1,4 +1,4 @@
-//! The command line against hostile input (#32 item 8): a few hundred cases drawn from a fixed
+//! The command line against hostile input: a few hundred cases drawn from a fixed
 //! seed over perturbed scenes (`scenes/*.toml` with values huge, tiny, negative, subnormal,
 //! non-finite, of the wrong type, whole numbers beyond 2⁶³, keys missing or doubled), malformed
 //! surfaces (OBJ), records (CSV, `.AT2`, columns) and grids (`roots --grid`), and flags

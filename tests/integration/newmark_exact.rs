@@ -1,4 +1,4 @@
-//! Records against the exact solution of the same continuous problem (issue #27, item 1): a
+//! Records against the exact solution of the same continuous problem: a
 //! block on a level face pushed along X by a constant force through its centre of mass, shaken
 //! along X by a record whose acceleration is linear between samples. Its relative motion is
 //! Newmark's one-dimensional sliding block with a push, solved here in closed form interval by

@@ -103,7 +103,7 @@ mod tests {
 
     #[test]
     fn a_seed_gives_each_key_the_same_values_whatever_order_the_keys_come_in() {
-        // Issue #29: the scene's table (sorted), --dist and Python (as given) drew differently.
+        // The scene's table (sorted), --dist and Python (as given) must draw alike.
         let u = |key: &str, lo: f64| Uncertain {
             key: key.to_string(),
             distribution: Distribution::Uniform { lo, hi: lo + 1.0 },
