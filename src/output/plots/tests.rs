@@ -723,7 +723,7 @@ fn every_picture_has_text_of_at_least_14_px() {
 }
 
 /// A point of every series the report measures on two scenes, three steps of dt each.
-fn work_precision_points() -> Vec<crate::output::work_precision::Point> {
+fn work_precision_points() -> Vec<crate::output::work_precision::ladder::Point> {
     use crate::{DynamicsModel, Integrator, Mode, PoseMethod};
     let mut points = Vec::new();
     let mut ways = Vec::new();
@@ -744,7 +744,7 @@ fn work_precision_points() -> Vec<crate::output::work_precision::Point> {
         for (w, &(dynamics, method, mode, integrator)) in ways.iter().enumerate() {
             for k in 0..3 {
                 let dt_s = 0.02 / f64::from(1u32 << k);
-                points.push(crate::output::work_precision::Point {
+                points.push(crate::output::work_precision::ladder::Point {
                     scene: (*scene).into(),
                     dynamics,
                     method,

@@ -1,7 +1,10 @@
-//! `work-precision.csv` and `work-precision.md`: the report's points as a table, and the whole
-//! report as markdown.
+//! The report's files: `work-precision.csv`, its points as a table; `work-precision.md`, the
+//! whole report as markdown; and, with the pictures, `work-precision.svg`, drawn by
+//! `plots/work_precision.rs`.
 
-use super::{ExtremeRow, Point, Reference};
+use super::extreme::ExtremeRow;
+use super::ladder::{Point, Reference, speedups};
+use crate::output::{OutputError, OutputFolder, Written};
 use std::fmt::Write as _;
 use std::io::Write;
 
@@ -19,7 +22,41 @@ const HEADER: [&str; 11] = [
     "error_m",
 ];
 
-pub(super) fn write_csv(out: impl Write, points: &[Point]) -> Result<(), csv::Error> {
+/// Writes `work-precision.csv`, `work-precision.md` and (with `pictures`, where the library
+/// draws them) `work-precision.svg` into `folder`, and finishes it.
+pub(super) fn write(
+    mut folder: OutputFolder,
+    (points, references, extreme): (&[Point], &[Reference], &[ExtremeRow]),
+    quick: bool,
+    pictures: bool,
+) -> Result<Written, OutputError> {
+    let csv = folder.write_with("work-precision.csv", |tmp| {
+        let file = std::fs::File::create(tmp)
+            .map_err(|e| format!("{}: cannot write: {e}", tmp.display()))?;
+        write_csv(file, points).map_err(|e| format!("work-precision.csv: {e}"))
+    })?;
+    let md = markdown(points, references, extreme, quick);
+    let md = folder.write_bytes("work-precision.md", md.as_bytes())?;
+    #[allow(unused_mut)]
+    let mut written = Written {
+        files: vec![csv, md],
+        warnings: Vec::new(),
+    };
+    #[cfg(feature = "plots")]
+    if pictures {
+        written
+            .files
+            .push(folder.write_with("work-precision.svg", |tmp| {
+                crate::output::plots::work_precision(tmp, points)
+            })?);
+    }
+    #[cfg(not(feature = "plots"))]
+    let _ = pictures;
+    folder.finish()?;
+    Ok(written)
+}
+
+fn write_csv(out: impl Write, points: &[Point]) -> Result<(), csv::Error> {
     let mut w = csv::Writer::from_writer(out);
     w.write_record(HEADER)?;
     for p in points {
@@ -42,7 +79,7 @@ pub(super) fn write_csv(out: impl Write, points: &[Point]) -> Result<(), csv::Er
 }
 
 /// The report as markdown: references, the work–precision table, the extreme cases.
-pub(super) fn markdown(
+fn markdown(
     points: &[Point],
     references: &[Reference],
     extreme: &[ExtremeRow],
@@ -100,7 +137,7 @@ pub(super) fn markdown(
         s,
         "\n## Continuation against all roots\n\nThe paper's dynamics, per increment, at equal error (the same dt gives the same route by both: the error gap is round-off). All roots: the eigenvalue solve for the pose and all solutions of the frictional reactions at every increment; continuation: the tracker and Newton from the previous increment's reactions.\n\n| scene | mode | integrator | dt (s) | continuation (µs) | all roots (µs) | all roots / continuation | error gap (m) |\n| --- | --- | --- | --- | --- | --- | --- | --- |"
     );
-    for r in super::speedups(points) {
+    for r in speedups(points) {
         let _ = writeln!(
             s,
             "| {} | {} | {} | {} | {:.2} | {:.2} | {:.1}× | {:.1e} |",
