@@ -93,11 +93,21 @@ fn markdown(
     );
     let _ = writeln!(
         s,
-        "Error: largest distance of the CM from the reference at matching times. Time: median wall time of the whole route (repeats).\n"
+        "Error: largest distance of the CM from the reference at matching times. Time: median wall time of the whole route (repeats)."
     );
-    let _ = writeln!(
-        s,
-        "## References\n\n| scene | dynamics | horizon (s) | dt (s) | tolerance | change at dt/2 or tolerance/10 (m) | bound 1e-9·L (m) |\n| --- | --- | --- | --- | --- | --- | --- |"
+    section(
+        &mut s,
+        "References",
+        "",
+        &[
+            "scene",
+            "dynamics",
+            "horizon (s)",
+            "dt (s)",
+            "tolerance",
+            "change at dt/2 or tolerance/10 (m)",
+            "bound 1e-9·L (m)",
+        ],
     );
     for r in references {
         let _ = writeln!(
@@ -112,9 +122,23 @@ fn markdown(
             r.bound_m
         );
     }
-    let _ = writeln!(
-        s,
-        "\n## Error and time\n\nEach dynamics against its own reference: the paper's over its increment dt (RK4 at the loosest tolerance, so that no increment is cut) and, continuation in exact mode with RK4, over its tolerance with rows every 0.02 s; the rigid body over its tolerance (its steps its own, its rows every dt).\n\n| scene | dynamics | method | mode | integrator | dt (s) | tolerance | steps | time (ms) | error (m) | µs / step |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"
+    section(
+        &mut s,
+        "Error and time",
+        "Each dynamics against its own reference: the paper's over its increment dt (RK4 at the loosest tolerance, so that no increment is cut) and, continuation in exact mode with RK4, over its tolerance with rows every 0.02 s; the rigid body over its tolerance (its steps its own, its rows every dt).",
+        &[
+            "scene",
+            "dynamics",
+            "method",
+            "mode",
+            "integrator",
+            "dt (s)",
+            "tolerance",
+            "steps",
+            "time (ms)",
+            "error (m)",
+            "µs / step",
+        ],
     );
     for p in points {
         let _ = writeln!(
@@ -133,9 +157,20 @@ fn markdown(
             p.wall_s * 1e6 / p.steps.max(1) as f64
         );
     }
-    let _ = writeln!(
-        s,
-        "\n## Continuation against all roots\n\nThe paper's dynamics, per increment, at equal error (the same dt gives the same route by both: the error gap is round-off). All roots: the eigenvalue solve for the pose and all solutions of the frictional reactions at every increment; continuation: the tracker and Newton from the previous increment's reactions.\n\n| scene | mode | integrator | dt (s) | continuation (µs) | all roots (µs) | all roots / continuation | error gap (m) |\n| --- | --- | --- | --- | --- | --- | --- | --- |"
+    section(
+        &mut s,
+        "Continuation against all roots",
+        "The paper's dynamics, per increment, at equal error (the same dt gives the same route by both: the error gap is round-off). All roots: the eigenvalue solve for the pose and all solutions of the frictional reactions at every increment; continuation: the tracker and Newton from the previous increment's reactions.",
+        &[
+            "scene",
+            "mode",
+            "integrator",
+            "dt (s)",
+            "continuation (µs)",
+            "all roots (µs)",
+            "all roots / continuation",
+            "error gap (m)",
+        ],
     );
     for r in speedups(points) {
         let _ = writeln!(
@@ -151,9 +186,21 @@ fn markdown(
             r.error_gap_m
         );
     }
-    let _ = writeln!(
-        s,
-        "\n## Stiff and extreme cases\n\n| case | end | t (s) | travel (m) | increments | rejected steps | Newton / step | cond(J) at end | max tilt error vs direct (rad) |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- |"
+    section(
+        &mut s,
+        "Stiff and extreme cases",
+        "",
+        &[
+            "case",
+            "end",
+            "t (s)",
+            "travel (m)",
+            "increments",
+            "rejected steps",
+            "Newton / step",
+            "cond(J) at end",
+            "max tilt error vs direct (rad)",
+        ],
     );
     for e in extreme {
         let _ = writeln!(
@@ -173,4 +220,15 @@ fn markdown(
         );
     }
     s
+}
+
+/// A section of the markdown after a blank line: its `heading`, its `words` (where there are
+/// any), and the head of its table of `columns`.
+fn section(s: &mut String, heading: &str, words: &str, columns: &[&str]) {
+    let _ = write!(s, "\n## {heading}\n\n");
+    if !words.is_empty() {
+        let _ = write!(s, "{words}\n\n");
+    }
+    let _ = writeln!(s, "| {} |", columns.join(" | "));
+    let _ = writeln!(s, "|{}", " --- |".repeat(columns.len()));
 }
