@@ -173,6 +173,52 @@ fn scenes() -> Result<Vec<(Scene, f64)>, String> {
     Ok(vec![(Scene::default_scene(), 1.0), (shallow, 0.5)])
 }
 
+/// The reference route of `scene` under `dynamics` over `horizon` (exact mode, RK4,
+/// continuation), and how it was established: the paper's dynamics at dt_ref, checked at
+/// dt_ref / 2; the rigid body at its reference tolerance, checked at a tenth of it.
+fn reference_of(
+    scene: &Scene,
+    dynamics: DynamicsModel,
+    horizon: f64,
+) -> Result<(Route, Reference), String> {
+    let exact = |dt, tol| {
+        with_solver(
+            scene,
+            dynamics,
+            Mode::Exact,
+            Integrator::Rk4,
+            (dt, tol),
+            horizon,
+        )
+    };
+    let ref_dt = DT0 / 512.0;
+    let (reference, change_m, (dt_s, tolerance)) = if dynamics == DynamicsModel::RigidBody {
+        let tol = RIGID_REFERENCE_TOLERANCE;
+        let reference = run(&exact(RIGID_ROWS_DT, Some(tol))?, PoseMethod::Continuation)?;
+        let check = run(
+            &exact(RIGID_ROWS_DT, Some(tol / 10.0))?,
+            PoseMethod::Continuation,
+        )?;
+        let change = max_distance(&reference, &check, 1);
+        (reference, change, (RIGID_ROWS_DT, Some(tol)))
+    } else {
+        let reference = run(&exact(ref_dt, None)?, PoseMethod::Continuation)?;
+        let check = run(&exact(ref_dt / 2.0, None)?, PoseMethod::Continuation)?;
+        let change = max_distance(&reference, &check, 2);
+        (reference, change, (ref_dt, None))
+    };
+    let established = Reference {
+        scene: scene.name().to_string(),
+        dynamics,
+        horizon_s: horizon,
+        dt_s,
+        tolerance,
+        change_m,
+        bound_m: 1e-9 * scene.l(),
+    };
+    Ok((reference, established))
+}
+
 /// The error of a report stopped by its caller.
 pub(super) const INTERRUPTED: &str =
     "interrupted: the report was stopped before it was complete, and nothing was written";
@@ -186,7 +232,6 @@ pub(super) fn work_precision(
     progress: impl Fn() -> std::ops::ControlFlow<()>,
 ) -> Result<(Vec<Point>, Vec<Reference>), String> {
     let (levels, repeats) = if quick { (3, 3) } else { (6, 7) };
-    let ref_dt = DT0 / 512.0;
     let mut points = Vec::new();
     let mut references = Vec::new();
     for (scene, horizon) in scenes()? {
@@ -194,40 +239,9 @@ pub(super) fn work_precision(
             // Each dynamics against its own reference: the error is of the integration, not
             // the difference between the models.
             let rigid = dynamics == DynamicsModel::RigidBody;
-            let exact = |dt, tol| {
-                with_solver(
-                    &scene,
-                    dynamics,
-                    Mode::Exact,
-                    Integrator::Rk4,
-                    (dt, tol),
-                    horizon,
-                )
-            };
-            let (reference, change_m, reference_at) = if rigid {
-                let tol = RIGID_REFERENCE_TOLERANCE;
-                let reference = run(&exact(RIGID_ROWS_DT, Some(tol))?, PoseMethod::Continuation)?;
-                let check = run(
-                    &exact(RIGID_ROWS_DT, Some(tol / 10.0))?,
-                    PoseMethod::Continuation,
-                )?;
-                let change = max_distance(&reference, &check, 1);
-                (reference, change, (RIGID_ROWS_DT, Some(tol)))
-            } else {
-                let reference = run(&exact(ref_dt, None)?, PoseMethod::Continuation)?;
-                let check = run(&exact(ref_dt / 2.0, None)?, PoseMethod::Continuation)?;
-                let change = max_distance(&reference, &check, 2);
-                (reference, change, (ref_dt, None))
-            };
-            references.push(Reference {
-                scene: scene.name().to_string(),
-                dynamics,
-                horizon_s: horizon,
-                dt_s: reference_at.0,
-                tolerance: reference_at.1,
-                change_m,
-                bound_m: 1e-9 * scene.l(),
-            });
+            let (reference, established) = reference_of(&scene, dynamics, horizon)?;
+            let reference_dt = established.dt_s;
+            references.push(established);
             for series in series().into_iter().filter(|s| s.dynamics == dynamics) {
                 let Series {
                     method,
@@ -265,7 +279,7 @@ pub(super) fn work_precision(
                     let c: Computed = last.ok_or("no run")?;
                     let steps = c.route.steps().map_or(c.route.increments, |s| s.taken);
                     let r = c.route;
-                    let ratio = (dt / reference_at.0).round() as usize;
+                    let ratio = (dt / reference_dt).round() as usize;
                     points.push(Point {
                         scene: scene.name().to_string(),
                         dynamics,
