@@ -433,38 +433,37 @@ mod tests {
     use crate::mechanics::statics::frictionless_normals;
     use crate::scene::Scene;
 
-    /// The default scene changed by `edit`, and its contact geometry at the start.
-    /// The default scene with `keys` set, and its contact geometry at the start.
-    fn start(keys: &[(&str, f64)]) -> (Scene, ContactGeometry) {
+    /// The holding range of the default scene with `keys` set, at the start (level, unturned),
+    /// from its frictionless normal forces.
+    fn held_at_start(keys: &[(&str, f64)]) -> HoldingRange {
         let s = Scene::default_scene()
             .with_keys(keys.iter().copied())
             .unwrap();
         let pose =
             Pose::from_tilts(s.site.as_paper().unwrap(), Default::default(), 0.0, 0.0).unwrap();
         let g = ContactGeometry::new(&s.site().normals(), &pose);
-        (s, g)
-    }
-
-    #[test]
-    fn a_flat_block_without_couple_is_held_up_to_mu_times_weight() {
-        // Nearly flat planes, no eccentricity: the held force is μ W (the planes' normals lean
-        // by 0.01°, which changes it by O(1e-4)).
-        let (s, g) = start(&[
-            ("foundation.xi_deg", 0.01),
-            ("foundation.zeta_deg", 0.01),
-            ("loads.eccentricity_m", 0.0),
-        ]);
         let d = s.simulation().unwrap();
         let applied = Applied::new(d.first_body().loads(), d.first_body().block(), &g.frame);
         let c = frictionless_normals(&g, &applied).unwrap();
-        let st = check(
+        check(
             &g,
             &applied,
             &d.first_body()
                 .frame_strength(d.strengths(), [0, 1, 2], false),
             &c,
         )
-        .unwrap();
+        .unwrap()
+    }
+
+    #[test]
+    fn a_flat_block_without_couple_is_held_up_to_mu_times_weight() {
+        // Nearly flat planes, no eccentricity: the held force is μ W (the planes' normals lean
+        // by 0.01°, which changes it by O(1e-4)).
+        let st = held_at_start(&[
+            ("foundation.xi_deg", 0.01),
+            ("foundation.zeta_deg", 0.01),
+            ("loads.eccentricity_m", 0.0),
+        ]);
         let want = 0.4 * 9.81e6 / 8e6;
         assert!(
             (st.factor_of_safety - want).abs() < 1e-3 * want,
@@ -477,18 +476,7 @@ mod tests {
     #[test]
     fn high_friction_holds_and_zero_friction_does_not() {
         for (mu_k, holds) in [(2.0, true), (0.0, false)] {
-            let (s, g) = start(&[("friction.mu_k", mu_k)]);
-            let d = s.simulation().unwrap();
-            let applied = Applied::new(d.first_body().loads(), d.first_body().block(), &g.frame);
-            let c = frictionless_normals(&g, &applied).unwrap();
-            let st = check(
-                &g,
-                &applied,
-                &d.first_body()
-                    .frame_strength(d.strengths(), [0, 1, 2], false),
-                &c,
-            )
-            .unwrap();
+            let st = held_at_start(&[("friction.mu_k", mu_k)]);
             assert_eq!(st.holds(), holds, "{st:?}");
         }
     }

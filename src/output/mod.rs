@@ -48,6 +48,8 @@ mod compare_files;
 mod error;
 mod folder;
 mod grid_csv;
+#[cfg(any(feature = "plots", feature = "view"))]
+mod half_plane;
 mod manifest;
 #[cfg(feature = "plots")]
 mod plots;

@@ -151,6 +151,25 @@ struct Seek<'a> {
 }
 
 impl Seek<'_> {
+    /// A patch of `members` on the plane of normal `n`, over `points`: none of its members is
+    /// sought again.
+    fn take(
+        &mut self,
+        out: &mut Vec<Patch>,
+        members: Vec<usize>,
+        n: &Vector3<f64>,
+        points: Vec<PatchPoint>,
+    ) {
+        for &i in &members {
+            self.used[i] = true;
+        }
+        out.push(Patch {
+            members,
+            axes: tangents(n),
+            points,
+        });
+    }
+
     /// Whether touch `t` is closed (its gap within the tolerance).
     fn close(&self, t: &Touch) -> bool {
         t.gap.abs() <= self.tol
@@ -272,14 +291,7 @@ impl Seek<'_> {
                                 && self.close(t))
                     })
                     .collect();
-                for &i in &members {
-                    self.used[i] = true;
-                }
-                out.push(Patch {
-                    members,
-                    axes: tangents(&n),
-                    points,
-                });
+                self.take(out, members, &n, points);
             }
         }
     }
@@ -316,14 +328,7 @@ impl Seek<'_> {
             }
             if points.len() >= 3 {
                 along_one_line(&mut points, self.tol, &|arm| self.touching(arm));
-                for &i in &members {
-                    self.used[i] = true;
-                }
-                out.push(Patch {
-                    members,
-                    axes: tangents(&n),
-                    points,
-                });
+                self.take(out, members, &n, points);
             }
         }
     }

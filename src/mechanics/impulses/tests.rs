@@ -57,20 +57,25 @@ fn on_ground(corners: &[Vector3<f64>], mu: f64) -> Vec<ContactRow> {
         .collect()
 }
 
+/// The solve of [`cube`] on level ground of friction `mu` from its free velocity `v`, unspun.
+fn cube_on_ground(v: Vector3<f64>, mu: f64, max_sweeps: usize) -> Solved {
+    let (body, corners) = cube();
+    one_body(
+        &body,
+        (v, Vector3::zeros()),
+        &on_ground(&corners, mu),
+        &[],
+        1e-14,
+        max_sweeps,
+    )
+}
+
 #[test]
 fn a_block_resting_on_level_ground_is_held_by_normal_impulses_that_carry_its_weight() {
-    let (body, corners) = cube();
     let h = 1e-3;
     // One step of gravity: v* = −g h.
     let v = Vector3::new(0.0, -9.81 * h, 0.0);
-    let s = one_body(
-        &body,
-        (v, Vector3::zeros()),
-        &on_ground(&corners, 0.6),
-        &[],
-        1e-14,
-        500,
-    );
+    let s = cube_on_ground(v, 0.6, 500);
     let m = s.motion[0];
     assert!(m.v.norm() < 1e-12 && m.w.norm() < 1e-12, "{} {}", m.v, m.w);
     let total: f64 = s.normal.iter().sum();
@@ -79,17 +84,9 @@ fn a_block_resting_on_level_ground_is_held_by_normal_impulses_that_carry_its_wei
 
 #[test]
 fn a_sliding_block_loses_exactly_mu_g_h_of_speed_a_step_and_does_not_rise() {
-    let (body, corners) = cube();
     let (h, mu, g) = (1e-3, 0.4, 9.81);
     let v = Vector3::new(2.0, -g * h, 0.5);
-    let s = one_body(
-        &body,
-        (v, Vector3::zeros()),
-        &on_ground(&corners, mu),
-        &[],
-        1e-14,
-        2000,
-    );
+    let s = cube_on_ground(v, mu, 2000);
     let after = s.motion[0].v;
     let speed = v.xz().norm() - mu * g * h;
     assert!((after.xz().norm() - speed).abs() < 1e-9, "{after}");
@@ -100,17 +97,9 @@ fn a_sliding_block_loses_exactly_mu_g_h_of_speed_a_step_and_does_not_rise() {
 
 #[test]
 fn a_slow_block_stops_within_the_step_that_friction_can_stop_it_in() {
-    let (body, corners) = cube();
     let (h, mu, g) = (1e-3, 0.4, 9.81);
     let v = Vector3::new(0.5 * mu * g * h, -g * h, 0.0);
-    let s = one_body(
-        &body,
-        (v, Vector3::zeros()),
-        &on_ground(&corners, mu),
-        &[],
-        1e-14,
-        2000,
-    );
+    let s = cube_on_ground(v, mu, 2000);
     assert!(s.motion[0].v.norm() < 1e-12, "{}", s.motion[0].v);
     let shear: f64 = s.tangential.iter().map(|p| p.norm()).sum();
     assert!(shear < mu * 1000.0 * g * h);

@@ -289,10 +289,23 @@ fn distance(rows: &[Row]) -> Vec<f64> {
     s
 }
 
+/// The series `named` (their legends and values), coloured in turn from [`COLORS`].
+fn coloured<'a>(named: impl IntoIterator<Item = (&'a str, Vec<f64>)>) -> Vec<Series<'a>> {
+    named
+        .into_iter()
+        .zip(COLORS)
+        .map(|((name, values), color)| Series {
+            name,
+            values,
+            color,
+        })
+        .collect()
+}
+
 /// The pictures of `rows` against time `t` or distance `s`: the CM profile, the angles and the
 /// reactions.
 fn charts<'a>(rows: &[Row], t: &'a [f64], s: &'a [f64]) -> [Chart<'a>; 3] {
-    let column = |f: fn(&Row) -> f64| rows.iter().map(f).collect();
+    let column = |f: fn(&Row) -> f64| -> Vec<f64> { rows.iter().map(f).collect() };
     let mn = |pick: fn(&Row) -> Option<[f64; 3]>, i: usize| -> Vec<f64> {
         rows.iter()
             .map(|r| pick(r).map_or(f64::NAN, |v| v[i] / 1e6))
@@ -315,11 +328,7 @@ fn charts<'a>(rows: &[Row], t: &'a [f64], s: &'a [f64]) -> [Chart<'a>; 3] {
                 y: "CM height Y (m)",
             },
             x: s,
-            series: vec![Series {
-                name: "CM height",
-                values: column(|r| r.y_m),
-                color: COLORS[0],
-            }],
+            series: coloured([("CM height", column(|r| r.y_m))]),
             lacks: "heights along a path",
         },
         Chart {
@@ -330,28 +339,15 @@ fn charts<'a>(rows: &[Row], t: &'a [f64], s: &'a [f64]) -> [Chart<'a>; 3] {
                 y: "angle (°)",
             },
             x: t,
-            series: vec![
-                Series {
-                    name: "α: tilt of x′ (side 01 of the paper's frame)",
-                    values: column(|r| r.alpha_deg),
-                    color: COLORS[0],
-                },
-                Series {
-                    name: "β: tilt of side 02",
-                    values: column(|r| r.beta_deg),
-                    color: COLORS[1],
-                },
-                Series {
-                    name: "γ: tilt of side 1→2",
-                    values: column(|r| r.gamma_deg),
-                    color: COLORS[2],
-                },
-                Series {
-                    name: "θ: yaw",
-                    values: column(|r| r.theta_deg),
-                    color: COLORS[3],
-                },
-            ],
+            series: coloured([
+                (
+                    "α: tilt of x′ (side 01 of the paper's frame)",
+                    column(|r| r.alpha_deg),
+                ),
+                ("β: tilt of side 02", column(|r| r.beta_deg)),
+                ("γ: tilt of side 1→2", column(|r| r.gamma_deg)),
+                ("θ: yaw", column(|r| r.theta_deg)),
+            ]),
             lacks: "angles over time",
         },
         Chart {
@@ -362,17 +358,14 @@ fn charts<'a>(rows: &[Row], t: &'a [f64], s: &'a [f64]) -> [Chart<'a>; 3] {
                 y: "force (MN)",
             },
             x: t,
-            series: (0..6)
-                .map(|k| Series {
-                    name: REACTIONS[k],
-                    values: if k < 3 {
-                        mn(|r| r.n_n, k)
-                    } else {
-                        mn(|r| r.s_n, k - 3)
-                    },
-                    color: COLORS[k],
-                })
-                .collect(),
+            series: coloured(REACTIONS.into_iter().enumerate().map(|(k, name)| {
+                let values = if k < 3 {
+                    mn(|r| r.n_n, k)
+                } else {
+                    mn(|r| r.s_n, k - 3)
+                };
+                (name, values)
+            })),
             lacks: "reactions over time",
         },
     ]

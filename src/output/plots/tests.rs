@@ -33,29 +33,35 @@ fn texts(svg: &str) -> Vec<SvgText> {
         .collect()
 }
 
+/// Every polyline of an SVG: its tag, and its points.
+fn polylines(svg: &str) -> Vec<(&str, Vec<(f64, f64)>)> {
+    svg.split("<polyline")
+        .skip(1)
+        .map(|p| {
+            let tag = p.split("/>").next().unwrap_or("");
+            let points = tag
+                .split("points=\"")
+                .nth(1)
+                .and_then(|q| q.split('"').next())
+                .unwrap_or("")
+                .split_whitespace()
+                .filter_map(|q| {
+                    let (x, y) = q.split_once(',')?;
+                    Some((x.parse().ok()?, y.parse().ok()?))
+                })
+                .collect();
+            (tag, points)
+        })
+        .collect()
+}
+
 /// Every point of every polyline of data (plotters draws line series as polylines; a legend's
 /// mark is a polyline of two or three points).
 fn polyline_points(svg: &str) -> Vec<(f64, f64)> {
-    svg.split("<polyline")
-        .skip(1)
-        .filter(|s| {
-            let points = s
-                .split(" points=\"")
-                .nth(1)
-                .and_then(|p| p.split('"').next());
-            points.is_some_and(|p| p.split_whitespace().count() > 3)
-        })
-        .flat_map(|s| {
-            let points = s.split("points=\"").nth(1).unwrap_or("").split('"').next();
-            points
-                .unwrap_or("")
-                .split_whitespace()
-                .filter_map(|p| {
-                    let (x, y) = p.split_once(',')?;
-                    Some((x.parse().ok()?, y.parse().ok()?))
-                })
-                .collect::<Vec<_>>()
-        })
+    polylines(svg)
+        .into_iter()
+        .filter(|(_, points)| points.len() > 3)
+        .flat_map(|(_, points)| points)
         .collect()
 }
 
@@ -379,32 +385,15 @@ fn the_plan_view_of_a_block_on_its_base_draws_its_base_and_where_it_touched() {
     let corners = route.base().unwrap().outline_m.len();
     let svg = read(&dir, "plan.svg");
     // The base's outline: a closed path of its corners and the first again, at each drawn pose.
-    let closed = svg
-        .split("<polyline")
-        .skip(1)
-        .filter(|p| {
-            let points = p
-                .split("points=\"")
-                .nth(1)
-                .and_then(|q| q.split('"').next())
-                .unwrap_or("");
-            points.split_whitespace().count() == corners + 1
-        })
+    let closed = polylines(&svg)
+        .iter()
+        .filter(|(_, pts)| pts.len() == corners + 1)
         .count();
     assert!(closed >= 2, "{closed} outlines of {corners} corners");
     // No frame triangle: no closed path of three contacts and the first again.
-    let triangles = svg
-        .split("<polyline")
-        .skip(1)
-        .filter(|p| {
-            let points = p
-                .split("points=\"")
-                .nth(1)
-                .and_then(|q| q.split('"').next())
-                .unwrap_or("");
-            let pts: Vec<&str> = points.split_whitespace().collect();
-            pts.len() == 4 && pts[0] == pts[3]
-        })
+    let triangles = polylines(&svg)
+        .iter()
+        .filter(|(_, pts)| pts.len() == 4 && pts[0] == pts[3])
         .count();
     assert_eq!(triangles, 0, "a frame's triangle on a base route");
     // The touch marks on the plan (the legend's mark is larger), in their colour, and the
@@ -435,23 +424,10 @@ fn scene_file(name: &str) -> Scene {
 /// The closed polylines of an SVG (a frame or an outline: its corners and the first again),
 /// each with its tag.
 fn closed_polylines(svg: &str) -> Vec<(String, Vec<(f64, f64)>)> {
-    svg.split("<polyline")
-        .skip(1)
-        .filter_map(|p| {
-            let tag = p.split("/>").next()?;
-            let pts: Vec<(f64, f64)> = tag
-                .split("points=\"")
-                .nth(1)?
-                .split('"')
-                .next()?
-                .split_whitespace()
-                .filter_map(|q| {
-                    let (x, y) = q.split_once(',')?;
-                    Some((x.parse().ok()?, y.parse().ok()?))
-                })
-                .collect();
-            (pts.len() >= 4 && pts.first() == pts.last()).then(|| (tag.to_string(), pts))
-        })
+    polylines(svg)
+        .into_iter()
+        .filter(|(_, pts)| pts.len() >= 4 && pts.first() == pts.last())
+        .map(|(tag, pts)| (tag.to_string(), pts))
         .collect()
 }
 
@@ -460,22 +436,10 @@ fn closed_polylines(svg: &str) -> Vec<(String, Vec<(f64, f64)>)> {
 fn plotting_area(svg: &str) -> (f64, f64, f64, f64) {
     let mut best_v = (0.0, 0.0, 0.0, 0.0);
     let mut best_h = (0.0, 0.0, 0.0, 0.0);
-    for p in svg.split("<polyline").skip(1) {
-        let tag = p.split("/>").next().unwrap_or("");
+    for (tag, pts) in polylines(svg) {
         if !tag.contains("stroke=\"#000000\"") {
             continue;
         }
-        let pts: Vec<(f64, f64)> = tag
-            .split("points=\"")
-            .nth(1)
-            .and_then(|q| q.split('"').next())
-            .unwrap_or("")
-            .split_whitespace()
-            .filter_map(|q| {
-                let (x, y) = q.split_once(',')?;
-                Some((x.parse().ok()?, y.parse().ok()?))
-            })
-            .collect();
         let [a, b] = pts[..] else {
             continue;
         };
@@ -723,7 +687,7 @@ fn every_picture_has_text_of_at_least_14_px() {
 }
 
 /// A point of every series the report measures on two scenes, three steps of dt each.
-fn work_precision_points() -> Vec<crate::output::work_precision::Point> {
+fn work_precision_points() -> Vec<crate::output::work_precision::ladder::Point> {
     use crate::{DynamicsModel, Integrator, Mode, PoseMethod};
     let mut points = Vec::new();
     let mut ways = Vec::new();
@@ -744,7 +708,7 @@ fn work_precision_points() -> Vec<crate::output::work_precision::Point> {
         for (w, &(dynamics, method, mode, integrator)) in ways.iter().enumerate() {
             for k in 0..3 {
                 let dt_s = 0.02 / f64::from(1u32 << k);
-                points.push(crate::output::work_precision::Point {
+                points.push(crate::output::work_precision::ladder::Point {
                     scene: (*scene).into(),
                     dynamics,
                     method,

@@ -5,6 +5,7 @@
 //! method, mode and integrator, the marker (and a dashed line) the scene.
 
 use super::sheet::{self, Entry, Mark, Res, Shape, Sheet, err};
+use crate::output::work_precision::ladder::Point;
 use plotters::prelude::*;
 use std::path::Path;
 
@@ -39,7 +40,7 @@ struct Line {
 }
 
 /// The series of `points` with an error and a time above zero, in the order they come.
-fn lines(points: &[crate::output::work_precision::Point]) -> Vec<Line> {
+fn lines(points: &[Point]) -> Vec<Line> {
     let mut out: Vec<Line> = Vec::new();
     for p in points.iter().filter(|p| p.error_m > 0.0 && p.wall_s > 0.0) {
         // The paper's dynamics over tolerances is a series apart from its ladder of increments.
@@ -95,7 +96,7 @@ fn styles(lines: &[Line]) -> Vec<Style> {
 
 /// Log–log error against wall time, one line per series (scene, dynamics, method, mode,
 /// integrator), each in its own colour and marker.
-pub fn work_precision(path: &Path, points: &[crate::output::work_precision::Point]) -> Res<()> {
+pub fn work_precision(path: &Path, points: &[Point]) -> Res<()> {
     let mut lines = lines(points);
     let title = "work–precision: error of the route against run time";
     let all: Vec<(f64, f64)> = lines.iter().flat_map(|l| l.points.clone()).collect();

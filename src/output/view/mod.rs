@@ -14,6 +14,7 @@ mod glb;
 mod html;
 pub(crate) mod many;
 
+use super::half_plane::{HalfPlane, clip};
 use super::{OutputError, OutputFolder, Written};
 use crate::model::Base;
 use crate::route::models::pose_of_row;
@@ -528,27 +529,6 @@ fn force_arrow(
     })
 }
 
-/// A half-plane of the plan, a·X + b·Z ≥ c.
-type Half = (f64, f64, f64);
-
-/// The part of convex `poly` (X, Z) in half-plane `h`.
-fn clip(poly: &[[f64; 2]], (a, b, c): Half) -> Vec<[f64; 2]> {
-    let inside = |p: [f64; 2]| a * p[0] + b * p[1] >= c;
-    let mut out = Vec::new();
-    for k in 0..poly.len() {
-        let (p, q) = (poly[k], poly[(k + 1) % poly.len()]);
-        if inside(p) {
-            out.push(p);
-        }
-        if inside(p) != inside(q) {
-            let (fp, fq) = (a * p[0] + b * p[1] - c, a * q[0] + b * q[1] - c);
-            let t = fp / (fp - fq);
-            out.push([p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1])]);
-        }
-    }
-    out
-}
-
 /// A face's colour by its dip: sand where level, darker brown towards 60° and steeper.
 fn dip_color(dip: f64) -> [f64; 3] {
     let steep = (dip / 60f64.to_radians()).clamp(0.0, 1.0);
@@ -643,30 +623,22 @@ pub fn ground_mesh(scene: &Scene, [x0, x1, z0, z1]: [f64; 4]) -> Mesh {
         Some((ground, _)) => ground.faces().to_vec(),
         None => site.planes().to_vec(),
     };
-    let rect = vec![[x0, z0], [x1, z0], [x1, z1], [x0, z1]];
+    let rect = vec![(x0, z0), (x1, z0), (x1, z1), (x0, z1)];
     for (k, plane) in planes.iter().enumerate() {
-        // Where plane k stands at least as high as every other: height = (e − m·(X, Z)) / m_y.
+        // Where plane k stands at least as high as every other.
         let poly = planes.iter().enumerate().filter(|(j, _)| *j != k).fold(
             rect.clone(),
             |poly, (_, q)| {
                 if poly.len() < 3 {
                     return poly;
                 }
-                let (mp, mq) = (plane.normal(), q.normal());
-                clip(
-                    &poly,
-                    (
-                        -mp.x / mp.y + mq.x / mq.y,
-                        -mp.z / mp.y + mq.z / mq.y,
-                        q.offset() / mq.y - plane.offset() / mp.y,
-                    ),
-                )
+                clip(&poly, HalfPlane::above(plane, q))
             },
         );
         if poly.len() < 3 {
             continue;
         }
-        let lift = |[x, z]: [f64; 2]| Vector3::new(x, plane.height(x, z), z);
+        let lift = |(x, z): (f64, f64)| Vector3::new(x, plane.height(x, z), z);
         for j in 1..poly.len() - 1 {
             mesh.push(
                 [lift(poly[0]), lift(poly[j]), lift(poly[j + 1])],

@@ -1,7 +1,7 @@
 //! The stiff and extreme cases of the work–precision report: scenes chosen to break naive
 //! code, each run and its tilts checked against the direct pose solver.
 
-use super::computed;
+use super::ladder::computed;
 use crate::{Computed, DynamicsModel, Mode, PoseMethod, Scene};
 use serde::Serialize;
 

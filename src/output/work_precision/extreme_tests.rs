@@ -2,9 +2,36 @@
 //! and converges, or ends with its typed reason — never NaN, a panic, a hang or a branch jump.
 //! And the work–precision report's own claims.
 
-use super::{extreme, extreme_cases, point_count, work_precision};
-use crate::{DynamicsModel, Integrator, Mode};
+use super::extreme::{extreme, extreme_cases};
+use super::ladder::{point_count, work_precision};
+use crate::{DynamicsModel, Integrator, Mode, Scene};
 use crate::{PoseMethod, Reason};
+
+#[test]
+fn every_extreme_case_is_a_valid_scene() {
+    // Each case is the default scene with keys changed, validated as a file is; it carries
+    // its own name and differs from the base it was made from.
+    let base = Scene::default_scene()
+        .with_dynamics(DynamicsModel::Paper)
+        .unwrap();
+    let cases = extreme_cases().unwrap();
+    assert_eq!(cases.len(), 18);
+    for c in &cases {
+        assert_eq!(c.scene.name(), c.name);
+        assert_ne!(
+            c.scene.with("name", base.name()).unwrap(),
+            base,
+            "{}",
+            c.name
+        );
+    }
+    let kicked = cases.last().unwrap();
+    assert_eq!(
+        kicked.scene.settings().unwrap().dynamics,
+        DynamicsModel::RigidBody
+    );
+    assert_eq!(kicked.scene.settings().unwrap().integrator, Integrator::Rk4);
+}
 
 #[test]
 fn every_extreme_case_agrees_with_the_direct_solver_or_ends_with_its_reason() {

@@ -1,7 +1,10 @@
-//! `work-precision.csv` and `work-precision.md`: the report's points as a table, and the whole
-//! report as markdown.
+//! The report's files: `work-precision.csv`, its points as a table; `work-precision.md`, the
+//! whole report as markdown; and, with the pictures, `work-precision.svg`, drawn by
+//! `plots/work_precision.rs`.
 
-use super::{ExtremeRow, Point, Reference};
+use super::extreme::ExtremeRow;
+use super::ladder::{Point, Reference, speedups};
+use crate::output::{OutputError, OutputFolder, Written};
 use std::fmt::Write as _;
 use std::io::Write;
 
@@ -19,7 +22,41 @@ const HEADER: [&str; 11] = [
     "error_m",
 ];
 
-pub(super) fn write_csv(out: impl Write, points: &[Point]) -> Result<(), csv::Error> {
+/// Writes `work-precision.csv`, `work-precision.md` and (with `pictures`, where the library
+/// draws them) `work-precision.svg` into `folder`, and finishes it.
+pub(super) fn write(
+    mut folder: OutputFolder,
+    (points, references, extreme): (&[Point], &[Reference], &[ExtremeRow]),
+    quick: bool,
+    pictures: bool,
+) -> Result<Written, OutputError> {
+    let csv = folder.write_with("work-precision.csv", |tmp| {
+        let file = std::fs::File::create(tmp)
+            .map_err(|e| format!("{}: cannot write: {e}", tmp.display()))?;
+        write_csv(file, points).map_err(|e| format!("work-precision.csv: {e}"))
+    })?;
+    let md = markdown(points, references, extreme, quick);
+    let md = folder.write_bytes("work-precision.md", md.as_bytes())?;
+    #[allow(unused_mut)]
+    let mut written = Written {
+        files: vec![csv, md],
+        warnings: Vec::new(),
+    };
+    #[cfg(feature = "plots")]
+    if pictures {
+        written
+            .files
+            .push(folder.write_with("work-precision.svg", |tmp| {
+                crate::output::plots::work_precision(tmp, points)
+            })?);
+    }
+    #[cfg(not(feature = "plots"))]
+    let _ = pictures;
+    folder.finish()?;
+    Ok(written)
+}
+
+fn write_csv(out: impl Write, points: &[Point]) -> Result<(), csv::Error> {
     let mut w = csv::Writer::from_writer(out);
     w.write_record(HEADER)?;
     for p in points {
@@ -41,8 +78,9 @@ pub(super) fn write_csv(out: impl Write, points: &[Point]) -> Result<(), csv::Er
     Ok(())
 }
 
-/// The report as markdown: references, the work–precision table, the extreme cases.
-pub(super) fn markdown(
+/// The report as markdown: references, the work–precision table, continuation against all
+/// roots, the extreme cases.
+fn markdown(
     points: &[Point],
     references: &[Reference],
     extreme: &[ExtremeRow],
@@ -56,11 +94,22 @@ pub(super) fn markdown(
     );
     let _ = writeln!(
         s,
-        "Error: largest distance of the CM from the reference at matching times. Time: median wall time of the whole route (repeats).\n"
+        "Error: largest distance of the CM from the reference at matching times. Time: median wall time of the whole route (repeats)."
     );
-    let _ = writeln!(
+    references_section(&mut s, references);
+    points_section(&mut s, points);
+    speedups_section(&mut s, points);
+    extreme_section(&mut s, extreme);
+    s
+}
+
+/// The section of the references: how each was established.
+fn references_section(s: &mut String, references: &[Reference]) {
+    section(
         s,
-        "## References\n\n| scene | dynamics | horizon (s) | dt (s) | tolerance | change at dt/2 or tolerance/10 (m) | bound 1e-9·L (m) |\n| --- | --- | --- | --- | --- | --- | --- |"
+        "References",
+        "",
+        "scene | dynamics | horizon (s) | dt (s) | tolerance | change at dt/2 or tolerance/10 (m) | bound 1e-9·L (m)",
     );
     for r in references {
         let _ = writeln!(
@@ -75,9 +124,15 @@ pub(super) fn markdown(
             r.bound_m
         );
     }
-    let _ = writeln!(
+}
+
+/// The section of the work–precision table: each point's error and time.
+fn points_section(s: &mut String, points: &[Point]) {
+    section(
         s,
-        "\n## Error and time\n\nEach dynamics against its own reference: the paper's over its increment dt (RK4 at the loosest tolerance, so that no increment is cut) and, continuation in exact mode with RK4, over its tolerance with rows every 0.02 s; the rigid body over its tolerance (its steps its own, its rows every dt).\n\n| scene | dynamics | method | mode | integrator | dt (s) | tolerance | steps | time (ms) | error (m) | µs / step |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"
+        "Error and time",
+        "Each dynamics against its own reference: the paper's over its increment dt (RK4 at the loosest tolerance, so that no increment is cut) and, continuation in exact mode with RK4, over its tolerance with rows every 0.02 s; the rigid body over its tolerance (its steps its own, its rows every dt).",
+        "scene | dynamics | method | mode | integrator | dt (s) | tolerance | steps | time (ms) | error (m) | µs / step",
     );
     for p in points {
         let _ = writeln!(
@@ -96,11 +151,17 @@ pub(super) fn markdown(
             p.wall_s * 1e6 / p.steps.max(1) as f64
         );
     }
-    let _ = writeln!(
+}
+
+/// The section of continuation against all roots at equal error.
+fn speedups_section(s: &mut String, points: &[Point]) {
+    section(
         s,
-        "\n## Continuation against all roots\n\nThe paper's dynamics, per increment, at equal error (the same dt gives the same route by both: the error gap is round-off). All roots: the eigenvalue solve for the pose and all solutions of the frictional reactions at every increment; continuation: the tracker and Newton from the previous increment's reactions.\n\n| scene | mode | integrator | dt (s) | continuation (µs) | all roots (µs) | all roots / continuation | error gap (m) |\n| --- | --- | --- | --- | --- | --- | --- | --- |"
+        "Continuation against all roots",
+        "The paper's dynamics, per increment, at equal error (the same dt gives the same route by both: the error gap is round-off). All roots: the eigenvalue solve for the pose and all solutions of the frictional reactions at every increment; continuation: the tracker and Newton from the previous increment's reactions.",
+        "scene | mode | integrator | dt (s) | continuation (µs) | all roots (µs) | all roots / continuation | error gap (m)",
     );
-    for r in super::speedups(points) {
+    for r in speedups(points) {
         let _ = writeln!(
             s,
             "| {} | {} | {} | {} | {:.2} | {:.2} | {:.1}× | {:.1e} |",
@@ -114,9 +175,15 @@ pub(super) fn markdown(
             r.error_gap_m
         );
     }
-    let _ = writeln!(
+}
+
+/// The section of the stiff and extreme cases.
+fn extreme_section(s: &mut String, extreme: &[ExtremeRow]) {
+    section(
         s,
-        "\n## Stiff and extreme cases\n\n| case | end | t (s) | travel (m) | increments | rejected steps | Newton / step | cond(J) at end | max tilt error vs direct (rad) |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- |"
+        "Stiff and extreme cases",
+        "",
+        "case | end | t (s) | travel (m) | increments | rejected steps | Newton / step | cond(J) at end | max tilt error vs direct (rad)",
     );
     for e in extreme {
         let _ = writeln!(
@@ -135,5 +202,15 @@ pub(super) fn markdown(
                 .map_or("—".into(), |c| format!("{c:.1e}"))
         );
     }
-    s
+}
+
+/// A section of the markdown after a blank line: its `heading`, its `words` (where there are
+/// any), and the head of its table, the `columns` as they stand in it ("a | b | c").
+fn section(s: &mut String, heading: &str, words: &str, columns: &str) {
+    let _ = write!(s, "\n## {heading}\n\n");
+    if !words.is_empty() {
+        let _ = write!(s, "{words}\n\n");
+    }
+    let _ = writeln!(s, "| {columns} |");
+    let _ = writeln!(s, "|{}", " --- |".repeat(columns.split(" | ").count()));
 }

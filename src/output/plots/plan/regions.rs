@@ -6,6 +6,7 @@ use super::{HORIZONTAL, P, PLANE_1, PLANE_2, View};
 use crate::Scene;
 use crate::geometry::PaperSite;
 use crate::geometry::paper_planes::r as strike_2_distance;
+use crate::output::half_plane::{HalfPlane, clip};
 use crate::output::plots::sheet;
 use plotters::prelude::*;
 
@@ -16,25 +17,6 @@ pub(super) enum PaperRegion {
     Horizontal,
     One,
     Two,
-}
-
-/// A half-plane of the plan, a·X + b·Z ≥ c.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(super) struct HalfPlane {
-    pub a: f64,
-    pub b: f64,
-    pub c: f64,
-}
-
-impl HalfPlane {
-    /// The other side (its edge included).
-    fn opposite(self) -> HalfPlane {
-        HalfPlane {
-            a: -self.a,
-            b: -self.b,
-            c: -self.c,
-        }
-    }
 }
 
 /// A part of the foundation on the plan view: where it is drawn, where its name may go, its
@@ -58,25 +40,6 @@ const FACE_COLORS: [RGBColor; 8] = [
     RGBColor(190, 50, 80),
     RGBColor(90, 110, 30),
 ];
-
-/// The part of convex `poly` in the half-plane `h` (one pass of Sutherland–Hodgman).
-pub(super) fn clip_half_plane(poly: &[P], h: HalfPlane) -> Vec<P> {
-    let HalfPlane { a, b, c } = h;
-    let inside = |p: P| a * p.0 + b * p.1 >= c;
-    let mut out = Vec::new();
-    for k in 0..poly.len() {
-        let (p, q) = (poly[k], poly[(k + 1) % poly.len()]);
-        if inside(p) {
-            out.push(p);
-        }
-        if inside(p) != inside(q) {
-            let (fp, fq) = (a * p.0 + b * p.1 - c, a * q.0 + b * q.1 - c);
-            let t = fp / (fp - fq);
-            out.push((p.0 + t * (q.0 - p.0), p.1 + t * (q.1 - p.1)));
-        }
-    }
-    out
-}
 
 /// The area of a polygon (shoelace).
 pub(super) fn area_of(poly: &[P]) -> f64 {
@@ -116,10 +79,10 @@ pub(super) fn regions(paper: &PaperSite, view: View) -> [(PaperRegion, Vec<P>); 
     [
         (
             PaperRegion::Horizontal,
-            clip_half_plane(&clip_half_plane(&rect, h1.opposite()), h2.opposite()),
+            clip(&clip(&rect, h1.opposite()), h2.opposite()),
         ),
-        (PaperRegion::One, clip_half_plane(&rect, h1)),
-        (PaperRegion::Two, clip_half_plane(&rect, h2)),
+        (PaperRegion::One, clip(&rect, h1)),
+        (PaperRegion::Two, clip(&rect, h2)),
     ]
 }
 
@@ -130,17 +93,6 @@ fn down_dip(plane: &crate::Plane) -> Option<P> {
         let a = plane.dip_direction();
         (a.cos(), a.sin())
     })
-}
-
-/// Where plane `p` stands at least as high as plane `q`.
-fn above(p: &crate::Plane, q: &crate::Plane) -> HalfPlane {
-    // height = (e − m_x X − m_z Z) / m_y
-    let (mp, mq) = (p.normal(), q.normal());
-    HalfPlane {
-        a: -mp.x / mp.y + mq.x / mq.y,
-        b: -mp.z / mp.y + mq.z / mq.y,
-        c: q.offset() / mq.y - p.offset() / mp.y,
-    }
 }
 
 /// The regions of the scene's foundation inside `view`: the paper's three (named as the paper
@@ -168,8 +120,8 @@ fn paper_regions(paper: &PaperSite, view: View) -> Vec<Region> {
         .map(|(plane, poly)| {
             let label_poly = match plane {
                 PaperRegion::Horizontal => poly.clone(),
-                PaperRegion::One => clip_half_plane(&poly, h2.opposite()),
-                PaperRegion::Two => clip_half_plane(&poly, h1.opposite()),
+                PaperRegion::One => clip(&poly, h2.opposite()),
+                PaperRegion::Two => clip(&poly, h1.opposite()),
             };
             let (name, color, down) = match plane {
                 PaperRegion::Horizontal => ("horizontal".to_string(), HORIZONTAL, None),
@@ -227,7 +179,7 @@ fn surface_regions(ground: &crate::Ground, view: View) -> Vec<Region> {
             let corners = ground.triangle(k)?;
             let mut poly = corners.map(|c| (c[0], c[1])).to_vec();
             for edge in borders {
-                poly = clip_half_plane(&poly, edge);
+                poly = clip(&poly, edge);
             }
             let steep = (ground.faces()[k].dip() / 60f64.to_radians()).min(1.0);
             let shade = |light: u8, dark: u8| {
@@ -263,7 +215,7 @@ fn face_regions(scene: &Scene, view: View) -> Vec<Region> {
                 if poly.len() < 3 {
                     poly
                 } else {
-                    clip_half_plane(&poly, above(&planes[k], &planes[j]))
+                    clip(&poly, HalfPlane::above(&planes[k], &planes[j]))
                 }
             });
             let plane = &planes[k];
@@ -300,7 +252,7 @@ mod tests {
         // Inclusion–exclusion: horizontal + plane 1 + plane 2 − overlap = the view.
         let [h1, h2] = region_half_planes(paper);
         let rect = vec![(-20.0, -15.0), (30.0, -15.0), (30.0, 25.0), (-20.0, 25.0)];
-        let both = clip_half_plane(&clip_half_plane(&rect, h1), h2);
+        let both = clip(&clip(&rect, h1), h2);
         let sum = area_of(&h.1) + area_of(&one.1) + area_of(&two.1) - area_of(&both);
         assert!((sum - whole).abs() < 1e-9 * whole, "{sum} vs {whole}");
         // Plane 1 is X ≥ L2X: its area is known in closed form.
@@ -322,9 +274,9 @@ mod tests {
         let level = crate::Plane::through(nalgebra::Vector3::y(), origin);
         let rising =
             crate::Plane::through(nalgebra::Vector3::new(-1.0, 1.0, 0.0).normalize(), origin);
-        let h = above(&rising, &level);
+        let h = HalfPlane::above(&rising, &level);
         let square = vec![(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)];
-        let part = clip_half_plane(&square, h);
+        let part = clip(&square, h);
         assert!((area_of(&part) - 2.0).abs() < 1e-12);
         assert!(part.iter().all(|p| p.0 >= -1e-12), "{part:?}");
     }
