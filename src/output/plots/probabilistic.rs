@@ -13,6 +13,7 @@ use crate::Scene;
 use crate::numeric::fixed;
 use crate::output::MAX_FAN_PATHS;
 use crate::probabilistic::{Distribution, Sample, Summary};
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 use std::path::Path;
@@ -470,51 +471,11 @@ pub fn tornado(path: &Path, summary: &Summary) -> Res<()> {
                 name,
             )))
             .map_err(err(path))?;
-        for (rho, color, (y0, y1)) in [
+        for (rho, color, ys) in [
             (s.with_factor_of_safety, ABOVE, (y + 0.33, y + 0.6)),
             (s.with_travel, TRAVEL, (y + 0.63, y + 0.9)),
         ] {
-            // A correlation that is not a number (none is expected) is drawn as none.
-            let rho = rho.filter(|r| r.is_finite());
-            let Some(rho) = rho else {
-                let style = ("sans-serif", sheet::FONT)
-                    .into_font()
-                    .color(&color)
-                    .pos(Pos::new(HPos::Left, VPos::Center));
-                chart
-                    .draw_series(std::iter::once(Text::new(
-                        "none (too few routes, or constant)",
-                        (0.02, 0.5 * (y0 + y1)),
-                        style,
-                    )))
-                    .map_err(err(path))?;
-                continue;
-            };
-            chart
-                .draw_series(std::iter::once(Rectangle::new(
-                    [(0.0, y0), (rho, y1)],
-                    color.mix(0.7).filled(),
-                )))
-                .map_err(err(path))?;
-            // Beyond the bar's end, or inside it (in white) where the end is near the edge.
-            let inside = rho.abs() > 0.8;
-            let (anchor, at) = match (rho >= 0.0, inside) {
-                (true, false) => (HPos::Left, rho + 0.02),
-                (true, true) => (HPos::Right, rho - 0.02),
-                (false, false) => (HPos::Right, rho - 0.02),
-                (false, true) => (HPos::Left, rho + 0.02),
-            };
-            let style = ("sans-serif", sheet::FONT)
-                .into_font()
-                .color(if inside { &WHITE } else { &BLACK })
-                .pos(Pos::new(anchor, VPos::Center));
-            chart
-                .draw_series(std::iter::once(Text::new(
-                    format!("{rho:+.2}").replace('-', "−"),
-                    (at, 0.5 * (y0 + y1)),
-                    style,
-                )))
-                .map_err(err(path))?;
+            tornado_bar(&mut chart, path, rho, color, ys)?;
         }
     }
     let entries = [
@@ -532,6 +493,59 @@ pub fn tornado(path: &Path, summary: &Summary) -> Res<()> {
     let y = sheet::heading(path, &sheet.panel, "Legend", 0)?;
     sheet::legend(path, &sheet.panel, &entries, y)?;
     sheet.root.present().map_err(err(path))
+}
+
+/// One bar of the tornado: a correlation `rho` drawn from zero between `y0` and `y1` in
+/// `color`, with its value; one that is not a number says so in words.
+fn tornado_bar(
+    chart: &mut ChartContext<'_, SVGBackend<'_>, Cartesian2d<RangedCoordf64, RangedCoordf64>>,
+    path: &Path,
+    rho: Option<f64>,
+    color: RGBColor,
+    (y0, y1): (f64, f64),
+) -> Res<()> {
+    // A correlation that is not a number (none is expected) is drawn as none.
+    let rho = rho.filter(|r| r.is_finite());
+    let Some(rho) = rho else {
+        let style = ("sans-serif", sheet::FONT)
+            .into_font()
+            .color(&color)
+            .pos(Pos::new(HPos::Left, VPos::Center));
+        chart
+            .draw_series(std::iter::once(Text::new(
+                "none (too few routes, or constant)",
+                (0.02, 0.5 * (y0 + y1)),
+                style,
+            )))
+            .map_err(err(path))?;
+        return Ok(());
+    };
+    chart
+        .draw_series(std::iter::once(Rectangle::new(
+            [(0.0, y0), (rho, y1)],
+            color.mix(0.7).filled(),
+        )))
+        .map_err(err(path))?;
+    // Beyond the bar's end, or inside it (in white) where the end is near the edge.
+    let inside = rho.abs() > 0.8;
+    let (anchor, at) = match (rho >= 0.0, inside) {
+        (true, false) => (HPos::Left, rho + 0.02),
+        (true, true) => (HPos::Right, rho - 0.02),
+        (false, false) => (HPos::Right, rho - 0.02),
+        (false, true) => (HPos::Left, rho + 0.02),
+    };
+    let style = ("sans-serif", sheet::FONT)
+        .into_font()
+        .color(if inside { &WHITE } else { &BLACK })
+        .pos(Pos::new(anchor, VPos::Center));
+    chart
+        .draw_series(std::iter::once(Text::new(
+            format!("{rho:+.2}").replace('-', "−"),
+            (at, 0.5 * (y0 + y1)),
+            style,
+        )))
+        .map_err(err(path))?;
+    Ok(())
 }
 
 /// `route-fan.svg`, `factor-of-safety.svg` and `sensitivity.svg` in `dir`; `nominal` is the
