@@ -21,9 +21,9 @@ pub mod patch;
 pub mod quadrature;
 pub mod row;
 
-pub use pair::{ContactPair, on_rock, rock_criterion};
+pub use pair::{ContactPair, on_rock, rock_criterion, rock_strength};
 pub use patch::{Patch, patches};
-pub use row::{ContactRow, Side, Warm, closing_rows, rows};
+pub use row::{ContactRow, Share, Side, Warm, closing_rows, rows};
 // The rest, for the tests and `internals`: the route builds these types through the functions
 // above, and follows one body (`placed` gives every body of a simulation).
 #[cfg_attr(not(feature = "internals"), allow(unused_imports))]

@@ -3,7 +3,7 @@
 
 use crate::geometry::contact::BodyTouch;
 use crate::geometry::{BodyPose, Feature, Touch};
-use crate::model::{Friction, Strengths, Surface};
+use crate::model::{Friction, PairStrength, Strengths, Surface};
 use nalgebra::Vector3;
 
 /// What a body touches.
@@ -91,8 +91,13 @@ impl ContactPair {
 
 /// The friction criterion between face `face` of the rock and body `body` (`Strengths::between`).
 pub fn rock_criterion(strengths: &Strengths, face: usize, body: usize) -> Friction {
-    let rock = Surface::Rock(face as u32);
-    strengths.between(rock, Surface::Body(body)).criterion
+    rock_strength(strengths, face, body).criterion
+}
+
+/// What face `face` of the rock and body `body` carry where they touch: the criterion and the
+/// cohesion (`Strengths::between`).
+pub fn rock_strength(strengths: &Strengths, face: usize, body: usize) -> PairStrength {
+    strengths.between(Surface::Rock(face as u32), Surface::Body(body))
 }
 
 /// Body `body`'s pairs on the rock from its `touches`, in their order, each with the criterion

@@ -2,8 +2,8 @@
 //! part or points on a plane, its rows' normal impulse spread over its points as a uniform bed
 //! spreads it, each point with its friction and where it starts.
 
-use super::pair::rock_criterion;
-use super::row::{Shear, Warm};
+use super::pair::rock_strength;
+use super::row::{Share, Shear, Warm};
 use crate::geometry::contact::{self, Spot};
 use crate::model::Strengths;
 use nalgebra::Vector3;
@@ -48,32 +48,51 @@ pub struct PatchPoint {
 /// rock's face under it and the body and the impulse it carried at the last step (`warm`, by
 /// point; a touch among others on one plane, at the same features nearest to it within a
 /// twentieth of the body's size: a crossing slides along its edges as the block moves).
+///
+/// `shares` gives each of the body's rows its [`Share`] of the base's contact (by row from
+/// `first_row`; empty: none), and `bonded` the bonded fraction of that contact area while the
+/// joint is bonded (zero once it has slid). A patch's points, which carry its members'
+/// friction, stand for their members' area, spread over them in proportion to their weights: a
+/// stress-dependent criterion takes each point's stress over its own part, and each carries the
+/// cohesion of the face under it over its bonded part (`derivations/13-base-contact.md` §11).
 pub fn patches(
     (body, first_row): (usize, usize),
     found: &[contact::Patch],
     strengths: &Strengths,
-    h: f64,
-    warm: &Warm<'_>,
+    (h, warm): (f64, &Warm<'_>),
+    (shares, bonded): (&[Share], f64),
 ) -> Vec<Patch> {
     found
         .iter()
-        .map(|p| Patch {
-            body,
-            members: p.members.iter().map(|m| m + first_row).collect(),
-            axes: p.axes,
-            points: p
-                .points
+        .map(|p| {
+            let area: f64 = p
+                .members
                 .iter()
-                .map(|q| PatchPoint {
+                .filter_map(|&m| shares.get(m))
+                .map(|s| s.area_m2)
+                .sum();
+            let weights: f64 = p.points.iter().map(|q| q.weight).sum();
+            let per_weight = if weights > 0.0 { area / weights } else { 0.0 };
+            let point = |q: &contact::PatchPoint| {
+                let strength = rock_strength(strengths, q.face, body);
+                let part = per_weight * q.weight;
+                PatchPoint {
                     arm: q.arm,
                     weight: q.weight,
                     shear: Shear {
-                        criterion: rock_criterion(strengths, q.face, body),
+                        criterion: strength.criterion.over(part),
                         h,
+                        cohesion_n: strength.cohesion_pa * part * bonded,
                     },
                     guess: warm_at(&q.spot, warm.points, warm.size),
-                })
-                .collect(),
+                }
+            };
+            Patch {
+                body,
+                members: p.members.iter().map(|m| m + first_row).collect(),
+                axes: p.axes,
+                points: p.points.iter().map(point).collect(),
+            }
         })
         .collect()
 }

@@ -17,13 +17,17 @@ pub struct Side {
     pub arm: Vector3<f64>,
 }
 
-/// The friction a row, or a patch's point, may carry over a step: its pair's criterion.
+/// The friction a row, or a patch's point, may carry over a step: its pair's criterion, and
+/// its share of the joint's cohesion while the joint is bonded.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Shear {
     /// The pair's criterion.
     pub criterion: Friction,
     /// The step (s): an impulse P over it is a force P / h.
     pub h: f64,
+    /// Its share C of the joint's cohesion (N) while the joint is bonded (the block at rest
+    /// and never yet slid, `derivations/13-base-contact.md` §11); zero once it has slid.
+    pub cohesion_n: f64,
 }
 
 impl Shear {
@@ -32,18 +36,36 @@ impl Shear {
         Shear {
             criterion: Friction::coulomb(0.0),
             h: 1.0,
+            cohesion_n: 0.0,
         }
     }
 
     /// The radius of the friction disc at normal impulse `pn` (N·s): the criterion's shear
     /// strength at the normal force pn / h, over the step (`derivations/13-base-contact.md`
-    /// §4); μ pn for Coulomb's.
+    /// §4), μ pn for Coulomb's; and, while the joint is bonded, its cohesion over the step,
+    /// C h (§11: Mohr–Coulomb's τ = c + σ tan φ over the area the row stands for).
     pub fn radius(&self, pn: f64) -> f64 {
-        match self.criterion {
+        let friction = match self.criterion {
             Friction::Coulomb { mu_k } => mu_k * pn,
             other => other.shear(pn / self.h) * self.h,
+        };
+        if self.cohesion_n > 0.0 {
+            friction + self.cohesion_n * self.h
+        } else {
+            friction
         }
     }
+}
+
+/// A pair's share of the base's contact with its rock (`derivations/13-base-contact.md` §11):
+/// the area it stands for, over which a stress-dependent criterion takes its normal stress
+/// (zero: the criterion's own `contact_area_m2`), and its share of a bonded joint's cohesion.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Share {
+    /// The area it stands for (m²).
+    pub area_m2: f64,
+    /// Its share of the cohesion (N) while the joint is bonded; zero once it has slid.
+    pub cohesion_n: f64,
 }
 
 /// One row of the impulse solve: a contact between body `a` and the rock (`b` none) or body
@@ -104,12 +126,14 @@ fn sides(c: &ContactPair, cms: &[Vector3<f64>]) -> (Side, Option<Side>) {
 /// the curvature of a turn) is undone over a few steps, not thrown out in one. Each starts
 /// from the impulse the same touch carried at the last step (`warm`): found in the same place
 /// while the touches stay the same (a base at rest on hundreds of surface vertices), else
-/// sought.
+/// sought. `shares` gives each pair's [`Share`] of the base's contact, in their order (empty,
+/// or a pair past its end: the criterion as it is, no cohesion).
 pub fn rows(
     pairs: &[ContactPair],
     cms: &[Vector3<f64>],
     h: f64,
     warm: &Warm<'_>,
+    shares: &[Share],
 ) -> Vec<ContactRow> {
     let warm = warm.touches;
     pairs
@@ -125,13 +149,15 @@ pub fn rows(
                 .or_else(|| warm.iter().find(|(t, _)| same(t)))
                 .map_or_else(Vector3::zeros, |(_, p)| *p);
             let (a, b) = sides(c, cms);
+            let share = shares.get(i).copied().unwrap_or_default();
             ContactRow {
                 a,
                 b,
                 normal: c.normal,
                 shear: Shear {
-                    criterion: c.criterion,
+                    criterion: c.criterion.over(share.area_m2),
                     h,
+                    cohesion_n: share.cohesion_n,
                 },
                 closing,
                 guess,
@@ -172,6 +198,7 @@ mod tests {
             let c = Shear {
                 criterion: Friction::coulomb(mu),
                 h,
+                cohesion_n: 0.0,
             };
             assert_eq!(c.radius(pn).to_bits(), (mu * pn).to_bits());
         }
@@ -179,12 +206,21 @@ mod tests {
         let c = Shear {
             criterion: barton,
             h,
+            cohesion_n: 0.0,
         };
         let pn = 4.0e6 * h;
         assert_eq!(c.radius(pn), barton.shear(4.0e6) * h);
         assert!((c.radius(pn) / pn - barton.coefficient(4.0e6)).abs() < 1e-15);
         assert_eq!(c.radius(0.0), 0.0);
         assert_eq!(Shear::none().radius(5.0), 0.0);
+        // A bonded row's disc is wider by its cohesion over the step, pressed or not.
+        let bonded = Shear {
+            criterion: Friction::coulomb(0.4),
+            h,
+            cohesion_n: 2.5e4,
+        };
+        assert_eq!(bonded.radius(0.0), 2.5e4 * h);
+        assert!((bonded.radius(10.0) - (4.0 + 25.0)).abs() < 1e-12);
     }
 
     /// A pair of body `body` on rock face `face` at `point` (world), by corner `k`.
@@ -228,7 +264,7 @@ mod tests {
             points: &[],
             size: 1.0,
         };
-        let r = rows(&pairs, &[cm], h, &warm);
+        let r = rows(&pairs, &[cm], h, &warm, &[]);
         assert_eq!(r[0].guess.y, 7.0);
         assert_eq!(r[1].guess.y, 5.0);
         assert_eq!(r[2].guess, Vector3::zeros());
@@ -259,7 +295,7 @@ mod tests {
             points: &[],
             size: 1.0,
         };
-        let r = rows(&[c], &cms, 1e-3, &none)[0];
+        let r = rows(&[c], &cms, 1e-3, &none, &[])[0];
         assert_eq!(r.a.body, 1);
         assert!((r.a.arm - Vector3::new(0.5, -0.99, 0.0)).norm() < 1e-15);
         let b = r.b.unwrap();

@@ -5,7 +5,8 @@
 //! The question of `static_friction.rs` for the three-point frame, asked of a base touching the
 //! rock at many points: with the block at rest, the six equilibrium equations
 //! Σ f_i + F = 0 and Σ r_i × f_i + M = 0 are linear in the contact forces
-//! f_i = λ_i n_i + a_i t1_i + b_i t2_i, and each cone |(a_i, b_i)| ≤ μ_i λ_i, λ_i ≥ 0 is a
+//! f_i = λ_i n_i + a_i t1_i + b_i t2_i, and each cone |(a_i, b_i)| ≤ μ_i λ_i + C_i, λ_i ≥ 0
+//! (C_i its share of a bonded joint's cohesion, `derivations/13-base-contact.md` §11) is a
 //! second-order cone. Whether the set of such forces is empty is one feasibility program
 //! (Clarabel). It is the rigid body's criterion: a base lying flush over an area is held by it
 //! exactly when it is held by forces at the area's corners, since a force inside the hull of
@@ -34,6 +35,9 @@ pub struct Support {
     pub normal: Vector3<f64>,
     /// The friction criterion there.
     pub criterion: Friction,
+    /// Its share C of the joint's cohesion (N) while the joint is bonded: its cone is then
+    /// |f_t| ≤ μ λ + C (`derivations/13-base-contact.md` §11); zero once the block has slid.
+    pub cohesion_n: f64,
 }
 
 /// A stress-dependent criterion's coefficients are settled when no solve changes one by more
@@ -113,20 +117,22 @@ pub fn reach(
     }
 }
 
-/// The supports that hold what all of `all` hold: of each set of one normal (to 10⁻⁹ rad) and
-/// one criterion, the corners of their hull across the normal. A force at a point inside is
-/// the convex combination of the same force, within the same cone, at the corners, with the
-/// same resultant and moment; so the program has the corners only, however finely the rock
-/// under a flat part of the base is meshed.
+/// The supports that hold what all of `all` hold: of each set of one normal (to 10⁻⁹ rad), one
+/// criterion and one cohesion, the corners of their hull across the normal. A force at a point
+/// inside is the convex combination of the same force, within the same cone, at the corners,
+/// with the same resultant and moment; so the program has the corners only, however finely the
+/// rock under a flat part of the base is meshed. (Each corner keeps the cohesion it was given:
+/// the caller shares a bonded area among the corners it gets back.)
 pub fn hull_supports(all: &[Support]) -> Vec<Support> {
     let mut rest: Vec<usize> = (0..all.len()).collect();
     let mut out = Vec::new();
     while let Some(&first) = rest.first() {
         let (n, criterion) = (all[first].normal, all[first].criterion);
+        let cohesion = all[first].cohesion_n;
         let same = |m: &Vector3<f64>| m.dot(&n) > 0.0 && m.cross(&n).norm() <= 1e-9;
-        let (group, others): (Vec<usize>, Vec<usize>) = rest
-            .iter()
-            .partition(|&&i| same(&all[i].normal) && all[i].criterion == criterion);
+        let (group, others): (Vec<usize>, Vec<usize>) = rest.iter().partition(|&&i| {
+            same(&all[i].normal) && all[i].criterion == criterion && all[i].cohesion_n == cohesion
+        });
         rest = others;
         let corners = hull_across(&n, group.iter().map(|&i| all[i].arm));
         out.extend(corners.into_iter().map(|k| all[group[k]]));
@@ -236,6 +242,10 @@ impl Program {
             b[k] = -force[k] / weight;
             b[3 + k] = -moment[k] / (weight * size);
         }
+        // Cone i: (μ λ_i + C_i, a_i, b_i) = b − A x, C_i its cohesion (in weights).
+        for (i, s) in supports.iter().enumerate() {
+            b[p.cone(i)] = s.cohesion_n / weight;
+        }
         (p, b)
     }
 
@@ -330,6 +340,7 @@ mod tests {
                 arm: Vector3::new(x, -d, z),
                 normal: Vector3::y(),
                 criterion: Friction::coulomb(mu),
+                cohesion_n: 0.0,
             })
             .collect()
     }
@@ -348,6 +359,41 @@ mod tests {
         };
         assert!(push(0.999 * 0.6 * W));
         assert!(!push(1.001 * 0.6 * W));
+    }
+
+    #[test]
+    fn a_bonded_block_is_held_by_a_push_up_to_its_friction_and_its_cohesion_and_never_pulled() {
+        // Four corners of μ 0.4, each with a quarter of a cohesion c A = 0.3 W: a push through
+        // the CM's height is held up to (0.4 + 0.3) W; the bond carries shear without a press,
+        // but lifts nothing: a pull of 1.001 W upward is not held, however strong the bond.
+        let bonded: Vec<Support> = corners(1.0, 0.5, 0.4)
+            .into_iter()
+            .map(|s| Support {
+                cohesion_n: 0.3 * W / 4.0,
+                ..s
+            })
+            .collect();
+        let push = |h: f64| holds(&bonded, Vector3::new(h, 0.0, 0.0), Vector3::zeros());
+        assert!(push(0.999 * 0.7 * W));
+        assert!(!push(1.001 * 0.7 * W));
+        let lift = |p: f64| holds(&bonded, Vector3::new(0.0, p, 0.0), Vector3::zeros());
+        assert!(lift(0.999 * W));
+        assert!(!lift(1.001 * W));
+        // Its yield, a further push along X: (0.7 − 0.1) W beyond a push of 0.1 W.
+        let along = (Vector3::new(W, 0.0, 0.0), Vector3::zeros());
+        let force = Vector3::new(0.1 * W, -W, 0.0);
+        let s = reach(&bonded, force, Vector3::zeros(), along, W, 2.0).unwrap();
+        assert!((s.unwrap() - 0.6).abs() < 1e-6, "{s:?}");
+        // Corners of another cohesion are their own hull: a corner inside the bonded ones'
+        // square, unbonded, is kept.
+        let mut all = bonded.clone();
+        all.push(Support {
+            arm: Vector3::new(0.0, -0.5, 0.0),
+            cohesion_n: 0.0,
+            ..bonded[0]
+        });
+        assert_eq!(hull_supports(&all).len(), 5);
+        assert_eq!(hull_supports(&bonded).len(), 4);
     }
 
     #[test]

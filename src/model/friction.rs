@@ -86,6 +86,20 @@ impl Friction {
         }
     }
 
+    /// The same criterion for a contact standing for `area_m2` of the joint: Barton–Choubey's
+    /// σ taken over that area (its share of the pressure, `derivations/13-base-contact.md`
+    /// §11); Coulomb's unchanged. An area not positive and finite leaves the criterion as given.
+    pub fn over(self, area_m2: f64) -> Friction {
+        match self {
+            Friction::BartonChoubey {
+                jrc, jcs_pa, phi_r, ..
+            } if area_m2 > 0.0 && area_m2.is_finite() => {
+                Friction::barton_choubey(jrc, jcs_pa, phi_r, area_m2)
+            }
+            other => other,
+        }
+    }
+
     /// |S| / |N| at this normal force (0 for no normal force).
     pub fn coefficient(&self, normal: f64) -> f64 {
         if normal > 0.0 {
@@ -173,6 +187,17 @@ mod tests {
         assert!((f.coefficient(200e6) - 30f64.to_radians().tan()).abs() < 1e-12);
         assert!((f.coefficient(1.0) - 70f64.to_radians().tan()).abs() < 1e-12);
         assert!(f.is_stress_dependent() && !f.is_frictionless());
+    }
+
+    #[test]
+    fn a_criterion_over_another_area_takes_its_stress_there() {
+        // Over 4 m² a normal force of 4 MN is σ = 1 MPa: the shear of 2 MN over the 2 m² given.
+        let f = barton().over(4.0);
+        assert_eq!(f.shear(4e6), 2.0 * barton().shear(2e6));
+        // An area that is none leaves it; Coulomb's is the same over any.
+        assert_eq!(barton().over(0.0), barton());
+        assert_eq!(barton().over(f64::NAN), barton());
+        assert_eq!(Friction::coulomb(0.4).over(3.0), Friction::coulomb(0.4));
     }
 
     #[test]

@@ -203,19 +203,17 @@ impl SimulationBuilder {
         check_anchored(&settings, anchored)?;
         let bodies = match settings.contacts {
             Contacts::Frame => self.bodies.into_iter().map(|b| b.with_base(None)).collect(),
-            Contacts::Base => {
-                check_base_friction(&strengths)?;
-                self.bodies
-                    .into_iter()
-                    .map(|b| {
-                        let base = match b.base() {
-                            Some(base) => base.clone(),
-                            None => Base::around(b.site().contacts(), b.loads().cm_height)?,
-                        };
-                        Ok(b.with_base(Some(base)))
-                    })
-                    .collect::<Result<_, ModelError>>()?
-            }
+            Contacts::Base => self
+                .bodies
+                .into_iter()
+                .map(|b| {
+                    let base = match b.base() {
+                        Some(base) => base.clone(),
+                        None => Base::around(b.site().contacts(), b.loads().cm_height)?,
+                    };
+                    Ok(b.with_base(Some(base)))
+                })
+                .collect::<Result<_, ModelError>>()?,
         };
         check_joints(&self.joints, count)?;
         let pairs = self
@@ -283,19 +281,6 @@ pub(crate) fn check_anchored(settings: &RunSettings, anchored: bool) -> Result<(
             "anchor",
             "anchors are followed by the rigid body's dynamics: they need solver.dynamics = \
              \"rigid-body\"",
-        ));
-    }
-    Ok(())
-}
-
-/// What a base's contacts take for now: every friction criterion (each touch's the face's,
-/// at its own normal force), no cohesion (cohesion needs a bonded area).
-fn check_base_friction(strengths: &Strengths) -> Result<(), ModelError> {
-    if strengths.has_cohesion() {
-        return Err(ModelError::new(
-            "friction.cohesion_pa",
-            "a base touching the ground (contacts = \"base\") takes no cohesion yet; use \
-             contacts = \"frame\"",
         ));
     }
     Ok(())
@@ -415,7 +400,7 @@ mod tests {
             .build()
             .unwrap_err();
         assert_eq!(e.key, "friction.mu_k");
-        // A base takes every criterion, but no cohesion yet.
+        // A base takes every criterion, and cohesion (held until the block first slides).
         let barton = Friction::barton_choubey(10.0, 50e6, 0.5, 2.0);
         assert!(
             builder()
@@ -426,9 +411,17 @@ mod tests {
         );
         let mut bonded = Strengths::new(barton);
         bonded.cohesion_pa = 2e5;
+        let sim = builder()
+            .strengths(bonded.clone())
+            .settings(on_base())
+            .build()
+            .unwrap();
+        assert_eq!(sim.strengths().cohesion_pa, 2e5);
+        // Cohesion is still refused under the paper's dynamics on the frame, whose start test
+        // knows none.
         let e = builder()
             .strengths(bonded)
-            .settings(on_base())
+            .settings(RunSettings::new(DynamicsModel::Paper, 1e-3, 1.0))
             .build()
             .unwrap_err();
         assert_eq!(e.key, "friction.cohesion_pa");

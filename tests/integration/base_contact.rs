@@ -752,3 +752,135 @@ fn a_monolith_climbing_a_six_degree_face_on_its_base_needs_no_tracker_and_keeps_
         "{e:?}"
     );
 }
+
+/// [`block_scene`] on level rock, pushed along X through its CM by `push` (N), with cohesion
+/// `c` (Pa) over the base's 16 m² (zero: none), on `contacts`, for `t` s at 1 ms.
+fn bonded_block(mu: f64, c: f64, push: f64, contacts: &str, t: f64) -> String {
+    let cohesion = if c > 0.0 {
+        format!("\ncohesion_pa = {c}\ncohesion_area_m2 = 16.0")
+    } else {
+        String::new()
+    };
+    block_scene(&plane(0.0, 0.0), mu, "", t, 1e-3)
+        .replace(
+            "hydraulic_force_n = 0.0",
+            &format!("hydraulic_force_n = {push}"),
+        )
+        .replace(&format!("mu_k = {mu}"), &format!("mu_k = {mu}{cohesion}"))
+        .replace("[solver]", &format!("[solver]\ncontacts = \"{contacts}\""))
+}
+
+fn run_on(text: &str) -> Route {
+    let scene = Scene::from_toml(text, "bonded").unwrap();
+    slideroute::run(&scene).unwrap()
+}
+
+#[test]
+fn a_bonded_base_holds_a_push_up_to_friction_and_cohesion_over_its_area_and_then_slides_by_friction_alone()
+ {
+    // The 4 m square block (W = 9.81 MN, its CM in its base, A = 16 m²) on level rock of μ 0.4
+    // and cohesion c = 0.2 W / A: Mohr–Coulomb over the base holds a push through the CM up to
+    // μ W + c A = 0.6 W. At 0.99 of it the base is held; at 1.01 the bond breaks at once and
+    // the block slides at (0.606 − 0.4) g, as the same block without cohesion does, step for
+    // step. The frame (three points sharing the same area, `derivations/11-dam-loads.md` §8)
+    // holds and lets go at the same push.
+    let (mu, g, t, h) = (0.4, 9.81, 1.0, 1e-3);
+    let w = 1e6 * g;
+    let c = 0.2 * w / 16.0;
+    let limit = mu * w + c * 16.0;
+    for contacts in ["base", "frame"] {
+        let held = run_on(&bonded_block(mu, c, 0.99 * limit, contacts, t));
+        assert_eq!(
+            held.termination.reason,
+            Reason::DoesNotSlide,
+            "{contacts}: {}",
+            held.termination.detail
+        );
+        let slid = run_on(&bonded_block(mu, c, 1.01 * limit, contacts, t));
+        assert_ne!(slid.termination.reason, Reason::DoesNotSlide, "{contacts}");
+        if contacts == "frame" {
+            // The frame's three points (one corner of the square left out) then tip: what it
+            // says is only that the bond does not hold.
+            continue;
+        }
+        assert_eq!(slid.termination.reason, Reason::TimeLimit, "{contacts}");
+        let plain = run_on(&bonded_block(mu, 0.0, 1.01 * limit, contacts, t));
+        let (x, x0) = (
+            slid.rows.last().unwrap().x_m - slid.rows[0].x_m,
+            plain.rows.last().unwrap().x_m - plain.rows[0].x_m,
+        );
+        let a = (1.01 * limit / w - mu) * g;
+        // The steps: semi-implicit Euler at a constant acceleration, ½ a t (t + h).
+        let exact = 0.5 * a * t * (t + h);
+        assert!(
+            (x - exact).abs() < 1e-6 * exact,
+            "{contacts}: {x} m against {exact} m"
+        );
+        assert!(
+            (x - x0).abs() <= 1e-12 * exact,
+            "{contacts}: {x} m with cohesion, {x0} m without"
+        );
+        assert_eq!(held.base().unwrap().bond_broken_s, None);
+        assert_eq!(slid.base().unwrap().bond_broken_s, Some(0.0));
+        assert_eq!(plain.base().unwrap().bond_broken_s, None);
+    }
+}
+
+#[test]
+fn a_kicked_bonded_base_has_broken_its_bond_and_slides_as_without_cohesion() {
+    // Cohesion twice the weight's friction, and a kick of 2 m/s: it stops where friction alone
+    // stops it, row for row the route without cohesion.
+    let (mu, g) = (0.4, 9.81);
+    let c = 2.0 * mu * 1e6 * g / 16.0;
+    let kicked = |c: f64| {
+        run_on(
+            &bonded_block(mu, c, 0.0, "base", 2.0)
+                .replace("[solver]", "[initial]\nvx_m_s = 2.0\n[solver]"),
+        )
+    };
+    let (with, without) = (kicked(c), kicked(0.0));
+    assert_eq!(with.termination.reason, Reason::Stopped);
+    assert_eq!(with.rows, without.rows);
+    assert_eq!(with.base().unwrap().bond_broken_s, Some(0.0));
+}
+
+#[test]
+fn a_base_under_barton_choubey_takes_each_touchs_stress_over_its_own_share_of_the_base() {
+    // The 4 m square block on level rock under Barton–Choubey (JRC 10, JCS 50 MPa, φr 30°),
+    // the criterion's contact_area_m2 = 1 m² (meant for the frame's three points). On its base
+    // each touch and each point takes its stress over its own share of the base's 16 m²: the
+    // flush base presses evenly at σ = W/A, and holds a push through its CM up to
+    // P = A τ(σ) = W tan(JRC log10(JCS/σ) + φr); pushed by 1.5 P it slides at 0.5 P/m.
+    // Taken over 1 m² instead (σ = W/1), the coefficient would be 0.40 smaller.
+    let (g, t, h) = (9.81f64, 1.0, 1e-3);
+    let w = 1e6 * g;
+    let coefficient = |sigma: f64| (10.0 * (5.0e7 / sigma).log10() + 30.0).to_radians().tan();
+    let mu = coefficient(w / 16.0);
+    assert!(mu - coefficient(w) > 0.39);
+    let barton = |by: f64| {
+        let text = block_scene(&plane(0.0, 0.0), 0.5, "", t, h)
+            .replace(
+                "hydraulic_force_n = 0.0",
+                &format!("hydraulic_force_n = {}", by * mu * w),
+            )
+            .replace(
+                "model = \"coulomb\"\nmu_k = 0.5",
+                "model = \"barton-choubey\"\njrc = 10.0\njcs_pa = 5.0e7\nphi_r_deg = 30.0\n\
+                 contact_area_m2 = 1.0",
+            )
+            .replace("[solver]", "[solver]\ncontacts = \"base\"");
+        assert!(text.contains("barton-choubey"), "{text}");
+        run(&text)
+    };
+    assert_eq!(barton(0.99).termination.reason, Reason::DoesNotSlide);
+    let route = barton(1.01);
+    assert_eq!(route.termination.reason, Reason::TimeLimit);
+    // A net acceleration a fiftieth of the push's: the solve's tolerance weighs fifty times.
+    let exact = 0.5 * 0.01 * g * mu * t * (t + h);
+    let x = route.rows.last().unwrap().x_m - route.rows[0].x_m;
+    assert!((x - exact).abs() < 1e-4 * exact, "{x} m against {exact} m");
+    let route = barton(1.5);
+    let exact = 0.5 * 0.5 * g * mu * t * (t + h);
+    let x = route.rows.last().unwrap().x_m - route.rows[0].x_m;
+    assert!((x - exact).abs() < 1e-6 * exact, "{x} m against {exact} m");
+}

@@ -405,18 +405,26 @@ fn cohesion_holds_a_block_until_it_first_slides() {
         r.termination
     );
     assert!(r.factor_of_safety.and_then(|f| f.value()).unwrap() > 1.0);
-    let kicked = |text: &str| {
-        // On its frame both (a base takes no cohesion yet).
+    // On its base too, when asked (a scene with cohesion keeps its frame unless told).
+    let on_base = Scene::from_toml(&held, "c")
+        .unwrap()
+        .with("solver.contacts", "base")
+        .unwrap();
+    let r = slideroute::run(&on_base).unwrap();
+    assert_eq!(r.termination.reason, route::Reason::DoesNotSlide);
+    let kicked = |text: &str, contacts: &str| {
         let s = Scene::from_toml(&(text.to_string() + "\n[initial]\nvx_m_s = 1.0\n"), "k")
             .unwrap()
             .with("solver.t_end_s", 1.0)
-            .and_then(|s| s.with("solver.contacts", "frame"))
+            .and_then(|s| s.with("solver.contacts", contacts))
             .unwrap();
         slideroute::run(&s).unwrap()
     };
-    let with = kicked(&held);
-    let without = kicked(&held.replace("cohesion_pa = 100e3", ""));
-    assert_eq!(with.rows.last(), without.rows.last());
+    for contacts in ["frame", "base"] {
+        let with = kicked(&held, contacts);
+        let without = kicked(&held.replace("cohesion_pa = 100e3", ""), contacts);
+        assert_eq!(with.rows.last(), without.rows.last(), "{contacts}");
+    }
     // The scene as used reads back as the same scene, cohesion and faces' own entries too.
     let faced = held.clone() + "\n[[friction.face]]\nfaces = [0]\ncohesion_pa = 5e4\n";
     let s = Scene::from_toml(&faced, "faced").unwrap();

@@ -655,3 +655,90 @@ fn real_case(file: &std::path::Path, axis: &str, mu: f64, push: f64) -> Result<(
         Ok(())
     }
 }
+
+/// The block of [`pushed_in`] on its base, μ 1 and pushed by 0.9 W (k_y 0.1 g without cohesion),
+/// shaken along X by `a` at 5 ms, with cohesion c over 20 m² such that c A = `bond` W (zero:
+/// none): its route.
+fn bonded_on_base(name: &str, a: &[f64], bond: f64) -> Route {
+    let dir = std::env::temp_dir().join(format!("slideroute-bond-{name}-{}", std::process::id()));
+    let run = Run {
+        contacts: "base",
+        dt_s: 1e-3,
+        stride: 1,
+    };
+    let path = write_along(&dir, name, (a, 0.005, "x"), (1.0, 0.9), run);
+    if bond > 0.0 {
+        let text = std::fs::read_to_string(&path).unwrap().replace(
+            "[friction]\n",
+            &format!(
+                "[friction]\ncohesion_pa = {}\ncohesion_area_m2 = 20.0\n",
+                bond * 1.0e6 * G / 20.0
+            ),
+        );
+        std::fs::write(&path, text).unwrap();
+    }
+    let scene = Scene::from_file(&path).unwrap_or_else(|e| panic!("{e}"));
+    let route = slideroute::run(&scene).unwrap();
+    std::fs::remove_dir_all(&dir).ok();
+    route
+}
+
+/// `lead` samples of nothing, then `pulse` g towards −X (the block pushed along +X) for 0.2 s,
+/// then 0.5 s of nothing, at 5 ms.
+fn pulse(lead: usize, pulse: f64) -> Vec<f64> {
+    let mut a = vec![0.0; lead];
+    a.extend(std::iter::repeat_n(-pulse, 41));
+    a.extend(std::iter::repeat_n(0.0, 100));
+    a
+}
+
+#[test]
+fn a_bonded_base_under_a_record_holds_until_a_pulse_passes_its_cohesion_and_then_slides_by_friction_alone()
+ {
+    // Cohesion adds 0.1 g to the yield acceleration (0.1 g of friction against the push): the
+    // base's is 0.2 g where it rests.
+    let weak = pulse(0, 0.15);
+    let bonded = bonded_on_base("weak", &weak, 0.1);
+    assert!(
+        (bonded.yield_acceleration.unwrap().ky_g - 0.2).abs() < 1e-6,
+        "{:?}",
+        bonded.yield_acceleration
+    );
+    // A pulse of 0.15 g: over friction's 0.1 g, under the bond's 0.2 g. Without cohesion it
+    // slides the exact distance; with it, not at all.
+    assert_eq!(
+        bonded.termination.reason,
+        Reason::DoesNotSlide,
+        "{}",
+        bonded.termination.detail
+    );
+    assert_eq!(bonded.permanent_displacement_xz_m, Some([0.0, 0.0]));
+    assert_eq!(bonded.base().unwrap().bond_broken_s, None);
+    // (The steps of the base are of the first order: h against the 0.3 s it slides, 5e-3 of
+    // its distance here.)
+    let free = bonded_on_base("weak-free", &weak, 0.0);
+    let want = exact(&weak, 0.005, 1.0, 0.9);
+    let x = free.permanent_displacement_xz_m.unwrap()[0];
+    assert!(
+        want > 0.01 && (x - want).abs() < 1e-2 * want,
+        "{x} m against {want} m"
+    );
+    // A pulse of 0.3 g from the start breaks the bond at once: it slides as without cohesion,
+    // row for row, Newmark's exact distance for μ alone (to the steps' first order).
+    let strong = pulse(0, 0.3);
+    let (with, without) = (
+        bonded_on_base("strong", &strong, 0.1),
+        bonded_on_base("strong-free", &strong, 0.0),
+    );
+    assert_eq!(with.rows, without.rows);
+    assert_eq!(with.base().unwrap().bond_broken_s, Some(0.0));
+    let want = exact(&strong, 0.005, 1.0, 0.9);
+    let x = with.permanent_displacement_xz_m.unwrap()[0];
+    assert!((x - want).abs() < 1e-2 * want, "{x} m against {want} m");
+    // Rising from nothing at 0.095 s to 0.3 g at 0.1 s, it passes 0.2 g at 0.09833 s: the bond
+    // holds the step from rest at 0.098 s (0.18 g) and breaks at the one from 0.099 s (0.24 g).
+    let late = bonded_on_base("late", &pulse(20, 0.3), 0.1);
+    let broke = late.base().unwrap().bond_broken_s.unwrap();
+    assert!((broke - 0.099).abs() < 1e-9, "{broke}");
+    assert!(late.permanent_displacement_xz_m.unwrap()[0] > 0.0);
+}

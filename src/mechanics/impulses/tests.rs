@@ -7,6 +7,7 @@ pub(super) fn coulomb(mu: f64) -> Shear {
     Shear {
         criterion: Friction::coulomb(mu),
         h: 1e-3,
+        cohesion_n: 0.0,
     }
 }
 
@@ -237,7 +238,15 @@ fn a_point_sliding_under_a_stress_dependent_criterion_is_braked_by_its_shear_at_
         inv_mass: 1.0 / m,
         inv_inertia: Matrix3::identity(),
     };
-    let row = ground_row(Vector3::zeros(), Vector3::y(), Shear { criterion, h });
+    let row = ground_row(
+        Vector3::zeros(),
+        Vector3::y(),
+        Shear {
+            criterion,
+            h,
+            cohesion_n: 0.0,
+        },
+    );
     let mut v = 1.0;
     for _ in 0..1000 {
         let free = (Vector3::new(v + 0.9 * g * h, -g * h, 0.0), Vector3::zeros());
@@ -335,7 +344,7 @@ fn a_block_sliding_on_another_through_their_joint_is_braked_by_the_joints_fricti
         points: &[],
         size: 2.0,
     };
-    let rows = rows(&pairs, &cms, h, &none);
+    let rows = rows(&pairs, &cms, h, &none, &[]);
     let free = |vx: f64| Motion {
         v: Vector3::new(vx, -g * h, 0.0),
         w: Vector3::zeros(),

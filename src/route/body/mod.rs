@@ -109,6 +109,9 @@ pub(super) struct OnBase<'a> {
     /// The anchors' tendons: fixed in the rock where the block rests, each let go when it
     /// reaches its capacity at the end of a step (`derivations/11-dam-loads.md` §10).
     tendons: Vec<Tendon>,
+    /// The joint is bonded: the block has cohesion with its rock, is at rest and has never
+    /// slid (`derivations/13-base-contact.md` §11). A bond once broken does not form again.
+    bonded: bool,
 }
 
 impl<'a> OnBase<'a> {
@@ -140,6 +143,7 @@ impl<'a> OnBase<'a> {
             deepest: Cell::new(f64::NEG_INFINITY),
             resting: false,
             tendons: Vec::new(),
+            bonded: false,
         }
     }
 
@@ -266,7 +270,42 @@ impl<'a> OnBase<'a> {
             quadrature: &self.quadrature,
             solve: STEP_SOLVE,
             tendons: &self.tendons,
+            bonded: self.bonded.then(|| self.body.shares_m2().iter().sum()),
+            area: self.base.area().abs(),
         }
+    }
+
+    /// The joint's bond breaks now, as the block first slides: its cohesion is gone for good,
+    /// and the time is booked in the report.
+    fn break_bond(&mut self, o: &mut Log<'_>) {
+        if self.bonded {
+            self.bonded = false;
+            if let Some(b) = o.report.base.as_mut() {
+                b.bond_broken_s = Some(self.t);
+            }
+        }
+    }
+
+    /// One step of `h` from the block's state (from rest while it rests under a record): the
+    /// state it leaves and what it found. A bonded block the step moves has broken its bond at
+    /// the step's start: the step is taken again without it, so that once it moves it slides
+    /// by friction alone (`derivations/13-base-contact.md` §11).
+    fn step_on(&mut self, h: f64, o: &mut Log<'_>) -> (BodyState, Stepped) {
+        let from = |on: &Self| {
+            let mut s = on.s;
+            if on.resting {
+                s.v = Vector3::zeros();
+                s.w = Vector3::zeros();
+            }
+            let stepped = on.ctx().step(&mut s, on.t, h, &on.last);
+            (s, stepped)
+        };
+        let (s, stepped) = from(self);
+        if self.bonded && !(self.resting && self.slow(&s, h)) {
+            self.break_bond(o);
+            return from(self);
+        }
+        (s, stepped)
     }
 
     /// The base point under the CM: where the three-point frame's rows put the block.
@@ -421,9 +460,15 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
             resting: Resting::of(&rest),
             max_penetration_m: f64::NEG_INFINITY,
             outline_m: base.outline().to_vec(),
+            bond_broken_s: None,
         });
         let h = sim.settings().dt;
         on.set_going(&rest, h);
+        // Cohesion bonds a block that starts at rest; one set going breaks it at once.
+        on.bonded = sim.strengths().has_cohesion();
+        if !body.initial().at_rest() {
+            on.break_bond(&mut o);
+        }
         o.push(on.row());
         let (init, shaken) = (body.initial(), rest::shaking(sim.foundation(), 0.0));
         if sim.foundation().record().is_some() {
@@ -437,8 +482,11 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
             let (reason, why) = AtRest::NeverSlid(why).words(sim.foundation());
             return Start::Ended(o.end(reason, 0.0, why));
         }
-        // Shaken from rest: at rest until the record moves it.
+        // Shaken from rest: at rest until the record moves it (its bond holding till then).
         on.resting = init.at_rest() && shaken;
+        if !on.resting {
+            on.break_bond(&mut o);
+        }
         Start::Moving(on, o)
     }
 
@@ -451,12 +499,7 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
     ) -> Flow<'s, OnBaseReport> {
         let h = t_to - self.t;
         let before = self.under_cm();
-        let mut s = self.s;
-        if self.resting {
-            s.v = Vector3::zeros();
-            s.w = Vector3::zeros();
-        }
-        let stepped = self.ctx().step(&mut s, self.t, h, &self.last);
+        let (s, stepped) = self.step_on(h, &mut o);
         // A step that leaves a velocity or the pose not finite ends the route at the last
         // state that was (no row of NaN).
         if let Some(what) = not_finite(&s) {

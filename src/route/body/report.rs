@@ -91,6 +91,11 @@ pub struct BaseReport {
     /// The corners of the base (x′, z′ about the CM, m), in the order `route.csv`'s
     /// `corners_carrying` numbers them.
     pub outline_m: Vec<[f64; 2]>,
+    /// When the joint's bond broke (s): the block had cohesion with its rock and first slid
+    /// then, at 0 where it was set going or its bond could not hold it
+    /// (`derivations/13-base-contact.md` §11). None without cohesion, or where it never slid.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub bond_broken_s: Option<f64>,
 }
 
 /// The pose of a block on its base at a recorded `row`, rebuilt from the row alone: the point

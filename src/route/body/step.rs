@@ -5,7 +5,7 @@
 //! the pose moved out of the ground.
 
 use super::state::BodyState;
-use crate::contact::{self, ContactPair, ContactRow, Patch, Warm};
+use crate::contact::{self, Against, ContactPair, ContactRow, Patch, Share, Warm};
 use crate::geometry::contact::{self as geometric, Bed, Placed, Quadrature, Reduced, Spot};
 use crate::geometry::contact::{Underside, reduce};
 use crate::geometry::{BodyPose, Feature, Footprint, Ground, Relief, Touch, Touches};
@@ -41,6 +41,13 @@ pub(super) struct Ctx<'a> {
     /// The anchors' tendons as the route has them (fixed in the rock where the block rests,
     /// broken).
     pub tendons: &'a [Tendon],
+    /// The joint's bonded area (m²) while the bond holds (the block at rest and never yet
+    /// slid): its cohesion holds the block then (`derivations/13-base-contact.md` §11). None
+    /// once it has slid.
+    pub bonded: Option<f64>,
+    /// The base's area (m²): what its touches share, a stress-dependent criterion taking each
+    /// one's normal stress over its share (`derivations/13-base-contact.md` §11).
+    pub area: f64,
 }
 
 /// What one step found.
@@ -146,6 +153,51 @@ impl Ctx<'_> {
         contact::on_rock(placed.body, touches, self.sim.strengths())
     }
 
+    /// The cohesion (Pa) of rock face `face` against the block while the bond holds; zero once
+    /// it has slid.
+    fn cohesion_pa(&self, face: usize) -> f64 {
+        match self.bonded {
+            Some(_) => contact::rock_strength(self.sim.strengths(), face, BODY).cohesion_pa,
+            None => 0.0,
+        }
+    }
+
+    /// The bonded fraction of the base's contact area while the bond holds: the joint's bonded
+    /// area over the base's (one for a monolith, whose base is its bonded area); zero once it
+    /// has slid.
+    fn bonded_fraction(&self) -> f64 {
+        match self.bonded {
+            Some(bond) if self.area > 0.0 => bond / self.area,
+            _ => 0.0,
+        }
+    }
+
+    /// Each pair's [`Share`] of the base's contact (`derivations/13-base-contact.md` §11): the
+    /// pairs closed on the rock (within [`SUPPORT_GAP`] of the base's size) share the base's
+    /// area equally, as they share the weight at the start of a settling (`mechanics::held`),
+    /// and its bonded fraction carries their face's cohesion while the bond holds; an open
+    /// pair stands for the same area should it close in the step, and carries no cohesion (a
+    /// bond across a gap is no bond).
+    fn shares(&self, pairs: &[ContactPair]) -> Vec<Share> {
+        let closed = |c: &ContactPair| c.gap <= SUPPORT_GAP * self.size;
+        let n = pairs.iter().filter(|c| closed(c)).count().max(1);
+        let area = self.area / n as f64;
+        let bonded = self.bonded_fraction();
+        pairs
+            .iter()
+            .map(|c| {
+                let cohesion_pa = match c.against {
+                    Against::Rock { face } if closed(c) => self.cohesion_pa(face),
+                    _ => 0.0,
+                };
+                Share {
+                    area_m2: area,
+                    cohesion_n: cohesion_pa * area * bonded,
+                }
+            })
+            .collect()
+    }
+
     /// Moves the pose out of the ground where the step's drift left it in (by the curvature of
     /// a turn within the step, of order h² ω² r): the smallest mass-weighted displacement that
     /// closes every gap, found as the step's impulses are, frictionless and with the gaps as
@@ -209,10 +261,14 @@ impl Ctx<'_> {
     }
 
     /// The touches within [`SUPPORT_GAP`] of the base's size at `pose`, as supports free to
-    /// carry any force within their cones: of those with one normal and one criterion, their
-    /// hull's corners (`mechanics::held::hull_supports`).
+    /// carry any force within their cones: of those with one normal, one criterion and one
+    /// cohesion, their hull's corners (`mechanics::held::hull_supports`). The corners share the
+    /// base's area equally: a stress-dependent criterion takes each one's stress over its
+    /// share, and while the bond holds each carries its face's cohesion over its share of the
+    /// bonded area (`derivations/13-base-contact.md` §11).
     fn supports(&self, pose: &BodyPose) -> Vec<Support> {
         let reach = SUPPORT_GAP * self.size;
+        let bonded = self.bonded_fraction() * self.area;
         let all: Vec<Support> = self
             .touches(pose, reach, 0.0)
             .touches
@@ -222,9 +278,18 @@ impl Ctx<'_> {
                 arm: c.on_base - pose.cm,
                 normal: c.normal,
                 criterion: contact::rock_criterion(self.sim.strengths(), c.face, BODY),
+                // The whole bonded area's worth here, which keys the hull's groups; its share
+                // below.
+                cohesion_n: self.cohesion_pa(c.face) * bonded,
             })
             .collect();
-        hull_supports(&all)
+        let mut corners = hull_supports(&all);
+        let n = corners.len() as f64;
+        for s in &mut corners {
+            s.cohesion_n /= n;
+            s.criterion = s.criterion.over(self.area / n);
+        }
+        corners
     }
 
     /// The yield acceleration of the block at rest at `pose` (`derivations/11-dam-loads.md`
@@ -315,9 +380,13 @@ impl Ctx<'_> {
             points: &warm.patch,
             size: self.size,
         };
-        let rows = contact::rows(&pairs, &[pose.cm], h, &warm);
+        // Each pair's share of the base's area, and of its cohesion while the bond holds: at
+        // the pair, or at the points of its patch.
+        let shares = self.shares(&pairs);
+        let rows = contact::rows(&pairs, &[pose.cm], h, &warm, &shares);
         let strengths = self.sim.strengths();
-        let patches = contact::patches((placed.body, 0), &flush, strengths, h, &warm);
+        let bonded = (&shares[..], self.bonded_fraction());
+        let patches = contact::patches((placed.body, 0), &flush, strengths, (h, &warm), bonded);
         Contacts {
             found,
             flush,

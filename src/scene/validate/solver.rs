@@ -14,7 +14,8 @@ impl Reader<'_> {
     /// Where the block touches the ground: `solver.contacts` as given, or by default its base
     /// wherever the rigid body runs on faces, a surface or under a monolith with Coulomb
     /// friction and no cohesion, and the paper's three-point frame on the paper's planes, under
-    /// the paper's dynamics, or with a criterion or cohesion a base does not take yet.
+    /// the paper's dynamics, or with cohesion or a stress-dependent criterion (whose routes have
+    /// always been the frame's).
     pub(super) fn contacts_of(&self, raw: &RawScene) -> Result<Contacts, SceneError> {
         let solver = raw.solver.as_ref();
         if let Some(w) = solver.and_then(|s| s.contacts.as_deref()) {
@@ -29,9 +30,9 @@ impl Reader<'_> {
             .as_ref()
             .is_some_and(|f| f.plane.is_some() || f.surface.is_some());
         let body = faces || raw.monolith.is_some();
-        // A base takes no cohesion (`derivations/13-base-contact.md` §8), and a scene with a
-        // stress-dependent criterion has always had its frame: either stays on its frame
-        // unless told.
+        // A scene with cohesion or a stress-dependent criterion has always had its frame: it
+        // stays on its frame unless told (a base takes both, `derivations/13-base-contact.md`
+        // §11, with `contacts = "base"`).
         let coulomb = |model: Option<&str>, cohesion: Option<f64>| {
             model.is_none_or(|m| m == "coulomb") && cohesion.is_none_or(|c| c == 0.0)
         };
