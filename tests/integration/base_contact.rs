@@ -824,6 +824,22 @@ fn a_bonded_base_holds_a_push_up_to_friction_and_cohesion_over_its_area_and_then
         assert_eq!(slid.base().unwrap().bond_broken_s, Some(0.0));
         assert_eq!(plain.base().unwrap().bond_broken_s, None);
     }
+    // Each touch takes the cohesion of its face: face 0, under the whole base, with its own
+    // entry holds with it where the default has none, and without it where the default has it.
+    let bonded = bonded_block(mu, c, 0.99 * limit, "base", t);
+    let face = |default: f64, own: f64| {
+        let text = bonded.replace(
+            &format!("cohesion_pa = {c}\n"),
+            &format!("cohesion_pa = {default}\n"),
+        );
+        assert!(
+            text.contains(&format!("cohesion_pa = {default}\n")),
+            "{text}"
+        );
+        run_on(&(text + &format!("\n[[friction.face]]\nfaces = [0]\ncohesion_pa = {own}\n")))
+    };
+    assert_eq!(face(0.0, c).termination.reason, Reason::DoesNotSlide);
+    assert_eq!(face(c, 0.0).termination.reason, Reason::TimeLimit);
 }
 
 #[test]
