@@ -117,3 +117,82 @@ fn warm_at(spot: &Spot, warm: &[(Spot, Vector3<f64>)], size: f64) -> Vector3<f64
             .map_or_else(Vector3::zeros, |(_, p)| p),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::{FaceStrength, Friction};
+
+    #[test]
+    fn a_patchs_points_share_their_members_area_and_bond_by_their_weights_each_at_its_faces() {
+        // Rows 1 and 2 (shares 3 m² and 5 m²) are a patch's members; its three points weigh 1,
+        // 1 and 2, on faces 0, 0 and 1: each stands for 8 m² × w / 4 = 2, 2, 4 m², its
+        // Barton–Choubey stress over that, and, half the area bonded, carries the cohesion of
+        // its face over half of it: 100 Pa (face 0) or 300 Pa (face 1).
+        let barton = Friction::barton_choubey(10.0, 5.0e7, 0.5, 99.0);
+        let mut strengths = Strengths::new(barton);
+        strengths.cohesion_pa = 100.0;
+        strengths.faces = vec![FaceStrength {
+            faces: vec![1],
+            friction: barton,
+            cohesion_pa: 300.0,
+        }];
+        let point = |k: usize, weight: f64, face: usize| contact::PatchPoint {
+            arm: Vector3::new(k as f64, -1.0, 0.0),
+            weight,
+            face,
+            spot: Spot::Area(k),
+        };
+        let found = contact::Patch {
+            members: vec![1, 2],
+            axes: (Vector3::x(), Vector3::z()),
+            points: vec![point(0, 1.0, 0), point(1, 1.0, 0), point(2, 2.0, 1)],
+        };
+        let share = |area_m2: f64| Share {
+            area_m2,
+            cohesion_n: 0.0,
+        };
+        let shares = [share(7.0), share(3.0), share(5.0)];
+        let warm = Warm {
+            touches: &[],
+            points: &[],
+            size: 1.0,
+        };
+        let h = 1e-3;
+        let p = &patches((0, 10), &[found], &strengths, (h, &warm), (&shares, 0.5))[0];
+        assert_eq!(p.members, [11, 12]);
+        for (q, (area, c)) in p
+            .points
+            .iter()
+            .zip([(2.0, 100.0), (2.0, 100.0), (4.0, 300.0)])
+        {
+            assert_eq!(q.shear.criterion, barton.over(area));
+            assert!((q.shear.cohesion_n - c * area * 0.5).abs() < 1e-12, "{q:?}");
+        }
+        // Unbonded: the same areas, no cohesion; no shares: the criterion as given.
+        let p = &patches(
+            (0, 0),
+            &[found_again()],
+            &strengths,
+            (h, &warm),
+            (&shares, 0.0),
+        )[0];
+        assert!(p.points.iter().all(|q| q.shear.cohesion_n == 0.0));
+        let p = &patches((0, 0), &[found_again()], &strengths, (h, &warm), (&[], 0.5))[0];
+        assert!(p.points.iter().all(|q| q.shear.criterion == barton));
+    }
+
+    /// A patch of members 0 and 1 and one point of weight 1 on face 0.
+    fn found_again() -> contact::Patch {
+        contact::Patch {
+            members: vec![0, 1],
+            axes: (Vector3::x(), Vector3::z()),
+            points: vec![contact::PatchPoint {
+                arm: Vector3::zeros(),
+                weight: 1.0,
+                face: 0,
+                spot: Spot::Area(0),
+            }],
+        }
+    }
+}
