@@ -900,3 +900,35 @@ fn a_base_under_barton_choubey_takes_each_touchs_stress_over_its_own_share_of_th
     let x = route.rows.last().unwrap().x_m - route.rows[0].x_m;
     assert!((x - exact).abs() < 1e-6 * exact, "{x} m against {exact} m");
 }
+
+#[test]
+fn a_bonded_block_on_a_frame_around_its_centre_lets_go_at_the_same_push_and_slides_as_its_base() {
+    // The same bonded block on three points around its CM (the frame's triangle holding it
+    // upright, its base the same 4 m square): the frame holds at 0.99 (μ W + c A) and slides at
+    // 1.01 of it at the same acceleration, exactly (½ a t², the frame's rigid body to its
+    // tolerance), where the base's first-order steps give ½ a t (t + h).
+    let (mu, g, t, h) = (0.4, 9.81, 1.0, 1e-3);
+    let w = 1e6 * g;
+    let c = 0.2 * w / 16.0;
+    let limit = mu * w + c * 16.0;
+    let around = |push: f64, contacts: &str| {
+        let text = bonded_block(mu, c, push, contacts, t).replace(
+            "contacts_m = [[-2.0, 2.0], [2.0, 2.0], [2.0, -2.0]]",
+            "contacts_m = [[-2.0, -2.0], [2.0, -2.0], [0.0, 2.0]]",
+        );
+        assert!(text.contains("[0.0, 2.0]"), "{text}");
+        run_on(&text)
+    };
+    let a = (0.01 * limit / w + limit / w - mu) * g;
+    for (contacts, exact) in [("frame", 0.5 * a * t * t), ("base", 0.5 * a * t * (t + h))] {
+        let held = around(0.99 * limit, contacts);
+        assert_eq!(held.termination.reason, Reason::DoesNotSlide, "{contacts}");
+        let slid = around(1.01 * limit, contacts);
+        assert_eq!(slid.termination.reason, Reason::TimeLimit, "{contacts}");
+        let x = slid.rows.last().unwrap().x_m - slid.rows[0].x_m;
+        assert!(
+            (x - exact).abs() < 1e-6 * exact,
+            "{contacts}: {x} m against {exact} m"
+        );
+    }
+}
