@@ -95,7 +95,19 @@ pub fn reach(
             None => return Ok(Some(0.0)),
         },
     };
-    let (mut p, mut b) = Program::of(supports, &mu, force, moment, (weight, size));
+    let (p, b) = Program::of(supports, &mu, force, moment, (weight, size));
+    farthest(p, b, extra, (weight, size))
+}
+
+/// The largest s ≥ 0 for which program `p` with right-hand side `b` holds the further load
+/// s `extra` as well (N, N·m about the centre of mass; `weight` and `size` its scales): zero
+/// where the program does not hold the loads as given, None where it holds [`FAR`] of it.
+fn farthest(
+    mut p: Program,
+    mut b: Vec<f64>,
+    extra: (Vector3<f64>, Vector3<f64>),
+    (weight, size): (f64, f64),
+) -> Result<Option<f64>, StaticError> {
     // Column s: the further load on the six equations; s ≥ 0 and s ≤ FAR as two more rows.
     let col = p.columns.len();
     p.columns.push(Vec::new());
@@ -115,6 +127,55 @@ pub fn reach(
         Some((s, _)) if s >= FAR * (1.0 - 1e-6) => Ok(None),
         Some((s, _)) => Ok(Some(s.max(0.0))),
     }
+}
+
+/// A part of the base that presses as a uniform bed (`derivations/13-base-contact.md` §9): a
+/// linear pressure over its points, with no tension, its friction at the points.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Bedded {
+    /// n: its unit normal into the block.
+    pub normal: Vector3<f64>,
+    /// Two unit axes in its plane.
+    pub axes: (Vector3<f64>, Vector3<f64>),
+    /// Its points.
+    pub points: Vec<BedPoint>,
+}
+
+/// One point of a [`Bedded`] part.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BedPoint {
+    /// r: from the centre of mass to the point (m).
+    pub arm: Vector3<f64>,
+    /// The area (or length, or one) it stands for.
+    pub weight: f64,
+    /// Coulomb's μ there.
+    pub mu: f64,
+}
+
+/// Whether the loads `force` (N, the weight included) and `moment` (N·m about the centre of
+/// mass) are held by Coulomb friction on the supports `free` (each free within its cone) and on
+/// the beds `beds`, each pressing as a uniform bed over all its points, its friction at each
+/// point within μ times its share (`derivations/13-base-contact.md` §6): a rigid equilibrium
+/// under the step's own law, where no part of a bed lifts. `weight` (N) and `size` (m) scale
+/// the program. False where a criterion depends on the normal stress: the question is then
+/// left to the trial step.
+pub fn held_pressing(
+    free: &[Support],
+    beds: &[Bedded],
+    force: Vector3<f64>,
+    moment: Vector3<f64>,
+    weight: f64,
+    size: f64,
+) -> Result<bool, StaticError> {
+    let Some(mu) = constant(free) else {
+        return Ok(false);
+    };
+    if free.is_empty() && beds.iter().all(|b| b.points.is_empty()) {
+        return Ok(false);
+    }
+    check_scales(weight, size)?;
+    let (p, b) = Program::pressing((free, &mu), beds, force, moment, (weight, size));
+    Ok(p.solve(&b, 0, false)?.is_some())
 }
 
 /// The supports that hold what all of `all` hold: of each set of one normal (to 10⁻⁹ rad), one
@@ -185,6 +246,13 @@ fn settled(
     Ok(Some(mu))
 }
 
+/// A force `dir` (in weights) at `arm` on the six equations: the force, and its moment about
+/// the centre of mass over `size`.
+fn equation(arm: &Vector3<f64>, dir: &Vector3<f64>, size: f64) -> [f64; 6] {
+    let lever = (arm / size).cross(dir);
+    [dir.x, dir.y, dir.z, lever.x, lever.y, lever.z]
+}
+
 /// The largest further load [`reach`] looks for (in units of the further load).
 pub const FAR: f64 = 100.0;
 
@@ -216,37 +284,124 @@ impl Program {
         (weight, size): (f64, f64),
     ) -> (Program, Vec<f64>) {
         let mut p = Program::new(supports.len());
-        // A force `dir` (in weights) at `arm` on the six equations, in column `col`.
-        let on_equations = |p: &mut Program, col: usize, arm: &Vector3<f64>, dir: Vector3<f64>| {
-            let lever = (arm / size).cross(&dir);
-            for (r, v) in dir.iter().chain(lever.iter()).enumerate() {
-                p.put(r, col, *v);
-            }
-        };
         for (i, s) in supports.iter().enumerate() {
-            let (cone, floor) = (p.cone(i), p.floor(i));
-            let (t1, t2) = tangents(&s.normal);
-            for (k, dir) in [s.normal, t1, t2].into_iter().enumerate() {
-                let col = 3 * i + k;
-                on_equations(&mut p, col, &s.arm, dir);
-                // The cone's rows: s = (μ λ, a, b) = −A x; and λ ≥ 0 (the cone alone lets a
-                // frictionless contact pull).
-                p.put(cone + k, col, if k == 0 { -mu[i] } else { -1.0 });
-                if k == 0 {
-                    p.put(floor, col, -1.0);
-                }
-            }
+            p.support(i, s, mu[i], size);
         }
-        let mut b = vec![0.0; p.rows()];
+        let mut b = p.loads(force, moment, (weight, size));
+        p.bonded(supports, &mut b, weight);
+        (p, b)
+    }
+
+    /// The program of the loads `force` and `moment` on the supports `free`, each free within
+    /// its cone of `mu`, and on the beds `beds`, each pressing linearly with no tension (in
+    /// weights and weight·sizes): its matrix and right-hand side.
+    fn pressing(
+        (free, mu): (&[Support], &[f64]),
+        beds: &[Bedded],
+        force: Vector3<f64>,
+        moment: Vector3<f64>,
+        (weight, size): (f64, f64),
+    ) -> (Program, Vec<f64>) {
+        let points: usize = beds.iter().map(|b| b.points.len()).sum();
+        let mut p = Program::new(free.len());
+        p.m += points;
+        for (i, s) in free.iter().enumerate() {
+            p.support(i, s, mu[i], size);
+        }
+        let mut cone = free.len();
+        for bed in beds {
+            p.bed(bed, cone, size);
+            cone += bed.points.len();
+        }
+        let mut b = p.loads(force, moment, (weight, size));
+        p.bonded(free, &mut b, weight);
+        (p, b)
+    }
+
+    /// The cohesion of each of `supports` (cones 0, 1, …) on the right-hand side `b`: cone i is
+    /// (μ λ_i + C_i, a_i, b_i) = b − A x, C_i its share of a bonded joint's cohesion (in
+    /// weights; `derivations/13-base-contact.md` §11).
+    fn bonded(&self, supports: &[Support], b: &mut [f64], weight: f64) {
+        for (i, s) in supports.iter().enumerate() {
+            b[self.cone(i)] = s.cohesion_n / weight;
+        }
+    }
+
+    /// The right-hand side: the loads `force` and `moment` on the six equations (in weights
+    /// and weight·sizes), nothing on the cones.
+    fn loads(
+        &self,
+        force: Vector3<f64>,
+        moment: Vector3<f64>,
+        (weight, size): (f64, f64),
+    ) -> Vec<f64> {
+        let mut b = vec![0.0; self.rows()];
         for k in 0..3 {
             b[k] = -force[k] / weight;
             b[3 + k] = -moment[k] / (weight * size);
         }
-        // Cone i: (μ λ_i + C_i, a_i, b_i) = b − A x, C_i its cohesion (in weights).
-        for (i, s) in supports.iter().enumerate() {
-            b[p.cone(i)] = s.cohesion_n / weight;
+        b
+    }
+
+    /// Support `s` as cone `i` and columns 3i..3i+3: its force along its normal and tangents
+    /// on the six equations, within its cone of `mu`.
+    fn support(&mut self, i: usize, s: &Support, mu: f64, size: f64) {
+        let (cone, floor) = (self.cone(i), self.floor(i));
+        let (t1, t2) = tangents(&s.normal);
+        for (k, dir) in [s.normal, t1, t2].into_iter().enumerate() {
+            let col = 3 * i + k;
+            self.on_equations(col, &equation(&s.arm, &dir, size));
+            // The cone's rows: s = (μ λ, a, b) = −A x; and λ ≥ 0 (the cone alone lets a
+            // frictionless contact pull).
+            self.put(cone + k, col, if k == 0 { -mu } else { -1.0 });
+            if k == 0 {
+                self.put(floor, col, -1.0);
+            }
         }
-        (p, b)
+    }
+
+    /// Bed `bed`, its points cones `first`, `first` + 1, …: three columns for its pressure
+    /// p(ξ) = d + a₁ ξ₁ + a₂ ξ₂ (ξ along its axes over `size`), each point's normal force its
+    /// weight's share of it, then each point's friction along its tangents (two columns).
+    fn bed(&mut self, bed: &Bedded, first: usize, size: f64) {
+        let total: f64 = bed.points.iter().map(|q| q.weight).sum();
+        let (e1, e2) = bed.axes;
+        let pressure = self.columns.len();
+        self.columns.extend(std::iter::repeat_n(Vec::new(), 3));
+        let mut on = [[0.0; 6]; 3];
+        for (k, q) in bed.points.iter().enumerate() {
+            let share = q.weight / total;
+            let lam = [
+                share,
+                share * q.arm.dot(&e1) / size,
+                share * q.arm.dot(&e2) / size,
+            ];
+            let unit = equation(&q.arm, &bed.normal, size);
+            let (cone, floor) = (self.cone(first + k), self.floor(first + k));
+            for (j, l) in lam.iter().enumerate() {
+                for (r, u) in unit.iter().enumerate() {
+                    on[j][r] += l * u;
+                }
+                self.put(cone, pressure + j, -q.mu * l);
+                self.put(floor, pressure + j, -l);
+            }
+            for (j, t) in [e1, e2].into_iter().enumerate() {
+                let col = self.columns.len();
+                self.columns.push(Vec::new());
+                self.on_equations(col, &equation(&q.arm, &t, size));
+                self.put(cone + 1 + j, col, -1.0);
+            }
+        }
+        for (j, row) in on.iter().enumerate() {
+            self.on_equations(pressure + j, row);
+        }
+    }
+
+    /// Column `col`'s entries `e` on the six equations.
+    fn on_equations(&mut self, col: usize, e: &[f64; 6]) {
+        for (r, v) in e.iter().enumerate() {
+            self.put(r, col, *v);
+        }
     }
 
     /// The program of `m` supports: three columns each.

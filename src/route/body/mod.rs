@@ -346,6 +346,13 @@ impl<'a> OnBase<'a> {
         if !self.ctx().equilibrium(&self.s.pose, t).unwrap_or(false) {
             return false;
         }
+        // A static solution of the step's own law: the trial step would leave it at rest.
+        self.ctx().held_by_its_law(&self.s.pose, t, h, &self.last) || self.settles(t, h)
+    }
+
+    /// Whether a trial step of `h` from rest at time `t`, its impulses solved to convergence,
+    /// leaves the block slow (`derivations/13-base-contact.md` §6).
+    fn settles(&self, t: f64, h: f64) -> bool {
         let mut trial = BodyState::at_rest(self.s.pose);
         let converged = Ctx {
             solve: HELD_SOLVE,
@@ -583,5 +590,67 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
     /// own, found where it rests (`start`).
     fn at_start(sim: &'a Simulation, start: Option<&Pose>, o: &mut Log<'_>) {
         factor_of_safety_at_start(sim, start, o);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::Scene;
+
+    /// Whether the block of `scene` (TOML) at rest where it is set down is held, as the static
+    /// check of its step's law says and as the converged trial step says.
+    fn verdicts(scene: &str) -> (bool, bool) {
+        let sim = Scene::from_toml(scene, "held")
+            .unwrap()
+            .simulation()
+            .unwrap();
+        let body = &sim.bodies()[0];
+        let mut on = OnBase::unset(&sim, body, body.base().unwrap());
+        let rest = on.rest_on_the_rock().unwrap();
+        let h = sim.settings().dt;
+        on.set_going(&rest, h);
+        let law = on.ctx().held_by_its_law(&on.s.pose, 0.0, h, &on.last);
+        (law, on.settles(0.0, h))
+    }
+
+    /// A 4 m square block of 1000 t, its CM in its base, on level rock with μ = 0.4, pushed
+    /// along X by `push` of its weight through a line `e` (m) off its CM.
+    fn pushed(push: f64, e: f64) -> String {
+        format!(
+            "name = \"held\"\n[frame]\ncontacts_m = [[-2.0, 2.0], [2.0, 2.0], [2.0, -2.0]]\n\
+             [foundation]\n[[foundation.plane]]\ndip_deg = 0.0\ndip_direction_deg = 0.0\n\
+             point_m = [0.0, 0.0, 0.0]\n[block]\nmass_kg = 1.0e6\ninertia_kg_m2 = 2.6667e6\n\
+             [loads]\nhydraulic_force_n = {}\neccentricity_m = {e}\ngravity_m_s2 = 9.81\n\
+             [friction]\nmodel = \"coulomb\"\nmu_k = 0.4\n[solver]\nmode = \"exact\"\n\
+             dt_s = 1.0e-3\nt_end_s = 1.0\ncontacts = \"base\"\n",
+            push * 1e6 * 9.81
+        )
+    }
+
+    #[test]
+    fn the_static_check_of_the_steps_law_gives_the_converged_trial_steps_verdicts_around_the_limit()
+    {
+        // Pushed through its CM the even pressure holds up to μ W: both say held below it and
+        // not above it.
+        for push in [0.3, 0.39, 0.398, 0.402, 0.41, 0.5] {
+            let (law, trial) = verdicts(&pushed(push, 0.0));
+            assert_eq!((law, trial), (push < 0.4, push < 0.4), "push {push} W");
+        }
+        // Twisted too, a push of 0.05 W along a line e off its CM: the even pressure's friction
+        // holds a couple of μ W a (√2 + ln(1 + √2))/3 = 0.612 W·m alone, the corners' μ W √2 a
+        // = 1.13 W·m; around the bed's limit (e ≈ 12 m, less with the push's own friction) the
+        // static check says what the converged step says, and says held wherever it holds.
+        let mut held = 0;
+        for e in [4.0, 8.0, 10.0, 11.0, 11.5, 12.5, 13.0, 14.0, 17.0, 22.0] {
+            let (law, trial) = verdicts(&pushed(0.05, e));
+            assert_eq!(law, trial, "a push of 0.05 W {e} m off its CM");
+            held += usize::from(law);
+        }
+        assert!((4..10).contains(&held), "{held} held");
+        assert!(
+            !verdicts(&pushed(0.05, 17.0)).1,
+            "beyond the bed's limit it turns"
+        );
     }
 }

@@ -9,11 +9,14 @@ use crate::contact::{self, Against, ContactPair, ContactRow, Patch, Share, Warm}
 use crate::geometry::contact::{self as geometric, Bed, Placed, Quadrature, Reduced, Spot};
 use crate::geometry::contact::{Underside, reduce};
 use crate::geometry::{BodyPose, Feature, Footprint, Ground, Relief, Touch, Touches};
-use crate::mechanics::held::{Support, held, hull_supports, reach};
+use crate::mechanics::held::{
+    BedPoint, Bedded, Support, held, held_pressing, hull_supports, reach,
+};
 use crate::mechanics::impulses::{self, Body, Motion, Solved, Until};
 use crate::mechanics::loads::Applied;
+use crate::mechanics::pressure;
 use crate::mechanics::static_friction::{StaticError, YieldAcceleration, least_over_directions};
-use crate::model::{self, Simulation, Tendon};
+use crate::model::{self, Friction, Simulation, Tendon};
 use nalgebra::{Matrix3, Vector3};
 
 /// The body's number among the bodies: the route follows the first.
@@ -124,6 +127,11 @@ pub(super) const HELD_SOLVE: (f64, usize) = (1e-10, 40_000);
 /// The widest gap, as a fraction of the base's size, of a touch that supports a block at rest
 /// ([`Ctx::equilibrium`]): the depth a route may reach (`derivations/13-base-contact.md` §5).
 const SUPPORT_GAP: f64 = 1e-6;
+
+/// The speed, as a fraction of g h, at which a touch's gap closes (or its depth is undone)
+/// within a step that counts it as closed in the static check of the step's law
+/// ([`Ctx::held_by_its_law`]): half the speed under which a step leaves a block held.
+const CLOSED: f64 = 5e-4;
 
 /// The deepest a base may stay in the ground after a step, as a fraction of its size.
 const DEPTH_TOL: f64 = 1e-8;
@@ -258,6 +266,92 @@ impl Ctx<'_> {
         let (force, moment, _) = self.loads(pose, t);
         let weight = self.body.block().mass * self.body.loads().gravity;
         held(&self.supports(pose), force, moment, weight, self.size)
+    }
+
+    /// Whether a trial step of `h` from rest at `pose` under the loads at time `t` certainly
+    /// leaves the block at rest (`derivations/13-base-contact.md` §6): its own law has a static
+    /// solution — its touches closed, each patch pressing as a uniform bed over all its points
+    /// (`mechanics::held::held_pressing`). False where it has none, or cannot say (a touch
+    /// open or deep by more than [`CLOSED`] g h over the step within a patch, a criterion that
+    /// depends on the normal stress): then the trial step is to say.
+    pub fn held_by_its_law(&self, pose: &BodyPose, t: f64, h: f64, warm: &Stepped) -> bool {
+        // A bonded joint's cohesion over the beds' points is not in the program: the trial step
+        // decides (`derivations/13-base-contact.md` §11).
+        if self.bonded_fraction() > 0.0 {
+            return false;
+        }
+        let Some((free, beds)) = self.pressing_parts(pose, t, h, warm) else {
+            return false;
+        };
+        let (force, moment, _) = self.loads(pose, t);
+        let weight = self.body.block().mass * self.body.loads().gravity;
+        held_pressing(&free, &beds, force, moment, weight, self.size).unwrap_or(false)
+    }
+
+    /// The parts of the step's contacts at rest at `pose` (time `t`, a step `h`, started from
+    /// `warm`) as the static check of the step's law takes them: the rows outside a patch that
+    /// is a bed, closed within [`CLOSED`] g h, as supports free within their cones; each patch
+    /// with a bed as one; None where it cannot say.
+    fn pressing_parts(
+        &self,
+        pose: &BodyPose,
+        t: f64,
+        h: f64,
+        warm: &Stepped,
+    ) -> Option<(Vec<Support>, Vec<Bedded>)> {
+        let free = self.free(&BodyState::at_rest(*pose), t, h);
+        let c = self.contacts(pose, h, &free, warm);
+        let closed = CLOSED * self.body.loads().gravity * h;
+        let mu = |criterion: Friction| match criterion {
+            Friction::Coulomb { mu_k } => Some(mu_k),
+            _ => None,
+        };
+        let mut in_bed = vec![false; c.rows.len()];
+        let mut beds = Vec::new();
+        for p in &c.patches {
+            let (e1, e2) = p.axes;
+            let plan: Vec<[f64; 2]> = p
+                .points
+                .iter()
+                .map(|q| [q.arm.dot(&e1), q.arm.dot(&e2)])
+                .collect();
+            let weights: Vec<f64> = p.points.iter().map(|q| q.weight).collect();
+            if p.members.is_empty() || pressure::Bed::new(&plan, &weights).is_none() {
+                continue;
+            }
+            if p.members.iter().any(|&i| c.rows[i].closing.abs() > closed) {
+                return None;
+            }
+            let points = p.points.iter().map(|q| {
+                let mu = mu(q.shear.criterion)?;
+                Some(BedPoint {
+                    arm: q.arm,
+                    weight: q.weight,
+                    mu,
+                })
+            });
+            beds.push(Bedded {
+                normal: c.rows[p.members[0]].normal,
+                axes: p.axes,
+                points: points.collect::<Option<Vec<_>>>()?,
+            });
+            p.members.iter().for_each(|&i| in_bed[i] = true);
+        }
+        let mut supports = Vec::new();
+        for (row, _) in c.rows.iter().zip(&in_bed).filter(|(_, b)| !**b) {
+            if row.b.is_some() || row.closing < -closed {
+                return None;
+            }
+            if row.closing <= closed {
+                supports.push(Support {
+                    arm: row.a.arm,
+                    normal: row.normal,
+                    criterion: Friction::coulomb(mu(row.shear.criterion)?),
+                    cohesion_n: 0.0,
+                });
+            }
+        }
+        Some((hull_supports(&supports), beds))
     }
 
     /// The touches within [`SUPPORT_GAP`] of the base's size at `pose`, as supports free to
