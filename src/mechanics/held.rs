@@ -204,13 +204,7 @@ pub fn hull_supports(all: &[Support]) -> Vec<Support> {
 /// Each support's μ where every criterion's is a constant (Coulomb's); None where one
 /// depends on the normal stress.
 fn constant(supports: &[Support]) -> Option<Vec<f64>> {
-    supports
-        .iter()
-        .map(|s| match s.criterion {
-            Friction::Coulomb { mu_k } => Some(mu_k),
-            _ => None,
-        })
-        .collect()
+    supports.iter().map(|s| s.criterion.constant_mu()).collect()
 }
 
 /// Each support's secant coefficient at its normal force, settled with the forces of the

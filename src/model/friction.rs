@@ -117,6 +117,14 @@ impl Friction {
         }
     }
 
+    /// |S| / |N| where it is a constant (Coulomb's μ); None where it depends on |N|.
+    pub fn constant_mu(&self) -> Option<f64> {
+        match *self {
+            Friction::Coulomb { mu_k } => Some(mu_k),
+            Friction::BartonChoubey { .. } => None,
+        }
+    }
+
     /// True when |S| / |N| depends on |N| (the coefficients must be settled with the normals).
     pub fn is_stress_dependent(&self) -> bool {
         match *self {
@@ -174,6 +182,8 @@ mod tests {
         assert!(!f.is_frictionless());
         assert!(Friction::coulomb(0.0).is_frictionless());
         assert!(!f.is_stress_dependent());
+        // Its ratio is a constant, and the same as at any normal force.
+        assert_eq!(f.constant_mu(), Some(f.coefficient(1.0)));
     }
 
     #[test]
@@ -187,6 +197,7 @@ mod tests {
         assert!((f.coefficient(200e6) - 30f64.to_radians().tan()).abs() < 1e-12);
         assert!((f.coefficient(1.0) - 70f64.to_radians().tan()).abs() < 1e-12);
         assert!(f.is_stress_dependent() && !f.is_frictionless());
+        assert_eq!(f.constant_mu(), None);
     }
 
     #[test]

@@ -16,7 +16,7 @@ use crate::mechanics::impulses::{self, Body, Motion, Solved, Until};
 use crate::mechanics::loads::Applied;
 use crate::mechanics::pressure;
 use crate::mechanics::static_friction::{StaticError, YieldAcceleration, least_over_directions};
-use crate::model::{self, Friction, Simulation, Tendon};
+use crate::model::{self, Simulation, Tendon};
 use nalgebra::{Matrix3, Vector3};
 
 /// The body's number among the bodies: the route follows the first.
@@ -302,10 +302,6 @@ impl Ctx<'_> {
         let free = self.free(&BodyState::at_rest(*pose), t, h);
         let c = self.contacts(pose, h, &free, warm);
         let closed = CLOSED * self.body.loads().gravity * h;
-        let mu = |criterion: Friction| match criterion {
-            Friction::Coulomb { mu_k } => Some(mu_k),
-            _ => None,
-        };
         let mut in_bed = vec![false; c.rows.len()];
         let mut beds = Vec::new();
         for p in &c.patches {
@@ -323,7 +319,7 @@ impl Ctx<'_> {
                 return None;
             }
             let points = p.points.iter().map(|q| {
-                let mu = mu(q.shear.criterion)?;
+                let mu = q.shear.criterion.constant_mu()?;
                 Some(BedPoint {
                     arm: q.arm,
                     weight: q.weight,
@@ -343,10 +339,11 @@ impl Ctx<'_> {
                 return None;
             }
             if row.closing <= closed {
+                row.shear.criterion.constant_mu()?;
                 supports.push(Support {
                     arm: row.a.arm,
                     normal: row.normal,
-                    criterion: Friction::coulomb(mu(row.shear.criterion)?),
+                    criterion: row.shear.criterion,
                     cohesion_n: 0.0,
                 });
             }
