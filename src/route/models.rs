@@ -73,13 +73,13 @@ impl Report {
     }
 
     /// The integration steps chosen against the tolerance, where any was taken or tried: the
-    /// rigid body's, and the paper's dynamics' RK4 substeps (none for the paper's own update,
-    /// and for the block on its base, whose steps are the increments).
+    /// rigid body's, the block on its base's extrapolated steps, and the paper's dynamics' RK4
+    /// substeps (none for the paper's own update).
     pub fn steps(&self) -> Option<Steps> {
         match self {
             Report::Paper(r) => r.steps.if_any(),
             Report::RigidBody(r) => r.steps.if_any(),
-            Report::OnBase(_) => None,
+            Report::OnBase(r) => r.steps.if_any(),
         }
     }
 }

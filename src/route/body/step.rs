@@ -69,6 +69,18 @@ pub(super) struct Stepped {
 }
 
 impl Stepped {
+    /// The same touches and points with their impulses scaled to a step of `h`: a warm start
+    /// for a step of another length (the impulses of a steady motion go as the step).
+    pub fn scaled(&self, h: f64) -> Stepped {
+        let k = if self.h > 0.0 { h / self.h } else { 1.0 };
+        Stepped {
+            impulses: self.impulses.iter().map(|(t, p)| (*t, p * k)).collect(),
+            patch: self.patch.iter().map(|(q, p)| (*q, p * k)).collect(),
+            off_ground: self.off_ground.clone(),
+            h,
+        }
+    }
+
     /// The touches whose normal impulse is not zero: those that carry the block (`scale`, N·s,
     /// the weight's impulse over the step, sets what is zero).
     pub fn carrying(&self, scale: f64) -> impl Iterator<Item = &Touch> {
@@ -525,6 +537,9 @@ impl Ctx<'_> {
         s.w = after.w;
         s.work_applied += h * (free.driving.dot(&s.v) + free.moment.dot(&s.w));
         s.work_contacts += impulses::work(&c.rows, &c.patches, solved, &[before]);
+        // The path of the point under the CM, at its velocity over the step.
+        let under = s.pose.rotation * Vector3::new(0.0, -self.base.depth, 0.0);
+        s.path += h * (s.v + s.w.cross(&under)).norm();
         s.drift(h);
         self.project_out(s, &free.body);
     }

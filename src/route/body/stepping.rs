@@ -1,0 +1,235 @@
+//! The block on its base from one recorded row to the next (`derivations/13-base-contact.md`
+//! §12): at rest under a record, the record's samples walked, each a step from rest that says
+//! whether the block stays, and the onset of slip located between a sample that holds it and
+//! one that does not; moving, steps of the length the tolerance allows (`extrapolate.rs`), each
+//! tried, taken or shortened, a step that cannot meet the tolerance at the shortest length
+//! taken as it is and booked; the rows within a step from its dense output (`dense.rs`).
+
+use super::dense::between;
+use super::extrapolate::Extrapolated;
+use super::state::BodyState;
+use super::{Log, OnBase, OnBaseReport, Unmet, not_finite};
+use crate::route::driver::recorded_within;
+use crate::route::dynamics::Flow;
+use crate::route::rest;
+use crate::route::termination::Reason;
+use std::convert::Infallible;
+
+/// The longest step, in recorded rows' intervals: the rows within one step are kept until the
+/// driver takes them, so that this bounds their memory.
+const MAX_ROWS_IN_A_STEP: f64 = 1024.0;
+
+/// The farthest a point of the base goes in one step, as a fraction of the base's size: an
+/// event that its position brings on — the resultant reaching the edge of the base as it
+/// slides over a step, a corner reaching the next face — begins within a step no longer, where
+/// the substeps of a longer one could all start before it and none see it.
+const REACH: f64 = 5e-4;
+
+/// The shortest step, as a fraction of the reference step: a step whose error is still over
+/// the tolerance at this length is taken as it is, and booked (`Unmet`).
+const SHORTEST: f64 = 1e-4;
+
+/// The most a step grows or shrinks at once, and the safety factor on the step the error
+/// estimate asks for (the usual controller: Hairer, Nørsett & Wanner, I, II.4).
+const MAX_GROWTH: f64 = 4.0;
+const MAX_SHRINK: f64 = 0.2;
+const SAFETY: f64 = 0.8;
+
+/// The factor by which the next step is the last one's, from its error ratio: the extrapolated
+/// state's error estimate falls as h³.
+fn step_factor(ratio: f64) -> f64 {
+    if ratio <= 0.0 {
+        return MAX_GROWTH;
+    }
+    (SAFETY * ratio.powf(-1.0 / 3.0)).clamp(MAX_SHRINK, MAX_GROWTH)
+}
+
+impl OnBase<'_> {
+    /// From the block's time to the driver's `t_to`: at rest under the record, or in steps
+    /// (the last may end past `t_to`, its rows within kept for the driver).
+    pub(super) fn go_to<'s>(&mut self, t_to: f64, mut o: Log<'s>) -> Flow<'s, OnBaseReport> {
+        self.shown_t = t_to;
+        while self.t < t_to * (1.0 - 1e-15) {
+            let flow = if self.resting {
+                self.rest_walk(t_to, o)
+            } else {
+                self.take_step(o)
+            };
+            o = match flow {
+                Flow::Go(o) => o,
+                ended => return ended,
+            };
+        }
+        Flow::Go(o)
+    }
+
+    /// Whether a step of the reference length from rest at time `t` leaves the block slow:
+    /// its step's law holds it there (`derivations/13-base-contact.md` §6).
+    fn stays_at(&mut self, t: f64) -> bool {
+        let h = self.reference_step();
+        let mut s = BodyState::at_rest(self.s.pose);
+        let stepped = self.ctx().step(&mut s, t, h, &self.last.scaled(h));
+        let slow = self.slow(&s, h);
+        if slow {
+            self.last = stepped;
+        }
+        slow
+    }
+
+    /// At rest under a record, to `t_to`: each of the record's samples a step from rest; held
+    /// at all, the block stays (and the route ends once the record is over); not held at one,
+    /// it slips from the moment between it and the sample before where the step first moves
+    /// it (`rest::onset`, to a millionth of the samples' interval), its bond broken then.
+    fn rest_walk<'s>(&mut self, t_to: f64, mut o: Log<'s>) -> Flow<'s, OnBaseReport> {
+        let foundation = self.sim.foundation();
+        let from = self.t;
+        let held = |t: f64| Ok::<_, Infallible>(self.stays_at(t));
+        let Ok(slips) = rest::first_unheld(foundation, (from, t_to), held);
+        match slips {
+            None => {
+                self.t = t_to;
+                self.rest_until_the_record_ends(o)
+            }
+            Some((lo, hi)) => {
+                let held = |t: f64| Ok::<_, Infallible>(self.stays_at(t));
+                let Ok(onset) = rest::onset((lo, hi), None, held);
+                self.t = onset;
+                self.resting = false;
+                self.break_bond(&mut o);
+                self.h = self.reference_step();
+                self.slowing = None;
+                Flow::Go(o)
+            }
+        }
+    }
+
+    /// The reference step (s): the length of the step from rest that says whether the block
+    /// stays, and the unit of [`OnBase::slow`]'s speed.
+    pub(super) fn reference_step(&self) -> f64 {
+        self.sim.settings().reference_step()
+    }
+
+    /// The end of the step from the block's time: at most [`MAX_ROWS_IN_A_STEP`] rows' intervals
+    /// on, at the record's next sample (its loads turn there), at the route's end.
+    fn step_limit(&self) -> f64 {
+        let settings = self.sim.settings();
+        let far = (self.t + (MAX_ROWS_IN_A_STEP * settings.dt).min(self.reaching()))
+            .min(settings.t_end);
+        rest::next_turn(self.sim.foundation(), self.t, far)
+    }
+
+    /// The longest step in which no point of the base goes farther than [`REACH`] of its size,
+    /// at the block's speed and the last step's accelerations: s h + a h² / 2 ≤ REACH L.
+    fn reaching(&self) -> f64 {
+        let l = self.size;
+        let speed = self.s.v.norm() + l * self.s.w.norm();
+        let accel = self
+            .slowing
+            .map_or(0.0, |(a, alpha)| a.norm() + l * alpha.norm());
+        let reach = REACH * l;
+        // The positive root of a h² / 2 + s h − reach = 0, written to keep its digits.
+        let h = 2.0 * reach / (speed + (speed * speed + 2.0 * accel * reach).sqrt());
+        if h.is_finite() { h } else { f64::INFINITY }
+    }
+
+    /// One step from the block's time (perhaps past the driver's time): tried at the length
+    /// the last asked for, shortened until its error is within the tolerance (or taken as it is
+    /// at the shortest, and booked), then taken.
+    fn take_step<'s>(&mut self, mut o: Log<'s>) -> Flow<'s, OnBaseReport> {
+        let limit = self.step_limit();
+        let shortest = SHORTEST * self.reference_step();
+        let tolerance = self.sim.settings().tolerance;
+        loop {
+            let h = self.h.min(limit - self.t);
+            let x = self
+                .ctx()
+                .extrapolated(&self.s, self.t, h, &self.last, tolerance);
+            if std::env::var("SR_DEBUG").is_ok() {
+                eprintln!("t {:.9} h {:.3e} ratio {:.3e} v {:?}", self.t, h, x.ratio, x.state.v.as_slice());
+            }
+            if x.ratio > 1.0 && h > shortest {
+                o.report.steps.retried += 1;
+                let shorter = h * step_factor(x.ratio).min(0.5);
+                // A stop or a reversal within the step: the next tried ends where the slowing
+                // before it brings the block to rest, if that is sooner.
+                self.h = match self.time_to_stop() {
+                    Some(t) if x.stopped && t < h && t >= shortest => t,
+                    _ => shorter,
+                };
+                continue;
+            }
+            if let Some(what) = not_finite(&x.state) {
+                let detail = format!("the step from t = {} s gave no finite {what}", self.t);
+                return self.end(o, Reason::ContactForcesUndetermined, detail);
+            }
+            if x.ratio > 1.0 {
+                Unmet::book(&mut o.report.tolerance_unmet, self.t, h, x.ratio);
+            }
+            let grown = h * step_factor(x.ratio);
+            // A step cut short by the limit leaves the next as long as the last asked.
+            self.h = if h < self.h { self.h.max(grown) } else { grown };
+            return self.took(h, x, o);
+        }
+    }
+
+    /// The time in which the block's motion comes to rest at the rate it slowed over the last
+    /// step (its velocities, the turn's at the base's size, along those at the start of the
+    /// step): none where it was not slowing.
+    fn time_to_stop(&self) -> Option<f64> {
+        let (a, alpha) = self.slowing?;
+        let l2 = self.size * self.size;
+        let speed2 = self.s.v.norm_squared() + l2 * self.s.w.norm_squared();
+        let rate = self.s.v.dot(&a) + l2 * self.s.w.dot(&alpha);
+        (rate < 0.0).then(|| -speed2 / rate)
+    }
+
+    /// The step of `h` just tried, `x`, taken: the rows within it kept, the tendons at their
+    /// capacity let go, the travel booked; then whether it left the model, or stopped.
+    fn took<'s>(
+        &mut self,
+        h: f64,
+        x: Extrapolated,
+        mut o: Log<'s>,
+    ) -> Flow<'s, OnBaseReport> {
+        let (s0, t0) = (self.s, self.t);
+        o.report.steps.taken += 1;
+        self.s = x.state;
+        self.slowing = Some(((self.s.v - s0.v) / h, (self.s.w - s0.w) / h));
+        self.t = t0 + h;
+        self.last = x.last;
+        self.rows_within(&s0, t0, h);
+        self.break_tendons(&mut o);
+        o.travel += self.s.path - s0.path;
+        if let Some((reason, detail)) = self.off_the_model() {
+            return self.end(o, reason, detail);
+        }
+        self.stopped_or_resting(o)
+    }
+
+    /// The recorded rows strictly within the step of `h` from `s0` at `t0` to the block's
+    /// state, from the step's dense output.
+    fn rows_within(&mut self, s0: &BodyState, t0: f64, h: f64) {
+        self.within.clear();
+        let s1 = self.s;
+        for t in recorded_within(self.sim.settings(), t0, t0 + h) {
+            let s = between(s0, &s1, h, (t - t0) / h);
+            let row = self.row_of(t, &s);
+            self.within.push(row);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_step_within_the_tolerance_grows_and_one_over_it_shrinks_within_the_bounds() {
+        assert_eq!(step_factor(0.0), MAX_GROWTH);
+        assert_eq!(step_factor(1e-12), MAX_GROWTH);
+        assert!((step_factor(1.0) - SAFETY).abs() < 1e-15);
+        // An error 8 times the tolerance asks for half the step, less the safety factor.
+        assert!((step_factor(8.0) - 0.5 * SAFETY).abs() < 1e-15);
+        assert_eq!(step_factor(1e9), MAX_SHRINK);
+    }
+}
