@@ -69,6 +69,41 @@ pub struct OnBaseReport {
     /// they were (none where every step met it).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub tolerance_unmet: Option<Unmet>,
+    /// The phases stepped by the time-stepping scheme alone, first order at the rows' interval
+    /// (the base on more than one plane of the rock): none where every step was held to the
+    /// tolerance.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub first_order: Option<FirstOrder>,
+}
+
+/// The steps of a route on its base taken by the time-stepping scheme alone (first order, at
+/// the rows' interval): how many, how long in all, the first one's start and the last one's
+/// end.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct FirstOrder {
+    /// Steps taken.
+    pub steps: usize,
+    /// Their time in all (s).
+    pub duration_s: f64,
+    /// The first one's start (s).
+    pub from_s: f64,
+    /// The last one's end (s).
+    pub to_s: f64,
+}
+
+impl FirstOrder {
+    /// A step from `t` of `h` booked in `first`.
+    fn book(first: &mut Option<FirstOrder>, t: f64, h: f64) {
+        let f = first.get_or_insert(FirstOrder {
+            steps: 0,
+            duration_s: 0.0,
+            from_s: t,
+            to_s: t + h,
+        });
+        f.steps += 1;
+        f.duration_s += h;
+        f.to_s = t + h;
+    }
 }
 
 /// The steps of a route on its base that could not meet the tolerance at the shortest length
@@ -258,7 +293,11 @@ impl<'a> OnBase<'a> {
             self.s.kinetic(self.body.block().mass, &self.inertia),
         );
         let weight = self.ctx().weight_impulse(h);
+        let normals = rest.carrying.iter().map(|(t, _)| t.normal);
+        let first = rest.carrying.first().map(|(t, _)| t.normal);
+        let one_plane = first.is_some_and(|n0| normals.clone().all(|n| (n - n0).norm() <= 1e-9));
         self.last = Stepped {
+            one_plane,
             impulses: rest
                 .carrying
                 .iter()

@@ -8,7 +8,7 @@
 use super::dense::between;
 use super::extrapolate::Extrapolated;
 use super::state::BodyState;
-use super::{Log, OnBase, OnBaseReport, Unmet, not_finite};
+use super::{FirstOrder, Log, OnBase, OnBaseReport, Unmet, not_finite};
 use crate::route::driver::recorded_within;
 use crate::route::dynamics::Flow;
 use crate::route::rest;
@@ -52,8 +52,10 @@ impl OnBase<'_> {
         while self.t < t_to * (1.0 - 1e-15) {
             let flow = if self.resting {
                 self.rest_walk(t_to, o)
-            } else {
+            } else if self.last.one_plane || self.last.impulses.is_empty() && self.last.patch.is_empty() {
                 self.take_step(o)
+            } else {
+                self.first_order_step(t_to, o)
             };
             o = match flow {
                 Flow::Go(o) => o,
@@ -181,6 +183,28 @@ impl OnBase<'_> {
         let speed2 = self.s.v.norm_squared() + l2 * self.s.w.norm_squared();
         let rate = self.s.v.dot(&a) + l2 * self.s.w.dot(&alpha);
         (rate < 0.0).then(|| -speed2 / rate)
+    }
+
+    /// A step to `t_to` of the time-stepping scheme alone, first order, where the base touches
+    /// the rock on more than one plane (rough rock, a crest, an edge: the touches change faster
+    /// than the extrapolation can follow); booked as such in the report.
+    fn first_order_step<'s>(&mut self, t_to: f64, mut o: Log<'s>) -> Flow<'s, OnBaseReport> {
+        let h = t_to - self.t;
+        let mut s = self.s;
+        let last = self.ctx().step(&mut s, self.t, h, &self.last);
+        FirstOrder::book(&mut o.report.first_order, self.t, h);
+        let x = Extrapolated {
+            state: s,
+            ratio: 0.0,
+            last,
+            stopped: false,
+        };
+        if let Some(what) = not_finite(&x.state) {
+            let detail = format!("the step from t = {} s gave no finite {what}", self.t);
+            return self.end(o, Reason::ContactForcesUndetermined, detail);
+        }
+        self.h = self.h.min(h.max(SHORTEST * self.reference_step()));
+        self.took(h, x, o)
     }
 
     /// The step of `h` just tried, `x`, taken: the rows within it kept, the tendons at their
