@@ -85,16 +85,31 @@ impl OnBase<'_> {
     fn rest_walk<'s>(&mut self, t_to: f64, mut o: Log<'s>) -> Flow<'s, OnBaseReport> {
         let foundation = self.sim.foundation();
         let from = self.t;
-        let held = |t: f64| Ok::<_, Infallible>(self.stays_at(t));
-        let Ok(slips) = rest::first_unheld(foundation, (from, t_to), held);
+        // Not held where the walk starts: it slips from there.
+        let slips = if self.stays_at(from) {
+            let held = |t: f64| Ok::<_, Infallible>(self.stays_at(t));
+            let Ok(slips) = rest::first_unheld(foundation, (from, t_to), held);
+            slips
+        } else {
+            Some((from, from))
+        };
         match slips {
             None => {
                 self.t = t_to;
                 self.rest_until_the_record_ends(o)
             }
             Some((lo, hi)) => {
-                let held = |t: f64| Ok::<_, Infallible>(self.stays_at(t));
-                let Ok(onset) = rest::onset((lo, hi), None, held);
+                // Between them, by the static check of the step's law (exact at the limit,
+                // where a step from rest is slow until its excess is a thousandth of g).
+                let h = self.reference_step();
+                let held = |t: f64| Ok::<_, Infallible>(self.held(t, h));
+                let onset = match hi > lo {
+                    true => {
+                        let Ok(onset) = rest::onset((lo, hi), None, held);
+                        onset
+                    }
+                    false => lo,
+                };
                 self.t = onset;
                 self.resting = false;
                 self.break_bond(&mut o);
@@ -115,8 +130,13 @@ impl OnBase<'_> {
     /// on, at the record's next sample (its loads turn there), at the route's end.
     fn step_limit(&self) -> f64 {
         let settings = self.sim.settings();
-        let far = (self.t + (MAX_ROWS_IN_A_STEP * settings.dt).min(self.reaching()))
-            .min(settings.t_end);
+        let mut longest = (MAX_ROWS_IN_A_STEP * settings.dt).min(self.reaching());
+        if self.tendons.iter().any(|t| !t.broken) {
+            // A tendon is let go at the end of the step that takes it to its capacity: located
+            // to the reference step, as before the steps were extrapolated.
+            longest = longest.min(self.reference_step());
+        }
+        let far = (self.t + longest).min(settings.t_end);
         rest::next_turn(self.sim.foundation(), self.t, far)
     }
 
