@@ -293,11 +293,10 @@ impl<'a> OnBase<'a> {
             self.s.kinetic(self.body.block().mass, &self.inertia),
         );
         let weight = self.ctx().weight_impulse(h);
-        let normals = rest.carrying.iter().map(|(t, _)| t.normal);
-        let first = rest.carrying.first().map(|(t, _)| t.normal);
-        let one_plane = first.is_some_and(|n0| normals.clone().all(|n| (n - n0).norm() <= 1e-9));
+        let first = rest.carrying.first().map(|(t, _)| t.face);
+        let one_face = first.is_some_and(|f| rest.carrying.iter().all(|(t, _)| t.face == f));
         self.last = Stepped {
-            one_plane,
+            one_face,
             impulses: rest
                 .carrying
                 .iter()

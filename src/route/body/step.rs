@@ -66,10 +66,10 @@ pub(super) struct Stepped {
     pub off_ground: Vec<usize>,
     /// The step's length (s).
     pub h: f64,
-    /// Every touch and flush patch the step was solved with lies on one plane (one normal):
-    /// the base sliding flush on one face, or standing on it, where the extrapolated step
-    /// holds the tolerance (`derivations/13-base-contact.md` §12).
-    pub one_plane: bool,
+    /// Every touch and point of a flush patch the step was solved with is on one face of the
+    /// rock: the base sliding flush on it, or standing on it, where the extrapolated step holds
+    /// the tolerance (`derivations/13-base-contact.md` §12).
+    pub one_face: bool,
 }
 
 impl Stepped {
@@ -82,7 +82,7 @@ impl Stepped {
             patch: self.patch.iter().map(|(q, p)| (*q, p * k)).collect(),
             off_ground: self.off_ground.clone(),
             h,
-            one_plane: self.one_plane,
+            one_face: self.one_face,
         }
     }
 
@@ -153,16 +153,16 @@ const CLOSED: f64 = 5e-4;
 /// The deepest a base may stay in the ground after a step, as a fraction of its size.
 const DEPTH_TOL: f64 = 1e-8;
 
-/// Whether every touch and flush patch of `c` lies on one plane (their normals within 1e-9 of
-/// one another), and there is one.
-fn one_plane(c: &Contacts) -> bool {
-    let touches = c.found.touches.iter().map(|t| t.normal);
-    let patches = c.flush.iter().map(|p| p.axes.0.cross(&p.axes.1));
-    let mut normals = touches.chain(patches);
-    let Some(first) = normals.next() else {
+/// Whether every touch and every point of a flush patch of `c` is on one face of the rock, and
+/// there is one.
+fn one_face(c: &Contacts) -> bool {
+    let touches = c.found.touches.iter().map(|t| t.face);
+    let points = c.flush.iter().flat_map(|p| p.points.iter().map(|q| q.face));
+    let mut faces = touches.chain(points);
+    let Some(first) = faces.next() else {
         return false;
     };
-    normals.all(|n| (n - first).norm() <= 1e-9)
+    faces.all(|f| f == first)
 }
 
 impl Ctx<'_> {
@@ -524,7 +524,7 @@ impl Ctx<'_> {
         let until = Until { tol, max_sweeps };
         let solved = impulses::solve(&[free.body], &[free.motion], &c.rows, &c.patches, until);
         self.integrate(s, h, &free, (&c, &solved));
-        let one_plane = one_plane(&c);
+        let one_face = one_face(&c);
         Stepped {
             impulses: c
                 .found
@@ -540,7 +540,7 @@ impl Ctx<'_> {
                 .zip(&solved.patch)
                 .flat_map(|(p, imps)| p.points.iter().map(|q| q.spot).zip(imps.iter().copied()))
                 .collect(),
-            one_plane,
+            one_face,
             off_ground: c.found.off_ground,
             h,
         }

@@ -52,7 +52,7 @@ impl OnBase<'_> {
         while self.t < t_to * (1.0 - 1e-15) {
             let flow = if self.resting {
                 self.rest_walk(t_to, o)
-            } else if self.last.one_plane || self.last.impulses.is_empty() && self.last.patch.is_empty() {
+            } else if self.last.one_face || self.last.impulses.is_empty() && self.last.patch.is_empty() {
                 self.take_step(o)
             } else {
                 self.first_order_step(t_to, o)
@@ -206,7 +206,7 @@ impl OnBase<'_> {
     }
 
     /// A step to `t_to` of the time-stepping scheme alone, first order, where the base touches
-    /// the rock on more than one plane (rough rock, a crest, an edge: the touches change faster
+    /// more than one face of the rock (rough rock, a crest, an edge: the touches change faster
     /// than the extrapolation can follow); booked as such in the report.
     fn first_order_step<'s>(&mut self, t_to: f64, mut o: Log<'s>) -> Flow<'s, OnBaseReport> {
         let h = t_to - self.t;
