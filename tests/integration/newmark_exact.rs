@@ -534,15 +534,6 @@ fn real_records_as_they_come_slide_the_block_the_exact_distance() {
     real_records_on("frame", 1e-3);
 }
 
-/// The same cases on the block's whole base (`contacts = "base"`), flush on its level rock:
-/// its steps extrapolated and held to the tolerance, the onset of each slip located by the
-/// static check, it slides the exact distance to a millionth.
-#[test]
-#[ignore = "needs the real records (crosscheck/setup.sh); run by .ci/run"]
-fn real_records_on_the_whole_base_slide_the_block_the_exact_distance_to_a_millionth() {
-    real_records_on("base", 1e-6);
-}
-
 /// Every real record as it comes, along X and Z, free and pushed, on `contacts`: the permanent
 /// displacement the exact one's to `relative` (and 1e-9 m), two routes at a time.
 fn real_records_on(contacts: &'static str, relative: f64) {

@@ -21,17 +21,17 @@ pub(super) fn between(s0: &BodyState, s1: &BodyState, h: f64, u: f64) -> BodySta
     );
     let r0 = Rotation3::from_matrix_unchecked(s0.pose.rotation);
     let turned = turn_between(&s0.pose.rotation, &s1.pose.rotation);
-    let turn = hermite(
-        (&[0.0; 3], &arr(&s0.w)),
-        (&arr(&turned), &arr(&s1.w)),
-        h,
-        u,
-    );
+    let turn = hermite((&[0.0; 3], &arr(&s0.w)), (&arr(&turned), &arr(&s1.w)), h, u);
     let lerp = |a: f64, b: f64| a + u * (b - a);
     let mut s = *s0;
     s.pose.cm = vec(cm);
     s.pose.rotation = renormalized(&(Rotation3::from_scaled_axis(vec(turn)) * r0)).into_inner();
-    s.v = vec(slope((&arr(&s0.pose.cm), &arr(&s0.v)), (&arr(&s1.pose.cm), &arr(&s1.v)), h, u));
+    s.v = vec(slope(
+        (&arr(&s0.pose.cm), &arr(&s0.v)),
+        (&arr(&s1.pose.cm), &arr(&s1.v)),
+        h,
+        u,
+    ));
     s.w = s0.w.lerp(&s1.w, u);
     s.work_applied = lerp(s0.work_applied, s1.work_applied);
     s.work_contacts = lerp(s0.work_contacts, s1.work_contacts);

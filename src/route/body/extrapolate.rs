@@ -61,7 +61,8 @@ fn state(s0: &BodyState, y: &[f64; VALUES]) -> BodyState {
     s.pose.cm = v3(0);
     s.v = v3(3);
     s.w = v3(6);
-    let turn = Rotation3::from_scaled_axis(v3(9)) * Rotation3::from_matrix_unchecked(s0.pose.rotation);
+    let turn =
+        Rotation3::from_scaled_axis(v3(9)) * Rotation3::from_matrix_unchecked(s0.pose.rotation);
     s.pose.rotation = super::state::renormalized(&turn).into_inner();
     s.work_applied = y[12];
     s.work_contacts = y[13];
@@ -189,7 +190,11 @@ mod tests {
         // The one before removes the first order only: off by the second order's term.
         let want = exact - c2 * 0.1 * 0.1 / 6.0;
         assert!((before[0] - exact).abs() > 1e-4);
-        assert!((before[0] - want).abs() < 1e-15, "{} against {want}", before[0]);
+        assert!(
+            (before[0] - want).abs() < 1e-15,
+            "{} against {want}",
+            before[0]
+        );
     }
 
     #[test]

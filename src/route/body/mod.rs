@@ -30,7 +30,6 @@ mod stepping;
 
 pub use report::{BaseReport, Carrying, Resting, pose_of_row};
 
-use super::{AnchorBreak, Steps};
 use super::dynamics::{Dynamics, Flow, Start};
 use super::energy::EnergyBalance;
 use super::logbook::Logbook;
@@ -39,6 +38,7 @@ use super::rest::{self, AtRest};
 use super::row::Row;
 use super::termination::Reason;
 use super::three_point::factor_of_safety_at_start;
+use super::{AnchorBreak, Steps};
 use crate::geometry::contact::Quadrature;
 use crate::geometry::penetration::{deepest_of, samples};
 use crate::geometry::{
@@ -326,12 +326,11 @@ impl<'a> OnBase<'a> {
         None
     }
 
-    /// After a step that left the block slow (its speed against the reference step's): under
+    /// After a step that left the block slow (its speed against a step of `h`'s): under
     /// a record it comes to rest (or is at rest for an instant as its motion turns) and rests
     /// from here; without one, where static friction holds it, the route ends "stopped". Else
     /// the route goes on.
-    fn stopped_or_resting<'s>(&mut self, o: Log<'s>) -> Flow<'s, OnBaseReport> {
-        let h = self.reference_step();
+    fn stopped_or_resting<'s>(&mut self, o: Log<'s>, h: f64) -> Flow<'s, OnBaseReport> {
         if !self.slow(&self.s, h) {
             return Flow::Go(o);
         }
@@ -365,7 +364,7 @@ impl<'a> OnBase<'a> {
             inertia: self.inertia,
             size: self.size,
             quadrature: &self.quadrature,
-            solve: step_solve(self.sim.settings().tolerance),
+            solve: STEP_SOLVE,
             tendons: &self.tendons,
             bonded: self.bonded.then(|| self.body.shares_m2().iter().sum()),
             area: self.base.area().abs(),

@@ -1,19 +1,21 @@
 //! The block on its base from one recorded row to the next (`derivations/13-base-contact.md`
-//! §12): at rest under a record, the record's samples walked, each a step from rest that says
-//! whether the block stays, and the onset of slip located between a sample that holds it and
-//! one that does not; moving, steps of the length the tolerance allows (`extrapolate.rs`), each
-//! tried, taken or shortened, a step that cannot meet the tolerance at the shortest length
-//! taken as it is and booked; the rows within a step from its dense output (`dense.rs`).
+//! §12): where every touch is on one face of the rock and no record shakes it, steps of the
+//! length the tolerance allows (`extrapolate.rs`), each tried, taken or shortened, a step that
+//! cannot meet the tolerance at the shortest length taken as it is and booked, the rows within
+//! a step from its dense output (`dense.rs`); elsewhere the step of `step.rs` alone, first
+//! order, at the rows' interval, booked as such.
 
 use super::dense::between;
 use super::extrapolate::Extrapolated;
 use super::state::BodyState;
-use super::{FirstOrder, Log, OnBase, OnBaseReport, Unmet, not_finite};
+use super::step::Ctx;
+use super::step::Stepped;
+use super::{FirstOrder, Log, OnBase, OnBaseReport, Unmet, not_finite, step_solve};
 use crate::route::driver::recorded_within;
 use crate::route::dynamics::Flow;
 use crate::route::rest;
 use crate::route::termination::Reason;
-use std::convert::Infallible;
+use nalgebra::Vector3;
 
 /// The longest step, in recorded rows' intervals: the rows within one step are kept until the
 /// driver takes them, so that this bounds their memory.
@@ -50,9 +52,11 @@ impl OnBase<'_> {
     pub(super) fn go_to<'s>(&mut self, t_to: f64, mut o: Log<'s>) -> Flow<'s, OnBaseReport> {
         self.shown_t = t_to;
         while self.t < t_to * (1.0 - 1e-15) {
-            let flow = if self.resting {
-                self.rest_walk(t_to, o)
-            } else if self.last.one_face || self.last.impulses.is_empty() && self.last.patch.is_empty() {
+            let flow = if self.sim.foundation().record().is_some() {
+                self.shaken_increment(t_to, o)
+            } else if self.last.one_face
+                || self.last.impulses.is_empty() && self.last.patch.is_empty()
+            {
                 self.take_step(o)
             } else {
                 self.first_order_step(t_to, o)
@@ -65,59 +69,58 @@ impl OnBase<'_> {
         Flow::Go(o)
     }
 
-    /// Whether a step of the reference length from rest at time `t` leaves the block slow:
-    /// its step's law holds it there (`derivations/13-base-contact.md` §6).
-    fn stays_at(&mut self, t: f64) -> bool {
-        let h = self.reference_step();
-        let mut s = BodyState::at_rest(self.s.pose);
-        let stepped = self.ctx().step(&mut s, t, h, &self.last.scaled(h));
-        let slow = self.slow(&s, h);
-        if slow {
-            self.last = stepped;
+    /// Under a record, one increment to `t_to` of the time-stepping scheme alone, first order
+    /// (`derivations/13-base-contact.md` §6): at rest, a step from rest that keeps the block
+    /// only if it moves it; moving, a step as any other. Booked as first order.
+    fn shaken_increment<'s>(&mut self, t_to: f64, mut o: Log<'s>) -> Flow<'s, OnBaseReport> {
+        let h = t_to - self.t;
+        let (s, stepped) = self.step_on(h, &mut o);
+        // A step that leaves a velocity or the pose not finite ends the route at the last
+        // state that was (no row of NaN).
+        if let Some(what) = not_finite(&s) {
+            let detail = format!("the step from t = {} s gave no finite {what}", self.t);
+            return self.end(o, Reason::ContactForcesUndetermined, detail);
         }
-        slow
+        if self.resting && self.slow(&s, h) {
+            // Held under the record's loads now: it stays where it rests.
+            self.t = t_to;
+            self.last = stepped;
+            return self.rest_until_the_record_ends(o);
+        }
+        self.resting = false;
+        FirstOrder::book(&mut o.report.first_order, self.t, h);
+        let x = Extrapolated {
+            state: s,
+            ratio: 0.0,
+            last: stepped,
+            stopped: false,
+        };
+        match self.took((h, h), x, o) {
+            Flow::Go(o) if self.resting => self.rest_until_the_record_ends(o),
+            flow => flow,
+        }
     }
 
-    /// At rest under a record, to `t_to`: each of the record's samples a step from rest; held
-    /// at all, the block stays (and the route ends once the record is over); not held at one,
-    /// it slips from the moment between it and the sample before where the step first moves
-    /// it (`rest::onset`, to a millionth of the samples' interval), its bond broken then.
-    fn rest_walk<'s>(&mut self, t_to: f64, mut o: Log<'s>) -> Flow<'s, OnBaseReport> {
-        let foundation = self.sim.foundation();
-        let from = self.t;
-        // Not held where the walk starts: it slips from there.
-        let slips = if self.stays_at(from) {
-            let held = |t: f64| Ok::<_, Infallible>(self.stays_at(t));
-            let Ok(slips) = rest::first_unheld(foundation, (from, t_to), held);
-            slips
-        } else {
-            Some((from, from))
+    /// One step of `h` from the block's state (from rest while it rests under a record): the
+    /// state it leaves and what it found. A bonded block the step moves has broken its bond at
+    /// the step's start: the step is taken again without it, so that once it moves it slides
+    /// by friction alone (`derivations/13-base-contact.md` §11).
+    fn step_on(&mut self, h: f64, o: &mut Log<'_>) -> (BodyState, Stepped) {
+        let from = |on: &Self| {
+            let mut s = on.s;
+            if on.resting {
+                s.v = Vector3::zeros();
+                s.w = Vector3::zeros();
+            }
+            let stepped = on.ctx().step(&mut s, on.t, h, &on.last);
+            (s, stepped)
         };
-        match slips {
-            None => {
-                self.t = t_to;
-                self.rest_until_the_record_ends(o)
-            }
-            Some((lo, hi)) => {
-                // Between them, by the static check of the step's law (exact at the limit,
-                // where a step from rest is slow until its excess is a thousandth of g).
-                let h = self.reference_step();
-                let held = |t: f64| Ok::<_, Infallible>(self.held(t, h));
-                let onset = match hi > lo {
-                    true => {
-                        let Ok(onset) = rest::onset((lo, hi), None, held);
-                        onset
-                    }
-                    false => lo,
-                };
-                self.t = onset;
-                self.resting = false;
-                self.break_bond(&mut o);
-                self.h = self.reference_step();
-                self.slowing = None;
-                Flow::Go(o)
-            }
+        let (s, stepped) = from(self);
+        if self.bonded && !(self.resting && self.slow(&s, h)) {
+            self.break_bond(o);
+            return from(self);
         }
+        (s, stepped)
     }
 
     /// The reference step (s): the length of the step from rest that says whether the block
@@ -163,11 +166,20 @@ impl OnBase<'_> {
         let tolerance = self.sim.settings().tolerance;
         loop {
             let h = self.h.min(limit - self.t);
-            let x = self
-                .ctx()
-                .extrapolated(&self.s, self.t, h, &self.last, tolerance);
+            // The impulse solve held to the tolerance too.
+            let ctx = Ctx {
+                solve: step_solve(tolerance),
+                ..self.ctx()
+            };
+            let x = ctx.extrapolated(&self.s, self.t, h, &self.last, tolerance);
             if std::env::var("SR_DEBUG").is_ok() {
-                eprintln!("t {:.9} h {:.3e} ratio {:.3e} v {:?}", self.t, h, x.ratio, x.state.v.as_slice());
+                eprintln!(
+                    "t {:.9} h {:.3e} ratio {:.3e} v {:?}",
+                    self.t,
+                    h,
+                    x.ratio,
+                    x.state.v.as_slice()
+                );
             }
             if x.ratio > 1.0 && h > shortest {
                 o.report.steps.retried += 1;
@@ -190,7 +202,7 @@ impl OnBase<'_> {
             let grown = h * step_factor(x.ratio);
             // A step cut short by the limit leaves the next as long as the last asked.
             self.h = if h < self.h { self.h.max(grown) } else { grown };
-            return self.took(h, x, o);
+            return self.took((h, self.reference_step()), x, o);
         }
     }
 
@@ -224,14 +236,16 @@ impl OnBase<'_> {
             return self.end(o, Reason::ContactForcesUndetermined, detail);
         }
         self.h = self.h.min(h.max(SHORTEST * self.reference_step()));
-        self.took(h, x, o)
+        self.took((h, h), x, o)
     }
 
     /// The step of `h` just tried, `x`, taken: the rows within it kept, the tendons at their
-    /// capacity let go, the travel booked; then whether it left the model, or stopped.
+    /// capacity let go, the travel booked; then whether it left the model, or stopped (slow
+    /// against a step of `slow`: the step itself, or the reference step for an extrapolated
+    /// one).
     fn took<'s>(
         &mut self,
-        h: f64,
+        (h, slow): (f64, f64),
         x: Extrapolated,
         mut o: Log<'s>,
     ) -> Flow<'s, OnBaseReport> {
@@ -247,7 +261,7 @@ impl OnBase<'_> {
         if let Some((reason, detail)) = self.off_the_model() {
             return self.end(o, reason, detail);
         }
-        self.stopped_or_resting(o)
+        self.stopped_or_resting(o, slow)
     }
 
     /// The recorded rows strictly within the step of `h` from `s0` at `t0` to the block's
