@@ -34,7 +34,7 @@ pub enum Report {
     /// The rigid body on its three-point frame (`dynamics = "rigid-body"`).
     RigidBody(RigidBodyReport),
     /// The block on its whole base (`contacts = "base"`).
-    OnBase(OnBaseReport),
+    OnBase(Box<OnBaseReport>),
 }
 
 impl Report {
@@ -106,7 +106,8 @@ pub(super) fn drive<'s>(
     match (settings.contacts, settings.dynamics) {
         (Contacts::Base, _) => {
             let log = Logbook::new(sink, keep_every);
-            driver::drive::<OnBase>(sim, finder, progress, log).map_report(Report::OnBase)
+            driver::drive::<OnBase>(sim, finder, progress, log)
+                .map_report(|r| Report::OnBase(Box::new(r)))
         }
         (Contacts::Frame, DynamicsModel::Paper) => {
             let log = Logbook::new(sink, keep_every);

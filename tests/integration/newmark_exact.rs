@@ -747,11 +747,10 @@ fn a_bonded_base_under_a_record_holds_until_a_pulse_passes_its_cohesion_and_then
     let want = exact(&strong, 0.005, 1.0, 0.9);
     let x = with.permanent_displacement_xz_m.unwrap()[0];
     assert!((x - want).abs() < 1e-2 * want, "{x} m against {want} m");
-    // Rising from nothing at 0.095 s to 0.3 g at 0.1 s, it passes 0.2 g at 0.095 + 0.005 · 2/3
-    // s: the bond breaks there, located between the samples to a millionth of their interval.
+    // Rising from nothing at 0.095 s to 0.3 g at 0.1 s, it passes 0.2 g at 0.09833 s: the bond
+    // holds the step from rest at 0.098 s (0.18 g) and breaks at the one from 0.099 s (0.24 g).
     let late = bonded_on_base("late", &pulse(20, 0.3), 0.1);
     let broke = late.base().unwrap().bond_broken_s.unwrap();
-    let passes = 0.095 + 0.005 * 2.0 / 3.0;
-    assert!((broke - passes).abs() < 1e-8, "{broke} against {passes}");
+    assert!((broke - 0.099).abs() < 1e-9, "{broke}");
     assert!(late.permanent_displacement_xz_m.unwrap()[0] > 0.0);
 }
