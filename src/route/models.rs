@@ -34,7 +34,7 @@ pub enum Report {
     /// The rigid body on its three-point frame (`dynamics = "rigid-body"`).
     RigidBody(RigidBodyReport),
     /// The block on its whole base (`contacts = "base"`).
-    OnBase(OnBaseReport),
+    OnBase(Box<OnBaseReport>),
 }
 
 impl Report {
@@ -73,13 +73,13 @@ impl Report {
     }
 
     /// The integration steps chosen against the tolerance, where any was taken or tried: the
-    /// rigid body's, and the paper's dynamics' RK4 substeps (none for the paper's own update,
-    /// and for the block on its base, whose steps are the increments).
+    /// rigid body's, the block on its base's extrapolated steps, and the paper's dynamics' RK4
+    /// substeps (none for the paper's own update).
     pub fn steps(&self) -> Option<Steps> {
         match self {
             Report::Paper(r) => r.steps.if_any(),
             Report::RigidBody(r) => r.steps.if_any(),
-            Report::OnBase(_) => None,
+            Report::OnBase(r) => r.steps.if_any(),
         }
     }
 }
@@ -106,7 +106,8 @@ pub(super) fn drive<'s>(
     match (settings.contacts, settings.dynamics) {
         (Contacts::Base, _) => {
             let log = Logbook::new(sink, keep_every);
-            driver::drive::<OnBase>(sim, finder, progress, log).map_report(Report::OnBase)
+            driver::drive::<OnBase>(sim, finder, progress, log)
+                .map_report(|r| Report::OnBase(Box::new(r)))
         }
         (Contacts::Frame, DynamicsModel::Paper) => {
             let log = Logbook::new(sink, keep_every);

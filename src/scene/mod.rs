@@ -394,7 +394,7 @@ impl Scene {
 
     /// Values that are valid but likely mistakes, one line each naming the key: a
     /// dip under 1° (often radians typed as degrees), a friction coefficient over 2, and a
-    /// tolerance given to the block on its base, which steps by `dt_s` and has none.
+    /// tolerance given to the block on its base, which holds it only on one face of the rock.
     pub fn warnings(&self) -> Vec<String> {
         let mut w = Vec::new();
         // The dips as written: the paper's two, or each face's (a level face, 0°, is meant).
@@ -434,9 +434,10 @@ impl Scene {
             && settings.contacts == Contacts::Base
         {
             w.push(format!(
-                "{}: solver.tolerance: has no effect on the block on its base \
-                 (solver.contacts = \"base\"), which steps by solver.dt_s (first order: halve dt_s \
-                 to halve its error)",
+                "{}: solver.tolerance: holds the block on its base (solver.contacts = \"base\") \
+                 only while every touch is on one face of the rock; on two faces or more it steps \
+                 by solver.dt_s (first order: halve dt_s to halve its error; summary.json's \
+                 first_order says when)",
                 self.origin
             ));
         }

@@ -307,8 +307,10 @@ fn the_energy_balance_of_a_block_riding_over_teeth_closes_at_the_first_order_of_
     };
     let (coarse, fine) = (residual(1e-3), residual(5e-4));
     assert!(coarse.abs() < 1e-3, "{coarse}");
+    // At least first order: the phases on one flank are extrapolated, held to the tolerance,
+    // and leave less than half.
     let ratio = coarse / fine;
-    assert!((1.6..2.5).contains(&ratio), "{coarse} {fine}");
+    assert!((1.6..4.0).contains(&ratio), "{coarse} {fine}");
     std::fs::remove_dir_all(&dir).ok();
 }
 

@@ -21,13 +21,15 @@
 //! (`route/rest.rs`), and it reports its tilts and its factor of safety at the start through the
 //! three-point frame's points (`route/three_point.rs`).
 
+mod dense;
+mod extrapolate;
 pub(super) mod report;
 mod state;
 mod step;
+mod stepping;
 
 pub use report::{BaseReport, Carrying, Resting, pose_of_row};
 
-use super::AnchorBreak;
 use super::dynamics::{Dynamics, Flow, Start};
 use super::energy::EnergyBalance;
 use super::logbook::Logbook;
@@ -36,6 +38,7 @@ use super::rest::{self, AtRest};
 use super::row::Row;
 use super::termination::Reason;
 use super::three_point::factor_of_safety_at_start;
+use super::{AnchorBreak, Steps};
 use crate::geometry::contact::Quadrature;
 use crate::geometry::penetration::{deepest_of, samples};
 use crate::geometry::{
@@ -59,6 +62,79 @@ pub struct OnBaseReport {
     /// ground (none where it could not be set down).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub base: Option<BaseReport>,
+    /// The steps chosen against the tolerance (`derivations/13-base-contact.md` §12).
+    #[serde(skip)]
+    pub steps: Steps,
+    /// Where the tolerance was not met: steps still over it at the shortest length, taken as
+    /// they were (none where every step met it).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tolerance_unmet: Option<Unmet>,
+    /// The phases stepped by the time-stepping scheme alone, first order at the rows' interval
+    /// (the base on more than one plane of the rock): none where every step was held to the
+    /// tolerance.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub first_order: Option<FirstOrder>,
+}
+
+/// The steps of a route on its base taken by the time-stepping scheme alone (first order, at
+/// the rows' interval): how many, how long in all, the first one's start and the last one's
+/// end.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct FirstOrder {
+    /// Steps taken.
+    pub steps: usize,
+    /// Their time in all (s).
+    pub duration_s: f64,
+    /// The first one's start (s).
+    pub from_s: f64,
+    /// The last one's end (s).
+    pub to_s: f64,
+}
+
+impl FirstOrder {
+    /// A step from `t` of `h` booked in `first`.
+    fn book(first: &mut Option<FirstOrder>, t: f64, h: f64) {
+        let f = first.get_or_insert(FirstOrder {
+            steps: 0,
+            duration_s: 0.0,
+            from_s: t,
+            to_s: t + h,
+        });
+        f.steps += 1;
+        f.duration_s += h;
+        f.to_s = t + h;
+    }
+}
+
+/// The steps of a route on its base that could not meet the tolerance at the shortest length
+/// (a contact changing faster than a step can resolve): how many, from when to when, and the
+/// largest error among them over the tolerance.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Unmet {
+    /// Steps taken over the tolerance.
+    pub steps: usize,
+    /// The first one's start (s).
+    pub from_s: f64,
+    /// The last one's end (s).
+    pub to_s: f64,
+    /// The largest error over the tolerance among them.
+    pub worst_ratio: f64,
+}
+
+impl Unmet {
+    /// A step from `t` of `h` taken with its error `ratio` times the tolerance, booked in
+    /// `unmet`.
+    fn book(unmet: &mut Option<Unmet>, t: f64, h: f64, ratio: f64) {
+        let u = unmet.get_or_insert(Unmet {
+            steps: 0,
+            from_s: t,
+            to_s: t + h,
+            worst_ratio: ratio,
+        });
+        u.steps += 1;
+        u.to_s = t + h;
+        u.worst_ratio = u.worst_ratio.max(ratio);
+    }
 }
 
 /// The block on its base's logbook.
@@ -112,6 +188,16 @@ pub(super) struct OnBase<'a> {
     /// The joint is bonded: the block has cohesion with its rock, is at rest and has never
     /// slid (`derivations/13-base-contact.md` §11). A bond once broken does not form again.
     bonded: bool,
+    /// The next step's length (s), as the last step's error asked.
+    h: f64,
+    /// The mean accelerations over the last step taken (m/s², rad/s²): where a slip stops
+    /// within the next, how soon.
+    slowing: Option<(Vector3<f64>, Vector3<f64>)>,
+    /// The driver's time: a row asked for is the row at it, within the last step where that
+    /// went past it.
+    shown_t: f64,
+    /// The recorded rows within the last step (`stepping.rs`), in time order.
+    within: Vec<Row>,
 }
 
 impl<'a> OnBase<'a> {
@@ -144,6 +230,10 @@ impl<'a> OnBase<'a> {
             resting: false,
             tendons: Vec::new(),
             bonded: false,
+            h: sim.settings().reference_step(),
+            slowing: None,
+            shown_t: 0.0,
+            within: Vec::new(),
         }
     }
 
@@ -203,7 +293,10 @@ impl<'a> OnBase<'a> {
             self.s.kinetic(self.body.block().mass, &self.inertia),
         );
         let weight = self.ctx().weight_impulse(h);
+        let first = rest.carrying.first().map(|(t, _)| t.face);
+        let one_face = first.is_some_and(|f| rest.carrying.iter().all(|(t, _)| t.face == f));
         self.last = Stepped {
+            one_face,
             impulses: rest
                 .carrying
                 .iter()
@@ -233,29 +326,32 @@ impl<'a> OnBase<'a> {
         None
     }
 
-    /// After a step of `h` that left the block slow: under a record it comes to rest (or is at
-    /// rest for an instant as its motion turns) and rests from here; without one, where static
-    /// friction holds it, the route ends "stopped". Else the route goes on.
+    /// After a step that left the block slow (its speed against a step of `h`'s): under
+    /// a record it comes to rest (or is at rest for an instant as its motion turns) and rests
+    /// from here; without one, where static friction holds it, the route ends "stopped". Else
+    /// the route goes on.
     fn stopped_or_resting<'s>(&mut self, o: Log<'s>, h: f64) -> Flow<'s, OnBaseReport> {
+        if !self.slow(&self.s, h) {
+            return Flow::Go(o);
+        }
         let shaken = self.sim.foundation().record().is_some();
-        if shaken && self.slow(&self.s, h) {
-            // Its last kinetic energy (under 1e-6 of the weight's over a step) booked with the
-            // contacts' work; the next step from rest says whether it stays.
-            let mass = self.body.block().mass;
-            self.s.work_contacts -= self.s.kinetic(mass, &self.inertia);
-            self.s.v = Vector3::zeros();
-            self.s.w = Vector3::zeros();
+        if !shaken && !self.held(self.t, h) {
+            return Flow::Go(o);
+        }
+        // Its last kinetic energy (under 1e-6 of the weight's over a step) booked with the
+        // contacts' work.
+        let mass = self.body.block().mass;
+        self.s.work_contacts -= self.s.kinetic(mass, &self.inertia);
+        self.s.v = Vector3::zeros();
+        self.s.w = Vector3::zeros();
+        if shaken {
+            // The record's samples say whether it stays.
             self.resting = true;
-            return self.rest_until_the_record_ends(o);
+            return Flow::Go(o);
         }
-        if !shaken && self.slow(&self.s, h) && self.held(self.t, h) {
-            self.s.v = Vector3::zeros();
-            self.s.w = Vector3::zeros();
-            let why = "the block stopped and static friction holds it on its base".into();
-            let (reason, why) = AtRest::Stopped(why).words(self.sim.foundation());
-            return self.end(o, reason, why);
-        }
-        Flow::Go(o)
+        let why = "the block stopped and static friction holds it on its base".into();
+        let (reason, why) = AtRest::Stopped(why).words(self.sim.foundation());
+        self.end(o, reason, why)
     }
 
     fn ctx(&self) -> Ctx<'_> {
@@ -284,28 +380,6 @@ impl<'a> OnBase<'a> {
                 b.bond_broken_s = Some(self.t);
             }
         }
-    }
-
-    /// One step of `h` from the block's state (from rest while it rests under a record): the
-    /// state it leaves and what it found. A bonded block the step moves has broken its bond at
-    /// the step's start: the step is taken again without it, so that once it moves it slides
-    /// by friction alone (`derivations/13-base-contact.md` §11).
-    fn step_on(&mut self, h: f64, o: &mut Log<'_>) -> (BodyState, Stepped) {
-        let from = |on: &Self| {
-            let mut s = on.s;
-            if on.resting {
-                s.v = Vector3::zeros();
-                s.w = Vector3::zeros();
-            }
-            let stepped = on.ctx().step(&mut s, on.t, h, &on.last);
-            (s, stepped)
-        };
-        let (s, stepped) = from(self);
-        if self.bonded && !(self.resting && self.slow(&s, h)) {
-            self.break_bond(o);
-            return from(self);
-        }
-        (s, stepped)
     }
 
     /// The base point under the CM: where the three-point frame's rows put the block.
@@ -411,11 +485,25 @@ impl<'a> OnBase<'a> {
         Start::Ended(o.finish(row, reason, 0.0, detail))
     }
 
+    /// The route ends at the block's state: the rows within its last step past the driver's
+    /// time pushed first.
     fn end<'s>(&self, mut o: Log<'s>, reason: Reason, detail: String) -> Flow<'s, OnBaseReport> {
-        let row = self.row();
+        for row in &self.within {
+            if row.t_s > self.shown_t * (1.0 + 1e-15) && row.t_s < self.t {
+                o.push(*row);
+            }
+        }
+        let row = self.row_of(self.t, &self.s);
         self.seal(&mut o);
         Flow::Ended(o.finish(row, reason, self.t, detail))
     }
+}
+
+/// The impulse solve of a step under the route's `tolerance`: to the step's own fraction of the
+/// largest impulse, or the tolerance where that is tighter (the solve's residual is an error in
+/// the step's forces, which the extrapolation cannot remove).
+fn step_solve(tolerance: f64) -> (f64, usize) {
+    (STEP_SOLVE.0.min(tolerance), STEP_SOLVE.1)
 }
 
 /// What a step left not finite, if anything: the velocity, or the pose.
@@ -434,6 +522,59 @@ fn footprint(base: &Base) -> Footprint<'_> {
     Footprint {
         outline: base.outline(),
         depth: base.depth(),
+    }
+}
+
+impl OnBase<'_> {
+    /// The row of the block in state `s` at time `t`, what carries it as the last step found.
+    fn row_of(&self, t: f64, s: &BodyState) -> Row {
+        let pose = &s.pose;
+        let depth = self.base.depth();
+        let inside = deepest_of(&self.ground, &self.samples, pose);
+        self.deepest.set(self.deepest.get().max(inside));
+        let p0 = pose.point(&Vector3::new(0.0, -depth, 0.0));
+        let v0 = s.v + s.w.cross(&(p0 - pose.cm));
+        let frame = self
+            .body
+            .site()
+            .contacts()
+            .map(|[x, z]| pose.point(&Vector3::new(x, -depth, z)));
+        let contacts = self.body.site().contacts();
+        let elevation = |a: usize, b: usize| {
+            let mut d = frame[b] - frame[a];
+            if !(d.norm() > 0.0 && d.norm().is_finite()) {
+                // A body so far away (a load of 1e30 flung it 1e22 m in a step) that its
+                // contacts' places round to one: the side turned by the rotation alone, not a
+                // NaN.
+                let [(xa, za), (xb, zb)] = [a, b].map(|k| (contacts[k][0], contacts[k][1]));
+                d = pose.rotation * Vector3::new(xb - xa, 0.0, zb - za);
+            }
+            (d.y / d.norm()).clamp(-1.0, 1.0).asin().to_degrees()
+        };
+        let faces = frame.map(|p| self.ground.top(p.x, p.z).map_or(0, |(f, _)| f as u32));
+        let (corners, points) = self
+            .last
+            .carrying_summary(self.ctx().weight_impulse(self.last.h));
+        Row {
+            body: 0,
+            t_s: t,
+            x_m: p0.x,
+            y_m: p0.y,
+            z_m: p0.z,
+            theta_deg: s.yaw().to_degrees(),
+            alpha_deg: elevation(0, 1),
+            beta_deg: elevation(0, 2),
+            gamma_deg: elevation(1, 2),
+            vx_m_s: v0.x,
+            vz_m_s: v0.z,
+            omega_deg_s: s.yaw_rate().to_degrees(),
+            n_n: None,
+            s_n: None,
+            faces,
+            crease: [None; 3],
+            corners_carrying: Some(corners),
+            points_carrying: Some(points),
+        }
     }
 }
 
@@ -502,85 +643,22 @@ impl<'a> Dynamics<'a> for OnBase<'a> {
         _finder: &mut PoseFinder<'_>,
         _k: usize,
         t_to: f64,
-        mut o: Log<'s>,
+        o: Log<'s>,
     ) -> Flow<'s, OnBaseReport> {
-        let h = t_to - self.t;
-        let before = self.under_cm();
-        let (s, stepped) = self.step_on(h, &mut o);
-        // A step that leaves a velocity or the pose not finite ends the route at the last
-        // state that was (no row of NaN).
-        if let Some(what) = not_finite(&s) {
-            let detail = format!("the step from t = {} s gave no finite {what}", self.t);
-            return self.end(o, Reason::ContactForcesUndetermined, detail);
-        }
-        if self.resting && self.slow(&s, h) {
-            // Held under the record's loads now: it stays where it rests.
-            self.t = t_to;
-            self.last = stepped;
-            return self.rest_until_the_record_ends(o);
-        }
-        self.resting = false;
-        self.s = s;
-        self.t = t_to;
-        self.last = stepped;
-        self.break_tendons(&mut o);
-        o.travel += (self.under_cm() - before).norm();
-        if let Some((reason, detail)) = self.off_the_model() {
-            return self.end(o, reason, detail);
-        }
-        self.stopped_or_resting(o, h)
+        self.go_to(t_to, o)
     }
 
     fn row(&self) -> Row {
-        let pose = &self.s.pose;
-        let depth = self.base.depth();
-        let inside = deepest_of(&self.ground, &self.samples, pose);
-        self.deepest.set(self.deepest.get().max(inside));
-        let p0 = self.under_cm();
-        let v0 = self.s.v + self.s.w.cross(&(p0 - pose.cm));
-        let frame = self
-            .body
-            .site()
-            .contacts()
-            .map(|[x, z]| pose.point(&Vector3::new(x, -depth, z)));
-        let contacts = self.body.site().contacts();
-        let elevation = |a: usize, b: usize| {
-            let mut d = frame[b] - frame[a];
-            if !(d.norm() > 0.0 && d.norm().is_finite()) {
-                // A body so far away (a load of 1e30 flung it 1e22 m in a step) that its
-                // contacts' places round to one: the side turned by the rotation alone, not a
-                // NaN.
-                let [(xa, za), (xb, zb)] = [a, b].map(|k| (contacts[k][0], contacts[k][1]));
-                d = pose.rotation * Vector3::new(xb - xa, 0.0, zb - za);
-            }
-            (d.y / d.norm()).clamp(-1.0, 1.0).asin().to_degrees()
-        };
-        let faces = frame.map(|p| self.ground.top(p.x, p.z).map_or(0, |(f, _)| f as u32));
-        let (corners, points) = self
-            .last
-            .carrying_summary(self.ctx().weight_impulse(self.last.h));
-        Row {
-            body: 0,
-            t_s: self.t,
-            x_m: p0.x,
-            y_m: p0.y,
-            z_m: p0.z,
-            theta_deg: self.s.yaw().to_degrees(),
-            alpha_deg: elevation(0, 1),
-            beta_deg: elevation(0, 2),
-            gamma_deg: elevation(1, 2),
-            vx_m_s: v0.x,
-            vz_m_s: v0.z,
-            omega_deg_s: self.s.yaw_rate().to_degrees(),
-            n_n: None,
-            s_n: None,
-            faces,
-            crease: [None; 3],
-            corners_carrying: Some(corners),
-            points_carrying: Some(points),
+        // A row inside the last step (the step went past the driver's time).
+        if self.t > self.shown_t * (1.0 + 1e-15)
+            && let Ok(k) = self
+                .within
+                .binary_search_by(|r| r.t_s.total_cmp(&self.shown_t))
+        {
+            return self.within[k];
         }
+        self.row_of(self.t, &self.s)
     }
-
     fn close(&self, o: &mut Log<'_>) {
         self.seal(o);
     }

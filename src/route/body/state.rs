@@ -16,6 +16,8 @@ pub(super) struct BodyState {
     pub work_applied: f64,
     /// Work of the contacts: friction and the impacts' losses (J, ≤ 0 up to round-off).
     pub work_contacts: f64,
+    /// The path of the base's point under the CM since the start (m).
+    pub path: f64,
 }
 
 impl BodyState {
@@ -27,6 +29,7 @@ impl BodyState {
             w: Vector3::zeros(),
             work_applied: 0.0,
             work_contacts: 0.0,
+            path: 0.0,
         }
     }
 
@@ -73,11 +76,19 @@ impl BodyState {
     }
 }
 
+/// The turn from rotation `r0` to `r1` as a rotation vector (rad, world axes): by way of the
+/// quaternion, which stays exact for the smallest turns (the angle from the matrix's trace
+/// loses its digits there, and its arc-cosine can be of a number just over one).
+pub(super) fn turn_between(r0: &Matrix3<f64>, r1: &Matrix3<f64>) -> Vector3<f64> {
+    let r = Rotation3::from_matrix_unchecked(r1 * r0.transpose());
+    UnitQuaternion::from_rotation_matrix(&r).scaled_axis()
+}
+
 /// The rotation nearest `r`, as nalgebra's `Rotation3::renormalize` finds it (from `r`'s
 /// quaternion, then at most [`RENORMALIZE_ITERATIONS`] of its iterations, where nalgebra's
 /// own has no bound and some turns of 10¹⁵ rad never converged): the same rotation whenever
 /// those converge, as they do within a few.
-fn renormalized(r: &Rotation3<f64>) -> Rotation3<f64> {
+pub(super) fn renormalized(r: &Rotation3<f64>) -> Rotation3<f64> {
     let mut guess = UnitQuaternion::from_rotation_matrix(r);
     guess.renormalize();
     Rotation3::from_matrix_eps(

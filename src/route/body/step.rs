@@ -66,9 +66,26 @@ pub(super) struct Stepped {
     pub off_ground: Vec<usize>,
     /// The step's length (s).
     pub h: f64,
+    /// Every touch and point of a flush patch the step was solved with is on one face of the
+    /// rock: the base sliding flush on it, or standing on it, where the extrapolated step holds
+    /// the tolerance (`derivations/13-base-contact.md` §12).
+    pub one_face: bool,
 }
 
 impl Stepped {
+    /// The same touches and points with their impulses scaled to a step of `h`: a warm start
+    /// for a step of another length (the impulses of a steady motion go as the step).
+    pub fn scaled(&self, h: f64) -> Stepped {
+        let k = if self.h > 0.0 { h / self.h } else { 1.0 };
+        Stepped {
+            impulses: self.impulses.iter().map(|(t, p)| (*t, p * k)).collect(),
+            patch: self.patch.iter().map(|(q, p)| (*q, p * k)).collect(),
+            off_ground: self.off_ground.clone(),
+            h,
+            one_face: self.one_face,
+        }
+    }
+
     /// The touches whose normal impulse is not zero: those that carry the block (`scale`, N·s,
     /// the weight's impulse over the step, sets what is zero).
     pub fn carrying(&self, scale: f64) -> impl Iterator<Item = &Touch> {
@@ -135,6 +152,18 @@ const CLOSED: f64 = 5e-4;
 
 /// The deepest a base may stay in the ground after a step, as a fraction of its size.
 const DEPTH_TOL: f64 = 1e-8;
+
+/// Whether every touch and every point of a flush patch of `c` is on one face of the rock, and
+/// there is one.
+fn one_face(c: &Contacts) -> bool {
+    let touches = c.found.touches.iter().map(|t| t.face);
+    let points = c.flush.iter().flat_map(|p| p.points.iter().map(|q| q.face));
+    let mut faces = touches.chain(points);
+    let Some(first) = faces.next() else {
+        return false;
+    };
+    faces.all(|f| f == first)
+}
 
 impl Ctx<'_> {
     /// The body at `pose` as the narrow phase sees it: the flat footprint, or a cast base's
@@ -495,6 +524,7 @@ impl Ctx<'_> {
         let until = Until { tol, max_sweeps };
         let solved = impulses::solve(&[free.body], &[free.motion], &c.rows, &c.patches, until);
         self.integrate(s, h, &free, (&c, &solved));
+        let one_face = one_face(&c);
         Stepped {
             impulses: c
                 .found
@@ -510,6 +540,7 @@ impl Ctx<'_> {
                 .zip(&solved.patch)
                 .flat_map(|(p, imps)| p.points.iter().map(|q| q.spot).zip(imps.iter().copied()))
                 .collect(),
+            one_face,
             off_ground: c.found.off_ground,
             h,
         }
@@ -525,6 +556,9 @@ impl Ctx<'_> {
         s.w = after.w;
         s.work_applied += h * (free.driving.dot(&s.v) + free.moment.dot(&s.w));
         s.work_contacts += impulses::work(&c.rows, &c.patches, solved, &[before]);
+        // The path of the point under the CM, at its velocity over the step.
+        let under = s.pose.rotation * Vector3::new(0.0, -self.base.depth, 0.0);
+        s.path += h * (s.v + s.w.cross(&under)).norm();
         s.drift(h);
         self.project_out(s, &free.body);
     }
