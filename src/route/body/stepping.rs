@@ -172,15 +172,6 @@ impl OnBase<'_> {
                 ..self.ctx()
             };
             let x = ctx.extrapolated(&self.s, self.t, h, &self.last, tolerance);
-            if std::env::var("SR_DEBUG").is_ok() {
-                eprintln!(
-                    "t {:.9} h {:.3e} ratio {:.3e} v {:?}",
-                    self.t,
-                    h,
-                    x.ratio,
-                    x.state.v.as_slice()
-                );
-            }
             if x.ratio > 1.0 && h > shortest {
                 o.report.steps.retried += 1;
                 let shorter = h * step_factor(x.ratio).min(0.5);
