@@ -3,8 +3,7 @@
 //! substeps, and the three results extrapolated to a vanishing substep (Aitken–Neville on the
 //! harmonic sequence, as Deuflhard's extrapolation of Euler's method). Between contact events the
 //! step's error is a series in the substep's length, so the extrapolated state is third-order
-//! (exact where the accelerations are constant, as on a plane dipping downstream, or linear in
-//! time, as under a record between its samples), and the difference of the last two
+//! (exact where the accelerations are constant, as on a plane dipping downstream), and the difference of the last two
 //! extrapolations estimates its error. Across an event — a touch made, a slip stopping, a
 //! touch lifting off — the substeps part by the first order, the estimate is large, and the
 //! controller shortens the step until the event lies within one short enough for the

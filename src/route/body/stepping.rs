@@ -13,7 +13,6 @@ use super::step::Stepped;
 use super::{FirstOrder, Log, OnBase, OnBaseReport, Unmet, not_finite, step_solve};
 use crate::route::driver::recorded_within;
 use crate::route::dynamics::Flow;
-use crate::route::rest;
 use crate::route::termination::Reason;
 use nalgebra::Vector3;
 
@@ -44,6 +43,14 @@ fn step_factor(ratio: f64) -> f64 {
         return MAX_GROWTH;
     }
     (SAFETY * ratio.powf(-1.0 / 3.0)).clamp(MAX_SHRINK, MAX_GROWTH)
+}
+
+/// The time in which a point moving at `speed` and accelerating at `accel` goes `reach`: the
+/// positive root of a h² / 2 + s h = reach, written to keep its digits; unbounded where it
+/// neither moves nor accelerates.
+fn time_to_reach(speed: f64, accel: f64, reach: f64) -> f64 {
+    let h = 2.0 * reach / (speed + (speed * speed + 2.0 * accel * reach).sqrt());
+    if h.is_finite() { h } else { f64::INFINITY }
 }
 
 impl OnBase<'_> {
@@ -130,31 +137,23 @@ impl OnBase<'_> {
     }
 
     /// The end of the step from the block's time: at most [`MAX_ROWS_IN_A_STEP`] rows' intervals
-    /// on, at the record's next sample (its loads turn there), at the route's end.
+    /// on, within the base's reach ([`time_to_reach`]), at the route's end. (No record shakes a
+    /// block in these steps: its samples need not end them.)
     fn step_limit(&self) -> f64 {
         let settings = self.sim.settings();
-        let mut longest = (MAX_ROWS_IN_A_STEP * settings.dt).min(self.reaching());
-        if self.tendons.iter().any(|t| !t.broken) {
-            // A tendon is let go at the end of the step that takes it to its capacity: located
-            // to the reference step, as before the steps were extrapolated.
-            longest = longest.min(self.reference_step());
-        }
-        let far = (self.t + longest).min(settings.t_end);
-        rest::next_turn(self.sim.foundation(), self.t, far)
-    }
-
-    /// The longest step in which no point of the base goes farther than [`REACH`] of its size,
-    /// at the block's speed and the last step's accelerations: s h + a h² / 2 ≤ REACH L.
-    fn reaching(&self) -> f64 {
         let l = self.size;
         let speed = self.s.v.norm() + l * self.s.w.norm();
         let accel = self
             .slowing
             .map_or(0.0, |(a, alpha)| a.norm() + l * alpha.norm());
-        let reach = REACH * l;
-        // The positive root of a h² / 2 + s h − reach = 0, written to keep its digits.
-        let h = 2.0 * reach / (speed + (speed * speed + 2.0 * accel * reach).sqrt());
-        if h.is_finite() { h } else { f64::INFINITY }
+        let mut longest =
+            (MAX_ROWS_IN_A_STEP * settings.dt).min(time_to_reach(speed, accel, REACH * l));
+        if self.tendons.iter().any(|t| !t.broken) {
+            // A tendon is let go at the end of the step that takes it to its capacity: located
+            // to the reference step, as before the steps were extrapolated.
+            longest = longest.min(self.reference_step());
+        }
+        (self.t + longest).min(settings.t_end)
     }
 
     /// One step from the block's time (perhaps past the driver's time): tried at the length
@@ -280,5 +279,15 @@ mod tests {
         // An error 8 times the tolerance asks for half the step, less the safety factor.
         assert!((step_factor(8.0) - 0.5 * SAFETY).abs() < 1e-15);
         assert_eq!(step_factor(1e9), MAX_SHRINK);
+    }
+
+    #[test]
+    fn the_reach_is_gone_in_the_time_the_motions_closed_form_takes() {
+        // Steady: reach / s. From rest: √(2 reach / a). Both: s h + a h² / 2 = reach.
+        assert!((time_to_reach(2.0, 0.0, 1e-3) - 5e-4).abs() < 1e-18);
+        assert!((time_to_reach(0.0, 8.0, 1e-3) - (2e-3f64 / 8.0).sqrt()).abs() < 1e-15);
+        let h = time_to_reach(0.3, 4.0, 2e-3);
+        assert!((0.3 * h + 2.0 * h * h - 2e-3).abs() < 1e-18, "{h}");
+        assert_eq!(time_to_reach(0.0, 0.0, 1e-3), f64::INFINITY);
     }
 }
