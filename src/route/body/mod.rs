@@ -25,7 +25,9 @@
 
 mod dense;
 mod extrapolate;
+mod flush;
 pub(super) mod report;
+mod sliding;
 mod state;
 mod step;
 mod stepping;
@@ -47,6 +49,7 @@ use crate::geometry::{
     BodyPose, CastError, Footprint, Ground, Pose, Relief, Rest, SettleError, cast, set_down,
 };
 use crate::model::{Base, Body, Simulation, Tendon};
+use flush::Flush;
 use nalgebra::{Matrix3, Vector3};
 use serde::Serialize;
 use state::BodyState;
@@ -200,6 +203,11 @@ pub(super) struct OnBase<'a> {
     shown_t: f64,
     /// The recorded rows within the last step (`stepping.rs`), in time order.
     within: Vec<Row>,
+    /// The base lying flush on one face, alone: its slide (`sliding.rs`).
+    flush: Option<Flush>,
+    /// When the base last left its slide: it is not taken up again before a step of the
+    /// time-stepping scheme.
+    left_flush_at: Option<f64>,
 }
 
 impl<'a> OnBase<'a> {
@@ -236,6 +244,8 @@ impl<'a> OnBase<'a> {
             slowing: None,
             shown_t: 0.0,
             within: Vec::new(),
+            flush: None,
+            left_flush_at: None,
         }
     }
 
@@ -340,8 +350,14 @@ impl<'a> OnBase<'a> {
         if !shaken && !self.held(self.t, h) {
             return Flow::Go(o);
         }
-        // Its last kinetic energy (under 1e-6 of the weight's over a step) booked with the
-        // contacts' work.
+        self.come_to_rest(o)
+    }
+
+    /// The block at rest now, its last kinetic energy (under 1e-6 of the weight's over a step)
+    /// booked with the contacts' work: under a record it rests on, its samples to say whether
+    /// it stays; without one the route ends "stopped".
+    fn come_to_rest<'s>(&mut self, o: Log<'s>) -> Flow<'s, OnBaseReport> {
+        let shaken = self.sim.foundation().record().is_some();
         let mass = self.body.block().mass;
         self.s.work_contacts -= self.s.kinetic(mass, &self.inertia);
         self.s.v = Vector3::zeros();

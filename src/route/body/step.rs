@@ -185,6 +185,35 @@ impl Ctx<'_> {
         self.placed(pose).on_rock(self.ground, reach, drift)
     }
 
+    /// The face of the rock the base lies flush on at `pose`, alone
+    /// (`derivations/13-base-contact.md` §13): its whole area on that face, every touch within
+    /// [`SUPPORT_GAP`] of the base's size on it, no corner over no ground. None for a cast base.
+    pub fn flush_face(&self, pose: &BodyPose) -> Option<usize> {
+        if self.relief.is_some() {
+            return None;
+        }
+        let found = self.touches(pose, SUPPORT_GAP * self.size, 0.0);
+        if !found.off_ground.is_empty() {
+            return None;
+        }
+        let bed = Bed {
+            ground: self.ground,
+            quadrature: self.quadrature,
+            size: self.size,
+        };
+        let Reduced { touches, patches } = reduce(&bed, pose, found);
+        let [patch] = &patches[..] else {
+            return None;
+        };
+        let face = patch.points.first()?.face;
+        let whole = patch.points.len() == self.quadrature.area.len()
+            && patch
+                .points
+                .iter()
+                .all(|q| q.face == face && matches!(q.spot, Spot::Area(_)));
+        (whole && touches.touches.iter().all(|t| t.face == face)).then_some(face)
+    }
+
     /// The contact pairs of the `placed` body's `touches` on the rock.
     fn pairs(&self, placed: &Placed<'_>, touches: &[Touch]) -> Vec<ContactPair> {
         contact::on_rock(placed.body, touches, self.sim.strengths())

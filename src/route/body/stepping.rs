@@ -18,7 +18,7 @@ use nalgebra::Vector3;
 
 /// The longest step, in recorded rows' intervals: the rows within one step are kept until the
 /// driver takes them, so that this bounds their memory.
-const MAX_ROWS_IN_A_STEP: f64 = 1024.0;
+pub(super) const MAX_ROWS_IN_A_STEP: f64 = 1024.0;
 
 /// The farthest a point of the base goes in one step, as a fraction of the base's size: an
 /// event that its position brings on — the resultant reaching the edge of the base as it
@@ -28,7 +28,7 @@ const REACH: f64 = 5e-4;
 
 /// The shortest step, as a fraction of the reference step: a step whose error is still over
 /// the tolerance at this length is taken as it is, and booked (`Unmet`).
-const SHORTEST: f64 = 1e-4;
+pub(super) const SHORTEST: f64 = 1e-4;
 
 /// The most a step grows or shrinks at once, and the safety factor on the step the error
 /// estimate asks for (the usual controller: Hairer, Nørsett & Wanner, I, II.4).
@@ -38,7 +38,7 @@ const SAFETY: f64 = 0.8;
 
 /// The factor by which the next step is the last one's, from its error ratio: the extrapolated
 /// state's error estimate falls as h³.
-fn step_factor(ratio: f64) -> f64 {
+pub(super) fn step_factor(ratio: f64) -> f64 {
     if ratio <= 0.0 {
         return MAX_GROWTH;
     }
@@ -48,7 +48,7 @@ fn step_factor(ratio: f64) -> f64 {
 /// The time in which a point moving at `speed` and accelerating at `accel` goes `reach`: the
 /// positive root of a h² / 2 + s h = reach, written to keep its digits; unbounded where it
 /// neither moves nor accelerates.
-fn time_to_reach(speed: f64, accel: f64, reach: f64) -> f64 {
+pub(super) fn time_to_reach(speed: f64, accel: f64, reach: f64) -> f64 {
     let h = 2.0 * reach / (speed + (speed * speed + 2.0 * accel * reach).sqrt());
     if h.is_finite() { h } else { f64::INFINITY }
 }
@@ -59,7 +59,15 @@ impl OnBase<'_> {
     pub(super) fn go_to<'s>(&mut self, t_to: f64, mut o: Log<'s>) -> Flow<'s, OnBaseReport> {
         self.shown_t = t_to;
         while self.t < t_to * (1.0 - 1e-15) {
-            let flow = if self.sim.foundation().record().is_some() {
+            // The slide on one face is for a block no record shakes (under one, its onsets and
+            // stops are not yet located: `sliding.rs`).
+            let flush = (self.flush.is_some() || self.last.one_face)
+                && self.sim.foundation().record().is_none()
+                && self.left_flush_at != Some(self.t)
+                && self.flush_phase();
+            let flow = if flush {
+                self.flush_increment(t_to, o)
+            } else if self.sim.foundation().record().is_some() {
                 self.shaken_increment(t_to, o)
             } else if self.last.one_face
                 || self.last.impulses.is_empty() && self.last.patch.is_empty()
@@ -239,6 +247,16 @@ impl OnBase<'_> {
         x: Extrapolated,
         mut o: Log<'s>,
     ) -> Flow<'s, OnBaseReport> {
+        self.keep(h, x, &mut o);
+        if let Some((reason, detail)) = self.off_the_model() {
+            return self.end(o, reason, detail);
+        }
+        self.stopped_or_resting(o, slow)
+    }
+
+    /// The step of `h` just tried, `x`, kept: the rows within it, the tendons at their
+    /// capacity let go, the travel booked.
+    pub(super) fn keep(&mut self, h: f64, x: Extrapolated, o: &mut Log<'_>) {
         let (s0, t0) = (self.s, self.t);
         o.report.steps.taken += 1;
         self.s = x.state;
@@ -246,12 +264,8 @@ impl OnBase<'_> {
         self.t = t0 + h;
         self.last = x.last;
         self.rows_within(&s0, t0, h);
-        self.break_tendons(&mut o);
+        self.break_tendons(o);
         o.travel += self.s.path - s0.path;
-        if let Some((reason, detail)) = self.off_the_model() {
-            return self.end(o, reason, detail);
-        }
-        self.stopped_or_resting(o, slow)
     }
 
     /// The recorded rows strictly within the step of `h` from `s0` at `t0` to the block's
