@@ -1,5 +1,6 @@
 //! The block on its base from one recorded row to the next (`derivations/13-base-contact.md`
-//! §12): where every touch is on one face of the rock and no record shakes it, steps of the
+//! §12): where the whole base lies flush on one face, its slide (`sliding.rs`, §13); where
+//! every touch is on one face of the rock otherwise and no record shakes it, steps of the
 //! length the tolerance allows (`extrapolate.rs`), each tried, taken or shortened, a step that
 //! cannot meet the tolerance at the shortest length taken as it is and booked, the rows within
 //! a step from its dense output (`dense.rs`); elsewhere the step of `step.rs` alone, first
