@@ -82,6 +82,10 @@ pub(super) struct Flush {
     /// stage of the step beyond the stop (its velocities against these) slides on in their
     /// sense, so that the step's stages stay on one smooth motion.
     pub sense: Option<(Vector3<f64>, Vector3<f64>)>,
+    /// The mode the last rate's slip was held to (unit in the mass metric), where it was:
+    /// from rest, the mode it starts in; slow and stiff, the direction it settles to
+    /// ([`Flush::rates`]). A step from a state so held starts with its velocities along it.
+    pub along: Option<[f64; 3]>,
 }
 
 /// The forces of the slide at one instant: the CM's acceleration (world, in the plane), the
@@ -133,6 +137,7 @@ impl Flush {
             step: 0.0,
             mode: None,
             sense: None,
+            along: None,
         })
     }
 
@@ -272,7 +277,11 @@ impl Flush {
     /// within that time ([`Flush::settled`]), as the three-point frame's is
     /// (`src/mechanics/rigid_body/accelerations.rs`): where the slip already has that
     /// direction (a block shaken along one line) nothing changes; elsewhere an explicit step
-    /// would make the direction swing about.
+    /// would make the direction swing about. Its accelerations are then those along that
+    /// direction alone (as from rest along the mode it starts in), the slip across it being
+    /// one friction takes off within a fraction of the step ([`Flush::along`]): where the
+    /// net accelerations are round-off of the loads' and friction's, as at an onset or a stop,
+    /// their parts across would otherwise seed a swing the step amplifies.
     pub fn rates(
         &mut self,
         ctx: &Ctx<'_>,
@@ -302,31 +311,37 @@ impl Flush {
         // friction's among them, put it: G(c) = centre(c) − c = 0 by Newton's method (a
         // finite-difference Jacobian; G is affine where the bed is not cracked and the slips'
         // directions do not depend on c), from the last centre found.
-        let eval =
-            |flush: &mut Flush, c: Vector2<f64>| -> Result<(Vector2<f64>, Rubbing, f64), Leaves> {
-                let world = e1 * c[0] + e2 * c[1];
-                flush.press(pose, normal, &world)?;
-                let mut rub = flush.rub_mode(&spots, own);
-                if !still && flush.band(&rub, &m, demand, own) {
-                    let found = flush.settled(&spots, &m, demand, (own, NEARBY));
-                    if let Some(settled) = found.filter(|s| s.exact) {
-                        rub = flush.rub_mode(&spots, settled.mode);
-                    }
+        let eval = |flush: &mut Flush,
+                    c: Vector2<f64>|
+         -> Result<(Vector2<f64>, Rubbing, [f64; 3]), Leaves> {
+            let world = e1 * c[0] + e2 * c[1];
+            flush.press(pose, normal, &world)?;
+            let mut rub = flush.rub_mode(&spots, own);
+            flush.along = still.then_some(own).filter(|d| d.iter().any(|x| *x != 0.0));
+            if !still && flush.band(&rub, &m, demand, own) {
+                let found = flush.settled(&spots, &m, demand, (own, NEARBY));
+                if let Some(settled) = found.filter(|s| s.exact) {
+                    rub = flush.rub_mode(&spots, settled.mode);
+                    flush.along = Some(settled.mode);
                 }
-                let alpha = (demand[2] + rub.torque) / m.about_n;
-                let next = flush.centre(normal, &moment, &(inertia * n * alpha + gyro), &rub.force);
-                Ok((Vector2::new(next.dot(&e1), next.dot(&e2)) - c, rub, alpha))
-            };
+            }
+            let mut acc = m.accelerate(flush.net(demand, &rub));
+            if let Some(d) = flush.along {
+                acc = m.along(acc, d);
+            }
+            let inertia_moment = inertia * n * acc[2] + gyro;
+            let next = flush.centre(normal, &moment, &inertia_moment, &rub.force);
+            Ok((Vector2::new(next.dot(&e1), next.dot(&e2)) - c, rub, acc))
+        };
         let close = 1e-14 * ctx.size;
         let mut c = self.last_centre;
         for _ in 0..CENTRE_ITERATIONS {
-            let (g, rub, alpha) = eval(self, c)?;
+            let (g, rub, acc) = eval(self, c)?;
             if g.norm() <= close {
                 self.last_centre = c;
-                let a = (force + n * normal + rub.force) / m.mass;
                 return Ok(Rates {
-                    a: a - n * n.dot(&a),
-                    alpha,
+                    a: e1 * acc[0] + e2 * acc[1],
+                    alpha: acc[2],
                     friction_power: rub.force.dot(&v) + rub.torque * w.dot(&n),
                 });
             }
@@ -341,6 +356,29 @@ impl Flush {
             c += newton.unwrap_or(g);
         }
         Err(Leaves::Unsettled)
+    }
+
+    /// The velocities of `y` held to the mode the last rate's slip was ([`Flush::along`]),
+    /// where they were not along it already (none left where they were against it): the
+    /// kinetic energy taken off, friction's, booked with the contacts' work. Whether they
+    /// moved.
+    pub fn hold_along(&self, ctx: &Ctx<'_>, y: &mut Slide) -> bool {
+        let Some(d) = self.along else {
+            return false;
+        };
+        let m = Metric::of(ctx, &self.pose(y), self.n);
+        let u = [y[3], y[4], y[5]];
+        let mut kept = m.along(u, d);
+        if kept.iter().zip(&d).any(|(k, d)| k * d < 0.0) {
+            kept = [0.0; 3];
+        }
+        if kept == u {
+            return false;
+        }
+        let kinetic = |u: [f64; 3]| 0.5 * m.norm(u).powi(2);
+        y[8] += kinetic(kept) - kinetic(u);
+        [y[3], y[4], y[5]] = kept;
+        true
     }
 
     /// The mode of the velocities `v` and `w` (along e1, e2, about n).
@@ -368,15 +406,18 @@ impl Flush {
 
     /// Whether the slip `own`, rubbing as `rub` under `demand` (the force along e1, e2 and
     /// the moment about n), is in the band where its direction is settled: friction's
-    /// stiffness times the step over [`TURNING`], and the block speeding up at under a tenth
-    /// of its friction's acceleration, or slowing down.
+    /// stiffness times the step over [`TURNING`] (or the block slowing to a stop within the
+    /// step), and the block speeding up at under a tenth of its friction's acceleration, or
+    /// slowing down.
     fn band(&self, rub: &Rubbing, m: &Metric, demand: [f64; 3], own: [f64; 3]) -> bool {
-        let turning = self.step * m.stiffness(rub);
-        if turning.is_nan() || turning <= TURNING {
-            return false;
-        }
         let a = m.accelerate(self.net(demand, rub));
         let slowing = a[0] * own[0] + a[1] * own[1] + a[2] * own[2] < 0.0;
+        // Slowing to a stop within the step: its last part is as slow as any.
+        let stops = slowing && m.norm(own) <= self.step * m.norm(a);
+        let turning = self.step * m.stiffness(rub);
+        if !stops && (turning.is_nan() || turning <= TURNING) {
+            return false;
+        }
         let friction = self.shares.iter().sum::<f64>() * self.mu / m.mass.sqrt();
         slowing || m.norm(a) < 0.1 * friction
     }
@@ -489,24 +530,94 @@ impl Flush {
             along.dot(&self.axes.1),
             moment.dot(&n),
         ];
+        if self.surely_held(&spots, along, demand[2]) {
+            return Ok(None);
+        }
+        Ok(self.search(&spots, &m, demand, ctx.size))
+    }
+
+    /// The slip mode the loads' `demand` (the force along e1, e2 and the moment about n)
+    /// starts at the present pressure, sought from their own direction and each of
+    /// [`DIRECTIONS`] (turns at the base's size `l`) of positive power: the mode (unit in the
+    /// metric `m`) and its power, or None where none has any.
+    fn search(
+        &self,
+        spots: &[Vector3<f64>],
+        m: &Metric,
+        demand: [f64; 3],
+        l: f64,
+    ) -> Option<([f64; 3], f64)> {
         let mut starts = vec![m.unit(m.accelerate(demand))];
-        starts.extend(
-            DIRECTIONS
-                .iter()
-                .map(|d| m.unit([d[0], d[1], d[2] / ctx.size])),
-        );
+        starts.extend(DIRECTIONS.iter().map(|d| m.unit([d[0], d[1], d[2] / l])));
         for start in starts {
-            let net = self.net(demand, &self.rub_mode(&spots, start));
+            let net = self.net(demand, &self.rub_mode(spots, start));
             if net[0] * start[0] + net[1] * start[1] + net[2] * start[2] <= 0.0 {
                 continue;
             }
-            let found = self.settled(&spots, &m, demand, (start, f64::INFINITY));
+            let found = self.settled(spots, m, demand, (start, f64::INFINITY));
             if let Some(s) = found.filter(|s| s.power > 0.0) {
-                return Ok(Some((m.unit(s.mode), s.power)));
+                return Some((m.unit(s.mode), s.power));
             }
         }
-        Ok(None)
+        None
     }
+}
+
+impl Flush {
+    /// Whether friction at the present pressure surely holds the block against the force
+    /// `along` the plane and the moment `twist` about its normal through the CM: a sufficient
+    /// test, cheaper than [`Flush::onset`]'s search, that holds the block at rest under most
+    /// of a record's samples.
+    ///
+    /// Friction's power in a slip mode (v, ω) is D = Σ μ pᵢ |v + ω n × rᵢ|. Its points'
+    /// slips sum to N w, w = v + ω n × c at the pressure's centre c, so D ≥ μ N |w|; and
+    /// |rᵢ − q| ≥ |(rᵢ − q)·e| for any unit e, so D ≥ μ |ω| J, J the least over s of
+    /// Σ pᵢ |rᵢ·e − s| (the weighted median's deviation along e; the greatest of four e).
+    /// The loads' power is F·w + M_c ω, M_c their moment about c. So D ≥ F·w + M_c ω in every
+    /// mode where |F| / μN + |M_c| / μJ ≤ 1.
+    fn surely_held(&self, spots: &[Vector3<f64>], along: Vector3<f64>, twist: f64) -> bool {
+        let normal: f64 = self.shares.iter().sum();
+        if !(normal > 0.0 && self.mu > 0.0) {
+            return false;
+        }
+        let centre = spots
+            .iter()
+            .zip(&self.shares)
+            .fold(Vector3::zeros(), |c, (r, p)| c + r * *p)
+            / normal;
+        let about_centre = twist - centre.cross(&along).dot(&self.n);
+        let free = 1.0 - 1e-12 - along.norm() / (self.mu * normal);
+        if free.is_nan() || free <= 0.0 {
+            return false;
+        }
+        if about_centre == 0.0 {
+            return true;
+        }
+        let (e1, e2) = self.axes;
+        let root = std::f64::consts::FRAC_1_SQRT_2;
+        let arm = [e1, e2, (e1 + e2) * root, (e1 - e2) * root]
+            .iter()
+            .map(|e| median_deviation(spots.iter().map(|r| r.dot(e)).zip(&self.shares)))
+            .fold(0.0, f64::max);
+        about_centre.abs() / (self.mu * arm) <= free
+    }
+}
+
+/// Σ wᵢ |xᵢ − m| about the weighted median m of the pairs (xᵢ, wᵢ): the least of
+/// Σ wᵢ |xᵢ − s| over s.
+fn median_deviation<'a>(pairs: impl Iterator<Item = (f64, &'a f64)>) -> f64 {
+    let mut pairs: Vec<(f64, f64)> = pairs.map(|(x, w)| (x, *w)).collect();
+    pairs.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
+    let half = 0.5 * pairs.iter().map(|p| p.1).sum::<f64>();
+    let mut below = 0.0;
+    let median = pairs
+        .iter()
+        .find(|p| {
+            below += p.1;
+            below >= half
+        })
+        .map_or(0.0, |p| p.0);
+    pairs.iter().map(|(x, w)| w * (x - median).abs()).sum()
 }
 
 /// A slip direction settled ([`Flush::settled`]): the mode, the loads' power in it over
@@ -579,6 +690,13 @@ impl Metric {
 
     fn norm(&self, a: [f64; 3]) -> f64 {
         (self.mass * (a[0] * a[0] + a[1] * a[1]) + self.about_n * a[2] * a[2]).sqrt()
+    }
+
+    /// The part of `a` along the unit mode `d` (both in this metric's terms: accelerations
+    /// or velocities along e1, e2 and about n).
+    fn along(&self, a: [f64; 3], d: [f64; 3]) -> [f64; 3] {
+        let k = self.mass * (a[0] * d[0] + a[1] * d[1]) + self.about_n * a[2] * d[2];
+        d.map(|x| x * k)
     }
 
     /// `a` scaled to one in this metric (zero stays zero).
@@ -690,6 +808,56 @@ mod tests {
                 "a push of 0.05 W {e} m off its CM"
             );
         }
+    }
+
+    #[test]
+    fn the_quick_hold_never_holds_a_block_the_search_starts() {
+        // Pushes of 0.02–0.44 W through lines 0–24 m off the CM, on level rock and dipping
+        // 10°: wherever the sufficient test holds the block, the search finds no mode that
+        // starts it; and it holds most that the search holds, twisted ones among them.
+        let (mut quick, mut held, mut twisted) = (0, 0, 0);
+        for dip in [0.0, 10.0] {
+            for push in [0.02, 0.1, 0.2, 0.3, 0.35, 0.39, 0.41, 0.44] {
+                for e in [0.0, 0.5, 2.0, 6.0, 12.0, 24.0] {
+                    let (sure, found) = on_its_rock(&scene(dip, push, e), |on, flush| {
+                        let ctx = on.ctx();
+                        let (force, moment, _) = ctx.loads(&on.s.pose, 0.0);
+                        let sure = flush.onset(&ctx, &on.s.pose, (force, moment)).unwrap();
+                        let n = flush.n;
+                        let along = force - n * n.dot(&force);
+                        let demand = [along.dot(&flush.axes.0), along.dot(&flush.axes.1)];
+                        let spots = flush.spots(&on.s.pose);
+                        let m = Metric::of(&ctx, &on.s.pose, n);
+                        let twist = moment.dot(&n);
+                        let found =
+                            flush.search(&spots, &m, [demand[0], demand[1], twist], ctx.size);
+                        (
+                            flush.surely_held(&spots, along, twist) && sure.is_none(),
+                            found,
+                        )
+                    });
+                    assert!(!(sure && found.is_some()), "{push} W {e} m off, {dip}°");
+                    quick += usize::from(sure);
+                    held += usize::from(found.is_none());
+                    twisted += usize::from(sure && e > 0.0);
+                }
+            }
+        }
+        assert!(
+            quick * 2 > held && twisted > 0,
+            "{quick} of {held}, {twisted}"
+        );
+    }
+
+    #[test]
+    fn the_median_deviation_is_the_least_sum_of_distances() {
+        // 0, 1, 2, 3 evenly: any s in [1, 2] gives 4. Weighted 1, 1, 1, 5: s = 3 gives 6.
+        let even = [1.0; 4];
+        let xs = [3.0, 0.0, 2.0, 1.0];
+        assert_eq!(median_deviation(xs.iter().copied().zip(&even)), 4.0);
+        let heavy = [1.0, 1.0, 1.0, 5.0];
+        let xs = [0.0, 1.0, 2.0, 3.0];
+        assert_eq!(median_deviation(xs.iter().copied().zip(&heavy)), 6.0);
     }
 
     #[test]

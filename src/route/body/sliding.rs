@@ -10,7 +10,6 @@
 
 use super::extrapolate::Extrapolated;
 use super::flush::{Flush, Leaves, Slide};
-use super::state::BodyState;
 use super::state::renormalized;
 use super::stepping::{MAX_ROWS_IN_A_STEP, SHORTEST, time_to_reach};
 use super::{Log, OnBase, OnBaseReport, Unmet};
@@ -18,7 +17,7 @@ use crate::contact;
 use crate::route::dynamics::Flow;
 use crate::route::integrator::{error_ratio, rk4_stages};
 use crate::route::rest;
-use nalgebra::{Rotation3, Vector3};
+use nalgebra::Rotation3;
 
 /// The farthest a point of the base goes in one step of the slide, as a fraction of its size:
 /// whether the base still lies flush alone is asked at each step's end, and a step this short
@@ -92,7 +91,7 @@ impl OnBase<'_> {
     /// Whether the base lies flush on one face now, alone, free of bonds and tendons, on
     /// constant friction: the slide set up there if it was not — the pose put on the plane
     /// (the base's normal along the face's, its foot on it), the velocities across it taken
-    /// off and their energy booked with the contacts' work.
+    /// off, their energy and the snap's booked with the contacts' work.
     pub(super) fn flush_phase(&mut self) -> bool {
         if self.flush.is_some() {
             return true;
@@ -142,10 +141,14 @@ impl OnBase<'_> {
         };
         let mass = self.body.block().mass;
         let before = self.s.kinetic(mass, &self.inertia);
+        // The potential energy of the snap onto the plane (round-off of the base's size) is the
+        // contacts' work too, so that the balance stays closed.
+        let lift = pose.cm.y - self.s.pose.cm.y;
         self.s.pose = pose;
         self.s.v -= n * n.dot(&self.s.v);
         self.s.w = n * n.dot(&self.s.w);
-        self.s.work_contacts += self.s.kinetic(mass, &self.inertia) - before;
+        self.s.work_contacts +=
+            self.s.kinetic(mass, &self.inertia) - before + mass * self.body.loads().gravity * lift;
         self.flush = Some(flush);
         true
     }
@@ -236,7 +239,7 @@ impl OnBase<'_> {
     /// tolerance or the base would leave the slide.
     fn slide<'s>(&mut self, mut flush: Flush, mut o: Log<'s>) -> Flow<'s, OnBaseReport> {
         let l = self.size;
-        let y0 = self.slide_state(&mut flush);
+        let mut y0 = self.slide_state(&mut flush);
         if speed(&y0, l) == 0.0 && flush.mode.is_none() {
             match self.starts(&mut flush, self.t) {
                 Err(_) => return self.leave_flush(o),
@@ -248,10 +251,17 @@ impl OnBase<'_> {
             }
         }
         flush.step = self.h;
-        let k1 = match flush.rate(&self.ctx(), &y0) {
+        let mut k1 = match flush.rate(&self.ctx(), &y0) {
             Ok(k) => k,
             Err(_) => return self.leave_flush(o),
         };
+        // Slow enough for its slip's direction to be settled: the slip across it taken off.
+        if flush.hold_along(&self.ctx(), &mut y0) {
+            k1 = match flush.rate(&self.ctx(), &y0) {
+                Ok(k) => k,
+                Err(_) => return self.leave_flush(o),
+            };
+        }
         let mut h = self.h.min(self.slide_limit(&y0, &k1));
         if speed(&y0, l) == 0.0 {
             // From rest the first stage slides in the mode found at the onset, the others in
@@ -301,29 +311,34 @@ impl OnBase<'_> {
         CREEP * self.body.loads().gravity * self.reference_step()
     }
 
-    /// A block creeping slower than [`OnBase::creep`]: at rest where friction holds it there,
-    /// its kinetic energy booked with the contacts' work; else it slides on.
+    /// A block creeping slower than [`OnBase::creep`]: at rest where friction holds it there
+    /// (its kinetic energy booked with the contacts' work); else it slides on in the mode the
+    /// loads start — its velocities along that mode kept, those across (or all, where the mode
+    /// turns it back) taken off and booked likewise.
     fn crept_to_rest<'s>(&mut self, o: Log<'s>) -> Flow<'s, OnBaseReport> {
         let Some(mut flush) = self.flush.take() else {
             return Flow::Go(o);
         };
-        let still = BodyState {
-            v: Vector3::zeros(),
-            w: Vector3::zeros(),
-            ..self.s
-        };
-        let moving = std::mem::replace(&mut self.s, still);
-        let held = matches!(self.starts(&mut flush, self.t), Ok(None));
-        self.flush = Some(flush);
-        if held {
-            self.s = moving;
-            return self.come_to_rest(o);
+        let start = self.starts(&mut flush, self.t);
+        match start {
+            Err(_) => self.leave_flush(o),
+            Ok(None) => {
+                self.flush = Some(flush);
+                self.come_to_rest(o)
+            }
+            Ok(Some(mode)) => {
+                let mut y = self.slide_state(&mut flush);
+                flush.along = Some(mode);
+                flush.hold_along(&self.ctx(), &mut y);
+                (self.s.v, self.s.w) = flush.velocities(&y);
+                self.s.work_contacts = y[8];
+                if speed(&y, self.size) > 0.0 {
+                    flush.mode = None;
+                }
+                self.flush = Some(flush);
+                Flow::Go(o)
+            }
         }
-        self.s = moving;
-        if let Some(f) = self.flush.as_mut() {
-            f.mode = None;
-        }
-        Flow::Go(o)
     }
 
     /// The slide's state now, the slide's origin moved here.

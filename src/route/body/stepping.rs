@@ -60,10 +60,7 @@ impl OnBase<'_> {
     pub(super) fn go_to<'s>(&mut self, t_to: f64, mut o: Log<'s>) -> Flow<'s, OnBaseReport> {
         self.shown_t = t_to;
         while self.t < t_to * (1.0 - 1e-15) {
-            // The slide on one face is for a block no record shakes (under one, its onsets and
-            // stops are not yet located: `sliding.rs`).
             let flush = (self.flush.is_some() || self.last.one_face)
-                && self.sim.foundation().record().is_none()
                 && self.left_flush_at != Some(self.t)
                 && self.flush_phase();
             let flow = if flush {
@@ -90,7 +87,12 @@ impl OnBase<'_> {
     /// only if it moves it; moving, a step as any other. Booked as first order.
     fn shaken_increment<'s>(&mut self, t_to: f64, mut o: Log<'s>) -> Flow<'s, OnBaseReport> {
         let h = t_to - self.t;
+        let bonded = self.bonded;
         let (s, stepped) = self.step_on(h, &mut o);
+        // The bond broken here, the base flush on one face slides from where it rests.
+        if bonded && !self.bonded && self.flush_phase() {
+            return Flow::Go(o);
+        }
         // A step that leaves a velocity or the pose not finite ends the route at the last
         // state that was (no row of NaN).
         if let Some(what) = not_finite(&s) {
