@@ -183,6 +183,30 @@ fn energy(f: &mut fmt::Formatter<'_>, r: &Route) -> fmt::Result {
             e.work_hydraulic_j, e.work_friction_j, e.potential_change_j, e.residual_j
         )?;
     }
+    let (first, unmet) = r.report.not_held();
+    if let Some(p) = first {
+        writeln!(
+            f,
+            "  first order: {} steps, {} s of the route between t = {} and {} s (the base on \
+             more than one face, or shaken off a flush face): the route and its energy \
+             balance there are not held to the tolerance",
+            p.steps,
+            fixed(p.duration_s, 3),
+            seconds(p.from_s),
+            seconds(p.to_s)
+        )?;
+    }
+    if let Some(u) = unmet {
+        writeln!(
+            f,
+            "  over the tolerance: {} steps at the shortest step between t = {} and {} s, \
+             at worst {} times it",
+            u.steps,
+            seconds(u.from_s),
+            seconds(u.to_s),
+            fixed(u.worst_ratio, 1)
+        )?;
+    }
     Ok(())
 }
 

@@ -8,7 +8,7 @@
 //! downcasts, and a library user matches it to read a model's own numbers. A new model is one
 //! variant here, one arm in [`drive`], and the few accessors below that its report answers.
 
-use super::body::OnBase;
+use super::body::{FirstOrder, OnBase, Unmet};
 use super::driver;
 use super::energy::EnergyBalance;
 use super::logbook::{Logbook, Sink};
@@ -60,6 +60,16 @@ impl Report {
         match self {
             Report::OnBase(r) => r.base.as_ref(),
             _ => None,
+        }
+    }
+
+    /// The phases of a block on its base not held to the tolerance: those stepped by the
+    /// time-stepping scheme alone (first order), and the steps taken over the tolerance at the
+    /// shortest length (none for the other models).
+    pub fn not_held(&self) -> (Option<FirstOrder>, Option<Unmet>) {
+        match self {
+            Report::OnBase(r) => (r.first_order, r.tolerance_unmet),
+            _ => (None, None),
         }
     }
 

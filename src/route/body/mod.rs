@@ -11,13 +11,13 @@
 //! (`step.rs`). A contact is made where a gap closes (an inelastic impact, the energy it takes
 //! booked with friction's) and released where its impulse falls to zero, so the block rocks,
 //! hops, drops off a step and lands as the physics says. Where the whole base lies flush on one
-//! face and no record shakes it, its slide is an ordinary differential equation integrated to
-//! the tolerance, its stops located (`flush.rs`, `sliding.rs`); where every touch is on one face
-//! otherwise, the steps are extrapolated and held to the tolerance, a stop or a reversal
-//! located (`extrapolate.rs`, `stepping.rs`). We deliberately differ from
-//! the three-point model elsewhere: on two faces or more, and under a record, the step is
-//! time-stepped alone (first order, every contact change inside a step, not located to
-//! round-off), because the contacts of a base on real rock change by the dozen.
+//! face, its slide is an ordinary differential equation integrated to the tolerance, under a
+//! record too, its onsets and stops located (`flush.rs`, `sliding.rs`); where every touch is on
+//! one face otherwise and no record shakes it, the steps are extrapolated and held to the
+//! tolerance, a stop or a reversal located (`extrapolate.rs`, `stepping.rs`). We deliberately
+//! differ from the three-point model elsewhere: on two faces or more, and under a record off a
+//! flush face, the step is time-stepped alone (first order, every contact change inside a step,
+//! not located to round-off), because the contacts of a base on real rock change by the dozen.
 //!
 //! The route ends only where the physics does: the block stops and static friction holds it
 //! (no ground motion), it overturns (its base tilts beyond [`OVERTURN_DEG`]), its base goes
