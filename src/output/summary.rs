@@ -187,9 +187,9 @@ fn energy(f: &mut fmt::Formatter<'_>, r: &Route) -> fmt::Result {
     if let Some(p) = first {
         writeln!(
             f,
-            "  first order: {} steps, {} s of the route between t = {} and {} s (the base on \
-             more than one face, or shaken off a flush face): the route and its energy \
-             balance there are not held to the tolerance",
+            "  first order (the time-stepping scheme alone): {} steps, {} s of the route \
+             between t = {} and {} s: the route and its energy balance there are not held to \
+             the tolerance",
             p.steps,
             fixed(p.duration_s, 3),
             seconds(p.from_s),

@@ -318,7 +318,7 @@ fn a_block_shaken_along_x_and_z_at_once_slides_to_the_two_directional_newmark_di
             record(seed + 100, 12.0, dt, 0.3),
         );
         let name = format!("two-way-{seed}-{mu}-{push}");
-        if let Err(e) = two_way_case(&name, (&ax, &az, dt), mu, push, 1000) {
+        if let Err(e) = two_way_case(&name, (&ax, &az, dt), (mu, push, "frame"), 1000) {
             panic!("{e}");
         }
     }
@@ -331,8 +331,7 @@ fn a_block_shaken_along_x_and_z_at_once_slides_to_the_two_directional_newmark_di
 fn two_way_case(
     name: &str,
     (ax, az, dt): (&[f64], &[f64], f64),
-    mu: f64,
-    push: f64,
+    (mu, push, contacts): (f64, f64, &'static str),
     per_sample: usize,
 ) -> Result<(), String> {
     let n = ax.len().min(az.len());
@@ -362,7 +361,7 @@ fn two_way_case(
     }
     let seismic = format!("record_x = \"x.txt\"\nrecord_z = \"z.txt\"\ndt_s = {dt}\n");
     let run = Run {
-        contacts: "frame",
+        contacts,
         dt_s: 1e-3,
         stride: 1000,
     };
@@ -585,6 +584,12 @@ fn real_records_on(contacts: &'static str, relative: f64, dt: f64) {
 #[test]
 #[ignore = "needs the real records (crosscheck/setup.sh); run by .ci/run"]
 fn real_records_two_at_a_time_slide_the_block_the_two_directional_distance() {
+    real_records_two_at_a_time_on("frame");
+}
+
+/// Each real record along X with the next of its sample step along Z, on `contacts`, against
+/// the two-directional Newmark block ([`two_way_case`]), two routes at a time.
+fn real_records_two_at_a_time_on(contacts: &'static str) {
     let records: Vec<_> = real_records()
         .into_iter()
         .map(|f| {
@@ -611,7 +616,8 @@ fn real_records_two_at_a_time_slide_the_block_the_two_directional_distance() {
                 {
                     // The reference's step 25 µs.
                     let per_sample = (dt / 2.5e-5).round() as usize;
-                    if let Err(e) = two_way_case(name, (ax, az, *dt), *mu, *push, per_sample) {
+                    let case = (ax.as_slice(), az.as_slice(), *dt);
+                    if let Err(e) = two_way_case(name, case, (*mu, *push, contacts), per_sample) {
                         failures.lock().unwrap().push(e);
                     }
                 }

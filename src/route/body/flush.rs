@@ -86,6 +86,8 @@ pub(super) struct Flush {
     /// from rest, the mode it starts in; slow and stiff, the direction it settles to
     /// ([`Flush::rates`]). A step from a state so held starts with its velocities along it.
     pub along: Option<[f64; 3]>,
+    /// The slide's steps in a row under a hundredth of the reference step (`sliding.rs`).
+    pub tiny: usize,
 }
 
 /// The forces of the slide at one instant: the CM's acceleration (world, in the plane), the
@@ -138,6 +140,7 @@ impl Flush {
             mode: None,
             sense: None,
             along: None,
+            tiny: 0,
         })
     }
 

@@ -210,6 +210,9 @@ pub(super) struct OnBase<'a> {
     /// When the base last left its slide: it is not taken up again before a step of the
     /// time-stepping scheme.
     left_flush_at: Option<f64>,
+    /// Under a record, the slide stalled (`sliding.rs`): the time-stepping scheme takes the
+    /// block until it rests again.
+    stalled: bool,
 }
 
 impl<'a> OnBase<'a> {
@@ -248,6 +251,7 @@ impl<'a> OnBase<'a> {
             within: Vec::new(),
             flush: None,
             left_flush_at: None,
+            stalled: false,
         }
     }
 

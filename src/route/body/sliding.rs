@@ -35,6 +35,11 @@ const STOP_ITERATIONS: usize = 30;
 /// was not located is taken to have stopped ([`OnBase::creep`]).
 const CREEP: f64 = 1e-6;
 
+/// A step of the slide under this fraction of the reference step is tiny, and this many tiny
+/// steps in a row under a record a stall ([`OnBase::stalls`]).
+const TINY: f64 = 1e-2;
+const STALLED: usize = 20;
+
 /// A stop is located when the speed left, against the weight's over the reference step, is
 /// below this: the distance it would still go, s² / 2a, is then under 1e-20 of g h².
 const STOPPED: f64 = 1e-10;
@@ -293,15 +298,31 @@ impl OnBase<'_> {
                     }
                     let grown = h * step_factor(t.ratio);
                     self.h = if limited { self.h.max(grown) } else { grown };
+                    let stalled = self.stalls(&mut flush, h, speed(&y0, l) == 0.0);
                     flush.mode = None;
                     self.flush = Some(flush);
                     return match self.took_slide(h, t.y, o) {
+                        Flow::Go(o) if stalled => {
+                            self.stalled = true;
+                            self.leave_flush(o)
+                        }
                         Flow::Go(o) if speed(&t.y, l) <= self.creep() => self.crept_to_rest(o),
                         flow => flow,
                     };
                 }
             }
         }
+    }
+
+    /// Whether the slide has stalled under a record with this step of `h` (not one from
+    /// rest): [`STALLED`] steps in a row each under [`TINY`] of the reference step, as a slow
+    /// slip that friction turns takes (its direction is not settled near its own, so each step
+    /// is held to the time friction takes to turn it). The time-stepping scheme then takes the
+    /// block, first order and booked, until it rests again.
+    fn stalls(&self, flush: &mut Flush, h: f64, from_rest: bool) -> bool {
+        let tiny = h < TINY * self.reference_step() && !from_rest;
+        flush.tiny = if tiny { flush.tiny + 1 } else { 0 };
+        self.sim.foundation().record().is_some() && flush.tiny >= STALLED
     }
 
     /// The speed under which a block that has not stopped where a stop was located is taken

@@ -60,7 +60,12 @@ impl OnBase<'_> {
     pub(super) fn go_to<'s>(&mut self, t_to: f64, mut o: Log<'s>) -> Flow<'s, OnBaseReport> {
         self.shown_t = t_to;
         while self.t < t_to * (1.0 - 1e-15) {
+            // Under a record the slide is taken where it shakes the block along one line
+            // (`sliding.rs`: a slow slip turning under two components at once is not yet).
+            self.stalled &= !self.resting;
             let flush = (self.flush.is_some() || self.last.one_face)
+                && self.shaken_along_one_line()
+                && !self.stalled
                 && self.left_flush_at != Some(self.t)
                 && self.flush_phase();
             let flow = if flush {
@@ -80,6 +85,15 @@ impl OnBase<'_> {
             };
         }
         Flow::Go(o)
+    }
+
+    /// Whether no record shakes the block, or one shakes it along one horizontal line (its
+    /// X or its Z component alone, with or without its vertical one).
+    fn shaken_along_one_line(&self) -> bool {
+        self.sim
+            .foundation()
+            .record()
+            .is_none_or(|r| !(r.moves()[0] && r.moves()[2]))
     }
 
     /// Under a record, one increment to `t_to` of the time-stepping scheme alone, first order
