@@ -712,6 +712,7 @@ impl Metric {
 #[cfg(test)]
 mod tests {
     use super::super::OnBase;
+    use super::super::tests::set_down;
     use super::*;
     use crate::scene::Scene;
 
@@ -736,10 +737,7 @@ mod tests {
             .unwrap()
             .simulation()
             .unwrap();
-        let body = &sim.bodies()[0];
-        let mut on = OnBase::unset(&sim, body, body.base().unwrap());
-        let rest = on.rest_on_the_rock().unwrap();
-        on.set_going(&rest, 1e-3);
+        let mut on = set_down(&sim, 1e-3);
         assert!(on.flush_phase(), "the base lies flush on its plane");
         let mut flush = on.flush.take().unwrap();
         check(&mut on, &mut flush)

@@ -210,6 +210,9 @@ pub(super) struct OnBase<'a> {
     /// When the base last left its slide: it is not taken up again before a step of the
     /// time-stepping scheme.
     left_flush_at: Option<f64>,
+    /// No record shakes the block, or one shakes it along one horizontal line (its X or its
+    /// Z component alone, with or without its vertical one): where the slide may be taken.
+    along_one_line: bool,
     /// Under a record, the slide stalled (`sliding.rs`): the time-stepping scheme takes the
     /// block until it rests again.
     stalled: bool,
@@ -227,6 +230,10 @@ impl<'a> OnBase<'a> {
             rotation: Matrix3::identity(),
         };
         let ground = Arc::clone(sim.foundation().ground());
+        let along_one_line = sim
+            .foundation()
+            .record()
+            .is_none_or(|r| !(r.moves()[0] && r.moves()[2]));
         OnBase {
             sim,
             body,
@@ -251,6 +258,7 @@ impl<'a> OnBase<'a> {
             within: Vec::new(),
             flush: None,
             left_flush_at: None,
+            along_one_line,
             stalled: false,
         }
     }
@@ -707,13 +715,19 @@ mod tests {
             .unwrap()
             .simulation()
             .unwrap();
-        let body = &sim.bodies()[0];
-        let mut on = OnBase::unset(&sim, body, body.base().unwrap());
-        let rest = on.rest_on_the_rock().unwrap();
         let h = sim.settings().dt;
-        on.set_going(&rest, h);
+        let on = set_down(&sim, h);
         let law = on.ctx().held_by_its_law(&on.s.pose, 0.0, h, &on.last);
         (law, on.settles(0.0, h))
+    }
+
+    /// The first body of `sim` set down on its rock, going with the reference step `h`.
+    pub(super) fn set_down(sim: &Simulation, h: f64) -> OnBase<'_> {
+        let body = &sim.bodies()[0];
+        let mut on = OnBase::unset(sim, body, body.base().unwrap());
+        let rest = on.rest_on_the_rock().unwrap();
+        on.set_going(&rest, h);
+        on
     }
 
     /// A 4 m square block of 1000 t, its CM in its base, on level rock with μ = 0.4, pushed

@@ -64,7 +64,7 @@ impl OnBase<'_> {
             // (`sliding.rs`: a slow slip turning under two components at once is not yet).
             self.stalled &= !self.resting;
             let flush = (self.flush.is_some() || self.last.one_face)
-                && self.shaken_along_one_line()
+                && self.along_one_line
                 && !self.stalled
                 && self.left_flush_at != Some(self.t)
                 && self.flush_phase();
@@ -85,15 +85,6 @@ impl OnBase<'_> {
             };
         }
         Flow::Go(o)
-    }
-
-    /// Whether no record shakes the block, or one shakes it along one horizontal line (its
-    /// X or its Z component alone, with or without its vertical one).
-    fn shaken_along_one_line(&self) -> bool {
-        self.sim
-            .foundation()
-            .record()
-            .is_none_or(|r| !(r.moves()[0] && r.moves()[2]))
     }
 
     /// Under a record, one increment to `t_to` of the time-stepping scheme alone, first order
